@@ -1,0 +1,220 @@
+//! Trigonometric rewriting on our own tree, before anything reaches the engine.
+//!
+//! Multiple angles are expanded (sin 2α = 2 sin α cos α), and then each distinct argument x is
+//! replaced by the half-angle tangent t: cos x = (1 − t²)/(1 + t²), sin x = 2t/(1 + t²). The result
+//! is a rational function, zero exactly when the trigonometric expression is identically zero
+//! (for independent arguments).
+
+use super::expr::Expr;
+
+/// sin(k·x), cos(k·x) for integer k → polynomials in sin x, cos x; sin 0 = 0, cos 0 = 1.
+pub fn expand_multiple_angles(e: &Expr) -> Expr {
+    match e {
+        Expr::Call(name, args) if (name == "sin" || name == "cos") && args.len() == 1 => {
+            let arg = expand_multiple_angles(&args[0]);
+            let (k, rest) = split_integer_factor(&arg);
+            if k == 0 {
+                return Expr::int(if name == "sin" { 0 } else { 1 });
+            }
+            let (s, c) = sin_cos_multiple(k.unsigned_abs() as u32, &rest);
+            let sign = if k < 0 && name == "sin" { -1 } else { 1 };
+            Expr::mul(vec![Expr::int(sign), if name == "sin" { s } else { c }])
+        }
+        Expr::Call(name, args) => Expr::Call(
+            name.clone(),
+            args.iter().map(expand_multiple_angles).collect(),
+        ),
+        Expr::Add(v) => Expr::add(v.iter().map(expand_multiple_angles).collect()),
+        Expr::Mul(v) => Expr::mul(v.iter().map(expand_multiple_angles).collect()),
+        Expr::Pow(a, b) => Expr::pow(expand_multiple_angles(a), expand_multiple_angles(b)),
+        other => other.clone(),
+    }
+}
+
+/// `k*x` → (k, x) for a small integer k; anything else → (1, e); zero → (0, 0).
+fn split_integer_factor(e: &Expr) -> (i64, Expr) {
+    match e {
+        Expr::Num(r) if r.is_zero() => (0, Expr::int(0)),
+        Expr::Mul(v) => match v.first() {
+            Some(Expr::Num(r)) if r.is_integer() && r.numer().abs() <= 12 => {
+                (r.numer() as i64, Expr::mul(v[1..].to_vec()))
+            }
+            _ => (1, e.clone()),
+        },
+        _ => (1, e.clone()),
+    }
+}
+
+/// (sin kx, cos kx) by the addition formulas.
+fn sin_cos_multiple(k: u32, x: &Expr) -> (Expr, Expr) {
+    let (s1, c1) = (Expr::call("sin", x.clone()), Expr::call("cos", x.clone()));
+    let (mut s, mut c) = (s1.clone(), c1.clone());
+    for _ in 1..k {
+        let s_next = Expr::add(vec![
+            Expr::mul(vec![s.clone(), c1.clone()]),
+            Expr::mul(vec![c.clone(), s1.clone()]),
+        ]);
+        let c_next = Expr::sub(
+            Expr::mul(vec![c.clone(), c1.clone()]),
+            Expr::mul(vec![s.clone(), s1.clone()]),
+        );
+        (s, c) = (s_next, c_next);
+    }
+    (s, c)
+}
+
+/// Replaces cos(var) and sin(var) by the symbols `c` and `s`, for integration over var.
+pub fn name_trig_of(e: &Expr, var: &str, c: &str, s: &str) -> Expr {
+    match e {
+        Expr::Call(name, a)
+            if a.len() == 1 && a[0] == Expr::sym(var) && (name == "cos" || name == "sin") =>
+        {
+            Expr::sym(if name == "cos" { c } else { s })
+        }
+        Expr::Call(name, a) => Expr::Call(
+            name.clone(),
+            a.iter().map(|x| name_trig_of(x, var, c, s)).collect(),
+        ),
+        Expr::Add(v) => Expr::add(v.iter().map(|x| name_trig_of(x, var, c, s)).collect()),
+        Expr::Mul(v) => Expr::mul(v.iter().map(|x| name_trig_of(x, var, c, s)).collect()),
+        Expr::Pow(a, b) => Expr::pow(name_trig_of(a, var, c, s), name_trig_of(b, var, c, s)),
+        other => other.clone(),
+    }
+}
+
+/// sinⁿx with n ≥ 2 → sin^(n mod 2) x · (1 − cos²x)^(n div 2): with expansion after it, a
+/// canonical form (a polynomial in cos plus sin times one) for polynomials in sin and cos.
+pub fn reduce_sin_powers(e: &Expr) -> Expr {
+    match e {
+        Expr::Pow(a, b) => {
+            let base = reduce_sin_powers(a);
+            if let (Expr::Call(name, args), Expr::Num(n)) = (&base, b.as_ref())
+                && name == "sin"
+                && n.is_integer()
+                && n.numer() >= 2
+            {
+                let k = n.numer();
+                let cos2 = Expr::pow(Expr::call("cos", args[0].clone()), Expr::int(2));
+                return Expr::mul(vec![
+                    Expr::pow(base.clone(), Expr::int(k % 2)),
+                    Expr::pow(Expr::sub(Expr::int(1), cos2), Expr::int(k / 2)),
+                ]);
+            }
+            Expr::pow(base, reduce_sin_powers(b))
+        }
+        Expr::Call(name, a) => Expr::Call(name.clone(), a.iter().map(reduce_sin_powers).collect()),
+        Expr::Add(v) => Expr::add(v.iter().map(reduce_sin_powers).collect()),
+        Expr::Mul(v) => Expr::mul(v.iter().map(reduce_sin_powers).collect()),
+        other => other.clone(),
+    }
+}
+
+/// True if any power has a non-integer exponent (a square root, say).
+pub fn has_fractional_power(e: &Expr) -> bool {
+    match e {
+        Expr::Pow(a, b) => {
+            !matches!(b.as_ref(), Expr::Num(r) if r.is_integer()) || has_fractional_power(a)
+        }
+        Expr::Call(n, a) => n == "sqrt" || a.iter().any(has_fractional_power),
+        Expr::Add(v) | Expr::Mul(v) | Expr::List(v) => v.iter().any(has_fractional_power),
+        Expr::Index(a, b) => has_fractional_power(a) || has_fractional_power(b),
+        Expr::Num(_) | Expr::Sym(_) => false,
+    }
+}
+
+/// The name of the half-angle variable for argument number `i`. `__` never appears in scene names.
+pub fn half_angle_name(i: usize) -> String {
+    format!("t__{i}")
+}
+
+/// Replaces sin and cos of each distinct argument by rational functions of a fresh t.
+/// Returns the new expression and the arguments, in the order of their t's.
+pub fn to_half_angle(e: &Expr) -> (Expr, Vec<Expr>) {
+    let mut args = Vec::new();
+    let out = replace(&expand_multiple_angles(e), &mut args);
+    (out, args)
+}
+
+fn replace(e: &Expr, args: &mut Vec<Expr>) -> Expr {
+    match e {
+        Expr::Call(name, a) if (name == "sin" || name == "cos") && a.len() == 1 => {
+            let arg = replace(&a[0], args);
+            let i = match args.iter().position(|x| *x == arg) {
+                Some(i) => i,
+                None => {
+                    args.push(arg);
+                    args.len() - 1
+                }
+            };
+            let t = Expr::Sym(half_angle_name(i));
+            let t2 = Expr::pow(t.clone(), Expr::int(2));
+            let den = Expr::add(vec![Expr::int(1), t2.clone()]);
+            let num = if name == "cos" {
+                Expr::sub(Expr::int(1), t2)
+            } else {
+                Expr::mul(vec![Expr::int(2), t])
+            };
+            Expr::div(num, den)
+        }
+        Expr::Call(name, a) => {
+            Expr::Call(name.clone(), a.iter().map(|x| replace(x, args)).collect())
+        }
+        Expr::Add(v) => Expr::add(v.iter().map(|x| replace(x, args)).collect()),
+        Expr::Mul(v) => Expr::mul(v.iter().map(|x| replace(x, args)).collect()),
+        Expr::Pow(a, b) => Expr::pow(replace(a, args), replace(b, args)),
+        other => other.clone(),
+    }
+}
+
+/// Maps half-angle variables back: t = sin x / (1 + cos x).
+pub fn from_half_angle(e: &Expr, args: &[Expr]) -> Expr {
+    e.substitute(&|name| {
+        let i: usize = name.strip_prefix("t__")?.parse().ok()?;
+        let x = args.get(i)?.clone();
+        Some(Expr::div(
+            Expr::call("sin", x.clone()),
+            Expr::add(vec![Expr::int(1), Expr::call("cos", x)]),
+        ))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cas::parse;
+
+    fn at(e: &Expr, a: f64) -> f64 {
+        e.eval(&|s| match s {
+            "a" => Some(a),
+            "t__0" => Some((a / 2.0).tan()),
+            _ => None,
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn multiple_angles_agree_numerically() {
+        for s in [
+            "sin(2*a)",
+            "cos(3*a)",
+            "sin(-2*a)",
+            "cos(0)",
+            "sin(a)*cos(4*a)",
+        ] {
+            let e = parse(s).unwrap().expr;
+            let x = expand_multiple_angles(&e);
+            assert!((at(&e, 0.37) - at(&x, 0.37)).abs() < 1e-14, "{s} -> {x}");
+        }
+    }
+
+    #[test]
+    fn half_angle_substitution_is_exact_in_value() {
+        let e = parse("sin(a)^2 + 3*cos(2*a)*sin(a)").unwrap().expr;
+        let (h, args) = to_half_angle(&e);
+        assert_eq!(args, vec![parse("a").unwrap().expr]);
+        assert!(h.symbols().iter().all(|s| s == "t__0"));
+        assert!((at(&e, 0.9) - at(&h, 0.9)).abs() < 1e-14);
+        let back = from_half_angle(&Expr::sym("t__0"), &args);
+        assert!((at(&back, 0.9) - (0.45f64).tan()).abs() < 1e-14);
+    }
+}

@@ -1,0 +1,154 @@
+//! The command line (clap derive): the doc comments are the help text.
+
+use crate::pipeline::{self, SceneReport};
+use crate::report;
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand};
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Reproduce every derivation of a rigid-body mechanics course twice, exactly (Symbolica) and
+/// numerically (nalgebra), and check both against what the lecture notes claim.
+///
+/// Scenes are TOML files, one per derivation (see docs/scenes.md). Exit status: 0 when every
+/// check passes, 1 when a check fails or an input is bad, 2 when the command line is wrong.
+#[derive(Parser, Debug)]
+#[command(name = "mechbook", version, about, long_about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Derive and verify every scene; print a summary table; fail when anything changed.
+    ///
+    /// A scene records the verdict it expects for each claim of the notes and, optionally, its
+    /// exact results. `check` exits with 1 when a verdict or a result differs from the record,
+    /// or when exact and numeric results disagree: a regression test for the derivations.
+    /// It writes no files.
+    Check {
+        /// Scene files or folders to search for `*.toml` (default: lectures/).
+        paths: Vec<PathBuf>,
+        /// Print JSON, `{"scenes": [...]}`, instead of the table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Derive one scene and print its steps, results, numeric cross-check and claims.
+    Derive {
+        /// The scene file.
+        scene: PathBuf,
+        /// Print the scene as JSON.
+        #[arg(long)]
+        json: bool,
+        /// Show which stages ran and which were skipped, and why.
+        #[arg(long)]
+        explain: bool,
+    },
+}
+
+/// Parses the command line and runs it. Usage errors exit with 2 (clap's convention).
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("mechbook: error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn load(paths: &[PathBuf]) -> Result<Option<Vec<crate::scene::Scene>>> {
+    let files = pipeline::find_scenes(paths).context("cannot list the scene files")?;
+    if files.is_empty() {
+        anyhow::bail!(
+            "no scene files (*.toml) found in {}",
+            paths
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    match pipeline::load_all(&files) {
+        Ok(s) => Ok(Some(s)),
+        Err(errors) => {
+            for e in &errors {
+                eprintln!("mechbook: error: {e}");
+            }
+            eprintln!(
+                "mechbook: {} bad scene file(s); nothing was derived",
+                errors.len()
+            );
+            Ok(None)
+        }
+    }
+}
+
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::Check { paths, json } => {
+            let paths = if paths.is_empty() {
+                vec![PathBuf::from("lectures")]
+            } else {
+                paths
+            };
+            let Some(scenes) = load(&paths)? else {
+                return Ok(ExitCode::from(1));
+            };
+            let progress = std::io::stderr().is_terminal();
+            let total = scenes.len();
+            let mut reports: Vec<SceneReport> = Vec::new();
+            for (i, scene) in scenes.into_iter().enumerate() {
+                if progress {
+                    eprint!("\r\x1b[2K[{}/{}] {}", i + 1, total, scene.id);
+                }
+                reports.push(pipeline::run_scene(scene)?);
+            }
+            if progress {
+                eprint!("\r\x1b[2K");
+            }
+            let passed = reports.iter().all(SceneReport::passed);
+            let text = if json {
+                let scenes: Vec<_> = reports.iter().map(report::scene_json).collect();
+                serde_json::to_string_pretty(&serde_json::json!({ "scenes": scenes }))? + "\n"
+            } else {
+                report::check_table(&reports)
+            };
+            std::io::stdout().write_all(text.as_bytes())?;
+            Ok(if passed {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
+        }
+        Command::Derive {
+            scene,
+            json,
+            explain,
+        } => {
+            let Some(mut scenes) = load(std::slice::from_ref(&scene))? else {
+                return Ok(ExitCode::from(1));
+            };
+            let r = pipeline::run_scene(scenes.remove(0))?;
+            let text = if json {
+                serde_json::to_string_pretty(&report::scene_json(&r))? + "\n"
+            } else {
+                let mut t = report::derivation_text(&r);
+                if explain {
+                    t.push('\n');
+                    t.push_str(&report::explain_text(&r));
+                }
+                t
+            };
+            std::io::stdout().write_all(text.as_bytes())?;
+            Ok(if r.passed() {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
+        }
+    }
+}

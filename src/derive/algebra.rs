@@ -1,0 +1,370 @@
+//! Scalars, 3-vectors and 3×3 matrices of expressions, and the claim language built on them:
+//! `dot`, `cross`, `outer`, `transpose`, `eye()`, `diag`, `rot_x/y/z`, `trace`, products and
+//! indexing. Everything here only builds trees; the engine simplifies them.
+
+use crate::cas::Expr;
+use std::collections::BTreeMap;
+
+pub type Vec3 = [Expr; 3];
+pub type Mat3 = [[Expr; 3]; 3];
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    Scalar(Expr),
+    Vector(Vec3),
+    Matrix(Mat3),
+}
+
+impl Value {
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Value::Scalar(_) => "a scalar",
+            Value::Vector(_) => "a vector",
+            Value::Matrix(_) => "a matrix",
+        }
+    }
+
+    /// The entries in row-major order.
+    pub fn entries(&self) -> Vec<Expr> {
+        match self {
+            Value::Scalar(e) => vec![e.clone()],
+            Value::Vector(v) => v.to_vec(),
+            Value::Matrix(m) => m.iter().flatten().cloned().collect(),
+        }
+    }
+
+    /// Rebuilds a value of the same shape from row-major entries.
+    pub fn with_entries(&self, entries: &[Expr]) -> Value {
+        match self {
+            Value::Scalar(_) => Value::Scalar(entries[0].clone()),
+            Value::Vector(_) => Value::Vector(std::array::from_fn(|i| entries[i].clone())),
+            Value::Matrix(_) => Value::Matrix(std::array::from_fn(|i| {
+                std::array::from_fn(|j| entries[3 * i + j].clone())
+            })),
+        }
+    }
+
+    /// Where entry `k` sits, for messages: `""`, `[1]` or `[0][2]`.
+    pub fn entry_label(&self, k: usize) -> String {
+        match self {
+            Value::Scalar(_) => String::new(),
+            Value::Vector(_) => format!("[{k}]"),
+            Value::Matrix(_) => format!("[{}][{}]", k / 3, k % 3),
+        }
+    }
+
+    /// As an expression in the claim language (lists for vectors and matrices).
+    pub fn to_expr(&self) -> Expr {
+        match self {
+            Value::Scalar(e) => e.clone(),
+            Value::Vector(v) => Expr::List(v.to_vec()),
+            Value::Matrix(m) => Expr::List(m.iter().map(|r| Expr::List(r.to_vec())).collect()),
+        }
+    }
+
+    pub fn to_text(&self) -> String {
+        self.to_expr().to_text()
+    }
+
+    pub fn to_latex(&self) -> String {
+        self.to_expr().to_latex()
+    }
+}
+
+pub fn zero3() -> Vec3 {
+    std::array::from_fn(|_| Expr::int(0))
+}
+
+pub fn dot(a: &Vec3, b: &Vec3) -> Expr {
+    Expr::add(
+        (0..3)
+            .map(|i| Expr::mul(vec![a[i].clone(), b[i].clone()]))
+            .collect(),
+    )
+}
+
+pub fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
+    let c = |i: usize, j: usize| {
+        Expr::sub(
+            Expr::mul(vec![a[i].clone(), b[j].clone()]),
+            Expr::mul(vec![a[j].clone(), b[i].clone()]),
+        )
+    };
+    [c(1, 2), c(2, 0), c(0, 1)]
+}
+
+pub fn scale_vec(s: &Expr, v: &Vec3) -> Vec3 {
+    std::array::from_fn(|i| Expr::mul(vec![s.clone(), v[i].clone()]))
+}
+
+pub fn add_vec(a: &Vec3, b: &Vec3) -> Vec3 {
+    std::array::from_fn(|i| Expr::add(vec![a[i].clone(), b[i].clone()]))
+}
+
+pub fn sub_vec(a: &Vec3, b: &Vec3) -> Vec3 {
+    std::array::from_fn(|i| Expr::sub(a[i].clone(), b[i].clone()))
+}
+
+pub fn mat_vec(m: &Mat3, v: &Vec3) -> Vec3 {
+    std::array::from_fn(|i| dot(&m[i], v))
+}
+
+pub fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            Expr::add(
+                (0..3)
+                    .map(|k| Expr::mul(vec![a[i][k].clone(), b[k][j].clone()]))
+                    .collect(),
+            )
+        })
+    })
+}
+
+pub fn transpose(m: &Mat3) -> Mat3 {
+    std::array::from_fn(|i| std::array::from_fn(|j| m[j][i].clone()))
+}
+
+pub fn mat_add(a: &Mat3, b: &Mat3) -> Mat3 {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| Expr::add(vec![a[i][j].clone(), b[i][j].clone()]))
+    })
+}
+
+pub fn mat_scale(s: &Expr, m: &Mat3) -> Mat3 {
+    std::array::from_fn(|i| std::array::from_fn(|j| Expr::mul(vec![s.clone(), m[i][j].clone()])))
+}
+
+pub fn eye() -> Mat3 {
+    diag([Expr::int(1), Expr::int(1), Expr::int(1)])
+}
+
+pub fn diag(d: [Expr; 3]) -> Mat3 {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| if i == j { d[i].clone() } else { Expr::int(0) })
+    })
+}
+
+/// r²𝟙 − r rᵀ: the inertia-tensor kernel of eq (10) for a unit mass at r.
+pub fn inertia_kernel(r: &Vec3) -> Mat3 {
+    let r2 = dot(r, r);
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let outer = Expr::mul(vec![r[i].clone(), r[j].clone()]);
+            if i == j {
+                Expr::sub(r2.clone(), outer)
+            } else {
+                Expr::neg(outer)
+            }
+        })
+    })
+}
+
+/// The right-handed rotation by `angle` about coordinate axis `axis` (0, 1, 2).
+pub fn rotation(axis: usize, angle: &Expr) -> Mat3 {
+    let c = Expr::call("cos", angle.clone());
+    let s = Expr::call("sin", angle.clone());
+    let (o, z) = (Expr::int(1), Expr::int(0));
+    let ns = Expr::neg(s.clone());
+    match axis {
+        0 => [
+            [o, z.clone(), z.clone()],
+            [z.clone(), c.clone(), ns],
+            [z, s, c],
+        ],
+        1 => [
+            [c.clone(), z.clone(), s],
+            [z.clone(), o, z.clone()],
+            [ns, z, c],
+        ],
+        _ => [
+            [c.clone(), ns, z.clone()],
+            [s, c, z.clone()],
+            [z.clone(), z, o],
+        ],
+    }
+}
+
+/// The names a claim expression can use, bound to values.
+pub type Env = BTreeMap<String, Value>;
+
+/// Evaluates an expression of the claim language to a value. Errors are type errors, in words.
+pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, String> {
+    use Value::*;
+    Ok(match e {
+        Expr::Num(_) => Scalar(e.clone()),
+        Expr::Sym(s) => match env.get(s) {
+            Some(v) => v.clone(),
+            None => Scalar(e.clone()),
+        },
+        Expr::Add(terms) => {
+            let mut acc = evaluate(&terms[0], env)?;
+            for t in &terms[1..] {
+                acc = match (acc, evaluate(t, env)?) {
+                    (Scalar(a), Scalar(b)) => Scalar(Expr::add(vec![a, b])),
+                    (Vector(a), Vector(b)) => Vector(add_vec(&a, &b)),
+                    (Matrix(a), Matrix(b)) => Matrix(mat_add(&a, &b)),
+                    (a, b) => return Err(format!("cannot add {} and {}", a.kind(), b.kind())),
+                };
+            }
+            acc
+        }
+        Expr::Mul(factors) => {
+            let mut acc = evaluate(&factors[0], env)?;
+            for f in &factors[1..] {
+                acc = multiply(acc, evaluate(f, env)?)?;
+            }
+            acc
+        }
+        Expr::Pow(b, x) => match (evaluate(b, env)?, evaluate(x, env)?) {
+            (Scalar(b), Scalar(x)) => Scalar(Expr::pow(b, x)),
+            (Matrix(_), Scalar(Expr::Num(n))) if n.numer() == -1 && n.denom() == 1 => {
+                return Err("matrix inverses are not supported in claims".into());
+            }
+            (b, x) => return Err(format!("cannot raise {} to {}", b.kind(), x.kind())),
+        },
+        Expr::List(items) => {
+            let vals: Vec<Value> = items
+                .iter()
+                .map(|i| evaluate(i, env))
+                .collect::<Result<_, _>>()?;
+            if vals.len() != 3 {
+                return Err(format!("lists have 3 entries, this one has {}", vals.len()));
+            }
+            match (&vals[0], &vals[1], &vals[2]) {
+                (Scalar(a), Scalar(b), Scalar(c)) => Vector([a.clone(), b.clone(), c.clone()]),
+                (Vector(a), Vector(b), Vector(c)) => Matrix([a.clone(), b.clone(), c.clone()]),
+                _ => return Err("a list holds three scalars or three rows".into()),
+            }
+        }
+        Expr::Index(a, i) => {
+            let Expr::Num(n) = i.as_ref() else {
+                return Err("an index is a literal 0, 1 or 2".into());
+            };
+            if !n.is_integer() || !(0..3).contains(&n.numer()) {
+                return Err("an index is a literal 0, 1 or 2".into());
+            }
+            let k = n.numer() as usize;
+            match evaluate(a, env)? {
+                Vector(v) => Scalar(v[k].clone()),
+                Matrix(m) => Vector(m[k].clone()),
+                Scalar(_) => return Err("cannot index a scalar".into()),
+            }
+        }
+        Expr::Call(name, args) => {
+            let vals: Vec<Value> = args
+                .iter()
+                .map(|a| evaluate(a, env))
+                .collect::<Result<_, _>>()?;
+            call(name, vals)?
+        }
+    })
+}
+
+fn multiply(a: Value, b: Value) -> Result<Value, String> {
+    use Value::*;
+    Ok(match (a, b) {
+        (Scalar(a), Scalar(b)) => Scalar(Expr::mul(vec![a, b])),
+        (Scalar(s), Vector(v)) | (Vector(v), Scalar(s)) => Vector(scale_vec(&s, &v)),
+        (Scalar(s), Matrix(m)) | (Matrix(m), Scalar(s)) => Matrix(mat_scale(&s, &m)),
+        (Matrix(m), Vector(v)) => Vector(mat_vec(&m, &v)),
+        (Matrix(a), Matrix(b)) => Matrix(mat_mul(&a, &b)),
+        (a, b) => {
+            return Err(format!(
+                "cannot multiply {} by {} (use dot, cross or outer)",
+                a.kind(),
+                b.kind()
+            ));
+        }
+    })
+}
+
+fn call(name: &str, args: Vec<Value>) -> Result<Value, String> {
+    use Value::*;
+    let kinds: Vec<&str> = args.iter().map(|a| a.kind()).collect();
+    let bad = || format!("`{name}` cannot take {}", kinds.join(" and "));
+    Ok(match (name, args.as_slice()) {
+        ("sin" | "cos" | "sqrt", [Scalar(x)]) => Scalar(Expr::call(name, x.clone())),
+        ("dot", [Vector(a), Vector(b)]) => Scalar(dot(a, b)),
+        ("cross", [Vector(a), Vector(b)]) => Vector(cross(a, b)),
+        ("outer", [Vector(a), Vector(b)]) => Matrix(std::array::from_fn(|i| {
+            std::array::from_fn(|j| Expr::mul(vec![a[i].clone(), b[j].clone()]))
+        })),
+        ("transpose", [Matrix(m)]) => Matrix(transpose(m)),
+        ("trace", [Matrix(m)]) => Scalar(Expr::add((0..3).map(|i| m[i][i].clone()).collect())),
+        ("eye", []) => Matrix(eye()),
+        ("diag", [Scalar(a), Scalar(b), Scalar(c)]) => {
+            Matrix(diag([a.clone(), b.clone(), c.clone()]))
+        }
+        ("rot_x", [Scalar(a)]) => Matrix(rotation(0, a)),
+        ("rot_y", [Scalar(a)]) => Matrix(rotation(1, a)),
+        ("rot_z", [Scalar(a)]) => Matrix(rotation(2, a)),
+        _ => return Err(bad()),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cas::parse;
+
+    fn ev(s: &str, env: &Env) -> Result<Value, String> {
+        evaluate(&parse(s).unwrap().expr, env)
+    }
+
+    fn num(v: &Value) -> Vec<f64> {
+        v.entries()
+            .iter()
+            .map(|e| e.eval(&|_| Some(0.7)).unwrap())
+            .collect()
+    }
+
+    #[test]
+    fn products_and_identities_evaluate() {
+        let mut env = Env::new();
+        env.insert(
+            "u".into(),
+            Value::Vector([Expr::int(1), Expr::int(2), Expr::int(3)]),
+        );
+        env.insert(
+            "v".into(),
+            Value::Vector([Expr::int(4), Expr::int(5), Expr::int(6)]),
+        );
+        assert_eq!(
+            num(&ev("cross(u, v)", &env).unwrap()),
+            vec![-3.0, 6.0, -3.0]
+        );
+        assert_eq!(num(&ev("dot(u, v)", &env).unwrap()), vec![32.0]);
+        assert_eq!(
+            num(&ev("diag(1,2,3)*u", &env).unwrap()),
+            vec![1.0, 4.0, 9.0]
+        );
+        assert_eq!(num(&ev("(eye()*2)[1][1]", &env).unwrap()), vec![2.0]);
+    }
+
+    #[test]
+    fn rotations_are_orthogonal() {
+        let env = Env::new();
+        for r in ["rot_x(t)", "rot_y(t)", "rot_z(t)"] {
+            let q = ev(&format!("transpose({r})*{r}"), &env).unwrap();
+            let got = num(&q);
+            let want = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+            for (g, w) in got.iter().zip(want) {
+                assert!((g - w).abs() < 1e-15, "{r}: {got:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn type_errors_are_reported() {
+        let mut env = Env::new();
+        env.insert(
+            "r".into(),
+            Value::Vector([Expr::int(1), Expr::int(2), Expr::int(3)]),
+        );
+        let e = ev("cross(r, dot(r, r))", &env).unwrap_err();
+        assert!(e.contains("cross") && e.contains("a scalar"), "{e}");
+        assert!(ev("r*r", &env).unwrap_err().contains("dot"));
+        assert!(ev("r[3]", &env).is_err());
+    }
+}

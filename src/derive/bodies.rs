@@ -1,0 +1,200 @@
+//! Each body as a mass distribution: where a mass element sits, how much mass it carries, and
+//! the domain of its parameters. Uniform density: density = M / (length, area or volume).
+
+use super::algebra::{Vec3, add_vec, mat_vec, rotation};
+use crate::cas::{Expr, Integral};
+use crate::scene::{Body, Shape};
+
+/// A continuous body: dm = `density_jacobian` · d(params) at `local` (body coordinates).
+pub struct Continuum {
+    /// ρ times the Jacobian of the parametrisation, as a function of the parameters.
+    pub density_jacobian: Expr,
+    /// The density alone and the Jacobian alone, for the printed steps.
+    pub density: Expr,
+    pub jacobian: Expr,
+    /// Symbol the notes use for the density: ρ, σ or λ.
+    pub density_name: &'static str,
+    pub local: Vec3,
+    /// Innermost first: the trigonometric integrals, then the polynomial ones.
+    pub domain: Vec<Integral>,
+}
+
+pub enum MassModel {
+    Continuum(Continuum),
+    Points(Vec<(Expr, Vec3)>),
+}
+
+fn e(s: &str) -> Expr {
+    Expr::sym(s)
+}
+
+fn half(x: &Expr) -> Expr {
+    Expr::mul(vec![Expr::rat(1, 2), x.clone()])
+}
+
+fn pow(x: &Expr, n: i128) -> Expr {
+    Expr::pow(x.clone(), Expr::int(n))
+}
+
+fn poly(var: &str, lo: Expr, hi: Expr) -> Integral {
+    Integral::Poly {
+        var: var.into(),
+        lo,
+        hi,
+    }
+}
+
+fn period(var: &str, half: bool) -> Integral {
+    Integral::Trig {
+        var: var.into(),
+        half,
+    }
+}
+
+fn cos(v: &str) -> Expr {
+    Expr::call("cos", e(v))
+}
+
+fn sin(v: &str) -> Expr {
+    Expr::call("sin", e(v))
+}
+
+/// The mass model of one body in its own coordinates.
+pub fn mass_model(body: &Body) -> MassModel {
+    let m = &body.mass;
+    let pi = e("pi");
+    let zero = Expr::int(0);
+    let continuum = |density: Expr, jacobian: Expr, name, local: Vec3, domain| {
+        MassModel::Continuum(Continuum {
+            density_jacobian: Expr::mul(vec![density.clone(), jacobian.clone()]),
+            density,
+            jacobian,
+            density_name: name,
+            local,
+            domain,
+        })
+    };
+    match &body.shape {
+        Shape::Box { size, centred } => {
+            let volume = Expr::mul(size.to_vec());
+            let range = |i: usize, v: &str| {
+                if *centred {
+                    poly(v, Expr::neg(half(&size[i])), half(&size[i]))
+                } else {
+                    poly(v, Expr::int(0), size[i].clone())
+                }
+            };
+            continuum(
+                Expr::div(m.clone(), volume),
+                Expr::int(1),
+                "rho",
+                [e("x"), e("y"), e("z")],
+                vec![range(0, "x"), range(1, "y"), range(2, "z")],
+            )
+        }
+        Shape::Rod {
+            length,
+            along,
+            centred,
+        } => {
+            let mut local = [zero.clone(), zero.clone(), zero.clone()];
+            local[along.index()] = e("s");
+            let (lo, hi) = if *centred {
+                (Expr::neg(half(length)), half(length))
+            } else {
+                (Expr::int(0), length.clone())
+            };
+            continuum(
+                Expr::div(m.clone(), length.clone()),
+                Expr::int(1),
+                "lambda",
+                local,
+                vec![poly("s", lo, hi)],
+            )
+        }
+        Shape::Hoop { radius } => continuum(
+            // λ = M/(2πR), the line density of eq (32); the arc element is R dθ.
+            Expr::div(m.clone(), Expr::mul(vec![Expr::int(2), pi, radius.clone()])),
+            radius.clone(),
+            "lambda",
+            [
+                Expr::mul(vec![radius.clone(), cos("theta")]),
+                Expr::mul(vec![radius.clone(), sin("theta")]),
+                zero,
+            ],
+            vec![period("theta", false)],
+        ),
+        Shape::Disk { radius } => continuum(
+            Expr::div(m.clone(), Expr::mul(vec![pi, pow(radius, 2)])),
+            e("r"),
+            "sigma",
+            [
+                Expr::mul(vec![e("r"), cos("theta")]),
+                Expr::mul(vec![e("r"), sin("theta")]),
+                zero,
+            ],
+            vec![
+                period("theta", false),
+                poly("r", Expr::int(0), radius.clone()),
+            ],
+        ),
+        Shape::Cylinder { radius, height } => continuum(
+            Expr::div(
+                m.clone(),
+                Expr::mul(vec![pi, pow(radius, 2), height.clone()]),
+            ),
+            e("r"),
+            "rho",
+            [
+                Expr::mul(vec![e("r"), cos("theta")]),
+                Expr::mul(vec![e("r"), sin("theta")]),
+                e("z"),
+            ],
+            vec![
+                period("theta", false),
+                poly("r", Expr::int(0), radius.clone()),
+                poly("z", Expr::neg(half(height)), half(height)),
+            ],
+        ),
+        Shape::Sphere { radius } => continuum(
+            Expr::div(
+                Expr::mul(vec![Expr::int(3), m.clone()]),
+                Expr::mul(vec![Expr::int(4), pi, pow(radius, 3)]),
+            ),
+            Expr::mul(vec![pow(&e("r"), 2), sin("theta")]),
+            "rho",
+            spherical(&e("r")),
+            vec![
+                period("phi", false),
+                period("theta", true),
+                poly("r", Expr::int(0), radius.clone()),
+            ],
+        ),
+        Shape::Shell { radius } => continuum(
+            Expr::div(m.clone(), Expr::mul(vec![Expr::int(4), pi, pow(radius, 2)])),
+            Expr::mul(vec![pow(radius, 2), sin("theta")]),
+            "sigma",
+            spherical(radius),
+            vec![period("phi", false), period("theta", true)],
+        ),
+        Shape::Points(pts) => MassModel::Points(pts.clone()),
+    }
+}
+
+/// (r sinθ cosφ, r sinθ sinφ, r cosθ).
+fn spherical(r: &Expr) -> Vec3 {
+    [
+        Expr::mul(vec![r.clone(), sin("theta"), cos("phi")]),
+        Expr::mul(vec![r.clone(), sin("theta"), sin("phi")]),
+        Expr::mul(vec![r.clone(), cos("theta")]),
+    ]
+}
+
+/// Body coordinates -> frame coordinates: the rotations in order, then the shift.
+pub fn place(body: &Body, local: &Vec3) -> Vec3 {
+    let mut p = local.clone();
+    for (axis, angle) in &body.rotations {
+        p = mat_vec(&rotation(axis.index(), angle), &p);
+    }
+    add_vec(&p, &body.shift)
+}

@@ -1,0 +1,308 @@
+//! The inertia tensor by exact integration, I_jk = ∫ρ(r²δ_jk − x_j x_k)dV (eqs 9–10, 26), and
+//! the parallel-axis theorem proved both ways (eqs 20–22).
+
+use super::algebra::{
+    Mat3, Value, Vec3, add_vec, inertia_kernel, mat_add, mat_scale, scale_vec, sub_vec, zero3,
+};
+use super::bodies::{MassModel, mass_model, place};
+use super::{Derivation, DeriveError, Step, simplify_value, values_equal};
+use crate::cas::{self, Expr, Integral};
+use crate::scene::{Body, Scene};
+
+/// The six independent entries of a symmetric tensor, and their labels.
+const UNIQUE: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+fn symmetric(entries: &[Expr]) -> Mat3 {
+    let mut m: Mat3 = std::array::from_fn(|_| zero3());
+    for (k, (i, j)) in UNIQUE.iter().enumerate() {
+        m[*i][*j] = entries[k].clone();
+        m[*j][*i] = entries[k].clone();
+    }
+    m
+}
+
+fn describe(domain: &[Integral]) -> String {
+    let parts: Vec<String> = domain
+        .iter()
+        .map(|i| match i {
+            Integral::Poly { var, lo, hi } => format!("{var} from {lo} to {hi}"),
+            Integral::Trig { var, half } => {
+                format!("{var} over [0, {}]", if *half { "π" } else { "2π" })
+            }
+        })
+        .collect();
+    parts.join(", ")
+}
+
+fn why_integrate(domain: &[Integral]) -> String {
+    let trig = domain.iter().any(|i| matches!(i, Integral::Trig { .. }));
+    let poly = domain.iter().any(|i| matches!(i, Integral::Poly { .. }));
+    let mut why = String::from("expand, then ");
+    if trig {
+        why.push_str(
+            "integrate each cosᵖ·sinᵠ monomial over its period by the beta-function formula",
+        );
+    }
+    if trig && poly {
+        why.push_str(", and ");
+    }
+    if poly {
+        why.push_str("integrate the polynomial term by term");
+    }
+    format!("{why} ({})", describe(domain))
+}
+
+/// What one body contributes: its mass, tensor about the frame origin and first moment ∫x dm.
+struct Part {
+    mass: Expr,
+    tensor: Mat3,
+    first_moment: Option<Vec3>,
+}
+
+fn body_part(
+    body: &Body,
+    index: usize,
+    first_moment: bool,
+    d: &mut Derivation,
+) -> Result<Part, DeriveError> {
+    let label = format!("{} (body {})", body.label, index + 1);
+    match mass_model(body) {
+        MassModel::Points(points) => {
+            let placed: Vec<(Expr, Vec3)> = points
+                .iter()
+                .map(|(m, r)| (m.clone(), place(body, r)))
+                .collect();
+            let tensor = placed
+                .iter()
+                .map(|(m, r)| mat_scale(m, &inertia_kernel(r)))
+                .reduce(|a, b| mat_add(&a, &b))
+                .unwrap();
+            let tensor = simplify_value(&Value::Matrix(tensor))?;
+            d.steps.push(Step::equation(
+                &format!("{label}: sum over the point masses"),
+                ("I", "I"),
+                &tensor,
+                "eq (10) with the integral replaced by Σ mᵢ(rᵢ²𝟙 − rᵢrᵢᵀ)",
+            ));
+            let Value::Matrix(tensor) = tensor else {
+                unreachable!()
+            };
+            let moment = first_moment.then(|| {
+                placed
+                    .iter()
+                    .map(|(m, r)| scale_vec(m, r))
+                    .reduce(|a, b| add_vec(&a, &b))
+                    .unwrap()
+            });
+            Ok(Part {
+                mass: body.mass.clone(),
+                tensor,
+                first_moment: moment,
+            })
+        }
+        MassModel::Continuum(c) => {
+            let position = simplify_value(&Value::Vector(place(body, &c.local)))?;
+            d.steps.push(Step::equation(
+                &format!("{label}: position of a mass element"),
+                ("r", "\\vec r"),
+                &position,
+                &if body.rotations.is_empty() {
+                    "the body's own parametrisation".to_string()
+                } else {
+                    "the body's parametrisation, rotated as the scene says, then shifted"
+                        .to_string()
+                },
+            ));
+            let shown = cas::simplify_all(vec![c.density.clone(), c.jacobian.clone()])?;
+            let (density, jacobian) = (&shown[0], &shown[1]);
+            d.steps.push(Step::note(
+                &format!("{label}: mass element"),
+                format!("dm = {density} * {jacobian} d({}), with {} = {density}", describe(&c.domain), c.density_name),
+                format!(
+                    "dm = {rho} \\cdot {} , \\quad {rho} = {}",
+                    jacobian.to_latex(),
+                    density.to_latex(),
+                    rho = Expr::sym(c.density_name).to_latex(),
+                ),
+                "uniform density: the mass divided by the length, area or volume; times the Jacobian",
+            ));
+            let Value::Vector(r) = position.clone() else {
+                unreachable!()
+            };
+            let kernel = inertia_kernel(&r);
+            let integrands: Vec<Expr> = UNIQUE
+                .iter()
+                .map(|(i, j)| Expr::mul(vec![c.density_jacobian.clone(), kernel[*i][*j].clone()]))
+                .collect();
+            let integrands = cas::simplify_all(integrands)?;
+
+            // ∫dm must give back the mass: a check of the parametrisation, not a formality.
+            let mut jobs = vec![c.density_jacobian.clone()];
+            jobs.extend(integrands.iter().cloned());
+            if first_moment {
+                jobs.extend(
+                    r.iter()
+                        .map(|x| Expr::mul(vec![c.density_jacobian.clone(), x.clone()])),
+                );
+            }
+            let results = cas::simplify_all(cas::integrate_all(jobs, c.domain.clone())?)?;
+            if !cas::is_zero_all(vec![Expr::sub(results[0].clone(), body.mass.clone())])?[0] {
+                return Err(DeriveError::Inconsistent(format!(
+                    "∫dm over {} gives {}, not the mass {}",
+                    body.label, results[0], body.mass
+                )));
+            }
+            d.steps.push(Step::equation(
+                &format!("{label}: total mass"),
+                ("∫dm", "\\int dm"),
+                &Value::Scalar(results[0].clone()),
+                &why_integrate(&c.domain),
+            ));
+            for (k, (i, j)) in UNIQUE.iter().enumerate() {
+                let name = format!("I{}{}", AXES[*i], AXES[*j]);
+                d.steps.push(Step {
+                    title: format!("{label}: {name}"),
+                    text: format!("{name} = ∫ {} = {}", integrands[k], results[k + 1]),
+                    latex: format!(
+                        "I_{{{}{}}} = \\int {} = {}",
+                        AXES[*i],
+                        AXES[*j],
+                        integrands[k].to_latex(),
+                        results[k + 1].to_latex()
+                    ),
+                    why: why_integrate(&c.domain),
+                });
+            }
+            if index == 0 {
+                // The first body's integrand and position, for claims about the notes' integrals.
+                d.set("integrand", Value::Matrix(symmetric(&integrands)));
+                d.set("position", position);
+            }
+            let moment = first_moment.then(|| std::array::from_fn(|i| results[7 + i].clone()));
+            Ok(Part {
+                mass: results[0].clone(),
+                tensor: symmetric(&results[1..7]),
+                first_moment: moment,
+            })
+        }
+    }
+}
+
+pub fn derive_tensor(
+    scene: &Scene,
+    first_moment: bool,
+    d: &mut Derivation,
+) -> Result<(), DeriveError> {
+    let mut parts = Vec::new();
+    for (i, body) in scene.bodies.iter().enumerate() {
+        parts.push(body_part(body, i, first_moment, d)?);
+    }
+    d.part_tensors = parts
+        .iter()
+        .map(|p| Value::Matrix(p.tensor.clone()))
+        .collect();
+    let tensor = parts
+        .iter()
+        .map(|p| p.tensor.clone())
+        .reduce(|a, b| mat_add(&a, &b))
+        .unwrap();
+    let tensor = simplify_value(&Value::Matrix(tensor))?;
+    let mass = cas::simplify(&Expr::add(parts.iter().map(|p| p.mass.clone()).collect()))?;
+    d.steps.push(Step::equation(
+        "The inertia tensor",
+        ("I", "\\overleftrightarrow{I}"),
+        &tensor,
+        if parts.len() > 1 {
+            "the sum of the parts' tensors about the same origin"
+        } else {
+            "the integrals above, assembled; I is symmetric"
+        },
+    ));
+    d.set("inertia_tensor", tensor);
+    d.set("mass", Value::Scalar(mass.clone()));
+    if first_moment {
+        let sum = parts
+            .iter()
+            .map(|p| p.first_moment.clone().expect("asked for"))
+            .reduce(|a, b| add_vec(&a, &b))
+            .unwrap();
+        let centre = simplify_value(&Value::Vector(std::array::from_fn(|i| {
+            Expr::div(sum[i].clone(), mass.clone())
+        })))?;
+        d.steps.push(Step::equation(
+            "Centre of mass",
+            ("R", "\\vec R"),
+            &centre,
+            "R = (1/M) ∫ r dm, from the same integrals",
+        ));
+        d.set("centre_of_mass", centre);
+    }
+    Ok(())
+}
+
+/// Proves I_origin = I_cm + M(d²𝟙 − ddᵀ), with I_cm integrated directly about the centre of mass.
+pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
+    let Some(Value::Vector(centre)) = d.quantities.get("centre_of_mass").cloned() else {
+        return Err(DeriveError::Inconsistent(
+            "parallel axis without a centre of mass".into(),
+        ));
+    };
+    let Some(Value::Scalar(mass)) = d.quantities.get("mass").cloned() else {
+        return Err(DeriveError::Inconsistent(
+            "parallel axis without a mass".into(),
+        ));
+    };
+    // Route 1: integrate again with every body shifted so that the centre of mass is the origin.
+    let shifted: Vec<Body> = scene
+        .bodies
+        .iter()
+        .map(|b| {
+            let mut b = b.clone();
+            b.shift = sub_vec(&b.shift, &centre);
+            b
+        })
+        .collect();
+    let mut scratch = Derivation::default();
+    let mut about_cm: Option<Mat3> = None;
+    for (i, b) in shifted.iter().enumerate() {
+        let part = body_part(b, i, false, &mut scratch)?;
+        about_cm = Some(match about_cm {
+            None => part.tensor,
+            Some(t) => mat_add(&t, &part.tensor),
+        });
+    }
+    let about_cm = simplify_value(&Value::Matrix(about_cm.unwrap()))?;
+    d.steps.push(Step::equation(
+        "Tensor about the centre of mass, by direct integration",
+        ("I_cm", "I_{\\mathrm{cm}}"),
+        &about_cm,
+        "the same integrals with r measured from R",
+    ));
+    // Route 2: the theorem, I_cm + M(d²𝟙 − ddᵀ) with d = R.
+    let Value::Matrix(cm) = &about_cm else {
+        unreachable!()
+    };
+    let shift_term = mat_scale(&mass, &inertia_kernel(&centre));
+    let theorem = simplify_value(&Value::Matrix(mat_add(cm, &shift_term)))?;
+    d.steps.push(Step::equation(
+        "Parallel-axis theorem",
+        ("I_cm + M(R²𝟙 − RRᵀ)", "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R \\vec R^{T}\\right)"),
+        &theorem,
+        "eqs (20)–(22) in tensor form; the cross term vanishes because Σ m r' = 0 about the centre of mass",
+    ));
+    let direct = d.quantities["inertia_tensor"].clone();
+    if !values_equal(&theorem, &direct)? {
+        return Err(DeriveError::Inconsistent(
+            "the parallel-axis theorem does not reproduce the direct tensor".into(),
+        ));
+    }
+    d.steps.push(Step::note(
+        "Both routes agree",
+        "I_cm + M(R²𝟙 − RRᵀ) − I = 0".into(),
+        "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R\\vec R^{T}\\right) - \\overleftrightarrow{I} = 0".into(),
+        "every entry of the difference simplifies to zero",
+    ));
+    d.set("inertia_cm", about_cm);
+    Ok(())
+}

@@ -1,0 +1,177 @@
+//! Angular momentum, kinetic energy, the moment about an axis and the radius of gyration, from
+//! the tensor; and for point masses also from their definitions, proved equal (eqs 3–8, 16–20,
+//! 23–25, 53–59).
+
+use super::algebra::{Value, Vec3, add_vec, cross, dot, mat_vec, scale_vec};
+use super::bodies::place;
+use super::{Derivation, DeriveError, Step, simplify_value, values_equal};
+use crate::cas::{self, Expr};
+use crate::scene::{Scene, Shape};
+
+/// Every point mass of the scene in the frame, or `None` if a body is continuous.
+fn point_masses(scene: &Scene) -> Option<Vec<(Expr, Vec3)>> {
+    let mut all = Vec::new();
+    for b in &scene.bodies {
+        let Shape::Points(pts) = &b.shape else {
+            return None;
+        };
+        all.extend(pts.iter().map(|(m, r)| (m.clone(), place(b, r))));
+    }
+    Some(all)
+}
+
+fn tensor(d: &Derivation) -> super::algebra::Mat3 {
+    match &d.quantities["inertia_tensor"] {
+        Value::Matrix(m) => m.clone(),
+        _ => unreachable!("the tensor is a matrix"),
+    }
+}
+
+/// Records `name` from the tensor route and, for point masses, `name_direct` from the
+/// definition, after proving them equal.
+fn two_routes(
+    d: &mut Derivation,
+    name: &str,
+    from_tensor: Value,
+    direct: Option<(Value, &str, &str)>,
+) -> Result<(), DeriveError> {
+    if let Some((direct, what, why)) = direct {
+        let direct = simplify_value(&direct)?;
+        d.steps.push(Step::equation(
+            &format!("{what}, from the definition"),
+            (what, what),
+            &direct,
+            why,
+        ));
+        if !values_equal(&direct, &from_tensor)? {
+            return Err(DeriveError::Inconsistent(format!(
+                "{name}: the definition and the tensor route differ"
+            )));
+        }
+        d.quantities.insert(format!("{name}_direct"), direct);
+    }
+    d.quantities.insert(name.to_string(), from_tensor);
+    Ok(())
+}
+
+pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
+    let omega = scene.omega.clone().expect("validated: omega is given");
+    let l = simplify_value(&Value::Vector(mat_vec(&tensor(d), &omega)))?;
+    d.steps.push(Step::equation(
+        "Angular momentum from the tensor",
+        ("L", "\\vec L"),
+        &l,
+        "eq (8): L = I ω",
+    ));
+    let direct = point_masses(scene).map(|pts| {
+        let sum = pts
+            .iter()
+            .map(|(m, r)| scale_vec(m, &cross(r, &cross(&omega, r))))
+            .reduce(|a, b| add_vec(&a, &b))
+            .unwrap();
+        (
+            Value::Vector(sum),
+            "L",
+            "eqs (3)–(5): L = Σ m r × (ω × r), expanded; equal to I ω entry by entry",
+        )
+    });
+    two_routes(d, "angular_momentum", l, direct)
+}
+
+pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
+    let omega = scene.omega.clone().expect("validated: omega is given");
+    let half = Expr::rat(1, 2);
+    let t = cas::simplify(&Expr::mul(vec![
+        half.clone(),
+        dot(&omega, &mat_vec(&tensor(d), &omega)),
+    ]))?;
+    d.steps.push(Step::equation(
+        "Kinetic energy from the tensor",
+        ("T", "T"),
+        &Value::Scalar(t.clone()),
+        "eqs (17), (25): T = ½ ωᵀ I ω",
+    ));
+    let direct = point_masses(scene).map(|pts| {
+        let sum = Expr::add(
+            pts.iter()
+                .map(|(m, r)| {
+                    let v = cross(&omega, r);
+                    Expr::mul(vec![half.clone(), m.clone(), dot(&v, &v)])
+                })
+                .collect(),
+        );
+        (
+            Value::Scalar(sum),
+            "T",
+            "eqs (16), (23): T = ½ Σ m |ω × r|²; equal to ½ ωᵀ I ω",
+        )
+    });
+    two_routes(d, "kinetic_energy", Value::Scalar(t), direct)
+}
+
+pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
+    let n = scene.axis.clone().expect("validated: axis is given");
+    let moment = cas::simplify(&dot(&n, &mat_vec(&tensor(d), &n)))?;
+    d.steps.push(Step::equation(
+        "Moment of inertia about the axis n",
+        ("I_n", "I_{n}"),
+        &Value::Scalar(moment.clone()),
+        "eqs (18), (55): I_n = nᵀ I n",
+    ));
+    let direct = point_masses(scene).map(|pts| {
+        let sum = Expr::add(
+            pts.iter()
+                .map(|(m, r)| {
+                    let c = cross(r, &n);
+                    Expr::mul(vec![m.clone(), dot(&c, &c)])
+                })
+                .collect(),
+        );
+        (
+            Value::Scalar(sum),
+            "I_n",
+            "eq (20): I_n = Σ m |r × n|², the squared distance from the axis; equal to nᵀ I n",
+        )
+    });
+    two_routes(d, "moment_about_axis", Value::Scalar(moment), direct)
+}
+
+pub fn gyration(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
+    let _ = scene;
+    let Value::Scalar(moment) = d.quantities["moment_about_axis"].clone() else {
+        unreachable!()
+    };
+    let Value::Scalar(mass) = d.quantities["mass"].clone() else {
+        unreachable!()
+    };
+    let r0 = Expr::pow(cas::simplify(&Expr::div(moment, mass))?, Expr::rat(1, 2));
+    d.steps.push(Step::equation(
+        "Radius of gyration about n",
+        ("R_0", "R_{0}"),
+        &Value::Scalar(r0.clone()),
+        "eq (58): R₀² = I_n / M",
+    ));
+    d.quantities
+        .insert("radius_of_gyration".into(), Value::Scalar(r0));
+    if let Some(Value::Vector(moments)) = d.quantities.get("principal_moments").cloned() {
+        let semi: Vec<Expr> = moments
+            .iter()
+            .map(|i| Expr::pow(i.clone(), Expr::rat(-1, 2)))
+            .collect();
+        d.steps.push(Step::note(
+            "Inertia ellipsoid",
+            format!(
+                "I1 ρ1² + I2 ρ2² + I3 ρ3² = 1 in principal axes; semi-axes {}, {}, {}",
+                semi[0], semi[1], semi[2]
+            ),
+            format!(
+                "I_{{1}}\\rho_{{1}}^{{2}} + I_{{2}}\\rho_{{2}}^{{2}} + I_{{3}}\\rho_{{3}}^{{2}} = 1, \\quad \\text{{semi-axes }} {}, {}, {}",
+                semi[0].to_latex(),
+                semi[1].to_latex(),
+                semi[2].to_latex()
+            ),
+            "eqs (56)–(57) with ρ = n/√I_n: the ellipsoid's semi-axis along principal axis i is 1/√Iᵢ",
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,122 @@
+//! Symbolic derivations as ordered steps. Each step is a statement in our own expression type
+//! plus a one-line justification, so a reader sees how a result is reached.
+//!
+//! Nothing here is looked up in a table of answers: every result comes out of an integral, a
+//! product, a determinant or a factorisation computed by the engine.
+
+pub mod algebra;
+pub mod bodies;
+mod inertia;
+mod kinematics;
+mod principal;
+
+pub use principal::{ExactBasis, ExactEigen, ExactSpace};
+
+use crate::cas::{self, CasError, Expr};
+use crate::plan::{Plan, Stage};
+use crate::scene::Scene;
+use algebra::Value;
+use std::collections::BTreeMap;
+
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Step {
+    pub title: String,
+    /// The statement as plain text and as LaTeX.
+    pub text: String,
+    pub latex: String,
+    /// Why it follows, in one line.
+    pub why: String,
+}
+
+impl Step {
+    /// `lhs = value`, with `lhs` given as (text, LaTeX).
+    pub fn equation(title: &str, lhs: (&str, &str), value: &Value, why: &str) -> Step {
+        Step {
+            title: title.to_string(),
+            text: format!("{} = {}", lhs.0, value.to_text()),
+            latex: format!("{} = {}", lhs.1, value.to_latex()),
+            why: why.to_string(),
+        }
+    }
+
+    pub fn note(title: &str, text: String, latex: String, why: &str) -> Step {
+        Step {
+            title: title.to_string(),
+            text,
+            latex,
+            why: why.to_string(),
+        }
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum DeriveError {
+    #[error(transparent)]
+    Cas(#[from] CasError),
+    /// Two routes that must agree did not: a bug, never a property of the input.
+    #[error("internal inconsistency: {0}")]
+    Inconsistent(String),
+    #[error("{0}")]
+    Unsupported(String),
+}
+
+/// Everything the symbolic stage produced for a scene.
+#[derive(Debug, Clone, Default)]
+pub struct Derivation {
+    pub steps: Vec<Step>,
+    /// Exact results by name (`inertia_tensor`, `principal_moments`, ...), simplified.
+    pub quantities: BTreeMap<String, Value>,
+    /// Each body's own tensor about the frame origin, for the per-body numeric checks.
+    pub part_tensors: Vec<Value>,
+    pub eigen: Option<ExactEigen>,
+}
+
+impl Derivation {
+    fn set(&mut self, name: &str, value: Value) {
+        self.quantities.insert(name.to_string(), value);
+    }
+}
+
+/// Simplifies every entry of a value with one engine call.
+pub fn simplify_value(v: &Value) -> Result<Value, CasError> {
+    let entries = cas::simplify_all(v.entries())?;
+    Ok(v.with_entries(&entries))
+}
+
+/// True when `a − b` is identically zero, entry by entry.
+pub fn values_equal(a: &Value, b: &Value) -> Result<bool, CasError> {
+    let diffs: Vec<Expr> = a
+        .entries()
+        .into_iter()
+        .zip(b.entries())
+        .map(|(x, y)| Expr::sub(x, y))
+        .collect();
+    Ok(cas::is_zero_all(diffs)?.into_iter().all(|z| z))
+}
+
+/// Runs the symbolic stages the plan asks for, in pipeline order.
+pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
+    let mut d = Derivation::default();
+    if plan.runs(Stage::Tensor) && !scene.bodies.is_empty() {
+        inertia::derive_tensor(scene, plan.runs(Stage::CentreOfMass), &mut d)?;
+    }
+    if plan.runs(Stage::ParallelAxis) {
+        inertia::derive_parallel_axis(scene, &mut d)?;
+    }
+    if plan.runs(Stage::Principal) && d.quantities.contains_key("inertia_tensor") {
+        principal::derive_principal(&mut d)?;
+    }
+    if plan.runs(Stage::AngularMomentum) {
+        kinematics::angular_momentum(scene, &mut d)?;
+    }
+    if plan.runs(Stage::KineticEnergy) {
+        kinematics::kinetic_energy(scene, &mut d)?;
+    }
+    if plan.runs(Stage::MomentAboutAxis) {
+        kinematics::moment_about_axis(scene, &mut d)?;
+    }
+    if plan.runs(Stage::Gyration) {
+        kinematics::gyration(scene, &mut d)?;
+    }
+    Ok(d)
+}

@@ -1,0 +1,15 @@
+//! mechbook: rigid-body lecture scenes -> a verified workbook.
+//!
+//! The pipeline, one module per stage: `scene` (TOML -> Scene) -> `plan` (what to compute) ->
+//! `derive` (symbolic, through `cas`, the only module that touches Symbolica) -> `numeric`
+//! (nalgebra) -> `verify` (verdicts) -> `report` (terminal and JSON). `pipeline` runs them.
+
+pub mod cas;
+pub mod cli;
+pub mod derive;
+pub mod numeric;
+pub mod pipeline;
+pub mod plan;
+pub mod report;
+pub mod scene;
+pub mod verify;

@@ -1,0 +1,520 @@
+//! Numeric inertia tensors by quadrature, each with its error law and its cost.
+//!
+//! Every rule is a set of weighted points in the body's own coordinates (weights sum to 1); the
+//! tensor is M·Σ w (r²𝟙 − r rᵀ) in the scene frame. The predicted error comes from the rule's
+//! error law, written as the error it makes in the first and second moments of the body
+//! coordinates (REFERENCE.md, "Quadrature"), then carried into the frame.
+
+use super::body::{NumBody, NumShape, relative_error, tensor_of_points};
+use nalgebra::{Matrix3, Vector3};
+use std::f64::consts::PI;
+use std::time::Instant;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Method {
+    /// Gauss–Legendre in each Cartesian or radial direction (with the periodic trapezoid in angles
+    /// for round bodies); exact for the quadratic moments from 2 or 3 points.
+    GaussLegendre,
+    /// Equispaced angles: exact for trigonometric polynomials of degree below N.
+    PeriodicTrapezoid,
+    /// n points per side at cell midpoints, equal masses.
+    MidpointLattice,
+    /// (n+1) points per side on cell vertices, equal masses: only first order.
+    VertexLattice,
+    MonteCarlo,
+    /// Point masses: the sum itself.
+    DirectSum,
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::GaussLegendre => "gauss-legendre",
+            Method::PeriodicTrapezoid => "periodic-trapezoid",
+            Method::MidpointLattice => "midpoint-lattice",
+            Method::VertexLattice => "vertex-lattice",
+            Method::MonteCarlo => "monte-carlo",
+            Method::DirectSum => "direct-sum",
+        }
+    }
+}
+
+/// One quadrature run: the tensor, its true and predicted relative errors, and its cost.
+#[derive(Debug, Clone)]
+pub struct QuadratureRun {
+    pub body: String,
+    pub method: Method,
+    pub level: usize,
+    pub points: usize,
+    pub tensor: Matrix3<f64>,
+    /// Relative max-norm error against the exact tensor.
+    pub error: f64,
+    /// What the error law predicts (for Monte Carlo: one estimated standard error).
+    pub predicted_error: f64,
+    pub seconds: f64,
+}
+
+/// The methods and levels run for a body, cheapest first within a method.
+pub fn schedule(shape: &NumShape) -> Vec<(Method, usize)> {
+    use Method::*;
+    let mc = [
+        (MonteCarlo, 1_000),
+        (MonteCarlo, 10_000),
+        (MonteCarlo, 100_000),
+    ];
+    let mut s = match shape {
+        NumShape::Box { .. } | NumShape::Rod { .. } => vec![
+            (GaussLegendre, 1),
+            (GaussLegendre, 2),
+            (GaussLegendre, 3),
+            (MidpointLattice, 4),
+            (MidpointLattice, 16),
+            (MidpointLattice, 64),
+            (VertexLattice, 4),
+            (VertexLattice, 16),
+            (VertexLattice, 64),
+        ],
+        NumShape::Hoop { .. } => vec![
+            (PeriodicTrapezoid, 1),
+            (PeriodicTrapezoid, 2),
+            (PeriodicTrapezoid, 3),
+            (PeriodicTrapezoid, 8),
+        ],
+        NumShape::Points(_) => return vec![(DirectSum, 1)],
+        _ => vec![(GaussLegendre, 3), (GaussLegendre, 4)],
+    };
+    s.extend(mc);
+    s
+}
+
+/// The exact rule used for the principal-axes cross-check and the composite sum.
+pub fn reference_rule(shape: &NumShape) -> (Method, usize) {
+    match shape {
+        NumShape::Hoop { .. } => (Method::PeriodicTrapezoid, 8),
+        NumShape::Points(_) => (Method::DirectSum, 1),
+        _ => (Method::GaussLegendre, 4),
+    }
+}
+
+/// Gauss–Legendre nodes and weights on [-1, 1] by Newton's method on P_n.
+pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    (1..=n)
+        .map(|i| {
+            let mut x = (PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, x);
+                for k in 2..=n {
+                    let k = k as f64;
+                    (p0, p1) = (p1, ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k);
+                }
+                if n == 1 {
+                    p1 = x;
+                    p0 = 1.0;
+                }
+                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+                let dx = p1 / dp;
+                x -= dx;
+                if dx.abs() < 1e-16 {
+                    break;
+                }
+            }
+            (x, 2.0 / ((1.0 - x * x) * dp * dp))
+        })
+        .collect()
+}
+
+/// A seeded SplitMix64 stream of uniform numbers in [0, 1): deterministic across runs.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Rng {
+        Rng(seed)
+    }
+    pub fn uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Points on [lo, lo+len]: Gauss–Legendre, midpoint or vertex rule, weights summing to 1.
+fn line(method: Method, n: usize, lo: f64, len: f64) -> Vec<(f64, f64)> {
+    match method {
+        Method::GaussLegendre => gauss_legendre(n)
+            .into_iter()
+            .map(|(x, w)| (w / 2.0, lo + len * (x + 1.0) / 2.0))
+            .collect(),
+        Method::MidpointLattice => (0..n)
+            .map(|i| (1.0 / n as f64, lo + len * (i as f64 + 0.5) / n as f64))
+            .collect(),
+        Method::VertexLattice => (0..=n)
+            .map(|i| (1.0 / (n + 1) as f64, lo + len * i as f64 / n as f64))
+            .collect(),
+        _ => unreachable!("not a line rule"),
+    }
+}
+
+/// N equispaced angles on [0, 2π), equal weights.
+fn circle(n: usize) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|j| (1.0 / n as f64, 2.0 * PI * j as f64 / n as f64))
+        .collect()
+}
+
+/// The rule's weighted points in body coordinates (weights sum to 1).
+fn rule(shape: &NumShape, method: Method, n: usize, rng: &mut Rng) -> Vec<(f64, Vector3<f64>)> {
+    let mut pts = Vec::new();
+    if method == Method::MonteCarlo {
+        let w = 1.0 / n as f64;
+        for _ in 0..n {
+            pts.push((w, sample(shape, rng)));
+        }
+        return pts;
+    }
+    match shape {
+        NumShape::Box { size, centred } => {
+            let lo = if *centred {
+                -size / 2.0
+            } else {
+                Vector3::zeros()
+            };
+            let (lx, ly, lz) = (
+                line(method, n, lo.x, size.x),
+                line(method, n, lo.y, size.y),
+                line(method, n, lo.z, size.z),
+            );
+            for (wx, x) in &lx {
+                for (wy, y) in &ly {
+                    for (wz, z) in &lz {
+                        pts.push((wx * wy * wz, Vector3::new(*x, *y, *z)));
+                    }
+                }
+            }
+        }
+        NumShape::Rod {
+            length,
+            along,
+            centred,
+        } => {
+            let lo = if *centred { -length / 2.0 } else { 0.0 };
+            for (w, s) in line(method, n, lo, *length) {
+                pts.push((w, Vector3::ith(*along, s)));
+            }
+        }
+        NumShape::Hoop { radius } => {
+            for (w, t) in circle(n) {
+                pts.push((w, Vector3::new(radius * t.cos(), radius * t.sin(), 0.0)));
+            }
+        }
+        NumShape::Disk { radius } | NumShape::Cylinder { radius, .. } => {
+            let height = if let NumShape::Cylinder { height, .. } = shape {
+                Some(*height)
+            } else {
+                None
+            };
+            // Area element r dr dθ: the radial weight carries r / (R²/2).
+            let radial = line(Method::GaussLegendre, n, 0.0, *radius);
+            let zs = match height {
+                Some(h) => line(Method::GaussLegendre, n, -h / 2.0, h),
+                None => vec![(1.0, 0.0)],
+            };
+            for (wr, r) in &radial {
+                for (wt, t) in circle(4) {
+                    for (wz, z) in &zs {
+                        let w = wr * r * 2.0 / radius * wt * wz;
+                        pts.push((w, Vector3::new(r * t.cos(), r * t.sin(), *z)));
+                    }
+                }
+            }
+        }
+        NumShape::Sphere { radius } | NumShape::Shell { radius } => {
+            let solid = matches!(shape, NumShape::Sphere { .. });
+            // u = cos θ is uniform on [-1, 1] for both; r² dr carries 3r²/R³ for the ball.
+            let radial = if solid {
+                line(Method::GaussLegendre, n, 0.0, *radius)
+            } else {
+                vec![(1.0, *radius)]
+            };
+            for (wr, r) in &radial {
+                let wr = if solid {
+                    wr * 3.0 * r * r / (radius * radius)
+                } else {
+                    *wr
+                };
+                for (wu, u) in line(Method::GaussLegendre, n, -1.0, 2.0) {
+                    let s = (1.0 - u * u).sqrt();
+                    for (wp, p) in circle(4) {
+                        pts.push((
+                            wr * wu * wp,
+                            Vector3::new(r * s * p.cos(), r * s * p.sin(), r * u),
+                        ));
+                    }
+                }
+            }
+        }
+        NumShape::Points(_) => unreachable!("point sets are summed directly"),
+    }
+    pts
+}
+
+/// One uniformly distributed point of the body.
+fn sample(shape: &NumShape, rng: &mut Rng) -> Vector3<f64> {
+    let mut u = || rng.uniform();
+    match shape {
+        NumShape::Box { size, centred } => {
+            let p = Vector3::new(u() * size.x, u() * size.y, u() * size.z);
+            if *centred { p - size / 2.0 } else { p }
+        }
+        NumShape::Rod {
+            length,
+            along,
+            centred,
+        } => {
+            let s = u() * length - if *centred { length / 2.0 } else { 0.0 };
+            Vector3::ith(*along, s)
+        }
+        NumShape::Hoop { radius } => {
+            let t = 2.0 * PI * u();
+            Vector3::new(radius * t.cos(), radius * t.sin(), 0.0)
+        }
+        NumShape::Disk { radius } | NumShape::Cylinder { radius, .. } => {
+            let (r, t) = (radius * u().sqrt(), 2.0 * PI * u());
+            let z = if let NumShape::Cylinder { height, .. } = shape {
+                (u() - 0.5) * height
+            } else {
+                0.0
+            };
+            Vector3::new(r * t.cos(), r * t.sin(), z)
+        }
+        NumShape::Sphere { radius } | NumShape::Shell { radius } => {
+            let r = if matches!(shape, NumShape::Sphere { .. }) {
+                radius * u().cbrt()
+            } else {
+                *radius
+            };
+            let (z, p) = (2.0 * u() - 1.0, 2.0 * PI * u());
+            let s = (1.0 - z * z).sqrt();
+            Vector3::new(r * s * p.cos(), r * s * p.sin(), r * z)
+        }
+        NumShape::Points(_) => unreachable!(),
+    }
+}
+
+/// The error law: (error of the second-moment matrix, error of the mean) per unit mass in body
+/// coordinates. `None` for Monte Carlo, whose error is estimated from the sample.
+fn moment_errors(
+    shape: &NumShape,
+    method: Method,
+    n: usize,
+) -> Option<(Matrix3<f64>, Vector3<f64>)> {
+    let nf = n as f64;
+    let zero = (Matrix3::zeros(), Vector3::zeros());
+    // Variance error of a 1-D rule on a side of length l (its mean is exact).
+    let side = |l: f64| match (method, n) {
+        (Method::GaussLegendre, 1) | (Method::MidpointLattice, _) => -l * l / (12.0 * nf * nf),
+        (Method::VertexLattice, _) => l * l / (6.0 * nf),
+        _ => 0.0,
+    };
+    Some(match shape {
+        _ if method == Method::MonteCarlo => return None,
+        NumShape::Box { size, .. } => (
+            Matrix3::from_diagonal(&Vector3::new(side(size.x), side(size.y), side(size.z))),
+            Vector3::zeros(),
+        ),
+        NumShape::Rod { length, along, .. } => (
+            Matrix3::from_diagonal(&Vector3::ith(*along, side(*length))),
+            Vector3::zeros(),
+        ),
+        NumShape::Hoop { radius } => {
+            // Equispaced angles alias cos 2θ to a constant when N divides 2, and cos θ when N = 1.
+            let r2 = radius * radius;
+            let alias2 = if 2 % n == 0 { r2 / 2.0 } else { 0.0 };
+            let mean = if n == 1 {
+                Vector3::new(*radius, 0.0, 0.0)
+            } else {
+                Vector3::zeros()
+            };
+            (
+                Matrix3::from_diagonal(&Vector3::new(alias2, -alias2, 0.0)),
+                mean,
+            )
+        }
+        _ => zero,
+    })
+}
+
+/// Carries moment errors into the frame: ΔI = M (tr ΔC 𝟙 − ΔC), ΔC = QΔCQᵀ + QΔm sᵀ + s(QΔm)ᵀ.
+fn tensor_error(body: &NumBody, dc: &Matrix3<f64>, dm: &Vector3<f64>) -> Matrix3<f64> {
+    let q = &body.rotation;
+    let qm = q * dm;
+    let c = q * dc * q.transpose() + qm * body.shift.transpose() + body.shift * qm.transpose();
+    body.mass * (Matrix3::identity() * c.trace() - c)
+}
+
+/// Runs one method at one level and compares it with the exact tensor.
+pub fn run(
+    body: &NumBody,
+    method: Method,
+    level: usize,
+    exact: &Matrix3<f64>,
+    seed: u64,
+) -> QuadratureRun {
+    let start = Instant::now();
+    let mut rng = Rng::new(seed);
+    let (tensor, points, mc_sigma) = match &body.shape {
+        NumShape::Points(pts) => {
+            let t = tensor_of_points(pts.iter().map(|(m, r)| (*m, body.place(r))));
+            (t, pts.len(), None)
+        }
+        shape => {
+            let pts = rule(shape, method, level, &mut rng);
+            let placed: Vec<(f64, Vector3<f64>)> = pts
+                .iter()
+                .map(|(w, r)| (body.mass * w, body.place(r)))
+                .collect();
+            let t = tensor_of_points(placed.iter().copied());
+            let sigma =
+                (method == Method::MonteCarlo).then(|| monte_carlo_sigma(&placed, body.mass, &t));
+            (t, pts.len(), sigma)
+        }
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    let scale = exact.amax().max(f64::MIN_POSITIVE);
+    let roundoff = points as f64 * f64::EPSILON;
+    let predicted_error = match mc_sigma {
+        Some(sigma) => sigma / scale,
+        None => match moment_errors(&body.shape, method, level) {
+            Some((dc, dm)) => tensor_error(body, &dc, &dm).amax() / scale + roundoff,
+            None => roundoff,
+        },
+    };
+    QuadratureRun {
+        body: body.label.clone(),
+        method,
+        level,
+        points,
+        error: relative_error(&tensor, exact),
+        tensor,
+        predicted_error,
+        seconds,
+    }
+}
+
+/// The largest estimated standard error over the tensor entries of a Monte Carlo sum.
+fn monte_carlo_sigma(placed: &[(f64, Vector3<f64>)], mass: f64, mean: &Matrix3<f64>) -> f64 {
+    let n = placed.len() as f64;
+    let mut var = Matrix3::<f64>::zeros();
+    for (_, r) in placed {
+        let k = mass * (Matrix3::identity() * r.norm_squared() - r * r.transpose());
+        var += (k - mean).component_mul(&(k - mean));
+    }
+    (var / (n - 1.0) / n).map(f64::sqrt).amax()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube(centred: bool) -> NumBody {
+        NumBody {
+            label: "cube".into(),
+            shape: NumShape::Box {
+                size: Vector3::new(1.0, 1.0, 1.0),
+                centred,
+            },
+            mass: 1.0,
+            rotation: Matrix3::identity(),
+            shift: Vector3::zeros(),
+        }
+    }
+
+    /// The corner tensor of a unit cube, from its centre tensor 𝟙/6 and the parallel-axis shift
+    /// by d = (½,½,½): an independent route to the exact value.
+    fn corner_exact() -> Matrix3<f64> {
+        let d = Vector3::new(0.5, 0.5, 0.5);
+        Matrix3::identity() / 6.0 + Matrix3::identity() * d.norm_squared() - d * d.transpose()
+    }
+
+    #[test]
+    fn gauss_legendre_integrates_polynomials_exactly() {
+        for n in 1..=6 {
+            let rule = gauss_legendre(n);
+            for p in 0..(2 * n) {
+                let got: f64 = rule.iter().map(|(x, w)| w * x.powi(p as i32)).sum();
+                let want = if p % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (p as f64 + 1.0)
+                };
+                assert!((got - want).abs() < 1e-14, "n={n} p={p}: {got} vs {want}");
+            }
+        }
+    }
+
+    #[test]
+    fn lattice_errors_follow_their_laws() {
+        let exact = corner_exact();
+        for n in [4, 16] {
+            let mid = run(&cube(false), Method::MidpointLattice, n, &exact, 1);
+            let law = -1.0 / (6.0 * (n * n) as f64);
+            assert!(
+                ((mid.tensor - exact)[(0, 0)] - law).abs() < 1e-13,
+                "midpoint n={n}"
+            );
+            let ver = run(&cube(false), Method::VertexLattice, n, &exact, 1);
+            let law = 1.0 / (3.0 * n as f64);
+            assert!(
+                ((ver.tensor - exact)[(0, 0)] - law).abs() < 1e-13,
+                "vertex n={n}"
+            );
+            // The predicted error is the law itself, relative to the largest entry (2/3).
+            assert!((ver.predicted_error - law / (2.0 / 3.0)).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn monte_carlo_spread_matches_the_reference_law() {
+        // REFERENCE.md: σ(I_xx) = √(8/45)·M a²/√N for the cube; our estimate is the max entry.
+        let exact = corner_exact();
+        let n = 100_000;
+        let r = run(
+            &cube(true),
+            Method::MonteCarlo,
+            n,
+            &(Matrix3::identity() / 6.0),
+            7,
+        );
+        let law = (8.0f64 / 45.0).sqrt() / (n as f64).sqrt() / (1.0 / 6.0);
+        assert!(
+            r.predicted_error > 0.8 * law && r.predicted_error < 1.5 * law,
+            "{} vs {law}",
+            r.predicted_error
+        );
+        assert!(r.error < 5.0 * r.predicted_error);
+        let _ = exact;
+    }
+
+    #[test]
+    fn trapezoid_is_exact_for_a_hoop_from_three_points() {
+        let hoop = NumBody {
+            label: "hoop".into(),
+            shape: NumShape::Hoop { radius: 1.0 },
+            mass: 1.0,
+            rotation: Matrix3::identity(),
+            shift: Vector3::zeros(),
+        };
+        let exact = Matrix3::from_diagonal(&Vector3::new(0.5, 0.5, 1.0));
+        for n in [3, 4, 8] {
+            assert!(run(&hoop, Method::PeriodicTrapezoid, n, &exact, 1).error < 1e-15);
+        }
+        let two = run(&hoop, Method::PeriodicTrapezoid, 2, &exact, 1);
+        assert!(
+            (two.error - two.predicted_error).abs() < 1e-14,
+            "aliasing law"
+        );
+    }
+}

@@ -1,0 +1,391 @@
+//! Reports for the terminal and as JSON. Pure functions from results to strings: no I/O here.
+
+use crate::derive::ExactBasis;
+use crate::derive::algebra::Value;
+use crate::numeric::eigen::Space;
+use crate::pipeline::SceneReport;
+use crate::plan::Stage;
+use crate::scene::Verdict;
+use serde_json::{Value as Json, json};
+use std::fmt::Write;
+
+/// Numbers as JSON; a non-finite value becomes null rather than invalid JSON.
+fn num(x: f64) -> Json {
+    serde_json::Number::from_f64(x)
+        .map(Json::Number)
+        .unwrap_or(Json::Null)
+}
+
+fn numeric_entries(v: &Value, r: &SceneReport) -> Json {
+    let env = |s: &str| r.scene.values.get(s).copied();
+    let vals: Vec<Json> = v
+        .entries()
+        .iter()
+        .map(|e| e.eval(&env).map(num).unwrap_or(Json::Null))
+        .collect();
+    match v {
+        Value::Scalar(_) => vals.into_iter().next().unwrap_or(Json::Null),
+        Value::Vector(_) => Json::Array(vals),
+        Value::Matrix(_) => Json::Array(vals.chunks(3).map(|c| Json::Array(c.to_vec())).collect()),
+    }
+}
+
+fn vec_text(v: &[crate::cas::Expr; 3]) -> String {
+    Value::Vector(v.clone()).to_text()
+}
+
+/// One scene as JSON, in the shape documented in the README.
+pub fn scene_json(r: &SceneReport) -> Json {
+    let s = &r.scene;
+    let mut quantities = serde_json::Map::new();
+    for (name, v) in &r.derivation.quantities {
+        quantities.insert(
+            name.clone(),
+            json!({ "exact": v.to_text(), "latex": v.to_latex(), "numeric": numeric_entries(v, r) }),
+        );
+    }
+    let claims: Vec<Json> = r
+        .verification
+        .claims
+        .iter()
+        .map(|c| {
+            json!({
+                "eq": c.eq,
+                "statement": c.statement,
+                "notes": c.notes,
+                "derived": c.derived,
+                "verdict": c.verdict.as_str(),
+                "expected": c.expected.as_str(),
+                "passed": c.passed(),
+                "differences": c.differences,
+                "problem": c.problem,
+            })
+        })
+        .collect();
+    let numeric_checks: Vec<Json> = match &r.numeric {
+        Some(n) => n
+            .runs
+            .iter()
+            .zip(&r.verification.within_law)
+            .map(|(q, ok)| {
+                json!({
+                    "body": q.body,
+                    "method": q.method.name(),
+                    "points": q.points,
+                    "error": num(q.error),
+                    "predicted_error": num(q.predicted_error),
+                    "seconds": num(q.seconds),
+                    "within_law": ok,
+                })
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    let principal: Vec<Json> = r
+        .derivation
+        .eigen
+        .iter()
+        .flat_map(|e| e.spaces.iter())
+        .map(|sp| {
+            let (kind, dir) = match &sp.basis {
+                ExactBasis::Axis(a) => ("axis", Some(vec_text(a))),
+                ExactBasis::PlaneNormalTo(n) => ("plane-normal-to", Some(vec_text(n))),
+                ExactBasis::All => ("all", None),
+            };
+            let env = |x: &str| s.values.get(x).copied();
+            json!({
+                "value": sp.value.to_text(),
+                "numeric": sp.value.eval(&env).map(num).unwrap_or(Json::Null),
+                "multiplicity": sp.multiplicity,
+                "eigenspace": kind,
+                "direction": dir,
+            })
+        })
+        .collect();
+    let stages: Vec<Json> = r
+        .plan
+        .explain()
+        .into_iter()
+        .map(|(st, why)| json!({ "stage": st.name(), "ran": why.is_some(), "because": why.unwrap_or_default() }))
+        .collect();
+    json!({
+        "id": s.id,
+        "title": s.title,
+        "source": s.source.to_string_lossy(),
+        "notes": { "lecture": s.notes.lecture, "section": s.notes.section, "equations": s.notes.equations },
+        "passed": r.passed(),
+        "quantities": quantities,
+        "principal_axes": principal,
+        "claims": claims,
+        "numeric_checks": numeric_checks,
+        "exact_vs_numeric": r.verification.quantities.iter().map(|q| json!({
+            "quantity": q.name, "error": num(q.error), "passed": q.passed })).collect::<Vec<_>>(),
+        "eigen_check": r.verification.eigen.as_ref().map(|e| json!({
+            "value_error": num(e.value_error), "axis_error": num(e.axis_error), "passed": e.passed })),
+        "regressions": r.verification.regressions.iter().map(|g| json!({
+            "quantity": g.quantity, "recorded": g.recorded, "derived": g.derived, "unchanged": g.unchanged })).collect::<Vec<_>>(),
+        "steps": r.derivation.steps,
+        "stages": stages,
+        "symbolic_seconds": num(r.symbolic_seconds),
+        "engine_calls": r.engine_calls,
+    })
+}
+
+fn count(r: &SceneReport, v: Verdict) -> usize {
+    r.verification
+        .claims
+        .iter()
+        .filter(|c| c.verdict == v)
+        .count()
+}
+
+fn sci(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else {
+        format!("{x:.1e}")
+    }
+}
+
+/// The summary table printed by `check`, with the notes' errata and every failure below it.
+pub fn check_table(reports: &[SceneReport]) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "{:<28} {:>4} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9} {:>6}",
+        "scene", "lect", "results", "agree", "disagree", "n/c", "exact~num", "symb ms", "status"
+    );
+    for r in reports {
+        let worst = r
+            .verification
+            .quantities
+            .iter()
+            .map(|q| q.error)
+            .fold(None, |m: Option<f64>, e| Some(m.map_or(e, |m| m.max(e))));
+        let _ = writeln!(
+            out,
+            "{:<28} {:>4} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9.2} {:>6}",
+            r.scene.id,
+            r.scene.notes.lecture,
+            r.derivation.quantities.len(),
+            count(r, Verdict::Agrees),
+            count(r, Verdict::Disagrees),
+            count(r, Verdict::NotCheckable),
+            worst.map(sci).unwrap_or_else(|| "-".into()),
+            r.symbolic_seconds * 1e3,
+            if r.passed() { "ok" } else { "FAILED" }
+        );
+    }
+    let errata: Vec<_> = reports
+        .iter()
+        .flat_map(|r| r.verification.claims.iter().map(move |c| (r, c)))
+        .filter(|(_, c)| c.verdict == Verdict::Disagrees)
+        .collect();
+    if !errata.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nWhere the notes disagree with the derivation ({}):",
+            errata.len()
+        );
+        for (r, c) in errata {
+            let _ = writeln!(out, "  eq ({}) [{}] {}", c.eq, r.scene.id, c.statement);
+            for d in &c.differences {
+                let _ = writeln!(out, "      {d}");
+            }
+        }
+    }
+    let mut failures = Vec::new();
+    for r in reports {
+        let src = r.scene.source.display();
+        for c in r.verification.claims.iter().filter(|c| !c.passed()) {
+            let why = c.problem.clone().unwrap_or_else(|| {
+                format!(
+                    "verdict {} but the scene records {}",
+                    c.verdict.as_str(),
+                    c.expected.as_str()
+                )
+            });
+            failures.push(format!("{src}:{}: claim ({}): {why}", c.line, c.eq));
+        }
+        for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
+            failures.push(format!(
+                "{src}: `{}` changed: recorded {}, derived {}",
+                g.quantity, g.recorded, g.derived
+            ));
+        }
+        for q in r.verification.quantities.iter().filter(|q| !q.passed) {
+            failures.push(format!(
+                "{src}: `{}`: exact and numeric differ by {} (relative)",
+                q.name,
+                sci(q.error)
+            ));
+        }
+        if let Some(e) = r.verification.eigen.as_ref().filter(|e| !e.passed) {
+            failures.push(format!(
+                "{src}: principal axes: exact and numeric differ (values {}, axes {})",
+                sci(e.value_error),
+                sci(e.axis_error)
+            ));
+        }
+        if let Some(n) = &r.numeric {
+            for (q, ok) in n.runs.iter().zip(&r.verification.within_law) {
+                if !ok {
+                    failures.push(format!(
+                        "{src}: {} {} ({} points): error {} beyond its law {}",
+                        q.body,
+                        q.method.name(),
+                        q.points,
+                        sci(q.error),
+                        sci(q.predicted_error)
+                    ));
+                }
+            }
+        }
+    }
+    if !failures.is_empty() {
+        let _ = writeln!(out, "\nFailures ({}):", failures.len());
+        for f in failures {
+            let _ = writeln!(out, "  {f}");
+        }
+    }
+    let claims: usize = reports.iter().map(|r| r.verification.claims.len()).sum();
+    let symbolic: f64 = reports.iter().map(|r| r.symbolic_seconds).sum();
+    let calls: u64 = reports.iter().map(|r| r.engine_calls).sum();
+    let _ = writeln!(
+        out,
+        "\n{} scene(s), {} claim(s): {} agree, {} disagree, {} not checkable; symbolic stage {:.1} ms in {} engine calls; {}",
+        reports.len(),
+        claims,
+        reports
+            .iter()
+            .map(|r| count(r, Verdict::Agrees))
+            .sum::<usize>(),
+        reports
+            .iter()
+            .map(|r| count(r, Verdict::Disagrees))
+            .sum::<usize>(),
+        reports
+            .iter()
+            .map(|r| count(r, Verdict::NotCheckable))
+            .sum::<usize>(),
+        symbolic * 1e3,
+        calls,
+        if reports.iter().all(SceneReport::passed) {
+            "all as recorded"
+        } else {
+            "FAILED"
+        }
+    );
+    out
+}
+
+/// `derive` without --json: the steps, the results and the checks of one scene.
+pub fn derivation_text(r: &SceneReport) -> String {
+    let mut out = String::new();
+    let s = &r.scene;
+    let _ = writeln!(
+        out,
+        "{} ({}; lecture {}, section {})",
+        s.title, s.id, s.notes.lecture, s.notes.section
+    );
+    for (i, step) in r.derivation.steps.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "\n{:>2}. {}\n    {}\n    because: {}",
+            i + 1,
+            step.title,
+            step.text,
+            step.why
+        );
+    }
+    if let Some(n) = &r.numeric {
+        let _ = writeln!(
+            out,
+            "\nNumeric cross-check (relative errors against the exact tensor):"
+        );
+        let _ = writeln!(
+            out,
+            "  {:<10} {:<20} {:>8} {:>10} {:>10} {:>10}",
+            "body", "method", "points", "error", "predicted", "seconds"
+        );
+        for q in &n.runs {
+            let _ = writeln!(
+                out,
+                "  {:<10} {:<20} {:>8} {:>10} {:>10} {:>10.2e}",
+                q.body,
+                q.method.name(),
+                q.points,
+                sci(q.error),
+                sci(q.predicted_error),
+                q.seconds
+            );
+        }
+    }
+    if let Some(e) = &r.verification.eigen {
+        let _ = writeln!(out, "\nPrincipal axes, numeric (SymmetricEigen):");
+        for sp in &e.numeric {
+            let what = match &sp.space {
+                Space::Axis(v) => format!("axis ({:.6}, {:.6}, {:.6})", v.x, v.y, v.z),
+                Space::PlaneNormalTo(v) => {
+                    format!("plane normal to ({:.6}, {:.6}, {:.6})", v.x, v.y, v.z)
+                }
+                Space::All => "every axis".into(),
+            };
+            let _ = writeln!(out, "  {:.15} ×{}  {what}", sp.value, sp.multiplicity);
+        }
+        let _ = writeln!(
+            out,
+            "  against exact: values {}, axes {}",
+            sci(e.value_error),
+            sci(e.axis_error)
+        );
+    }
+    if !r.verification.claims.is_empty() {
+        let _ = writeln!(out, "\nClaims of the notes:");
+        for c in &r.verification.claims {
+            let _ = writeln!(
+                out,
+                "  ({}) {:<13} {}",
+                c.eq,
+                c.verdict.as_str(),
+                c.statement
+            );
+            for d in &c.differences {
+                let _ = writeln!(out, "        {d}");
+            }
+            if let Some(p) = &c.problem {
+                let _ = writeln!(out, "        problem: {p}");
+            }
+        }
+    }
+    out
+}
+
+/// `derive --explain`: which stages ran, and why; which were skipped.
+pub fn explain_text(r: &SceneReport) -> String {
+    let mut out = String::from("Stages:\n");
+    for (stage, why) in r.plan.explain() {
+        match why {
+            Some(reasons) => {
+                let _ = writeln!(
+                    out,
+                    "  ran      {:<18} because {}",
+                    stage.name(),
+                    reasons.join("; ")
+                );
+            }
+            None => {
+                let _ = writeln!(out, "  skipped  {:<18} nothing asked for it", stage.name());
+            }
+        }
+    }
+    let _ = writeln!(
+        out,
+        "Symbolic engine: {} call(s), {:.2} ms; whole scene {:.2} ms",
+        r.engine_calls,
+        r.symbolic_seconds * 1e3,
+        r.seconds * 1e3
+    );
+    let _ = Stage::ALL;
+    out
+}

@@ -1,0 +1,928 @@
+//! Scene files: TOML text -> a validated [`Scene`].
+//!
+//! Parsing is separate from reading (`Scene::parse` / `Scene::from_file`), so tests need no disk.
+//! Every error names the file, line, column and field.
+
+mod error;
+mod raw;
+
+pub use error::{Locator, SceneError};
+
+use crate::cas::{Expr, parse as parse_expr};
+use raw::{RawBody, RawScene, Text};
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+#[derive(Debug, Clone)]
+pub struct Scene {
+    pub id: String,
+    pub title: String,
+    /// The path the scene was read from, as given (never made absolute).
+    pub source: PathBuf,
+    pub notes: NotesRef,
+    /// Symbol name -> its meaning.
+    pub symbols: BTreeMap<String, String>,
+    /// Abbreviations used in claims, such as `lambda = M/(2*pi*R)`.
+    pub definitions: BTreeMap<String, Expr>,
+    pub vectors: BTreeMap<String, [Expr; 3]>,
+    pub omega: Option<[Expr; 3]>,
+    pub axis: Option<[Expr; 3]>,
+    pub bodies: Vec<Body>,
+    pub claims: Vec<Claim>,
+    pub wants: Vec<Output>,
+    pub values: BTreeMap<String, f64>,
+    pub seed: u64,
+    /// Recorded results: quantity name -> expected exact value (the regression record).
+    pub expect: BTreeMap<String, Expr>,
+}
+
+#[derive(Debug, Clone)]
+pub struct NotesRef {
+    pub lecture: String,
+    pub section: String,
+    pub equations: Vec<String>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    X,
+    Y,
+    Z,
+}
+
+impl Axis {
+    pub fn index(self) -> usize {
+        self as usize
+    }
+    pub fn name(self) -> &'static str {
+        ["x", "y", "z"][self as usize]
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Body {
+    pub label: String,
+    pub shape: Shape,
+    /// Total mass; for point sets, the sum of the point masses.
+    pub mass: Expr,
+    /// Applied in order to the body's own coordinates, then `shift`.
+    pub rotations: Vec<(Axis, Expr)>,
+    pub shift: [Expr; 3],
+}
+
+#[derive(Debug, Clone)]
+pub enum Shape {
+    /// Sides along x, y, z; the body's origin at a corner or at the centre.
+    Box {
+        size: [Expr; 3],
+        centred: bool,
+    },
+    /// A thin rod along an axis, from its end or centred.
+    Rod {
+        length: Expr,
+        along: Axis,
+        centred: bool,
+    },
+    /// A thin hoop (ring) of radius R in the xy-plane, centred.
+    Hoop {
+        radius: Expr,
+    },
+    /// A thin uniform disk in the xy-plane, centred.
+    Disk {
+        radius: Expr,
+    },
+    /// A solid cylinder about z, centred.
+    Cylinder {
+        radius: Expr,
+        height: Expr,
+    },
+    Sphere {
+        radius: Expr,
+    },
+    /// A thin spherical shell.
+    Shell {
+        radius: Expr,
+    },
+    Points(Vec<(Expr, [Expr; 3])>),
+}
+
+impl Shape {
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Shape::Box { .. } => "box",
+            Shape::Rod { .. } => "rod",
+            Shape::Hoop { .. } => "hoop",
+            Shape::Disk { .. } => "disk",
+            Shape::Cylinder { .. } => "cylinder",
+            Shape::Sphere { .. } => "sphere",
+            Shape::Shell { .. } => "shell",
+            Shape::Points(_) => "points",
+        }
+    }
+
+    /// The names of the shape's integration variables; scene symbols may not reuse them.
+    pub fn variables(&self) -> &'static [&'static str] {
+        match self {
+            Shape::Box { .. } => &["x", "y", "z"],
+            Shape::Rod { .. } => &["s"],
+            Shape::Hoop { .. } => &["theta"],
+            Shape::Disk { .. } => &["r", "theta"],
+            Shape::Cylinder { .. } => &["r", "theta", "z"],
+            Shape::Sphere { .. } => &["r", "theta", "phi"],
+            Shape::Shell { .. } => &["theta", "phi"],
+            Shape::Points(_) => &[],
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    Agrees,
+    Disagrees,
+    NotCheckable,
+}
+
+impl Verdict {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Verdict::Agrees => "agrees",
+            Verdict::Disagrees => "disagrees",
+            Verdict::NotCheckable => "not-checkable",
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Claim {
+    pub eq: String,
+    pub statement: String,
+    /// The derived side, in the claim language (`inertia_tensor[0][1]`, `cross(a, b)`).
+    pub quantity: Option<Expr>,
+    /// The notes' side, restated.
+    pub value: Option<Expr>,
+    pub expect: Verdict,
+    pub line: usize,
+}
+
+/// What a scene asks for. Each one pulls in the stages it needs (see `plan`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Output {
+    InertiaTensor,
+    ParallelAxis,
+    PrincipalAxes,
+    AngularMomentum,
+    KineticEnergy,
+    MomentAboutAxis,
+    Gyration,
+    Numeric,
+}
+
+impl Output {
+    pub const ALL: &'static [(&'static str, Output)] = &[
+        ("inertia_tensor", Output::InertiaTensor),
+        ("parallel_axis", Output::ParallelAxis),
+        ("principal_axes", Output::PrincipalAxes),
+        ("angular_momentum", Output::AngularMomentum),
+        ("kinetic_energy", Output::KineticEnergy),
+        ("moment_about_axis", Output::MomentAboutAxis),
+        ("gyration", Output::Gyration),
+        ("numeric", Output::Numeric),
+    ];
+
+    pub fn name(self) -> &'static str {
+        Output::ALL.iter().find(|(_, o)| *o == self).unwrap().0
+    }
+}
+
+/// Names a claim may use for derived quantities, and the functions of the claim language.
+pub const QUANTITIES: &[&str] = &[
+    "mass",
+    "centre_of_mass",
+    "inertia_tensor",
+    "inertia_cm",
+    "principal_moments",
+    "angular_momentum",
+    "angular_momentum_direct",
+    "kinetic_energy",
+    "kinetic_energy_direct",
+    "moment_about_axis",
+    "moment_about_axis_direct",
+    "radius_of_gyration",
+    "integrand",
+    "position",
+];
+pub const CLAIM_FUNCTIONS: &[&str] = &[
+    "sin",
+    "cos",
+    "sqrt",
+    "dot",
+    "cross",
+    "outer",
+    "transpose",
+    "eye",
+    "diag",
+    "rot_x",
+    "rot_y",
+    "rot_z",
+    "trace",
+];
+const RESERVED: &[&str] = &["pi"];
+
+impl Scene {
+    pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+            path: path.to_path_buf(),
+            line: 0,
+            column: 0,
+            field: String::new(),
+            message: format!("cannot read the scene file: {e}"),
+        })?;
+        Scene::parse(&text, path)
+    }
+
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        let loc = Locator { path, text };
+        let raw: RawScene = toml::from_str(text).map_err(|e| {
+            let offset = e.span().map(|s| s.start).unwrap_or(0);
+            let message = e.message().trim().to_string();
+            loc.error(offset, "", message)
+        })?;
+        Validator { loc: &loc }.scene(raw)
+    }
+}
+
+struct Validator<'a> {
+    loc: &'a Locator<'a>,
+}
+
+/// The byte offset of a string's first character inside its quotes.
+fn content_start<T>(s: &Spanned<T>) -> usize {
+    s.span().start + 1
+}
+
+fn is_identifier(s: &str) -> bool {
+    let mut chars = s.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+impl Validator<'_> {
+    fn err(&self, offset: usize, field: &str, msg: impl Into<String>) -> SceneError {
+        self.loc.error(offset, field, msg)
+    }
+
+    /// Parses an expression and checks that every symbol is one of `allowed`.
+    fn expr(&self, t: &Text, field: &str, allowed: &BTreeSet<String>) -> Result<Expr, SceneError> {
+        self.expr_str(t.get_ref(), content_start(t), field, allowed)
+    }
+
+    /// Parses `text`, which starts at byte `start` of the file.
+    fn expr_str(
+        &self,
+        text: &str,
+        start: usize,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<Expr, SceneError> {
+        let parsed = parse_expr(text).map_err(|e| {
+            self.err(
+                start + e.offset,
+                field,
+                format!("malformed expression: {}", e.message),
+            )
+        })?;
+        for (name, offset) in &parsed.symbols {
+            if !allowed.contains(name) {
+                return Err(self.err(
+                    start + offset,
+                    field,
+                    format!("undefined symbol `{name}` (declare it under [symbols])"),
+                ));
+            }
+        }
+        check_calls(&parsed.expr, false).map_err(|m| self.err(start, field, m))?;
+        Ok(parsed.expr)
+    }
+
+    fn vec3(
+        &self,
+        v: &Spanned<Vec<Text>>,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<[Expr; 3], SceneError> {
+        if v.get_ref().len() != 3 {
+            return Err(self.err(
+                v.span().start,
+                field,
+                format!("expected 3 components, found {}", v.get_ref().len()),
+            ));
+        }
+        let items: Vec<Expr> = v
+            .get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, t)| self.expr(t, &format!("{field}[{i}]"), allowed))
+            .collect::<Result<_, _>>()?;
+        Ok([items[0].clone(), items[1].clone(), items[2].clone()])
+    }
+
+    fn scene(&self, raw: RawScene) -> Result<Scene, SceneError> {
+        if !is_identifier(&raw.id.get_ref().replace('-', "_")) {
+            return Err(self.err(
+                raw.id.span().start,
+                "id",
+                "an id is letters, digits, `-` and `_`",
+            ));
+        }
+
+        // Symbols.
+        let mut symbols = BTreeMap::new();
+        for (name, meaning) in &raw.symbols {
+            let n = name.get_ref();
+            if !is_identifier(n)
+                || RESERVED.contains(&n.as_str())
+                || QUANTITIES.contains(&n.as_str())
+                || CLAIM_FUNCTIONS.contains(&n.as_str())
+            {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("symbols.{n}"),
+                    format!("`{n}` cannot be a symbol name"),
+                ));
+            }
+            symbols.insert(n.clone(), meaning.clone());
+        }
+        let mut allowed: BTreeSet<String> = symbols.keys().cloned().collect();
+        allowed.insert("pi".into());
+
+        // Bodies first: their integration variables may not be symbols.
+        let mut bodies = Vec::new();
+        for (i, b) in raw.bodies.iter().enumerate() {
+            bodies.push(self.body(b, &format!("body[{i}]"), &allowed)?);
+        }
+        for (i, b) in bodies.iter().enumerate() {
+            for v in b.shape.variables() {
+                if let Some((name, _)) = raw.symbols.iter().find(|(n, _)| n.get_ref() == v) {
+                    return Err(self.err(name.span().start, &format!("symbols.{v}"), format!("`{v}` is the integration variable of body[{i}] ({}); choose another name", b.shape.kind())));
+                }
+            }
+        }
+        let variables: BTreeSet<String> = bodies
+            .iter()
+            .flat_map(|b| b.shape.variables().iter().map(|s| s.to_string()))
+            .collect();
+
+        let mut definitions = BTreeMap::new();
+        let mut claim_names = allowed.clone();
+        for (name, value) in &raw.definitions {
+            let n = name.get_ref();
+            if !is_identifier(n) || allowed.contains(n) {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("definitions.{n}"),
+                    format!("`{n}` cannot be defined here (not a name, or already a symbol)"),
+                ));
+            }
+            let mut scope = allowed.clone();
+            scope.extend(variables.iter().cloned());
+            definitions.insert(
+                n.clone(),
+                self.expr(value, &format!("definitions.{n}"), &scope)?,
+            );
+            claim_names.insert(n.clone());
+        }
+
+        let mut vectors = BTreeMap::new();
+        for (name, v) in &raw.vectors {
+            let n = name.get_ref();
+            if !is_identifier(n) || claim_names.contains(n) {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("vectors.{n}"),
+                    format!("`{n}` cannot name a vector (not a name, or already used)"),
+                ));
+            }
+            vectors.insert(n.clone(), self.vec3(v, &format!("vectors.{n}"), &allowed)?);
+        }
+        claim_names.extend(vectors.keys().cloned());
+        claim_names.extend(variables.iter().cloned());
+        claim_names.extend(QUANTITIES.iter().map(|s| s.to_string()));
+
+        let omega = raw
+            .omega
+            .as_ref()
+            .map(|v| self.vec3(v, "omega", &allowed))
+            .transpose()?;
+        let axis = raw
+            .axis
+            .as_ref()
+            .map(|v| self.vec3(v, "axis", &allowed))
+            .transpose()?;
+
+        let mut claims = Vec::new();
+        for (i, c) in raw.claims.iter().enumerate() {
+            claims.push(self.claim(
+                c.get_ref(),
+                c.span().start,
+                &format!("claim[{i}]"),
+                &claim_names,
+            )?);
+        }
+
+        let mut wants = Vec::new();
+        for (i, w) in raw.outputs.want.iter().enumerate() {
+            let Some((_, o)) = Output::ALL.iter().find(|(n, _)| n == w.get_ref()) else {
+                let names: Vec<&str> = Output::ALL.iter().map(|(n, _)| *n).collect();
+                return Err(self.err(
+                    content_start(w),
+                    &format!("outputs.want[{i}]"),
+                    format!(
+                        "unknown output `{}`; expected one of: {}",
+                        w.get_ref(),
+                        names.join(", ")
+                    ),
+                ));
+            };
+            wants.push(*o);
+        }
+        wants.sort();
+        wants.dedup();
+        if wants.is_empty() && claims.is_empty() {
+            return Err(self.err(
+                0,
+                "outputs.want",
+                "the scene asks for nothing: list at least one output or claim",
+            ));
+        }
+        let needs_bodies = wants
+            .iter()
+            .any(|w| *w != Output::AngularMomentum || !bodies.is_empty());
+        if bodies.is_empty() && needs_bodies && !wants.is_empty() {
+            return Err(self.err(0, "body", "these outputs need at least one [[body]]"));
+        }
+        if wants.contains(&Output::AngularMomentum) || wants.contains(&Output::KineticEnergy) {
+            if omega.is_none() {
+                return Err(self.err(
+                    0,
+                    "omega",
+                    "angular_momentum and kinetic_energy need `omega = [..]`",
+                ));
+            }
+        }
+        if (wants.contains(&Output::MomentAboutAxis) || wants.contains(&Output::Gyration))
+            && axis.is_none()
+        {
+            return Err(self.err(
+                0,
+                "axis",
+                "moment_about_axis and gyration need `axis = [..]`",
+            ));
+        }
+
+        // Numeric values: finite, one per symbol the bodies, omega and axis use.
+        let mut values = BTreeMap::new();
+        for (name, v) in &raw.numeric.values {
+            let n = name.get_ref();
+            let field = format!("numeric.values.{n}");
+            if !symbols.contains_key(n) {
+                return Err(self.err(
+                    name.span().start,
+                    &field,
+                    format!("`{n}` is not a declared symbol"),
+                ));
+            }
+            if !v.get_ref().is_finite() {
+                return Err(self.err(v.span().start, &field, "the value must be a finite number"));
+            }
+            values.insert(n.clone(), *v.get_ref());
+        }
+        let mut used: BTreeSet<String> = BTreeSet::new();
+        for b in &bodies {
+            used.extend(body_symbols(b));
+        }
+        for v in omega.iter().chain(axis.iter()) {
+            v.iter().for_each(|e| used.extend(e.symbols()));
+        }
+        used.remove("pi");
+        for s in &used {
+            if !values.contains_key(s) {
+                return Err(self.err(
+                    0,
+                    "numeric.values",
+                    format!("no numeric value for symbol `{s}`"),
+                ));
+            }
+        }
+        for (i, rb) in raw.bodies.iter().enumerate() {
+            self.check_positive(rb.get_ref(), &bodies[i], &format!("body[{i}]"), &values)?;
+        }
+
+        let mut expect = BTreeMap::new();
+        for (name, value) in &raw.expect {
+            let n = name.get_ref();
+            if !QUANTITIES.contains(&n.as_str()) {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("expect.{n}"),
+                    format!(
+                        "`{n}` is not a derived quantity; expected one of: {}",
+                        QUANTITIES.join(", ")
+                    ),
+                ));
+            }
+            let mut scope = allowed.clone();
+            scope.extend(variables.iter().cloned());
+            expect.insert(n.clone(), self.expr(value, &format!("expect.{n}"), &scope)?);
+        }
+
+        Ok(Scene {
+            id: raw.id.into_inner(),
+            title: raw.title,
+            source: self.loc.path.to_path_buf(),
+            notes: NotesRef {
+                lecture: raw.notes.lecture,
+                section: raw.notes.section,
+                equations: raw.notes.equations,
+            },
+            symbols,
+            definitions,
+            vectors,
+            omega,
+            axis,
+            bodies,
+            claims,
+            wants,
+            values,
+            seed: raw.numeric.seed.unwrap_or(1),
+            expect,
+        })
+    }
+
+    fn claim(
+        &self,
+        c: &raw::RawClaim,
+        offset: usize,
+        field: &str,
+        names: &BTreeSet<String>,
+    ) -> Result<Claim, SceneError> {
+        let eq = c.eq.get_ref();
+        let digits = eq.trim_end_matches(|ch: char| ch.is_ascii_lowercase());
+        if digits.is_empty()
+            || !digits.chars().all(|ch| ch.is_ascii_digit())
+            || eq.len() - digits.len() > 1
+        {
+            return Err(self.err(content_start(&c.eq), &format!("{field}.eq"), "an equation number is digits with at most one letter after them, as \"31\" or \"22a\""));
+        }
+        let expect = match c.expect.get_ref().as_str() {
+            "agrees" => Verdict::Agrees,
+            "disagrees" => Verdict::Disagrees,
+            "not-checkable" => Verdict::NotCheckable,
+            other => {
+                return Err(self.err(
+                    content_start(&c.expect),
+                    &format!("{field}.expect"),
+                    format!(
+                        "unknown verdict `{other}`; expected agrees, disagrees or not-checkable"
+                    ),
+                ));
+            }
+        };
+        let quantity = c
+            .quantity
+            .as_ref()
+            .map(|q| self.claim_expr(q, &format!("{field}.quantity"), names))
+            .transpose()?;
+        let value = c
+            .value
+            .as_ref()
+            .map(|v| self.claim_expr(v, &format!("{field}.value"), names))
+            .transpose()?;
+        if expect != Verdict::NotCheckable && (quantity.is_none() || value.is_none()) {
+            return Err(self.err(
+                offset,
+                field,
+                "a checkable claim needs both `quantity` and `value`",
+            ));
+        }
+        Ok(Claim {
+            eq: eq.clone(),
+            statement: c.statement.clone(),
+            quantity,
+            value,
+            expect,
+            line: self.loc.line_col(offset).0,
+        })
+    }
+
+    fn claim_expr(
+        &self,
+        t: &Text,
+        field: &str,
+        names: &BTreeSet<String>,
+    ) -> Result<Expr, SceneError> {
+        let start = content_start(t);
+        let parsed = parse_expr(t.get_ref()).map_err(|e| {
+            self.err(
+                start + e.offset,
+                field,
+                format!("malformed expression: {}", e.message),
+            )
+        })?;
+        for (name, offset) in &parsed.symbols {
+            if !names.contains(name) {
+                return Err(self.err(start + offset, field, format!("undefined name `{name}` (not a symbol, definition, vector or derived quantity)")));
+            }
+        }
+        check_calls(&parsed.expr, true).map_err(|m| self.err(start, field, m))?;
+        Ok(parsed.expr)
+    }
+
+    fn body(
+        &self,
+        b: &Spanned<RawBody>,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<Body, SceneError> {
+        let start = b.span().start;
+        let rb = b.get_ref();
+        let kind = rb.kind.get_ref().as_str();
+        let req = |t: &Option<Text>, name: &str| -> Result<Expr, SceneError> {
+            match t {
+                Some(t) => self.expr(t, &format!("{field}.{name}"), allowed),
+                None => Err(self.err(
+                    start,
+                    &format!("{field}.{name}"),
+                    format!("missing field `{name}` for a {kind}"),
+                )),
+            }
+        };
+        // Fields that do not apply to this kind are errors, not silently ignored.
+        let present: Vec<(&str, bool)> = vec![
+            ("size", rb.size.is_some()),
+            ("radius", rb.radius.is_some()),
+            ("length", rb.length.is_some()),
+            ("height", rb.height.is_some()),
+            ("origin", rb.origin.is_some()),
+            ("along", rb.along.is_some()),
+            ("points", !rb.points.is_empty()),
+            ("mass", rb.mass.is_some()),
+        ];
+        let applies: &[&str] = match kind {
+            "box" => &["size", "origin", "mass"],
+            "rod" => &["length", "along", "origin", "mass"],
+            "hoop" | "ring" | "disk" | "sphere" | "shell" => &["radius", "mass"],
+            "cylinder" => &["radius", "height", "mass"],
+            "points" => &["points"],
+            other => {
+                return Err(self.err(content_start(&rb.kind), &format!("{field}.kind"), format!("unknown body kind `{other}`; expected box, rod, hoop, ring, disk, cylinder, sphere, shell or points")));
+            }
+        };
+        if let Some((name, _)) = present.iter().find(|(n, p)| *p && !applies.contains(n)) {
+            return Err(self.err(
+                start,
+                &format!("{field}.{name}"),
+                format!("field `{name}` does not apply to a {kind}"),
+            ));
+        }
+        let origin = |choices: [&str; 2]| -> Result<bool, SceneError> {
+            match &rb.origin {
+                None => Ok(false),
+                Some(o) if o.get_ref() == choices[0] => Ok(false),
+                Some(o) if o.get_ref() == "centre" || o.get_ref() == "center" => Ok(true),
+                Some(o) => Err(self.err(
+                    content_start(o),
+                    &format!("{field}.origin"),
+                    format!("expected `{}` or `centre`", choices[0]),
+                )),
+            }
+        };
+        let shape = match kind {
+            "box" => {
+                let Some(size) = &rb.size else {
+                    return Err(self.err(
+                        start,
+                        &format!("{field}.size"),
+                        "missing field `size` for a box",
+                    ));
+                };
+                Shape::Box {
+                    size: self.vec3(size, &format!("{field}.size"), allowed)?,
+                    centred: origin(["corner", "centre"])?,
+                }
+            }
+            "rod" => {
+                let along = match rb.along.as_ref().map(|a| a.get_ref().as_str()) {
+                    None | Some("z") => Axis::Z,
+                    Some("x") => Axis::X,
+                    Some("y") => Axis::Y,
+                    Some(_) => {
+                        return Err(self.err(
+                            content_start(rb.along.as_ref().unwrap()),
+                            &format!("{field}.along"),
+                            "expected x, y or z",
+                        ));
+                    }
+                };
+                Shape::Rod {
+                    length: req(&rb.length, "length")?,
+                    along,
+                    centred: origin(["end", "centre"])?,
+                }
+            }
+            "hoop" | "ring" => Shape::Hoop {
+                radius: req(&rb.radius, "radius")?,
+            },
+            "disk" => Shape::Disk {
+                radius: req(&rb.radius, "radius")?,
+            },
+            "cylinder" => Shape::Cylinder {
+                radius: req(&rb.radius, "radius")?,
+                height: req(&rb.height, "height")?,
+            },
+            "sphere" => Shape::Sphere {
+                radius: req(&rb.radius, "radius")?,
+            },
+            "shell" => Shape::Shell {
+                radius: req(&rb.radius, "radius")?,
+            },
+            _ => {
+                if rb.points.is_empty() {
+                    return Err(self.err(
+                        start,
+                        &format!("{field}.points"),
+                        "a point set needs at least one [[body.points]]",
+                    ));
+                }
+                let mut pts = Vec::new();
+                for (j, p) in rb.points.iter().enumerate() {
+                    let f = format!("{field}.points[{j}]");
+                    pts.push((
+                        self.expr(&p.get_ref().mass, &format!("{f}.mass"), allowed)?,
+                        self.vec3(&p.get_ref().at, &format!("{f}.at"), allowed)?,
+                    ));
+                }
+                Shape::Points(pts)
+            }
+        };
+        let mass = match &shape {
+            Shape::Points(pts) => Expr::add(pts.iter().map(|(m, _)| m.clone()).collect()),
+            _ => req(&rb.mass, "mass")?,
+        };
+        let mut rotations = Vec::new();
+        for (j, r) in rb.rotate.iter().enumerate() {
+            let f = format!("{field}.rotate[{j}]");
+            let axis = match r.get_ref().axis.get_ref().as_str() {
+                "x" => Axis::X,
+                "y" => Axis::Y,
+                "z" => Axis::Z,
+                _ => {
+                    return Err(self.err(
+                        content_start(&r.get_ref().axis),
+                        &format!("{f}.axis"),
+                        "expected x, y or z",
+                    ));
+                }
+            };
+            rotations.push((
+                axis,
+                self.expr(&r.get_ref().angle, &format!("{f}.angle"), allowed)?,
+            ));
+        }
+        let shift = match &rb.shift {
+            Some(s) => self.vec3(s, &format!("{field}.shift"), allowed)?,
+            None => [Expr::int(0), Expr::int(0), Expr::int(0)],
+        };
+        Ok(Body {
+            label: rb.label.clone().unwrap_or_else(|| shape.kind().to_string()),
+            shape,
+            mass,
+            rotations,
+            shift,
+        })
+    }
+
+    /// Sizes and masses must be positive and finite at the scene's numeric values.
+    fn check_positive(
+        &self,
+        rb: &RawBody,
+        body: &Body,
+        field: &str,
+        values: &BTreeMap<String, f64>,
+    ) -> Result<(), SceneError> {
+        let env = |s: &str| values.get(s).copied();
+        let mut checks: Vec<(&Text, String)> = Vec::new();
+        if let Some(m) = &rb.mass {
+            checks.push((m, format!("{field}.mass")));
+        }
+        for (name, t) in [
+            ("radius", &rb.radius),
+            ("length", &rb.length),
+            ("height", &rb.height),
+        ] {
+            if let Some(t) = t {
+                checks.push((t, format!("{field}.{name}")));
+            }
+        }
+        if let Some(size) = &rb.size {
+            for (i, t) in size.get_ref().iter().enumerate() {
+                checks.push((t, format!("{field}.size[{i}]")));
+            }
+        }
+        for (j, p) in rb.points.iter().enumerate() {
+            checks.push((&p.get_ref().mass, format!("{field}.points[{j}].mass")));
+        }
+        for (t, f) in checks {
+            let e = parse_expr(t.get_ref()).expect("validated").expr;
+            let v = e
+                .eval(&env)
+                .map_err(|m| self.err(content_start(t), &f, m))?;
+            if !(v.is_finite() && v > 0.0) {
+                return Err(self.err(
+                    content_start(t),
+                    &f,
+                    format!("must be positive and finite, but is {v} at the scene's values"),
+                ));
+            }
+        }
+        let _ = body;
+        Ok(())
+    }
+}
+
+/// Checks that every call names a known function with the right number of arguments.
+fn check_calls(e: &Expr, claim_language: bool) -> Result<(), String> {
+    let mut result = Ok(());
+    let allowed: &[&str] = if claim_language {
+        CLAIM_FUNCTIONS
+    } else {
+        crate::cas::SCALAR_FUNCTIONS
+    };
+    fn walk(e: &Expr, allowed: &[&str], claim: bool, out: &mut Result<(), String>) {
+        match e {
+            Expr::Call(name, args) => {
+                if !allowed.contains(&name.as_str()) {
+                    *out = Err(format!("unknown function `{name}`"));
+                    return;
+                }
+                let arity = match name.as_str() {
+                    "dot" | "cross" | "outer" => 2,
+                    "diag" => 3,
+                    "eye" => 0,
+                    _ => 1,
+                };
+                if name != "eye" && args.len() != arity {
+                    *out = Err(format!(
+                        "`{name}` takes {arity} argument(s), got {}",
+                        args.len()
+                    ));
+                }
+                args.iter().for_each(|a| walk(a, allowed, claim, out));
+            }
+            Expr::List(v) | Expr::Add(v) | Expr::Mul(v) => {
+                if !claim && matches!(e, Expr::List(_)) {
+                    *out = Err("a list is not allowed here".into());
+                }
+                v.iter().for_each(|a| walk(a, allowed, claim, out));
+            }
+            Expr::Index(a, b) => {
+                if !claim {
+                    *out = Err("indexing is not allowed here".into());
+                }
+                walk(a, allowed, claim, out);
+                walk(b, allowed, claim, out);
+            }
+            Expr::Pow(a, b) => {
+                walk(a, allowed, claim, out);
+                walk(b, allowed, claim, out);
+            }
+            Expr::Num(_) | Expr::Sym(_) => {}
+        }
+    }
+    walk(e, allowed, claim_language, &mut result);
+    result
+}
+
+fn body_symbols(b: &Body) -> BTreeSet<String> {
+    let mut exprs: Vec<&Expr> = vec![&b.mass];
+    exprs.extend(b.shift.iter());
+    exprs.extend(b.rotations.iter().map(|(_, a)| a));
+    match &b.shape {
+        Shape::Box { size, .. } => exprs.extend(size.iter()),
+        Shape::Rod { length, .. } => exprs.push(length),
+        Shape::Hoop { radius }
+        | Shape::Disk { radius }
+        | Shape::Sphere { radius }
+        | Shape::Shell { radius } => exprs.push(radius),
+        Shape::Cylinder { radius, height } => exprs.extend([radius, height]),
+        Shape::Points(pts) => pts.iter().for_each(|(m, at)| {
+            exprs.push(m);
+            exprs.extend(at.iter());
+        }),
+    }
+    exprs.iter().flat_map(|e| e.symbols()).collect()
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,116 @@
+//! The scene file as TOML sees it: a strict schema (`deny_unknown_fields`) with spans on every
+//! value that `Scene::parse` validates further. `docs/scenes.md` documents each field.
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use toml::Spanned;
+
+pub type Text = Spanned<String>;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScene {
+    pub id: Text,
+    pub title: String,
+    pub notes: RawNotes,
+    #[serde(default)]
+    pub symbols: BTreeMap<Spanned<String>, String>,
+    #[serde(default)]
+    pub definitions: BTreeMap<Spanned<String>, Text>,
+    #[serde(default)]
+    pub vectors: BTreeMap<Spanned<String>, Spanned<Vec<Text>>>,
+    #[serde(default)]
+    pub omega: Option<Spanned<Vec<Text>>>,
+    #[serde(default)]
+    pub axis: Option<Spanned<Vec<Text>>>,
+    #[serde(default, rename = "body")]
+    pub bodies: Vec<Spanned<RawBody>>,
+    #[serde(default, rename = "claim")]
+    pub claims: Vec<Spanned<RawClaim>>,
+    pub outputs: RawOutputs,
+    #[serde(default)]
+    pub numeric: RawNumeric,
+    #[serde(default)]
+    pub expect: BTreeMap<Spanned<String>, Text>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawNotes {
+    pub lecture: String,
+    #[serde(default)]
+    pub section: String,
+    #[serde(default)]
+    pub equations: Vec<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBody {
+    pub kind: Text,
+    #[serde(default)]
+    pub label: Option<String>,
+    #[serde(default)]
+    pub mass: Option<Text>,
+    #[serde(default)]
+    pub size: Option<Spanned<Vec<Text>>>,
+    #[serde(default)]
+    pub radius: Option<Text>,
+    #[serde(default)]
+    pub length: Option<Text>,
+    #[serde(default)]
+    pub height: Option<Text>,
+    /// Where the body's own origin sits: `corner` or `centre` for a box, `end` or `centre` for a rod.
+    #[serde(default)]
+    pub origin: Option<Text>,
+    /// The rod's direction: `x`, `y` or `z`.
+    #[serde(default)]
+    pub along: Option<Text>,
+    #[serde(default)]
+    pub points: Vec<Spanned<RawPoint>>,
+    #[serde(default)]
+    pub rotate: Vec<Spanned<RawRotation>>,
+    #[serde(default)]
+    pub shift: Option<Spanned<Vec<Text>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPoint {
+    pub mass: Text,
+    pub at: Spanned<Vec<Text>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRotation {
+    pub axis: Text,
+    pub angle: Text,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawClaim {
+    pub eq: Text,
+    pub statement: String,
+    #[serde(default)]
+    pub quantity: Option<Text>,
+    #[serde(default)]
+    pub value: Option<Text>,
+    pub expect: Text,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutputs {
+    pub want: Vec<Text>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct RawNumeric {
+    #[serde(default)]
+    pub values: BTreeMap<Spanned<String>, Spanned<f64>>,
+    #[serde(default)]
+    pub seed: Option<u64>,
+}

@@ -1,0 +1,88 @@
+use super::*;
+
+fn parse(text: &str) -> Result<Scene, SceneError> {
+    Scene::parse(text, Path::new("lectures/x.toml"))
+}
+
+const MINIMAL: &str = r#"id = "cube"
+title = "Cube"
+notes = { lecture = "3/4", section = "1.5.1", equations = ["31"] }
+symbols = { m = "mass", a = "side" }
+
+[[body]]
+kind = "box"
+size = ["a", "a", "a"]
+mass = "m"
+
+[outputs]
+want = ["inertia_tensor"]
+
+[numeric]
+values = { m = 1.0, a = 2.0 }
+"#;
+
+#[test]
+fn a_minimal_scene_parses() {
+    let s = parse(MINIMAL).unwrap();
+    assert_eq!(s.id, "cube");
+    assert_eq!(s.bodies.len(), 1);
+    assert!(matches!(
+        s.bodies[0].shape,
+        Shape::Box { centred: false, .. }
+    ));
+    assert_eq!(s.wants, vec![Output::InertiaTensor]);
+    assert_eq!(s.values["a"], 2.0);
+}
+
+#[test]
+fn unknown_keys_point_at_their_line() {
+    let text = MINIMAL.replace("mass = \"m\"", "mass = \"m\"\ncolour = \"red\"");
+    let e = parse(&text).unwrap_err();
+    assert_eq!(e.line, 9, "{e}");
+    assert!(e.message.contains("unknown field `colour`"), "{e}");
+}
+
+#[test]
+fn undefined_symbols_point_at_their_column() {
+    let text = MINIMAL.replace(
+        "size = [\"a\", \"a\", \"a\"]",
+        "size = [\"a\", \"a\", \"b\"]",
+    );
+    let e = parse(&text).unwrap_err();
+    assert_eq!((e.line, e.column), (7, 22), "{e}");
+    assert_eq!(e.field, "body[0].size[2]");
+    assert!(e.message.contains("undefined symbol `b`"));
+}
+
+#[test]
+fn malformed_expressions_point_inside_the_string() {
+    let text = MINIMAL.replace("mass = \"m\"", "mass = \"2*(m\"");
+    let e = parse(&text).unwrap_err();
+    assert_eq!((e.line, e.column), (8, 13), "{e}");
+    assert!(e.message.contains("malformed expression"));
+}
+
+#[test]
+fn sizes_and_masses_must_be_positive_and_finite() {
+    for (from, to) in [
+        ("a = 2.0", "a = -2.0"),
+        ("a = 2.0", "a = 0.0"),
+        ("a = 2.0", "a = nan"),
+        ("a = 2.0", "a = inf"),
+    ] {
+        let e = parse(&MINIMAL.replace(from, to)).unwrap_err();
+        assert!(
+            e.message.contains("positive and finite") || e.message.contains("finite number"),
+            "{to}: {e}"
+        );
+    }
+    let e = parse(&MINIMAL.replace("mass = \"m\"", "mass = \"-1\"")).unwrap_err();
+    assert_eq!(e.field, "body[0].mass");
+}
+
+#[test]
+fn integration_variables_cannot_be_symbols() {
+    let text = MINIMAL.replace("a = \"side\" }", "a = \"side\", x = \"oops\" }");
+    let e = parse(&text).unwrap_err();
+    assert!(e.message.contains("integration variable"), "{e}");
+}

@@ -1,0 +1,439 @@
+//! Symbolic vs numeric vs the notes' claims -> verdicts.
+//!
+//! A claim agrees when every entry of (derived − notes) simplifies to zero. Each verdict is then
+//! confirmed at random parameter points in f64; if the two routes ever disagree, that is reported
+//! as a problem rather than silently trusted.
+
+use crate::cas::{self, Expr};
+use crate::derive::algebra::{Env, Value, evaluate};
+use crate::derive::{Derivation, ExactBasis, simplify_value};
+use crate::numeric::eigen::{Eigenspace, Space, principal_axes};
+use crate::numeric::quadrature::{Method, QuadratureRun, Rng};
+use crate::numeric::{NumericReport, matrix_at};
+use crate::scene::{Scene, Verdict};
+use nalgebra::{Matrix3, Vector3};
+use std::collections::BTreeMap;
+
+/// Exact and numeric values of the same quantity must agree this closely (relative), the
+/// accuracy the foundation issue asks of exact quadrature rules.
+pub const EXACT_VS_NUMERIC: f64 = 1e-14;
+/// A Monte Carlo estimate further than this many standard errors from the exact value fails.
+pub const MONTE_CARLO_SIGMAS: f64 = 5.0;
+/// Random points at which each symbolic verdict is confirmed.
+const CONFIRMATION_POINTS: usize = 3;
+
+#[derive(Debug, Clone)]
+pub struct ClaimResult {
+    pub eq: String,
+    pub statement: String,
+    /// The notes' formula as restated in the scene, and the derived one.
+    pub notes: String,
+    pub derived: String,
+    pub verdict: Verdict,
+    pub expected: Verdict,
+    /// For a disagreement: each entry that differs, with both sides and their difference.
+    pub differences: Vec<String>,
+    /// A problem with the check itself (the two routes disagree, a type error), if any.
+    pub problem: Option<String>,
+    pub line: usize,
+}
+
+impl ClaimResult {
+    pub fn passed(&self) -> bool {
+        self.verdict == self.expected && self.problem.is_none()
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct RegressionResult {
+    pub quantity: String,
+    pub recorded: String,
+    pub derived: String,
+    pub unchanged: bool,
+}
+
+/// An exact quantity evaluated at the scene's values against the same quantity from numerics.
+#[derive(Debug, Clone)]
+pub struct QuantityCheck {
+    pub name: String,
+    pub exact: Vec<f64>,
+    pub numeric: Vec<f64>,
+    pub error: f64,
+    pub passed: bool,
+}
+
+#[derive(Debug, Clone)]
+pub struct EigenCheck {
+    /// Exact principal moments at the scene's values, with multiplicities, ascending.
+    pub exact: Vec<(f64, u32)>,
+    pub numeric: Vec<Eigenspace>,
+    pub value_error: f64,
+    /// 1 − |cos| of the angle between exact and numeric axes (or plane normals), the largest.
+    pub axis_error: f64,
+    pub passed: bool,
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct Verification {
+    pub claims: Vec<ClaimResult>,
+    pub regressions: Vec<RegressionResult>,
+    pub quantities: Vec<QuantityCheck>,
+    pub eigen: Option<EigenCheck>,
+    /// For each quadrature run: did it stay within its error law?
+    pub within_law: Vec<bool>,
+}
+
+impl Verification {
+    pub fn passed(&self) -> bool {
+        self.claims.iter().all(ClaimResult::passed)
+            && self.regressions.iter().all(|r| r.unchanged)
+            && self.quantities.iter().all(|q| q.passed)
+            && self.eigen.as_ref().is_none_or(|e| e.passed)
+            && self.within_law.iter().all(|w| *w)
+    }
+}
+
+/// The names a claim may use, bound to their values.
+pub fn claim_env(scene: &Scene, d: &Derivation) -> Env {
+    let mut env = Env::new();
+    for (name, e) in &scene.definitions {
+        env.insert(name.clone(), Value::Scalar(e.clone()));
+    }
+    for (name, v) in &scene.vectors {
+        env.insert(name.clone(), Value::Vector(v.clone()));
+    }
+    if let Some(w) = &scene.omega {
+        env.insert("omega".into(), Value::Vector(w.clone()));
+    }
+    if let Some(n) = &scene.axis {
+        env.insert("axis".into(), Value::Vector(n.clone()));
+    }
+    for (name, v) in &d.quantities {
+        env.insert(name.clone(), v.clone());
+    }
+    env
+}
+
+/// Is each entry numerically zero at a few random points? (`true` per entry only if at all.)
+fn numerically_zero(diffs: &[Expr], scale: &[Expr], seed: u64) -> Result<Vec<bool>, String> {
+    let mut rng = Rng::new(seed);
+    let mut zero = vec![true; diffs.len()];
+    let mut names: Vec<String> = diffs
+        .iter()
+        .chain(scale)
+        .flat_map(|e| e.symbols())
+        .collect();
+    names.sort();
+    names.dedup();
+    for _ in 0..CONFIRMATION_POINTS {
+        let point: BTreeMap<String, f64> = names
+            .iter()
+            .map(|n| (n.clone(), 0.4 + rng.uniform()))
+            .collect();
+        let env = |s: &str| point.get(s).copied().filter(|_| s != "pi");
+        for (k, d) in diffs.iter().enumerate() {
+            let v = d.eval(&env)?;
+            let s = scale[k].eval(&env)?.abs().max(1.0);
+            if v.abs() > 1e-9 * s {
+                zero[k] = false;
+            }
+        }
+    }
+    Ok(zero)
+}
+
+pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, cas::CasError> {
+    let env = claim_env(scene, d);
+    let mut out = Vec::new();
+    for (i, claim) in scene.claims.iter().enumerate() {
+        let mut r = ClaimResult {
+            eq: claim.eq.clone(),
+            statement: claim.statement.clone(),
+            notes: claim
+                .value
+                .as_ref()
+                .map(|v| v.to_text())
+                .unwrap_or_default(),
+            derived: String::new(),
+            verdict: Verdict::NotCheckable,
+            expected: claim.expect,
+            differences: Vec::new(),
+            problem: None,
+            line: claim.line,
+        };
+        let (Some(q), Some(v)) = (&claim.quantity, &claim.value) else {
+            out.push(r);
+            continue;
+        };
+        let derived = match evaluate(q, &env) {
+            Ok(x) => simplify_value(&x)?,
+            Err(e) => {
+                r.problem = Some(format!("the derived side does not evaluate: {e}"));
+                out.push(r);
+                continue;
+            }
+        };
+        r.derived = derived.to_text();
+        let notes = match evaluate(v, &env) {
+            Ok(x) => x,
+            Err(e) => {
+                r.verdict = Verdict::Disagrees;
+                r.differences
+                    .push(format!("the notes' formula is ill-formed: {e}"));
+                out.push(r);
+                continue;
+            }
+        };
+        if std::mem::discriminant(&derived) != std::mem::discriminant(&notes) {
+            r.verdict = Verdict::Disagrees;
+            r.differences.push(format!(
+                "the notes give {}, the derivation {}",
+                notes.kind(),
+                derived.kind()
+            ));
+            out.push(r);
+            continue;
+        }
+        let (de, ne) = (derived.entries(), notes.entries());
+        let diffs: Vec<Expr> = de
+            .iter()
+            .zip(&ne)
+            .map(|(a, b)| Expr::sub(a.clone(), b.clone()))
+            .collect();
+        let symbolic = cas::is_zero_all(diffs.clone())?;
+        let scale: Vec<Expr> = de
+            .iter()
+            .zip(&ne)
+            .map(|(a, b)| Expr::add(vec![a.clone(), b.clone()]))
+            .collect();
+        match numerically_zero(&diffs, &scale, scene.seed.wrapping_add(i as u64)) {
+            Ok(numeric) => {
+                if let Some(k) = (0..diffs.len()).find(|&k| symbolic[k] != numeric[k]) {
+                    r.problem = Some(format!(
+                        "entry {}: the symbolic test says {}, the numeric test at random points says {}",
+                        derived.entry_label(k),
+                        if symbolic[k] { "zero" } else { "non-zero" },
+                        if numeric[k] { "zero" } else { "non-zero" }
+                    ));
+                }
+            }
+            Err(e) => r.problem = Some(format!("cannot evaluate at random points: {e}")),
+        }
+        let agrees = symbolic.iter().all(|z| *z);
+        r.verdict = if agrees {
+            Verdict::Agrees
+        } else {
+            Verdict::Disagrees
+        };
+        if !agrees {
+            let simplified = cas::simplify_all(diffs.clone())?;
+            let notes_simple = cas::simplify_all(ne.clone())?;
+            for k in (0..diffs.len()).filter(|&k| !symbolic[k]) {
+                r.differences.push(format!(
+                    "entry{}: derived {}, notes {}, difference {}",
+                    if derived.entry_label(k).is_empty() {
+                        String::new()
+                    } else {
+                        format!(" {}", derived.entry_label(k))
+                    },
+                    de[k],
+                    notes_simple[k],
+                    simplified[k]
+                ));
+            }
+        }
+        out.push(r);
+    }
+    Ok(out)
+}
+
+pub fn check_regressions(
+    scene: &Scene,
+    d: &Derivation,
+) -> Result<Vec<RegressionResult>, cas::CasError> {
+    let env = claim_env(scene, d);
+    let mut out = Vec::new();
+    for (name, recorded) in &scene.expect {
+        let derived = d.quantities.get(name);
+        let recorded_value = evaluate(recorded, &env);
+        let unchanged = match (derived, &recorded_value) {
+            (Some(a), Ok(b)) if std::mem::discriminant(a) == std::mem::discriminant(b) => {
+                crate::derive::values_equal(a, b)?
+            }
+            _ => false,
+        };
+        out.push(RegressionResult {
+            quantity: name.clone(),
+            recorded: recorded.to_text(),
+            derived: derived
+                .map(|v| v.to_text())
+                .unwrap_or_else(|| "(not derived)".into()),
+            unchanged,
+        });
+    }
+    Ok(out)
+}
+
+/// Whether a quadrature run stayed within its law.
+pub fn within_law(run: &QuadratureRun) -> bool {
+    match run.method {
+        Method::MonteCarlo => run.error <= MONTE_CARLO_SIGMAS * run.predicted_error,
+        // The law is exact for these polynomial integrands, so only round-off may separate them.
+        _ => run.error <= run.predicted_error + 16.0 * f64::EPSILON,
+    }
+}
+
+fn values_at(v: &Value, values: &BTreeMap<String, f64>) -> Result<Vec<f64>, String> {
+    let env = |s: &str| values.get(s).copied();
+    v.entries().iter().map(|e| e.eval(&env)).collect()
+}
+
+fn rel_error(exact: &[f64], numeric: &[f64]) -> f64 {
+    let scale = exact
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()))
+        .max(f64::MIN_POSITIVE);
+    exact
+        .iter()
+        .zip(numeric)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        / scale
+}
+
+/// Every exact quantity that follows from the tensor, against the same from the numeric tensor.
+pub fn check_quantities(
+    scene: &Scene,
+    d: &Derivation,
+    numeric: &NumericReport,
+) -> Result<Vec<QuantityCheck>, String> {
+    let vals = &scene.values;
+    let t = numeric.tensor;
+    let env = |s: &str| vals.get(s).copied();
+    let vec_at = |v: &[Expr; 3]| -> Result<Vector3<f64>, String> {
+        Ok(Vector3::new(
+            v[0].eval(&env)?,
+            v[1].eval(&env)?,
+            v[2].eval(&env)?,
+        ))
+    };
+    let mut numeric_of: Vec<(&str, Vec<f64>)> =
+        vec![("inertia_tensor", t.transpose().iter().copied().collect())];
+    let mass = match &d.quantities.get("mass") {
+        Some(m) => values_at(m, vals)?[0],
+        None => 0.0,
+    };
+    if let Some(w) = &scene.omega {
+        let w = vec_at(w)?;
+        numeric_of.push(("angular_momentum", (t * w).iter().copied().collect()));
+        numeric_of.push(("kinetic_energy", vec![0.5 * w.dot(&(t * w))]));
+    }
+    if let Some(n) = &scene.axis {
+        let n = vec_at(n)?;
+        let i_n = n.dot(&(t * n));
+        numeric_of.push(("moment_about_axis", vec![i_n]));
+        numeric_of.push(("radius_of_gyration", vec![(i_n / mass).sqrt()]));
+    }
+    let mut out = Vec::new();
+    for (name, num) in numeric_of {
+        let Some(exact) = d.quantities.get(name) else {
+            continue;
+        };
+        let exact = values_at(exact, vals)?;
+        let error = rel_error(&exact, &num);
+        out.push(QuantityCheck {
+            name: name.to_string(),
+            exact,
+            numeric: num,
+            error,
+            passed: error <= EXACT_VS_NUMERIC,
+        });
+    }
+    Ok(out)
+}
+
+pub fn check_eigen(
+    scene: &Scene,
+    d: &Derivation,
+    tensor: &Matrix3<f64>,
+) -> Result<Option<EigenCheck>, String> {
+    let Some(eigen) = &d.eigen else {
+        return Ok(None);
+    };
+    let env = |s: &str| scene.values.get(s).copied();
+    let numeric = principal_axes(tensor);
+    let mut exact: Vec<(f64, u32, Option<(bool, Vector3<f64>)>)> = Vec::new();
+    for s in &eigen.spaces {
+        let axis = match &s.basis {
+            ExactBasis::Axis(a) => Some((
+                true,
+                Vector3::new(a[0].eval(&env)?, a[1].eval(&env)?, a[2].eval(&env)?),
+            )),
+            ExactBasis::PlaneNormalTo(n) => Some((
+                false,
+                Vector3::new(n[0].eval(&env)?, n[1].eval(&env)?, n[2].eval(&env)?),
+            )),
+            ExactBasis::All => None,
+        };
+        exact.push((s.value.eval(&env)?, s.multiplicity, axis));
+    }
+    exact.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let structure = exact.len() == numeric.len()
+        && exact
+            .iter()
+            .zip(&numeric)
+            .all(|(e, n)| e.1 as usize == n.multiplicity)
+        && eigen.unsolved.is_empty();
+    let scale = exact
+        .iter()
+        .fold(0.0f64, |m, e| m.max(e.0.abs()))
+        .max(f64::MIN_POSITIVE);
+    let mut value_error = 0.0f64;
+    let mut axis_error = 0.0f64;
+    if structure {
+        for (e, n) in exact.iter().zip(&numeric) {
+            value_error = value_error.max((e.0 - n.value).abs() / scale);
+            let num_dir = match &n.space {
+                Space::Axis(v) | Space::PlaneNormalTo(v) => Some(*v),
+                Space::All => None,
+            };
+            if let (Some((_, v)), Some(u)) = (e.2, num_dir) {
+                axis_error = axis_error.max(1.0 - (v.normalize().dot(&u)).abs());
+            }
+        }
+    }
+    Ok(Some(EigenCheck {
+        exact: exact.iter().map(|e| (e.0, e.1)).collect(),
+        numeric,
+        value_error,
+        axis_error,
+        passed: structure && value_error <= EXACT_VS_NUMERIC && axis_error <= EXACT_VS_NUMERIC,
+    }))
+}
+
+/// Runs every check the plan's stages made possible.
+pub fn verify(
+    scene: &Scene,
+    d: &Derivation,
+    numeric: Option<&NumericReport>,
+    plan: &crate::plan::Plan,
+) -> Result<Verification, crate::derive::DeriveError> {
+    use crate::plan::Stage;
+    let mut v = Verification::default();
+    if plan.runs(Stage::Claims) {
+        v.claims = check_claims(scene, d)?;
+    }
+    if plan.runs(Stage::Regression) {
+        v.regressions = check_regressions(scene, d)?;
+    }
+    if let Some(n) = numeric {
+        v.within_law = n.runs.iter().map(within_law).collect();
+        v.quantities =
+            check_quantities(scene, d, n).map_err(crate::derive::DeriveError::Unsupported)?;
+        if plan.runs(Stage::NumericEigen) {
+            v.eigen = check_eigen(scene, d, &n.tensor)
+                .map_err(crate::derive::DeriveError::Unsupported)?;
+        }
+    }
+    let _ = matrix_at;
+    Ok(v)
+}
