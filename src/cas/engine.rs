@@ -225,9 +225,29 @@ pub fn roots(poly: &Expr, var: &str) -> Result<Roots, String> {
     Ok(out)
 }
 
-/// Divides the entries by their common polynomial factor: the factors of a + z1·b + z2·c (fresh
+/// Divides the entries by their common factor: the factors of a + z1·b + z2·c (fresh
 /// z's) that do not contain the z's are exactly the common content of a, b and c.
 pub fn primitive_part(entries: &[Expr]) -> Result<Vec<Expr>, String> {
+    // A common factor can hide behind sin² = 1 − cos² (sin²α written as 1 − cos²α), so try the
+    // entries as they are and with either square rewritten, and keep the shortest result.
+    let forms = [
+        entries.to_vec(),
+        entries.iter().map(trig::reduce_sin_powers).collect(),
+        entries.iter().map(trig::reduce_cos_powers).collect(),
+    ];
+    let mut best: Option<Vec<Expr>> = None;
+    for form in forms {
+        let normal: Vec<Expr> = form.iter().map(normal_form).collect::<Result<_, _>>()?;
+        let reduced = divide_by_content(&normal)?;
+        let len = |v: &[Expr]| v.iter().map(|e| e.to_text().len()).sum::<usize>();
+        if best.as_ref().is_none_or(|b| len(&reduced) < len(b)) {
+            best = Some(reduced);
+        }
+    }
+    Ok(best.expect("three forms were tried"))
+}
+
+fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, String> {
     let combined = Expr::add(
         entries
             .iter()
@@ -254,7 +274,7 @@ pub fn primitive_part(entries: &[Expr]) -> Result<Vec<Expr>, String> {
     let content = Expr::mul(content);
     entries
         .iter()
-        .map(|e| simplify(&Expr::div(e.clone(), content.clone())))
+        .map(|e| normal_form(&Expr::div(e.clone(), content.clone())))
         .collect()
 }
 

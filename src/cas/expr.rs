@@ -120,6 +120,14 @@ impl Expr {
         if exponent.is_zero() {
             return Expr::int(1);
         }
+        // (b^p)^q = b^(pq) holds for every real b when q is an integer.
+        if let (Expr::Pow(b, p), Expr::Num(q)) = (&base, &exponent)
+            && q.is_integer()
+            && let Expr::Num(p) = p.as_ref()
+            && let Some(pq) = p.checked_mul(*q)
+        {
+            return Expr::pow(b.as_ref().clone(), Expr::Num(pq));
+        }
         Expr::Pow(Box::new(base), Box::new(exponent))
     }
 
@@ -769,7 +777,7 @@ impl Parser<'_> {
             self.pos += 1;
             // Right-associative; the exponent may carry its own sign.
             let exponent = self.unary()?;
-            return Ok(Expr::Pow(Box::new(base), Box::new(exponent)));
+            return Ok(Expr::pow(base, exponent));
         }
         Ok(base)
     }
@@ -845,6 +853,10 @@ impl Parser<'_> {
                     .to_string();
                 if self.peek() == Some(b'(') {
                     self.pos += 1;
+                    if self.peek() == Some(b')') {
+                        self.pos += 1;
+                        return Ok(Expr::Call(name, Vec::new()));
+                    }
                     let mut args = vec![self.sum()?];
                     while self.peek() == Some(b',') {
                         self.pos += 1;

@@ -85,26 +85,36 @@ pub fn name_trig_of(e: &Expr, var: &str, c: &str, s: &str) -> Expr {
 /// sinⁿx with n ≥ 2 → sin^(n mod 2) x · (1 − cos²x)^(n div 2): with expansion after it, a
 /// canonical form (a polynomial in cos plus sin times one) for polynomials in sin and cos.
 pub fn reduce_sin_powers(e: &Expr) -> Expr {
+    reduce_powers(e, "sin", "cos")
+}
+
+/// The mirror image: cosⁿx → cos^(n mod 2) x · (1 − sin²x)^(n div 2).
+pub fn reduce_cos_powers(e: &Expr) -> Expr {
+    reduce_powers(e, "cos", "sin")
+}
+
+fn reduce_powers(e: &Expr, from: &str, to: &str) -> Expr {
+    let rec = |x: &Expr| reduce_powers(x, from, to);
     match e {
         Expr::Pow(a, b) => {
-            let base = reduce_sin_powers(a);
+            let base = rec(a);
             if let (Expr::Call(name, args), Expr::Num(n)) = (&base, b.as_ref())
-                && name == "sin"
+                && name == from
                 && n.is_integer()
                 && n.numer() >= 2
             {
                 let k = n.numer();
-                let cos2 = Expr::pow(Expr::call("cos", args[0].clone()), Expr::int(2));
+                let other2 = Expr::pow(Expr::call(to, args[0].clone()), Expr::int(2));
                 return Expr::mul(vec![
                     Expr::pow(base.clone(), Expr::int(k % 2)),
-                    Expr::pow(Expr::sub(Expr::int(1), cos2), Expr::int(k / 2)),
+                    Expr::pow(Expr::sub(Expr::int(1), other2), Expr::int(k / 2)),
                 ]);
             }
-            Expr::pow(base, reduce_sin_powers(b))
+            Expr::pow(base, rec(b))
         }
-        Expr::Call(name, a) => Expr::Call(name.clone(), a.iter().map(reduce_sin_powers).collect()),
-        Expr::Add(v) => Expr::add(v.iter().map(reduce_sin_powers).collect()),
-        Expr::Mul(v) => Expr::mul(v.iter().map(reduce_sin_powers).collect()),
+        Expr::Call(name, a) => Expr::Call(name.clone(), a.iter().map(rec).collect()),
+        Expr::Add(v) => Expr::add(v.iter().map(rec).collect()),
+        Expr::Mul(v) => Expr::mul(v.iter().map(rec).collect()),
         other => other.clone(),
     }
 }
@@ -130,8 +140,17 @@ pub fn half_angle_name(i: usize) -> String {
 /// Replaces sin and cos of each distinct argument by rational functions of a fresh t.
 /// Returns the new expression and the arguments, in the order of their t's.
 pub fn to_half_angle(e: &Expr) -> (Expr, Vec<Expr>) {
+    let (mut out, args) = to_half_angle_all(std::slice::from_ref(e));
+    (out.remove(0), args)
+}
+
+/// As `to_half_angle`, for several expressions that share their t's.
+pub fn to_half_angle_all(es: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
     let mut args = Vec::new();
-    let out = replace(&expand_multiple_angles(e), &mut args);
+    let out = es
+        .iter()
+        .map(|e| replace(&expand_multiple_angles(e), &mut args))
+        .collect();
     (out, args)
 }
 

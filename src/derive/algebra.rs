@@ -145,6 +145,30 @@ pub fn diag(d: [Expr; 3]) -> Mat3 {
     })
 }
 
+/// The determinant by cofactors along the first row.
+pub fn det(m: &Mat3) -> Expr {
+    let minor = |a: &Expr, b: &Expr, c: &Expr, d: &Expr| {
+        Expr::sub(
+            Expr::mul(vec![a.clone(), b.clone()]),
+            Expr::mul(vec![c.clone(), d.clone()]),
+        )
+    };
+    Expr::add(vec![
+        Expr::mul(vec![
+            m[0][0].clone(),
+            minor(&m[1][1], &m[2][2], &m[1][2], &m[2][1]),
+        ]),
+        Expr::neg(Expr::mul(vec![
+            m[0][1].clone(),
+            minor(&m[1][0], &m[2][2], &m[1][2], &m[2][0]),
+        ])),
+        Expr::mul(vec![
+            m[0][2].clone(),
+            minor(&m[1][0], &m[2][1], &m[1][1], &m[2][0]),
+        ]),
+    ])
+}
+
 /// r²𝟙 − r rᵀ: the inertia-tensor kernel of eq (10) for a unit mass at r.
 pub fn inertia_kernel(r: &Vec3) -> Mat3 {
     let r2 = dot(r, r);
@@ -292,6 +316,7 @@ fn call(name: &str, args: Vec<Value>) -> Result<Value, String> {
         })),
         ("transpose", [Matrix(m)]) => Matrix(transpose(m)),
         ("trace", [Matrix(m)]) => Scalar(Expr::add((0..3).map(|i| m[i][i].clone()).collect())),
+        ("det", [Matrix(m)]) => Scalar(det(m)),
         ("eye", []) => Matrix(eye()),
         ("diag", [Scalar(a), Scalar(b), Scalar(c)]) => {
             Matrix(diag([a.clone(), b.clone(), c.clone()]))

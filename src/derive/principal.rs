@@ -3,7 +3,7 @@
 //! product of two independent rows of I − λ𝟙 (rank 2), a plane normal to the one independent row
 //! (rank 1), or every direction (rank 0).
 
-use super::algebra::{Mat3, Value, Vec3, cross};
+use super::algebra::{Mat3, Value, Vec3, cross, det};
 use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr};
 
@@ -30,29 +30,6 @@ pub enum ExactBasis {
     Axis(Vec3),
     PlaneNormalTo(Vec3),
     All,
-}
-
-fn det(m: &Mat3) -> Expr {
-    let t = |a: &Expr, b: &Expr, c: &Expr, d: &Expr| {
-        Expr::sub(
-            Expr::mul(vec![a.clone(), b.clone()]),
-            Expr::mul(vec![c.clone(), d.clone()]),
-        )
-    };
-    Expr::add(vec![
-        Expr::mul(vec![
-            m[0][0].clone(),
-            t(&m[1][1], &m[2][2], &m[1][2], &m[2][1]),
-        ]),
-        Expr::neg(Expr::mul(vec![
-            m[0][1].clone(),
-            t(&m[1][0], &m[2][2], &m[1][2], &m[2][0]),
-        ])),
-        Expr::mul(vec![
-            m[0][2].clone(),
-            t(&m[1][0], &m[2][1], &m[1][1], &m[2][0]),
-        ]),
-    ])
 }
 
 fn shifted(m: &Mat3, lambda: &Expr) -> Mat3 {

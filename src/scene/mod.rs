@@ -227,6 +227,7 @@ pub const CLAIM_FUNCTIONS: &[&str] = &[
     "rot_y",
     "rot_z",
     "trace",
+    "det",
 ];
 const RESERVED: &[&str] = &["pi"];
 
@@ -266,9 +267,20 @@ fn is_identifier(s: &str) -> bool {
     let mut chars = s.chars();
     matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && !s.contains("__")
 }
 
 impl Validator<'_> {
+    /// The byte offset where a 1-based line starts.
+    fn line_offset(&self, line: usize) -> usize {
+        self.loc
+            .text
+            .split_inclusive('\n')
+            .take(line.saturating_sub(1))
+            .map(str::len)
+            .sum()
+    }
+
     fn err(&self, offset: usize, field: &str, msg: impl Into<String>) -> SceneError {
         self.loc.error(offset, field, msg)
     }
@@ -420,6 +432,12 @@ impl Validator<'_> {
             .as_ref()
             .map(|v| self.vec3(v, "axis", &allowed))
             .transpose()?;
+        if omega.is_some() {
+            claim_names.insert("omega".into());
+        }
+        if axis.is_some() {
+            claim_names.insert("axis".into());
+        }
 
         let mut claims = Vec::new();
         for (i, c) in raw.claims.iter().enumerate() {
@@ -432,7 +450,7 @@ impl Validator<'_> {
         }
 
         let mut wants = Vec::new();
-        for (i, w) in raw.outputs.want.iter().enumerate() {
+        for (i, w) in raw.outputs.want.get_ref().iter().enumerate() {
             let Some((_, o)) = Output::ALL.iter().find(|(n, _)| n == w.get_ref()) else {
                 let names: Vec<&str> = Output::ALL.iter().map(|(n, _)| *n).collect();
                 return Err(self.err(
@@ -451,21 +469,40 @@ impl Validator<'_> {
         wants.dedup();
         if wants.is_empty() && claims.is_empty() {
             return Err(self.err(
-                0,
+                raw.outputs_span(),
                 "outputs.want",
                 "the scene asks for nothing: list at least one output or claim",
             ));
         }
-        let needs_bodies = wants
-            .iter()
-            .any(|w| *w != Output::AngularMomentum || !bodies.is_empty());
-        if bodies.is_empty() && needs_bodies && !wants.is_empty() {
-            return Err(self.err(0, "body", "these outputs need at least one [[body]]"));
+        if bodies.is_empty() {
+            if !wants.is_empty() {
+                return Err(self.err(
+                    raw.outputs_span(),
+                    "outputs.want",
+                    "these outputs need at least one [[body]]",
+                ));
+            }
+            let uses_body = |c: &&Claim| {
+                c.quantity
+                    .iter()
+                    .chain(c.value.iter())
+                    .any(|e| e.symbols().iter().any(|s| QUANTITIES.contains(&s.as_str())))
+            };
+            if let Some(c) = claims.iter().find(uses_body) {
+                return Err(self.err(
+                    self.line_offset(c.line),
+                    "claim",
+                    format!(
+                        "claim ({}) uses a derived quantity, but the scene has no [[body]]",
+                        c.eq
+                    ),
+                ));
+            }
         }
         if wants.contains(&Output::AngularMomentum) || wants.contains(&Output::KineticEnergy) {
             if omega.is_none() {
                 return Err(self.err(
-                    0,
+                    raw.outputs_span(),
                     "omega",
                     "angular_momentum and kinetic_energy need `omega = [..]`",
                 ));
@@ -475,7 +512,7 @@ impl Validator<'_> {
             && axis.is_none()
         {
             return Err(self.err(
-                0,
+                raw.outputs_span(),
                 "axis",
                 "moment_about_axis and gyration need `axis = [..]`",
             ));
@@ -508,8 +545,9 @@ impl Validator<'_> {
         used.remove("pi");
         for s in &used {
             if !values.contains_key(s) {
+                let declared = raw.symbols.keys().find(|k| k.get_ref() == s);
                 return Err(self.err(
-                    0,
+                    declared.map_or(0, |k| k.span().start),
                     "numeric.values",
                     format!("no numeric value for symbol `{s}`"),
                 ));

@@ -34,6 +34,13 @@ pub struct RawScene {
     pub expect: BTreeMap<Spanned<String>, Text>,
 }
 
+impl RawScene {
+    /// Where `outputs.want` is, for errors about the scene as a whole.
+    pub fn outputs_span(&self) -> usize {
+        self.outputs.want.span().start
+    }
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawNotes {
@@ -103,7 +110,7 @@ pub struct RawClaim {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawOutputs {
-    pub want: Vec<Text>,
+    pub want: Spanned<Vec<Text>>,
 }
 
 #[derive(Deserialize, Default)]
