@@ -9,13 +9,27 @@ use super::expr::{Expr, parse};
 use super::rational::Rational;
 use super::trig;
 use super::{Integral, Roots};
+use symbolica::coefficient::CoefficientView;
 use symbolica::prelude::*;
 
 const PREFIX: &str = "mb";
 
+/// Builds the engine's expression directly from ours (no text in between: it is the hot path).
 fn to_atom(e: &Expr) -> Atom {
-    let text = e.to_text_with(&|s| format!("{PREFIX}{s}"));
-    parse!(text.as_str())
+    match e {
+        Expr::Num(r) => Atom::num((r.numer(), r.denom())),
+        Expr::Sym(s) => var_atom(s),
+        Expr::Add(v) => v.iter().fold(Atom::num(0), |acc, x| acc + &to_atom(x)),
+        Expr::Mul(v) => v.iter().fold(Atom::num(1), |acc, x| acc * &to_atom(x)),
+        Expr::Pow(b, x) => to_atom(b).pow(&to_atom(x)),
+        Expr::Call(name, args) if args.len() == 1 => match name.as_str() {
+            "sin" => Symbol::SIN.call(&to_atom(&args[0])),
+            "cos" => Symbol::COS.call(&to_atom(&args[0])),
+            "sqrt" => to_atom(&args[0]).pow(&Atom::num((1, 2))),
+            other => unreachable!("`{other}` is resolved before the engine"),
+        },
+        other => unreachable!("`{other}` is resolved before the engine"),
+    }
 }
 
 fn from_text(text: &str) -> Result<Expr, String> {
@@ -31,8 +45,53 @@ fn from_text(text: &str) -> Result<Expr, String> {
         .substitute(&|s| s.strip_prefix(PREFIX).map(Expr::sym)))
 }
 
+/// Reads the engine's expression back into ours by walking it.
+fn from_view(v: AtomView<'_>) -> Result<Expr, String> {
+    let all = |it: &mut dyn Iterator<Item = AtomView<'_>>| {
+        it.map(from_view).collect::<Result<Vec<_>, _>>()
+    };
+    Ok(match v {
+        AtomView::Num(n) => match n.get_coeff_view() {
+            CoefficientView::Natural(num, den, 0, _) => {
+                Expr::Num(Rational::new(num as i128, den as i128).ok_or("zero denominator")?)
+            }
+            // Large or complex numbers: the printed form says what they are.
+            _ => return from_text(&v.to_string()),
+        },
+        AtomView::Var(x) => {
+            let name = x.get_symbol().get_stripped_name().to_string();
+            match name.strip_prefix(PREFIX) {
+                Some(n) => Expr::sym(n),
+                None => return Err(format!("unexpected name `{name}` from the engine")),
+            }
+        }
+        AtomView::Fun(f) => {
+            let s = f.get_symbol();
+            let name = if s == Symbol::SIN {
+                "sin"
+            } else if s == Symbol::COS {
+                "cos"
+            } else if s == Symbol::SQRT {
+                "sqrt"
+            } else {
+                return Err(format!(
+                    "unexpected function `{}` from the engine",
+                    s.get_stripped_name()
+                ));
+            };
+            Expr::Call(name.into(), all(&mut f.iter())?)
+        }
+        AtomView::Pow(p) => {
+            let (b, x) = p.get_base_exp();
+            Expr::pow(from_view(b)?, from_view(x)?)
+        }
+        AtomView::Mul(m) => Expr::mul(all(&mut m.iter())?),
+        AtomView::Add(a) => Expr::add(all(&mut a.iter())?),
+    })
+}
+
 fn from_atom(a: &Atom) -> Result<Expr, String> {
-    from_text(&a.to_string())
+    from_view(a.as_view())
 }
 
 fn var_atom(name: &str) -> Atom {
@@ -42,16 +101,30 @@ fn var_atom(name: &str) -> Atom {
 /// Expanded, with rational functions brought to one reduced fraction.
 fn normal_form(e: &Expr) -> Result<Expr, String> {
     let atom = to_atom(e).expand();
-    if trig::has_fractional_power(e) {
-        return from_atom(&atom);
+    let expanded = from_atom(&atom)?;
+    if !has_symbolic_denominator(&expanded) || trig::has_fractional_power(e) {
+        return Ok(expanded);
     }
     let rat: RationalPolynomial<_, u16> = atom.to_rational_polynomial(&Q, &Z, None);
-    if rat.denominator.is_constant() {
-        return from_atom(&atom);
-    }
     let num = from_atom(&rat.numerator.to_expression().expand())?;
     let den = from_atom(&rat.denominator.to_expression().expand())?;
     Ok(Expr::div(num, den))
+}
+
+/// A negative power of anything but a number: the expression is not a polynomial.
+fn has_symbolic_denominator(e: &Expr) -> bool {
+    match e {
+        Expr::Pow(b, x) => {
+            (matches!(x.as_ref(), Expr::Num(r) if r.numer() < 0)
+                && !matches!(b.as_ref(), Expr::Num(_)))
+                || has_symbolic_denominator(b)
+        }
+        Expr::Add(v) | Expr::Mul(v) | Expr::Call(_, v) | Expr::List(v) => {
+            v.iter().any(has_symbolic_denominator)
+        }
+        Expr::Index(a, b) => has_symbolic_denominator(a) || has_symbolic_denominator(b),
+        Expr::Num(_) | Expr::Sym(_) => false,
+    }
 }
 
 /// A canonical expanded form: sin powers reduced with sin² = 1 − cos², fractions combined.
@@ -65,16 +138,24 @@ pub fn simplify(e: &Expr) -> Result<Expr, String> {
     }
 }
 
-/// Zero for every value of the symbols: trigonometric functions go to half-angle tangents, and the
-/// numerator of the resulting rational function must vanish.
+/// Zero for every value of the symbols. Multiple angles are expanded, everything is brought over
+/// one denominator, and the numerator is reduced with sin² = 1 − cos²: the powers of cos, and sin
+/// times them, are a basis modulo sin² + cos² = 1, so the reduced numerator is zero exactly when
+/// the expression is (for independent angles).
 pub fn is_zero(e: &Expr) -> Result<bool, String> {
-    let (h, _) = trig::to_half_angle(e);
-    let atom = to_atom(&h).expand();
-    if trig::has_fractional_power(&h) {
-        return Ok(atom.to_string() == "0");
-    }
-    let rat: RationalPolynomial<_, u16> = atom.to_rational_polynomial(&Q, &Z, None);
-    Ok(rat.numerator.is_zero())
+    let e = trig::expand_multiple_angles(e);
+    let atom = to_atom(&e).expand();
+    let numerator = if trig::has_fractional_power(&e) {
+        atom
+    } else {
+        let rat: RationalPolynomial<_, u16> = atom.to_rational_polynomial(&Q, &Z, None);
+        if rat.numerator.is_zero() {
+            return Ok(true);
+        }
+        rat.numerator.to_expression()
+    };
+    let reduced = trig::reduce_sin_powers(&from_atom(&numerator)?);
+    Ok(to_atom(&reduced).expand().is_zero())
 }
 
 /// The exponent of `var` in a coefficient-list key such as `1`, `mbx` or `mbx^3`.
@@ -184,7 +265,7 @@ pub fn roots(poly: &Expr, var: &str) -> Result<Roots, String> {
     };
     let back = |e: Expr| -> Result<Expr, String> { simplify(&trig::from_half_angle(&e, &args)) };
     for (factor, mult) in rat.numerator.factor() {
-        let factor = from_text(&factor.to_string())?;
+        let factor = from_atom(&factor.to_expression())?;
         let mut c = [Expr::int(0), Expr::int(0), Expr::int(0)];
         let terms = coefficients(&factor, var)?;
         let degree = terms.iter().map(|(k, _)| *k).max().unwrap_or(0);
@@ -266,7 +347,7 @@ fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, String> {
     let mut content = vec![from_atom(&rat.denominator.to_expression())?];
     content[0] = Expr::div(Expr::int(1), content[0].clone());
     for (factor, mult) in rat.numerator.factor() {
-        let f = from_text(&factor.to_string())?;
+        let f = from_atom(&factor.to_expression())?;
         if !f.symbols().iter().any(|s| s == "z__") {
             content.push(Expr::pow(f, Expr::int(mult as i128)));
         }
