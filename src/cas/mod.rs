@@ -172,3 +172,6 @@ pub fn roots(poly: &Expr, var: &str) -> Result<Roots, CasError> {
 pub fn primitive_part(entries: Vec<Expr>) -> Result<Vec<Expr>, CasError> {
     run(move || engine::primitive_part(&entries))
 }
+
+#[cfg(test)]
+mod tests;

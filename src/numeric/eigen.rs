@@ -113,14 +113,9 @@ mod tests {
     #[test]
     fn isotropic_and_nearly_degenerate_tensors() {
         let spaces = principal_axes(&(Matrix3::identity() * 0.4));
-        assert_eq!(
-            spaces,
-            vec![Eigenspace {
-                value: 0.4,
-                multiplicity: 3,
-                space: Space::All
-            }]
-        );
+        assert_eq!(spaces.len(), 1);
+        assert_eq!((spaces[0].multiplicity, &spaces[0].space), (3, &Space::All));
+        assert!((spaces[0].value - 0.4).abs() < 4.0 * f64::EPSILON);
         // A relative gap of 1e-12 is resolved, not merged.
         let t = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0 + 1e-12, 2.0));
         assert_eq!(principal_axes(&t).len(), 3);

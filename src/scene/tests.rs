@@ -38,7 +38,7 @@ fn a_minimal_scene_parses() {
 fn unknown_keys_point_at_their_line() {
     let text = MINIMAL.replace("mass = \"m\"", "mass = \"m\"\ncolour = \"red\"");
     let e = parse(&text).unwrap_err();
-    assert_eq!(e.line, 9, "{e}");
+    assert_eq!((e.line, e.column), (10, 1), "{e}");
     assert!(e.message.contains("unknown field `colour`"), "{e}");
 }
 
@@ -49,7 +49,7 @@ fn undefined_symbols_point_at_their_column() {
         "size = [\"a\", \"a\", \"b\"]",
     );
     let e = parse(&text).unwrap_err();
-    assert_eq!((e.line, e.column), (7, 22), "{e}");
+    assert_eq!((e.line, e.column), (8, 20), "{e}");
     assert_eq!(e.field, "body[0].size[2]");
     assert!(e.message.contains("undefined symbol `b`"));
 }
@@ -58,7 +58,7 @@ fn undefined_symbols_point_at_their_column() {
 fn malformed_expressions_point_inside_the_string() {
     let text = MINIMAL.replace("mass = \"m\"", "mass = \"2*(m\"");
     let e = parse(&text).unwrap_err();
-    assert_eq!((e.line, e.column), (8, 13), "{e}");
+    assert_eq!((e.line, e.column), (9, 13), "{e}");
     assert!(e.message.contains("malformed expression"));
 }
 

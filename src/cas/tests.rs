@@ -1,0 +1,196 @@
+//! Engine tests. Each exact result is compared with an independent route: numeric quadrature,
+//! evaluation at a point, or an identity proved another way.
+
+use super::*;
+
+fn p(s: &str) -> Expr {
+    parse(s).unwrap().expr
+}
+
+fn at(e: &Expr, vars: &[(&str, f64)]) -> f64 {
+    e.eval(&|s| vars.iter().find(|(n, _)| *n == s).map(|(_, v)| *v))
+        .unwrap()
+}
+
+/// Composite midpoint rule with many points: an independent numeric integral.
+fn midpoint(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    let n = 20_000;
+    let h = (hi - lo) / n as f64;
+    (0..n).map(|i| f(lo + (i as f64 + 0.5) * h) * h).sum()
+}
+
+#[test]
+fn polynomial_integrals_match_numeric_quadrature() {
+    let integrand = p("3*x^2*a - x*b + 7");
+    let exact = integrate_all(
+        vec![integrand.clone()],
+        vec![Integral::Poly {
+            var: "x".into(),
+            lo: p("-b"),
+            hi: p("2*a"),
+        }],
+    )
+    .unwrap();
+    let (a, b) = (1.3, 0.4);
+    let numeric = midpoint(
+        |x| at(&integrand, &[("x", x), ("a", a), ("b", b)]),
+        -b,
+        2.0 * a,
+    );
+    assert!((at(&exact[0], &[("a", a), ("b", b)]) - numeric).abs() < 1e-7);
+    assert!(!exact[0].symbols().contains(&"x".to_string()));
+}
+
+#[test]
+fn trigonometric_integrals_match_numeric_quadrature() {
+    let integrand = p("cos(t)^2*sin(t)^2*k + sin(t)^3 + cos(t)*q");
+    for half in [false, true] {
+        let exact = integrate_all(
+            vec![integrand.clone()],
+            vec![Integral::Trig {
+                var: "t".into(),
+                half,
+            }],
+        )
+        .unwrap();
+        let upper = if half {
+            std::f64::consts::PI
+        } else {
+            2.0 * std::f64::consts::PI
+        };
+        let numeric = midpoint(
+            |t| at(&integrand, &[("t", t), ("k", 0.8), ("q", 2.0)]),
+            0.0,
+            upper,
+        );
+        assert!(
+            (at(&exact[0], &[("k", 0.8), ("q", 2.0)]) - numeric).abs() < 1e-7,
+            "half={half}: {}",
+            exact[0]
+        );
+    }
+}
+
+#[test]
+fn integrating_a_non_polynomial_is_an_error() {
+    let e = integrate_all(
+        vec![p("1/x")],
+        vec![Integral::Poly {
+            var: "x".into(),
+            lo: p("1"),
+            hi: p("2"),
+        }],
+    );
+    assert!(e.is_err());
+    let e = integrate_all(
+        vec![p("t*cos(t)")],
+        vec![Integral::Trig {
+            var: "t".into(),
+            half: false,
+        }],
+    );
+    assert!(e.is_err());
+}
+
+#[test]
+fn zero_test_knows_trigonometric_identities() {
+    let cases = [
+        ("(2 - cos(a)^2)/2 - (1 + sin(a)^2)/2", true),
+        ("sin(2*a) - 2*sin(a)*cos(a)", true),
+        ("cos(2*a) - 1 + 2*sin(a)^2", true),
+        ("sin(a)^4 - cos(a)^4 + cos(2*a)", true),
+        ("(x^2 - 1)/(x - 1) - x - 1", true),
+        ("sin(a)^2", false),
+        ("sin(a)^2 + cos(b)^2 - 1", false),
+        ("x - y", false),
+    ];
+    let exprs: Vec<Expr> = cases.iter().map(|(s, _)| p(s)).collect();
+    let got = is_zero_all(exprs).unwrap();
+    for ((s, want), got) in cases.iter().zip(got) {
+        assert_eq!(got, *want, "{s}");
+    }
+}
+
+#[test]
+fn simplification_preserves_values() {
+    for s in [
+        "(a + b)^3 - a*(b - 1)^2",
+        "m/a^3*a^5",
+        "sin(x)^3*cos(x) + (1 + x)/(1 - x)",
+    ] {
+        let e = p(s);
+        let v = simplify(&e).unwrap();
+        let vars = [("a", 0.7), ("b", -1.3), ("m", 2.0), ("x", 0.4)];
+        assert!((at(&e, &vars) - at(&v, &vars)).abs() < 1e-12, "{s} -> {v}");
+    }
+}
+
+#[test]
+fn roots_come_from_the_factorisation() {
+    // (λ − a)² (2λ − b): a double root a and a simple root b/2.
+    let r = roots(&p("(l - a)^2*(2*l - b)"), "l").unwrap();
+    assert!(r.unsolved.is_empty());
+    let mut found: Vec<(f64, u32)> = r
+        .roots
+        .iter()
+        .map(|(e, m)| (at(e, &[("a", 3.0), ("b", 1.0)]), *m))
+        .collect();
+    found.sort_by(|x, y| x.0.total_cmp(&y.0));
+    assert_eq!(found, vec![(0.5, 1), (3.0, 2)]);
+    // λ² − 2 is irreducible over the rationals: the quadratic formula gives ±√2.
+    let r = roots(&p("l^2 - 2"), "l").unwrap();
+    let mut vals: Vec<f64> = r.roots.iter().map(|(e, _)| at(e, &[])).collect();
+    vals.sort_by(f64::total_cmp);
+    assert!((vals[0] + 2f64.sqrt()).abs() < 1e-15 && (vals[1] - 2f64.sqrt()).abs() < 1e-15);
+    // λ³ − 2 has no rational factor: left to the numerics.
+    let r = roots(&p("l^3 - 2"), "l").unwrap();
+    assert!(r.roots.is_empty() && r.unsolved.len() == 1);
+}
+
+#[test]
+fn roots_of_trigonometric_polynomials() {
+    // (λ − cos²a − sin²a)(λ − 2): both roots are constants once sin² + cos² = 1 is known.
+    let r = roots(&p("(l - cos(a)^2 - sin(a)^2)*(l - 2)"), "l").unwrap();
+    let mut vals: Vec<f64> = r.roots.iter().map(|(e, _)| at(e, &[("a", 0.3)])).collect();
+    vals.sort_by(f64::total_cmp);
+    assert!(
+        (vals[0] - 1.0).abs() < 1e-14 && (vals[1] - 2.0).abs() < 1e-14,
+        "{:?}",
+        r.roots
+    );
+}
+
+#[test]
+fn primitive_part_removes_the_common_factor() {
+    let v = primitive_part(vec![p("2*a*m"), p("4*a*m"), p("-6*a*m")]).unwrap();
+    let ratio =
+        |i: usize| at(&v[i], &[("a", 1.7), ("m", 0.3)]) / at(&v[0], &[("a", 1.7), ("m", 0.3)]);
+    assert_eq!((ratio(1), ratio(2)), (2.0, -3.0));
+    assert!(
+        v.iter().all(|e| !e.symbols().contains(&"a".to_string())),
+        "{v:?}"
+    );
+    // sin²α hidden as 1 − cos²α: the direction is (sin α, 0, cos α).
+    let v = primitive_part(vec![p("1 - cos(t)^2"), p("0"), p("sin(t)*cos(t)")]).unwrap();
+    assert_eq!(Expr::List(v).to_text(), "[sin(t), 0, cos(t)]");
+}
+
+#[test]
+fn many_threads_share_the_one_worker() {
+    // Symbolica allows one thread; callers on many threads must still be served, not aborted.
+    let handles: Vec<_> = (0..8)
+        .map(|i| {
+            std::thread::spawn(move || {
+                let e = parse(&format!("(x + {i})^2 - x^2 - {}*x", 2 * i))
+                    .unwrap()
+                    .expr;
+                simplify(&e).unwrap()
+            })
+        })
+        .collect();
+    for (i, h) in handles.into_iter().enumerate() {
+        assert_eq!(h.join().unwrap(), Expr::int((i * i) as i128));
+    }
+    let (seconds, calls) = stats();
+    assert!(calls >= 8 && seconds > 0.0);
+}
