@@ -10,7 +10,7 @@ mod inertia;
 mod kinematics;
 mod principal;
 
-pub use principal::{ExactBasis, ExactEigen, ExactSpace};
+pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
 use crate::cas::{self, CasError, Expr};
 use crate::plan::{Plan, Stage};
@@ -120,3 +120,6 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     }
     Ok(d)
 }
+
+#[cfg(test)]
+mod tests;

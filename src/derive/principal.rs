@@ -8,7 +8,7 @@ use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr};
 
 /// The λ of the characteristic polynomial; `__` never occurs in scene names.
-const LAMBDA: &str = "lambda__";
+pub const LAMBDA: &str = "lambda__";
 
 #[derive(Debug, Clone)]
 pub struct ExactEigen {

@@ -1,0 +1,197 @@
+//! Derivations of every body kind, each checked two ways: against the independent numeric
+//! quadrature at the scene's values (≤ 1e-14 relative), and by an invariant that needs no
+//! numbers (perpendicular axes, additivity, rotation covariance, symmetry).
+
+use super::algebra::{Value, mat_mul, rotation, transpose};
+use super::values_equal;
+use crate::pipeline::{SceneReport, run_scene};
+use crate::scene::Scene;
+use std::path::Path;
+
+fn run(body: &str, symbols: &str, values: &str, want: &str) -> SceneReport {
+    let text = format!(
+        "id = \"t\"\ntitle = \"t\"\nnotes = {{ lecture = \"x\" }}\nsymbols = {{ {symbols} }}\n{body}\n[outputs]\nwant = [{want}]\n[numeric]\nvalues = {{ {values} }}\n"
+    );
+    let scene =
+        Scene::parse(&text, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    run_scene(scene).unwrap()
+}
+
+fn tensor(r: &SceneReport) -> Value {
+    r.derivation.quantities["inertia_tensor"].clone()
+}
+
+fn entry(r: &SceneReport, i: usize, j: usize) -> crate::cas::Expr {
+    match tensor(r) {
+        Value::Matrix(m) => m[i][j].clone(),
+        _ => unreachable!(),
+    }
+}
+
+/// The exact tensor equals the numeric one within 1e-14, and every check of the scene passes.
+fn assert_cross_checked(r: &SceneReport) {
+    assert!(r.passed(), "{:#?}", r.verification);
+    let q = r
+        .verification
+        .quantities
+        .iter()
+        .find(|q| q.name == "inertia_tensor")
+        .expect("numeric check ran");
+    assert!(q.error <= 1e-14, "exact vs numeric: {}", q.error);
+}
+
+const ALL: &str = "\"inertia_tensor\", \"principal_axes\", \"numeric\"";
+
+#[test]
+fn every_body_kind_matches_its_numeric_quadrature() {
+    let cases = [
+        (
+            "[[body]]\nkind = \"box\"\nsize = [\"a\", \"b\", \"c\"]\nmass = \"M\"\n",
+            "M = \"m\", a = \"a\", b = \"b\", c = \"c\"",
+            "M = 2.0, a = 1.0, b = 2.0, c = 3.0",
+        ),
+        (
+            "[[body]]\nkind = \"rod\"\nlength = \"L\"\nalong = \"x\"\nmass = \"M\"\norigin = \"centre\"\n",
+            "M = \"m\", L = \"l\"",
+            "M = 2.0, L = 3.0",
+        ),
+        (
+            "[[body]]\nkind = \"ring\"\nradius = \"R\"\nmass = \"M\"\n",
+            "M = \"m\", R = \"r\"",
+            "M = 2.0, R = 0.5",
+        ),
+        (
+            "[[body]]\nkind = \"disk\"\nradius = \"R\"\nmass = \"M\"\n",
+            "M = \"m\", R = \"r\"",
+            "M = 2.0, R = 0.5",
+        ),
+        (
+            "[[body]]\nkind = \"cylinder\"\nradius = \"R\"\nheight = \"h\"\nmass = \"M\"\n",
+            "M = \"m\", R = \"r\", h = \"h\"",
+            "M = 2.0, R = 0.5, h = 3.0",
+        ),
+        (
+            "[[body]]\nkind = \"sphere\"\nradius = \"R\"\nmass = \"M\"\n",
+            "M = \"m\", R = \"r\"",
+            "M = 2.0, R = 0.5",
+        ),
+        (
+            "[[body]]\nkind = \"shell\"\nradius = \"R\"\nmass = \"M\"\n",
+            "M = \"m\", R = \"r\"",
+            "M = 2.0, R = 0.5",
+        ),
+        (
+            "[[body]]\nkind = \"points\"\npoints = [{ mass = \"M\", at = [\"d\", \"0\", \"0\"] }, { mass = \"2*M\", at = [\"0\", \"d\", \"d\"] }]\n",
+            "M = \"m\", d = \"d\"",
+            "M = 2.0, d = 0.5",
+        ),
+    ];
+    for (body, symbols, values) in cases {
+        let r = run(body, symbols, values, ALL);
+        assert_cross_checked(&r);
+        // A tensor is symmetric and its diagonal obeys the triangle inequality I1 + I2 >= I3.
+        let m = crate::numeric::matrix_at(&tensor(&r), &r.scene.values).unwrap();
+        assert_eq!(m, m.transpose());
+        for (i, j, k) in [(0, 1, 2), (1, 2, 0), (2, 0, 1)] {
+            assert!(m[(i, i)] + m[(j, j)] >= m[(k, k)] - 1e-15);
+        }
+    }
+}
+
+#[test]
+fn planar_bodies_obey_the_perpendicular_axis_theorem() {
+    for kind in ["hoop", "disk"] {
+        let r = run(
+            &format!("[[body]]\nkind = \"{kind}\"\nradius = \"R\"\nmass = \"M\"\n"),
+            "M = \"m\", R = \"r\"",
+            "M = 1.0, R = 1.0",
+            "\"inertia_tensor\"",
+        );
+        let sum = crate::cas::Expr::add(vec![entry(&r, 0, 0), entry(&r, 1, 1)]);
+        assert!(
+            values_equal(&Value::Scalar(sum), &Value::Scalar(entry(&r, 2, 2))).unwrap(),
+            "{kind}"
+        );
+    }
+}
+
+#[test]
+fn a_composite_is_the_sum_of_its_parts() {
+    // Two a×b×c boxes side by side along x are one 2a×b×c box of twice the mass.
+    let two = run(
+        "[[body]]\nkind = \"box\"\nsize = [\"a\", \"b\", \"c\"]\nmass = \"M\"\n[[body]]\nkind = \"box\"\nsize = [\"a\", \"b\", \"c\"]\nmass = \"M\"\nshift = [\"a\", \"0\", \"0\"]\n",
+        "M = \"m\", a = \"a\", b = \"b\", c = \"c\"",
+        "M = 1.0, a = 1.0, b = 2.0, c = 3.0",
+        ALL,
+    );
+    assert_cross_checked(&two);
+    let one = run(
+        "[[body]]\nkind = \"box\"\nsize = [\"2*a\", \"b\", \"c\"]\nmass = \"2*M\"\n",
+        "M = \"m\", a = \"a\", b = \"b\", c = \"c\"",
+        "M = 1.0, a = 1.0, b = 2.0, c = 3.0",
+        "\"inertia_tensor\"",
+    );
+    assert!(values_equal(&tensor(&two), &tensor(&one)).unwrap());
+}
+
+#[test]
+fn rotating_a_body_rotates_its_tensor() {
+    let body = "[[body]]\nkind = \"cylinder\"\nradius = \"R\"\nheight = \"h\"\nmass = \"M\"\n";
+    let syms = "M = \"m\", R = \"r\", h = \"h\", t = \"angle\"";
+    let vals = "M = 1.0, R = 0.5, h = 2.0, t = 0.7";
+    let flat = run(body, syms, vals, "\"inertia_tensor\"");
+    let turned = run(
+        &format!("{body}rotate = [{{ axis = \"x\", angle = \"t\" }}]\n"),
+        syms,
+        vals,
+        ALL,
+    );
+    assert_cross_checked(&turned);
+    let Value::Matrix(i0) = tensor(&flat) else {
+        unreachable!()
+    };
+    let q = rotation(0, &crate::cas::Expr::sym("t"));
+    let expected = Value::Matrix(mat_mul(&mat_mul(&q, &i0), &transpose(&q)));
+    assert!(values_equal(&tensor(&turned), &expected).unwrap());
+}
+
+#[test]
+fn a_sphere_is_isotropic_and_a_shell_has_more_inertia() {
+    let r = run(
+        "[[body]]\nkind = \"sphere\"\nradius = \"R\"\nmass = \"M\"\n",
+        "M = \"m\", R = \"r\"",
+        "M = 1.0, R = 1.0",
+        ALL,
+    );
+    let e = r.derivation.eigen.as_ref().unwrap();
+    assert_eq!(e.spaces.len(), 1);
+    assert_eq!(e.spaces[0].multiplicity, 3);
+    assert!(matches!(e.spaces[0].basis, super::ExactBasis::All));
+    let s = run(
+        "[[body]]\nkind = \"shell\"\nradius = \"R\"\nmass = \"M\"\n",
+        "M = \"m\", R = \"r\"",
+        "M = 1.0, R = 1.0",
+        "\"inertia_tensor\"",
+    );
+    let at = |r: &SceneReport| {
+        entry(r, 0, 0)
+            .eval(&|x| r.scene.values.get(x).copied())
+            .unwrap()
+    };
+    // All of the shell's mass sits at the largest radius.
+    assert!(at(&s) > at(&r));
+}
+
+#[test]
+fn only_requested_stages_run() {
+    let r = run(
+        "[[body]]\nkind = \"box\"\nsize = [\"a\", \"a\", \"a\"]\nmass = \"M\"\n",
+        "M = \"m\", a = \"a\"",
+        "M = 1.0, a = 1.0",
+        "\"inertia_tensor\"",
+    );
+    assert!(r.numeric.is_none());
+    assert!(r.derivation.eigen.is_none());
+    assert!(!r.derivation.quantities.contains_key("centre_of_mass"));
+    assert!(r.verification.quantities.is_empty());
+}
