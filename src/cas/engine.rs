@@ -85,8 +85,9 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, String> {
             let (b, x) = p.get_base_exp();
             Expr::pow(from_view(b)?, from_view(x)?)
         }
-        AtomView::Mul(m) => Expr::mul(all(&mut m.iter())?),
-        AtomView::Add(a) => Expr::add(all(&mut a.iter())?),
+        // Symbolica orders by symbol creation, which varies between runs: impose our own order.
+        AtomView::Mul(m) => Expr::ordered_product(all(&mut m.iter())?),
+        AtomView::Add(a) => Expr::ordered_sum(all(&mut a.iter())?),
     })
 }
 

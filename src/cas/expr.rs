@@ -141,6 +141,32 @@ impl Expr {
         Expr::mul(vec![a, Expr::pow(b, Expr::int(-1))])
     }
 
+    /// A product with its factors in a fixed order: the number first, then symbols, then
+    /// functions, each by ascending exponent and name (m*a^2, M*R^2*cos(alpha)).
+    pub fn ordered_product(factors: Vec<Expr>) -> Expr {
+        let mut f = match Expr::mul(factors) {
+            Expr::Mul(f) => f,
+            other => return other,
+        };
+        f.sort_by(|x, y| {
+            factor_key(x)
+                .partial_cmp(&factor_key(y))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+        Expr::Mul(f)
+    }
+
+    /// A sum with its terms in a fixed order: by their text without the numeric coefficient,
+    /// constants last.
+    pub fn ordered_sum(terms: Vec<Expr>) -> Expr {
+        let mut t = match Expr::add(terms) {
+            Expr::Add(t) => t,
+            other => return other,
+        };
+        t.sort_by_cached_key(term_key);
+        Expr::Add(t)
+    }
+
     /// Every symbol name used, sorted and unique.
     pub fn symbols(&self) -> Vec<String> {
         let mut out = Vec::new();
@@ -247,6 +273,36 @@ impl fmt::Display for Expr {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.to_text())
     }
+}
+
+/// (kind, exponent, lower-case name, name) of a factor; numbers sort first.
+fn factor_key(e: &Expr) -> (u8, f64, String, String) {
+    let (base, exponent) = match e {
+        Expr::Pow(b, x) => (b.as_ref(), x.eval(&|_| None).unwrap_or(f64::MAX)),
+        other => (other, 1.0),
+    };
+    let rank = match base {
+        Expr::Num(_) => 0,
+        Expr::Sym(_) => 1,
+        Expr::Call(..) => 2,
+        _ => 3,
+    };
+    let text = base.to_text();
+    (rank, exponent, text.to_lowercase(), text)
+}
+
+/// (is a constant, text without the numeric coefficient, full text) of a term.
+fn term_key(e: &Expr) -> (bool, String, String) {
+    let monomial = match e {
+        Expr::Mul(f) => Expr::Mul(
+            f.iter()
+                .filter(|x| !matches!(x, Expr::Num(_)))
+                .cloned()
+                .collect(),
+        ),
+        other => other.clone(),
+    };
+    (matches!(e, Expr::Num(_)), monomial.to_text(), e.to_text())
 }
 
 #[derive(Clone, Copy, PartialEq, PartialOrd)]

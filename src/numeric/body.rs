@@ -110,6 +110,14 @@ impl NumBody {
 }
 
 /// I = Σ w (r² 𝟙 − r rᵀ) over weighted points in the scene frame, eq (10) as a sum.
+///
+/// A unit mass on the x axis at distance 2 has no moment about x and 4 about y and z:
+///
+/// ```
+/// use nalgebra::Vector3;
+/// let t = mechbook::numeric::body::tensor_of_points([(1.0, Vector3::new(2.0, 0.0, 0.0))].into_iter());
+/// assert_eq!((t[(0, 0)], t[(1, 1)], t[(2, 2)]), (0.0, 4.0, 4.0));
+/// ```
 pub fn tensor_of_points(points: impl Iterator<Item = (f64, Vector3<f64>)>) -> Matrix3<f64> {
     let mut t = Matrix3::zeros();
     for (w, r) in points {

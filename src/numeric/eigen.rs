@@ -27,6 +27,19 @@ pub enum Space {
 pub const DEGENERACY_TOLERANCE: f64 = 64.0 * f64::EPSILON;
 
 /// Principal moments in ascending order, grouped into eigenspaces.
+///
+/// A uniform cube about its corner has I = m a² [[2/3, −1/4, −1/4], …] (eq 31): its diagonal
+/// (1, 1, 1) is a principal axis with moment m a²/6, and every axis perpendicular to it has
+/// 11 m a²/12.
+///
+/// ```
+/// use mechbook::numeric::eigen::{principal_axes, Space};
+/// let t = nalgebra::Matrix3::new(8.0, -3.0, -3.0, -3.0, 8.0, -3.0, -3.0, -3.0, 8.0) / 12.0;
+/// let spaces = principal_axes(&t);
+/// assert!((spaces[0].value - 1.0 / 6.0).abs() < 1e-15);
+/// assert_eq!(spaces[1].multiplicity, 2);
+/// assert!(matches!(spaces[1].space, Space::PlaneNormalTo(_)));
+/// ```
 pub fn principal_axes(tensor: &Matrix3<f64>) -> Vec<Eigenspace> {
     let eig = SymmetricEigen::new(*tensor);
     let mut pairs: Vec<(f64, Vector3<f64>)> = (0..3)

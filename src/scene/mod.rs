@@ -572,7 +572,10 @@ impl Validator<'_> {
             }
             let mut scope = allowed.clone();
             scope.extend(variables.iter().cloned());
-            expect.insert(n.clone(), self.expr(value, &format!("expect.{n}"), &scope)?);
+            expect.insert(
+                n.clone(),
+                self.claim_expr(value, &format!("expect.{n}"), &scope)?,
+            );
         }
 
         Ok(Scene {

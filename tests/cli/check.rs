@@ -1,0 +1,178 @@
+//! `check` and `derive` on the real lectures: the table, the JSON, the plan, and the regression
+//! behaviour (a changed verdict or result fails).
+
+use super::{lecture, mechbook, scratch, stderr, stdout};
+
+#[test]
+fn check_passes_on_every_lecture_scene_and_prints_the_table() {
+    let out = mechbook(&["check"]);
+    let text = stdout(&out);
+    assert_eq!(out.status.code(), Some(0), "{text}{}", stderr(&out));
+    let mut ids = Vec::new();
+    for f in std::fs::read_dir("lectures/lecture-3-4").unwrap() {
+        let s = std::fs::read_to_string(f.unwrap().path()).unwrap();
+        let id = s
+            .lines()
+            .find_map(|l| l.strip_prefix("id = \""))
+            .unwrap()
+            .trim_end_matches('"')
+            .to_string();
+        ids.push(id);
+    }
+    assert!(ids.len() >= 10);
+    for id in ids {
+        assert!(
+            text.lines()
+                .any(|l| l.starts_with(&format!("{id} ")) && l.ends_with("ok")),
+            "{id} missing or failing:\n{text}"
+        );
+    }
+    assert!(text.contains("all as recorded"));
+    assert!(text.contains("Where the notes disagree with the derivation"));
+}
+
+#[test]
+fn check_json_has_the_documented_shape() {
+    let out = mechbook(&["check", "--json", "lectures"]);
+    assert_eq!(out.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&out)).expect("valid JSON");
+    let scenes = v["scenes"].as_array().unwrap();
+    assert!(scenes.len() >= 10);
+    let mut disagreements = 0;
+    for s in scenes {
+        assert!(s["id"].is_string() && s["source"].as_str().unwrap().starts_with("lectures/"));
+        assert!(s["quantities"].is_object());
+        for c in s["claims"].as_array().unwrap() {
+            for k in ["eq", "statement", "derived", "verdict"] {
+                assert!(c[k].is_string(), "claim without {k}: {c}");
+            }
+            let verdict = c["verdict"].as_str().unwrap();
+            assert!(["agrees", "disagrees", "not-checkable"].contains(&verdict));
+            disagreements += (verdict == "disagrees") as usize;
+        }
+        for n in s["numeric_checks"].as_array().unwrap() {
+            assert!(n["method"].is_string() && n["points"].is_u64());
+            for k in ["error", "predicted_error", "seconds"] {
+                assert!(n[k].is_number(), "{k} in {n}");
+            }
+        }
+    }
+    assert!(disagreements >= 10);
+    let cube = scenes.iter().find(|s| s["id"] == "cube-corner").unwrap();
+    let t = &cube["quantities"]["inertia_tensor"];
+    assert!(t["exact"].as_str().unwrap().contains("m*a^2"));
+    // At m = a = 1 the corner tensor's diagonal is 2/3, from the numbers alone.
+    assert!((t["numeric"][0][0].as_f64().unwrap() - 2.0 / 3.0).abs() < 1e-15);
+}
+
+#[test]
+fn derive_explain_shows_the_skipped_stages() {
+    let out = mechbook(&[
+        "derive",
+        lecture("06-hoop.toml").to_str().unwrap(),
+        "--explain",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let text = stdout(&out);
+    assert!(text.contains("ran      tensor"), "{text}");
+    assert!(text.contains("skipped  parallel-axis"));
+    assert!(text.contains("skipped  angular-momentum"));
+    assert!(text.contains("Symbolic engine:"));
+}
+
+#[test]
+fn derive_json_is_one_scene() {
+    let out = mechbook(&[
+        "derive",
+        lecture("07-tilted-hoop.toml").to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["id"], "tilted-hoop");
+    assert!(v["steps"].as_array().unwrap().len() > 5);
+}
+
+/// Writes a modified copy of a lecture scene and runs `check` on it.
+fn check_modified(name: &str, edit: impl Fn(String) -> String) -> std::process::Output {
+    let dir = scratch(name);
+    let original = std::fs::read_to_string(lecture("05-cube-corner.toml")).unwrap();
+    let changed = edit(original.clone());
+    assert_ne!(changed, original, "the edit must change the scene");
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, changed).unwrap();
+    let out = mechbook(&["check", path.to_str().unwrap()]);
+    std::fs::remove_dir_all(&dir).unwrap();
+    out
+}
+
+#[test]
+fn a_changed_verdict_fails_check() {
+    let out = check_modified("verdict", |s| {
+        s.replacen("expect = \"disagrees\"", "expect = \"agrees\"", 1)
+    });
+    assert_eq!(out.status.code(), Some(1));
+    let text = stdout(&out);
+    assert!(
+        text.contains("claim (28): verdict disagrees but the scene records agrees"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_changed_derivation_fails_check() {
+    // The recorded tensor stays; the body changes, so the derived tensor no longer matches.
+    let out = check_modified("result", |s| {
+        s.replace(
+            "size = [\"a\", \"a\", \"a\"]",
+            "size = [\"a\", \"a\", \"2*a\"]",
+        )
+    });
+    assert_eq!(out.status.code(), Some(1));
+    let text = stdout(&out);
+    assert!(text.contains("`inertia_tensor` changed"), "{text}");
+}
+
+/// Removes the fields that measure time, which legitimately vary between runs.
+fn without_timings(v: &mut serde_json::Value) {
+    match v {
+        serde_json::Value::Object(map) => {
+            map.retain(|k, _| k != "seconds" && k != "symbolic_seconds");
+            map.values_mut().for_each(without_timings);
+        }
+        serde_json::Value::Array(items) => items.iter_mut().for_each(without_timings),
+        _ => {}
+    }
+}
+
+#[test]
+fn the_same_input_gives_the_same_output() {
+    // Once alone and once after other scenes: the engine's internal symbol order differs, the
+    // printed results must not.
+    let alone = mechbook(&[
+        "derive",
+        lecture("05-cube-corner.toml").to_str().unwrap(),
+        "--json",
+    ]);
+    let all = mechbook(&["check", "--json", "lectures"]);
+    let mut a: serde_json::Value = serde_json::from_str(&stdout(&alone)).unwrap();
+    let mut b: serde_json::Value = serde_json::from_str(&stdout(&all)).unwrap();
+    let mut b = b["scenes"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|s| s["id"] == "cube-corner")
+        .unwrap()
+        .take();
+    without_timings(&mut a);
+    without_timings(&mut b);
+    assert_eq!(a, b);
+    let again = mechbook(&["check", "--json", "lectures"]);
+    let (mut x, mut y): (serde_json::Value, serde_json::Value) = (
+        serde_json::from_str(&stdout(&all)).unwrap(),
+        serde_json::from_str(&stdout(&again)).unwrap(),
+    );
+    without_timings(&mut x);
+    without_timings(&mut y);
+    assert_eq!(x, y);
+}

@@ -1,0 +1,58 @@
+//! The one integration-test binary: it runs the `mechbook` executable as a user would.
+//!
+//! This process never calls Symbolica itself, so the child processes it starts never meet a
+//! second Symbolica user in it; concurrent children wait for each other on mechbook's lock.
+
+mod bad_input;
+mod check;
+mod lock;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+pub fn mechbook(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mechbook"))
+        .args(args)
+        .output()
+        .expect("run mechbook")
+}
+
+/// Standard output without Symbolica's restricted-mode banner (a box drawn at the top; users
+/// may hide it with SYMBOLICA_HIDE_BANNER=1, and the tests must pass either way).
+pub fn stdout(out: &Output) -> String {
+    let text = String::from_utf8(out.stdout.clone()).expect("UTF-8 output");
+    let mut lines = text.lines().peekable();
+    let mut kept = Vec::new();
+    let mut in_banner = false;
+    while let Some(line) = lines.next() {
+        if kept.is_empty() && line.starts_with('┌') {
+            in_banner = true;
+        }
+        if in_banner {
+            in_banner = !line.starts_with('└');
+            continue;
+        }
+        kept.push(line);
+    }
+    let mut s = kept.join("\n");
+    if text.ends_with('\n') {
+        s.push('\n');
+    }
+    s
+}
+
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// A fresh scratch folder for one test, removed by the caller.
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("mechbook-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+pub fn lecture(name: &str) -> PathBuf {
+    Path::new("lectures/lecture-3-4").join(name)
+}
