@@ -198,7 +198,7 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
         let diffs: Vec<Expr> = de
             .iter()
             .zip(&ne)
-            .map(|(a, b)| Expr::sub(a.clone(), b.clone()))
+            .map(|(a, b)| Expr::minus(a.clone(), b.clone()))
             .collect();
         let symbolic = cas::is_zero_all(diffs.clone())?;
         let scale: Vec<Expr> = de
@@ -386,20 +386,18 @@ pub fn check_eigen(
             passed: residual <= EXACT_VS_NUMERIC,
         }));
     }
-    let mut exact: Vec<(f64, u32, Option<(bool, Vector3<f64>)>)> = Vec::new();
+    // (value, multiplicity, the axis or plane normal if any) at the scene's values.
+    let mut exact: Vec<(f64, u32, Option<Vector3<f64>>)> = Vec::new();
     for s in &eigen.spaces {
-        let axis = match &s.basis {
-            ExactBasis::Axis(a) => Some((
-                true,
-                Vector3::new(a[0].eval(&env)?, a[1].eval(&env)?, a[2].eval(&env)?),
-            )),
-            ExactBasis::PlaneNormalTo(n) => Some((
-                false,
-                Vector3::new(n[0].eval(&env)?, n[1].eval(&env)?, n[2].eval(&env)?),
+        let direction = match &s.basis {
+            ExactBasis::Axis(v) | ExactBasis::PlaneNormalTo(v) => Some(Vector3::new(
+                v[0].eval(&env)?,
+                v[1].eval(&env)?,
+                v[2].eval(&env)?,
             )),
             ExactBasis::All => None,
         };
-        exact.push((s.value.eval(&env)?, s.multiplicity, axis));
+        exact.push((s.value.eval(&env)?, s.multiplicity, direction));
     }
     exact.sort_by(|a, b| a.0.total_cmp(&b.0));
     let structure = exact.len() == numeric.len()
@@ -421,7 +419,7 @@ pub fn check_eigen(
                 Space::Axis(v) | Space::PlaneNormalTo(v) => Some(*v),
                 Space::All => None,
             };
-            if let (Some((_, v)), Some(u)) = (e.2, num_dir) {
+            if let (Some(v), Some(u)) = (e.2, num_dir) {
                 axis_error = axis_error.max(1.0 - (v.normalize().dot(&u)).abs());
             }
         }

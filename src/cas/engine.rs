@@ -21,11 +21,11 @@ fn to_atom(e: &Expr) -> Atom {
         Expr::Sym(s) => var_atom(s),
         Expr::Add(v) => v.iter().fold(Atom::num(0), |acc, x| acc + &to_atom(x)),
         Expr::Mul(v) => v.iter().fold(Atom::num(1), |acc, x| acc * &to_atom(x)),
-        Expr::Pow(b, x) => to_atom(b).pow(&to_atom(x)),
+        Expr::Pow(b, x) => to_atom(b).pow(to_atom(x)),
         Expr::Call(name, args) if args.len() == 1 => match name.as_str() {
-            "sin" => Symbol::SIN.call(&to_atom(&args[0])),
-            "cos" => Symbol::COS.call(&to_atom(&args[0])),
-            "sqrt" => to_atom(&args[0]).pow(&Atom::num((1, 2))),
+            "sin" => Symbol::SIN.call(to_atom(&args[0])),
+            "cos" => Symbol::COS.call(to_atom(&args[0])),
+            "sqrt" => to_atom(&args[0]).pow(Atom::num((1, 2))),
             other => unreachable!("`{other}` is resolved before the engine"),
         },
         other => unreachable!("`{other}` is resolved before the engine"),
@@ -109,7 +109,7 @@ fn normal_form(e: &Expr) -> Result<Expr, String> {
     let rat: RationalPolynomial<_, u16> = atom.to_rational_polynomial(&Q, &Z, None);
     let num = from_atom(&rat.numerator.to_expression().expand())?;
     let den = from_atom(&rat.denominator.to_expression().expand())?;
-    Ok(Expr::div(num, den))
+    Ok(Expr::over(num, den))
 }
 
 /// A negative power of anything but a number: the expression is not a polynomial.
@@ -226,7 +226,7 @@ pub fn integrate(integrand: &Expr, domain: &[Integral]) -> Result<Expr, String> 
                         .into_iter()
                         .map(|(k, c)| {
                             let k1 = Expr::int(k as i128 + 1);
-                            let span = Expr::sub(
+                            let span = Expr::minus(
                                 Expr::pow(hi.clone(), k1.clone()),
                                 Expr::pow(lo.clone(), k1.clone()),
                             );
@@ -282,23 +282,23 @@ pub fn roots(poly: &Expr, var: &str) -> Result<Roots, String> {
         }
         if degree == 1 {
             out.roots.push((
-                back(Expr::neg(Expr::div(c[0].clone(), c[1].clone())))?,
+                back(Expr::negate(Expr::over(c[0].clone(), c[1].clone())))?,
                 mult as u32,
             ));
         } else {
             // (−b ± √(b² − 4ac)) / 2a
-            let disc = Expr::sub(
+            let disc = Expr::minus(
                 Expr::pow(c[1].clone(), Expr::int(2)),
                 Expr::mul(vec![Expr::int(4), c[2].clone(), c[0].clone()]),
             );
             let sqrt = Expr::pow(simplify(&disc)?, Expr::rat(1, 2));
             for sign in [-1, 1] {
                 let num = Expr::add(vec![
-                    Expr::neg(c[1].clone()),
+                    Expr::negate(c[1].clone()),
                     Expr::mul(vec![Expr::int(sign), sqrt.clone()]),
                 ]);
                 out.roots.push((
-                    back(Expr::div(num, Expr::mul(vec![Expr::int(2), c[2].clone()])))?,
+                    back(Expr::over(num, Expr::mul(vec![Expr::int(2), c[2].clone()])))?,
                     mult as u32,
                 ));
             }
@@ -346,7 +346,7 @@ fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, String> {
         .expand()
         .to_rational_polynomial(&Q, &Z, None);
     let mut content = vec![from_atom(&rat.denominator.to_expression())?];
-    content[0] = Expr::div(Expr::int(1), content[0].clone());
+    content[0] = Expr::over(Expr::int(1), content[0].clone());
     for (factor, mult) in rat.numerator.factor() {
         let f = from_atom(&factor.to_expression())?;
         if !f.symbols().iter().any(|s| s == "z__") {
@@ -356,7 +356,7 @@ fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, String> {
     let content = Expr::mul(content);
     entries
         .iter()
-        .map(|e| normal_form(&Expr::div(e.clone(), content.clone())))
+        .map(|e| normal_form(&Expr::over(e.clone(), content.clone())))
         .collect()
 }
 

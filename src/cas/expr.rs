@@ -105,12 +105,12 @@ impl Expr {
         }
     }
 
-    pub fn neg(e: Expr) -> Expr {
+    pub fn negate(e: Expr) -> Expr {
         Expr::mul(vec![Expr::int(-1), e])
     }
 
-    pub fn sub(a: Expr, b: Expr) -> Expr {
-        Expr::add(vec![a, Expr::neg(b)])
+    pub fn minus(a: Expr, b: Expr) -> Expr {
+        Expr::add(vec![a, Expr::negate(b)])
     }
 
     pub fn pow(base: Expr, exponent: Expr) -> Expr {
@@ -131,7 +131,7 @@ impl Expr {
         Expr::Pow(Box::new(base), Box::new(exponent))
     }
 
-    pub fn div(a: Expr, b: Expr) -> Expr {
+    pub fn over(a: Expr, b: Expr) -> Expr {
         if let Expr::Num(r) = &b
             && !r.is_zero()
         {
@@ -325,7 +325,7 @@ fn split_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
                 let Expr::Num(r) = x.as_ref() else {
                     unreachable!()
                 };
-                den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.neg())));
+                den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.negated())));
             }
             other => num.push(other.clone()),
         }
@@ -336,11 +336,11 @@ fn split_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
 /// A term of a sum printed with its sign: `(negative, magnitude)`.
 fn split_sign(e: &Expr) -> (bool, Expr) {
     match e {
-        Expr::Num(r) if r.numer() < 0 => (true, Expr::Num(r.neg())),
+        Expr::Num(r) if r.numer() < 0 => (true, Expr::Num(r.negated())),
         Expr::Mul(v) => match v.first() {
             Some(Expr::Num(r)) if r.numer() < 0 => {
                 let mut rest = v.clone();
-                rest[0] = Expr::Num(r.neg());
+                rest[0] = Expr::Num(r.negated());
                 (true, Expr::mul(rest))
             }
             _ => (false, e.clone()),
@@ -571,7 +571,7 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
                         let Expr::Num(r) = x.as_ref() else {
                             unreachable!()
                         };
-                        den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.neg())));
+                        den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.negated())));
                     }
                     Expr::Num(r) if !r.is_integer() => {
                         num.push(Expr::int(r.numer()));
@@ -623,7 +623,7 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
                 if r.numer() < 0 {
                     out.push_str("\\frac{1}{");
                     write_latex(
-                        &Expr::pow(a.as_ref().clone(), Expr::Num(r.neg())),
+                        &Expr::pow(a.as_ref().clone(), Expr::Num(r.negated())),
                         out,
                         Prec::Sum,
                     );
@@ -779,7 +779,7 @@ impl Parser<'_> {
                 }
                 Some(b'-') => {
                     self.pos += 1;
-                    terms.push(Expr::neg(self.product()?));
+                    terms.push(Expr::negate(self.product()?));
                 }
                 _ => break,
             }
@@ -805,7 +805,7 @@ impl Parser<'_> {
                             message: "division by zero".into(),
                         });
                     }
-                    factors.push(Expr::div(Expr::int(1), d));
+                    factors.push(Expr::over(Expr::int(1), d));
                 }
                 _ => break,
             }
@@ -817,7 +817,7 @@ impl Parser<'_> {
         match self.peek() {
             Some(b'-') => {
                 self.pos += 1;
-                Ok(Expr::neg(self.unary()?))
+                Ok(Expr::negate(self.unary()?))
             }
             Some(b'+') => {
                 self.pos += 1;

@@ -62,7 +62,7 @@ impl Rational {
         self.num as f64 / self.den as f64
     }
 
-    pub fn neg(self) -> Rational {
+    pub fn negated(self) -> Rational {
         Rational {
             num: -self.num,
             den: self.den,

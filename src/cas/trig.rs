@@ -54,7 +54,7 @@ fn sin_cos_multiple(k: u32, x: &Expr) -> (Expr, Expr) {
             Expr::mul(vec![s.clone(), c1.clone()]),
             Expr::mul(vec![c.clone(), s1.clone()]),
         ]);
-        let c_next = Expr::sub(
+        let c_next = Expr::minus(
             Expr::mul(vec![c.clone(), c1.clone()]),
             Expr::mul(vec![s.clone(), s1.clone()]),
         );
@@ -107,7 +107,7 @@ fn reduce_powers(e: &Expr, from: &str, to: &str) -> Expr {
                 let other2 = Expr::pow(Expr::call(to, args[0].clone()), Expr::int(2));
                 return Expr::mul(vec![
                     Expr::pow(base.clone(), Expr::int(k % 2)),
-                    Expr::pow(Expr::sub(Expr::int(1), other2), Expr::int(k / 2)),
+                    Expr::pow(Expr::minus(Expr::int(1), other2), Expr::int(k / 2)),
                 ]);
             }
             Expr::pow(base, rec(b))
@@ -169,11 +169,11 @@ fn replace(e: &Expr, args: &mut Vec<Expr>) -> Expr {
             let t2 = Expr::pow(t.clone(), Expr::int(2));
             let den = Expr::add(vec![Expr::int(1), t2.clone()]);
             let num = if name == "cos" {
-                Expr::sub(Expr::int(1), t2)
+                Expr::minus(Expr::int(1), t2)
             } else {
                 Expr::mul(vec![Expr::int(2), t])
             };
-            Expr::div(num, den)
+            Expr::over(num, den)
         }
         Expr::Call(name, a) => {
             Expr::Call(name.clone(), a.iter().map(|x| replace(x, args)).collect())
@@ -190,7 +190,7 @@ pub fn from_half_angle(e: &Expr, args: &[Expr]) -> Expr {
     e.substitute(&|name| {
         let i: usize = name.strip_prefix("t__")?.parse().ok()?;
         let x = args.get(i)?.clone();
-        Some(Expr::div(
+        Some(Expr::over(
             Expr::call("sin", x.clone()),
             Expr::add(vec![Expr::int(1), Expr::call("cos", x)]),
         ))

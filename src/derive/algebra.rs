@@ -8,6 +8,8 @@ use std::collections::BTreeMap;
 pub type Vec3 = [Expr; 3];
 pub type Mat3 = [[Expr; 3]; 3];
 
+// A matrix is nine times a scalar; values are few and short-lived, so boxing buys nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Value {
     Scalar(Expr),
@@ -85,7 +87,7 @@ pub fn dot(a: &Vec3, b: &Vec3) -> Expr {
 
 pub fn cross(a: &Vec3, b: &Vec3) -> Vec3 {
     let c = |i: usize, j: usize| {
-        Expr::sub(
+        Expr::minus(
             Expr::mul(vec![a[i].clone(), b[j].clone()]),
             Expr::mul(vec![a[j].clone(), b[i].clone()]),
         )
@@ -102,7 +104,7 @@ pub fn add_vec(a: &Vec3, b: &Vec3) -> Vec3 {
 }
 
 pub fn sub_vec(a: &Vec3, b: &Vec3) -> Vec3 {
-    std::array::from_fn(|i| Expr::sub(a[i].clone(), b[i].clone()))
+    std::array::from_fn(|i| Expr::minus(a[i].clone(), b[i].clone()))
 }
 
 pub fn mat_vec(m: &Mat3, v: &Vec3) -> Vec3 {
@@ -148,7 +150,7 @@ pub fn diag(d: [Expr; 3]) -> Mat3 {
 /// The determinant by cofactors along the first row.
 pub fn det(m: &Mat3) -> Expr {
     let minor = |a: &Expr, b: &Expr, c: &Expr, d: &Expr| {
-        Expr::sub(
+        Expr::minus(
             Expr::mul(vec![a.clone(), b.clone()]),
             Expr::mul(vec![c.clone(), d.clone()]),
         )
@@ -158,7 +160,7 @@ pub fn det(m: &Mat3) -> Expr {
             m[0][0].clone(),
             minor(&m[1][1], &m[2][2], &m[1][2], &m[2][1]),
         ]),
-        Expr::neg(Expr::mul(vec![
+        Expr::negate(Expr::mul(vec![
             m[0][1].clone(),
             minor(&m[1][0], &m[2][2], &m[1][2], &m[2][0]),
         ])),
@@ -176,9 +178,9 @@ pub fn inertia_kernel(r: &Vec3) -> Mat3 {
         std::array::from_fn(|j| {
             let outer = Expr::mul(vec![r[i].clone(), r[j].clone()]);
             if i == j {
-                Expr::sub(r2.clone(), outer)
+                Expr::minus(r2.clone(), outer)
             } else {
-                Expr::neg(outer)
+                Expr::negate(outer)
             }
         })
     })
@@ -189,7 +191,7 @@ pub fn rotation(axis: usize, angle: &Expr) -> Mat3 {
     let c = Expr::call("cos", angle.clone());
     let s = Expr::call("sin", angle.clone());
     let (o, z) = (Expr::int(1), Expr::int(0));
-    let ns = Expr::neg(s.clone());
+    let ns = Expr::negate(s.clone());
     match axis {
         0 => [
             [o, z.clone(), z.clone()],

@@ -19,6 +19,8 @@ pub struct Continuum {
     pub domain: Vec<Integral>,
 }
 
+// Built once per body and consumed at once: the size difference does not matter.
+#[allow(clippy::large_enum_variant)]
 pub enum MassModel {
     Continuum(Continuum),
     Points(Vec<(Expr, Vec3)>),
@@ -79,13 +81,13 @@ pub fn mass_model(body: &Body) -> MassModel {
             let volume = Expr::mul(size.to_vec());
             let range = |i: usize, v: &str| {
                 if *centred {
-                    poly(v, Expr::neg(half(&size[i])), half(&size[i]))
+                    poly(v, Expr::negate(half(&size[i])), half(&size[i]))
                 } else {
                     poly(v, Expr::int(0), size[i].clone())
                 }
             };
             continuum(
-                Expr::div(m.clone(), volume),
+                Expr::over(m.clone(), volume),
                 Expr::int(1),
                 "rho",
                 [e("x"), e("y"), e("z")],
@@ -100,12 +102,12 @@ pub fn mass_model(body: &Body) -> MassModel {
             let mut local = [zero.clone(), zero.clone(), zero.clone()];
             local[along.index()] = e("s");
             let (lo, hi) = if *centred {
-                (Expr::neg(half(length)), half(length))
+                (Expr::negate(half(length)), half(length))
             } else {
                 (Expr::int(0), length.clone())
             };
             continuum(
-                Expr::div(m.clone(), length.clone()),
+                Expr::over(m.clone(), length.clone()),
                 Expr::int(1),
                 "lambda",
                 local,
@@ -114,7 +116,7 @@ pub fn mass_model(body: &Body) -> MassModel {
         }
         Shape::Hoop { radius } => continuum(
             // λ = M/(2πR), the line density of eq (32); the arc element is R dθ.
-            Expr::div(m.clone(), Expr::mul(vec![Expr::int(2), pi, radius.clone()])),
+            Expr::over(m.clone(), Expr::mul(vec![Expr::int(2), pi, radius.clone()])),
             radius.clone(),
             "lambda",
             [
@@ -125,7 +127,7 @@ pub fn mass_model(body: &Body) -> MassModel {
             vec![period("theta", false)],
         ),
         Shape::Disk { radius } => continuum(
-            Expr::div(m.clone(), Expr::mul(vec![pi, pow(radius, 2)])),
+            Expr::over(m.clone(), Expr::mul(vec![pi, pow(radius, 2)])),
             e("r"),
             "sigma",
             [
@@ -139,7 +141,7 @@ pub fn mass_model(body: &Body) -> MassModel {
             ],
         ),
         Shape::Cylinder { radius, height } => continuum(
-            Expr::div(
+            Expr::over(
                 m.clone(),
                 Expr::mul(vec![pi, pow(radius, 2), height.clone()]),
             ),
@@ -153,11 +155,11 @@ pub fn mass_model(body: &Body) -> MassModel {
             vec![
                 period("theta", false),
                 poly("r", Expr::int(0), radius.clone()),
-                poly("z", Expr::neg(half(height)), half(height)),
+                poly("z", Expr::negate(half(height)), half(height)),
             ],
         ),
         Shape::Sphere { radius } => continuum(
-            Expr::div(
+            Expr::over(
                 Expr::mul(vec![Expr::int(3), m.clone()]),
                 Expr::mul(vec![Expr::int(4), pi, pow(radius, 3)]),
             ),
@@ -171,7 +173,7 @@ pub fn mass_model(body: &Body) -> MassModel {
             ],
         ),
         Shape::Shell { radius } => continuum(
-            Expr::div(m.clone(), Expr::mul(vec![Expr::int(4), pi, pow(radius, 2)])),
+            Expr::over(m.clone(), Expr::mul(vec![Expr::int(4), pi, pow(radius, 2)])),
             Expr::mul(vec![pow(radius, 2), sin("theta")]),
             "sigma",
             spherical(radius),

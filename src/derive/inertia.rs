@@ -147,7 +147,7 @@ fn body_part(
                 );
             }
             let results = cas::simplify_all(cas::integrate_all(jobs, c.domain.clone())?)?;
-            if !cas::is_zero_all(vec![Expr::sub(results[0].clone(), body.mass.clone())])?[0] {
+            if !cas::is_zero_all(vec![Expr::minus(results[0].clone(), body.mass.clone())])?[0] {
                 return Err(DeriveError::Inconsistent(format!(
                     "∫dm over {} gives {}, not the mass {}",
                     body.label, results[0], body.mass
@@ -228,7 +228,7 @@ pub fn derive_tensor(
             .reduce(|a, b| add_vec(&a, &b))
             .unwrap();
         let centre = simplify_value(&Value::Vector(std::array::from_fn(|i| {
-            Expr::div(sum[i].clone(), mass.clone())
+            Expr::over(sum[i].clone(), mass.clone())
         })))?;
         d.steps.push(Step::equation(
             "Centre of mass",

@@ -144,7 +144,7 @@ pub fn gyration(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     let Value::Scalar(mass) = d.quantities["mass"].clone() else {
         unreachable!()
     };
-    let r0 = Expr::pow(cas::simplify(&Expr::div(moment, mass))?, Expr::rat(1, 2));
+    let r0 = Expr::pow(cas::simplify(&Expr::over(moment, mass))?, Expr::rat(1, 2));
     d.steps.push(Step::equation(
         "Radius of gyration about n",
         ("R_0", "R_{0}"),

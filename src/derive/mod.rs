@@ -89,7 +89,7 @@ pub fn values_equal(a: &Value, b: &Value) -> Result<bool, CasError> {
         .entries()
         .into_iter()
         .zip(b.entries())
-        .map(|(x, y)| Expr::sub(x, y))
+        .map(|(x, y)| Expr::minus(x, y))
         .collect();
     Ok(cas::is_zero_all(diffs)?.into_iter().all(|z| z))
 }

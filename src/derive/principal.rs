@@ -36,7 +36,7 @@ fn shifted(m: &Mat3, lambda: &Expr) -> Mat3 {
     std::array::from_fn(|i| {
         std::array::from_fn(|j| {
             if i == j {
-                Expr::sub(m[i][j].clone(), lambda.clone())
+                Expr::minus(m[i][j].clone(), lambda.clone())
             } else {
                 m[i][j].clone()
             }

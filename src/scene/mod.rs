@@ -298,6 +298,19 @@ impl Validator<'_> {
         field: &str,
         allowed: &BTreeSet<String>,
     ) -> Result<Expr, SceneError> {
+        self.parse_checked(text, start, field, allowed, false)
+    }
+
+    /// Parses `text` (at byte `start` of the file), checks its names against `names` and its
+    /// calls against the scalar functions, or the claim language's when `claim` is set.
+    fn parse_checked(
+        &self,
+        text: &str,
+        start: usize,
+        field: &str,
+        names: &BTreeSet<String>,
+        claim: bool,
+    ) -> Result<Expr, SceneError> {
         let parsed = parse_expr(text).map_err(|e| {
             self.err(
                 start + e.offset,
@@ -305,16 +318,17 @@ impl Validator<'_> {
                 format!("malformed expression: {}", e.message),
             )
         })?;
-        for (name, offset) in &parsed.symbols {
-            if !allowed.contains(name) {
-                return Err(self.err(
-                    start + offset,
-                    field,
-                    format!("undefined symbol `{name}` (declare it under [symbols])"),
-                ));
-            }
+        if let Some((name, offset)) = parsed.symbols.iter().find(|(n, _)| !names.contains(n)) {
+            let message = if claim {
+                format!(
+                    "undefined name `{name}` (not a symbol, definition, vector or derived quantity)"
+                )
+            } else {
+                format!("undefined symbol `{name}` (declare it under [symbols])")
+            };
+            return Err(self.err(start + offset, field, message));
         }
-        check_calls(&parsed.expr, false).map_err(|m| self.err(start, field, m))?;
+        check_calls(&parsed.expr, claim).map_err(|m| self.err(start, field, m))?;
         Ok(parsed.expr)
     }
 
@@ -499,14 +513,14 @@ impl Validator<'_> {
                 ));
             }
         }
-        if wants.contains(&Output::AngularMomentum) || wants.contains(&Output::KineticEnergy) {
-            if omega.is_none() {
-                return Err(self.err(
-                    raw.outputs_span(),
-                    "omega",
-                    "angular_momentum and kinetic_energy need `omega = [..]`",
-                ));
-            }
+        if (wants.contains(&Output::AngularMomentum) || wants.contains(&Output::KineticEnergy))
+            && omega.is_none()
+        {
+            return Err(self.err(
+                raw.outputs_span(),
+                "omega",
+                "angular_momentum and kinetic_energy need `omega = [..]`",
+            ));
         }
         if (wants.contains(&Output::MomentAboutAxis) || wants.contains(&Output::Gyration))
             && axis.is_none()
@@ -663,21 +677,7 @@ impl Validator<'_> {
         field: &str,
         names: &BTreeSet<String>,
     ) -> Result<Expr, SceneError> {
-        let start = content_start(t);
-        let parsed = parse_expr(t.get_ref()).map_err(|e| {
-            self.err(
-                start + e.offset,
-                field,
-                format!("malformed expression: {}", e.message),
-            )
-        })?;
-        for (name, offset) in &parsed.symbols {
-            if !names.contains(name) {
-                return Err(self.err(start + offset, field, format!("undefined name `{name}` (not a symbol, definition, vector or derived quantity)")));
-            }
-        }
-        check_calls(&parsed.expr, true).map_err(|m| self.err(start, field, m))?;
-        Ok(parsed.expr)
+        self.parse_checked(t.get_ref(), content_start(t), field, names, true)
     }
 
     fn body(

@@ -21,10 +21,10 @@ pub fn mechbook(args: &[&str]) -> Output {
 /// may hide it with SYMBOLICA_HIDE_BANNER=1, and the tests must pass either way).
 pub fn stdout(out: &Output) -> String {
     let text = String::from_utf8(out.stdout.clone()).expect("UTF-8 output");
-    let mut lines = text.lines().peekable();
+    let lines = text.lines();
     let mut kept = Vec::new();
     let mut in_banner = false;
-    while let Some(line) = lines.next() {
+    for line in lines {
         if kept.is_empty() && line.starts_with('┌') {
             in_banner = true;
         }
