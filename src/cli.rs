@@ -35,6 +35,27 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Build the course site: an index, one page per scene, and per lecture a student and an
+    /// instructor handout for printing.
+    ///
+    /// Course settings (title, author, base_url, output) come from mechbook.toml when it
+    /// exists. The site is written to a temporary folder beside the output and renamed into
+    /// place, so a failed build leaves the previous site untouched; the same scenes give the same
+    /// bytes. Exits with 1 (after writing) when a check of the scenes fails.
+    Build {
+        /// Scene files or folders (default: lectures/).
+        paths: Vec<PathBuf>,
+        /// The output folder (default: `output` from mechbook.toml, else site/).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// A folder whose templates (page.html, index.html, handout.html, style.css) replace
+        /// the built-in ones, file by file.
+        #[arg(long)]
+        templates: Option<PathBuf>,
+        /// Add measured seconds to the numeric tables (the pages then differ between builds).
+        #[arg(long)]
+        timings: bool,
+    },
     /// Derive one scene and print its steps, results, numeric cross-check and claims.
     Derive {
         /// The scene file.
@@ -87,29 +108,77 @@ fn load(paths: &[PathBuf]) -> Result<Option<Vec<crate::scene::Scene>>> {
     }
 }
 
+/// Runs every scene, with a progress line on stderr when it is a terminal.
+fn run_all(scenes: Vec<crate::scene::Scene>) -> Result<Vec<SceneReport>> {
+    let progress = std::io::stderr().is_terminal();
+    let total = scenes.len();
+    let mut reports = Vec::new();
+    for (i, scene) in scenes.into_iter().enumerate() {
+        if progress {
+            eprint!("\r\x1b[2K[{}/{}] {}", i + 1, total, scene.id);
+        }
+        reports.push(pipeline::run_scene(scene)?);
+    }
+    if progress {
+        eprint!("\r\x1b[2K");
+    }
+    Ok(reports)
+}
+
+fn default_paths(paths: Vec<PathBuf>) -> Vec<PathBuf> {
+    if paths.is_empty() {
+        vec![PathBuf::from("lectures")]
+    } else {
+        paths
+    }
+}
+
 pub fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Check { paths, json } => {
-            let paths = if paths.is_empty() {
-                vec![PathBuf::from("lectures")]
-            } else {
-                paths
-            };
-            let Some(scenes) = load(&paths)? else {
+        Command::Build {
+            paths,
+            out,
+            templates,
+            timings,
+        } => {
+            let start = std::time::Instant::now();
+            let course = crate::render::Course::load(std::path::Path::new("mechbook.toml"))
+                .map_err(anyhow::Error::msg)?;
+            let Some(scenes) = load(&default_paths(paths))? else {
                 return Ok(ExitCode::from(1));
             };
-            let progress = std::io::stderr().is_terminal();
-            let total = scenes.len();
-            let mut reports: Vec<SceneReport> = Vec::new();
-            for (i, scene) in scenes.into_iter().enumerate() {
-                if progress {
-                    eprint!("\r\x1b[2K[{}/{}] {}", i + 1, total, scene.id);
+            let reports = run_all(scenes)?;
+            let files = crate::render::site_files(&reports, &course, templates.as_deref(), timings)
+                .map_err(anyhow::Error::msg)?;
+            let out = out
+                .or(course.output.clone())
+                .unwrap_or_else(|| PathBuf::from("site"));
+            crate::site::write_site(&out, &files)?;
+            let handouts = files.keys().filter(|p| p.starts_with("handouts")).count();
+            let failed = reports.iter().filter(|r| !r.passed()).count();
+            eprintln!(
+                "mechbook: built {} pages and {handouts} handouts from {} scenes into {} in {:.2} s{}",
+                reports.len() + 1,
+                reports.len(),
+                out.display(),
+                start.elapsed().as_secs_f64(),
+                if failed > 0 {
+                    format!("; {failed} scene(s) FAILED their checks (run `mechbook check`)")
+                } else {
+                    String::new()
                 }
-                reports.push(pipeline::run_scene(scene)?);
-            }
-            if progress {
-                eprint!("\r\x1b[2K");
-            }
+            );
+            Ok(if failed == 0 {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
+        }
+        Command::Check { paths, json } => {
+            let Some(scenes) = load(&default_paths(paths))? else {
+                return Ok(ExitCode::from(1));
+            };
+            let reports = run_all(scenes)?;
             let passed = reports.iter().all(SceneReport::passed);
             let text = if json {
                 let scenes: Vec<_> = reports.iter().map(report::scene_json).collect();

@@ -10,6 +10,8 @@ pub mod derive;
 pub mod numeric;
 pub mod pipeline;
 pub mod plan;
+pub mod render;
 pub mod report;
 pub mod scene;
+pub mod site;
 pub mod verify;

@@ -481,8 +481,13 @@ const GREEK: &[&str] = &[
     "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Phi", "Psi", "Omega",
 ];
 
-/// `alpha` -> `\alpha`, `w1` -> `w_{1}`, `Ixx` -> `I_{xx}`.
+/// `alpha` -> `\alpha`, `w1` -> `w_{1}`, `Ixx` -> `I_{xx}`, `inertia_tensor` -> upright text.
 fn latex_symbol(s: &str) -> String {
+    if let Some((_, tail)) = s.split_once('_')
+        && !tail.chars().all(|c| c.is_ascii_digit())
+    {
+        return format!("\\mathrm{{{}}}", s.replace('_', "\\_"));
+    }
     let split = s
         .char_indices()
         .find(|(i, c)| *i > 0 && (c.is_ascii_digit() || *c == '_'))
@@ -688,10 +693,22 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
             }
             out.push_str("\\end{pmatrix}");
         }
-        Expr::Index(a, i) => {
-            write_latex(a, out, Prec::Power);
+        Expr::Index(..) => {
+            // v[0][2] -> v_{0 2}: one subscript for the whole chain.
+            let mut indices = Vec::new();
+            let mut base = e;
+            while let Expr::Index(b, i) = base {
+                indices.push(i.as_ref());
+                base = b;
+            }
+            write_latex(base, out, Prec::Power);
             out.push_str("_{");
-            write_latex(i, out, Prec::Sum);
+            for (k, i) in indices.iter().rev().enumerate() {
+                if k > 0 {
+                    out.push(' ');
+                }
+                write_latex(i, out, Prec::Sum);
+            }
             out.push('}');
         }
     }

@@ -4,6 +4,7 @@
 //! second Symbolica user in it; concurrent children wait for each other on mechbook's lock.
 
 mod bad_input;
+mod build;
 mod check;
 mod lock;
 

@@ -1,0 +1,56 @@
+//! LaTeX -> MathML at build time, so pages need no JavaScript and no network.
+
+use pulldown_latex::config::DisplayMode;
+use pulldown_latex::{Parser, RenderConfig, Storage, push_mathml};
+
+/// MathML for one formula, displayed as a block or inline. A formula the converter cannot read is
+/// an error naming it, never a silently broken page.
+pub fn mathml(latex: &str, block: bool) -> Result<String, String> {
+    let storage = Storage::new();
+    let parser = Parser::new(latex, &storage);
+    let config = RenderConfig {
+        display_mode: if block {
+            DisplayMode::Block
+        } else {
+            DisplayMode::Inline
+        },
+        ..RenderConfig::default()
+    };
+    let mut out = String::new();
+    push_mathml(&mut out, parser, config).map_err(|e| format!("cannot render `{latex}`: {e}"))?;
+    // The converter renders what it cannot parse in red inside <merror>: treat that as failure.
+    if out.contains("<merror") {
+        return Err(format!("cannot render `{latex}`: {out}"));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_latex_our_derivations_print_renders() {
+        for latex in [
+            "\\frac{M R^{2}}{2}",
+            "\\sin^{2}\\left(\\alpha\\right) + \\cos\\left(\\theta\\right)",
+            "\\overleftrightarrow{I} = \\begin{pmatrix}1 & 0 \\\\ 0 & 1\\end{pmatrix}",
+            "\\det\\left(\\overleftrightarrow{I} - \\lambda \\mathbb{1}\\right) = 0",
+            "\\lambda = \\frac{1}{6}: \\; \\text{every axis} \\perp \\begin{pmatrix}1 & 1 & 1\\end{pmatrix}",
+            "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R \\vec R^{T}\\right)",
+            "\\sqrt{\\frac{I_{n}}{M}}",
+            "\\int dm = m",
+        ] {
+            let m = mathml(latex, true).unwrap_or_else(|e| panic!("{e}"));
+            assert!(
+                m.starts_with("<math") && m.contains("display=\"block\""),
+                "{m}"
+            );
+        }
+    }
+
+    #[test]
+    fn unreadable_latex_is_an_error() {
+        assert!(mathml("\\frac{1}{", true).is_err());
+    }
+}

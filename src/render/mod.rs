@@ -1,0 +1,232 @@
+//! Page views for the templates: plain data built from the reports, with the math already
+//! converted to MathML. No file I/O here.
+
+pub mod math;
+mod site_files;
+
+pub use site_files::{Course, site_files};
+
+use crate::derive::ExactBasis;
+use crate::derive::algebra::Value;
+use crate::pipeline::SceneReport;
+use crate::scene::Verdict;
+use serde::Serialize;
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Link {
+    pub href: String,
+    pub title: String,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct StepView {
+    pub title: String,
+    pub math: String,
+    pub why: String,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ClaimView {
+    pub eq: String,
+    pub statement: String,
+    pub verdict: String,
+    /// The notes' formula and the derived one, as MathML (empty when not checkable).
+    pub notes: String,
+    pub derived: String,
+    pub differences: Vec<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct NumericRow {
+    pub body: String,
+    pub method: String,
+    pub points: usize,
+    pub error: String,
+    pub predicted: String,
+    pub within_law: bool,
+    /// Measured wall time, only when the build asks for timings (it makes pages vary).
+    pub seconds: Option<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct PageView {
+    pub id: String,
+    pub title: String,
+    pub lecture: String,
+    pub section: String,
+    pub equations: String,
+    /// The scene's file name only: the build machine's paths never reach a page.
+    pub source: String,
+    pub symbols: Vec<(String, String)>,
+    pub bodies: Vec<String>,
+    pub steps: Vec<StepView>,
+    pub results: Vec<StepView>,
+    pub numeric: Vec<NumericRow>,
+    pub claims: Vec<ClaimView>,
+    pub errata: usize,
+    pub passed: bool,
+    pub prev: Option<Link>,
+    pub next: Option<Link>,
+}
+
+/// The file a scene's page is written to.
+pub fn page_file(r: &SceneReport) -> String {
+    format!("{}.html", r.scene.id)
+}
+
+fn sci(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else {
+        format!("{x:.1e}")
+    }
+}
+
+fn value_math(v: &Value) -> Result<String, String> {
+    math::mathml(&v.to_latex(), true)
+}
+
+/// Builds the view of one page. `timings` adds measured seconds to the numeric table.
+pub fn page_view(
+    r: &SceneReport,
+    prev: Option<&SceneReport>,
+    next: Option<&SceneReport>,
+    timings: bool,
+) -> Result<PageView, String> {
+    let s = &r.scene;
+    let link = |o: Option<&SceneReport>| {
+        o.map(|o| Link {
+            href: page_file(o),
+            title: o.scene.title.clone(),
+        })
+    };
+    let steps = r
+        .derivation
+        .steps
+        .iter()
+        .map(|st| {
+            Ok(StepView {
+                title: st.title.clone(),
+                math: math::mathml(&st.latex, true)?,
+                why: st.why.clone(),
+            })
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let mut results = Vec::new();
+    for (name, v) in &r.derivation.quantities {
+        if name == "integrand" || name == "position" {
+            continue;
+        }
+        results.push(StepView {
+            title: name.replace('_', " "),
+            math: value_math(v)?,
+            why: String::new(),
+        });
+    }
+    if let Some(e) = &r.derivation.eigen {
+        for sp in &e.spaces {
+            let dir = match &sp.basis {
+                ExactBasis::Axis(a) => {
+                    format!("\\text{{ along }} {}", Value::Vector(a.clone()).to_latex())
+                }
+                ExactBasis::PlaneNormalTo(n) => format!(
+                    "\\text{{, every axis }} \\perp {}",
+                    Value::Vector(n.clone()).to_latex()
+                ),
+                ExactBasis::All => "\\text{, every axis}".into(),
+            };
+            results.push(StepView {
+                title: format!("principal moment (multiplicity {})", sp.multiplicity),
+                math: math::mathml(&format!("{}{dir}", sp.value.to_latex()), true)?,
+                why: String::new(),
+            });
+        }
+    }
+    let numeric = r
+        .numeric
+        .iter()
+        .flat_map(|n| n.runs.iter().zip(&r.verification.within_law))
+        .map(|(q, ok)| NumericRow {
+            body: q.body.clone(),
+            method: q.method.name().into(),
+            points: q.points,
+            error: sci(q.error),
+            predicted: sci(q.predicted_error),
+            within_law: *ok,
+            seconds: timings.then(|| format!("{:.1e}", q.seconds)),
+        })
+        .collect();
+    let mut claims = Vec::new();
+    for (c, claim) in r.verification.claims.iter().zip(&s.claims) {
+        let render = |e: Option<&crate::cas::Expr>| {
+            e.map(|e| math::mathml(&e.to_latex(), false))
+                .transpose()
+                .map(Option::unwrap_or_default)
+        };
+        let derived = if c.derived.is_empty() {
+            String::new()
+        } else {
+            crate::cas::parse(&c.derived)
+                .map_err(|e| e.message)
+                .and_then(|p| math::mathml(&p.expr.to_latex(), false))?
+        };
+        claims.push(ClaimView {
+            eq: c.eq.clone(),
+            statement: c.statement.clone(),
+            verdict: c.verdict.as_str().into(),
+            notes: render(claim.value.as_ref())?,
+            derived,
+            differences: c.differences.clone(),
+        });
+    }
+    Ok(PageView {
+        id: s.id.clone(),
+        title: s.title.clone(),
+        lecture: s.notes.lecture.clone(),
+        section: s.notes.section.clone(),
+        equations: s.notes.equations.join(", "),
+        source: s
+            .source
+            .file_name()
+            .map(|f| f.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+        symbols: s
+            .symbols
+            .iter()
+            .map(|(k, v)| {
+                Ok((
+                    math::mathml(&crate::cas::Expr::sym(k).to_latex(), false)?,
+                    v.clone(),
+                ))
+            })
+            .collect::<Result<_, String>>()?,
+        bodies: s.bodies.iter().map(describe_body).collect(),
+        steps,
+        results,
+        numeric,
+        errata: r
+            .verification
+            .claims
+            .iter()
+            .filter(|c| c.verdict == Verdict::Disagrees)
+            .count(),
+        claims,
+        passed: r.passed(),
+        prev: link(prev),
+        next: link(next),
+    })
+}
+
+fn describe_body(b: &crate::scene::Body) -> String {
+    let mut d = format!("{} ({}), mass {}", b.label, b.shape.kind(), b.mass);
+    for (axis, angle) in &b.rotations {
+        d.push_str(&format!(", rotated by {angle} about {}", axis.name()));
+    }
+    if b.shift.iter().any(|e| !e.is_zero()) {
+        d.push_str(&format!(
+            ", shifted by {}",
+            Value::Vector(b.shift.clone()).to_text()
+        ));
+    }
+    d
+}

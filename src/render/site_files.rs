@@ -1,0 +1,195 @@
+//! Reports -> the site's files (HTML, CSS) through the Tera templates, as bytes in memory.
+//! Writing them is `site`'s job.
+
+use super::{PageView, page_file, page_view};
+use crate::pipeline::SceneReport;
+use crate::site::SiteFiles;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The templates, embedded as defaults; a user's folder overrides them file by file.
+const DEFAULTS: &[(&str, &str)] = &[
+    ("page.html", include_str!("../../templates/page.html")),
+    ("index.html", include_str!("../../templates/index.html")),
+    ("handout.html", include_str!("../../templates/handout.html")),
+    ("style.css", include_str!("../../templates/style.css")),
+];
+
+/// Course settings, from an optional `mechbook.toml` at the course root.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Course {
+    #[serde(default = "default_title")]
+    pub title: String,
+    #[serde(default)]
+    pub author: String,
+    /// Where the site will be published; links stay relative either way.
+    #[serde(default)]
+    pub base_url: String,
+    /// The output folder (default `site`).
+    #[serde(default)]
+    pub output: Option<PathBuf>,
+}
+
+fn default_title() -> String {
+    "Rigid-body mechanics: verified workbook".into()
+}
+
+impl Default for Course {
+    fn default() -> Course {
+        Course {
+            title: default_title(),
+            author: String::new(),
+            base_url: String::new(),
+            output: None,
+        }
+    }
+}
+
+impl Course {
+    /// Reads `path` if it exists; errors name the file, line and column.
+    pub fn load(path: &Path) -> Result<Course, String> {
+        match std::fs::read_to_string(path) {
+            Ok(text) => toml::from_str(&text).map_err(|e| {
+                let (line, col) = e
+                    .span()
+                    .map(|s| crate::scene::Locator { path, text: &text }.line_col(s.start))
+                    .unwrap_or((0, 0));
+                format!("{}:{line}:{col}: {}", path.display(), e.message().trim())
+            }),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Course::default()),
+            Err(e) => Err(format!("cannot read {}: {e}", path.display())),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct PageLink {
+    href: String,
+    title: String,
+    errata: usize,
+}
+
+#[derive(Serialize)]
+struct LectureView {
+    name: String,
+    student: String,
+    instructor: String,
+    pages: Vec<PageLink>,
+}
+
+/// "3/4" -> "lecture-3-4".
+fn lecture_slug(name: &str) -> String {
+    let clean: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect();
+    format!("lecture-{}", clean.trim_matches('-'))
+}
+
+fn templates(dir: Option<&Path>) -> Result<(tera::Tera, String), String> {
+    let mut tera = tera::Tera::default();
+    let mut css = String::new();
+    for (name, default) in DEFAULTS {
+        let text = match dir.map(|d| d.join(name)).filter(|p| p.exists()) {
+            Some(p) => std::fs::read_to_string(&p)
+                .map_err(|e| format!("cannot read {}: {e}", p.display()))?,
+            None => default.to_string(),
+        };
+        if *name == "style.css" {
+            css = text;
+        } else {
+            tera.add_raw_template(name, &text)
+                .map_err(|e| format!("template {name}: {e:?}"))?;
+        }
+    }
+    Ok((tera, css))
+}
+
+fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<Vec<u8>, String> {
+    tera.render(name, ctx).map(String::into_bytes).map_err(|e| {
+        let mut msg = format!("template {name}: {e}");
+        let mut source = std::error::Error::source(&e);
+        while let Some(s) = source {
+            msg.push_str(&format!(": {s}"));
+            source = s.source();
+        }
+        msg
+    })
+}
+
+/// Every file of the site: index, one page per scene, two handouts per lecture, the stylesheet.
+pub fn site_files(
+    reports: &[SceneReport],
+    course: &Course,
+    template_dir: Option<&Path>,
+    timings: bool,
+) -> Result<SiteFiles, String> {
+    let (tera, css) = templates(template_dir)?;
+    let mut files = SiteFiles::new();
+    files.insert(PathBuf::from("style.css"), css.into_bytes());
+    let mut pages: Vec<PageView> = Vec::new();
+    for (i, r) in reports.iter().enumerate() {
+        let prev = i.checked_sub(1).map(|j| &reports[j]);
+        let view = page_view(r, prev, reports.get(i + 1), timings)
+            .map_err(|e| format!("{}: {e}", r.scene.source.display()))?;
+        let mut ctx = tera::Context::new();
+        ctx.insert("site", course);
+        ctx.insert("page", &view);
+        files.insert(
+            PathBuf::from(page_file(r)),
+            render(&tera, "page.html", &ctx)?,
+        );
+        pages.push(view);
+    }
+    // Lectures in the order their first scene appears.
+    let mut lectures: BTreeMap<usize, LectureView> = BTreeMap::new();
+    let mut by_lecture: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    for (i, r) in reports.iter().enumerate() {
+        by_lecture
+            .entry(r.scene.notes.lecture.clone())
+            .or_default()
+            .push(i);
+    }
+    for (name, idx) in &by_lecture {
+        let slug = lecture_slug(name);
+        for instructor in [false, true] {
+            let mut ctx = tera::Context::new();
+            ctx.insert("site", course);
+            ctx.insert("lecture", &serde_json::json!({ "name": name }));
+            ctx.insert("instructor", &instructor);
+            let chosen: Vec<&PageView> = idx.iter().map(|&i| &pages[i]).collect();
+            ctx.insert("pages", &chosen);
+            let file = format!(
+                "handouts/{slug}-{}.html",
+                if instructor { "instructor" } else { "student" }
+            );
+            files.insert(PathBuf::from(file), render(&tera, "handout.html", &ctx)?);
+        }
+        lectures.insert(
+            idx[0],
+            LectureView {
+                name: name.clone(),
+                student: format!("handouts/{slug}-student.html"),
+                instructor: format!("handouts/{slug}-instructor.html"),
+                pages: idx
+                    .iter()
+                    .map(|&i| PageLink {
+                        href: page_file(&reports[i]),
+                        title: pages[i].title.clone(),
+                        errata: pages[i].errata,
+                    })
+                    .collect(),
+            },
+        );
+    }
+    let mut ctx = tera::Context::new();
+    ctx.insert("site", course);
+    ctx.insert("lectures", &lectures.into_values().collect::<Vec<_>>());
+    files.insert(
+        PathBuf::from("index.html"),
+        render(&tera, "index.html", &ctx)?,
+    );
+    Ok(files)
+}

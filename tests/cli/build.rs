@@ -1,0 +1,167 @@
+//! `build`: the site and the handouts, byte-identical rebuilds, atomic replacement, relative
+//! links and no build-machine paths in the output.
+
+use super::{mechbook, scratch, stderr};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+fn read_tree(root: &Path) -> BTreeMap<String, Vec<u8>> {
+    fn walk(dir: &Path, root: &Path, out: &mut BTreeMap<String, Vec<u8>>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                walk(&p, root, out);
+            } else {
+                out.insert(
+                    p.strip_prefix(root).unwrap().to_string_lossy().into_owned(),
+                    std::fs::read(&p).unwrap(),
+                );
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk(root, root, &mut out);
+    out
+}
+
+#[test]
+fn build_writes_the_site_and_rebuilds_it_identically() {
+    let dir = scratch("build");
+    let out = dir.join("site");
+    let first = mechbook(&["build", "--out", out.to_str().unwrap()]);
+    assert_eq!(first.status.code(), Some(0), "{}", stderr(&first));
+    assert!(
+        stderr(&first).contains("built 11 pages and 2 handouts from 10 scenes"),
+        "{}",
+        stderr(&first)
+    );
+    let a = read_tree(&out);
+    for f in [
+        "index.html",
+        "style.css",
+        "cube-corner.html",
+        "tilted-hoop.html",
+        "handouts/lecture-3-4-student.html",
+        "handouts/lecture-3-4-instructor.html",
+    ] {
+        assert!(a.contains_key(f), "{f} missing: {:?}", a.keys());
+    }
+    let second = mechbook(&["build", "--out", out.to_str().unwrap()]);
+    assert_eq!(second.status.code(), Some(0));
+    assert!(a == read_tree(&out), "a rebuild changed the bytes");
+
+    let cwd = std::env::current_dir().unwrap();
+    for (name, bytes) in &a {
+        // Tera escapes `/` as `&#x2F;`, which browsers decode in attributes and text alike.
+        let text = String::from_utf8(bytes.clone())
+            .unwrap()
+            .replace("&#x2F;", "/");
+        assert!(
+            !text.contains(cwd.to_str().unwrap()) && !text.contains(dir.to_str().unwrap()),
+            "{name} contains a machine path"
+        );
+        for href in text
+            .split("href=\"")
+            .skip(1)
+            .map(|s| s.split('"').next().unwrap())
+        {
+            assert!(
+                !href.starts_with('/') && !href.contains("://"),
+                "{name}: link {href} is not relative"
+            );
+            let target = Path::new(name).parent().unwrap().join(href);
+            let target = target.to_string_lossy().replace("handouts/../", "");
+            assert!(a.contains_key(&target), "{name}: broken link {href}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn pages_carry_math_errata_and_the_numeric_table() {
+    let dir = scratch("pages");
+    let out = dir.join("site");
+    assert_eq!(
+        mechbook(&["build", "--out", out.to_str().unwrap()])
+            .status
+            .code(),
+        Some(0)
+    );
+    let hoop = std::fs::read_to_string(out.join("hoop.html")).unwrap();
+    assert!(hoop.contains("<math display=\"block\">") && !hoop.contains("<merror"));
+    assert!(hoop.contains("Erratum, eq. (39)") && hoop.contains("Erratum, eq. (36)"));
+    assert!(hoop.contains("periodic-trapezoid"));
+    assert!(!hoop.contains("<script"));
+    let student = std::fs::read_to_string(out.join("handouts/lecture-3-4-student.html")).unwrap();
+    let instructor =
+        std::fs::read_to_string(out.join("handouts/lecture-3-4-instructor.html")).unwrap();
+    assert!(
+        !student.contains("class=\"steps\"") && !student.contains("erratum"),
+        "the student handout shows solutions"
+    );
+    assert!(instructor.contains("class=\"steps\"") && instructor.contains("erratum"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_failed_build_leaves_the_previous_site() {
+    let dir = scratch("failed-build");
+    let out = dir.join("site");
+    assert_eq!(
+        mechbook(&["build", "--out", out.to_str().unwrap()])
+            .status
+            .code(),
+        Some(0)
+    );
+    let before = read_tree(&out);
+    let templates = dir.join("templates");
+    std::fs::create_dir_all(&templates).unwrap();
+    std::fs::write(templates.join("page.html"), "{{ page.no_such_field }}").unwrap();
+    let failed = mechbook(&[
+        "build",
+        "--out",
+        out.to_str().unwrap(),
+        "--templates",
+        templates.to_str().unwrap(),
+    ]);
+    assert_eq!(failed.status.code(), Some(1), "{}", stderr(&failed));
+    assert!(
+        stderr(&failed).contains("template page.html"),
+        "{}",
+        stderr(&failed)
+    );
+    assert!(before == read_tree(&out), "the previous site changed");
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert_eq!(names.len(), 2, "leftover staging folders: {names:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn templates_override_file_by_file() {
+    let dir = scratch("override");
+    let templates = dir.join("templates");
+    std::fs::create_dir_all(&templates).unwrap();
+    std::fs::write(templates.join("style.css"), "body { color: teal; }\n").unwrap();
+    let out = dir.join("site");
+    let r = mechbook(&[
+        "build",
+        "--out",
+        out.to_str().unwrap(),
+        "--templates",
+        templates.to_str().unwrap(),
+    ]);
+    assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+    assert_eq!(
+        std::fs::read_to_string(out.join("style.css")).unwrap(),
+        "body { color: teal; }\n"
+    );
+    assert!(
+        std::fs::read_to_string(out.join("index.html"))
+            .unwrap()
+            .contains("Lecture 3&#x2F;4")
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
