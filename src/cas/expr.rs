@@ -593,6 +593,12 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
                 if fs.is_empty() {
                     out.push('1');
                 }
+                // A lone factor needs no parentheses: \frac{a + b}{c}, not \frac{(a + b)}{c}.
+                let ctx = if fs.len() == 1 {
+                    Prec::Sum
+                } else {
+                    Prec::Power
+                };
                 for (i, f) in fs.iter().enumerate() {
                     if i > 0 {
                         out.push_str(if matches!(f, Expr::Num(_)) {
@@ -601,7 +607,7 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
                             " "
                         });
                     }
-                    write_latex(f, out, Prec::Power);
+                    write_latex(f, out, ctx);
                 }
             };
             if den.is_empty() {

@@ -35,6 +35,29 @@ fn describe(domain: &[Integral]) -> String {
     parts.join(", ")
 }
 
+/// ∫_{lo}^{hi} … f dx dy: the limits outermost first, the differentials innermost first.
+fn integral_latex(integrand: &Expr, domain: &[Integral]) -> String {
+    let mut prefix = String::new();
+    let mut differentials = String::new();
+    for i in domain.iter().rev() {
+        let (lo, hi) = match i {
+            Integral::Poly { lo, hi, .. } => (lo.to_latex(), hi.to_latex()),
+            Integral::Trig { half, .. } => (
+                "0".into(),
+                if *half { "\\pi".into() } else { "2\\pi".into() },
+            ),
+        };
+        prefix.push_str(&format!("\\int_{{{lo}}}^{{{hi}}} "));
+    }
+    for i in domain {
+        let var = match i {
+            Integral::Poly { var, .. } | Integral::Trig { var, .. } => var,
+        };
+        differentials.push_str(&format!(" \\, d{}", Expr::sym(var).to_latex()));
+    }
+    format!("{prefix}{}{differentials}", integrand.to_latex())
+}
+
 fn why_integrate(domain: &[Integral]) -> String {
     let trig = domain.iter().any(|i| matches!(i, Integral::Trig { .. }));
     let poly = domain.iter().any(|i| matches!(i, Integral::Poly { .. }));
@@ -165,10 +188,10 @@ fn body_part(
                     title: format!("{label}: {name}"),
                     text: format!("{name} = ∫ {} = {}", integrands[k], results[k + 1]),
                     latex: format!(
-                        "I_{{{}{}}} = \\int {} = {}",
+                        "I_{{{}{}}} = {} = {}",
                         AXES[*i],
                         AXES[*j],
-                        integrands[k].to_latex(),
+                        integral_latex(&integrands[k], &c.domain),
                         results[k + 1].to_latex()
                     ),
                     why: why_integrate(&c.domain),
