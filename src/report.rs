@@ -4,7 +4,6 @@ use crate::derive::ExactBasis;
 use crate::derive::algebra::Value;
 use crate::numeric::eigen::Space;
 use crate::pipeline::SceneReport;
-use crate::plan::Stage;
 use crate::scene::Verdict;
 use serde_json::{Value as Json, json};
 use std::fmt::Write;
@@ -386,6 +385,5 @@ pub fn explain_text(r: &SceneReport) -> String {
         r.symbolic_seconds * 1e3,
         r.seconds * 1e3
     );
-    let _ = Stage::ALL;
     out
 }

@@ -7,9 +7,9 @@
 use crate::cas::{self, Expr};
 use crate::derive::algebra::{Env, Value, evaluate};
 use crate::derive::{Derivation, ExactBasis, simplify_value};
+use crate::numeric::NumericReport;
 use crate::numeric::eigen::{Eigenspace, Space, principal_axes};
 use crate::numeric::quadrature::{Method, QuadratureRun, Rng};
-use crate::numeric::{NumericReport, matrix_at};
 use crate::scene::{Scene, Verdict};
 use nalgebra::{Matrix3, Vector3};
 use std::collections::BTreeMap;
@@ -457,7 +457,6 @@ pub fn verify(
                 .map_err(crate::derive::DeriveError::Unsupported)?;
         }
     }
-    let _ = matrix_at;
     Ok(v)
 }
 

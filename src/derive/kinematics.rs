@@ -136,8 +136,7 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
     two_routes(d, "moment_about_axis", Value::Scalar(moment), direct)
 }
 
-pub fn gyration(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
-    let _ = scene;
+pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
     let Value::Scalar(moment) = d.quantities["moment_about_axis"].clone() else {
         unreachable!()
     };

@@ -116,7 +116,7 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
         kinematics::moment_about_axis(scene, &mut d)?;
     }
     if plan.runs(Stage::Gyration) {
-        kinematics::gyration(scene, &mut d)?;
+        kinematics::gyration(&mut d)?;
     }
     Ok(d)
 }

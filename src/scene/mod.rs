@@ -568,7 +568,7 @@ impl Validator<'_> {
             }
         }
         for (i, rb) in raw.bodies.iter().enumerate() {
-            self.check_positive(rb.get_ref(), &bodies[i], &format!("body[{i}]"), &values)?;
+            self.check_positive(rb.get_ref(), &format!("body[{i}]"), &values)?;
         }
 
         let mut expect = BTreeMap::new();
@@ -848,7 +848,6 @@ impl Validator<'_> {
     fn check_positive(
         &self,
         rb: &RawBody,
-        body: &Body,
         field: &str,
         values: &BTreeMap<String, f64>,
     ) -> Result<(), SceneError> {
@@ -887,7 +886,6 @@ impl Validator<'_> {
                 ));
             }
         }
-        let _ = body;
         Ok(())
     }
 }

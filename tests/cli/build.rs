@@ -3,7 +3,7 @@
 
 use super::{mechbook, scratch, stderr};
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 fn read_tree(root: &Path) -> BTreeMap<String, Vec<u8>> {
     fn walk(dir: &Path, root: &Path, out: &mut BTreeMap<String, Vec<u8>>) {
@@ -22,6 +22,15 @@ fn read_tree(root: &Path) -> BTreeMap<String, Vec<u8>> {
     let mut out = BTreeMap::new();
     walk(root, root, &mut out);
     out
+}
+
+/// A scratch folder with the lectures' site built into `site/` inside it.
+fn built_site(name: &str) -> (PathBuf, PathBuf) {
+    let dir = scratch(name);
+    let out = dir.join("site");
+    let r = mechbook(&["build", "--out", out.to_str().unwrap()]);
+    assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+    (dir, out)
 }
 
 #[test]
@@ -79,14 +88,7 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
 
 #[test]
 fn pages_carry_math_errata_and_the_numeric_table() {
-    let dir = scratch("pages");
-    let out = dir.join("site");
-    assert_eq!(
-        mechbook(&["build", "--out", out.to_str().unwrap()])
-            .status
-            .code(),
-        Some(0)
-    );
+    let (dir, out) = built_site("pages");
     let hoop = std::fs::read_to_string(out.join("hoop.html")).unwrap();
     assert!(hoop.contains("<math display=\"block\">") && !hoop.contains("<merror"));
     assert!(hoop.contains("Erratum, eq. (39)") && hoop.contains("Erratum, eq. (36)"));
@@ -105,14 +107,7 @@ fn pages_carry_math_errata_and_the_numeric_table() {
 
 #[test]
 fn a_failed_build_leaves_the_previous_site() {
-    let dir = scratch("failed-build");
-    let out = dir.join("site");
-    assert_eq!(
-        mechbook(&["build", "--out", out.to_str().unwrap()])
-            .status
-            .code(),
-        Some(0)
-    );
+    let (dir, out) = built_site("failed-build");
     let before = read_tree(&out);
     let templates = dir.join("templates");
     std::fs::create_dir_all(&templates).unwrap();
