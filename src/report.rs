@@ -138,7 +138,8 @@ fn count(r: &SceneReport, v: Verdict) -> usize {
         .count()
 }
 
-fn sci(x: f64) -> String {
+/// A relative error or a time in compact scientific form; exact zero prints as 0.
+pub fn sci(x: f64) -> String {
     if x == 0.0 {
         "0".into()
     } else {

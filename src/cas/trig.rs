@@ -140,17 +140,8 @@ pub fn half_angle_name(i: usize) -> String {
 /// Replaces sin and cos of each distinct argument by rational functions of a fresh t.
 /// Returns the new expression and the arguments, in the order of their t's.
 pub fn to_half_angle(e: &Expr) -> (Expr, Vec<Expr>) {
-    let (mut out, args) = to_half_angle_all(std::slice::from_ref(e));
-    (out.remove(0), args)
-}
-
-/// As `to_half_angle`, for several expressions that share their t's.
-pub fn to_half_angle_all(es: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
     let mut args = Vec::new();
-    let out = es
-        .iter()
-        .map(|e| replace(&expand_multiple_angles(e), &mut args))
-        .collect();
+    let out = replace(&expand_multiple_angles(e), &mut args);
     (out, args)
 }
 

@@ -9,6 +9,7 @@ pub use site_files::{Course, site_files};
 use crate::derive::ExactBasis;
 use crate::derive::algebra::Value;
 use crate::pipeline::SceneReport;
+use crate::report::sci;
 use crate::scene::Verdict;
 use serde::Serialize;
 
@@ -72,14 +73,6 @@ pub struct PageView {
 /// The file a scene's page is written to.
 pub fn page_file(r: &SceneReport) -> String {
     format!("{}.html", r.scene.id)
-}
-
-fn sci(x: f64) -> String {
-    if x == 0.0 {
-        "0".into()
-    } else {
-        format!("{x:.1e}")
-    }
 }
 
 fn value_math(v: &Value) -> Result<String, String> {
