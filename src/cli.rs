@@ -108,14 +108,25 @@ fn load(paths: &[PathBuf]) -> Result<Option<Vec<crate::scene::Scene>>> {
     }
 }
 
-/// Runs every scene, with a progress line on stderr when it is a terminal.
+/// One frame of the progress bar: `[#####·····] 5/10 scene-id`.
+fn progress_bar(done: usize, total: usize, label: &str) -> String {
+    const WIDTH: usize = 24;
+    let filled = (done * WIDTH).checked_div(total).unwrap_or(WIDTH);
+    format!(
+        "[{}{}] {done}/{total} {label}",
+        "#".repeat(filled),
+        "·".repeat(WIDTH - filled)
+    )
+}
+
+/// Runs every scene, with a progress bar on stderr when it is a terminal.
 fn run_all(scenes: Vec<crate::scene::Scene>) -> Result<Vec<SceneReport>> {
     let progress = std::io::stderr().is_terminal();
     let total = scenes.len();
     let mut reports = Vec::new();
     for (i, scene) in scenes.into_iter().enumerate() {
         if progress {
-            eprint!("\r\x1b[2K[{}/{}] {}", i + 1, total, scene.id);
+            eprint!("\r\x1b[2K{}", progress_bar(i, total, &scene.id));
         }
         reports.push(pipeline::run_scene(scene)?);
     }
@@ -155,9 +166,10 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
                 .unwrap_or_else(|| PathBuf::from("site"));
             crate::site::write_site(&out, &files)?;
             let handouts = files.keys().filter(|p| p.starts_with("handouts")).count();
+            let plots = files.keys().filter(|p| p.starts_with("plots")).count();
             let failed = reports.iter().filter(|r| !r.passed()).count();
             eprintln!(
-                "mechbook: built {} pages and {handouts} handouts from {} scenes into {} in {:.2} s{}",
+                "mechbook: built {} pages, {plots} plots and {handouts} handouts from {} scenes into {} in {:.2} s{}",
                 reports.len() + 1,
                 reports.len(),
                 out.display(),
@@ -219,5 +231,27 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
                 ExitCode::from(1)
             })
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::progress_bar;
+
+    #[test]
+    fn the_progress_bar_fills_in_proportion() {
+        assert_eq!(
+            progress_bar(0, 4, "a"),
+            format!("[{}] 0/4 a", "·".repeat(24))
+        );
+        assert_eq!(
+            progress_bar(1, 4, "b"),
+            format!("[{}{}] 1/4 b", "#".repeat(6), "·".repeat(18))
+        );
+        assert_eq!(
+            progress_bar(4, 4, "c"),
+            format!("[{}] 4/4 c", "#".repeat(24))
+        );
+        assert_eq!(progress_bar(0, 0, ""), format!("[{}] 0/0 ", "#".repeat(24)));
     }
 }

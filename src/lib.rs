@@ -2,11 +2,14 @@
 //!
 //! The pipeline, one module per stage: `scene` (TOML -> Scene) -> `plan` (what to compute) ->
 //! `derive` (symbolic, through `cas`, the only module that touches Symbolica) -> `numeric`
-//! (nalgebra) -> `verify` (verdicts) -> `report` (terminal and JSON). `pipeline` runs them.
+//! (nalgebra, including the data of plots) -> `verify` (verdicts) -> `render` (HTML, MathML, SVG
+//! in memory) -> `site` (the only writer). `report` prints to the terminal and JSON; `pipeline`
+//! runs the stages.
 
 pub mod cas;
 pub mod cli;
 pub mod derive;
+pub mod figure;
 pub mod numeric;
 pub mod pipeline;
 pub mod plan;

@@ -2,6 +2,7 @@
 //! and returns a value; nothing here writes files.
 
 use crate::derive::{self, Derivation, DeriveError};
+use crate::figure::Figure;
 use crate::numeric::{self, NumericReport};
 use crate::plan::{Plan, Stage};
 use crate::scene::{Scene, SceneError};
@@ -16,6 +17,7 @@ pub struct SceneReport {
     pub plan: Plan,
     pub derivation: Derivation,
     pub numeric: Option<NumericReport>,
+    pub figures: Vec<Figure>,
     pub verification: Verification,
     /// Time spent inside the symbolic engine for this scene, and its number of calls.
     pub symbolic_seconds: f64,
@@ -56,6 +58,12 @@ pub fn run_scene(scene: Scene) -> Result<SceneReport, RunError> {
     } else {
         None
     };
+    let figures = if plan.runs(Stage::Plots) {
+        numeric::plots::figures(&scene, &derivation)
+            .map_err(|e| fail(DeriveError::Unsupported(e)))?
+    } else {
+        Vec::new()
+    };
     let verification =
         verify::verify(&scene, &derivation, numeric.as_ref(), &plan).map_err(fail)?;
     let (engine_after, calls_after) = crate::cas::stats();
@@ -64,6 +72,7 @@ pub fn run_scene(scene: Scene) -> Result<SceneReport, RunError> {
         plan,
         derivation,
         numeric,
+        figures,
         verification,
         symbolic_seconds: engine_after - engine_before,
         engine_calls: calls_after - calls_before,

@@ -4,7 +4,7 @@
 //! the stages. `derive --explain` prints the plan: what ran, and what was skipped and why.
 
 use crate::cas::Expr;
-use crate::scene::{Output, Scene};
+use crate::scene::{Output, PlotRequest, Scene};
 use std::collections::BTreeSet;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -29,6 +29,8 @@ pub enum Stage {
     Quadrature,
     /// Numeric: SymmetricEigen against the exact principal moments.
     NumericEigen,
+    /// Numeric: the data of the scene's `[[plot]]`s (sweeps, convergence runs, projections).
+    Plots,
     /// Verify the notes' claims.
     Claims,
     /// Compare with the results recorded in the scene.
@@ -47,6 +49,7 @@ impl Stage {
         Stage::Gyration,
         Stage::Quadrature,
         Stage::NumericEigen,
+        Stage::Plots,
         Stage::Claims,
         Stage::Regression,
     ];
@@ -63,6 +66,7 @@ impl Stage {
             Stage::Gyration => "gyration",
             Stage::Quadrature => "numeric-quadrature",
             Stage::NumericEigen => "numeric-eigen",
+            Stage::Plots => "plots",
             Stage::Claims => "claims",
             Stage::Regression => "regression",
         }
@@ -78,7 +82,8 @@ impl Stage {
             | Stage::AngularMomentum
             | Stage::KineticEnergy
             | Stage::MomentAboutAxis
-            | Stage::Quadrature => &[Stage::Tensor],
+            | Stage::Quadrature
+            | Stage::Plots => &[Stage::Tensor],
             Stage::Gyration => &[Stage::MomentAboutAxis, Stage::Principal],
             Stage::NumericEigen => &[Stage::Principal, Stage::Quadrature],
         }
@@ -130,6 +135,13 @@ impl Plan {
                 Stage::NumericEigen,
                 "outputs `principal_axes` and `numeric`".into(),
             ));
+        }
+        for p in &scene.plots {
+            let why = format!("plot `{}`", p.kind());
+            wanted.push((Stage::Plots, why.clone()));
+            if *p == PlotRequest::PrincipalAxes {
+                wanted.push((Stage::Principal, why));
+            }
         }
         for c in &scene.claims {
             for e in c.quantity.iter().chain(c.value.iter()) {

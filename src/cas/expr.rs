@@ -642,11 +642,11 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
                     return;
                 }
             }
-            // sin(x)^2 prints as \sin^{2} x.
+            // sin(x)^2 prints as {\sin}^{2}(x): the braces keep the converter's MathML valid.
             if let Expr::Call(n, args) = a.as_ref()
                 && (n == "sin" || n == "cos")
             {
-                out.push_str(&format!("\\{n}^{{"));
+                out.push_str(&format!("\\,{{\\{n}}}^{{"));
                 write_latex(b, out, Prec::Sum);
                 out.push_str("}\\left(");
                 write_latex(&args[0], out, Prec::Sum);
@@ -1009,7 +1009,7 @@ mod tests {
         assert_eq!(p("1/2*M*R^2").to_latex(), "\\frac{M R^{2}}{2}");
         assert_eq!(
             p("sin(alpha)^2").to_latex(),
-            "\\sin^{2}\\left(\\alpha\\right)"
+            "\\,{\\sin}^{2}\\left(\\alpha\\right)"
         );
         assert_eq!(p("w1").to_latex(), "w_{1}");
     }

@@ -4,6 +4,7 @@
 
 pub mod body;
 pub mod eigen;
+pub mod plots;
 pub mod quadrature;
 
 use crate::derive::algebra::Value;

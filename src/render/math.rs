@@ -22,6 +22,13 @@ pub fn mathml(latex: &str, block: bool) -> Result<String, String> {
     if out.contains("<merror") {
         return Err(format!("cannot render `{latex}`: {out}"));
     }
+    // `\cos^{2}` comes out as an <msup> of three children (a space, `cos`, the exponent), which
+    // browsers draw as a small "cos2": the printer writes `{\cos}^{2}` instead; catch any other.
+    if out.contains("<msup><mspace") {
+        return Err(format!(
+            "`{latex}` gives a malformed <msup>: write `{{\\op}}^{{k}}`"
+        ));
+    }
     Ok(out)
 }
 
@@ -33,7 +40,7 @@ mod tests {
     fn the_latex_our_derivations_print_renders() {
         for latex in [
             "\\frac{M R^{2}}{2}",
-            "\\sin^{2}\\left(\\alpha\\right) + \\cos\\left(\\theta\\right)",
+            "{\\sin}^{2}\\left(\\alpha\\right) + \\cos\\left(\\theta\\right)",
             "\\overleftrightarrow{I} = \\begin{pmatrix}1 & 0 \\\\ 0 & 1\\end{pmatrix}",
             "\\det\\left(\\overleftrightarrow{I} - \\lambda \\mathbb{1}\\right) = 0",
             "\\lambda = \\frac{1}{6}: \\; \\text{every axis} \\perp \\begin{pmatrix}1 & 1 & 1\\end{pmatrix}",
@@ -47,6 +54,16 @@ mod tests {
                 "{m}"
             );
         }
+    }
+
+    #[test]
+    fn a_power_of_an_operator_needs_braces() {
+        assert!(mathml("M \\cos^{2}\\left(\\alpha\\right)", false).is_err());
+        let ok = mathml("\\,{\\cos}^{2}\\left(\\alpha\\right)", false).unwrap();
+        assert!(
+            ok.contains("<msup><mrow><mi>cos</mi></mrow><mrow><mn>2</mn></mrow></msup>"),
+            "{ok}"
+        );
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! converted to MathML. No file I/O here.
 
 pub mod math;
+pub mod plot;
 mod site_files;
 
 pub use site_files::{Course, site_files};
@@ -50,6 +51,14 @@ pub struct NumericRow {
 }
 
 #[derive(Debug, Clone, Serialize)]
+pub struct FigureView {
+    /// Relative to the site root: `plots/<scene>-<slug>.svg`.
+    pub file: String,
+    pub title: String,
+    pub desc: String,
+}
+
+#[derive(Debug, Clone, Serialize)]
 pub struct PageView {
     pub id: String,
     pub title: String,
@@ -64,10 +73,16 @@ pub struct PageView {
     pub results: Vec<StepView>,
     pub numeric: Vec<NumericRow>,
     pub claims: Vec<ClaimView>,
+    pub figures: Vec<FigureView>,
     pub errata: usize,
     pub passed: bool,
     pub prev: Option<Link>,
     pub next: Option<Link>,
+}
+
+/// The file a scene's plot is written to, relative to the site root.
+pub fn figure_file(r: &SceneReport, fig: &crate::figure::Figure) -> String {
+    format!("plots/{}-{}.svg", r.scene.id, fig.slug)
 }
 
 /// The file a scene's page is written to.
@@ -204,6 +219,15 @@ pub fn page_view(
             .filter(|c| c.verdict == Verdict::Disagrees)
             .count(),
         claims,
+        figures: r
+            .figures
+            .iter()
+            .map(|f| FigureView {
+                file: figure_file(r, f),
+                title: f.title.clone(),
+                desc: f.desc.clone(),
+            })
+            .collect(),
         passed: r.passed(),
         prev: link(prev),
         next: link(next),
@@ -211,7 +235,11 @@ pub fn page_view(
 }
 
 fn describe_body(b: &crate::scene::Body) -> String {
-    let mut d = format!("{} ({}), mass {}", b.label, b.shape.kind(), b.mass);
+    let mut d = if b.label == b.shape.kind() {
+        format!("{}, mass {}", b.label, b.mass)
+    } else {
+        format!("{} ({}), mass {}", b.label, b.shape.kind(), b.mass)
+    };
     for (axis, angle) in &b.rotations {
         d.push_str(&format!(", rotated by {angle} about {}", axis.name()));
     }

@@ -1,7 +1,7 @@
 //! Reports -> the site's files (HTML, CSS) through the Tera templates, as bytes in memory.
 //! Writing them is `site`'s job.
 
-use super::{PageView, page_file, page_view};
+use super::{PageView, figure_file, page_file, page_view, plot};
 use crate::pipeline::SceneReport;
 use crate::site::SiteFiles;
 use serde::{Deserialize, Serialize};
@@ -119,7 +119,8 @@ fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<Vec<u8>,
     })
 }
 
-/// Every file of the site: index, one page per scene, two handouts per lecture, the stylesheet.
+/// Every file of the site: index, one page per scene, its plots, two handouts per lecture, the
+/// stylesheet.
 pub fn site_files(
     reports: &[SceneReport],
     course: &Course,
@@ -134,6 +135,10 @@ pub fn site_files(
         let prev = i.checked_sub(1).map(|j| &reports[j]);
         let view = page_view(r, prev, reports.get(i + 1), timings)
             .map_err(|e| format!("{}: {e}", r.scene.source.display()))?;
+        for fig in &r.figures {
+            let svg = plot::svg(fig).map_err(|e| format!("{}: {e}", r.scene.source.display()))?;
+            files.insert(PathBuf::from(figure_file(r, fig)), svg.into_bytes());
+        }
         let mut ctx = tera::Context::new();
         ctx.insert("site", course);
         ctx.insert("page", &view);

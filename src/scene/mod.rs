@@ -31,6 +31,7 @@ pub struct Scene {
     pub bodies: Vec<Body>,
     pub claims: Vec<Claim>,
     pub wants: Vec<Output>,
+    pub plots: Vec<PlotRequest>,
     pub values: BTreeMap<String, f64>,
     pub seed: u64,
     /// Recorded results: quantity name -> expected exact value (the regression record).
@@ -164,6 +165,34 @@ pub struct Claim {
     pub value: Option<Expr>,
     pub expect: Verdict,
     pub line: usize,
+}
+
+/// A plot a scene asks for; `numeric::plots` computes its data.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PlotRequest {
+    /// The tensor's entries against one symbol: exact curves, with quadrature at sample values.
+    TensorSweep {
+        over: String,
+        from: f64,
+        to: f64,
+        samples: usize,
+    },
+    /// Quadrature error against points for every method, with each method's error law.
+    Convergence,
+    /// The principal axes in a projected 3-D view of the body.
+    PrincipalAxes,
+}
+
+impl PlotRequest {
+    pub const KINDS: &'static [&'static str] = &["tensor-sweep", "convergence", "principal-axes"];
+
+    pub fn kind(&self) -> &'static str {
+        match self {
+            PlotRequest::TensorSweep { .. } => "tensor-sweep",
+            PlotRequest::Convergence => "convergence",
+            PlotRequest::PrincipalAxes => "principal-axes",
+        }
+    }
 }
 
 /// What a scene asks for. Each one pulls in the stages it needs (see `plan`).
@@ -481,7 +510,18 @@ impl Validator<'_> {
         }
         wants.sort();
         wants.dedup();
-        if wants.is_empty() && claims.is_empty() {
+        let mut plots = Vec::new();
+        for (i, p) in raw.plots.iter().enumerate() {
+            plots.push(self.plot(p, &format!("plot[{i}]"), &symbols)?);
+        }
+        if !plots.is_empty() && bodies.is_empty() {
+            return Err(self.err(
+                raw.plots[0].span().start,
+                "plot[0]",
+                "plots need at least one [[body]]",
+            ));
+        }
+        if wants.is_empty() && claims.is_empty() && plots.is_empty() {
             return Err(self.err(
                 raw.outputs_span(),
                 "outputs.want",
@@ -609,6 +649,7 @@ impl Validator<'_> {
             bodies,
             claims,
             wants,
+            plots,
             values,
             seed: raw.numeric.seed.unwrap_or(1),
             expect,
@@ -669,6 +710,106 @@ impl Validator<'_> {
             expect,
             line: self.loc.line_col(offset).0,
         })
+    }
+
+    fn plot(
+        &self,
+        p: &Spanned<raw::RawPlot>,
+        field: &str,
+        symbols: &BTreeMap<String, String>,
+    ) -> Result<PlotRequest, SceneError> {
+        let rp = p.get_ref();
+        let start = p.span().start;
+        let sweep_fields = rp.over.is_some() || rp.range.is_some() || rp.samples.is_some();
+        let request = match rp.kind.get_ref().as_str() {
+            "tensor-sweep" => {
+                let over = rp.over.as_ref().ok_or_else(|| {
+                    self.err(
+                        start,
+                        &format!("{field}.over"),
+                        "a tensor-sweep needs `over`, the symbol on the x axis",
+                    )
+                })?;
+                if !symbols.contains_key(over.get_ref()) {
+                    return Err(self.err(
+                        content_start(over),
+                        &format!("{field}.over"),
+                        format!("`{}` is not a declared symbol", over.get_ref()),
+                    ));
+                }
+                let range = rp.range.as_ref().ok_or_else(|| {
+                    self.err(
+                        start,
+                        &format!("{field}.range"),
+                        "a tensor-sweep needs `range = [from, to]`",
+                    )
+                })?;
+                let ends: Vec<f64> = range
+                    .get_ref()
+                    .iter()
+                    .enumerate()
+                    .map(|(i, t)| {
+                        let f = format!("{field}.range[{i}]");
+                        let e = self.expr_str(
+                            t.get_ref(),
+                            content_start(t),
+                            &f,
+                            &BTreeSet::from(["pi".to_string()]),
+                        )?;
+                        e.eval(&|_| None)
+                            .map_err(|m| self.err(content_start(t), &f, m))
+                    })
+                    .collect::<Result<_, _>>()?;
+                if ends.len() != 2 || !ends.iter().all(|x| x.is_finite()) || ends[0] >= ends[1] {
+                    return Err(self.err(
+                        range.span().start,
+                        &format!("{field}.range"),
+                        "expected two numbers [from, to] with from < to",
+                    ));
+                }
+                let samples = rp.samples.as_ref().map_or(Ok(7), |n| {
+                    usize::try_from(*n.get_ref())
+                        .ok()
+                        .filter(|k| (2..=1000).contains(k))
+                        .ok_or_else(|| {
+                            self.err(
+                                n.span().start,
+                                &format!("{field}.samples"),
+                                "samples is a whole number from 2 to 1000",
+                            )
+                        })
+                })?;
+                PlotRequest::TensorSweep {
+                    over: over.get_ref().clone(),
+                    from: ends[0],
+                    to: ends[1],
+                    samples,
+                }
+            }
+            "convergence" => PlotRequest::Convergence,
+            "principal-axes" => PlotRequest::PrincipalAxes,
+            other => {
+                return Err(self.err(
+                    content_start(&rp.kind),
+                    &format!("{field}.kind"),
+                    format!(
+                        "unknown plot kind `{other}`; expected one of: {}",
+                        PlotRequest::KINDS.join(", ")
+                    ),
+                ));
+            }
+        };
+        if sweep_fields && !matches!(request, PlotRequest::TensorSweep { .. }) {
+            return Err(self.err(
+                start,
+                field,
+                format!(
+                    "`over`, `range` and `samples` belong to a tensor-sweep, not a {}",
+                    request.kind()
+                ),
+            ));
+        }
+        Ok(request)
     }
 
     fn claim_expr(

@@ -27,6 +27,8 @@ pub struct RawScene {
     pub bodies: Vec<Spanned<RawBody>>,
     #[serde(default, rename = "claim")]
     pub claims: Vec<Spanned<RawClaim>>,
+    #[serde(default, rename = "plot")]
+    pub plots: Vec<Spanned<RawPlot>>,
     pub outputs: RawOutputs,
     #[serde(default)]
     pub numeric: RawNumeric,
@@ -120,4 +122,14 @@ pub struct RawNumeric {
     pub values: BTreeMap<Spanned<String>, Spanned<f64>>,
     #[serde(default)]
     pub seed: Option<u64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPlot {
+    pub kind: Text,
+    /// For `tensor-sweep`: the symbol on the x axis, its range and the numeric sample count.
+    pub over: Option<Text>,
+    pub range: Option<Spanned<Vec<Text>>>,
+    pub samples: Option<Spanned<i64>>,
 }

@@ -40,7 +40,7 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
     let first = mechbook(&["build", "--out", out.to_str().unwrap()]);
     assert_eq!(first.status.code(), Some(0), "{}", stderr(&first));
     assert!(
-        stderr(&first).contains("built 11 pages and 2 handouts from 10 scenes"),
+        stderr(&first).contains("built 11 pages, 4 plots and 2 handouts from 10 scenes"),
         "{}",
         stderr(&first)
     );
@@ -50,6 +50,10 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
         "style.css",
         "cube-corner.html",
         "tilted-hoop.html",
+        "plots/tilted-hoop-tensor-vs-alpha.svg",
+        "plots/cube-corner-convergence.svg",
+        "plots/cube-corner-principal-axes.svg",
+        "plots/hoop-convergence.svg",
         "handouts/lecture-3-4-student.html",
         "handouts/lecture-3-4-instructor.html",
     ] {
@@ -69,11 +73,9 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
             !text.contains(cwd.to_str().unwrap()) && !text.contains(dir.to_str().unwrap()),
             "{name} contains a machine path"
         );
-        for href in text
-            .split("href=\"")
-            .skip(1)
-            .map(|s| s.split('"').next().unwrap())
-        {
+        let links = text.split("href=\"").skip(1);
+        let sources = text.split("src=\"").skip(1);
+        for href in links.chain(sources).map(|s| s.split('"').next().unwrap()) {
             assert!(
                 !href.starts_with('/') && !href.contains("://"),
                 "{name}: link {href} is not relative"
@@ -102,6 +104,49 @@ fn pages_carry_math_errata_and_the_numeric_table() {
         "the student handout shows solutions"
     );
     assert!(instructor.contains("class=\"steps\"") && instructor.contains("erratum"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn every_plot_is_an_accessible_svg_shown_on_its_page() {
+    let (dir, out) = built_site("plots");
+    let site = read_tree(&out);
+    let plots: Vec<&String> = site.keys().filter(|k| k.starts_with("plots/")).collect();
+    assert_eq!(plots.len(), 4, "{plots:?}");
+    for name in plots {
+        let svg = String::from_utf8(site[name].clone()).unwrap();
+        assert!(
+            svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"),
+            "{name}"
+        );
+        let title = svg
+            .split("<title>")
+            .nth(1)
+            .and_then(|t| t.split("</title>").next());
+        let desc = svg
+            .split("<desc>")
+            .nth(1)
+            .and_then(|t| t.split("</desc>").next());
+        assert!(title.is_some_and(|t| !t.is_empty()), "{name}: no <title>");
+        // The description is written from the data: it quotes measured numbers.
+        assert!(
+            desc.is_some_and(|d| d.len() > 80 && (d.contains("0.") || d.contains("e-"))),
+            "{name}: {desc:?}"
+        );
+        let page = name.trim_start_matches("plots/");
+        let scene = ["tilted-hoop", "cube-corner", "hoop"]
+            .into_iter()
+            .find(|s| page.starts_with(&format!("{s}-")))
+            .unwrap();
+        let html = String::from_utf8(site[&format!("{scene}.html")].clone()).unwrap();
+        assert!(
+            html.replace("&#x2F;", "/")
+                .contains(&format!("src=\"{name}\"")),
+            "{name} not on {scene}.html"
+        );
+    }
+    let sweep = String::from_utf8(site["plots/tilted-hoop-tensor-vs-alpha.svg"].clone()).unwrap();
+    assert!(sweep.contains("I_xy, I_yz stay zero"), "{sweep}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -7,6 +7,7 @@ mod bad_input;
 mod build;
 mod check;
 mod lock;
+mod snapshots;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

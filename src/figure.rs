@@ -1,0 +1,71 @@
+//! A plot as plain data: the numeric stage fills it, `render::plot` draws it as SVG. Keeping the
+//! numbers here (not in the renderer) lets tests check a plot's content without parsing SVG.
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mark {
+    /// A polyline through the points.
+    Line,
+    /// A dashed polyline: a predicted law, not a measurement.
+    Dashed,
+    /// Separate markers: sampled or measured values.
+    Points,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    pub name: String,
+    pub mark: Mark,
+    /// Index into the renderer's palette, so that a law and its measurement share a colour.
+    pub colour: usize,
+    pub points: Vec<(f64, f64)>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scale {
+    Linear,
+    Log,
+}
+
+/// Where the legend goes: a corner or edge the data leave empty.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Legend {
+    UpperRight,
+    MiddleRight,
+    LowerRight,
+    LowerLeft,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// Unique within the scene; the file is `plots/<scene>-<slug>.svg`.
+    pub slug: String,
+    pub title: String,
+    /// A sentence or two written from the data, for `<desc>`, the alt text and the caption.
+    pub desc: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub x_scale: Scale,
+    pub y_scale: Scale,
+    /// A projected 3-D view: equal units on both axes and no axis ticks.
+    pub equal_aspect: bool,
+    pub series: Vec<Series>,
+    /// Text placed at data coordinates, such as the names of projected axes.
+    pub labels: Vec<(String, (f64, f64))>,
+    pub legend: Legend,
+}
+
+impl Figure {
+    /// The smallest and largest x and y over every series, ignoring values a log axis cannot show.
+    pub fn bounds(&self) -> Option<((f64, f64), (f64, f64))> {
+        let ok = |v: f64, s: Scale| v.is_finite() && (s == Scale::Linear || v > 0.0);
+        let mut it = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter())
+            .filter(|(x, y)| ok(*x, self.x_scale) && ok(*y, self.y_scale));
+        let (x0, y0) = *it.next()?;
+        Some(it.fold(((x0, x0), (y0, y0)), |((a, b), (c, d)), (x, y)| {
+            ((a.min(*x), b.max(*x)), (c.min(*y), d.max(*y)))
+        }))
+    }
+}

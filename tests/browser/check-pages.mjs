@@ -1,0 +1,70 @@
+// Opens every page of a built site from file:// in headless Chromium and checks that
+//   1. the browser logs no console error, page error or failed request;
+//   2. every <math> element is rendered as MathML (a MathMLElement) with a non-zero box;
+//   3. every <img> (the SVG plots) has loaded with a non-zero natural size.
+// Usage: node check-pages.mjs SITE_DIR   (playwright-core must be resolvable; see .ci/run)
+import { chromium } from "playwright-core";
+import { readdirSync, statSync, mkdtempSync, rmSync } from "node:fs";
+import { join, resolve } from "node:path";
+import { tmpdir } from "node:os";
+import { pathToFileURL } from "node:url";
+
+const site = resolve(process.argv[2] ?? "site");
+const pages = [];
+(function walk(dir) {
+  for (const name of readdirSync(dir).sort()) {
+    const p = join(dir, name);
+    if (statSync(p).isDirectory()) walk(p);
+    else if (name.endsWith(".html")) pages.push(p);
+  }
+})(site);
+if (pages.length === 0) {
+  console.error(`no pages under ${site}`);
+  process.exit(1);
+}
+
+const profile = mkdtempSync(join(tmpdir(), "mechbook-chromium-"));
+const browser = await chromium.launchPersistentContext(profile, {
+  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
+  headless: true,
+  args: ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+});
+let failures = 0;
+let maths = 0;
+let images = 0;
+for (const file of pages) {
+  const page = await browser.newPage();
+  const problems = [];
+  page.on("console", (m) => { if (m.type() === "error") problems.push(`console: ${m.text()}`); });
+  page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
+  page.on("requestfailed", (r) => problems.push(`failed request: ${r.url()}`));
+  await page.goto(pathToFileURL(file).href, { waitUntil: "load" });
+  const r = await page.evaluate(() => {
+    const math = [...document.querySelectorAll("math")];
+    const badMath = math.filter((m) => {
+      const b = m.getBoundingClientRect();
+      return !(m instanceof MathMLElement) || b.width <= 0 || b.height <= 0;
+    }).length;
+    const img = [...document.querySelectorAll("img")];
+    const badImg = img.filter((i) => !i.complete || i.naturalWidth <= 0 || i.naturalHeight <= 0)
+      .map((i) => i.getAttribute("src"));
+    return { math: math.length, badMath, img: img.length, badImg };
+  });
+  maths += r.math;
+  images += r.img;
+  if (r.badMath > 0) problems.push(`${r.badMath} of ${r.math} <math> elements not rendered as MathML with a size`);
+  for (const src of r.badImg) problems.push(`plot did not load: ${src}`);
+  const rel = file.slice(site.length + 1);
+  if (problems.length) {
+    failures += 1;
+    console.log(`FAIL ${rel}\n  ${problems.join("\n  ")}`);
+  } else {
+    console.log(`ok   ${rel}: ${r.math} math, ${r.img} plots`);
+  }
+  await page.close();
+}
+await browser.close();
+rmSync(profile, { recursive: true, force: true });
+console.log(`browser check: ${pages.length} pages, ${maths} math elements, ${images} plots, ${failures} failing`);
+process.exit(failures ? 1 : 0);
