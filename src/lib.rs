@@ -17,4 +17,5 @@ pub mod render;
 pub mod report;
 pub mod scene;
 pub mod site;
+pub mod spin;
 pub mod verify;

@@ -4,6 +4,9 @@
 
 pub mod body;
 pub mod eigen;
+pub mod elliptic;
+pub mod free_body;
+pub mod integrators;
 pub mod plots;
 pub mod quadrature;
 

@@ -8,6 +8,7 @@ mod build;
 mod check;
 mod lock;
 mod snapshots;
+mod spin;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -1,0 +1,127 @@
+//! `spin`: the JSON contract, agreement between methods, and clear errors for bad bodies.
+
+use super::{mechbook, stderr, stdout};
+
+fn spin_json(args: &[&str]) -> serde_json::Value {
+    let mut all = vec![
+        "spin",
+        "--inertia",
+        "1,2,3",
+        "--omega",
+        "1,0.1,0.5",
+        "--json",
+    ];
+    all.extend_from_slice(args);
+    let r = mechbook(&all);
+    assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+    serde_json::from_str(&stdout(&r)).expect("one JSON object")
+}
+
+#[test]
+fn spin_json_has_the_promised_fields_and_methods_agree() {
+    let exact = spin_json(&["--t", "100"]);
+    for key in [
+        "energy_drift",
+        "momentum_drift",
+        "rhs_evaluations",
+        "seconds",
+    ] {
+        assert!(exact.get(key).is_some(), "missing {key}");
+    }
+    let omega = |j: &serde_json::Value| -> Vec<f64> {
+        j["omega"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    // REFERENCE.md's check value ω(100).
+    let want = [
+        0.508_145_071_027_923_3,
+        -0.867_057_429_926_084_4,
+        -0.052_317_661_804_191_33,
+    ];
+    let got = omega(&exact);
+    assert_eq!(got.len(), 3);
+    for k in 0..3 {
+        assert!((got[k] - want[k]).abs() < 1e-13, "{got:?}");
+    }
+    let dopri = spin_json(&["--t", "100", "--method", "dopri", "--tol", "1e-11"]);
+    let d = omega(&dopri);
+    for k in 0..3 {
+        assert!((d[k] - want[k]).abs() < 1e-8, "{d:?}");
+    }
+    assert!(dopri["rhs_evaluations"].as_u64().unwrap() > 1000);
+    let split = spin_json(&["--t", "100", "--method", "splitting", "--step", "0.01"]);
+    assert!(split["momentum_drift"].as_f64().unwrap() < 1e-14);
+}
+
+#[test]
+fn spin_rejects_impossible_bodies_and_bad_numbers() {
+    for (args, want) in [
+        (
+            vec!["--inertia", "1,1,3", "--omega", "1,0,0", "--t", "1"],
+            "triangle inequality",
+        ),
+        (
+            vec!["--inertia", "0,1,1", "--omega", "1,0,0", "--t", "1"],
+            "must be positive",
+        ),
+        (
+            vec!["--inertia", "-1,1,1", "--omega", "1,0,0", "--t", "1"],
+            "must be positive",
+        ),
+        (
+            vec!["--inertia", "1,2,NaN", "--omega", "1,0,0", "--t", "1"],
+            "not a finite number",
+        ),
+        (
+            vec!["--inertia", "1,2,3", "--omega", "1,inf,0", "--t", "1"],
+            "not a finite number",
+        ),
+        (
+            vec!["--inertia", "1,2,3", "--omega", "1,0", "--t", "1"],
+            "3 comma-separated",
+        ),
+        (
+            vec!["--inertia", "1,2,3", "--omega", "1,0,0", "--t", "-1"],
+            "end time",
+        ),
+        (
+            vec![
+                "--inertia",
+                "1,2,3",
+                "--omega",
+                "1,0,0",
+                "--t",
+                "1",
+                "--method",
+                "euler",
+            ],
+            "unknown method",
+        ),
+        (
+            vec![
+                "--inertia",
+                "1,2,3",
+                "--omega",
+                "1,0,0",
+                "--t",
+                "1",
+                "--method",
+                "rk4",
+                "--step",
+                "0",
+            ],
+            "positive",
+        ),
+    ] {
+        let mut all = vec!["spin"];
+        all.extend(args.iter().copied());
+        let r = mechbook(&all);
+        assert_eq!(r.status.code(), Some(1), "{all:?}: {}", stderr(&r));
+        assert!(stderr(&r).contains(want), "{all:?}: {}", stderr(&r));
+        assert!(r.stdout.is_empty() || !stdout(&r).contains('{'));
+    }
+}
