@@ -82,8 +82,8 @@ impl Stage {
             | Stage::AngularMomentum
             | Stage::KineticEnergy
             | Stage::MomentAboutAxis
-            | Stage::Quadrature
-            | Stage::Plots => &[Stage::Tensor],
+            | Stage::Quadrature => &[Stage::Tensor],
+            Stage::Plots => &[],
             Stage::Gyration => &[Stage::MomentAboutAxis, Stage::Principal],
             Stage::NumericEigen => &[Stage::Principal, Stage::Quadrature],
         }
@@ -139,6 +139,9 @@ impl Plan {
         for p in &scene.plots {
             let why = format!("plot `{}`", p.kind());
             wanted.push((Stage::Plots, why.clone()));
+            if p.needs_body() {
+                wanted.push((Stage::Tensor, why.clone()));
+            }
             if *p == PlotRequest::PrincipalAxes {
                 wanted.push((Stage::Principal, why));
             }

@@ -213,6 +213,48 @@ impl Expr {
     }
 
     /// Evaluates a scalar expression in f64. `pi` is π unless the environment binds it.
+    /// The derivative with respect to `x` by the sum, product and chain rules (no simplification:
+    /// the engine's zero test does that).
+    pub fn diff(&self, x: &str) -> Result<Expr, String> {
+        Ok(match self {
+            Expr::Num(_) => Expr::int(0),
+            Expr::Sym(s) => Expr::int(i128::from(s == x)),
+            Expr::Add(v) => Expr::add(v.iter().map(|t| t.diff(x)).collect::<Result<_, _>>()?),
+            Expr::Mul(v) => {
+                let mut terms = Vec::new();
+                for i in 0..v.len() {
+                    let mut f: Vec<Expr> = v.clone();
+                    f[i] = v[i].diff(x)?;
+                    terms.push(Expr::mul(f));
+                }
+                Expr::add(terms)
+            }
+            Expr::Pow(a, b) => {
+                if b.symbols().iter().any(|s| s == x) {
+                    return Err(format!(
+                        "cannot differentiate a power whose exponent depends on `{x}`"
+                    ));
+                }
+                let lower = Expr::pow(
+                    a.as_ref().clone(),
+                    Expr::minus(b.as_ref().clone(), Expr::int(1)),
+                );
+                Expr::mul(vec![b.as_ref().clone(), lower, a.diff(x)?])
+            }
+            Expr::Call(name, args) if args.len() == 1 => {
+                let u = &args[0];
+                let outer = match name.as_str() {
+                    "sin" => Expr::call("cos", u.clone()),
+                    "cos" => Expr::negate(Expr::call("sin", u.clone())),
+                    "sqrt" => Expr::over(Expr::int(1), Expr::mul(vec![Expr::int(2), self.clone()])),
+                    _ => return Err(format!("cannot differentiate `{name}`")),
+                };
+                Expr::mul(vec![outer, u.diff(x)?])
+            }
+            _ => return Err("only scalar expressions can be differentiated".into()),
+        })
+    }
+
     pub fn eval(&self, env: &dyn Fn(&str) -> Option<f64>) -> Result<f64, String> {
         Ok(match self {
             Expr::Num(r) => r.to_f64(),
@@ -1002,6 +1044,39 @@ mod tests {
         assert!(parse("").is_err());
         let syms = parse("m * alpha").unwrap().symbols;
         assert_eq!(syms, vec![("m".into(), 0), ("alpha".into(), 4)]);
+    }
+
+    #[test]
+    fn derivatives_match_difference_quotients() {
+        for text in [
+            "a*cos(b*t + c)^2",
+            "sqrt(1 + t^2)*sin(t)",
+            "t^3/(1 + t)",
+            "w*t - 2",
+        ] {
+            let e = p(text);
+            let d = e.diff("t").unwrap();
+            let at = |e: &Expr, t: f64| {
+                e.eval(&|s| {
+                    Some(match s {
+                        "t" => t,
+                        "a" => 1.3,
+                        "b" => 0.7,
+                        "c" => -0.2,
+                        _ => 2.0,
+                    })
+                })
+                .unwrap()
+            };
+            let h = 1e-6;
+            let fd = (at(&e, 0.4 + h) - at(&e, 0.4 - h)) / (2.0 * h);
+            assert!(
+                (at(&d, 0.4) - fd).abs() < 1e-8,
+                "{text}: {} vs {fd}",
+                at(&d, 0.4)
+            );
+        }
+        assert!(p("2^t").diff("t").is_err());
     }
 
     #[test]

@@ -323,6 +323,14 @@ fn call(name: &str, args: Vec<Value>) -> Result<Value, String> {
         ("diag", [Scalar(a), Scalar(b), Scalar(c)]) => {
             Matrix(diag([a.clone(), b.clone(), c.clone()]))
         }
+        ("diff", [f, Scalar(Expr::Sym(x))]) => {
+            let d: Vec<Expr> = f
+                .entries()
+                .iter()
+                .map(|e| e.diff(x))
+                .collect::<Result<_, _>>()?;
+            f.with_entries(&d)
+        }
         ("rot_x", [Scalar(a)]) => Matrix(rotation(0, a)),
         ("rot_y", [Scalar(a)]) => Matrix(rotation(1, a)),
         ("rot_z", [Scalar(a)]) => Matrix(rotation(2, a)),

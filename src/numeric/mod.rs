@@ -6,6 +6,7 @@ pub mod body;
 pub mod eigen;
 pub mod elliptic;
 pub mod free_body;
+pub mod free_body_plots;
 pub mod integrators;
 pub mod plots;
 pub mod quadrature;

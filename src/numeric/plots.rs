@@ -40,6 +40,12 @@ pub fn figures(scene: &Scene, d: &Derivation) -> Result<Vec<Figure>, String> {
                 }
             }
             PlotRequest::PrincipalAxes => out.push(principal_view(scene, d)?),
+            PlotRequest::FreeBody {
+                kind,
+                inertia,
+                omega,
+                t,
+            } => out.push(super::free_body_plots::figure(*kind, *inertia, *omega, *t)?),
         }
     }
     Ok(out)
@@ -288,7 +294,7 @@ fn convergence(
 
 /// A fixed oblique view: azimuth 25°, elevation 20°, chosen so that no frame axis or body
 /// diagonal points at the viewer.
-fn project(p: &Vector3<f64>) -> (f64, f64) {
+pub(super) fn project(p: &Vector3<f64>) -> (f64, f64) {
     let (az, el) = (25f64.to_radians(), 20f64.to_radians());
     let right = Vector3::new(-az.sin(), az.cos(), 0.0);
     let up = Vector3::new(-el.sin() * az.cos(), -el.sin() * az.sin(), el.cos());

@@ -181,17 +181,75 @@ pub enum PlotRequest {
     Convergence,
     /// The principal axes in a projected 3-D view of the body.
     PrincipalAxes,
+    /// A torque-free body given by its principal moments and ω(0), integrated to `t`.
+    FreeBody {
+        kind: FreeBodyPlot,
+        inertia: [f64; 3],
+        omega: [f64; 3],
+        t: f64,
+    },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FreeBodyPlot {
+    /// ω(t) by the exact solution, with Dormand–Prince points.
+    OmegaVsTime,
+    /// Polhodes on the energy ellipsoid in L-space, with the separatrix.
+    Polhodes,
+    /// Energy and |L| drift against time for each integrator, log scale.
+    Drift,
+    /// The tennis racket: ω along the intermediate axis flips; flip times measured vs predicted.
+    Flip,
+    /// The herpolhode: ω's tip traced on the invariable plane in space.
+    Herpolhode,
+    /// Earth's polar motion over one Euler period (symmetric top with the given moments).
+    PolarMotion,
+}
+
+impl FreeBodyPlot {
+    pub const ALL: &'static [(&'static str, FreeBodyPlot)] = &[
+        ("omega-vs-time", FreeBodyPlot::OmegaVsTime),
+        ("polhodes", FreeBodyPlot::Polhodes),
+        ("drift", FreeBodyPlot::Drift),
+        ("flip", FreeBodyPlot::Flip),
+        ("herpolhode", FreeBodyPlot::Herpolhode),
+        ("polar-motion", FreeBodyPlot::PolarMotion),
+    ];
+
+    pub fn name(self) -> &'static str {
+        FreeBodyPlot::ALL
+            .iter()
+            .find(|(_, k)| *k == self)
+            .unwrap()
+            .0
+    }
 }
 
 impl PlotRequest {
-    pub const KINDS: &'static [&'static str] = &["tensor-sweep", "convergence", "principal-axes"];
+    pub const KINDS: &'static [&'static str] = &[
+        "tensor-sweep",
+        "convergence",
+        "principal-axes",
+        "omega-vs-time",
+        "polhodes",
+        "drift",
+        "flip",
+        "herpolhode",
+        "polar-motion",
+    ];
 
     pub fn kind(&self) -> &'static str {
         match self {
             PlotRequest::TensorSweep { .. } => "tensor-sweep",
             PlotRequest::Convergence => "convergence",
             PlotRequest::PrincipalAxes => "principal-axes",
+            PlotRequest::FreeBody { kind, .. } => kind.name(),
         }
+    }
+
+    /// Plots of a body's tensor need a `[[body]]`; free-body plots carry their own.
+    pub fn needs_body(&self) -> bool {
+        !matches!(self, PlotRequest::FreeBody { .. })
     }
 }
 
@@ -243,6 +301,7 @@ pub const QUANTITIES: &[&str] = &[
     "position",
 ];
 pub const CLAIM_FUNCTIONS: &[&str] = &[
+    "diff",
     "sin",
     "cos",
     "sqrt",
@@ -514,11 +573,13 @@ impl Validator<'_> {
         for (i, p) in raw.plots.iter().enumerate() {
             plots.push(self.plot(p, &format!("plot[{i}]"), &symbols)?);
         }
-        if !plots.is_empty() && bodies.is_empty() {
+        if let Some(k) = plots.iter().position(|p| p.needs_body())
+            && bodies.is_empty()
+        {
             return Err(self.err(
-                raw.plots[0].span().start,
-                "plot[0]",
-                "plots need at least one [[body]]",
+                raw.plots[k].span().start,
+                &format!("plot[{k}]"),
+                format!("a {} plot needs at least one [[body]]", plots[k].kind()),
             ));
         }
         if wants.is_empty() && claims.is_empty() && plots.is_empty() {
@@ -721,6 +782,87 @@ impl Validator<'_> {
         let rp = p.get_ref();
         let start = p.span().start;
         let sweep_fields = rp.over.is_some() || rp.range.is_some() || rp.samples.is_some();
+        let body_fields = rp.inertia.is_some() || rp.omega.is_some() || rp.t.is_some();
+        if let Some((_, kind)) = FreeBodyPlot::ALL
+            .iter()
+            .find(|(n, _)| n == rp.kind.get_ref())
+        {
+            if sweep_fields {
+                return Err(self.err(
+                    start,
+                    field,
+                    "`over`, `range` and `samples` belong to a tensor-sweep",
+                ));
+            }
+            let triple =
+                |v: &Option<Spanned<Vec<f64>>>, name: &str| -> Result<[f64; 3], SceneError> {
+                    let v = v.as_ref().ok_or_else(|| {
+                        self.err(
+                            start,
+                            &format!("{field}.{name}"),
+                            format!("a {} plot needs `{name} = [x, y, z]`", kind.name()),
+                        )
+                    })?;
+                    let arr = <[f64; 3]>::try_from(v.get_ref().as_slice()).map_err(|_| {
+                        self.err(
+                            v.span().start,
+                            &format!("{field}.{name}"),
+                            format!("expected 3 numbers, found {}", v.get_ref().len()),
+                        )
+                    })?;
+                    if arr.iter().any(|x| !x.is_finite()) {
+                        return Err(self.err(
+                            v.span().start,
+                            &format!("{field}.{name}"),
+                            "the values must be finite numbers",
+                        ));
+                    }
+                    Ok(arr)
+                };
+            let inertia = triple(&rp.inertia, "inertia")?;
+            crate::numeric::free_body::Moments::new(inertia).map_err(|m| {
+                self.err(
+                    rp.inertia.as_ref().map_or(start, |v| v.span().start),
+                    &format!("{field}.inertia"),
+                    m,
+                )
+            })?;
+            let omega = triple(&rp.omega, "omega")?;
+            if omega.iter().all(|x| *x == 0.0) {
+                return Err(self.err(
+                    rp.omega.as_ref().map_or(start, |v| v.span().start),
+                    &format!("{field}.omega"),
+                    "omega must not be zero",
+                ));
+            }
+            let t = rp.t.as_ref().ok_or_else(|| {
+                self.err(
+                    start,
+                    &format!("{field}.t"),
+                    format!("a {} plot needs `t`, the end time", kind.name()),
+                )
+            })?;
+            if !(t.get_ref().is_finite() && *t.get_ref() > 0.0) {
+                return Err(self.err(
+                    t.span().start,
+                    &format!("{field}.t"),
+                    "the end time must be a positive number",
+                ));
+            }
+            return Ok(PlotRequest::FreeBody {
+                kind: *kind,
+                inertia,
+                omega,
+                t: *t.get_ref(),
+            });
+        }
+        if body_fields {
+            return Err(self.err(
+                start,
+                field,
+                "`inertia`, `omega` and `t` belong to the free-body plot kinds",
+            ));
+        }
         let request = match rp.kind.get_ref().as_str() {
             "tensor-sweep" => {
                 let over = rp.over.as_ref().ok_or_else(|| {
@@ -1047,7 +1189,7 @@ fn check_calls(e: &Expr, claim_language: bool) -> Result<(), String> {
                     return;
                 }
                 let arity = match name.as_str() {
-                    "dot" | "cross" | "outer" => 2,
+                    "dot" | "cross" | "outer" | "diff" => 2,
                     "diag" => 3,
                     "eye" => 0,
                     _ => 1,

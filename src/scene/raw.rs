@@ -132,4 +132,8 @@ pub struct RawPlot {
     pub over: Option<Text>,
     pub range: Option<Spanned<Vec<Text>>>,
     pub samples: Option<Spanned<i64>>,
+    /// For the free-body kinds: principal moments, ω(0) in the body frame, and the end time.
+    pub inertia: Option<Spanned<Vec<f64>>>,
+    pub omega: Option<Spanned<Vec<f64>>>,
+    pub t: Option<Spanned<f64>>,
 }

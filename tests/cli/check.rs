@@ -176,3 +176,20 @@ fn the_same_input_gives_the_same_output() {
     without_timings(&mut y);
     assert_eq!(x, y);
 }
+
+#[test]
+fn the_earth_scene_runs_only_its_plot_and_claims() {
+    let r = super::mechbook(&["derive", "lectures/lecture-3-9/05-earth.toml", "--explain"]);
+    assert_eq!(r.status.code(), Some(0), "{}", super::stderr(&r));
+    let out = super::stdout(&r);
+    for line in out.lines().filter(|l| l.trim_start().starts_with("ran ")) {
+        assert!(
+            line.contains("plots") || line.contains("claims"),
+            "unexpected stage: {line}"
+        );
+    }
+    assert!(
+        out.contains("skipped  tensor") && out.contains("Symbolic engine: 0 call(s)"),
+        "{out}"
+    );
+}

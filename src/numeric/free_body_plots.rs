@@ -1,0 +1,562 @@
+//! Plots of the torque-free body (Lecture 3/9): ω(t), polhodes, invariant drift, the tennis
+//! racket's flips, the herpolhode and Earth's polar motion. Each description quotes what was
+//! measured, next to what the exact solution predicts.
+
+use super::free_body::{ExactSolution, Moments, invariants};
+use super::integrators::{Method, Resolution, Run, integrate};
+use super::plots::{ERROR_FLOOR, project};
+use crate::figure::{Figure, Legend, Mark, Scale, Series};
+use crate::report::sci;
+use crate::scene::FreeBodyPlot;
+use nalgebra::Vector3;
+use std::f64::consts::PI;
+
+pub fn figure(
+    kind: FreeBodyPlot,
+    inertia: [f64; 3],
+    omega: [f64; 3],
+    t: f64,
+) -> Result<Figure, String> {
+    let i = Moments::new(inertia)?;
+    let w0 = Vector3::from(omega);
+    match kind {
+        FreeBodyPlot::OmegaVsTime => omega_vs_time(&i, w0, t),
+        FreeBodyPlot::Polhodes => polhodes(&i, w0),
+        FreeBodyPlot::Drift => drift(&i, w0, t),
+        FreeBodyPlot::Flip => flip(&i, w0, t),
+        FreeBodyPlot::Herpolhode => herpolhode(&i, w0, t),
+        FreeBodyPlot::PolarMotion => polar_motion(&i, w0),
+    }
+}
+
+fn fig(slug: &str, title: String, desc: String, x: &str, y: &str, series: Vec<Series>) -> Figure {
+    Figure {
+        slug: slug.into(),
+        title,
+        desc,
+        x_label: x.into(),
+        y_label: y.into(),
+        x_scale: Scale::Linear,
+        y_scale: Scale::Linear,
+        equal_aspect: false,
+        series,
+        labels: Vec::new(),
+        legend: Legend::UpperRight,
+    }
+}
+
+fn body_text(i: &Moments, w0: &Vector3<f64>) -> String {
+    format!(
+        "I = ({}, {}, {}), ω(0) = ({}, {}, {})",
+        i.0[0], i.0[1], i.0[2], w0.x, w0.y, w0.z
+    )
+}
+
+fn motion_text(sol: &ExactSolution) -> String {
+    let mut s = String::new();
+    if let Some((m, mc)) = sol.parameter() {
+        s.push_str(&format!("m = {m:.6} (1 − m = {}), ", sci(mc)));
+    }
+    match sol.period() {
+        Some(p) => s.push_str(&format!("period of ω {p:.6}")),
+        None => s.push_str("steady rotation"),
+    }
+    s
+}
+
+fn run(
+    i: &Moments,
+    w0: Vector3<f64>,
+    t: f64,
+    m: Method,
+    r: Resolution,
+    samples: usize,
+) -> Result<Run, String> {
+    integrate(i, w0, t, m, r, samples)
+}
+
+fn omega_vs_time(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+    let sol = ExactSolution::new(i, w0);
+    let n = 400;
+    let mut series = Vec::new();
+    let dp = run(
+        i,
+        w0,
+        t_end,
+        Method::Dopri,
+        Resolution::Tolerance(1e-10),
+        24,
+    )?;
+    let mut worst: f64 = 0.0;
+    for (k, name) in ["ω1", "ω2", "ω3"].into_iter().enumerate() {
+        series.push(Series {
+            name: format!("{name} exact"),
+            mark: Mark::Line,
+            colour: k,
+            points: (0..=n)
+                .map(|j| {
+                    let t = t_end * j as f64 / n as f64;
+                    (t, sol.omega(t)[k])
+                })
+                .collect(),
+        });
+        series.push(Series {
+            name: String::new(),
+            mark: Mark::Points,
+            colour: k,
+            points: dp.trace.iter().map(|(t, w, _)| (*t, w[k])).collect(),
+        });
+    }
+    for (t, w, _) in &dp.trace {
+        worst = worst.max((w - sol.omega(*t)).norm() / w0.norm());
+    }
+    let desc = format!(
+        "Body-frame angular velocity of the free body with {} over 0 ≤ t ≤ {t_end}: {}. Lines: \
+         the exact solution; dots: Dormand–Prince 5(4) at tol 1e-10 ({} right-hand sides), at most \
+         {} from it relative to |ω(0)|.",
+        body_text(i, &w0),
+        motion_text(&sol),
+        dp.rhs_evaluations,
+        sci(worst)
+    );
+    let mut f = fig(
+        "omega-vs-time",
+        "Angular velocity in the body frame".into(),
+        desc,
+        "t",
+        "ω",
+        series,
+    );
+    f.legend = Legend::LowerRight;
+    Ok(f)
+}
+
+/// Indices of the smallest, middle and largest moments.
+fn sorted_axes(i: &Moments) -> [usize; 3] {
+    let mut o = [0, 1, 2];
+    o.sort_by(|a, b| i.0[*a].total_cmp(&i.0[*b]));
+    o
+}
+
+fn polhodes(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
+    let [a, b, c] = sorted_axes(i);
+    let (ia, ib, ic) = (i.0[a], i.0[b], i.0[c]);
+    if ia == ic {
+        return Err("polhodes need unequal moments (a sphere has none)".into());
+    }
+    let (two_t, _) = invariants(i, &w0);
+    let mut series = Vec::new();
+    let l_of = |w: &Vector3<f64>| Vector3::new(i.0[0] * w.x, i.0[1] * w.y, i.0[2] * w.z);
+    // The energy ellipsoid's three principal sections, for orientation.
+    for (p, q) in [(0, 1), (1, 2), (0, 2)] {
+        let pts: Vec<(f64, f64)> = (0..=120)
+            .map(|k| {
+                let s = k as f64 * 2.0 * PI / 120.0;
+                let mut l = Vector3::zeros();
+                l[p] = (two_t * i.0[p]).sqrt() * s.cos();
+                l[q] = (two_t * i.0[q]).sqrt() * s.sin();
+                project(&l)
+            })
+            .collect();
+        series.push(Series {
+            name: if p == 0 && q == 1 {
+                "energy ellipsoid".into()
+            } else {
+                String::new()
+            },
+            mark: Mark::Dashed,
+            colour: 5,
+            points: pts,
+        });
+    }
+    let mut closed = Vec::new();
+    for f in [0.05, 0.25, 0.45, 0.55, 0.75, 0.95] {
+        // L² between 2T·I_min and 2T·I_max; start on the plane ω_mid = 0.
+        let l2 = two_t * (ia + f * (ic - ia));
+        if (l2 - two_t * ib).abs() < 1e-9 * l2 {
+            continue;
+        }
+        let mut w = Vector3::zeros();
+        w[a] = ((two_t * ic - l2) / (ia * (ic - ia))).max(0.0).sqrt();
+        w[c] = ((l2 - two_t * ia) / (ic * (ic - ia))).max(0.0).sqrt();
+        let sol = ExactSolution::new(i, w);
+        let period = sol.period().unwrap_or(2.0 * PI);
+        let around = if l2 > two_t * ib { c } else { a };
+        closed.push(around);
+        for sign in [1.0, -1.0] {
+            series.push(Series {
+                name: if f == 0.05 && sign > 0.0 {
+                    "polhodes".into()
+                } else {
+                    String::new()
+                },
+                mark: Mark::Line,
+                colour: if around == c { 0 } else { 2 },
+                points: (0..=240)
+                    .map(|k| project(&(l_of(&sol.omega(period * k as f64 / 240.0)) * sign)))
+                    .collect(),
+            });
+        }
+    }
+    let mut sep_text = String::from("no separatrix (two equal moments)");
+    if ib > ia && ib < ic {
+        // d = 0: (I_c − I_b) L_c² / I_c = (I_b − I_a) L_a² / I_a, two planes through the middle
+        // axis; on the sphere |L|² = 2T·I_b they are great circles.
+        let k = ((ib - ia) * ic / ((ic - ib) * ia)).sqrt();
+        let radius = (two_t * ib).sqrt();
+        for (j, sign) in [1.0, -1.0].into_iter().enumerate() {
+            let mut u = Vector3::zeros();
+            u[a] = 1.0;
+            u[c] = sign * k;
+            let u = u.normalize();
+            let e = Vector3::ith(b, 1.0);
+            series.push(Series {
+                name: if j == 0 {
+                    "separatrix".into()
+                } else {
+                    String::new()
+                },
+                mark: Mark::Line,
+                colour: 1,
+                points: (0..=240)
+                    .map(|n| {
+                        let s = n as f64 * 2.0 * PI / 240.0;
+                        project(&((u * s.cos() + e * s.sin()) * radius))
+                    })
+                    .collect(),
+            });
+        }
+        sep_text = format!(
+            "the separatrix, L² = 2T·I{} = {:.4}, is two great circles through the ±L{} points",
+            b + 1,
+            two_t * ib,
+            b + 1
+        );
+    }
+    let n_max = closed.iter().filter(|&&x| x == c).count();
+    let desc = format!(
+        "Polhodes: the paths of L in the body frame on the energy ellipsoid 2T = {two_t:.4} \
+         (I = ({}, {}, {})), for six values of L² between 2T·I{} and 2T·I{}, each traced by the \
+         exact solution over one period, with its mirror image. {} close around the axis of the \
+         largest moment (I{}) and {} around the smallest (I{}); none close around the middle \
+         axis (I{}): {sep_text}. Oblique view, azimuth 25°, elevation 20°.",
+        i.0[0],
+        i.0[1],
+        i.0[2],
+        a + 1,
+        c + 1,
+        n_max,
+        c + 1,
+        closed.len() - n_max,
+        a + 1,
+        b + 1
+    );
+    let mut f = fig(
+        "polhodes",
+        "Polhodes on the energy ellipsoid".into(),
+        desc,
+        "",
+        "",
+        series,
+    );
+    f.equal_aspect = true;
+    f.labels = (0..3)
+        .map(|k| {
+            let mut l = Vector3::zeros();
+            l[k] = 1.08 * (two_t * i.0[k]).sqrt();
+            (format!("L{}", k + 1), project(&l))
+        })
+        .collect();
+    Ok(f)
+}
+
+fn drift(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+    let (t0, l0) = invariants(i, &w0);
+    let runs = [
+        ("RK4 h = 0.05", Method::Rk4, Resolution::Step(0.05)),
+        (
+            "Dormand–Prince tol 1e-9",
+            Method::Dopri,
+            Resolution::Tolerance(1e-9),
+        ),
+        (
+            "Strang splitting h = 0.05",
+            Method::Splitting,
+            Resolution::Step(0.05),
+        ),
+        (
+            "triple jump h = 0.05",
+            Method::Splitting4,
+            Resolution::Step(0.05),
+        ),
+    ];
+    let mut series = Vec::new();
+    let mut parts = Vec::new();
+    for (k, (name, m, r)) in runs.into_iter().enumerate() {
+        let run = run(i, w0, t_end, m, r, 200)?;
+        let energy: Vec<(f64, f64)> = run
+            .trace
+            .iter()
+            .filter(|(t, ..)| *t > 0.0)
+            .map(|(t, w, _)| (*t, ((invariants(i, w).0 - t0).abs() / t0).max(ERROR_FLOOR)))
+            .collect();
+        let length: Vec<(f64, f64)> = run
+            .trace
+            .iter()
+            .filter(|(t, ..)| *t > 0.0)
+            .map(|(t, w, _)| (*t, ((invariants(i, w).1 - l0).abs() / l0).max(ERROR_FLOOR)))
+            .collect();
+        parts.push(format!(
+            "{name}: energy {} and |L| {} at the end, {} right-hand sides",
+            sci(energy.last().map_or(0.0, |p| p.1)),
+            sci(length.last().map_or(0.0, |p| p.1)),
+            run.rhs_evaluations
+        ));
+        series.push(Series {
+            name: format!("{name}: energy"),
+            mark: Mark::Line,
+            colour: k,
+            points: energy,
+        });
+        series.push(Series {
+            name: String::new(),
+            mark: Mark::Dashed,
+            colour: k,
+            points: length,
+        });
+    }
+    let desc = format!(
+        "Relative error of the energy 2T (solid) and of |L| (dashed) against time for the free body \
+         with {}, log scale; errors below {} are drawn at that floor. {}. RK4 and Dormand–Prince \
+         drift; the splittings keep |L| at round-off and their energy error bounded.",
+        body_text(i, &w0),
+        sci(ERROR_FLOOR),
+        parts.join("; ")
+    );
+    let mut f = fig(
+        "drift",
+        "Invariant drift of each integrator".into(),
+        desc,
+        "t",
+        "relative error",
+        series,
+    );
+    f.y_scale = Scale::Log;
+    f.legend = Legend::LowerRight;
+    Ok(f)
+}
+
+/// Times where component `k` changes sign, by linear interpolation between trace samples.
+fn sign_changes(run: &Run, k: usize) -> Vec<f64> {
+    run.trace
+        .windows(2)
+        .filter(|w| w[0].1[k] * w[1].1[k] < 0.0)
+        .map(|w| {
+            let (t0, y0, t1, y1) = (w[0].0, w[0].1[k], w[1].0, w[1].1[k]);
+            t0 + (t1 - t0) * y0 / (y0 - y1)
+        })
+        .collect()
+}
+
+fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+    let [a, b, c] = sorted_axes(i);
+    let (ia, ib, ic) = (i.0[a], i.0[b], i.0[c]);
+    if !(ia < ib && ib < ic) {
+        return Err("the flip needs three different moments".into());
+    }
+    let sol = ExactSolution::new(i, w0);
+    let (_, mc) = sol
+        .parameter()
+        .ok_or("the flip needs the asymmetric solution")?;
+    let period = sol.period().ok_or("the motion is not periodic")?;
+    let (two_t, _) = invariants(i, &w0);
+    // REFERENCE.md: σ = ω2 √((I3 − I2)(I2 − I1)/(I1 I3)) with ω2 = √(2T/I2), the separatrix's
+    // limit; flips every 2K/λ ≈ ln(16/(1 − m))/σ.
+    let sigma = (two_t / ib).sqrt() * ((ic - ib) * (ib - ia) / (ia * ic)).sqrt();
+    let approx = (16.0 / mc).ln() / sigma;
+    let dp = run(
+        i,
+        w0,
+        t_end,
+        Method::Dopri,
+        Resolution::Tolerance(1e-11),
+        4000,
+    )?;
+    let flips = sign_changes(&dp, b);
+    let measured = if flips.len() >= 2 {
+        Some((flips[flips.len() - 1] - flips[0]) / (flips.len() - 1) as f64)
+    } else {
+        None
+    };
+    let n = 600;
+    let series = vec![
+        Series {
+            name: format!("ω{} exact", b + 1),
+            mark: Mark::Line,
+            colour: 0,
+            points: (0..=n)
+                .map(|j| {
+                    let t = t_end * j as f64 / n as f64;
+                    (t, sol.omega(t)[b])
+                })
+                .collect(),
+        },
+        Series {
+            name: "flips measured (Dormand–Prince)".into(),
+            mark: Mark::Points,
+            colour: 1,
+            points: flips.iter().map(|t| (*t, 0.0)).collect(),
+        },
+    ];
+    let desc = format!(
+        "Tennis racket: spin started near the middle axis (I{} = {ib}) of I = ({}, {}, {}), \
+         ω(0) = ({}, {}, {}). The component ω{} reverses again and again. Measured from Dormand–Prince \
+         (tol 1e-11) sign changes: {} flips, every {}; predicted: exactly 2K/λ = {:.6}, and \
+         approximately ln(16/(1 − m))/σ = {:.6} with 1 − m = {} and σ = {:.6}.",
+        b + 1,
+        i.0[0],
+        i.0[1],
+        i.0[2],
+        w0.x,
+        w0.y,
+        w0.z,
+        b + 1,
+        flips.len(),
+        measured.map_or(
+            "(fewer than two flips in the window)".to_string(),
+            |m| format!("{m:.6}")
+        ),
+        period / 2.0,
+        approx,
+        sci(mc),
+        sigma
+    );
+    let mut f = fig(
+        "flip",
+        "Intermediate-axis flips".into(),
+        desc,
+        "t",
+        &format!("ω{}", b + 1),
+        series,
+    );
+    f.legend = Legend::LowerRight;
+    Ok(f)
+}
+
+fn herpolhode(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+    let (two_t, l) = invariants(i, &w0);
+    let l_space = Vector3::new(i.0[0] * w0.x, i.0[1] * w0.y, i.0[2] * w0.z);
+    let n = l_space.normalize();
+    let e = Vector3::ith(n.iamin(), 1.0);
+    let u = n.cross(&e).normalize();
+    let v = n.cross(&u);
+    let dp = run(
+        i,
+        w0,
+        t_end,
+        Method::Dopri,
+        Resolution::Tolerance(1e-11),
+        3000,
+    )?;
+    let mut height_dev: f64 = 0.0;
+    let expected = two_t.sqrt() / l;
+    let pts: Vec<(f64, f64)> = dp
+        .trace
+        .iter()
+        .map(|(_, w, q)| {
+            let rho = q * w / two_t.sqrt();
+            height_dev = height_dev.max((rho.dot(&n) - expected).abs() / expected);
+            (rho.dot(&u), rho.dot(&v))
+        })
+        .collect();
+    let desc = format!(
+        "Herpolhode: the tip of ρ = ω/√(2T) in space, projected on the invariable plane (normal to \
+         the fixed L), for {} over 0 ≤ t ≤ {t_end}, from Dormand–Prince 5(4) at tol 1e-11 with the \
+         attitude. The plane's distance from the centre stays √(2T)/L = {expected:.6} to {} \
+         (eq 81), and L stays fixed in space to {}.",
+        body_text(i, &w0),
+        sci(height_dev),
+        sci(dp.space_momentum_drift)
+    );
+    let mut f = fig(
+        "herpolhode",
+        "Herpolhode on the invariable plane".into(),
+        desc,
+        "",
+        "",
+        vec![Series {
+            name: "herpolhode".into(),
+            mark: Mark::Line,
+            colour: 0,
+            points: pts,
+        }],
+    );
+    f.equal_aspect = true;
+    Ok(f)
+}
+
+/// Mean solar days per sidereal day: 365.2422 / 366.2422 (one more sidereal day per year).
+const SOLAR_PER_SIDEREAL: f64 = 365.2422 / 366.2422;
+/// REFERENCE.md (IERS Conventions 2010, Table 1.1): dynamical ellipticity H = (C − A)/C.
+pub const EARTH_H: f64 = 3.2737949e-3;
+/// REFERENCE.md (Malkin & Miller 2010): observed Chandler period, days.
+pub const CHANDLER_DAYS: f64 = 433.0;
+
+/// ω in radians per sidereal day: ω3 = 2π is one turn per sidereal day.
+fn polar_motion(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
+    let sol = ExactSolution::new(i, w0);
+    let period = sol
+        .period()
+        .ok_or("polar motion needs a wobble (ω1 or ω2 non-zero)")?;
+    let (ia, ic) = (i.0[0], i.0[2]);
+    let beta = (ic - ia) / ia;
+    let euler_sidereal = period * w0.z / (2.0 * PI);
+    let euler_solar = euler_sidereal * SOLAR_PER_SIDEREAL;
+    let pts: Vec<(f64, f64)> = (0..=200)
+        .map(|k| {
+            let w = sol.omega(period * k as f64 / 200.0);
+            (w.x / w.z, w.y / w.z)
+        })
+        .collect();
+    let months: Vec<(f64, f64)> = (0..12)
+        .map(|k| {
+            let days = 30.4375 * k as f64 / SOLAR_PER_SIDEREAL;
+            let w = sol.omega(days * 2.0 * PI / w0.z);
+            (w.x / w.z, w.y / w.z)
+        })
+        .collect();
+    let desc = format!(
+        "Earth's free (Euler) wobble: the rotation axis in the body frame, (ω1/ω3, ω2/ω3), for \
+         I = ({}, {}, {}) (so β = (C − A)/A = {beta:.7e}) and one turn per sidereal day. The exact \
+         solution closes after {euler_sidereal:.3} sidereal days = {euler_solar:.3} mean solar days \
+         (1/β sidereal days); dots mark 12 months. The observed Chandler period is about \
+         {CHANDLER_DAYS} days, {:.3} times longer, because Earth is not rigid.",
+        i.0[0],
+        i.0[1],
+        i.0[2],
+        CHANDLER_DAYS / euler_solar
+    );
+    let mut f = fig(
+        "polar-motion",
+        "Euler's free precession of Earth's axis".into(),
+        desc,
+        "ω1/ω3",
+        "ω2/ω3",
+        vec![
+            Series {
+                name: "one Euler period".into(),
+                mark: Mark::Line,
+                colour: 0,
+                points: pts,
+            },
+            Series {
+                name: "monthly".into(),
+                mark: Mark::Points,
+                colour: 1,
+                points: months,
+            },
+        ],
+    );
+    f.equal_aspect = true;
+    Ok(f)
+}
