@@ -444,3 +444,48 @@ mod separatrix_tests {
         }
     }
 }
+
+#[cfg(test)]
+mod stability_tests {
+    use super::*;
+
+    /// Eqs (72)–(73) and the three cases after them: for every ordering of the moments, a spin
+    /// about the largest or smallest axis perturbed by 1e-6 stays within a small multiple of it,
+    /// and a spin about the middle axis grows to order one (it flips). Checked on the exact
+    /// solution, against Ω² = ω_k² (I_k − I_a)(I_k − I_b)/(I_a I_b) of the linearization.
+    #[test]
+    fn only_the_middle_axis_is_unstable_for_every_ordering() {
+        let base = [1.0, 2.0, 3.0];
+        for perm in [
+            [0, 1, 2],
+            [0, 2, 1],
+            [1, 0, 2],
+            [1, 2, 0],
+            [2, 0, 1],
+            [2, 1, 0],
+        ] {
+            let i = Moments::new(perm.map(|k| base[k])).unwrap();
+            for axis in 0..3 {
+                let (p, q) = ((axis + 1) % 3, (axis + 2) % 3);
+                let omega_sq = (i.0[axis] - i.0[p]) * (i.0[axis] - i.0[q]) / (i.0[p] * i.0[q]);
+                let mut w0 = Vector3::repeat(1e-6);
+                w0[axis] = 1.0;
+                let sol = ExactSolution::new(&i, w0);
+                let worst = (0..2000)
+                    .map(|k| {
+                        let w = sol.omega(k as f64 * 0.05);
+                        (w - Vector3::ith(axis, w[axis])).norm()
+                    })
+                    .fold(0.0, f64::max);
+                let middle = i.0[axis] != i.0.iter().cloned().fold(f64::MIN, f64::max)
+                    && i.0[axis] != i.0.iter().cloned().fold(f64::MAX, f64::min);
+                assert_eq!(omega_sq < 0.0, middle, "{:?} axis {axis}", i.0);
+                if middle {
+                    assert!(worst > 0.1, "{:?} axis {axis}: stayed within {worst}", i.0);
+                } else {
+                    assert!(worst < 1e-5, "{:?} axis {axis}: wandered to {worst}", i.0);
+                }
+            }
+        }
+    }
+}
