@@ -258,6 +258,17 @@ impl Elliptic {
     }
 }
 
+/// The six orderings of three axes, for tests.
+#[cfg(test)]
+const PERMUTATIONS: [[usize; 3]; 6] = [
+    [0, 1, 2],
+    [0, 2, 1],
+    [1, 0, 2],
+    [1, 2, 0],
+    [2, 0, 1],
+    [2, 1, 0],
+];
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -298,14 +309,7 @@ mod tests {
         let base = [1.0, 2.0, 3.0];
         let w = [1.0, 0.1, 0.5];
         let reference = ExactSolution::new(&Moments::new(base).unwrap(), Vector3::from(w));
-        for perm in [
-            [0, 1, 2],
-            [0, 2, 1],
-            [1, 0, 2],
-            [1, 2, 0],
-            [2, 0, 1],
-            [2, 1, 0],
-        ] {
+        for perm in PERMUTATIONS {
             let i = Moments::new(perm.map(|k| base[k])).unwrap();
             let sol = ExactSolution::new(&i, Vector3::from(perm.map(|k| w[k])));
             let odd = matches!(perm, [0, 2, 1] | [1, 0, 2] | [2, 1, 0]);
@@ -456,14 +460,7 @@ mod stability_tests {
     #[test]
     fn only_the_middle_axis_is_unstable_for_every_ordering() {
         let base = [1.0, 2.0, 3.0];
-        for perm in [
-            [0, 1, 2],
-            [0, 2, 1],
-            [1, 0, 2],
-            [1, 2, 0],
-            [2, 0, 1],
-            [2, 1, 0],
-        ] {
+        for perm in PERMUTATIONS {
             let i = Moments::new(perm.map(|k| base[k])).unwrap();
             for axis in 0..3 {
                 let (p, q) = ((axis + 1) % 3, (axis + 2) % 3);

@@ -4,7 +4,7 @@
 
 use super::free_body::{ExactSolution, Moments, invariants};
 use super::integrators::{Method, Resolution, Run, integrate};
-use super::plots::{ERROR_FLOOR, project};
+use super::plots::{ERROR_FLOOR, plane_basis, project};
 use crate::figure::{Figure, Legend, Mark, Scale, Series};
 use crate::report::sci;
 use crate::scene::FreeBodyPlot;
@@ -64,22 +64,11 @@ fn motion_text(sol: &ExactSolution) -> String {
     s
 }
 
-fn run(
-    i: &Moments,
-    w0: Vector3<f64>,
-    t: f64,
-    m: Method,
-    r: Resolution,
-    samples: usize,
-) -> Result<Run, String> {
-    integrate(i, w0, t, m, r, samples)
-}
-
 fn omega_vs_time(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
     let sol = ExactSolution::new(i, w0);
     let n = 400;
     let mut series = Vec::new();
-    let dp = run(
+    let dp = integrate(
         i,
         w0,
         t_end,
@@ -293,7 +282,7 @@ fn drift(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
     let mut series = Vec::new();
     let mut parts = Vec::new();
     for (k, (name, m, r)) in runs.into_iter().enumerate() {
-        let run = run(i, w0, t_end, m, r, 200)?;
+        let run = integrate(i, w0, t_end, m, r, 200)?;
         let energy: Vec<(f64, f64)> = run
             .trace
             .iter()
@@ -374,7 +363,7 @@ fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
     // limit; flips every 2K/λ ≈ ln(16/(1 − m))/σ.
     let sigma = (two_t / ib).sqrt() * ((ic - ib) * (ib - ia) / (ia * ic)).sqrt();
     let approx = (16.0 / mc).ln() / sigma;
-    let dp = run(
+    let dp = integrate(
         i,
         w0,
         t_end,
@@ -447,10 +436,8 @@ fn herpolhode(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, Strin
     let (two_t, l) = invariants(i, &w0);
     let l_space = Vector3::new(i.0[0] * w0.x, i.0[1] * w0.y, i.0[2] * w0.z);
     let n = l_space.normalize();
-    let e = Vector3::ith(n.iamin(), 1.0);
-    let u = n.cross(&e).normalize();
-    let v = n.cross(&u);
-    let dp = run(
+    let (u, v) = plane_basis(&n);
+    let dp = integrate(
         i,
         w0,
         t_end,

@@ -306,7 +306,7 @@ fn segment(a: Vector3<f64>, b: Vector3<f64>) -> [(f64, f64); 2] {
 }
 
 /// Two unit vectors spanning the plane normal to `n`.
-fn plane_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+pub(super) fn plane_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
     let n = n.normalize();
     let e = Vector3::ith(n.iamin(), 1.0);
     let u = n.cross(&e).normalize();
