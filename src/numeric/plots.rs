@@ -47,6 +47,14 @@ pub fn figures(scene: &Scene, d: &Derivation) -> Result<Vec<Figure>, String> {
                 t,
             } => out.push(super::free_body_plots::figure(*kind, *inertia, *omega, *t)?),
         }
+        // Two plots of one kind in a scene get distinct file names.
+        let last = out.len() - 1;
+        let taken = |slug: &str| out[..last].iter().any(|f| f.slug == slug);
+        if taken(&out[last].slug) {
+            let base = out[last].slug.clone();
+            let n = (2..).find(|n| !taken(&format!("{base}-{n}"))).unwrap();
+            out[last].slug = format!("{base}-{n}");
+        }
     }
     Ok(out)
 }

@@ -204,6 +204,8 @@ pub enum FreeBodyPlot {
     Herpolhode,
     /// Earth's polar motion over one Euler period (symmetric top with the given moments).
     PolarMotion,
+    /// The symmetric top's body and space cones, with their measured half-angles.
+    Cones,
 }
 
 impl FreeBodyPlot {
@@ -214,6 +216,7 @@ impl FreeBodyPlot {
         ("flip", FreeBodyPlot::Flip),
         ("herpolhode", FreeBodyPlot::Herpolhode),
         ("polar-motion", FreeBodyPlot::PolarMotion),
+        ("cones", FreeBodyPlot::Cones),
     ];
 
     pub fn name(self) -> &'static str {
@@ -236,6 +239,7 @@ impl PlotRequest {
         "flip",
         "herpolhode",
         "polar-motion",
+        "cones",
     ];
 
     pub fn kind(&self) -> &'static str {
