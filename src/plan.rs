@@ -25,6 +25,16 @@ pub enum Stage {
     MomentAboutAxis,
     /// Symbolic: radius of gyration and the inertia ellipsoid (eqs 53–59).
     Gyration,
+    /// Symbolic: Euler's equations from dL/dt|body + ω × L = N (eqs 60–65).
+    EulerEquations,
+    /// Symbolic: the torque-free symmetric top, its solution and cones (eqs 66–71).
+    SymmetricTop,
+    /// Symbolic: linearisation about each principal axis and its stability (eqs 72–76).
+    AxisStability,
+    /// Symbolic: Poinsot's construction, the bounds on L² and the polhodes (eqs 77–87).
+    Poinsot,
+    /// Symbolic: Earth's Euler period from cited constants (after eq 89).
+    EarthPrecession,
     /// Numeric: quadrature of every body, with error laws and cost.
     Quadrature,
     /// Numeric: SymmetricEigen against the exact principal moments.
@@ -47,6 +57,11 @@ impl Stage {
         Stage::KineticEnergy,
         Stage::MomentAboutAxis,
         Stage::Gyration,
+        Stage::EulerEquations,
+        Stage::SymmetricTop,
+        Stage::AxisStability,
+        Stage::Poinsot,
+        Stage::EarthPrecession,
         Stage::Quadrature,
         Stage::NumericEigen,
         Stage::Plots,
@@ -64,6 +79,11 @@ impl Stage {
             Stage::KineticEnergy => "kinetic-energy",
             Stage::MomentAboutAxis => "moment-about-axis",
             Stage::Gyration => "gyration",
+            Stage::EulerEquations => "euler-equations",
+            Stage::SymmetricTop => "symmetric-top",
+            Stage::AxisStability => "axis-stability",
+            Stage::Poinsot => "poinsot",
+            Stage::EarthPrecession => "earth-precession",
             Stage::Quadrature => "numeric-quadrature",
             Stage::NumericEigen => "numeric-eigen",
             Stage::Plots => "plots",
@@ -75,7 +95,14 @@ impl Stage {
     /// The stages this one needs first.
     fn requires(self) -> &'static [Stage] {
         match self {
-            Stage::Tensor | Stage::Claims | Stage::Regression => &[],
+            Stage::Tensor
+            | Stage::Claims
+            | Stage::Regression
+            | Stage::EulerEquations
+            | Stage::SymmetricTop
+            | Stage::AxisStability
+            | Stage::Poinsot
+            | Stage::EarthPrecession => &[],
             Stage::CentreOfMass => &[Stage::Tensor],
             Stage::ParallelAxis => &[Stage::CentreOfMass],
             Stage::Principal
@@ -101,6 +128,38 @@ fn stage_for_quantity(name: &str) -> Option<Stage> {
         "kinetic_energy" | "kinetic_energy_direct" => Stage::KineticEnergy,
         "moment_about_axis" | "moment_about_axis_direct" => Stage::MomentAboutAxis,
         "radius_of_gyration" => Stage::Gyration,
+        "principal_momentum"
+        | "gyroscopic_term"
+        | "euler_equations"
+        | "body_rate_of_momentum"
+        | "torque_free_rates" => Stage::EulerEquations,
+        "w1_second_derivative"
+        | "symmetric_solution"
+        | "symmetric_residual"
+        | "omega_squared"
+        | "precession_rate"
+        | "body_cone_tan_squared"
+        | "space_cone_cos_squared"
+        | "momentum_tilt_tan_squared"
+        | "cone_order" => Stage::SymmetricTop,
+        "oscillation_frequency_squared"
+        | "amplitude_ratio_squared"
+        | "stability"
+        | "growth_rate_squared" => Stage::AxisStability,
+        "ellipsoid_value"
+        | "gradient_factor_squared"
+        | "plane_distance_squared"
+        | "energy_from_momentum"
+        | "momentum_gap"
+        | "polhode_conic_product"
+        | "polhode_closure"
+        | "separatrix_slope_squared" => Stage::Poinsot,
+        "earth_beta"
+        | "euler_period_sidereal_days"
+        | "euler_period_solar_days"
+        | "chandler_ratio"
+        | "bulge_km"
+        | "bulge_fraction" => Stage::EarthPrecession,
         _ => return None,
     })
 }
@@ -126,6 +185,11 @@ impl Plan {
                 Output::MomentAboutAxis => &[Stage::MomentAboutAxis],
                 Output::Gyration => &[Stage::Gyration],
                 Output::Numeric => &[Stage::Quadrature],
+                Output::EulerEquations => &[Stage::EulerEquations],
+                Output::SymmetricTop => &[Stage::SymmetricTop],
+                Output::AxisStability => &[Stage::AxisStability],
+                Output::Poinsot => &[Stage::Poinsot],
+                Output::EarthPrecession => &[Stage::EarthPrecession],
             };
             wanted.extend(stages.iter().map(|s| (*s, why.clone())));
         }
@@ -216,7 +280,7 @@ impl Plan {
 pub fn referenced_quantities(e: &Expr) -> Vec<String> {
     e.symbols()
         .into_iter()
-        .filter(|s| crate::scene::QUANTITIES.contains(&s.as_str()))
+        .filter(|s| crate::scene::is_quantity(s))
         .collect()
 }
 

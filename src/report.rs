@@ -58,6 +58,7 @@ pub fn scene_json(r: &SceneReport) -> Json {
                 "passed": c.passed(),
                 "differences": c.differences,
                 "problem": c.problem,
+                "precision": c.precision,
             })
         })
         .collect();
@@ -352,6 +353,9 @@ pub fn derivation_text(r: &SceneReport) -> String {
             );
             for d in &c.differences {
                 let _ = writeln!(out, "        {d}");
+            }
+            if let Some(p) = c.precision.as_ref().filter(|_| c.differences.is_empty()) {
+                let _ = writeln!(out, "        {p}");
             }
             if let Some(p) = &c.problem {
                 let _ = writeln!(out, "        problem: {p}");

@@ -35,6 +35,8 @@ pub struct ClaimResult {
     pub differences: Vec<String>,
     /// A problem with the check itself (the two routes disagree, a type error), if any.
     pub problem: Option<String>,
+    /// For a number the notes give roughly: the derived value, rounded as the notes round.
+    pub precision: Option<String>,
     pub line: usize,
 }
 
@@ -159,6 +161,7 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
             expected: claim.expect,
             differences: Vec::new(),
             problem: None,
+            precision: None,
             line: claim.line,
         };
         let (Some(q), Some(v)) = (&claim.quantity, &claim.value) else {
@@ -184,6 +187,24 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
                 continue;
             }
         };
+        if let Some(figures) = claim.figures {
+            match rounded_agreement(&derived, &notes, figures) {
+                Ok((agrees, detail)) => {
+                    r.verdict = if agrees {
+                        Verdict::Agrees
+                    } else {
+                        Verdict::Disagrees
+                    };
+                    if !agrees {
+                        r.differences.push(detail.clone());
+                    }
+                    r.precision = Some(detail);
+                }
+                Err(e) => r.problem = Some(e),
+            }
+            out.push(r);
+            continue;
+        }
         if std::mem::discriminant(&derived) != std::mem::discriminant(&notes) {
             r.verdict = Verdict::Disagrees;
             r.differences.push(format!(
@@ -245,6 +266,40 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
         out.push(r);
     }
     Ok(out)
+}
+
+/// `x` rounded to `figures` significant figures.
+pub fn round_to_figures(x: f64, figures: u32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let exponent = x.abs().log10().floor() as i32;
+    let scale = 10f64.powi(figures as i32 - 1 - exponent);
+    (x * scale).round() / scale
+}
+
+/// Do two numbers agree at the precision the notes give? Both sides must be numbers.
+fn rounded_agreement(
+    derived: &Value,
+    notes: &Value,
+    figures: u32,
+) -> Result<(bool, String), String> {
+    let number = |v: &Value, side: &str| -> Result<f64, String> {
+        match v {
+            Value::Scalar(e) => e
+                .eval(&|_| None)
+                .map_err(|e| format!("the {side} side is not a number: {e}")),
+            other => Err(format!("the {side} side is {}, not a number", other.kind())),
+        }
+    };
+    let (d, n) = (number(derived, "derived")?, number(notes, "notes'")?);
+    let (rd, rn) = (round_to_figures(d, figures), round_to_figures(n, figures));
+    let agrees = (rd - rn).abs() <= 1e-12 * rd.abs().max(rn.abs());
+    let unit = if figures == 1 { "figure" } else { "figures" };
+    Ok((
+        agrees,
+        format!("{d:.6e} rounds to {rd} at {figures} significant {unit}; the notes give {n}"),
+    ))
 }
 
 pub fn check_regressions(
@@ -546,5 +601,32 @@ values = { m = 1.0, a = 1.0 }
         let r = claims(&claim("r*r", "0", "agrees"));
         assert!(r[0].problem.as_ref().unwrap().contains("does not evaluate"));
         assert!(!r[0].passed());
+    }
+
+    #[test]
+    fn rough_numbers_agree_only_at_the_precision_given() {
+        assert_eq!(super::round_to_figures(303.6246, 1), 300.0);
+        assert_eq!(super::round_to_figures(303.6246, 3), 304.0);
+        assert_eq!(super::round_to_figures(3.2845e-3, 2), 3.3e-3);
+        assert_eq!(super::round_to_figures(-21.38, 1), -20.0);
+        // The Earth period, 303.62 days, is "about 300" at one figure but not at three.
+        let rough = |figures: u32| {
+            format!(
+                "[[claim]]\neq = \"89\"\nstatement = \"s\"\nquantity = \"euler_period_solar_days\"\nvalue = \"300\"\nfigures = {figures}\nexpect = \"agrees\"\n"
+            )
+        };
+        let scene = |figures: u32| {
+            format!(
+                "id = \"e\"\ntitle = \"e\"\nnotes = {{ lecture = \"3/9\" }}\nsymbols = {{ A = \"a\", C = \"c\", H = \"h\" }}\n[outputs]\nwant = []\n{}",
+                rough(figures)
+            )
+        };
+        let verdict = |figures| {
+            let s = Scene::parse(&scene(figures), Path::new("e.toml")).unwrap();
+            run_scene(s).unwrap().verification.claims[0].verdict
+        };
+        assert_eq!(verdict(1), Verdict::Agrees);
+        assert_eq!(verdict(2), Verdict::Agrees);
+        assert_eq!(verdict(3), Verdict::Disagrees);
     }
 }

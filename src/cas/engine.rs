@@ -112,6 +112,44 @@ fn normal_form(e: &Expr) -> Result<Expr, String> {
     Ok(Expr::over(num, den))
 }
 
+/// The expanded numerator and denominator of a rational function (no fractional powers).
+pub fn fraction(e: &Expr) -> Result<(Expr, Expr), String> {
+    if trig::has_fractional_power(e) {
+        return Err(format!("not a rational function: `{e}`"));
+    }
+    let rat: RationalPolynomial<_, u16> = to_atom(e).expand().to_rational_polynomial(&Q, &Z, None);
+    Ok((
+        from_atom(&rat.numerator.to_expression().expand())?,
+        from_atom(&rat.denominator.to_expression().expand())?,
+    ))
+}
+
+/// A rational function as a product of irreducible factors over the rationals, numerator over
+/// denominator, so that a step can show where an expression vanishes or changes sign.
+pub fn factor(e: &Expr) -> Result<Expr, String> {
+    if trig::has_fractional_power(e) {
+        return Err(format!("cannot factor `{e}`: it has a fractional power"));
+    }
+    let rat: RationalPolynomial<_, u16> = to_atom(e).expand().to_rational_polynomial(&Q, &Z, None);
+    let product = |poly: &MultivariatePolynomial<_, u16>| -> Result<Expr, String> {
+        if poly.is_constant() {
+            return from_atom(&poly.to_expression());
+        }
+        let mut factors = Vec::new();
+        for (f, mult) in poly.factor() {
+            factors.push(Expr::pow(
+                from_atom(&f.to_expression())?,
+                Expr::int(mult as i128),
+            ));
+        }
+        Ok(Expr::ordered_product(factors))
+    };
+    Ok(Expr::over(
+        product(&rat.numerator)?,
+        product(&rat.denominator)?,
+    ))
+}
+
 /// A negative power of anything but a number: the expression is not a polynomial.
 fn has_symbolic_denominator(e: &Expr) -> bool {
     match e {

@@ -212,7 +212,6 @@ impl Expr {
         }
     }
 
-    /// Evaluates a scalar expression in f64. `pi` is π unless the environment binds it.
     /// The derivative with respect to `x` by the sum, product and chain rules (no simplification:
     /// the engine's zero test does that).
     pub fn diff(&self, x: &str) -> Result<Expr, String> {
@@ -255,6 +254,7 @@ impl Expr {
         })
     }
 
+    /// Evaluates a scalar expression in f64. `pi` is π unless the environment binds it.
     pub fn eval(&self, env: &dyn Fn(&str) -> Option<f64>) -> Result<f64, String> {
         Ok(match self {
             Expr::Num(r) => r.to_f64(),
@@ -523,7 +523,8 @@ const GREEK: &[&str] = &[
     "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Phi", "Psi", "Omega",
 ];
 
-/// `alpha` -> `\alpha`, `w1` -> `w_{1}`, `Ixx` -> `I_{xx}`, `inertia_tensor` -> upright text.
+/// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
+/// `inertia_tensor` -> upright text.
 fn latex_symbol(s: &str) -> String {
     if let Some((_, tail)) = s.split_once('_')
         && !tail.chars().all(|c| c.is_ascii_digit())
@@ -538,7 +539,13 @@ fn latex_symbol(s: &str) -> String {
         Some(i) => (&s[..i], s[i..].trim_start_matches('_')),
         None => (s, ""),
     };
-    let head = if GREEK.contains(&head) {
+    // ω is written w in scene files: w1 is ω₁ and wd1 its rate.
+    let numbered = !tail.is_empty() && tail.chars().all(|c| c.is_ascii_digit());
+    let head = if numbered && head == "w" {
+        "\\omega".to_string()
+    } else if numbered && head == "wd" {
+        "\\dot{\\omega}".to_string()
+    } else if GREEK.contains(&head) {
         format!("\\{head}")
     } else if head.len() > 1
         && head.starts_with('I')
@@ -1086,6 +1093,8 @@ mod tests {
             p("sin(alpha)^2").to_latex(),
             "\\,{\\sin}^{2}\\left(\\alpha\\right)"
         );
-        assert_eq!(p("w1").to_latex(), "w_{1}");
+        assert_eq!(p("w1").to_latex(), "\\omega_{1}");
+        assert_eq!(p("wd2").to_latex(), "\\dot{\\omega}_{2}");
+        assert_eq!(p("w").to_latex(), "w");
     }
 }

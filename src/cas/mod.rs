@@ -161,6 +161,16 @@ pub fn is_zero_all(exprs: Vec<Expr>) -> Result<Vec<bool>, CasError> {
     run(move || exprs.iter().map(engine::is_zero).collect())
 }
 
+/// The expanded numerator and denominator of each rational function.
+pub fn fraction_all(exprs: Vec<Expr>) -> Result<Vec<(Expr, Expr)>, CasError> {
+    run(move || exprs.iter().map(engine::fraction).collect())
+}
+
+/// Each rational function factored over the rationals, numerator over denominator.
+pub fn factor_all(exprs: Vec<Expr>) -> Result<Vec<Expr>, CasError> {
+    run(move || exprs.iter().map(engine::factor).collect())
+}
+
 /// The exact roots in `var` of a polynomial whose other symbols are parameters.
 pub fn roots(poly: &Expr, var: &str) -> Result<Roots, CasError> {
     let (poly, var) = (poly.clone(), var.to_string());

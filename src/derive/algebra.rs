@@ -331,6 +331,23 @@ fn call(name: &str, args: Vec<Value>) -> Result<Value, String> {
                 .collect::<Result<_, _>>()?;
             f.with_entries(&d)
         }
+        // The value of f with the symbol x replaced by v.
+        ("subs", [f, Scalar(Expr::Sym(x)), Scalar(v)]) => {
+            let e: Vec<Expr> = f
+                .entries()
+                .iter()
+                .map(|e| e.substitute(&|n| (n == x).then(|| v.clone())))
+                .collect();
+            f.with_entries(&e)
+        }
+        // 1 or −1 when the sign is the same for all positive values of the symbols, 0 when it
+        // is not (see `derive::sign`).
+        ("sign", [f]) => {
+            let signs =
+                super::sign::signs_over_positive(&f.entries()).map_err(|e| e.to_string())?;
+            let e: Vec<Expr> = signs.iter().map(|s| Expr::int(s.as_int())).collect();
+            f.with_entries(&e)
+        }
         ("rot_x", [Scalar(a)]) => Matrix(rotation(0, a)),
         ("rot_y", [Scalar(a)]) => Matrix(rotation(1, a)),
         ("rot_z", [Scalar(a)]) => Matrix(rotation(2, a)),

@@ -6,10 +6,17 @@
 
 pub mod algebra;
 pub mod bodies;
+pub mod earth;
+pub mod euler;
+pub mod free_top;
 mod inertia;
 mod kinematics;
+pub mod poinsot;
 mod principal;
+pub mod sign;
+pub mod stability;
 
+pub use free_top::SYMBOLS as SYMMETRIC_TOP_SYMBOLS;
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
 use crate::cas::{self, CasError, Expr};
@@ -83,6 +90,13 @@ pub fn simplify_value(v: &Value) -> Result<Value, CasError> {
     Ok(v.with_entries(&entries))
 }
 
+/// Every entry factored over the rationals, for display: (I1 − I3)(I2 − I3) reads better than
+/// its expansion. Results are stored simplified, not factored.
+pub fn factored(v: &Value) -> Result<Value, CasError> {
+    let entries = cas::factor_all(v.entries())?;
+    Ok(v.with_entries(&entries))
+}
+
 /// True when `a − b` is identically zero, entry by entry.
 pub fn values_equal(a: &Value, b: &Value) -> Result<bool, CasError> {
     let diffs: Vec<Expr> = a
@@ -118,8 +132,25 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     if plan.runs(Stage::Gyration) {
         kinematics::gyration(&mut d)?;
     }
+    if plan.runs(Stage::EulerEquations) {
+        euler::euler_equations(&mut d)?;
+    }
+    if plan.runs(Stage::SymmetricTop) {
+        free_top::symmetric_top(&mut d)?;
+    }
+    if plan.runs(Stage::AxisStability) {
+        stability::axis_stability(&mut d)?;
+    }
+    if plan.runs(Stage::Poinsot) {
+        poinsot::poinsot(&mut d)?;
+    }
+    if plan.runs(Stage::EarthPrecession) {
+        earth::earth_precession(&mut d)?;
+    }
     Ok(d)
 }
 
+#[cfg(test)]
+mod dynamics_tests;
 #[cfg(test)]
 mod tests;

@@ -260,14 +260,7 @@ impl Elliptic {
 
 /// The six orderings of three axes, for tests.
 #[cfg(test)]
-const PERMUTATIONS: [[usize; 3]; 6] = [
-    [0, 1, 2],
-    [0, 2, 1],
-    [1, 0, 2],
-    [1, 2, 0],
-    [2, 0, 1],
-    [2, 1, 0],
-];
+use crate::derive::stability::ORDERINGS as PERMUTATIONS;
 
 #[cfg(test)]
 mod tests {

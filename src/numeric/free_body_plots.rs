@@ -483,12 +483,17 @@ fn herpolhode(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, Strin
     Ok(f)
 }
 
-/// Mean solar days per sidereal day: 365.2422 / 366.2422 (one more sidereal day per year).
-const SOLAR_PER_SIDEREAL: f64 = 365.2422 / 366.2422;
-/// REFERENCE.md (IERS Conventions 2010, Table 1.1): dynamical ellipticity H = (C − A)/C.
-pub const EARTH_H: f64 = 3.2737949e-3;
-/// REFERENCE.md (Malkin & Miller 2010): observed Chandler period, days.
-pub const CHANDLER_DAYS: f64 = 433.0;
+use crate::derive::earth;
+/// Mean solar days per sidereal day: a tropical year holds one more sidereal day than solar days.
+const SOLAR_PER_SIDEREAL: f64 = {
+    let year = earth::TROPICAL_YEAR_DAYS.0 as f64 / earth::TROPICAL_YEAR_DAYS.1 as f64;
+    year / (year + 1.0)
+};
+/// The dynamical ellipticity H = (C − A)/C and the observed Chandler period in days, as cited in
+/// `derive::earth`.
+pub const EARTH_H: f64 =
+    earth::DYNAMICAL_ELLIPTICITY.0 as f64 / earth::DYNAMICAL_ELLIPTICITY.1 as f64;
+pub const CHANDLER_DAYS: f64 = earth::CHANDLER_DAYS as f64;
 
 /// ω in radians per sidereal day: ω3 = 2π is one turn per sidereal day.
 fn polar_motion(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {

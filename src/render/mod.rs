@@ -36,6 +36,8 @@ pub struct ClaimView {
     pub notes: String,
     pub derived: String,
     pub differences: Vec<String>,
+    /// For a number the notes give roughly: how it was rounded to compare.
+    pub precision: Option<String>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -185,6 +187,7 @@ pub fn page_view(
             notes: render(claim.value.as_ref())?,
             derived,
             differences: c.differences.clone(),
+            precision: c.precision.clone(),
         });
     }
     Ok(PageView {

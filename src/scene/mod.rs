@@ -163,6 +163,9 @@ pub struct Claim {
     pub quantity: Option<Expr>,
     /// The notes' side, restated.
     pub value: Option<Expr>,
+    /// Set when the notes give a number to this many significant figures: both sides are then
+    /// numbers, and they agree when the derived one rounds to the notes' value.
+    pub figures: Option<u32>,
     pub expect: Verdict,
     pub line: usize,
 }
@@ -268,6 +271,11 @@ pub enum Output {
     MomentAboutAxis,
     Gyration,
     Numeric,
+    EulerEquations,
+    SymmetricTop,
+    AxisStability,
+    Poinsot,
+    EarthPrecession,
 }
 
 impl Output {
@@ -280,10 +288,29 @@ impl Output {
         ("moment_about_axis", Output::MomentAboutAxis),
         ("gyration", Output::Gyration),
         ("numeric", Output::Numeric),
+        ("euler_equations", Output::EulerEquations),
+        ("symmetric_top", Output::SymmetricTop),
+        ("axis_stability", Output::AxisStability),
+        ("poinsot", Output::Poinsot),
+        ("earth_precession", Output::EarthPrecession),
     ];
 
     pub fn name(self) -> &'static str {
         Output::ALL.iter().find(|(_, o)| *o == self).unwrap().0
+    }
+
+    /// The symbols a free-body derivation writes its results in, which the scene must declare;
+    /// `None` for the outputs computed from the scene's bodies.
+    pub fn free_body_symbols(self) -> Option<&'static [&'static str]> {
+        use crate::derive::{euler, stability};
+        Some(match self {
+            Output::EulerEquations => euler::SYMBOLS,
+            Output::SymmetricTop => crate::derive::SYMMETRIC_TOP_SYMBOLS,
+            Output::AxisStability => stability::SYMBOLS,
+            Output::Poinsot => crate::derive::poinsot::SYMBOLS,
+            Output::EarthPrecession => crate::derive::earth::SYMBOLS,
+            _ => return None,
+        })
     }
 }
 
@@ -304,6 +331,48 @@ pub const QUANTITIES: &[&str] = &[
     "integrand",
     "position",
 ];
+/// Quantities of the free-body derivations (Lecture 3/9), which need no body.
+pub const DYNAMICS_QUANTITIES: &[&str] = &[
+    "principal_momentum",
+    "gyroscopic_term",
+    "euler_equations",
+    "body_rate_of_momentum",
+    "torque_free_rates",
+    "w1_second_derivative",
+    "symmetric_solution",
+    "symmetric_residual",
+    "omega_squared",
+    "precession_rate",
+    "twice_energy",
+    "momentum_squared",
+    "body_cone_tan_squared",
+    "space_cone_cos_squared",
+    "momentum_tilt_tan_squared",
+    "cone_order",
+    "oscillation_frequency_squared",
+    "amplitude_ratio_squared",
+    "stability",
+    "growth_rate_squared",
+    "ellipsoid_value",
+    "gradient_factor_squared",
+    "plane_distance_squared",
+    "energy_from_momentum",
+    "momentum_gap",
+    "polhode_conic_product",
+    "polhode_closure",
+    "separatrix_slope_squared",
+    "earth_beta",
+    "euler_period_sidereal_days",
+    "euler_period_solar_days",
+    "chandler_ratio",
+    "bulge_km",
+    "bulge_fraction",
+];
+
+/// A name of a derived quantity, from a body or from a free-body derivation.
+pub fn is_quantity(name: &str) -> bool {
+    QUANTITIES.contains(&name) || DYNAMICS_QUANTITIES.contains(&name)
+}
 pub const CLAIM_FUNCTIONS: &[&str] = &[
     "diff",
     "sin",
@@ -320,6 +389,8 @@ pub const CLAIM_FUNCTIONS: &[&str] = &[
     "rot_z",
     "trace",
     "det",
+    "sign",
+    "subs",
 ];
 const RESERVED: &[&str] = &["pi"];
 
@@ -461,7 +532,7 @@ impl Validator<'_> {
             let n = name.get_ref();
             if !is_identifier(n)
                 || RESERVED.contains(&n.as_str())
-                || QUANTITIES.contains(&n.as_str())
+                || is_quantity(n)
                 || CLAIM_FUNCTIONS.contains(&n.as_str())
             {
                 return Err(self.err(
@@ -526,7 +597,12 @@ impl Validator<'_> {
         }
         claim_names.extend(vectors.keys().cloned());
         claim_names.extend(variables.iter().cloned());
-        claim_names.extend(QUANTITIES.iter().map(|s| s.to_string()));
+        claim_names.extend(
+            QUANTITIES
+                .iter()
+                .chain(DYNAMICS_QUANTITIES)
+                .map(|s| s.to_string()),
+        );
 
         let omega = raw
             .omega
@@ -593,12 +669,28 @@ impl Validator<'_> {
                 "the scene asks for nothing: list at least one output or claim",
             ));
         }
-        if bodies.is_empty() {
-            if !wants.is_empty() {
+        for w in &wants {
+            let Some(needed) = w.free_body_symbols() else {
+                continue;
+            };
+            if let Some(missing) = needed.iter().find(|n| !symbols.contains_key(**n)) {
                 return Err(self.err(
                     raw.outputs_span(),
                     "outputs.want",
-                    "these outputs need at least one [[body]]",
+                    format!(
+                        "output `{}` writes its results in {}; declare `{missing}` under [symbols]",
+                        w.name(),
+                        needed.join(", ")
+                    ),
+                ));
+            }
+        }
+        if bodies.is_empty() {
+            if let Some(w) = wants.iter().find(|w| w.free_body_symbols().is_none()) {
+                return Err(self.err(
+                    raw.outputs_span(),
+                    "outputs.want",
+                    format!("output `{}` needs at least one [[body]]", w.name()),
                 ));
             }
             let uses_body = |c: &&Claim| {
@@ -679,13 +771,14 @@ impl Validator<'_> {
         let mut expect = BTreeMap::new();
         for (name, value) in &raw.expect {
             let n = name.get_ref();
-            if !QUANTITIES.contains(&n.as_str()) {
+            if !is_quantity(n) {
                 return Err(self.err(
                     name.span().start,
                     &format!("expect.{n}"),
                     format!(
-                        "`{n}` is not a derived quantity; expected one of: {}",
-                        QUANTITIES.join(", ")
+                        "`{n}` is not a derived quantity; expected one of: {}, {}",
+                        QUANTITIES.join(", "),
+                        DYNAMICS_QUANTITIES.join(", ")
                     ),
                 ));
             }
@@ -767,11 +860,23 @@ impl Validator<'_> {
                 "a checkable claim needs both `quantity` and `value`",
             ));
         }
+        let figures = match &c.figures {
+            None => None,
+            Some(f) if (1..=15).contains(f.get_ref()) => Some(*f.get_ref() as u32),
+            Some(f) => {
+                return Err(self.err(
+                    f.span().start,
+                    &format!("{field}.figures"),
+                    "significant figures are a whole number from 1 to 15",
+                ));
+            }
+        };
         Ok(Claim {
             eq: eq.clone(),
             statement: c.statement.clone(),
             quantity,
             value,
+            figures,
             expect,
             line: self.loc.line_col(offset).0,
         })
@@ -1194,7 +1299,7 @@ fn check_calls(e: &Expr, claim_language: bool) -> Result<(), String> {
                 }
                 let arity = match name.as_str() {
                     "dot" | "cross" | "outer" | "diff" => 2,
-                    "diag" => 3,
+                    "diag" | "subs" => 3,
                     "eye" => 0,
                     _ => 1,
                 };

@@ -106,6 +106,9 @@ pub struct RawClaim {
     pub quantity: Option<Text>,
     #[serde(default)]
     pub value: Option<Text>,
+    /// For a number the notes give roughly: how many significant figures they give.
+    #[serde(default)]
+    pub figures: Option<Spanned<i64>>,
     pub expect: Text,
 }
 

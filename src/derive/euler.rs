@@ -1,0 +1,126 @@
+//! Euler's equations in the principal body frame (eqs 60–65), derived component by component
+//! from dL/dt|space = dL/dt|body + ω × L = N with L = Iω; and the torque-free rates that the
+//! symmetric top, the stability analysis and Poinsot's construction start from.
+
+use super::algebra::{Value, Vec3, add_vec, cross, diag, mat_vec, sub_vec};
+use super::{Derivation, DeriveError, Step, factored, simplify_value};
+use crate::cas::Expr;
+
+/// The symbols this stage writes its results in; a scene that asks for it declares them.
+pub const SYMBOLS: &[&str] = &[
+    "I1", "I2", "I3", "w1", "w2", "w3", "wd1", "wd2", "wd3", "N1", "N2", "N3",
+];
+
+fn vector(names: [&str; 3]) -> Vec3 {
+    names.map(Expr::sym)
+}
+
+/// The principal moments I1, I2, I3.
+pub fn moments() -> [Expr; 3] {
+    vector(["I1", "I2", "I3"])
+}
+
+/// ω in the body frame.
+pub fn omega() -> Vec3 {
+    vector(["w1", "w2", "w3"])
+}
+
+/// The torque-free rates ω̇ = −I⁻¹(ω × Iω) for principal moments `i`, before simplification.
+pub fn torque_free_rates(i: &[Expr; 3], w: &Vec3) -> Vec3 {
+    let gyroscopic = cross(w, &mat_vec(&diag(i.clone()), w));
+    std::array::from_fn(|a| Expr::negate(Expr::over(gyroscopic[a].clone(), i[a].clone())))
+}
+
+/// The time derivative of `f(ω)` along the motion ω̇ = `rates`, by the chain rule.
+pub fn rate_along(f: &Expr, w: &Vec3, rates: &Vec3) -> Result<Expr, DeriveError> {
+    let mut terms = Vec::new();
+    for (wi, ri) in w.iter().zip(rates) {
+        let Expr::Sym(name) = wi else {
+            unreachable!("ω is a vector of symbols")
+        };
+        let partial = f.diff(name).map_err(DeriveError::Unsupported)?;
+        terms.push(Expr::mul(vec![partial, ri.clone()]));
+    }
+    Ok(Expr::add(terms))
+}
+
+pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
+    let inertia = diag(moments());
+    let (w, wd, n) = (
+        omega(),
+        vector(["wd1", "wd2", "wd3"]),
+        vector(["N1", "N2", "N3"]),
+    );
+    let l = simplify_value(&Value::Vector(mat_vec(&inertia, &w)))?;
+    d.steps.push(Step::equation(
+        "Angular momentum in the principal frame",
+        ("L", "\\vec L"),
+        &l,
+        "eq (61): the tensor is diagonal in the principal frame, so L_j = I_j ω_j (no sum)",
+    ));
+    let Value::Vector(lv) = &l else {
+        unreachable!()
+    };
+    let body_rate = simplify_value(&Value::Vector(mat_vec(&inertia, &wd)))?;
+    d.steps.push(Step::equation(
+        "Rate of L relative to the body",
+        (
+            "dL/dt|body",
+            "\\left.\\frac{d\\vec L}{dt}\\right|_{\\mathrm{body}}",
+        ),
+        &body_rate,
+        "the principal moments are constant in the body frame, so only ω changes",
+    ));
+    let gyroscopic = simplify_value(&Value::Vector(cross(&w, lv)))?;
+    d.steps.push(Step::equation(
+        "Turning of the body frame",
+        ("w x L", "\\vec\\omega\\times\\vec L"),
+        &gyroscopic,
+        "(ω × L)_i = ε_ijk ω_j L_k",
+    ));
+    let (Value::Vector(br), Value::Vector(g)) = (&body_rate, &gyroscopic) else {
+        unreachable!()
+    };
+    let lhs = simplify_value(&Value::Vector(add_vec(br, g)))?;
+    d.steps.push(Step::equation(
+        "Euler's equations",
+        (
+            "dL/dt|body + w x L",
+            "\\left.\\frac{d\\vec L}{dt}\\right|_{\\mathrm{body}} + \\vec\\omega\\times\\vec L",
+        ),
+        &lhs,
+        "eq (60): this sum is the rate of L in space, which equals the torque N; \
+         component by component these are eqs (63)–(65)",
+    ));
+    let body_rate_of_momentum = simplify_value(&Value::Vector(sub_vec(&n, g)))?;
+    d.steps.push(Step::equation(
+        "The body-frame rate, solved from (60)",
+        (
+            "dL/dt|body",
+            "\\left.\\frac{d\\vec L}{dt}\\right|_{\\mathrm{body}}",
+        ),
+        &body_rate_of_momentum,
+        "N − ω × L: the torque minus the turning of the frame, not ε_ijk ω_j L_k alone",
+    ));
+    d.steps.push(Step::equation(
+        "Steady rotation without torque",
+        ("w x L", "\\vec\\omega\\times\\vec L"),
+        &factored(&gyroscopic)?,
+        "with N = 0 a constant ω needs ω × L = 0; with distinct moments each component vanishes \
+         only if a product ω_j ω_k does, so two components of ω are zero: ω lies along a \
+         principal axis",
+    ));
+    d.set("principal_momentum", l.clone());
+    d.set("gyroscopic_term", gyroscopic.clone());
+    d.set("euler_equations", lhs);
+    d.set("body_rate_of_momentum", body_rate_of_momentum);
+    let rates = simplify_value(&Value::Vector(torque_free_rates(&moments(), &w)))?;
+    d.steps.push(Step::equation(
+        "Torque-free rates",
+        ("dw/dt", "\\dot{\\vec\\omega}"),
+        &factored(&rates)?,
+        "eqs (63)–(65) with N = 0, each divided by its moment",
+    ));
+    d.set("torque_free_rates", rates);
+    Ok(())
+}

@@ -1,0 +1,243 @@
+//! The torque-free symmetric top, I1 = I2 (eqs 66–71): the rates, the second-order equation,
+//! its closed-form solution checked by substitution, the precession rate βω3, and the body and
+//! space cones, with the inequality between their half-angles worked out from the formulas.
+
+use super::algebra::{Value, Vec3, cross, diag, dot, mat_vec};
+use super::euler::{omega, rate_along, torque_free_rates};
+use super::sign::{Sign, sign_over_positive};
+use super::{Derivation, DeriveError, Step, factored, simplify_value, values_equal};
+use crate::cas::{self, Expr};
+
+pub const SYMBOLS: &[&str] = &["I1", "I3", "w1", "w2", "w3", "A", "t", "theta"];
+
+fn s(name: &str) -> Expr {
+    Expr::sym(name)
+}
+
+fn scalar(e: Expr) -> Result<Expr, DeriveError> {
+    Ok(cas::simplify(&e)?)
+}
+
+fn sign_words(sign: Sign) -> &'static str {
+    match sign {
+        Sign::Positive => "positive for every choice",
+        Sign::Negative => "negative for every choice",
+        Sign::NotFixed => "positive for some choices and negative for others",
+    }
+}
+
+pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
+    let i = [s("I1"), s("I1"), s("I3")];
+    let inertia = diag(i.clone());
+    let w = omega();
+    let rates = simplify_value(&Value::Vector(torque_free_rates(&i, &w)))?;
+    d.steps.push(Step::equation(
+        "Euler's equations with I2 = I1 and N = 0",
+        ("dw/dt", "\\dot{\\vec\\omega}"),
+        &factored(&rates)?,
+        "eqs (63)–(65) solved for the rates; the third vanishes, so ω3 is constant: eq (66)",
+    ));
+    let Value::Vector(r) = &rates else {
+        unreachable!()
+    };
+    // β = (I3 − I1)/I1 turns the rates into −βω3ω2 and βω3ω1, eqs (67)–(68).
+    let beta = Expr::over(Expr::minus(s("I3"), s("I1")), s("I1"));
+    let with_beta = Value::Vector([
+        Expr::negate(Expr::mul(vec![beta.clone(), s("w3"), s("w2")])),
+        Expr::mul(vec![beta.clone(), s("w3"), s("w1")]),
+        Expr::int(0),
+    ]);
+    if !values_equal(&rates, &with_beta)? {
+        return Err(DeriveError::Inconsistent(
+            "the symmetric-top rates are not ±βω3 times ω2, ω1".into(),
+        ));
+    }
+    d.steps.push(Step::note(
+        "With β = (I3 − I1)/I1",
+        "dw1/dt = -beta*w3*w2, dw2/dt = beta*w3*w1".into(),
+        "\\dot\\omega_{1} = -\\beta\\,\\omega_{3}\\,\\omega_{2},\\quad \
+         \\dot\\omega_{2} = \\beta\\,\\omega_{3}\\,\\omega_{1}"
+            .into(),
+        "eqs (67)–(68), equal to the rates above term by term; the second has no '= 0'",
+    ));
+    let second = scalar(rate_along(&r[0], &w, r)?)?;
+    d.steps.push(Step::equation(
+        "Second derivative of ω1",
+        ("d2w1/dt2", "\\ddot\\omega_{1}"),
+        &factored(&Value::Scalar(second.clone()))?,
+        "eq (69): differentiate dω1/dt along the motion and use dω2/dt; this is −β²ω3²ω1, \
+         a harmonic oscillator of angular frequency βω3",
+    ));
+    d.set("w1_second_derivative", Value::Scalar(second));
+
+    // The closed form, substituted back into all three of Euler's equations.
+    let phase = Expr::add(vec![
+        Expr::mul(vec![beta.clone(), s("w3"), s("t")]),
+        s("theta"),
+    ]);
+    let solution: Vec3 = [
+        Expr::mul(vec![s("A"), Expr::call("cos", phase.clone())]),
+        Expr::mul(vec![s("A"), Expr::call("sin", phase)]),
+        s("w3"),
+    ];
+    let derivative: Vec3 = solution
+        .clone()
+        .map(|e| e.diff("t").expect("sin, cos and powers differentiate"));
+    let l = mat_vec(&inertia, &solution);
+    let residual: Vec<Expr> = mat_vec(&inertia, &derivative)
+        .iter()
+        .zip(cross(&solution, &l))
+        .map(|(a, b)| Expr::add(vec![a.clone(), b]))
+        .collect();
+    if !cas::is_zero_all(residual.clone())?.into_iter().all(|z| z) {
+        return Err(DeriveError::Inconsistent(
+            "the symmetric-top solution leaves a residual".into(),
+        ));
+    }
+    let residual = simplify_value(&Value::Vector([
+        residual[0].clone(),
+        residual[1].clone(),
+        residual[2].clone(),
+    ]))?;
+    d.steps.push(Step::equation(
+        "The solution, substituted",
+        (
+            "I dw/dt + w x I w",
+            "I\\dot{\\vec\\omega} + \\vec\\omega\\times I\\vec\\omega",
+        ),
+        &residual,
+        "ω1 = A cos(βω3 t + θ), ω2 = A sin(βω3 t + θ), ω3 constant: the residual of Euler's \
+         equations reduces to zero",
+    ));
+    d.set("symmetric_solution", Value::Vector(solution.clone()));
+    d.set("symmetric_residual", residual);
+
+    let omega_squared = scalar(dot(&solution, &solution))?;
+    d.steps.push(Step::equation(
+        "Magnitude of ω",
+        ("|w|^2", "\\omega^{2}"),
+        &Value::Scalar(omega_squared.clone()),
+        "eq (70): sin² + cos² = 1, so ω is constant",
+    ));
+    d.set("omega_squared", Value::Scalar(omega_squared.clone()));
+
+    // The angle of (ω1, ω2) advances at (ω1 ω̇2 − ω2 ω̇1)/(ω1² + ω2²).
+    let turning = Expr::over(
+        Expr::minus(
+            Expr::mul(vec![solution[0].clone(), derivative[1].clone()]),
+            Expr::mul(vec![solution[1].clone(), derivative[0].clone()]),
+        ),
+        Expr::add(vec![
+            Expr::pow(solution[0].clone(), Expr::int(2)),
+            Expr::pow(solution[1].clone(), Expr::int(2)),
+        ]),
+    );
+    let precession = scalar(turning)?;
+    d.steps.push(Step::equation(
+        "Precession of ω about the symmetry axis",
+        ("rate", "\\frac{\\omega_{1}\\dot\\omega_{2} - \\omega_{2}\\dot\\omega_{1}}{\\omega_{1}^{2} + \\omega_{2}^{2}}"),
+        &Value::Scalar(precession.clone()),
+        "the angle of (ω1, ω2) in the body advances at βω3: the body cone",
+    ));
+    d.set("precession_rate", Value::Scalar(precession));
+
+    let two_t = scalar(dot(&solution, &l))?;
+    let l_squared = scalar(dot(&l, &l))?;
+    d.steps.push(Step::equation(
+        "Twice the kinetic energy",
+        ("2T", "2T = \\vec\\omega\\cdot\\vec L"),
+        &Value::Scalar(two_t.clone()),
+        "ωᵀIω along the solution: constant",
+    ));
+    d.steps.push(Step::equation(
+        "Angular momentum squared",
+        ("L^2", "L^{2}"),
+        &Value::Scalar(l_squared.clone()),
+        "|Iω|² along the solution: constant, as it must be without torque",
+    ));
+    d.set("twice_energy", Value::Scalar(two_t.clone()));
+    d.set("momentum_squared", Value::Scalar(l_squared.clone()));
+
+    let body_tan2 = scalar(Expr::over(
+        Expr::add(vec![
+            Expr::pow(solution[0].clone(), Expr::int(2)),
+            Expr::pow(solution[1].clone(), Expr::int(2)),
+        ]),
+        Expr::pow(s("w3"), Expr::int(2)),
+    ))?;
+    d.steps.push(Step::equation(
+        "Body cone",
+        ("tan^2 alpha_b", "\\tan^{2}\\alpha_{b}"),
+        &Value::Scalar(body_tan2.clone()),
+        "α_b is the angle between ω and the symmetry axis: tan α_b = A/ω3",
+    ));
+    let space_cos2 = scalar(Expr::over(
+        Expr::pow(two_t.clone(), Expr::int(2)),
+        Expr::mul(vec![omega_squared.clone(), l_squared.clone()]),
+    ))?;
+    d.steps.push(Step::equation(
+        "Space cone",
+        ("cos^2 alpha_s", "\\cos^{2}\\alpha_{s}"),
+        &Value::Scalar(space_cos2.clone()),
+        "eq (71): α_s is the angle between ω and the fixed L, cos α_s = ω·L/(ωL) = 2T/(ωL)",
+    ));
+    let tilt_tan2 = scalar(Expr::over(
+        Expr::add(vec![
+            Expr::pow(l[0].clone(), Expr::int(2)),
+            Expr::pow(l[1].clone(), Expr::int(2)),
+        ]),
+        Expr::pow(l[2].clone(), Expr::int(2)),
+    ))?;
+    d.steps.push(Step::equation(
+        "Tilt of L from the symmetry axis",
+        ("tan^2 theta_L", "\\tan^{2}\\theta_{L}"),
+        &Value::Scalar(tilt_tan2.clone()),
+        "(I1/I3)² tan² α_b: L leans further from the axis than ω when I3 < I1, less when I3 > I1; \
+         ω, L and the axis lie in one plane",
+    ));
+    d.set("body_cone_tan_squared", Value::Scalar(body_tan2));
+    d.set("space_cone_cos_squared", Value::Scalar(space_cos2));
+    d.set("momentum_tilt_tan_squared", Value::Scalar(tilt_tan2));
+
+    // α_b > α_s ⟺ cos α_s > cos α_b = ω3/ω ⟺ 2T > ω3 L ⟺ (2T)² − ω3² L² > 0 (both sides positive).
+    let cone_order = scalar(Expr::minus(
+        Expr::pow(two_t, Expr::int(2)),
+        Expr::mul(vec![Expr::pow(s("w3"), Expr::int(2)), l_squared]),
+    ))?;
+    let in_tan =
+        cas::factor_all(vec![cone_order.substitute(&|n| {
+            (n == "A").then(|| Expr::mul(vec![s("tau"), s("w3")]))
+        })])?
+        .remove(0);
+    d.steps.push(Step::equation(
+        "Which cone is wider",
+        ("(2T)^2 - w3^2 L^2", "(2T)^{2} - \\omega_{3}^{2}L^{2}"),
+        &Value::Scalar(in_tan),
+        "with A = τω3, τ = tan α_b: α_b > α_s exactly when this is positive, since \
+         cos α_s = 2T/(ωL) and cos α_b = ω3/ω",
+    ));
+    let oblate = sign_over_positive(
+        &cone_order.substitute(&|n| (n == "I3").then(|| Expr::add(vec![s("I1"), s("p")]))),
+    )?;
+    let prolate = sign_over_positive(
+        &cone_order.substitute(&|n| (n == "I1").then(|| Expr::add(vec![s("I3"), s("p")]))),
+    )?;
+    d.steps.push(Step::note(
+        "Oblate and prolate",
+        format!(
+            "I3 = I1 + p: {}; I1 = I3 + p: {}",
+            sign_words(oblate),
+            sign_words(prolate)
+        ),
+        format!(
+            "I_{{3}} > I_{{1}}:\\;\\text{{{}}};\\quad I_{{3}} < I_{{1}}:\\;\\text{{{}}}",
+            sign_words(oblate),
+            sign_words(prolate)
+        ),
+        "the sign of (2T)² − ω3²L² over all positive I1, p, A, ω3: a disc-shaped (oblate) top, \
+         I3 > I1, always has α_b > α_s; a cigar-shaped (prolate) one, I3 < I1, has α_b < α_s \
+         only when 2 I3 < I1 (1 − tan² α_b)",
+    ));
+    d.set("cone_order", Value::Scalar(cone_order));
+    Ok(())
+}

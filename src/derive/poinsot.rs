@@ -1,0 +1,229 @@
+//! Poinsot's construction (eqs 77–87): ρ = ω/√(2T) on the inertia ellipsoid F(ρ) = 1, the normal
+//! ∇F parallel to L, the fixed distance √(2T)/L to the invariable plane, the energy ellipsoid and
+//! the L-sphere in L-space, the bounds on L², and which polhodes close.
+
+use super::algebra::{Value, Vec3, diag, dot, mat_vec};
+use super::euler::{moments, omega, rate_along, torque_free_rates};
+use super::stability::classify;
+use super::{Derivation, DeriveError, Step, factored};
+use crate::cas::{self, Expr};
+
+pub const SYMBOLS: &[&str] = &["I1", "I2", "I3", "w1", "w2", "w3", "L1", "L2", "L3"];
+
+fn scalar(d: &mut Derivation, name: &str, e: Expr) -> Result<Expr, DeriveError> {
+    let e = cas::simplify(&e)?;
+    d.set(name, Value::Scalar(e.clone()));
+    Ok(e)
+}
+
+fn sq(e: &Expr) -> Expr {
+    Expr::pow(e.clone(), Expr::int(2))
+}
+
+pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
+    let i = moments();
+    let w = omega();
+    let inertia = diag(i.clone());
+    let l = mat_vec(&inertia, &w);
+    let two_t = scalar(d, "twice_energy", dot(&w, &l))?;
+    let l_squared = scalar(d, "momentum_squared", dot(&l, &l))?;
+    d.steps.push(Step::equation(
+        "Twice the kinetic energy",
+        ("2T", "2T"),
+        &Value::Scalar(two_t.clone()),
+        "eq (78): 2T = ω·L = ωᵀIω",
+    ));
+    d.steps.push(Step::equation(
+        "Angular momentum squared",
+        ("L^2", "L^{2}"),
+        &Value::Scalar(l_squared.clone()),
+        "eq (84): L_i = I_i ω_i",
+    ));
+    let rates = torque_free_rates(&i, &w);
+    let invariant_rates = cas::simplify_all(vec![
+        rate_along(&two_t, &w, &rates)?,
+        rate_along(&l_squared, &w, &rates)?,
+    ])?;
+    if !invariant_rates.iter().all(Expr::is_zero) {
+        return Err(DeriveError::Inconsistent(
+            "2T or L² changes along the torque-free motion".into(),
+        ));
+    }
+    d.steps.push(Step::note(
+        "Both are constant",
+        "d(2T)/dt = 0, d(L^2)/dt = 0".into(),
+        "\\frac{d(2T)}{dt} = 0,\\quad \\frac{d(L^{2})}{dt} = 0".into(),
+        "differentiated along the torque-free Euler equations by the chain rule: both vanish \
+         identically",
+    ));
+
+    // ρ = c ω with c = 1/√(2T); every result below is even in c, so c² = 1/(2T) is exact.
+    let c2 = Expr::pow(two_t.clone(), Expr::int(-1));
+    let f = scalar(
+        d,
+        "ellipsoid_value",
+        Expr::mul(vec![c2.clone(), two_t.clone()]),
+    )?;
+    d.steps.push(Step::equation(
+        "The point ρ = ω/√(2T) lies on the inertia ellipsoid",
+        ("F(rho)", "F(\\vec\\rho) = \\vec\\rho^{T} I \\vec\\rho"),
+        &Value::Scalar(f),
+        "eqs (77), (79): ρᵀIρ = ωᵀIω/(2T)",
+    ));
+    // ∇F = 2Iρ = 2c L: the factor squared is 4c² = 2/T.
+    let rho_names = ["r1", "r2", "r3"].map(Expr::sym);
+    let f_rho = dot(&rho_names, &mat_vec(&inertia, &rho_names));
+    let grad: Vec<Expr> = ["r1", "r2", "r3"]
+        .iter()
+        .map(|x| f_rho.diff(x).map_err(DeriveError::Unsupported))
+        .collect::<Result<_, _>>()?;
+    // ∇F_i / L_i with ρ_i = c ω_i, squared, then c² = 1/(2T).
+    let factors: Vec<Expr> = (0..3)
+        .map(|k| {
+            let ratio = Expr::over(
+                grad[k].clone(),
+                Expr::mul(vec![rho_names[k].clone(), i[k].clone()]),
+            );
+            Expr::mul(vec![sq(&ratio), c2.clone()])
+        })
+        .collect();
+    let factors = cas::simplify_all(factors)?;
+    if !(factors[0] == factors[1] && factors[1] == factors[2]) {
+        return Err(DeriveError::Inconsistent("∇F is not parallel to L".into()));
+    }
+    let gradient = scalar(d, "gradient_factor_squared", factors[0].clone())?;
+    d.steps.push(Step::equation(
+        "The normal to the ellipsoid is along L",
+        (
+            "(grad F / L)^2",
+            "\\left(\\frac{\\nabla_{\\rho}F}{\\vec L}\\right)^{2}",
+        ),
+        &Value::Scalar(gradient),
+        "eq (80): ∇F = 2Iρ = 2L/√(2T), the same factor for all three components, so ∇F ∥ L; \
+         the factor is √(2/T)",
+    ));
+    // The distance ρ·L/L = c ω·L/L = c 2T/L, squared.
+    let distance = scalar(
+        d,
+        "plane_distance_squared",
+        Expr::over(Expr::mul(vec![c2.clone(), sq(&two_t)]), l_squared.clone()),
+    )?;
+    d.steps.push(Step::equation(
+        "Distance to the invariable plane",
+        (
+            "(rho . L / L)^2",
+            "\\left(\\frac{\\vec\\rho\\cdot\\vec L}{L}\\right)^{2}",
+        ),
+        &Value::Scalar(distance),
+        "eq (81): ρ·L/L = ω·L/(L√(2T)) = √(2T)/L, constant because T and L are",
+    ));
+
+    // L-space: ω_i = L_i/I_i.
+    let big_l = ["L1", "L2", "L3"].map(Expr::sym);
+    let in_l = |e: &Expr| {
+        e.substitute(&|n| {
+            (0..3)
+                .find(|k| n == format!("w{}", k + 1))
+                .map(|k| Expr::over(big_l[k].clone(), i[k].clone()))
+        })
+    };
+    let energy = scalar(
+        d,
+        "energy_from_momentum",
+        Expr::mul(vec![Expr::rat(1, 2), in_l(&two_t)]),
+    )?;
+    d.steps.push(Step::equation(
+        "Energy in terms of L",
+        ("T", "T"),
+        &Value::Scalar(energy),
+        "eq (82): T = Σ L_i²/(2I_i); with 2T fixed this is the energy ellipsoid of eq (83), \
+         semi-axes √(2T I_i)",
+    ));
+    let gap: Vec3 = std::array::from_fn(|k| {
+        Expr::minus(
+            l_squared.clone(),
+            Expr::mul(vec![two_t.clone(), i[k].clone()]),
+        )
+    });
+    let gap = cas::simplify_all(gap.to_vec())?;
+    d.set(
+        "momentum_gap",
+        Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
+    );
+    d.steps.push(Step::equation(
+        "How far L² is from 2T I_k",
+        ("L^2 - 2T I_k", "L^{2} - 2T I_{k}"),
+        &Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
+        "entry k is Σ_i I_i (I_i − I_k) ω_i²: non-negative when I_k is the smallest moment and \
+         non-positive when it is the largest, so 2T I_min ≤ L² ≤ 2T I_max (eq 85)",
+    ));
+
+    // Near axis k, eliminate L_k: L² − 2T I_k = Σ_{i≠k} L_i² (1 − I_k/I_i), a conic in the
+    // other two components. An ellipse (closed polhode) when both coefficients share a sign.
+    let conic: Vec<Expr> = cas::simplify_all(gap.iter().map(&in_l).collect())?;
+    let mut product: [Expr; 3] = std::array::from_fn(|_| Expr::int(0));
+    for k in 0..3 {
+        let coeff = |x: usize| -> Result<Expr, DeriveError> {
+            conic[k]
+                .diff(&format!("L{}", x + 1))
+                .and_then(|e| e.diff(&format!("L{}", x + 1)))
+                .map_err(DeriveError::Unsupported)
+        };
+        let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+        let c = cas::simplify_all(vec![coeff(k)?, coeff(a)?, coeff(b)?])?;
+        if !c[0].is_zero() {
+            return Err(DeriveError::Inconsistent(format!(
+                "L{} does not drop out of L² − 2T I{}",
+                k + 1,
+                k + 1
+            )));
+        }
+        // Halve the second derivatives to get the coefficients.
+        product[k] = cas::simplify(&Expr::mul(vec![
+            Expr::rat(1, 4),
+            c[1].clone(),
+            c[2].clone(),
+        ]))?;
+    }
+    d.steps.push(Step::equation(
+        "The polhode near each axis",
+        ("c_a c_b", "c_{a}\\,c_{b}"),
+        &factored(&Value::Vector(product.clone()))?,
+        "near axis k the sphere and the ellipsoid meet where c_a L_a² + c_b L_b² = L² − 2T I_k \
+         with c_i = 1 − I_k/I_i: entry k is c_a c_b, positive for an ellipse (the polhode closes \
+         around axis k) and negative for a hyperbola (it does not)",
+    ));
+    d.set("polhode_conic_product", Value::Vector(product.clone()));
+
+    let (closure, _) = classify(&product, "the polhode conic")?;
+    d.steps.push(Step::equation(
+        "Which polhodes close",
+        ("polhode_closure", "\\mathrm{closure}"),
+        &Value::Matrix(closure.clone()),
+        "row k: axis k; columns: its moment is the largest, the smallest, the intermediate; \
+         1 closed curves around it, −1 none. Curves close around the largest and the smallest \
+         axis (eqs 86, 87) and cross at the intermediate one: the separatrix",
+    ));
+    d.set("polhode_closure", Value::Matrix(closure));
+
+    // The separatrix L² = 2T I2: c1 L1² + c3 L3² = 0, two planes through axis 2.
+    let slope = cas::simplify(&Expr::negate(Expr::over(
+        conic[1]
+            .diff("L1")
+            .and_then(|e| e.diff("L1"))
+            .map_err(DeriveError::Unsupported)?,
+        conic[1]
+            .diff("L3")
+            .and_then(|e| e.diff("L3"))
+            .map_err(DeriveError::Unsupported)?,
+    )))?;
+    d.steps.push(Step::equation(
+        "The separatrix",
+        ("(L3/L1)^2", "\\left(\\frac{L_{3}}{L_{1}}\\right)^{2}"),
+        &factored(&Value::Scalar(slope.clone()))?,
+        "on L² = 2T I2 the L2² terms cancel and c1 L1² + c3 L3² = 0: two planes through axis 2, \
+         real when I2 lies between I1 and I3",
+    ));
+    d.set("separatrix_slope_squared", Value::Scalar(slope));
+    Ok(())
+}
