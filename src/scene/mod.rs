@@ -203,6 +203,8 @@ pub enum FreeBodyPlot {
     Drift,
     /// The tennis racket: ω along the intermediate axis flips; flip times measured vs predicted.
     Flip,
+    /// The same small wobble started about each principal axis: only the intermediate one departs.
+    AxisSpins,
     /// The herpolhode: ω's tip traced on the invariable plane in space.
     Herpolhode,
     /// Earth's polar motion over one Euler period (symmetric top with the given moments).
@@ -217,6 +219,7 @@ impl FreeBodyPlot {
         ("polhodes", FreeBodyPlot::Polhodes),
         ("drift", FreeBodyPlot::Drift),
         ("flip", FreeBodyPlot::Flip),
+        ("axis-spins", FreeBodyPlot::AxisSpins),
         ("herpolhode", FreeBodyPlot::Herpolhode),
         ("polar-motion", FreeBodyPlot::PolarMotion),
         ("cones", FreeBodyPlot::Cones),
