@@ -29,7 +29,25 @@ pub fn mathml(latex: &str, block: bool) -> Result<String, String> {
             "`{latex}` gives a malformed <msup>: write `{{\\op}}^{{k}}`"
         ));
     }
-    Ok(out)
+    Ok(escape_bare_less_than(&out))
+}
+
+/// The converter writes `a < b` as `<mo><</mo>`, which is not valid HTML: escape every `<` that
+/// does not open a tag.
+fn escape_bare_less_than(mathml: &str) -> String {
+    let mut out = String::with_capacity(mathml.len());
+    let mut chars = mathml.chars().peekable();
+    while let Some(c) = chars.next() {
+        let opens_tag = chars
+            .peek()
+            .is_some_and(|n| n.is_ascii_alphabetic() || *n == '/');
+        if c == '<' && !opens_tag {
+            out.push_str("&lt;");
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -64,6 +82,13 @@ mod tests {
             ok.contains("<msup><mrow><mi>cos</mi></mrow><mrow><mn>2</mn></mrow></msup>"),
             "{ok}"
         );
+    }
+
+    #[test]
+    fn less_than_is_escaped() {
+        let m = mathml("I_{1} < I_{2} > I_{3}", false).unwrap();
+        assert!(m.contains("<mo>&lt;</mo>") && !m.contains("<mo><"), "{m}");
+        assert!(m.starts_with("<math") && m.ends_with("</math>"), "{m}");
     }
 
     #[test]
