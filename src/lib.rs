@@ -19,3 +19,6 @@ pub mod scene;
 pub mod site;
 pub mod spin;
 pub mod verify;
+
+#[cfg(test)]
+mod extremes;

@@ -195,3 +195,20 @@ fn the_earth_scene_runs_only_its_plot_and_claims() {
     // Only its own exact arithmetic reaches the engine: no integrals, no other derivation.
     assert!(out.contains("skipped  tensor") && out.contains("skipped  symmetric-top"));
 }
+
+#[test]
+fn the_sympy_comparison_set_derives() {
+    // tests/sympy/compare.sh times these scenes against SymPy; keep them deriving.
+    let r = super::mechbook(&["check", "tests/sympy/scenes"]);
+    assert_eq!(r.status.code(), Some(0), "{}", super::stderr(&r));
+    let out = super::stdout(&r);
+    assert!(out.contains("4 scene(s), 0 claim(s)"), "{out}");
+    for id in [
+        "sympy-cube-corner",
+        "sympy-hoop",
+        "sympy-tilted-hoop",
+        "sympy-symmetric-top",
+    ] {
+        assert!(out.contains(id), "{out}");
+    }
+}
