@@ -22,6 +22,8 @@ pub struct SceneReport {
     /// Time spent inside the symbolic engine for this scene, and its number of calls.
     pub symbolic_seconds: f64,
     pub engine_calls: u64,
+    /// Integrations and quadratures this scene ran (zero for stages it did not ask for).
+    pub numeric_work: numeric::Work,
     pub seconds: f64,
 }
 
@@ -42,6 +44,7 @@ pub struct RunError {
 pub fn run_scene(scene: Scene) -> Result<SceneReport, RunError> {
     let start = Instant::now();
     let (engine_before, calls_before) = crate::cas::stats();
+    let work_before = numeric::Work::so_far();
     let fail = |source| RunError {
         path: scene.source.clone(),
         source,
@@ -76,6 +79,7 @@ pub fn run_scene(scene: Scene) -> Result<SceneReport, RunError> {
         verification,
         symbolic_seconds: engine_after - engine_before,
         engine_calls: calls_after - calls_before,
+        numeric_work: numeric::Work::since(work_before),
         seconds: start.elapsed().as_secs_f64(),
     })
 }

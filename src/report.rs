@@ -128,6 +128,7 @@ pub fn scene_json(r: &SceneReport) -> Json {
         "stages": stages,
         "symbolic_seconds": num(r.symbolic_seconds),
         "engine_calls": r.engine_calls,
+        "numeric_work": r.numeric_work,
     })
 }
 
@@ -389,6 +390,13 @@ pub fn explain_text(r: &SceneReport) -> String {
         r.engine_calls,
         r.symbolic_seconds * 1e3,
         r.seconds * 1e3
+    );
+    let w = &r.numeric_work;
+    let _ = writeln!(
+        out,
+        "Numeric work: {} ODE integration(s), {} right-hand-side evaluation(s); {} quadrature \
+         run(s), {} point(s)",
+        w.ode_integrations, w.rhs_evaluations, w.quadrature_runs, w.quadrature_points
     );
     out
 }

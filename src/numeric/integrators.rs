@@ -164,6 +164,9 @@ pub fn integrate(
         }
     };
     run.seconds = start.elapsed().as_secs_f64();
+    if method != Method::Exact {
+        super::Work::count_integration(run.rhs_evaluations);
+    }
     Ok(run)
 }
 

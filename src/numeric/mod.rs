@@ -18,6 +18,64 @@ use nalgebra::Matrix3;
 use quadrature::{QuadratureRun, reference_rule, run, schedule};
 use std::collections::BTreeMap;
 
+/// Numeric work done on this thread so far: proof, in `derive --explain`, that a scene ran only
+/// the integrations and quadratures it asked for. Thread-local, so parallel tests do not mix.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Work {
+    pub ode_integrations: u64,
+    pub rhs_evaluations: u64,
+    pub quadrature_runs: u64,
+    pub quadrature_points: u64,
+}
+
+thread_local! {
+    static WORK: std::cell::Cell<Work> = const { std::cell::Cell::new(Work {
+        ode_integrations: 0,
+        rhs_evaluations: 0,
+        quadrature_runs: 0,
+        quadrature_points: 0,
+    }) };
+}
+
+impl Work {
+    pub fn so_far() -> Work {
+        WORK.with(|w| w.get())
+    }
+
+    /// The work done since `before`.
+    pub fn since(before: Work) -> Work {
+        let now = Work::so_far();
+        Work {
+            ode_integrations: now.ode_integrations - before.ode_integrations,
+            rhs_evaluations: now.rhs_evaluations - before.rhs_evaluations,
+            quadrature_runs: now.quadrature_runs - before.quadrature_runs,
+            quadrature_points: now.quadrature_points - before.quadrature_points,
+        }
+    }
+
+    fn add(f: impl FnOnce(&mut Work)) {
+        WORK.with(|w| {
+            let mut v = w.get();
+            f(&mut v);
+            w.set(v);
+        });
+    }
+
+    pub fn count_integration(rhs_evaluations: u64) {
+        Work::add(|w| {
+            w.ode_integrations += 1;
+            w.rhs_evaluations += rhs_evaluations;
+        });
+    }
+
+    pub fn count_quadrature(points: usize) {
+        Work::add(|w| {
+            w.quadrature_runs += 1;
+            w.quadrature_points += points as u64;
+        });
+    }
+}
+
 /// The numeric results for a scene.
 #[derive(Debug, Clone)]
 pub struct NumericReport {

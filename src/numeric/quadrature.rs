@@ -392,6 +392,7 @@ pub fn run(
         }
     };
     let seconds = start.elapsed().as_secs_f64();
+    super::Work::count_quadrature(points);
     let scale = exact.amax().max(f64::MIN_POSITIVE);
     let roundoff = points as f64 * f64::EPSILON;
     let predicted_error = match mc_sigma {

@@ -194,6 +194,37 @@ fn the_earth_scene_runs_only_its_plot_and_claims() {
     );
     // Only its own exact arithmetic reaches the engine: no integrals, no other derivation.
     assert!(out.contains("skipped  tensor") && out.contains("skipped  symmetric-top"));
+    // Its plot uses the exact solution: no ODE is integrated, and there is no body to integrate.
+    assert!(
+        out.contains(
+            "Numeric work: 0 ODE integration(s), 0 right-hand-side evaluation(s); 0 quadrature run(s), 0 point(s)"
+        ),
+        "{out}"
+    );
+}
+
+/// The counters of `--explain` follow what a scene asks for: plots that integrate count their
+/// integrations, a scene without plots or `numeric` counts none.
+#[test]
+fn numeric_work_counts_only_what_was_asked_for() {
+    let work = |scene: &str| -> serde_json::Value {
+        let r = super::mechbook(&["derive", scene, "--json"]);
+        assert_eq!(r.status.code(), Some(0), "{}", super::stderr(&r));
+        let v: serde_json::Value = serde_json::from_str(&super::stdout(&r)).unwrap();
+        v["numeric_work"].clone()
+    };
+    let euler = work("lectures/lecture-3-9/01-euler-equations.toml");
+    assert_eq!(euler["ode_integrations"], 0);
+    assert_eq!(euler["quadrature_runs"], 0);
+    // The asymmetric top's drift plot runs every integrator, its flip plot Dormand–Prince.
+    let top = work("lectures/lecture-3-9/03-asymmetric-top.toml");
+    assert!(top["ode_integrations"].as_u64().unwrap() >= 5, "{top}");
+    assert!(top["rhs_evaluations"].as_u64().unwrap() > 1000, "{top}");
+    assert_eq!(top["quadrature_runs"], 0);
+    // The cube about its centre asks for `numeric`: quadrature, and no ODE.
+    let cube = work("lectures/lecture-3-4/05b-cube-centre.toml");
+    assert!(cube["quadrature_runs"].as_u64().unwrap() > 0, "{cube}");
+    assert_eq!(cube["ode_integrations"], 0);
 }
 
 #[test]
