@@ -112,12 +112,17 @@ fn normal_form(e: &Expr) -> Result<Expr, String> {
     Ok(Expr::over(num, den))
 }
 
-/// The expanded numerator and denominator of a rational function (no fractional powers).
-pub fn fraction(e: &Expr) -> Result<(Expr, Expr), String> {
+/// A rational function in the engine's form; an expression with a fractional power is not one.
+fn rational_function(e: &Expr) -> Result<RationalPolynomial<IntegerRing, u16>, String> {
     if trig::has_fractional_power(e) {
         return Err(format!("not a rational function: `{e}`"));
     }
-    let rat: RationalPolynomial<_, u16> = to_atom(e).expand().to_rational_polynomial(&Q, &Z, None);
+    Ok(to_atom(e).expand().to_rational_polynomial(&Q, &Z, None))
+}
+
+/// The expanded numerator and denominator of a rational function (no fractional powers).
+pub fn fraction(e: &Expr) -> Result<(Expr, Expr), String> {
+    let rat = rational_function(e)?;
     Ok((
         from_atom(&rat.numerator.to_expression().expand())?,
         from_atom(&rat.denominator.to_expression().expand())?,
@@ -127,10 +132,7 @@ pub fn fraction(e: &Expr) -> Result<(Expr, Expr), String> {
 /// A rational function as a product of irreducible factors over the rationals, numerator over
 /// denominator, so that a step can show where an expression vanishes or changes sign.
 pub fn factor(e: &Expr) -> Result<Expr, String> {
-    if trig::has_fractional_power(e) {
-        return Err(format!("cannot factor `{e}`: it has a fractional power"));
-    }
-    let rat: RationalPolynomial<_, u16> = to_atom(e).expand().to_rational_polynomial(&Q, &Z, None);
+    let rat = rational_function(e)?;
     let product = |poly: &MultivariatePolynomial<_, u16>| -> Result<Expr, String> {
         if poly.is_constant() {
             return from_atom(&poly.to_expression());

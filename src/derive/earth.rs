@@ -42,12 +42,21 @@ fn number_step(
             "{} = {} \\approx {}",
             lhs.1,
             value.to_latex(),
-            fmt_decimal(v)
+            latex_decimal(v)
         ),
         why,
     ));
     d.set(name, Value::Scalar(value));
     Ok(())
+}
+
+/// The same in LaTeX: 3.284548 × 10⁻³ rather than 3.284548e-3.
+fn latex_decimal(v: f64) -> String {
+    let text = fmt_decimal(v);
+    match text.split_once('e') {
+        Some((mantissa, exponent)) => format!("{mantissa} \\times 10^{{{exponent}}}"),
+        None => text,
+    }
 }
 
 /// Seven significant figures, without an exponent for ordinary sizes.

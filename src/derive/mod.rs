@@ -16,7 +16,6 @@ mod principal;
 pub mod sign;
 pub mod stability;
 
-pub use free_top::SYMBOLS as SYMMETRIC_TOP_SYMBOLS;
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
 use crate::cas::{self, CasError, Expr};

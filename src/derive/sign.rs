@@ -36,7 +36,7 @@ impl Sign {
 fn term_sign(t: &Expr) -> Option<i8> {
     match t {
         Expr::Num(r) if r.numer() != 0 => Some(if r.numer() > 0 { 1 } else { -1 }),
-        Expr::Sym(s) if s != "pi" => Some(1),
+        // Every symbol is positive, π included.
         Expr::Sym(_) => Some(1),
         // A positive base to any real power is positive.
         Expr::Pow(b, _) if matches!(b.as_ref(), Expr::Sym(_)) => Some(1),

@@ -305,13 +305,13 @@ impl Output {
     /// The symbols a free-body derivation writes its results in, which the scene must declare;
     /// `None` for the outputs computed from the scene's bodies.
     pub fn free_body_symbols(self) -> Option<&'static [&'static str]> {
-        use crate::derive::{euler, stability};
+        use crate::derive::{earth, euler, free_top, poinsot, stability};
         Some(match self {
             Output::EulerEquations => euler::SYMBOLS,
-            Output::SymmetricTop => crate::derive::SYMMETRIC_TOP_SYMBOLS,
+            Output::SymmetricTop => free_top::SYMBOLS,
             Output::AxisStability => stability::SYMBOLS,
-            Output::Poinsot => crate::derive::poinsot::SYMBOLS,
-            Output::EarthPrecession => crate::derive::earth::SYMBOLS,
+            Output::Poinsot => poinsot::SYMBOLS,
+            Output::EarthPrecession => earth::SYMBOLS,
             _ => return None,
         })
     }
