@@ -18,6 +18,12 @@ fn scalar(e: Expr) -> Result<Expr, DeriveError> {
     Ok(cas::simplify(&e)?)
 }
 
+/// tan² of a vector's angle from the symmetry axis 3: (v1² + v2²)/v3².
+fn tan_squared_from_axis(v: &Vec3) -> Expr {
+    let sq = |e: &Expr| Expr::pow(e.clone(), Expr::int(2));
+    Expr::over(Expr::add(vec![sq(&v[0]), sq(&v[1])]), sq(&v[2]))
+}
+
 fn sign_words(sign: Sign) -> &'static str {
     match sign {
         Sign::Positive => "positive for every choice",
@@ -158,13 +164,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     d.set("twice_energy", Value::Scalar(two_t.clone()));
     d.set("momentum_squared", Value::Scalar(l_squared.clone()));
 
-    let body_tan2 = scalar(Expr::over(
-        Expr::add(vec![
-            Expr::pow(solution[0].clone(), Expr::int(2)),
-            Expr::pow(solution[1].clone(), Expr::int(2)),
-        ]),
-        Expr::pow(s("w3"), Expr::int(2)),
-    ))?;
+    let body_tan2 = scalar(tan_squared_from_axis(&solution))?;
     d.steps.push(Step::equation(
         "Body cone",
         ("tan^2 alpha_b", "\\tan^{2}\\alpha_{b}"),
@@ -181,13 +181,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(space_cos2.clone()),
         "eq (71): α_s is the angle between ω and the fixed L, cos α_s = ω·L/(ωL) = 2T/(ωL)",
     ));
-    let tilt_tan2 = scalar(Expr::over(
-        Expr::add(vec![
-            Expr::pow(l[0].clone(), Expr::int(2)),
-            Expr::pow(l[1].clone(), Expr::int(2)),
-        ]),
-        Expr::pow(l[2].clone(), Expr::int(2)),
-    ))?;
+    let tilt_tan2 = scalar(tan_squared_from_axis(&l))?;
     d.steps.push(Step::equation(
         "Tilt of L from the symmetry axis",
         ("tan^2 theta_L", "\\tan^{2}\\theta_{L}"),
