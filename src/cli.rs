@@ -1,7 +1,9 @@
 //! The command line (clap derive): the doc comments are the help text.
 
+use crate::numeric::fidelity::Fidelity;
 use crate::pipeline::{self, SceneReport};
 use crate::report;
+use crate::site::cache::Cache;
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use std::io::{IsTerminal, Write};
@@ -34,6 +36,10 @@ pub enum Command {
         /// Print JSON, `{"scenes": [...]}`, instead of the table.
         #[arg(long)]
         json: bool,
+        /// draft, standard, reference, or a target tolerance such as 1e-6: overrides each
+        /// scene's `[numeric] fidelity` (default standard).
+        #[arg(long, value_parser = parse_fidelity)]
+        fidelity: Option<Fidelity>,
     },
     /// Build the course site: an index, one page per scene, and per lecture a student and an
     /// instructor handout for printing.
@@ -55,6 +61,17 @@ pub enum Command {
         /// Add measured seconds to the numeric tables (the pages then differ between builds).
         #[arg(long)]
         timings: bool,
+        /// draft, standard, reference, or a target tolerance such as 1e-6: overrides each
+        /// scene's `[numeric] fidelity` (default standard).
+        #[arg(long, value_parser = parse_fidelity)]
+        fidelity: Option<Fidelity>,
+        /// Where computed scenes are kept between builds, keyed by a hash of the scene file,
+        /// the fidelity and this program: an unchanged scene is not derived again.
+        #[arg(long, default_value = ".mechbook-cache", conflicts_with = "no_cache")]
+        cache: PathBuf,
+        /// Derive every scene afresh, and neither read nor write the cache.
+        #[arg(long)]
+        no_cache: bool,
     },
     /// Integrate a free rigid body's Euler equations and compare with the exact solution.
     ///
@@ -110,7 +127,23 @@ pub enum Command {
         /// Show which stages ran and which were skipped, and why.
         #[arg(long)]
         explain: bool,
+        /// draft, standard, reference, or a target tolerance such as 1e-6: overrides the
+        /// scene's `[numeric] fidelity` (default standard).
+        #[arg(long, value_parser = parse_fidelity)]
+        fidelity: Option<Fidelity>,
     },
+}
+
+/// The process's peak resident memory (Linux's VmHWM), for the build summary and `bench`.
+pub fn peak_memory_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
+    Fidelity::parse(s)
 }
 
 /// Parses the command line and runs it. Usage errors exit with 2 (clap's convention).
@@ -163,8 +196,13 @@ fn progress_bar(done: usize, total: usize, label: &str) -> String {
     )
 }
 
-/// Runs every scene, with a progress bar on stderr when it is a terminal.
-fn run_all(scenes: Vec<crate::scene::Scene>) -> Result<Vec<SceneReport>> {
+/// Runs every scene, or takes it from the cache, with a progress bar on stderr when it is a
+/// terminal.
+fn run_all(
+    scenes: Vec<crate::scene::Scene>,
+    fidelity: Option<Fidelity>,
+    cache: Option<&Cache>,
+) -> Result<Vec<SceneReport>> {
     let progress = std::io::stderr().is_terminal();
     let total = scenes.len();
     let mut reports = Vec::new();
@@ -172,7 +210,34 @@ fn run_all(scenes: Vec<crate::scene::Scene>) -> Result<Vec<SceneReport>> {
         if progress {
             eprint!("\r\x1b[2K{}", progress_bar(i, total, &scene.id));
         }
-        reports.push(pipeline::run_scene(scene)?);
+        let Some(cache) = cache else {
+            reports.push(pipeline::run_scene(scene, fidelity)?);
+            continue;
+        };
+        let (id, hash) = (scene.id.clone(), scene.content_hash);
+        let fid = fidelity.or(scene.fidelity).unwrap_or_default();
+        let whole = cache
+            .load(&id, hash, Some(&fid))
+            .and_then(|bytes| pipeline::from_cache(scene.clone(), &bytes));
+        let report = match whole {
+            Some(r) => r,
+            None => {
+                let symbolic = cache
+                    .load(&id, hash, None)
+                    .and_then(|bytes| serde_json::from_slice(&bytes).ok());
+                let r = pipeline::run_scene_with(scene, Some(fid), symbolic)?;
+                let mut stored = cache.store(&id, hash, Some(&fid), &pipeline::to_cache(&r));
+                if r.from_cache == pipeline::FromCache::Nothing && stored.is_ok() {
+                    let symbolic = serde_json::to_vec(&pipeline::symbolic_part(&r))?;
+                    stored = cache.store(&id, hash, None, &symbolic);
+                }
+                if let Err(e) = stored {
+                    eprintln!("mechbook: warning: the cache is not updated: {e}");
+                }
+                r
+            }
+        };
+        reports.push(report);
     }
     if progress {
         eprint!("\r\x1b[2K");
@@ -195,6 +260,9 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             out,
             templates,
             timings,
+            fidelity,
+            cache,
+            no_cache,
         } => {
             let start = std::time::Instant::now();
             let course = crate::render::Course::load(std::path::Path::new("mechbook.toml"))
@@ -202,7 +270,16 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             let Some(scenes) = load(&default_paths(paths))? else {
                 return Ok(ExitCode::from(1));
             };
-            let reports = run_all(scenes)?;
+            let cache = (!no_cache).then(|| Cache::new(&cache));
+            let reports = run_all(scenes, fidelity, cache.as_ref())?;
+            let cached = reports
+                .iter()
+                .filter(|r| r.from_cache == pipeline::FromCache::Everything)
+                .count();
+            let symbolic_cached = reports
+                .iter()
+                .filter(|r| r.from_cache == pipeline::FromCache::Symbolic)
+                .count();
             let files = crate::render::site_files(&reports, &course, templates.as_deref(), timings)
                 .map_err(anyhow::Error::msg)?;
             let out = out
@@ -213,11 +290,12 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             let plots = files.keys().filter(|p| p.starts_with("plots")).count();
             let failed = reports.iter().filter(|r| !r.passed()).count();
             eprintln!(
-                "mechbook: built {} pages, {plots} plots and {handouts} handouts from {} scenes into {} in {:.2} s{}",
+                "mechbook: built {} pages, {plots} plots and {handouts} handouts from {} scenes ({cached} from the cache, {symbolic_cached} re-run numerically on cached symbolic results) into {} in {:.2} s{}{}",
                 reports.len() + 1,
                 reports.len(),
                 out.display(),
                 start.elapsed().as_secs_f64(),
+                peak_memory_mib().map_or(String::new(), |m| format!(", peak memory {m:.0} MiB")),
                 if failed > 0 {
                     format!("; {failed} scene(s) FAILED their checks (run `mechbook check`)")
                 } else {
@@ -230,11 +308,15 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
                 ExitCode::from(1)
             })
         }
-        Command::Check { paths, json } => {
+        Command::Check {
+            paths,
+            json,
+            fidelity,
+        } => {
             let Some(scenes) = load(&default_paths(paths))? else {
                 return Ok(ExitCode::from(1));
             };
-            let reports = run_all(scenes)?;
+            let reports = run_all(scenes, fidelity, None)?;
             let passed = reports.iter().all(SceneReport::passed);
             let text = if json {
                 let scenes: Vec<_> = reports.iter().map(report::scene_json).collect();
@@ -287,11 +369,12 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             scene,
             json,
             explain,
+            fidelity,
         } => {
             let Some(mut scenes) = load(std::slice::from_ref(&scene))? else {
                 return Ok(ExitCode::from(1));
             };
-            let r = pipeline::run_scene(scenes.remove(0))?;
+            let r = pipeline::run_scene(scenes.remove(0), fidelity)?;
             let text = if json {
                 serde_json::to_string_pretty(&report::scene_json(&r))? + "\n"
             } else {

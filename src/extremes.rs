@@ -15,7 +15,7 @@ const EXACT_RULES: f64 = crate::verify::EXACT_VS_NUMERIC;
 
 fn scene(text: &str) -> SceneReport {
     let s = Scene::parse(text, Path::new("extreme.toml")).unwrap_or_else(|e| panic!("{e}"));
-    run_scene(s).unwrap()
+    run_scene(s, None).unwrap()
 }
 
 fn tensor_error(r: &SceneReport) -> f64 {

@@ -1,7 +1,7 @@
 //! A plot as plain data: the numeric stage fills it, `render::plot` draws it as SVG. Keeping the
 //! numbers here (not in the renderer) lets tests check a plot's content without parsing SVG.
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Mark {
     /// A polyline through the points.
     Line,
@@ -11,7 +11,7 @@ pub enum Mark {
     Points,
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Series {
     pub name: String,
     pub mark: Mark,
@@ -20,14 +20,14 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Scale {
     Linear,
     Log,
 }
 
 /// Where the legend goes: a corner or edge the data leave empty.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Legend {
     UpperRight,
     MiddleRight,
@@ -35,7 +35,24 @@ pub enum Legend {
     LowerLeft,
 }
 
-#[derive(Debug, Clone, PartialEq)]
+/// What one numeric result behind a figure reached, and what it cost, at the build's fidelity.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Accuracy {
+    /// The result, and the method and setting that computed it.
+    pub result: String,
+    pub method: String,
+    /// Relative error against an exact value, where one exists.
+    pub true_error: Option<f64>,
+    /// What the method can tell without an exact value: its tolerance-driven estimate or the
+    /// drift of the invariants 2T and |L| it should conserve.
+    pub estimated_error: Option<f64>,
+    /// Work done, counted in `unit`s (deterministic, unlike seconds).
+    pub cost: u64,
+    pub unit: String,
+    pub seconds: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Figure {
     /// Unique within the scene; the file is `plots/<scene>-<slug>.svg`.
     pub slug: String,
@@ -52,6 +69,8 @@ pub struct Figure {
     /// Text placed at data coordinates, such as the names of projected axes.
     pub labels: Vec<(String, (f64, f64))>,
     pub legend: Legend,
+    /// The error and cost of each numeric result drawn.
+    pub accuracy: Vec<Accuracy>,
 }
 
 impl Figure {

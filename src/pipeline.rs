@@ -3,6 +3,7 @@
 
 use crate::derive::{self, Derivation, DeriveError};
 use crate::figure::Figure;
+use crate::numeric::fidelity::Fidelity;
 use crate::numeric::{self, NumericReport};
 use crate::plan::{Plan, Stage};
 use crate::scene::{Scene, SceneError};
@@ -18,6 +19,8 @@ pub struct SceneReport {
     pub derivation: Derivation,
     pub numeric: Option<NumericReport>,
     pub figures: Vec<Figure>,
+    /// The fidelity the numeric stage ran at: `--fidelity`, else the scene's, else standard.
+    pub fidelity: Fidelity,
     pub verification: Verification,
     /// Time spent inside the symbolic engine for this scene, and its number of calls.
     pub symbolic_seconds: f64,
@@ -25,6 +28,9 @@ pub struct SceneReport {
     /// Integrations and quadratures this scene ran (zero for stages it did not ask for).
     pub numeric_work: numeric::Work,
     pub seconds: f64,
+    /// What came from the build cache; the counters and seconds of a cached part are those of
+    /// the run that stored it.
+    pub from_cache: FromCache,
 }
 
 impl SceneReport {
@@ -41,46 +47,184 @@ pub struct RunError {
     pub source: DeriveError,
 }
 
-pub fn run_scene(scene: Scene) -> Result<SceneReport, RunError> {
-    let start = Instant::now();
+/// What the symbolic stage produced: it depends on the scene file alone (never on the fidelity),
+/// so the build cache keeps it apart from the numeric results.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct Symbolic {
+    pub derivation: Derivation,
+    pub claims: Vec<verify::ClaimResult>,
+    pub regressions: Vec<verify::RegressionResult>,
+    pub seconds: f64,
+    pub engine_calls: u64,
+}
+
+/// How much of a report came from the build cache.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FromCache {
+    Nothing,
+    /// The symbolic stage's results: only the numeric stage ran.
+    Symbolic,
+    /// Everything: nothing ran.
+    Everything,
+}
+
+/// The symbolic stage: the derivation, then the claims and the recorded results checked on it.
+pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> {
     let (engine_before, calls_before) = crate::cas::stats();
-    let work_before = numeric::Work::so_far();
     let fail = |source| RunError {
         path: scene.source.clone(),
         source,
     };
+    let derivation = derive::derive(scene, plan).map_err(fail)?;
+    let (claims, regressions) = verify::verify_symbolic(scene, &derivation, plan).map_err(fail)?;
+    let (engine_after, calls_after) = crate::cas::stats();
+    Ok(Symbolic {
+        derivation,
+        claims,
+        regressions,
+        seconds: engine_after - engine_before,
+        engine_calls: calls_after - calls_before,
+    })
+}
+
+/// Runs one scene. `fidelity` (from the command line) overrides the scene's own setting.
+pub fn run_scene(scene: Scene, fidelity: Option<Fidelity>) -> Result<SceneReport, RunError> {
+    run_scene_with(scene, fidelity, None)
+}
+
+/// Runs one scene, taking the symbolic stage's results from `symbolic` when given.
+pub fn run_scene_with(
+    scene: Scene,
+    fidelity: Option<Fidelity>,
+    symbolic: Option<Symbolic>,
+) -> Result<SceneReport, RunError> {
+    let fidelity = fidelity.or(scene.fidelity).unwrap_or_default();
+    let start = Instant::now();
+    let work_before = numeric::Work::so_far();
     let plan = Plan::for_scene(&scene);
-    let derivation = derive::derive(&scene, &plan).map_err(fail)?;
+    let from_cache = if symbolic.is_some() {
+        FromCache::Symbolic
+    } else {
+        FromCache::Nothing
+    };
+    let symbolic = match symbolic {
+        Some(s) => s,
+        None => symbolic_stage(&scene, &plan)?,
+    };
+    let fail = |source| RunError {
+        path: scene.source.clone(),
+        source,
+    };
+    let derivation = &symbolic.derivation;
     let numeric = if plan.runs(Stage::Quadrature) {
         let parts = &derivation.part_tensors;
         let total = &derivation.quantities["inertia_tensor"];
         Some(
-            numeric::quadrature_checks(&scene, parts, total)
+            numeric::quadrature_checks(&scene, parts, total, &fidelity)
                 .map_err(|e| fail(DeriveError::Unsupported(e)))?,
         )
     } else {
         None
     };
     let figures = if plan.runs(Stage::Plots) {
-        numeric::plots::figures(&scene, &derivation)
+        numeric::plots::figures(&scene, derivation, &fidelity)
             .map_err(|e| fail(DeriveError::Unsupported(e)))?
     } else {
         Vec::new()
     };
-    let verification =
-        verify::verify(&scene, &derivation, numeric.as_ref(), &plan).map_err(fail)?;
-    let (engine_after, calls_after) = crate::cas::stats();
+    let mut verification = Verification {
+        claims: symbolic.claims,
+        regressions: symbolic.regressions,
+        ..Verification::default()
+    };
+    verify::verify_numeric(
+        &scene,
+        derivation,
+        numeric.as_ref(),
+        &plan,
+        &mut verification,
+    )
+    .map_err(fail)?;
     Ok(SceneReport {
         scene,
         plan,
+        derivation: symbolic.derivation,
+        numeric,
+        figures,
+        fidelity,
+        verification,
+        symbolic_seconds: symbolic.seconds,
+        engine_calls: symbolic.engine_calls,
+        numeric_work: numeric::Work::since(work_before),
+        seconds: start.elapsed().as_secs_f64(),
+        from_cache,
+    })
+}
+
+/// The symbolic part of a report, for the cache.
+pub fn symbolic_part(r: &SceneReport) -> Symbolic {
+    Symbolic {
+        derivation: r.derivation.clone(),
+        claims: r.verification.claims.clone(),
+        regressions: r.verification.regressions.clone(),
+        seconds: r.symbolic_seconds,
+        engine_calls: r.engine_calls,
+    }
+}
+
+/// The computed part of a report, as the build cache stores it: the scene and its plan are
+/// rebuilt from the file.
+type Computed = (
+    Derivation,
+    Option<NumericReport>,
+    Vec<Figure>,
+    Fidelity,
+    Verification,
+    (f64, u64),
+    numeric::Work,
+    f64,
+);
+
+/// A report as cache bytes.
+pub fn to_cache(r: &SceneReport) -> Vec<u8> {
+    let computed = (
+        &r.derivation,
+        &r.numeric,
+        &r.figures,
+        &r.fidelity,
+        &r.verification,
+        (r.symbolic_seconds, r.engine_calls),
+        &r.numeric_work,
+        r.seconds,
+    );
+    serde_json::to_vec(&computed).expect("a report serializes")
+}
+
+/// A report from cache bytes, or `None` when they do not parse (then the scene runs again).
+pub fn from_cache(scene: Scene, bytes: &[u8]) -> Option<SceneReport> {
+    let (
         derivation,
         numeric,
         figures,
+        fidelity,
         verification,
-        symbolic_seconds: engine_after - engine_before,
-        engine_calls: calls_after - calls_before,
-        numeric_work: numeric::Work::since(work_before),
-        seconds: start.elapsed().as_secs_f64(),
+        (symbolic_seconds, engine_calls),
+        numeric_work,
+        seconds,
+    ): Computed = serde_json::from_slice(bytes).ok()?;
+    Some(SceneReport {
+        plan: Plan::for_scene(&scene),
+        scene,
+        derivation,
+        numeric,
+        figures,
+        fidelity,
+        verification,
+        symbolic_seconds,
+        engine_calls,
+        numeric_work,
+        seconds,
+        from_cache: FromCache::Everything,
     })
 }
 

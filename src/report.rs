@@ -76,6 +76,7 @@ pub fn scene_json(r: &SceneReport) -> Json {
                     "predicted_error": num(q.predicted_error),
                     "seconds": num(q.seconds),
                     "within_law": ok,
+                    "stop": q.stop.describe(),
                 })
             })
             .collect(),
@@ -129,6 +130,14 @@ pub fn scene_json(r: &SceneReport) -> Json {
         "symbolic_seconds": num(r.symbolic_seconds),
         "engine_calls": r.engine_calls,
         "numeric_work": r.numeric_work,
+        "fidelity": { "name": r.fidelity.name(), "tolerance": r.fidelity.tolerance, "max_points": r.fidelity.max_points() },
+        "figures": r.figures.iter().map(|f| json!({
+            "slug": f.slug,
+            "accuracy": f.accuracy.iter().map(|a| json!({
+                "result": a.result, "method": a.method, "true_error": a.true_error.map(num),
+                "estimated_error": a.estimated_error.map(num), "cost": a.cost, "unit": a.unit,
+                "seconds": num(a.seconds) })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
     })
 }
 
@@ -147,6 +156,11 @@ pub fn sci(x: f64) -> String {
     } else {
         format!("{x:.1e}")
     }
+}
+
+/// A tolerance or bound: `1e-10` rather than `1.0e-10`.
+pub fn short(x: f64) -> String {
+    sci(x).replace(".0e", "e")
 }
 
 /// The summary table printed by `check`, with the notes' errata and every failure below it.
@@ -391,6 +405,7 @@ pub fn explain_text(r: &SceneReport) -> String {
         r.symbolic_seconds * 1e3,
         r.seconds * 1e3
     );
+    let _ = writeln!(out, "Numeric fidelity: {}", r.fidelity);
     let w = &r.numeric_work;
     let _ = writeln!(
         out,

@@ -2,6 +2,8 @@
 //! renamed into place, so a failed build leaves the previous site untouched; files are written
 //! in sorted order with no timestamps, so the same input gives the same bytes.
 
+pub mod cache;
+
 use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};
 

@@ -22,7 +22,7 @@ pub const MONTE_CARLO_SIGMAS: f64 = 5.0;
 /// Random points at which each symbolic verdict is confirmed.
 const CONFIRMATION_POINTS: usize = 3;
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct ClaimResult {
     pub eq: String,
     pub statement: String,
@@ -46,7 +46,7 @@ impl ClaimResult {
     }
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct RegressionResult {
     pub quantity: String,
     pub recorded: String,
@@ -55,7 +55,7 @@ pub struct RegressionResult {
 }
 
 /// An exact quantity evaluated at the scene's values against the same quantity from numerics.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct QuantityCheck {
     pub name: String,
     pub exact: Vec<f64>,
@@ -64,7 +64,7 @@ pub struct QuantityCheck {
     pub passed: bool,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct EigenCheck {
     /// Exact principal moments at the scene's values, with multiplicities, ascending.
     pub exact: Vec<(f64, u32)>,
@@ -75,7 +75,7 @@ pub struct EigenCheck {
     pub passed: bool,
 }
 
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct Verification {
     pub claims: Vec<ClaimResult>,
     pub regressions: Vec<RegressionResult>,
@@ -489,20 +489,37 @@ pub fn check_eigen(
 }
 
 /// Runs every check the plan's stages made possible.
-pub fn verify(
+/// The symbolic checks: the notes' claims and the recorded results. They depend on the scene
+/// and its derivation only, never on the fidelity.
+pub fn verify_symbolic(
+    scene: &Scene,
+    d: &Derivation,
+    plan: &crate::plan::Plan,
+) -> Result<(Vec<ClaimResult>, Vec<RegressionResult>), crate::derive::DeriveError> {
+    use crate::plan::Stage;
+    let claims = if plan.runs(Stage::Claims) {
+        check_claims(scene, d)?
+    } else {
+        Vec::new()
+    };
+    let regressions = if plan.runs(Stage::Regression) {
+        check_regressions(scene, d)?
+    } else {
+        Vec::new()
+    };
+    Ok((claims, regressions))
+}
+
+/// The numeric checks: each quadrature run against its law, the exact quantities against the
+/// numeric ones, and the principal axes against `SymmetricEigen`.
+pub fn verify_numeric(
     scene: &Scene,
     d: &Derivation,
     numeric: Option<&NumericReport>,
     plan: &crate::plan::Plan,
-) -> Result<Verification, crate::derive::DeriveError> {
+    v: &mut Verification,
+) -> Result<(), crate::derive::DeriveError> {
     use crate::plan::Stage;
-    let mut v = Verification::default();
-    if plan.runs(Stage::Claims) {
-        v.claims = check_claims(scene, d)?;
-    }
-    if plan.runs(Stage::Regression) {
-        v.regressions = check_regressions(scene, d)?;
-    }
     if let Some(n) = numeric {
         v.within_law = n.runs.iter().map(within_law).collect();
         v.quantities =
@@ -512,7 +529,7 @@ pub fn verify(
                 .map_err(crate::derive::DeriveError::Unsupported)?;
         }
     }
-    Ok(v)
+    Ok(())
 }
 
 #[cfg(test)]
@@ -540,7 +557,7 @@ values = { m = 1.0, a = 1.0 }
 
     fn claims(claims: &str) -> Vec<super::ClaimResult> {
         let s = Scene::parse(&format!("{SCENE}{claims}"), Path::new("t.toml")).unwrap();
-        run_scene(s).unwrap().verification.claims
+        run_scene(s, None).unwrap().verification.claims
     }
 
     fn claim(quantity: &str, value: &str, expect: &str) -> String {
@@ -623,7 +640,7 @@ values = { m = 1.0, a = 1.0 }
         };
         let verdict = |figures| {
             let s = Scene::parse(&scene(figures), Path::new("e.toml")).unwrap();
-            run_scene(s).unwrap().verification.claims[0].verdict
+            run_scene(s, None).unwrap().verification.claims[0].verdict
         };
         assert_eq!(verdict(1), Verdict::Agrees);
         assert_eq!(verdict(2), Verdict::Agrees);

@@ -8,7 +8,7 @@
 use super::rational::Rational;
 use std::fmt;
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Expr {
     Num(Rational),
     Sym(String),

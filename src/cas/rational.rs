@@ -6,7 +6,9 @@
 use std::fmt;
 
 /// A reduced fraction `num/den` with `den > 0`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 pub struct Rational {
     num: i128,
     den: i128,

@@ -10,7 +10,7 @@ pub type Mat3 = [[Expr; 3]; 3];
 
 // A matrix is nine times a scalar; values are few and short-lived, so boxing buys nothing.
 #[allow(clippy::large_enum_variant)]
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Value {
     Scalar(Expr),
     Vector(Vec3),

@@ -24,7 +24,7 @@ use crate::scene::Scene;
 use algebra::Value;
 use std::collections::BTreeMap;
 
-#[derive(Debug, Clone, serde::Serialize)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Step {
     pub title: String,
     /// The statement as plain text and as LaTeX.
@@ -67,7 +67,7 @@ pub enum DeriveError {
 }
 
 /// Everything the symbolic stage produced for a scene.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct Derivation {
     pub steps: Vec<Step>,
     /// Exact results by name (`inertia_tensor`, `principal_moments`, ...), simplified.

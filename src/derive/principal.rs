@@ -10,7 +10,7 @@ use crate::cas::{self, Expr};
 /// The λ of the characteristic polynomial; `__` never occurs in scene names.
 pub const LAMBDA: &str = "lambda__";
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct ExactEigen {
     pub characteristic: Expr,
     pub spaces: Vec<ExactSpace>,
@@ -18,14 +18,14 @@ pub struct ExactEigen {
     pub unsolved: Vec<(Expr, u32)>,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct ExactSpace {
     pub value: Expr,
     pub multiplicity: u32,
     pub basis: ExactBasis,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub enum ExactBasis {
     Axis(Vec3),
     PlaneNormalTo(Vec3),

@@ -14,7 +14,7 @@ fn run(body: &str, symbols: &str, values: &str, want: &str) -> SceneReport {
     );
     let scene =
         Scene::parse(&text, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}\n{text}"));
-    run_scene(scene).unwrap()
+    run_scene(scene, None).unwrap()
 }
 
 fn tensor(r: &SceneReport) -> Value {

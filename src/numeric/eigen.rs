@@ -4,14 +4,14 @@
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 
 /// A principal moment with its multiplicity and the eigenspace it spans.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Eigenspace {
     pub value: f64,
     pub multiplicity: usize,
     pub space: Space,
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Space {
     /// A single axis (sign chosen so that the largest component is positive).
     Axis(Vector3<f64>),

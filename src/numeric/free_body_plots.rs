@@ -2,11 +2,12 @@
 //! racket's flips, the herpolhode and Earth's polar motion. Each description quotes what was
 //! measured, next to what the exact solution predicts.
 
+use super::fidelity::Fidelity;
 use super::free_body::{ExactSolution, Moments, invariants};
 use super::integrators::{Method, Resolution, Run, integrate};
 use super::plots::{ERROR_FLOOR, plane_basis, project};
-use crate::figure::{Figure, Legend, Mark, Scale, Series};
-use crate::report::sci;
+use crate::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::report::{sci, short};
 use crate::scene::FreeBodyPlot;
 use nalgebra::Vector3;
 use std::f64::consts::PI;
@@ -16,19 +17,90 @@ pub fn figure(
     inertia: [f64; 3],
     omega: [f64; 3],
     t: f64,
+    fidelity: &Fidelity,
 ) -> Result<Figure, String> {
     let i = Moments::new(inertia)?;
     let w0 = Vector3::from(omega);
+    let f = fidelity;
     match kind {
-        FreeBodyPlot::OmegaVsTime => omega_vs_time(&i, w0, t),
-        FreeBodyPlot::Polhodes => polhodes(&i, w0),
-        FreeBodyPlot::Drift => drift(&i, w0, t),
-        FreeBodyPlot::Flip => flip(&i, w0, t),
-        FreeBodyPlot::AxisSpins => axis_spins(&i, w0, t),
-        FreeBodyPlot::Herpolhode => herpolhode(&i, w0, t),
-        FreeBodyPlot::PolarMotion => polar_motion(&i, w0),
-        FreeBodyPlot::Cones => cones(&i, w0, t),
+        FreeBodyPlot::OmegaVsTime => omega_vs_time(&i, w0, t, f),
+        FreeBodyPlot::Polhodes => polhodes(&i, w0, f),
+        FreeBodyPlot::Drift => drift(&i, w0, t, f),
+        FreeBodyPlot::Flip => flip(&i, w0, t, f),
+        FreeBodyPlot::AxisSpins => axis_spins(&i, w0, t, f),
+        FreeBodyPlot::Herpolhode => herpolhode(&i, w0, t, f),
+        FreeBodyPlot::PolarMotion => polar_motion(&i, w0, f),
+        FreeBodyPlot::Cones => cones(&i, w0, t, f),
     }
+}
+
+/// The exact solution sampled at `times`: it is the reference, so its own error shows only as
+/// the drift of 2T and |L| along the samples (round-off in the elliptic functions).
+fn exact_accuracy(result: &str, i: &Moments, w0: &Vector3<f64>, times: &[f64]) -> Accuracy {
+    let start = std::time::Instant::now();
+    let sol = ExactSolution::new(i, *w0);
+    let (t0, l0) = invariants(i, w0);
+    let drift = times
+        .iter()
+        .map(|t| {
+            let (tt, l) = invariants(i, &sol.omega(*t));
+            ((tt - t0) / t0).abs().max(((l - l0) / l0).abs())
+        })
+        .fold(0.0, f64::max);
+    Accuracy {
+        result: result.into(),
+        method: "exact (Jacobi elliptic functions)".into(),
+        true_error: None,
+        estimated_error: Some(drift),
+        cost: times.len() as u64,
+        unit: "evaluations".into(),
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// An integration's accuracy: its error against the exact solution at every traced sample
+/// (relative to |ω(0)|), and the invariant drift it would show without one.
+fn run_accuracy(
+    result: &str,
+    setting: String,
+    run: &Run,
+    i: &Moments,
+    w0: &Vector3<f64>,
+) -> Accuracy {
+    let sol = ExactSolution::new(i, *w0);
+    let true_error = run
+        .trace
+        .iter()
+        .map(|(t, w, _)| (w - sol.omega(*t)).norm() / w0.norm())
+        .chain([(run.omega - sol.omega(run.trace.last().map_or(0.0, |p| p.0))).norm() / w0.norm()])
+        .fold(0.0, f64::max);
+    Accuracy {
+        result: result.into(),
+        method: setting,
+        true_error: Some(true_error),
+        estimated_error: Some(run.energy_drift.max(run.momentum_drift)),
+        cost: run.rhs_evaluations,
+        unit: "right-hand sides".into(),
+        seconds: run.seconds,
+    }
+}
+
+/// Several runs of one method drawn as one result: the worst errors and the total cost.
+fn merged(result: &str, parts: Vec<Accuracy>) -> Accuracy {
+    let worst = |f: fn(&Accuracy) -> Option<f64>| parts.iter().filter_map(f).reduce(f64::max);
+    Accuracy {
+        result: format!("{result} ({} runs)", parts.len()),
+        method: parts.first().map_or(String::new(), |p| p.method.clone()),
+        true_error: worst(|a| a.true_error),
+        estimated_error: worst(|a| a.estimated_error),
+        cost: parts.iter().map(|a| a.cost).sum(),
+        unit: parts.first().map_or(String::new(), |p| p.unit.clone()),
+        seconds: parts.iter().map(|a| a.seconds).sum(),
+    }
+}
+
+fn times(t_end: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|j| t_end * j as f64 / n as f64).collect()
 }
 
 fn fig(slug: &str, title: String, desc: String, x: &str, y: &str, series: Vec<Series>) -> Figure {
@@ -44,6 +116,7 @@ fn fig(slug: &str, title: String, desc: String, x: &str, y: &str, series: Vec<Se
         series,
         labels: Vec::new(),
         legend: Legend::UpperRight,
+        accuracy: Vec::new(),
     }
 }
 
@@ -66,18 +139,17 @@ fn motion_text(sol: &ExactSolution) -> String {
     s
 }
 
-fn omega_vs_time(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+fn omega_vs_time(
+    i: &Moments,
+    w0: Vector3<f64>,
+    t_end: f64,
+    fid: &Fidelity,
+) -> Result<Figure, String> {
     let sol = ExactSolution::new(i, w0);
-    let n = 400;
+    let n = fid.samples(400);
+    let tol = fid.ode_tolerance(1e-10);
     let mut series = Vec::new();
-    let dp = integrate(
-        i,
-        w0,
-        t_end,
-        Method::Dopri,
-        Resolution::Tolerance(1e-10),
-        24,
-    )?;
+    let dp = integrate(i, w0, t_end, Method::Dopri, Resolution::Tolerance(tol), 24)?;
     let mut worst: f64 = 0.0;
     for (k, name) in ["ω1", "ω2", "ω3"].into_iter().enumerate() {
         series.push(Series {
@@ -103,10 +175,11 @@ fn omega_vs_time(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, St
     }
     let desc = format!(
         "Body-frame angular velocity of the free body with {} over 0 ≤ t ≤ {t_end}: {}. Lines: \
-         the exact solution; dots: Dormand–Prince 5(4) at tol 1e-10 ({} right-hand sides), at most \
+         the exact solution; dots: Dormand–Prince 5(4) at tol {} ({} right-hand sides), at most \
          {} from it relative to |ω(0)|.",
         body_text(i, &w0),
         motion_text(&sol),
+        short(tol),
         dp.rhs_evaluations,
         sci(worst)
     );
@@ -119,6 +192,16 @@ fn omega_vs_time(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, St
         series,
     );
     f.legend = Legend::LowerRight;
+    f.accuracy = vec![
+        exact_accuracy("ω(t) curves", i, &w0, &times(t_end, n)),
+        run_accuracy(
+            "ω(t) dots",
+            format!("Dormand–Prince 5(4), tol {}", short(tol)),
+            &dp,
+            i,
+            &w0,
+        ),
+    ];
     Ok(f)
 }
 
@@ -129,7 +212,9 @@ fn sorted_axes(i: &Moments) -> [usize; 3] {
     o
 }
 
-fn polhodes(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
+fn polhodes(i: &Moments, w0: Vector3<f64>, fid: &Fidelity) -> Result<Figure, String> {
+    let n = fid.samples(240);
+    let mut exact_runs = Vec::new();
     let [a, b, c] = sorted_axes(i);
     let (ia, ib, ic) = (i.0[a], i.0[b], i.0[c]);
     if ia == ic {
@@ -174,6 +259,7 @@ fn polhodes(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
         let period = sol.period().unwrap_or(2.0 * PI);
         let around = if l2 > two_t * ib { c } else { a };
         closed.push(around);
+        exact_runs.push(exact_accuracy("", i, &w, &times(period, n)));
         for sign in [1.0, -1.0] {
             series.push(Series {
                 name: if f == 0.05 && sign > 0.0 {
@@ -183,8 +269,8 @@ fn polhodes(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
                 },
                 mark: Mark::Line,
                 colour: if around == c { 0 } else { 2 },
-                points: (0..=240)
-                    .map(|k| project(&(l_of(&sol.omega(period * k as f64 / 240.0)) * sign)))
+                points: (0..=n)
+                    .map(|k| project(&(l_of(&sol.omega(period * k as f64 / n as f64)) * sign)))
                     .collect(),
             });
         }
@@ -258,33 +344,37 @@ fn polhodes(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
             (format!("L{}", k + 1), project(&l))
         })
         .collect();
+    f.accuracy = vec![merged("polhodes", exact_runs)];
     Ok(f)
 }
 
-fn drift(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+fn drift(i: &Moments, w0: Vector3<f64>, t_end: f64, fid: &Fidelity) -> Result<Figure, String> {
     let (t0, l0) = invariants(i, &w0);
+    let (h, tol) = (fid.ode_step(0.05), fid.ode_tolerance(1e-9));
     let runs = [
-        ("RK4 h = 0.05", Method::Rk4, Resolution::Step(0.05)),
+        (format!("RK4 h = {h}"), Method::Rk4, Resolution::Step(h)),
         (
-            "Dormand–Prince tol 1e-9",
+            format!("Dormand–Prince tol {}", short(tol)),
             Method::Dopri,
-            Resolution::Tolerance(1e-9),
+            Resolution::Tolerance(tol),
         ),
         (
-            "Strang splitting h = 0.05",
+            format!("Strang splitting h = {h}"),
             Method::Splitting,
-            Resolution::Step(0.05),
+            Resolution::Step(h),
         ),
         (
-            "triple jump h = 0.05",
+            format!("triple jump h = {h}"),
             Method::Splitting4,
-            Resolution::Step(0.05),
+            Resolution::Step(h),
         ),
     ];
     let mut series = Vec::new();
     let mut parts = Vec::new();
+    let mut accuracy = Vec::new();
     for (k, (name, m, r)) in runs.into_iter().enumerate() {
-        let run = integrate(i, w0, t_end, m, r, 200)?;
+        let run = integrate(i, w0, t_end, m, r, fid.samples(200))?;
+        accuracy.push(run_accuracy("ω(t)", name.clone(), &run, i, &w0));
         let energy: Vec<(f64, f64)> = run
             .trace
             .iter()
@@ -334,6 +424,7 @@ fn drift(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
     );
     f.y_scale = Scale::Log;
     f.legend = Legend::LowerRight;
+    f.accuracy = accuracy;
     Ok(f)
 }
 
@@ -349,7 +440,7 @@ fn sign_changes(run: &Run, k: usize) -> Vec<f64> {
         .collect()
 }
 
-fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64, fid: &Fidelity) -> Result<Figure, String> {
     let [a, b, c] = sorted_axes(i);
     let (ia, ib, ic) = (i.0[a], i.0[b], i.0[c]);
     if !(ia < ib && ib < ic) {
@@ -365,13 +456,14 @@ fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
     // limit; flips every 2K/λ ≈ ln(16/(1 − m))/σ.
     let sigma = (two_t / ib).sqrt() * ((ic - ib) * (ib - ia) / (ia * ic)).sqrt();
     let approx = (16.0 / mc).ln() / sigma;
+    let tol = fid.ode_tolerance(1e-11);
     let dp = integrate(
         i,
         w0,
         t_end,
         Method::Dopri,
-        Resolution::Tolerance(1e-11),
-        4000,
+        Resolution::Tolerance(tol),
+        fid.samples(4000),
     )?;
     let flips = sign_changes(&dp, b);
     let measured = if flips.len() >= 2 {
@@ -379,7 +471,7 @@ fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
     } else {
         None
     };
-    let n = 600;
+    let n = fid.samples(600);
     let series = vec![
         Series {
             name: format!("ω{} exact", b + 1),
@@ -402,7 +494,7 @@ fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
     let desc = format!(
         "Tennis racket: spin started near the middle axis (I{} = {ib}) of I = ({}, {}, {}), \
          ω(0) = ({}, {}, {}). The component ω{} reverses again and again. Measured from Dormand–Prince \
-         (tol 1e-11) sign changes: {} flips, every {}; predicted: exactly 2K/λ = {:.6}, and \
+         (tol {}) sign changes: {} flips, every {}; predicted: exactly 2K/λ = {:.6}, and \
          approximately ln(16/(1 − m))/σ = {:.6} with 1 − m = {} and σ = {:.6}.",
         b + 1,
         i.0[0],
@@ -412,6 +504,7 @@ fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
         w0.y,
         w0.z,
         b + 1,
+        short(tol),
         flips.len(),
         measured.map_or(
             "(fewer than two flips in the window)".to_string(),
@@ -431,20 +524,30 @@ fn flip(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
         series,
     );
     f.legend = Legend::LowerRight;
+    let setting = format!("Dormand–Prince 5(4), tol {}", short(tol));
+    let mut flip_period = run_accuracy("time between flips", setting.clone(), &dp, i, &w0);
+    flip_period.true_error = measured.map(|m| (m - period / 2.0).abs() / (period / 2.0));
+    flip_period.estimated_error = None;
+    f.accuracy = vec![
+        exact_accuracy(&format!("ω{} curve", b + 1), i, &w0, &times(t_end, n)),
+        run_accuracy(&format!("ω{} integrated", b + 1), setting, &dp, i, &w0),
+        flip_period,
+    ];
     Ok(f)
 }
 
 /// The largest component of ω(0) is the spin and the other two the wobble; the same start is
 /// turned onto each principal axis in turn, and the exact solution gives ω's angle from it.
-fn axis_spins(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+fn axis_spins(i: &Moments, w0: Vector3<f64>, t_end: f64, fid: &Fidelity) -> Result<Figure, String> {
     let k0 = w0.iamax();
     let (spin, wobble) = (w0[k0], [w0[(k0 + 1) % 3], w0[(k0 + 2) % 3]]);
     if wobble.iter().any(|x| x.abs() >= spin.abs()) {
         return Err("axis-spins needs one component of omega larger than the other two".into());
     }
     let [small, middle, large] = sorted_axes(i);
-    let n = 600;
+    let n = fid.samples(600);
     let mut series = Vec::new();
+    let mut exact_runs = Vec::new();
     let mut largest = [0.0f64; 3];
     for k in 0..3 {
         let mut w = Vector3::zeros();
@@ -452,6 +555,7 @@ fn axis_spins(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, Strin
         w[(k + 1) % 3] = wobble[0];
         w[(k + 2) % 3] = wobble[1];
         let sol = ExactSolution::new(i, w);
+        exact_runs.push(exact_accuracy("", i, &w, &times(t_end, n)));
         let points: Vec<(f64, f64)> = (0..=n)
             .map(|j| {
                 let t = t_end * j as f64 / n as f64;
@@ -500,28 +604,31 @@ fn axis_spins(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, Strin
         rank(2),
         largest[2]
     );
-    Ok(fig(
+    let mut f = fig(
         "axis-spins",
         "Spin about each principal axis".into(),
         desc,
         "t",
         "angle from the starting axis / degrees",
         series,
-    ))
+    );
+    f.accuracy = vec![merged("angle from each axis", exact_runs)];
+    Ok(f)
 }
 
-fn herpolhode(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+fn herpolhode(i: &Moments, w0: Vector3<f64>, t_end: f64, fid: &Fidelity) -> Result<Figure, String> {
     let (two_t, l) = invariants(i, &w0);
     let l_space = Vector3::new(i.0[0] * w0.x, i.0[1] * w0.y, i.0[2] * w0.z);
     let n = l_space.normalize();
     let (u, v) = plane_basis(&n);
+    let tol = fid.ode_tolerance(1e-11);
     let dp = integrate(
         i,
         w0,
         t_end,
         Method::Dopri,
-        Resolution::Tolerance(1e-11),
-        3000,
+        Resolution::Tolerance(tol),
+        fid.samples(3000),
     )?;
     let mut height_dev: f64 = 0.0;
     let expected = two_t.sqrt() / l;
@@ -536,10 +643,11 @@ fn herpolhode(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, Strin
         .collect();
     let desc = format!(
         "Herpolhode: the tip of ρ = ω/√(2T) in space, projected on the invariable plane (normal to \
-         the fixed L), for {} over 0 ≤ t ≤ {t_end}, from Dormand–Prince 5(4) at tol 1e-11 with the \
+         the fixed L), for {} over 0 ≤ t ≤ {t_end}, from Dormand–Prince 5(4) at tol {} with the \
          attitude. The plane's distance from the centre stays √(2T)/L = {expected:.6} to {} \
          (eq 81), and L stays fixed in space to {}.",
         body_text(i, &w0),
+        short(tol),
         sci(height_dev),
         sci(dp.space_momentum_drift)
     );
@@ -557,6 +665,16 @@ fn herpolhode(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, Strin
         }],
     );
     f.equal_aspect = true;
+    let mut acc = run_accuracy(
+        "herpolhode",
+        format!("Dormand–Prince 5(4) with the attitude, tol {}", short(tol)),
+        &dp,
+        i,
+        &w0,
+    );
+    // The attitude has no cheap exact value; L's drift in space is its error estimate.
+    acc.estimated_error = acc.estimated_error.map(|e| e.max(dp.space_momentum_drift));
+    f.accuracy = vec![acc];
     Ok(f)
 }
 
@@ -573,7 +691,7 @@ pub const EARTH_H: f64 =
 pub const CHANDLER_DAYS: f64 = earth::CHANDLER_DAYS as f64;
 
 /// ω in radians per sidereal day: ω3 = 2π is one turn per sidereal day.
-fn polar_motion(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
+fn polar_motion(i: &Moments, w0: Vector3<f64>, fid: &Fidelity) -> Result<Figure, String> {
     let sol = ExactSolution::new(i, w0);
     let period = sol
         .period()
@@ -582,9 +700,10 @@ fn polar_motion(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
     let beta = (ic - ia) / ia;
     let euler_sidereal = period * w0.z / (2.0 * PI);
     let euler_solar = euler_sidereal * SOLAR_PER_SIDEREAL;
-    let pts: Vec<(f64, f64)> = (0..=200)
+    let n = fid.samples(200);
+    let pts: Vec<(f64, f64)> = (0..=n)
         .map(|k| {
-            let w = sol.omega(period * k as f64 / 200.0);
+            let w = sol.omega(period * k as f64 / n as f64);
             (w.x / w.z, w.y / w.z)
         })
         .collect();
@@ -628,6 +747,7 @@ fn polar_motion(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
         ],
     );
     f.equal_aspect = true;
+    f.accuracy = vec![exact_accuracy("wobble path", i, &w0, &times(period, n))];
     Ok(f)
 }
 
@@ -635,7 +755,7 @@ fn polar_motion(i: &Moments, w0: Vector3<f64>) -> Result<Figure, String> {
 /// symmetry axis e3 and ω go round together; in the body, ω sweeps the body cone about e3. The
 /// half-angles are measured from the integrated attitude and compared with the derivation:
 /// tan α_b = A/ω3, cos α_s = 2T/(ωL), and tan θ_L = (I1/I3) tan α_b for the angle of L from e3.
-fn cones(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
+fn cones(i: &Moments, w0: Vector3<f64>, t_end: f64, fid: &Fidelity) -> Result<Figure, String> {
     let v = i.0;
     let c = (0..3)
         .find(|&c| v[(c + 1) % 3] == v[(c + 2) % 3] && v[c] != v[(c + 1) % 3])
@@ -645,13 +765,14 @@ fn cones(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
     let w = w0.norm();
     let e3 = Vector3::ith(c, 1.0);
     let l_body = Vector3::new(v[0] * w0.x, v[1] * w0.y, v[2] * w0.z);
+    let tol = fid.ode_tolerance(1e-11);
     let dp = integrate(
         i,
         w0,
         t_end,
         Method::Dopri,
-        Resolution::Tolerance(1e-11),
-        400,
+        Resolution::Tolerance(tol),
+        fid.samples(400),
     )?;
     let angle = |a: &Vector3<f64>, b: &Vector3<f64>| {
         a.normalize().dot(&b.normalize()).clamp(-1.0, 1.0).acos()
@@ -747,6 +868,18 @@ fn cones(i: &Moments, w0: Vector3<f64>, t_end: f64) -> Result<Figure, String> {
         series,
     );
     f.equal_aspect = true;
+    let setting = format!("Dormand–Prince 5(4) with the attitude, tol {}", short(tol));
+    let mut space_cone = run_accuracy("space-cone half-angle", setting.clone(), &dp, i, &w0);
+    space_cone.true_error = Some(
+        (space_angle.0 - predicted_s)
+            .abs()
+            .max((space_angle.1 - predicted_s).abs())
+            / predicted_s.max(f64::MIN_POSITIVE),
+    );
+    f.accuracy = vec![
+        run_accuracy("ω in the body", setting, &dp, i, &w0),
+        space_cone,
+    ];
     Ok(f)
 }
 
@@ -763,10 +896,19 @@ mod tests {
             ([2.0, 2.0, 1.9], [0.5, 0.0, 1.0], "α_b > α_s"),
             ([2.0, 2.0, 0.8], [0.2, 0.0, 1.0], "α_b < α_s"),
         ] {
-            let f = figure(FreeBodyPlot::Cones, i, w, 20.0).unwrap();
+            let f = figure(FreeBodyPlot::Cones, i, w, 20.0, &Fidelity::STANDARD).unwrap();
             assert!(f.desc.contains(relation), "{i:?}: {}", f.desc);
         }
-        assert!(figure(FreeBodyPlot::Cones, [1.0, 2.0, 2.5], [1.0, 0.0, 0.0], 1.0).is_err());
+        assert!(
+            figure(
+                FreeBodyPlot::Cones,
+                [1.0, 2.0, 2.5],
+                [1.0, 0.0, 0.0],
+                1.0,
+                &Fidelity::STANDARD
+            )
+            .is_err()
+        );
     }
 
     #[test]
@@ -776,6 +918,7 @@ mod tests {
             [1.0, 2.0, 3.0],
             [1.0, 0.01, 0.01],
             60.0,
+            &Fidelity::STANDARD,
         )
         .unwrap();
         let top = |k: usize| {
@@ -794,7 +937,8 @@ mod tests {
                 FreeBodyPlot::AxisSpins,
                 [1.0, 2.0, 3.0],
                 [1.0, 1.0, 0.0],
-                1.0
+                1.0,
+                &Fidelity::STANDARD
             )
             .is_err()
         );

@@ -5,6 +5,7 @@
 pub mod body;
 pub mod eigen;
 pub mod elliptic;
+pub mod fidelity;
 pub mod free_body;
 pub mod free_body_plots;
 pub mod integrators;
@@ -14,13 +15,14 @@ pub mod quadrature;
 use crate::derive::algebra::Value;
 use crate::scene::Scene;
 use body::{NumBody, relative_error};
+use fidelity::Fidelity;
 use nalgebra::Matrix3;
-use quadrature::{QuadratureRun, reference_rule, run, schedule};
+use quadrature::{QuadratureRun, climb, reference_rule, run};
 use std::collections::BTreeMap;
 
 /// Numeric work done on this thread so far: proof, in `derive --explain`, that a scene ran only
 /// the integrations and quadratures it asked for. Thread-local, so parallel tests do not mix.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Work {
     pub ode_integrations: u64,
     pub rhs_evaluations: u64,
@@ -77,7 +79,7 @@ impl Work {
 }
 
 /// The numeric results for a scene.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct NumericReport {
     pub runs: Vec<QuadratureRun>,
     /// The whole scene's tensor from each body's exact rule, and its error.
@@ -100,11 +102,12 @@ pub fn matrix_at(value: &Value, values: &BTreeMap<String, f64>) -> Result<Matrix
     Ok(m)
 }
 
-/// Runs every method of every body, and the composite with each body's exact rule.
+/// Climbs every method's ladder for every body at the fidelity, and sums each body's exact rule.
 pub fn quadrature_checks(
     scene: &Scene,
     exact_parts: &[Value],
     exact_total: &Value,
+    fidelity: &Fidelity,
 ) -> Result<NumericReport, String> {
     let start = std::time::Instant::now();
     let mut runs = Vec::new();
@@ -112,15 +115,12 @@ pub fn quadrature_checks(
     for (i, body) in scene.bodies.iter().enumerate() {
         let nb = NumBody::from_scene(body, &scene.values)?;
         let exact = matrix_at(&exact_parts[i], &scene.values)?;
-        for (method, level) in schedule(&nb.shape) {
-            runs.push(run(
-                &nb,
-                method,
-                level,
-                &exact,
-                scene.seed.wrapping_add((i * 1000 + level) as u64),
-            ));
-        }
+        runs.extend(climb(
+            &nb,
+            &exact,
+            fidelity,
+            scene.seed.wrapping_add((i * 1000) as u64),
+        ));
         let (method, level) = reference_rule(&nb.shape);
         total += run(&nb, method, level, &exact, scene.seed).tensor;
     }

@@ -3,10 +3,11 @@
 
 use super::body::{NumBody, NumShape};
 use super::eigen::{Space, principal_axes};
+use super::fidelity::Fidelity;
 use super::matrix_at;
-use super::quadrature::{Method, QuadratureRun, reference_rule, run};
+use super::quadrature::{Method, QuadratureRun, point_count, reference_rule, run};
 use crate::derive::{Derivation, ExactBasis, algebra::Value};
-use crate::figure::{Figure, Legend, Mark, Scale, Series};
+use crate::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
 use crate::report::sci;
 use crate::scene::{PlotRequest, Scene};
 use nalgebra::{Matrix3, Vector3};
@@ -17,7 +18,7 @@ const CURVE_POINTS: usize = 181;
 /// Errors below this are drawn at it: a log axis cannot show an exact zero.
 pub const ERROR_FLOOR: f64 = 1e-17;
 
-pub fn figures(scene: &Scene, d: &Derivation) -> Result<Vec<Figure>, String> {
+pub fn figures(scene: &Scene, d: &Derivation, fidelity: &Fidelity) -> Result<Vec<Figure>, String> {
     let mut out = Vec::new();
     for p in &scene.plots {
         match p {
@@ -36,7 +37,7 @@ pub fn figures(scene: &Scene, d: &Derivation) -> Result<Vec<Figure>, String> {
                     } else {
                         format!("convergence-{}", i + 1)
                     };
-                    out.push(convergence(&nb, &exact, scene.seed, slug)?);
+                    out.push(convergence(&nb, &exact, scene.seed, slug, fidelity)?);
                 }
             }
             PlotRequest::PrincipalAxes => out.push(principal_view(scene, d)?),
@@ -45,7 +46,9 @@ pub fn figures(scene: &Scene, d: &Derivation) -> Result<Vec<Figure>, String> {
                 inertia,
                 omega,
                 t,
-            } => out.push(super::free_body_plots::figure(*kind, *inertia, *omega, *t)?),
+            } => out.push(super::free_body_plots::figure(
+                *kind, *inertia, *omega, *t, fidelity,
+            )?),
         }
         // Two plots of one kind in a scene get distinct file names.
         let last = out.len() - 1;
@@ -95,6 +98,7 @@ fn tensor_sweep(
     let mut numeric = Vec::new();
     let mut worst: f64 = 0.0;
     let mut rule_names = Vec::new();
+    let (mut points, mut predicted, mut seconds) = (0u64, 0.0f64, 0.0);
     for k in 0..samples {
         let x = at(k, samples);
         let values = values_with(scene, over, x);
@@ -104,6 +108,9 @@ fn tensor_sweep(
             let (method, level) = reference_rule(&nb.shape);
             let part = matrix_at(&d.part_tensors[i], &values)?;
             let r = run(&nb, method, level, &part, scene.seed);
+            points += r.points as u64;
+            predicted = predicted.max(r.predicted_error);
+            seconds += r.seconds;
             if k == 0 {
                 rule_names.push(format!("{}, {} points", method.name(), r.points));
             }
@@ -179,6 +186,15 @@ fn tensor_sweep(
         series,
         labels: Vec::new(),
         legend: Legend::MiddleRight,
+        accuracy: vec![Accuracy {
+            result: format!("tensor at {samples} values of {over}"),
+            method: rule_names.join(", "),
+            true_error: Some(worst / scale.max(f64::MIN_POSITIVE)),
+            estimated_error: Some(predicted),
+            cost: points,
+            unit: "points".into(),
+            seconds,
+        }],
     })
 }
 
@@ -196,12 +212,12 @@ fn trim_num(x: f64) -> String {
 /// The levels swept per method: about one per factor of 2–10 in points, up to ~3·10⁵ points.
 fn sweep(shape: &NumShape) -> Result<Vec<(Method, Vec<usize>)>, String> {
     use Method::*;
-    let mc = (MonteCarlo, vec![100, 1_000, 10_000, 100_000]);
+    let mc = (MonteCarlo, vec![100, 1_000, 10_000, 100_000, 1_000_000]);
     Ok(match shape {
         NumShape::Box { .. } => vec![
             (GaussLegendre, vec![1, 2, 3, 4]),
-            (MidpointLattice, vec![2, 4, 8, 16, 32, 64]),
-            (VertexLattice, vec![2, 4, 8, 16, 32, 64]),
+            (MidpointLattice, vec![2, 4, 8, 16, 32, 64, 128]),
+            (VertexLattice, vec![2, 4, 8, 16, 32, 64, 128]),
             mc,
         ],
         NumShape::Rod { .. } => vec![
@@ -235,13 +251,19 @@ fn convergence(
     exact: &Matrix3<f64>,
     seed: u64,
     slug: String,
+    fidelity: &Fidelity,
 ) -> Result<Figure, String> {
     let mut series = Vec::new();
     let mut sentences = Vec::new();
+    let mut accuracy = Vec::new();
     for (colour, (method, levels)) in sweep(&nb.shape)?.into_iter().enumerate() {
+        // The fidelity's cost cap bounds the sweep (at least two levels, to show a slope).
+        let cap = fidelity.max_points();
         let runs: Vec<QuadratureRun> = levels
             .iter()
-            .map(|&l| run(nb, method, l, exact, seed.wrapping_add(l as u64)))
+            .enumerate()
+            .filter(|(k, l)| *k < 2 || point_count(&nb.shape, method, **l) <= cap)
+            .map(|(_, &l)| run(nb, method, l, exact, seed.wrapping_add(l as u64)))
             .collect();
         series.push(Series {
             name: method.name().into(),
@@ -262,6 +284,15 @@ fn convergence(
                 .collect(),
         });
         let (first, last) = (&runs[0], &runs[runs.len() - 1]);
+        accuracy.push(Accuracy {
+            result: format!("{} runs, the finest", runs.len()),
+            method: method.name().into(),
+            true_error: Some(last.error),
+            estimated_error: Some(last.predicted_error),
+            cost: runs.iter().map(|r| r.points as u64).sum(),
+            unit: "points".into(),
+            seconds: runs.iter().map(|r| r.seconds).sum(),
+        });
         let mut s = format!(
             "{}: {} at {} point(s) to {} at {}",
             method.name(),
@@ -297,6 +328,7 @@ fn convergence(
         series,
         labels: Vec::new(),
         legend: Legend::LowerRight,
+        accuracy,
     })
 }
 
@@ -369,11 +401,15 @@ fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, String> {
     let env = |s: &str| scene.values.get(s).copied();
     let mut bodies = Vec::new();
     let mut numeric_tensor = Matrix3::zeros();
+    let (mut points, mut seconds, mut rules) = (0u64, 0.0, Vec::new());
     for (i, body) in scene.bodies.iter().enumerate() {
         let nb = NumBody::from_scene(body, &scene.values)?;
         let (m, l) = reference_rule(&nb.shape);
         let part = matrix_at(&d.part_tensors[i], &scene.values)?;
-        numeric_tensor += run(&nb, m, l, &part, scene.seed).tensor;
+        let r = run(&nb, m, l, &part, scene.seed);
+        numeric_tensor += r.tensor;
+        (points, seconds) = (points + r.points as u64, seconds + r.seconds);
+        rules.push(m.name());
         bodies.push(nb);
     }
     let mut reach: f64 = 0.0;
@@ -470,6 +506,7 @@ fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, String> {
             tips.push(project(&(-u * reach)));
         }
     }
+    let axes_found = !tips.is_empty();
     let mut desc = format!(
         "Principal axes of {} through the frame origin, in an oblique view (azimuth 25°, \
          elevation 20°) at {}: {}.",
@@ -507,6 +544,15 @@ fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, String> {
         series,
         labels,
         legend: Legend::UpperRight,
+        accuracy: vec![Accuracy {
+            result: "single principal axes (angle to the exact ones, rad)".into(),
+            method: format!("SymmetricEigen of the {} tensor", rules.join(" + ")),
+            true_error: axes_found.then_some(worst_angle),
+            estimated_error: None,
+            cost: points,
+            unit: "points".into(),
+            seconds,
+        }],
     })
 }
 
@@ -530,7 +576,14 @@ mod tests {
     #[test]
     fn convergence_slopes_follow_each_law() {
         // Centred unit cube: exact tensor 𝟙/6, independent of any quadrature.
-        let fig = convergence(&unit_cube(), &(Matrix3::identity() / 6.0), 7, "c".into()).unwrap();
+        let fig = convergence(
+            &unit_cube(),
+            &(Matrix3::identity() / 6.0),
+            7,
+            "c".into(),
+            &Fidelity::STANDARD,
+        )
+        .unwrap();
         let measured = |name: &str| {
             fig.series
                 .iter()

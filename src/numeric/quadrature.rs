@@ -10,7 +10,9 @@ use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::PI;
 use std::time::Instant;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 pub enum Method {
     /// Gauss–Legendre in each Cartesian or radial direction (with the periodic trapezoid in angles
     /// for round bodies); exact for the quadratic moments from 2 or 3 points.
@@ -40,7 +42,7 @@ impl Method {
 }
 
 /// One quadrature run: the tensor, its true and predicted relative errors, and its cost.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct QuadratureRun {
     pub body: String,
     pub method: Method,
@@ -52,39 +54,103 @@ pub struct QuadratureRun {
     /// What the error law predicts (for Monte Carlo: one estimated standard error).
     pub predicted_error: f64,
     pub seconds: f64,
+    /// Where this run left its method's ladder (`Climbing` outside a fidelity's climb).
+    pub stop: Stop,
 }
 
-/// The methods and levels run for a body, cheapest first within a method.
-pub fn schedule(shape: &NumShape) -> Vec<(Method, usize)> {
+/// The levels a method may climb for a body, cheapest first. A fidelity climbs each ladder
+/// until the error law meets its target or the next rung would exceed its cost cap.
+pub fn ladder(shape: &NumShape) -> Vec<(Method, Vec<usize>)> {
     use Method::*;
-    let mc = [
-        (MonteCarlo, 1_000),
-        (MonteCarlo, 10_000),
-        (MonteCarlo, 100_000),
-    ];
+    let lattice = vec![4, 8, 16, 32, 64, 128];
+    let mc = (MonteCarlo, vec![1_000, 10_000, 100_000, 1_000_000]);
     let mut s = match shape {
         NumShape::Box { .. } | NumShape::Rod { .. } => vec![
-            (GaussLegendre, 1),
-            (GaussLegendre, 2),
-            (GaussLegendre, 3),
-            (MidpointLattice, 4),
-            (MidpointLattice, 16),
-            (MidpointLattice, 64),
-            (VertexLattice, 4),
-            (VertexLattice, 16),
-            (VertexLattice, 64),
+            (GaussLegendre, vec![1, 2, 3, 4]),
+            (MidpointLattice, lattice.clone()),
+            (VertexLattice, lattice),
         ],
-        NumShape::Hoop { .. } => vec![
-            (PeriodicTrapezoid, 1),
-            (PeriodicTrapezoid, 2),
-            (PeriodicTrapezoid, 3),
-            (PeriodicTrapezoid, 8),
-        ],
-        NumShape::Points(_) => return vec![(DirectSum, 1)],
-        _ => vec![(GaussLegendre, 3), (GaussLegendre, 4)],
+        NumShape::Hoop { .. } => vec![(PeriodicTrapezoid, vec![1, 2, 3, 8])],
+        NumShape::Points(_) => return vec![(DirectSum, vec![1])],
+        _ => vec![(GaussLegendre, vec![3, 4, 5])],
     };
-    s.extend(mc);
+    s.push(mc);
     s
+}
+
+/// How many points a rule uses, known before it runs (for the cost cap).
+pub fn point_count(shape: &NumShape, method: Method, n: usize) -> usize {
+    let per_side = if method == Method::VertexLattice {
+        n + 1
+    } else {
+        n
+    };
+    match (shape, method) {
+        (NumShape::Points(p), _) => p.len(),
+        (_, Method::MonteCarlo) => n,
+        (NumShape::Box { .. }, _) => per_side.pow(3),
+        (NumShape::Rod { .. } | NumShape::Hoop { .. }, _) => per_side,
+        (NumShape::Disk { .. } | NumShape::Shell { .. }, _) => 4 * n,
+        (NumShape::Cylinder { .. } | NumShape::Sphere { .. }, _) => 4 * n * n,
+    }
+}
+
+/// Why a method stopped climbing its ladder where it did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Stop {
+    /// A later rung ran.
+    Climbing,
+    /// The error law says the target is met.
+    TargetMet,
+    /// The next rung would use more points than the fidelity allows: the target is not met.
+    CostCap,
+    /// The ladder has no higher rung: the target is not met.
+    LadderTop,
+}
+
+impl Stop {
+    pub fn describe(self) -> &'static str {
+        match self {
+            Stop::Climbing => "",
+            Stop::TargetMet => "target met",
+            Stop::CostCap => "cost cap: target not met",
+            Stop::LadderTop => "top rung: target not met",
+        }
+    }
+}
+
+/// Climbs each method's ladder for one body at one fidelity. Every rung is compared with the
+/// exact tensor, so each run reports its true error next to its law's estimate.
+pub fn climb(
+    body: &NumBody,
+    exact: &Matrix3<f64>,
+    fidelity: &super::fidelity::Fidelity,
+    seed: u64,
+) -> Vec<QuadratureRun> {
+    let mut runs = Vec::new();
+    for (method, levels) in ladder(&body.shape) {
+        for (k, &level) in levels.iter().enumerate() {
+            let mut r = run(body, method, level, exact, seed.wrapping_add(level as u64));
+            let next = levels.get(k + 1).copied();
+            r.stop = if r.predicted_error <= fidelity.tolerance {
+                Stop::TargetMet
+            } else if let Some(n) = next {
+                if point_count(&body.shape, method, n) > fidelity.max_points() {
+                    Stop::CostCap
+                } else {
+                    Stop::Climbing
+                }
+            } else {
+                Stop::LadderTop
+            };
+            let done = r.stop != Stop::Climbing;
+            runs.push(r);
+            if done {
+                break;
+            }
+        }
+    }
+    runs
 }
 
 /// The exact rule used for the principal-axes cross-check and the composite sum.
@@ -380,15 +446,15 @@ pub fn run(
             (t, pts.len(), None)
         }
         shape => {
-            let pts = rule(shape, method, level, &mut rng);
-            let placed: Vec<(f64, Vector3<f64>)> = pts
-                .iter()
-                .map(|(w, r)| (body.mass * w, body.place(r)))
+            // Placed in place: a reference-level lattice has millions of points.
+            let placed: Vec<(f64, Vector3<f64>)> = rule(shape, method, level, &mut rng)
+                .into_iter()
+                .map(|(w, r)| (body.mass * w, body.place(&r)))
                 .collect();
             let t = tensor_of_points(placed.iter().copied());
             let sigma =
                 (method == Method::MonteCarlo).then(|| monte_carlo_sigma(&placed, body.mass, &t));
-            (t, pts.len(), sigma)
+            (t, placed.len(), sigma)
         }
     };
     let seconds = start.elapsed().as_secs_f64();
@@ -411,6 +477,7 @@ pub fn run(
         tensor,
         predicted_error,
         seconds,
+        stop: Stop::Climbing,
     }
 }
 

@@ -48,7 +48,19 @@ pub struct NumericRow {
     pub error: String,
     pub predicted: String,
     pub within_law: bool,
+    /// Where the method left its ladder at this fidelity (empty for a rung below the last).
+    pub stop: String,
     /// Measured wall time, only when the build asks for timings (it makes pages vary).
+    pub seconds: Option<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct AccuracyRow {
+    pub result: String,
+    pub method: String,
+    pub true_error: String,
+    pub estimated_error: String,
+    pub cost: String,
     pub seconds: Option<String>,
 }
 
@@ -58,6 +70,8 @@ pub struct FigureView {
     pub file: String,
     pub title: String,
     pub desc: String,
+    /// The error and cost of each numeric result drawn.
+    pub accuracy: Vec<AccuracyRow>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -69,6 +83,9 @@ pub struct PageView {
     pub equations: String,
     /// The scene's file name only: the build machine's paths never reach a page.
     pub source: String,
+    /// The numeric fidelity, with its target and cost cap.
+    pub fidelity: String,
+    pub fidelity_name: String,
     pub symbols: Vec<(String, String)>,
     pub bodies: Vec<String>,
     pub steps: Vec<StepView>,
@@ -163,6 +180,7 @@ pub fn page_view(
             error: sci(q.error),
             predicted: sci(q.predicted_error),
             within_law: *ok,
+            stop: q.stop.describe().into(),
             seconds: timings.then(|| format!("{:.1e}", q.seconds)),
         })
         .collect();
@@ -201,6 +219,8 @@ pub fn page_view(
             .file_name()
             .map(|f| f.to_string_lossy().into_owned())
             .unwrap_or_default(),
+        fidelity: r.fidelity.to_string(),
+        fidelity_name: r.fidelity.name(),
         symbols: s
             .symbols
             .iter()
@@ -229,6 +249,18 @@ pub fn page_view(
                 file: figure_file(r, f),
                 title: f.title.clone(),
                 desc: f.desc.clone(),
+                accuracy: f
+                    .accuracy
+                    .iter()
+                    .map(|a| AccuracyRow {
+                        result: a.result.clone(),
+                        method: a.method.clone(),
+                        true_error: a.true_error.map_or("—".into(), sci),
+                        estimated_error: a.estimated_error.map_or("—".into(), sci),
+                        cost: format!("{} {}", a.cost, a.unit),
+                        seconds: timings.then(|| format!("{:.1e}", a.seconds)),
+                    })
+                    .collect(),
             })
             .collect(),
         passed: r.passed(),

@@ -214,6 +214,7 @@ mod tests {
             ],
             labels: vec![("n = 10".into(), (10.0, 1e-2))],
             legend: Legend::LowerLeft,
+            accuracy: Vec::new(),
         }
     }
 

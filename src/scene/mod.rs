@@ -20,6 +20,8 @@ pub struct Scene {
     pub title: String,
     /// The path the scene was read from, as given (never made absolute).
     pub source: PathBuf,
+    /// A hash of the file's bytes: with the fidelity and the program, the key of the build cache.
+    pub content_hash: u64,
     pub notes: NotesRef,
     /// Symbol name -> its meaning.
     pub symbols: BTreeMap<String, String>,
@@ -34,6 +36,8 @@ pub struct Scene {
     pub plots: Vec<PlotRequest>,
     pub values: BTreeMap<String, f64>,
     pub seed: u64,
+    /// `[numeric] fidelity`: this scene's default, which `--fidelity` overrides.
+    pub fidelity: Option<crate::numeric::fidelity::Fidelity>,
     /// Recorded results: quantity name -> expected exact value (the regression record).
     pub expect: BTreeMap<String, Expr>,
 }
@@ -137,7 +141,7 @@ impl Shape {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Verdict {
     Agrees,
@@ -425,6 +429,13 @@ struct Validator<'a> {
 }
 
 /// The byte offset of a string's first character inside its quotes.
+/// FNV-1a, 64 bits: stable across runs, platforms and Rust releases (std's hasher is not).
+pub fn content_hash(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(*b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
 fn content_start<T>(s: &Spanned<T>) -> usize {
     s.span().start + 1
 }
@@ -771,6 +782,13 @@ impl Validator<'_> {
             self.check_positive(rb.get_ref(), &format!("body[{i}]"), &values)?;
         }
 
+        let fidelity = match &raw.numeric.fidelity {
+            Some(f) => Some(
+                crate::numeric::fidelity::Fidelity::parse(f.get_ref())
+                    .map_err(|m| self.err(content_start(f), "numeric.fidelity", m))?,
+            ),
+            None => None,
+        };
         let mut expect = BTreeMap::new();
         for (name, value) in &raw.expect {
             let n = name.get_ref();
@@ -797,6 +815,7 @@ impl Validator<'_> {
             id: raw.id.into_inner(),
             title: raw.title,
             source: self.loc.path.to_path_buf(),
+            content_hash: content_hash(self.loc.text.as_bytes()),
             notes: NotesRef {
                 lecture: raw.notes.lecture,
                 section: raw.notes.section,
@@ -813,6 +832,7 @@ impl Validator<'_> {
             plots,
             values,
             seed: raw.numeric.seed.unwrap_or(1),
+            fidelity,
             expect,
         })
     }

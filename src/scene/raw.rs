@@ -125,6 +125,9 @@ pub struct RawNumeric {
     pub values: BTreeMap<Spanned<String>, Spanned<f64>>,
     #[serde(default)]
     pub seed: Option<u64>,
+    /// `draft`, `standard`, `reference` or a target tolerance as a string (`"1e-6"`).
+    #[serde(default)]
+    pub fidelity: Option<Text>,
 }
 
 #[derive(Deserialize)]

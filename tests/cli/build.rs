@@ -226,3 +226,83 @@ fn templates_override_file_by_file() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The cache: a second build reads every scene from it and writes the same bytes; after one
+/// scene changes, only that scene runs again; a new fidelity reuses the symbolic results.
+#[test]
+fn the_cache_rebuilds_only_what_changed() {
+    let dir = scratch("cache");
+    let lectures = dir.join("lectures");
+    for sub in ["lecture-3-4", "lecture-3-9"] {
+        std::fs::create_dir_all(lectures.join(sub)).unwrap();
+        for e in std::fs::read_dir(Path::new("lectures").join(sub)).unwrap() {
+            let p = e.unwrap().path();
+            std::fs::copy(&p, lectures.join(sub).join(p.file_name().unwrap())).unwrap();
+        }
+    }
+    let cache = dir.join("cache");
+    let build = |out: &str, extra: &[&str]| {
+        let out = dir.join(out);
+        let mut args = vec![
+            "build",
+            lectures.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--cache",
+            cache.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let r = mechbook(&args);
+        assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+        (stderr(&r), read_tree(&out))
+    };
+    let (first, a) = build("a", &[]);
+    assert!(
+        first.contains("(0 from the cache, 0 re-run numerically"),
+        "{first}"
+    );
+    let (second, b) = build("b", &[]);
+    assert!(
+        second.contains("(15 from the cache, 0 re-run numerically"),
+        "{second}"
+    );
+    assert_eq!(a, b, "a site from the cache differs from a derived one");
+    let fresh = dir.join("fresh");
+    let r = mechbook(&[
+        "build",
+        lectures.to_str().unwrap(),
+        "--out",
+        fresh.to_str().unwrap(),
+        "--no-cache",
+    ]);
+    assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+    assert_eq!(
+        read_tree(&fresh),
+        a,
+        "--no-cache differs from the cached build"
+    );
+
+    // One scene changes (a comment): only it runs again, and the pages stay the same.
+    let earth = lectures.join("lecture-3-9/05-earth.toml");
+    let text = std::fs::read_to_string(&earth).unwrap();
+    std::fs::write(&earth, format!("# edited\n{text}")).unwrap();
+    let (third, c) = build("c", &[]);
+    assert!(
+        third.contains("(14 from the cache, 0 re-run numerically"),
+        "{third}"
+    );
+    assert_eq!(a, c);
+
+    // Another fidelity: the symbolic results come from the cache, the numerics run again.
+    let (draft, d) = build("d", &["--fidelity", "draft"]);
+    assert!(
+        draft.contains("(0 from the cache, 15 re-run numerically"),
+        "{draft}"
+    );
+    let page = String::from_utf8(d["cube-centre.html"].clone()).unwrap();
+    assert!(
+        page.contains("Numeric fidelity: draft (target relative error 1e-3"),
+        "{page}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -243,3 +243,70 @@ fn the_sympy_comparison_set_derives() {
         assert!(out.contains(id), "{out}");
     }
 }
+
+/// Fidelity buys accuracy with cost: from draft to reference each scene does more work, the
+/// finest lattice gets closer to the exact tensor, the integrations behind the plots get closer
+/// to the exact solution, and every plotted result reports an error and a cost.
+#[test]
+fn fidelity_trades_cost_for_error() {
+    let derive = |scene: &str, fidelity: &str| -> serde_json::Value {
+        let r = super::mechbook(&["derive", scene, "--json", "--fidelity", fidelity]);
+        assert_eq!(r.status.code(), Some(0), "{}", super::stderr(&r));
+        serde_json::from_str(&super::stdout(&r)).unwrap()
+    };
+    let finest = |v: &serde_json::Value, method: &str| -> f64 {
+        let runs = v["numeric_checks"].as_array().unwrap();
+        let last = runs.iter().rev().find(|r| r["method"] == method).unwrap();
+        last["error"].as_f64().unwrap()
+    };
+    let cube = "lectures/lecture-3-4/05b-cube-centre.toml";
+    let [d, s, r] = ["draft", "standard", "reference"].map(|f| derive(cube, f));
+    let points = |v: &serde_json::Value| v["numeric_work"]["quadrature_points"].as_u64().unwrap();
+    assert!(points(&d) < points(&s) && points(&s) < points(&r));
+    let lattice = [&d, &s, &r].map(|v| finest(v, "midpoint-lattice"));
+    assert!(
+        lattice[0] > lattice[1] && lattice[1] > lattice[2],
+        "{lattice:?}"
+    );
+    for (v, name) in [(&d, "draft"), (&s, "standard"), (&r, "reference")] {
+        assert_eq!(v["fidelity"]["name"], name);
+        assert!(
+            finest(v, "gauss-legendre") < 1e-14,
+            "the exact rule is exact at every level"
+        );
+        let stops: Vec<&str> = v["numeric_checks"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|q| q["stop"].as_str().unwrap())
+            .filter(|s| !s.is_empty())
+            .collect();
+        assert_eq!(stops.len(), 4, "one stop per method: {stops:?}");
+        assert_eq!(stops[0], "target met", "Gauss–Legendre meets every target");
+    }
+    assert_eq!(r["fidelity"]["tolerance"], 1e-12);
+
+    let top = "lectures/lecture-3-9/03-asymmetric-top.toml";
+    let [d, r] = ["draft", "reference"].map(|f| derive(top, f));
+    let dots = |v: &serde_json::Value| -> f64 {
+        let fig = v["figures"].as_array().unwrap();
+        let omega = fig.iter().find(|f| f["slug"] == "omega-vs-time").unwrap();
+        omega["accuracy"][1]["true_error"].as_f64().unwrap()
+    };
+    assert!(dots(&d) > 100.0 * dots(&r), "{} {}", dots(&d), dots(&r));
+    let rhs = |v: &serde_json::Value| v["numeric_work"]["rhs_evaluations"].as_u64().unwrap();
+    assert!(rhs(&d) < rhs(&r));
+    for v in [&d, &r] {
+        for f in v["figures"].as_array().unwrap() {
+            let acc = f["accuracy"].as_array().unwrap();
+            assert!(!acc.is_empty(), "{} reports no error", f["slug"]);
+            for a in acc {
+                assert!(
+                    a["true_error"].is_f64() || a["estimated_error"].is_f64(),
+                    "{a}"
+                );
+                assert!(a["cost"].as_u64().unwrap() > 0, "{a}");
+            }
+        }
+    }
+}
