@@ -67,9 +67,9 @@ pub enum Command {
         fidelity: Option<Fidelity>,
         /// Where computed scenes are kept between builds, keyed by a hash of the scene file,
         /// the fidelity and this program: an unchanged scene is not derived again.
-        #[arg(long, default_value = ".mechbook-cache", conflicts_with = "no_cache")]
+        #[arg(long, default_value = ".mechbook-cache")]
         cache: PathBuf,
-        /// Derive every scene afresh, and neither read nor write the cache.
+        /// Derive every scene afresh, and neither read nor write the cache (overrides --cache).
         #[arg(long)]
         no_cache: bool,
     },
@@ -114,9 +114,25 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Measure the integrators side by side on REFERENCE.md's test case (I = 1,2,3,
-    /// ω(0) = 1,0.1,0.5, 100 periods) and print a Markdown table: error, drifts, cost.
-    Bench,
+    /// Measure the speed–accuracy trade and print a Markdown report.
+    ///
+    /// The integrators side by side on REFERENCE.md's case (I = 1,2,3, ω(0) = 1,0.1,0.5, 100
+    /// periods); error against cost for every integrator and quadrature method, with Pareto
+    /// fronts; whole-site builds in child processes (cold at each fidelity, warm, after a
+    /// one-scene edit, numerics only) with their peak memory; and the symbolic stage alone.
+    /// Takes about a minute. With --out, writes bench.md and the SVGs into that folder.
+    Bench {
+        /// Write bench.md, integrators-pareto.svg and quadrature-pareto.svg here (the folder
+        /// is replaced whole), e.g. docs/bench.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The scenes to build (a copy is built, never these files).
+        #[arg(long, default_value = "lectures")]
+        lectures: PathBuf,
+        /// Runs of each build; the report gives the fastest and the median.
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=50))]
+        repeats: u64,
+    },
     /// Derive one scene and print its steps, results, numeric cross-check and claims.
     Derive {
         /// The scene file.
@@ -353,16 +369,36 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             std::io::stdout().write_all(text.as_bytes())?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Bench => {
-            let text = crate::spin::bench_table(|line| {
-                if std::io::stderr().is_terminal() {
-                    eprint!("\r\x1b[2K{line}");
+        Command::Bench {
+            out,
+            lectures,
+            repeats,
+        } => {
+            let tty = std::io::stderr().is_terminal();
+            let bench = crate::bench::run(&lectures, repeats as usize, |line| {
+                if tty {
+                    eprint!("\r\x1b[2Kbench: {line}");
                 }
-            });
-            if std::io::stderr().is_terminal() {
+            })
+            .map_err(anyhow::Error::msg)?;
+            if tty {
                 eprint!("\r\x1b[2K");
             }
-            std::io::stdout().write_all(text.as_bytes())?;
+            if let Some(out) = out {
+                let mut files = crate::site::SiteFiles::new();
+                files.insert("bench.md".into(), bench.markdown.clone().into_bytes());
+                for f in &bench.figures {
+                    let svg = crate::render::plot::svg(f).map_err(anyhow::Error::msg)?;
+                    files.insert(format!("{}.svg", f.slug).into(), svg.into_bytes());
+                }
+                crate::site::write_site(&out, &files)?;
+                eprintln!(
+                    "mechbook: wrote bench.md and {} SVGs into {}",
+                    bench.figures.len(),
+                    out.display()
+                );
+            }
+            std::io::stdout().write_all(bench.markdown.as_bytes())?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Derive {

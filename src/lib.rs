@@ -6,6 +6,7 @@
 //! in memory) -> `site` (the only writer). `report` prints to the terminal and JSON; `pipeline`
 //! runs the stages.
 
+pub mod bench;
 pub mod cas;
 pub mod cli;
 pub mod derive;

@@ -3,6 +3,7 @@
 //! in sorted order with no timestamps, so the same input gives the same bytes.
 
 pub mod cache;
+pub mod scratch;
 
 use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};

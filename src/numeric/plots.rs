@@ -209,6 +209,24 @@ fn trim_num(x: f64) -> String {
     }
 }
 
+/// The (cost, error) points that no other point beats on both: sorted by cost, each with a
+/// smaller error than every cheaper one.
+pub fn pareto_front(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut sorted: Vec<(f64, f64)> = points
+        .iter()
+        .copied()
+        .filter(|(c, e)| c.is_finite() && e.is_finite())
+        .collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let mut front: Vec<(f64, f64)> = Vec::new();
+    for p in sorted {
+        if front.last().is_none_or(|last| p.1 < last.1) {
+            front.push(p);
+        }
+    }
+    front
+}
+
 /// The levels swept per method: about one per factor of 2–10 in points, up to ~3·10⁵ points.
 fn sweep(shape: &NumShape) -> Result<Vec<(Method, Vec<usize>)>, String> {
     use Method::*;
@@ -246,7 +264,7 @@ fn slope(runs: &[QuadratureRun]) -> Option<f64> {
         .then(|| (b.error / a.error).log10() / (b.points as f64 / a.points as f64).log10())
 }
 
-fn convergence(
+pub fn convergence(
     nb: &NumBody,
     exact: &Matrix3<f64>,
     seed: u64,
@@ -309,6 +327,17 @@ fn convergence(
         }
         sentences.push(s);
     }
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .filter(|s| s.mark == Mark::Points)
+        .flat_map(|s| s.points.iter().copied())
+        .collect();
+    series.push(Series {
+        name: "Pareto front".into(),
+        mark: Mark::Line,
+        colour: 5,
+        points: pareto_front(&all),
+    });
     Ok(Figure {
         slug,
         title: format!("Quadrature convergence: {}", nb.label),
@@ -606,6 +635,26 @@ mod tests {
         let gl = measured("gauss-legendre");
         assert!(gl[0].1 > 0.1 && gl[1..].iter().all(|p| p.1 < 1e-14));
         assert!(fig.desc.contains("midpoint-lattice") && fig.desc.contains("slope -0.6"));
+    }
+
+    #[test]
+    fn the_pareto_front_keeps_only_undominated_points() {
+        let pts = [
+            (10.0, 1e-3),
+            (5.0, 1e-2),
+            (20.0, 1e-3),
+            (40.0, 1e-8),
+            (30.0, 1e-1),
+        ];
+        assert_eq!(
+            pareto_front(&pts),
+            vec![(5.0, 1e-2), (10.0, 1e-3), (40.0, 1e-8)]
+        );
+        // Every dropped point is beaten on both counts by a kept one.
+        for p in pts {
+            let front = pareto_front(&pts);
+            assert!(front.contains(&p) || front.iter().any(|q| q.0 <= p.0 && q.1 <= p.1));
+        }
     }
 
     #[test]

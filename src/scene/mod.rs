@@ -215,6 +215,9 @@ pub enum FreeBodyPlot {
     PolarMotion,
     /// The symmetric top's body and space cones, with their measured half-angles.
     Cones,
+    /// Error at `t` against right-hand-side evaluations for every integrator and step, with
+    /// the Pareto front.
+    IntegratorPareto,
 }
 
 impl FreeBodyPlot {
@@ -227,6 +230,7 @@ impl FreeBodyPlot {
         ("herpolhode", FreeBodyPlot::Herpolhode),
         ("polar-motion", FreeBodyPlot::PolarMotion),
         ("cones", FreeBodyPlot::Cones),
+        ("integrator-pareto", FreeBodyPlot::IntegratorPareto),
     ];
 
     pub fn name(self) -> &'static str {
@@ -247,9 +251,11 @@ impl PlotRequest {
         "polhodes",
         "drift",
         "flip",
+        "axis-spins",
         "herpolhode",
         "polar-motion",
         "cones",
+        "integrator-pareto",
     ];
 
     pub fn kind(&self) -> &'static str {

@@ -40,7 +40,7 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
     let first = mechbook(&["build", "--out", out.to_str().unwrap()]);
     assert_eq!(first.status.code(), Some(0), "{}", stderr(&first));
     assert!(
-        stderr(&first).contains("built 16 pages, 15 plots and 4 handouts from 15 scenes"),
+        stderr(&first).contains("built 16 pages, 16 plots and 4 handouts from 15 scenes"),
         "{}",
         stderr(&first)
     );
@@ -124,7 +124,7 @@ fn every_plot_is_an_accessible_svg_shown_on_its_page() {
     let (dir, out) = built_site("plots");
     let site = read_tree(&out);
     let plots: Vec<&String> = site.keys().filter(|k| k.starts_with("plots/")).collect();
-    assert_eq!(plots.len(), 15, "{plots:?}");
+    assert_eq!(plots.len(), 16, "{plots:?}");
     for name in plots {
         let svg = String::from_utf8(site[name].clone()).unwrap();
         assert!(

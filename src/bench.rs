@@ -1,0 +1,311 @@
+//! `mechbook bench`: what the speed–accuracy trade costs, measured. Four parts:
+//!
+//! - the integrators on REFERENCE.md's case (the table of `spin::bench_table`);
+//! - error against cost for every integrator and every quadrature method, with Pareto fronts;
+//! - whole-site builds run as a user runs them (a child `mechbook build`, timed from outside):
+//!   cold, warm, after a one-scene edit, and at each fidelity, with each child's peak memory;
+//! - the symbolic stage alone, in this process, after the children (one Symbolica user at once).
+//!
+//! Pure measurement: the caller decides where the Markdown and the SVGs go.
+
+use crate::figure::Figure;
+use crate::numeric::body::{NumBody, NumShape};
+use crate::numeric::fidelity::Fidelity;
+use crate::numeric::free_body::{ExactSolution, Moments};
+use crate::report::sci;
+use crate::site::scratch;
+use nalgebra::{Matrix3, Vector3};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+/// The benchmark's results: the Markdown report and the figures it draws.
+pub struct Bench {
+    pub markdown: String,
+    pub figures: Vec<Figure>,
+}
+
+/// Runs every part. `lectures` is the folder of scenes to build; `repeats` runs each build
+/// that many times and reports the fastest and the median.
+pub fn run(
+    lectures: &Path,
+    repeats: usize,
+    mut progress: impl FnMut(&str),
+) -> Result<Bench, String> {
+    let mut md = String::from("# mechbook bench\n\n");
+    let _ = writeln!(
+        md,
+        "Measured by `mechbook bench` on {} core(s); times are wall-clock seconds.\n",
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    );
+
+    progress("integrators");
+    md.push_str("## Integrators\n\n");
+    md.push_str(&crate::spin::bench_table(&mut progress));
+
+    progress("error against cost");
+    let figures = pareto_figures()?;
+    md.push_str("\n## Error against cost\n\n");
+    for f in &figures {
+        let _ = writeln!(md, "![{}]({}.svg)\n\n{}\n", f.title, f.slug, f.desc);
+        md.push_str("| result | method | true error | estimated error | cost | seconds |\n");
+        md.push_str("|---|---|---|---|---|---|\n");
+        for a in &f.accuracy {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} {} | {:.2e} |",
+                a.result,
+                a.method,
+                a.true_error.map_or("—".into(), sci),
+                a.estimated_error.map_or("—".into(), sci),
+                a.cost,
+                a.unit,
+                a.seconds
+            );
+        }
+        md.push('\n');
+    }
+
+    md.push_str(&builds(lectures, repeats, &mut progress)?);
+
+    progress("symbolic stage");
+    md.push_str(&symbolic_stage(lectures, repeats)?);
+    if let Some(m) = crate::cli::peak_memory_mib() {
+        let _ = writeln!(md, "\nPeak memory of the bench process itself: {m:.0} MiB.");
+    }
+    Ok(Bench {
+        markdown: md,
+        figures,
+    })
+}
+
+/// The integrators on REFERENCE.md's case over 100 periods at reference fidelity, and the
+/// quadrature methods on the notes' cube about its corner.
+fn pareto_figures() -> Result<Vec<Figure>, String> {
+    let i = Moments::new([1.0, 2.0, 3.0])?;
+    let w0 = Vector3::new(1.0, 0.1, 0.5);
+    let period = ExactSolution::new(&i, w0).period().ok_or("not periodic")?;
+    let mut integrators = crate::numeric::free_body_plots::integrator_pareto(
+        &i,
+        w0,
+        100.0 * period,
+        &Fidelity::REFERENCE,
+    )?;
+    integrators.slug = "integrators-pareto".into();
+    let cube = NumBody {
+        label: "the unit cube about its corner".into(),
+        shape: NumShape::Box {
+            size: Vector3::new(1.0, 1.0, 1.0),
+            centred: true,
+        },
+        mass: 1.0,
+        rotation: Matrix3::identity(),
+        shift: Vector3::new(0.5, 0.5, 0.5),
+    };
+    // Eq (35): I = M a² [[2/3, −1/4, −1/4], …] about a corner.
+    let exact = Matrix3::from_fn(|r, c| if r == c { 2.0 / 3.0 } else { -0.25 });
+    let quadrature = crate::numeric::plots::convergence(
+        &cube,
+        &exact,
+        1,
+        "quadrature-pareto".into(),
+        &Fidelity::REFERENCE,
+    )?;
+    Ok(vec![integrators, quadrature])
+}
+
+/// One child build: its wall time and the peak memory it printed.
+fn child_build(args: &[&str]) -> Result<(f64, f64), String> {
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let start = Instant::now();
+    let out = Command::new(exe)
+        .arg("build")
+        .args(args)
+        .env("SYMBOLICA_HIDE_BANNER", "1")
+        .output()
+        .map_err(|e| format!("cannot run mechbook build: {e}"))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let err = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() {
+        return Err(format!("mechbook build {} failed: {err}", args.join(" ")));
+    }
+    let peak = err
+        .split("peak memory ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(f64::NAN);
+    Ok((seconds, peak))
+}
+
+struct Timing {
+    fastest: f64,
+    median: f64,
+    peak: f64,
+}
+
+fn timed(
+    repeats: usize,
+    mut one: impl FnMut() -> Result<(f64, f64), String>,
+) -> Result<Timing, String> {
+    let mut runs = Vec::new();
+    for _ in 0..repeats.max(1) {
+        runs.push(one()?);
+    }
+    let mut secs: Vec<f64> = runs.iter().map(|r| r.0).collect();
+    secs.sort_by(f64::total_cmp);
+    Ok(Timing {
+        fastest: secs[0],
+        median: secs[secs.len() / 2],
+        peak: runs.iter().map(|r| r.1).fold(0.0, f64::max),
+    })
+}
+
+/// Whole-site builds of a copy of `lectures`, each in a fresh child process.
+fn builds(
+    lectures: &Path,
+    repeats: usize,
+    progress: &mut impl FnMut(&str),
+) -> Result<String, String> {
+    let io = |e: std::io::Error| e.to_string();
+    let dir = scratch::folder("bench").map_err(io)?;
+    let result = (|| {
+        let scenes = dir.join("lectures");
+        scratch::copy_tree(lectures, &scenes).map_err(io)?;
+        let s = |p: &PathBuf| p.to_string_lossy().into_owned();
+        let (scenes_arg, site, cache) = (s(&scenes), s(&dir.join("site")), s(&dir.join("cache")));
+        let base = [
+            scenes_arg.as_str(),
+            "--out",
+            site.as_str(),
+            "--cache",
+            cache.as_str(),
+        ];
+        let with = |extra: &[&str]| -> Vec<String> {
+            base.iter().chain(extra).map(|x| x.to_string()).collect()
+        };
+        let build = |args: Vec<String>| {
+            let a: Vec<&str> = args.iter().map(String::as_str).collect();
+            child_build(&a)
+        };
+        let mut rows: Vec<(String, Timing)> = Vec::new();
+        for (name, fidelity) in [
+            ("cold, draft", "draft"),
+            ("cold, standard", "standard"),
+            ("cold, reference", "reference"),
+        ] {
+            progress(name);
+            rows.push((
+                format!("{name}: no cache, every stage runs"),
+                timed(repeats, || {
+                    build(with(&["--no-cache", "--fidelity", fidelity]))
+                })?,
+            ));
+        }
+        progress("warm");
+        build(with(&[]))?;
+        rows.push((
+            "warm, standard: every scene from the cache".into(),
+            timed(repeats, || build(with(&[])))?,
+        ));
+        progress("one scene changed");
+        // The last scene in name order: the same one on every machine.
+        let edited = crate::pipeline::find_scenes(std::slice::from_ref(&scenes))
+            .map_err(io)?
+            .pop()
+            .ok_or("no scene to edit")?;
+        let mut edits = 0;
+        rows.push((
+            format!(
+                "one scene edited ({}), standard: it alone runs",
+                edited.file_name().unwrap_or_default().to_string_lossy()
+            ),
+            timed(repeats, || {
+                edits += 1;
+                scratch::append_line(&edited, &format!("# bench edit {edits}")).map_err(io)?;
+                build(with(&[]))
+            })?,
+        ));
+        for fidelity in ["draft", "reference"] {
+            progress(fidelity);
+            rows.push((
+                format!("{fidelity}, symbolic results cached: only the numerics run"),
+                timed(repeats, || {
+                    scratch::drop_reports(&dir.join("cache")).map_err(io)?;
+                    build(with(&["--fidelity", fidelity]))
+                })?,
+            ));
+        }
+        let mut md = format!(
+            "## Whole-site builds\n\nEach build is a separate `mechbook build` process of the {} \
+             lecture scenes, timed from outside (start-up included); {repeats} run(s) each. Peak \
+             memory is the largest the build printed (Linux VmHWM).\n\n\
+             | build | fastest s | median s | peak MiB |\n|---|---|---|---|\n",
+            crate::pipeline::find_scenes(std::slice::from_ref(&scenes)).map_or(0, |v| v.len())
+        );
+        for (name, t) in &rows {
+            let _ = writeln!(
+                md,
+                "| {name} | {:.3} | {:.3} | {:.0} |",
+                t.fastest, t.median, t.peak
+            );
+        }
+        let ratio = |a: &str, b: &str| {
+            let get = |k: &str| {
+                rows.iter()
+                    .find(|(n, _)| n.starts_with(k))
+                    .map(|(_, t)| t.median)
+            };
+            get(a).zip(get(b)).map_or(f64::NAN, |(x, y)| x / y)
+        };
+        let _ = writeln!(
+            md,
+            "\nReference over draft (medians): {:.1}× with no cache, {:.1}× with the symbolic \
+             results cached.",
+            ratio("cold, reference", "cold, draft"),
+            ratio("reference, symbolic", "draft, symbolic")
+        );
+        Ok(md)
+    })();
+    scratch::remove(&dir);
+    result
+}
+
+/// The symbolic stage alone: derivation, claims and recorded results of every scene, in this
+/// process; the fastest of `repeats` passes.
+fn symbolic_stage(lectures: &Path, repeats: usize) -> Result<String, String> {
+    let files =
+        crate::pipeline::find_scenes(&[lectures.to_path_buf()]).map_err(|e| e.to_string())?;
+    let scenes = crate::pipeline::load_all(&files).map_err(|errors| {
+        errors
+            .iter()
+            .map(|e| e.to_string())
+            .collect::<Vec<_>>()
+            .join("; ")
+    })?;
+    let mut best = f64::INFINITY;
+    let (mut calls, mut engine) = (0, 0.0);
+    for _ in 0..repeats.max(1) {
+        let start = Instant::now();
+        let (mut c, mut e) = (0, 0.0);
+        for scene in &scenes {
+            let plan = crate::plan::Plan::for_scene(scene);
+            let s = crate::pipeline::symbolic_stage(scene, &plan).map_err(|e| e.to_string())?;
+            (c, e) = (c + s.engine_calls, e + s.seconds);
+        }
+        let wall = start.elapsed().as_secs_f64();
+        if wall < best {
+            (best, calls, engine) = (wall, c, e);
+        }
+    }
+    Ok(format!(
+        "\n## The symbolic stage alone\n\nEvery scene's derivation, claims and recorded results, \
+         in one process, fastest of {repeats}: {:.1} ms for {} scenes, of which {:.1} ms in {calls} \
+         Symbolica calls. `bash tests/sympy/compare.sh` times SymPy on REFERENCE.md's set against \
+         the same stage.\n",
+        best * 1e3,
+        scenes.len(),
+        engine * 1e3
+    ))
+}
