@@ -117,6 +117,36 @@ fn the_free_body_solution_is_scale_invariant_over_sixty_orders() {
 }
 
 #[test]
+fn far_beyond_overflow_every_route_works_in_its_own_units() {
+    // I ω² at I = 1e300, ω = 1e200 is 1e700: without nondimensionalizing it overflows to inf and
+    // the integrators return NaN. Each route must give the unit body's answer, scaled.
+    let unit = Moments::new([1.0, 2.0, 3.0]).unwrap();
+    let w0 = Vector3::new(1.0, 0.1, 0.5);
+    let reference = ExactSolution::new(&unit, w0).omega(20.0);
+    for (c, k) in [
+        (1e300, 1e200),
+        (1e-300, 1e-200),
+        (1e300, 1e-200),
+        (1e-300, 1e200),
+    ] {
+        let body = Moments::new([c, 2.0 * c, 3.0 * c]).unwrap();
+        let exact = ExactSolution::new(&body, w0 * k).omega(20.0 / k) / k;
+        let err = (exact - reference).norm() / reference.norm();
+        assert!(err <= 1e-13, "exact at c {c:e} k {k:e}: {err:e}");
+        for (m, r) in [
+            (Method::Rk4, Resolution::Step(0.01 / k)),
+            (Method::Dopri, Resolution::Tolerance(1e-12)),
+            (Method::Splitting4, Resolution::Step(0.01 / k)),
+        ] {
+            let run = integrate(&body, w0 * k, 20.0 / k, m, r, 0).unwrap();
+            let err = (run.omega / k - reference).norm() / reference.norm();
+            assert!(err <= 1e-8, "{m:?} at c {c:e} k {k:e}: {err:e}");
+            assert!(run.energy_drift.is_finite() && run.energy_drift <= 1e-8);
+        }
+    }
+}
+
+#[test]
 fn nearly_equal_moments_approach_the_symmetric_solution() {
     // A relative gap of 1e-12 between two moments: the elliptic solution (m → 0 or 1 − m → 0)
     // must stay within O(gap · ω t) of the closed-form symmetric one and of an integrator.
@@ -167,6 +197,41 @@ fn earth_small_beta_over_ten_thousand_days() {
     // βω3 t · 1e-13 ≈ 2e-11 and fail this bound.
     assert!(wobble_error <= 1e-12, "{wobble_error:e}");
     assert!(run.energy_drift <= 1e-12, "{:e}", run.energy_drift);
+}
+
+#[test]
+fn earth_small_beta_over_ten_thousand_euler_periods() {
+    // 10⁴ Euler periods of 1/β ≈ 304 days: 3.0e6 days, 6.3e4 rad of wobble phase. RK4 at
+    // Ωh = 0.01 (h ≈ 0.48 day, 6.3e6 steps) has a phase error of about N (Ωh)⁵/120 = 5e-6
+    // over the run; the attitude is not needed (it would need steps 300× smaller).
+    let beta =
+        crate::numeric::free_body_plots::EARTH_H / (1.0 - crate::numeric::free_body_plots::EARTH_H);
+    let body = Moments::new([1.0, 1.0, 1.0 + beta]).unwrap();
+    let w3 = 2.0 * std::f64::consts::PI;
+    let w0 = Vector3::new(1e-6, 0.0, w3);
+    let rate = beta * w3;
+    let t = 1e4 * 2.0 * std::f64::consts::PI / rate;
+    let h = 0.01 / rate;
+    let exact = ExactSolution::new(&body, w0).omega(t);
+    // The closed form by hand, as a second route at this large a phase.
+    let by_hand = Vector3::new(1e-6 * (rate * t).cos(), 1e-6 * (rate * t).sin(), w3);
+    let routes = (exact.xy() - by_hand.xy()).norm() / 1e-6;
+    let run = integrate(&body, w0, t, Method::Rk4, Resolution::Step(h), 0).unwrap();
+    let wobble_error = (run.omega.xy() - exact.xy()).norm() / 1e-6;
+    eprintln!(
+        "Earth, 1e4 Euler periods ({} steps): RK4 wobble error {wobble_error:e}, exact vs closed \
+         form {routes:e}, energy drift {:e}",
+        run.steps, run.energy_drift
+    );
+    assert!(run.steps > 6_000_000);
+    // The body is given as (1, 1, 1 + β): rounding 1 + β changes β by up to 1.1e-16/β = 3.4e-14
+    // of itself, which over 6.3e4 rad of phase is 2.1e-9. The routes agree to that, no worse.
+    assert!(routes <= 2.2e-9, "{routes:e}");
+    assert!(wobble_error <= 2e-5, "{wobble_error:e}");
+    assert!(
+        (run.omega.z - w3).abs() <= 1e-12 * w3,
+        "ω3 must stay constant"
+    );
 }
 
 mod properties {

@@ -56,7 +56,9 @@ pub fn run(a: &SpinArgs) -> Result<String, String> {
     };
     let r = integrate(&i, w0, a.t, method, resolution, 0)?;
     let exact = ExactSolution::new(&i, w0).omega(a.t);
-    let error = (r.omega - exact).norm() / exact.norm().max(f64::MIN_POSITIVE);
+    // Divided by the largest component first: |ω|² of ω ~ 1e200 would overflow.
+    let scale = exact.amax().max(f64::MIN_POSITIVE);
+    let error = ((r.omega - exact) / scale).norm() / (exact / scale).norm();
     if a.json {
         let j = serde_json::json!({
             "method": method.name(),

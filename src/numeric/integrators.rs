@@ -155,14 +155,23 @@ pub fn integrate(
         _ => {}
     }
     let start = Instant::now();
+    // In units where the largest moment and |ω(0)| are near 1 (exact powers of two), so that
+    // I ω² neither overflows nor underflows; every drift and error is relative, so unchanged.
+    let (units_i, units_w0, rate) = super::free_body::units(i, &w0);
+    let (i, w0, t_end) = (&units_i, units_w0, t_end * rate);
+    let step = |r| step_of(r, method).map(|h| h * rate);
     let mut run = match method {
         Method::Exact => exact(i, w0, t_end, samples),
-        Method::Rk4 => rk4(i, w0, t_end, step_of(resolution, method)?, samples),
+        Method::Rk4 => rk4(i, w0, t_end, step(resolution)?, samples),
         Method::Dopri => dopri(i, w0, t_end, tol_of(resolution)?, samples),
         Method::Splitting | Method::Splitting4 => {
-            splitting(i, w0, t_end, step_of(resolution, method)?, method, samples)
+            splitting(i, w0, t_end, step(resolution)?, method, samples)
         }
     };
+    run.omega *= rate;
+    for (t, w, _) in &mut run.trace {
+        (*t, *w) = (*t / rate, *w * rate);
+    }
     run.seconds = start.elapsed().as_secs_f64();
     if method != Method::Exact {
         super::Work::count_integration(run.rhs_evaluations);
