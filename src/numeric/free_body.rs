@@ -153,7 +153,7 @@ impl Motion {
     fn new(i: &Moments, w0: Vector3<f64>) -> Motion {
         let v = i.0;
         let same = |a: f64, b: f64| a == b;
-        
+
         if same(v[0], v[1]) && same(v[1], v[2]) {
             Motion::Steady(w0)
         } else if let Some(c) = (0..3).find(|&c| same(v[(c + 1) % 3], v[(c + 2) % 3])) {
