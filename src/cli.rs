@@ -107,9 +107,13 @@ pub enum Command {
         /// Fixed step h (rk4, splitting, splitting4).
         #[arg(long, conflicts_with = "tol")]
         step: Option<f64>,
-        /// Error tolerance per step (dopri).
+        /// Error tolerance per step (dopri), at least 1e-15.
         #[arg(long)]
         tol: Option<f64>,
+        /// The most steps to take: a request that needs more is refused (fixed steps) or
+        /// stopped (dopri) with a message; 1e7 steps of RK4 take about a second.
+        #[arg(long, default_value_t = crate::numeric::integrators::MAX_STEPS * 10)]
+        max_steps: u64,
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
@@ -174,6 +178,8 @@ pub fn main() -> ExitCode {
     }
 }
 
+/// The scenes under `paths`, or `None` when any file is bad: every problem is reported, one
+/// located line each, and nothing is derived (bad input prints nothing on standard output).
 fn load(paths: &[PathBuf]) -> Result<Option<Vec<crate::scene::Scene>>> {
     let files = pipeline::find_scenes(paths).context("cannot list the scene files")?;
     if files.is_empty() {
@@ -213,22 +219,47 @@ fn progress_bar(done: usize, total: usize, label: &str) -> String {
 }
 
 /// Runs every scene, or takes it from the cache, with a progress bar on stderr when it is a
-/// terminal.
+/// terminal. A scene that fails is reported on stderr, one located line, and the others still
+/// run; the count of failed scenes comes back with the reports.
 fn run_all(
     scenes: Vec<crate::scene::Scene>,
     fidelity: Option<Fidelity>,
     cache: Option<&Cache>,
-) -> Result<Vec<SceneReport>> {
+) -> Result<(Vec<SceneReport>, usize)> {
     let progress = std::io::stderr().is_terminal();
     let total = scenes.len();
     let mut reports = Vec::new();
+    let mut failed = 0;
     for (i, scene) in scenes.into_iter().enumerate() {
         if progress {
             eprint!("\r\x1b[2K{}", progress_bar(i, total, &scene.id));
         }
+        match run_one(scene, fidelity, cache) {
+            Ok(r) => reports.push(r),
+            Err(e) => {
+                if progress {
+                    eprint!("\r\x1b[2K");
+                }
+                eprintln!("mechbook: error: {e}");
+                failed += 1;
+            }
+        }
+    }
+    if progress {
+        eprint!("\r\x1b[2K");
+    }
+    Ok((reports, failed))
+}
+
+/// One scene, from the cache when it holds it.
+fn run_one(
+    scene: crate::scene::Scene,
+    fidelity: Option<Fidelity>,
+    cache: Option<&Cache>,
+) -> Result<SceneReport, pipeline::RunError> {
+    {
         let Some(cache) = cache else {
-            reports.push(pipeline::run_scene(scene, fidelity)?);
-            continue;
+            return pipeline::run_scene(scene, fidelity);
         };
         let (id, hash) = (scene.id.clone(), scene.content_hash);
         let fid = fidelity.or(scene.fidelity).unwrap_or_default();
@@ -244,7 +275,8 @@ fn run_all(
                 let r = pipeline::run_scene_with(scene, Some(fid), symbolic)?;
                 let mut stored = cache.store(&id, hash, Some(&fid), &pipeline::to_cache(&r));
                 if r.from_cache == pipeline::FromCache::Nothing && stored.is_ok() {
-                    let symbolic = serde_json::to_vec(&pipeline::symbolic_part(&r))?;
+                    let symbolic = serde_json::to_vec(&pipeline::symbolic_part(&r))
+                        .expect("a report serializes");
                     stored = cache.store(&id, hash, None, &symbolic);
                 }
                 if let Err(e) = stored {
@@ -253,12 +285,8 @@ fn run_all(
                 r
             }
         };
-        reports.push(report);
+        Ok(report)
     }
-    if progress {
-        eprint!("\r\x1b[2K");
-    }
-    Ok(reports)
 }
 
 fn default_paths(paths: Vec<PathBuf>) -> Vec<PathBuf> {
@@ -270,6 +298,12 @@ fn default_paths(paths: Vec<PathBuf>) -> Vec<PathBuf> {
 }
 
 pub fn run(cli: Cli) -> Result<ExitCode> {
+    if matches!(
+        cli.command,
+        Command::Build { .. } | Command::Check { .. } | Command::Derive { .. }
+    ) {
+        crate::cas::ready()?;
+    }
     match cli.command {
         Command::Build {
             paths,
@@ -283,11 +317,28 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             let start = std::time::Instant::now();
             let course = crate::render::Course::load(std::path::Path::new("mechbook.toml"))
                 .map_err(anyhow::Error::msg)?;
-            let Some(scenes) = load(&default_paths(paths))? else {
+            let paths = default_paths(paths);
+            let out = out
+                .or(course.output.clone())
+                .unwrap_or_else(|| PathBuf::from("site"));
+            // Refused before anything is derived, so a refused build touches nothing. The
+            // inputs are the scene files themselves, and the folders named.
+            let mut inputs = paths.clone();
+            inputs.extend(pipeline::find_scenes(&paths).unwrap_or_default());
+            inputs.extend(templates.clone());
+            inputs.push(PathBuf::from("."));
+            crate::site::check_output(&out, &inputs)?;
+            let Some(scenes) = load(&paths)? else {
                 return Ok(ExitCode::from(1));
             };
             let cache = (!no_cache).then(|| Cache::new(&cache));
-            let reports = run_all(scenes, fidelity, cache.as_ref())?;
+            let (reports, errors) = run_all(scenes, fidelity, cache.as_ref())?;
+            if errors > 0 {
+                eprintln!(
+                    "mechbook: {errors} scene(s) could not be derived; the site was not written"
+                );
+                return Ok(ExitCode::from(1));
+            }
             let cached = reports
                 .iter()
                 .filter(|r| r.from_cache == pipeline::FromCache::Everything)
@@ -298,9 +349,6 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
                 .count();
             let files = crate::render::site_files(&reports, &course, templates.as_deref(), timings)
                 .map_err(anyhow::Error::msg)?;
-            let out = out
-                .or(course.output.clone())
-                .unwrap_or_else(|| PathBuf::from("site"));
             crate::site::write_site(&out, &files)?;
             let handouts = files.keys().filter(|p| p.starts_with("handouts")).count();
             let plots = files.keys().filter(|p| p.starts_with("plots")).count();
@@ -332,8 +380,8 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             let Some(scenes) = load(&default_paths(paths))? else {
                 return Ok(ExitCode::from(1));
             };
-            let reports = run_all(scenes, fidelity, None)?;
-            let passed = reports.iter().all(SceneReport::passed);
+            let (reports, errors) = run_all(scenes, fidelity, None)?;
+            let passed = errors == 0 && reports.iter().all(SceneReport::passed);
             let text = if json {
                 let scenes: Vec<_> = reports.iter().map(report::scene_json).collect();
                 serde_json::to_string_pretty(&serde_json::json!({ "scenes": scenes }))? + "\n"
@@ -341,6 +389,13 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
                 report::check_table(&reports)
             };
             std::io::stdout().write_all(text.as_bytes())?;
+            if errors > 0 {
+                eprintln!(
+                    "mechbook: {errors} scene(s) could not be derived (errors above); the other \
+                     {} were checked",
+                    reports.len()
+                );
+            }
             Ok(if passed {
                 ExitCode::SUCCESS
             } else {
@@ -354,6 +409,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             method,
             step,
             tol,
+            max_steps,
             json,
         } => {
             let text = crate::spin::run(&crate::spin::SpinArgs {
@@ -363,6 +419,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
                 method,
                 step,
                 tol,
+                max_steps,
                 json,
             })
             .map_err(anyhow::Error::msg)?;
@@ -374,6 +431,9 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             lectures,
             repeats,
         } => {
+            if let Some(out) = &out {
+                crate::site::check_output(out, &[lectures.clone(), PathBuf::from(".")])?;
+            }
             let tty = std::io::stderr().is_terminal();
             let bench = crate::bench::run(&lectures, repeats as usize, |line| {
                 if tty {
@@ -410,7 +470,13 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             let Some(mut scenes) = load(std::slice::from_ref(&scene))? else {
                 return Ok(ExitCode::from(1));
             };
-            let r = pipeline::run_scene(scenes.remove(0), fidelity)?;
+            let r = match pipeline::run_scene(scenes.remove(0), fidelity) {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("mechbook: error: {e}");
+                    return Ok(ExitCode::from(1));
+                }
+            };
             let text = if json {
                 serde_json::to_string_pretty(&report::scene_json(&r))? + "\n"
             } else {

@@ -39,11 +39,14 @@ impl SceneReport {
     }
 }
 
+/// A scene that could not be derived: located at the scene's `id` (the scene as a whole), on
+/// one line. A failure inside one claim is not this: it is that claim's problem, at its line.
 #[derive(Debug, thiserror::Error)]
-#[error("{}: {source}", path.display())]
+#[error("{}:{}:{}: scene `{id}` could not be derived: {source}", path.display(), at.0, at.1)]
 pub struct RunError {
     pub path: PathBuf,
-    #[source]
+    pub id: String,
+    pub at: (usize, usize),
     pub source: DeriveError,
 }
 
@@ -73,6 +76,8 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
     let (engine_before, calls_before) = crate::cas::stats();
     let fail = |source| RunError {
         path: scene.source.clone(),
+        id: scene.id.clone(),
+        at: scene.id_at,
         source,
     };
     let derivation = derive::derive(scene, plan).map_err(fail)?;
@@ -113,6 +118,8 @@ pub fn run_scene_with(
     };
     let fail = |source| RunError {
         path: scene.source.clone(),
+        id: scene.id.clone(),
+        at: scene.id_at,
         source,
     };
     let derivation = &symbolic.derivation;
@@ -228,24 +235,45 @@ pub fn from_cache(scene: Scene, bytes: &[u8]) -> Option<SceneReport> {
     })
 }
 
+/// The most folder levels `find_scenes` descends, and the largest scene file it reads.
+pub const MAX_DEPTH: usize = 16;
+
 /// Every `.toml` scene under the given folders, plus the files named directly (taken as given,
-/// so a missing or unreadable one is reported), sorted and without duplicates.
+/// so a missing or unreadable one is reported), sorted and without duplicates. Symbolic links
+/// are followed, but a folder already visited (a link loop) is not entered twice, and only
+/// regular files are taken.
 pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
-    fn collect(dir: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+    use std::collections::BTreeSet;
+    use std::os::unix::fs::MetadataExt;
+    fn collect(
+        dir: &Path,
+        depth: usize,
+        seen: &mut BTreeSet<(u64, u64)>,
+        out: &mut Vec<PathBuf>,
+    ) -> std::io::Result<()> {
+        let meta = std::fs::metadata(dir)?;
+        if depth > MAX_DEPTH || !seen.insert((meta.dev(), meta.ino())) {
+            return Ok(());
+        }
         for entry in std::fs::read_dir(dir)? {
             let path = entry?.path();
-            if path.is_dir() {
-                collect(&path, out)?;
-            } else if path.extension().is_some_and(|x| x == "toml") {
+            // A dangling link or an unreadable entry is skipped, as `find` would.
+            let Ok(meta) = std::fs::metadata(&path) else {
+                continue;
+            };
+            if meta.is_dir() {
+                collect(&path, depth + 1, seen, out)?;
+            } else if meta.is_file() && path.extension().is_some_and(|x| x == "toml") {
                 out.push(path);
             }
         }
         Ok(())
     }
     let mut out = Vec::new();
+    let mut seen = BTreeSet::new();
     for p in paths {
         if p.is_dir() {
-            collect(p, &mut out)?;
+            collect(p, 0, &mut seen, &mut out)?;
         } else {
             out.push(p.clone());
         }
@@ -255,7 +283,9 @@ pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
-/// Loads every scene first, so that one bad file stops the run before any output.
+/// Loads every scene first, so that one bad file stops the run before any output; every bad one
+/// is reported. Ids must be unique, and two lecture names must not make the same handout file
+/// name.
 pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
     let mut scenes = Vec::new();
     let mut errors = Vec::new();
@@ -265,24 +295,44 @@ pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
             Err(e) => errors.push(e),
         }
     }
-    let mut ids: Vec<(&str, &Path)> = scenes
-        .iter()
-        .map(|s| (s.id.as_str(), s.source.as_path()))
-        .collect();
-    ids.sort();
-    for w in ids.windows(2) {
-        if w[0].0 == w[1].0 {
-            errors.push(SceneError {
-                path: w[1].1.to_path_buf(),
-                line: 1,
-                column: 1,
-                field: "id".into(),
-                message: format!(
-                    "duplicate scene id `{}` (also in {})",
-                    w[0].0,
-                    w[0].1.display()
-                ),
-            });
+    let located =
+        |s: &Scene, (line, column): (usize, usize), field: &str, message: String| SceneError {
+            path: s.source.clone(),
+            line,
+            column,
+            field: field.into(),
+            message,
+        };
+    let mut by_id: Vec<&Scene> = scenes.iter().collect();
+    by_id.sort_by(|a, b| (&a.id, &a.source).cmp(&(&b.id, &b.source)));
+    for w in by_id.windows(2) {
+        if w[0].id == w[1].id {
+            let message = format!(
+                "duplicate scene id `{}` (also in {}): page file names come from ids",
+                w[0].id,
+                w[0].source.display()
+            );
+            errors.push(located(w[1], w[1].id_at, "id", message));
+        }
+    }
+    let mut by_slug: std::collections::BTreeMap<String, &Scene> = Default::default();
+    for s in by_id {
+        let slug = crate::scene::lecture_slug(&s.notes.lecture);
+        match by_slug.get(&slug) {
+            Some(first) if first.notes.lecture != s.notes.lecture => {
+                let message = format!(
+                    "lecture `{}` and lecture `{}` (in {}) would share the handout file name \
+                     `{slug}`: name them so that they differ in a letter or digit",
+                    s.notes.lecture,
+                    first.notes.lecture,
+                    first.source.display()
+                );
+                errors.push(located(s, s.lecture_at, "notes.lecture", message));
+            }
+            Some(_) => {}
+            None => {
+                by_slug.insert(slug, s);
+            }
         }
     }
     if errors.is_empty() {

@@ -1,9 +1,13 @@
 //! The only code that writes files. A site is built in a temporary folder beside the output and
-//! renamed into place, so a failed build leaves the previous site untouched; files are written
-//! in sorted order with no timestamps, so the same input gives the same bytes.
+//! swapped into place in one step, so a failed or killed build leaves the previous site whole;
+//! files are written in sorted order with no timestamps, so the same input gives the same bytes.
+//! Only an empty folder, or one that mechbook wrote, is ever replaced (`guard`).
 
 pub mod cache;
+pub mod guard;
 pub mod scratch;
+
+pub use guard::check_output;
 
 use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};
@@ -21,6 +25,26 @@ pub enum SiteError {
         #[source]
         source: std::io::Error,
     },
+    #[error(
+        "the output folder `{}` is not empty and was not written by mechbook (it has no {} file); \
+         a build replaces its output folder whole, so choose a new or empty folder, or delete \
+         this one yourself",
+        .0.display(), guard::MARKER
+    )]
+    NotASite(PathBuf),
+    #[error("the output `{}` is a file, not a folder: choose a folder for --out", .0.display())]
+    NotAFolder(PathBuf),
+    #[error(
+        "the output `{}` is a symbolic link: give the folder it points to, or a new folder",
+        .0.display()
+    )]
+    Symlink(PathBuf),
+    #[error(
+        "the output folder `{}` is or contains `{}`, which the build reads, and a build replaces its \
+         output whole: choose a folder outside it, such as site/",
+        out.display(), input.display()
+    )]
+    ContainsInput { out: PathBuf, input: PathBuf },
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> SiteError + '_ {
@@ -31,12 +55,19 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> SiteError + '_ {
 }
 
 /// Writes `files` as the folder `out`, replacing what was there only once everything is written.
+///
+/// The new site is written beside `out` (with the marker file first), then swapped with the old
+/// one in one atomic exchange, so the old site or the new one is in place at every instant; the
+/// old one is then removed. Folders left beside `out` by a build that was killed are removed
+/// first. The caller checks `out` with [`check_output`] before deriving anything; this checks
+/// again, in case the folder changed meanwhile.
 pub fn write_site(out: &Path, files: &SiteFiles) -> Result<(), SiteError> {
     for p in files.keys() {
         if p.components().any(|c| !matches!(c, Component::Normal(_))) {
             return Err(SiteError::BadPath(p.clone()));
         }
     }
+    check_output(out, &[])?;
     let name = out
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -46,11 +77,14 @@ pub fn write_site(out: &Path, files: &SiteFiles) -> Result<(), SiteError> {
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     std::fs::create_dir_all(parent).map_err(io(parent))?;
+    remove_stale(parent, &name);
     let staging = parent.join(format!(".{name}.building-{}", std::process::id()));
-    let previous = parent.join(format!(".{name}.previous-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&staging);
 
     let written = (|| {
+        std::fs::create_dir(&staging).map_err(io(&staging))?;
+        let marker = staging.join(guard::MARKER);
+        std::fs::write(&marker, guard::MARKER_TEXT).map_err(io(&marker))?;
         for (rel, bytes) in files {
             let path = staging.join(rel);
             if let Some(dir) = path.parent() {
@@ -58,31 +92,123 @@ pub fn write_site(out: &Path, files: &SiteFiles) -> Result<(), SiteError> {
             }
             std::fs::write(&path, bytes).map_err(io(&path))?;
         }
-        std::fs::create_dir_all(&staging).map_err(io(&staging))
+        Ok(())
     })();
     if let Err(e) = written {
         let _ = std::fs::remove_dir_all(&staging);
         return Err(e);
     }
-    // Swap: the old site moves aside, the new one takes its name, the old one is removed.
-    let had_previous = out.exists();
-    if had_previous {
-        std::fs::rename(out, &previous).map_err(io(out))?;
-    }
-    if let Err(source) = std::fs::rename(&staging, out) {
-        if had_previous {
-            let _ = std::fs::rename(&previous, out);
-        }
+    let swapped = if std::fs::symlink_metadata(out).is_ok() {
+        exchange(&staging, out)
+    } else {
+        std::fs::rename(&staging, out)
+    };
+    if let Err(source) = swapped {
         let _ = std::fs::remove_dir_all(&staging);
         return Err(SiteError::Io {
             path: out.to_path_buf(),
             source,
         });
     }
-    if had_previous {
-        std::fs::remove_dir_all(&previous).map_err(io(&previous))?;
+    // After an exchange the staging name holds the old site; after a rename it is gone.
+    match std::fs::remove_dir_all(&staging) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(io(&staging)(e)),
+        _ => Ok(()),
     }
-    Ok(())
+}
+
+/// Swaps two folders in one step (Linux's `renameat2` with `RENAME_EXCHANGE`). Where the file
+/// system cannot, it falls back to two renames, with a short instant in which `b` is missing.
+#[cfg(target_os = "linux")]
+fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
+    use std::os::unix::ffi::OsStrExt;
+    let c = |p: &Path| {
+        std::ffi::CString::new(p.as_os_str().as_bytes())
+            .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidInput, e))
+    };
+    let (ca, cb) = (c(a)?, c(b)?);
+    // SAFETY: two valid NUL-terminated paths, relative to the current directory.
+    let r = unsafe {
+        libc::renameat2(
+            libc::AT_FDCWD,
+            ca.as_ptr(),
+            libc::AT_FDCWD,
+            cb.as_ptr(),
+            libc::RENAME_EXCHANGE,
+        )
+    };
+    if r == 0 {
+        return Ok(());
+    }
+    let e = std::io::Error::last_os_error();
+    match e.raw_os_error() {
+        Some(libc::EINVAL) | Some(libc::ENOSYS) | Some(libc::ENOTSUP) => two_renames(a, b),
+        _ => Err(e),
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
+    two_renames(a, b)
+}
+
+/// `b` moves aside, `a` takes its name, and the old `b` takes `a`'s.
+fn two_renames(a: &Path, b: &Path) -> std::io::Result<()> {
+    let mut aside = a.as_os_str().to_owned();
+    aside.push(".old");
+    let aside = PathBuf::from(aside);
+    std::fs::rename(b, &aside)?;
+    if let Err(e) = std::fs::rename(a, b) {
+        let _ = std::fs::rename(&aside, b);
+        return Err(e);
+    }
+    std::fs::rename(&aside, a)
+}
+
+/// Removes `.NAME.building-PID` and `.NAME.previous-PID` folders whose process is gone: what a
+/// killed build leaves. Only folders that carry the marker, or are empty, are removed.
+fn remove_stale(parent: &Path, name: &str) {
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name().to_string_lossy().into_owned();
+        let Some(rest) = file_name.strip_prefix(&format!(".{name}.")) else {
+            continue;
+        };
+        let pid = rest
+            .strip_prefix("building-")
+            .or_else(|| rest.strip_prefix("previous-"))
+            .and_then(|p| p.split('.').next())
+            .and_then(|p| p.parse::<u32>().ok());
+        let Some(pid) = pid else { continue };
+        if pid == std::process::id() || process_alive(pid) {
+            continue;
+        }
+        let path = entry.path();
+        if std::fs::symlink_metadata(path.join(guard::MARKER)).is_ok_and(|m| m.is_file()) {
+            let _ = std::fs::remove_dir_all(&path);
+        } else {
+            let _ = std::fs::remove_dir(&path);
+        }
+    }
+}
+
+fn process_alive(pid: u32) -> bool {
+    #[cfg(unix)]
+    {
+        let Ok(pid) = libc::pid_t::try_from(pid) else {
+            return false;
+        };
+        // SAFETY: signal 0 only asks whether the process exists.
+        let r = unsafe { libc::kill(pid, 0) };
+        r == 0 || std::io::Error::last_os_error().raw_os_error() == Some(libc::EPERM)
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = pid;
+        true
+    }
 }
 
 #[cfg(test)]

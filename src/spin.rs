@@ -2,7 +2,7 @@
 //! of them side by side, each measured against the exact elliptic solution.
 
 use crate::numeric::free_body::{ExactSolution, Moments};
-use crate::numeric::integrators::{Method, Resolution, Run, integrate};
+use crate::numeric::integrators::{Method, Resolution, Run, integrate, integrate_capped};
 use crate::report::sci;
 use nalgebra::Vector3;
 use std::time::Instant;
@@ -15,6 +15,7 @@ pub struct SpinArgs {
     pub method: String,
     pub step: Option<f64>,
     pub tol: Option<f64>,
+    pub max_steps: u64,
     pub json: bool,
 }
 
@@ -34,7 +35,31 @@ pub fn run(a: &SpinArgs) -> Result<String, String> {
             w[k]
         ));
     }
+    // Subnormal numbers carry fewer than 53 bits: every product with them loses precision.
+    for (name, v) in [("inertia", i.0), ("omega", w)] {
+        if let Some(k) = v
+            .iter()
+            .position(|x| *x != 0.0 && x.abs() < f64::MIN_POSITIVE)
+        {
+            return Err(format!(
+                "--{name} component {} = {:e} is below {:e}, where double precision keeps \
+                 its digits: express the quantities in other units",
+                k + 1,
+                v[k],
+                f64::MIN_POSITIVE
+            ));
+        }
+    }
+    if !a.t.is_finite() || a.t < 0.0 {
+        return Err(format!(
+            "the end time --t {} must be a finite number ≥ 0",
+            a.t
+        ));
+    }
     let w0 = Vector3::from(w);
+    if let Some(why) = crate::numeric::free_body::beyond_double_precision(&i, &w0) {
+        return Err(why);
+    }
     let method = Method::ALL
         .iter()
         .find(|(n, _)| *n == a.method)
@@ -54,8 +79,19 @@ pub fn run(a: &SpinArgs) -> Result<String, String> {
         (_, _, Some(_)) => return Err(format!("{} takes --step, not --tol", a.method)),
         (_, step, None) => Resolution::Step(step.unwrap_or(0.01)),
     };
-    let r = integrate(&i, w0, a.t, method, resolution, 0)?;
+    let r = integrate_capped(&i, w0, a.t, method, resolution, 0, a.max_steps)?;
     let exact = ExactSolution::new(&i, w0).omega(a.t);
+    // Whatever slipped past the checks above: never print NaN as an answer.
+    if let Some(bad) = [r.omega, exact]
+        .iter()
+        .flat_map(|v| v.iter())
+        .find(|x| !x.is_finite())
+    {
+        return Err(format!(
+            "the result is not a finite number ({bad}): the inputs are beyond what double \
+             precision can integrate; rescale the moments or ω(0)"
+        ));
+    }
     // Divided by the largest component first: |ω|² of ω ~ 1e200 would overflow.
     let scale = exact.amax().max(f64::MIN_POSITIVE);
     let error = ((r.omega - exact) / scale).norm() / (exact / scale).norm();

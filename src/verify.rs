@@ -148,124 +148,139 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
     let env = claim_env(scene, d);
     let mut out = Vec::new();
     for (i, claim) in scene.claims.iter().enumerate() {
-        let mut r = ClaimResult {
-            eq: claim.eq.clone(),
-            statement: claim.statement.clone(),
-            notes: claim
-                .value
-                .as_ref()
-                .map(|v| v.to_text())
-                .unwrap_or_default(),
-            derived: String::new(),
-            verdict: Verdict::NotCheckable,
-            expected: claim.expect,
-            differences: Vec::new(),
-            problem: None,
-            precision: None,
-            line: claim.line,
-        };
-        let (Some(q), Some(v)) = (&claim.quantity, &claim.value) else {
-            out.push(r);
-            continue;
-        };
-        let derived = match evaluate(q, &env) {
-            Ok(x) => simplify_value(&x)?,
-            Err(e) => {
-                r.problem = Some(format!("the derived side does not evaluate: {e}"));
-                out.push(r);
-                continue;
-            }
-        };
-        r.derived = derived.to_text();
-        let notes = match evaluate(v, &env) {
-            Ok(x) => x,
-            Err(e) => {
-                r.verdict = Verdict::Disagrees;
-                r.differences
-                    .push(format!("the notes' formula is ill-formed: {e}"));
-                out.push(r);
-                continue;
-            }
-        };
-        if let Some(figures) = claim.figures {
-            match rounded_agreement(&derived, &notes, figures) {
-                Ok((agrees, detail)) => {
-                    r.verdict = if agrees {
-                        Verdict::Agrees
-                    } else {
-                        Verdict::Disagrees
-                    };
-                    if !agrees {
-                        r.differences.push(detail.clone());
-                    }
-                    r.precision = Some(detail);
-                }
-                Err(e) => r.problem = Some(e),
-            }
-            out.push(r);
-            continue;
+        // An engine failure on one claim is that claim's problem, located at its line; the
+        // other claims are still checked.
+        out.push(check_claim(scene, &env, i, claim).unwrap_or_else(|e| {
+            let mut r = unchecked(claim);
+            r.problem = Some(format!("the algebra engine failed on this claim: {}", e.0));
+            r
+        }));
+    }
+    Ok(out)
+}
+
+/// A claim's result before any check: not checkable, with nothing derived.
+fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
+    ClaimResult {
+        eq: claim.eq.clone(),
+        statement: claim.statement.clone(),
+        notes: claim
+            .value
+            .as_ref()
+            .map(|v| v.to_text())
+            .unwrap_or_default(),
+        derived: String::new(),
+        verdict: Verdict::NotCheckable,
+        expected: claim.expect,
+        differences: Vec::new(),
+        problem: None,
+        precision: None,
+        line: claim.line,
+    }
+}
+
+fn check_claim(
+    scene: &Scene,
+    env: &Env,
+    i: usize,
+    claim: &crate::scene::Claim,
+) -> Result<ClaimResult, cas::CasError> {
+    let mut r = unchecked(claim);
+    let (Some(q), Some(v)) = (&claim.quantity, &claim.value) else {
+        return Ok(r);
+    };
+    let derived = match evaluate(q, env) {
+        Ok(x) => simplify_value(&x)?,
+        Err(e) => {
+            r.problem = Some(format!("the derived side does not evaluate: {e}"));
+            return Ok(r);
         }
-        if std::mem::discriminant(&derived) != std::mem::discriminant(&notes) {
+    };
+    r.derived = derived.to_text();
+    let notes = match evaluate(v, env) {
+        Ok(x) => x,
+        Err(e) => {
             r.verdict = Verdict::Disagrees;
-            r.differences.push(format!(
-                "the notes give {}, the derivation {}",
-                notes.kind(),
-                derived.kind()
-            ));
-            out.push(r);
-            continue;
+            r.differences
+                .push(format!("the notes' formula is ill-formed: {e}"));
+            return Ok(r);
         }
-        let (de, ne) = (derived.entries(), notes.entries());
-        let diffs: Vec<Expr> = de
-            .iter()
-            .zip(&ne)
-            .map(|(a, b)| Expr::minus(a.clone(), b.clone()))
-            .collect();
-        let symbolic = cas::is_zero_all(diffs.clone())?;
-        let scale: Vec<Expr> = de
-            .iter()
-            .zip(&ne)
-            .map(|(a, b)| Expr::add(vec![a.clone(), b.clone()]))
-            .collect();
-        match numerically_zero(&diffs, &scale, scene.seed.wrapping_add(i as u64)) {
-            Ok(numeric) => {
-                if let Some(k) = (0..diffs.len()).find(|&k| symbolic[k] != numeric[k]) {
-                    r.problem = Some(format!(
-                        "entry {}: the symbolic test says {}, the numeric test at random points says {}",
-                        derived.entry_label(k),
-                        if symbolic[k] { "zero" } else { "non-zero" },
-                        if numeric[k] { "zero" } else { "non-zero" }
-                    ));
+    };
+    if let Some(figures) = claim.figures {
+        match rounded_agreement(&derived, &notes, figures) {
+            Ok((agrees, detail)) => {
+                r.verdict = if agrees {
+                    Verdict::Agrees
+                } else {
+                    Verdict::Disagrees
+                };
+                if !agrees {
+                    r.differences.push(detail.clone());
                 }
+                r.precision = Some(detail);
             }
-            Err(e) => r.problem = Some(format!("cannot evaluate at random points: {e}")),
+            Err(e) => r.problem = Some(e),
         }
-        let agrees = symbolic.iter().all(|z| *z);
-        r.verdict = if agrees {
-            Verdict::Agrees
-        } else {
-            Verdict::Disagrees
-        };
-        if !agrees {
-            let simplified = cas::simplify_all(diffs.clone())?;
-            let notes_simple = cas::simplify_all(ne.clone())?;
-            for k in (0..diffs.len()).filter(|&k| !symbolic[k]) {
-                r.differences.push(format!(
-                    "entry{}: derived {}, notes {}, difference {}",
-                    if derived.entry_label(k).is_empty() {
-                        String::new()
-                    } else {
-                        format!(" {}", derived.entry_label(k))
-                    },
-                    de[k],
-                    notes_simple[k],
-                    simplified[k]
+        return Ok(r);
+    }
+    if std::mem::discriminant(&derived) != std::mem::discriminant(&notes) {
+        r.verdict = Verdict::Disagrees;
+        r.differences.push(format!(
+            "the notes give {}, the derivation {}",
+            notes.kind(),
+            derived.kind()
+        ));
+        return Ok(r);
+    }
+    let (de, ne) = (derived.entries(), notes.entries());
+    let diffs: Vec<Expr> = de
+        .iter()
+        .zip(&ne)
+        .map(|(a, b)| Expr::minus(a.clone(), b.clone()))
+        .collect();
+    let symbolic = cas::is_zero_all(diffs.clone())?;
+    let scale: Vec<Expr> = de
+        .iter()
+        .zip(&ne)
+        .map(|(a, b)| Expr::add(vec![a.clone(), b.clone()]))
+        .collect();
+    match numerically_zero(&diffs, &scale, scene.seed.wrapping_add(i as u64)) {
+        Ok(numeric) => {
+            if let Some(k) = (0..diffs.len()).find(|&k| symbolic[k] != numeric[k]) {
+                r.problem = Some(format!(
+                    "entry {}: the symbolic test says {}, the numeric test at random points says {}",
+                    derived.entry_label(k),
+                    if symbolic[k] { "zero" } else { "non-zero" },
+                    if numeric[k] { "zero" } else { "non-zero" }
                 ));
             }
         }
-        out.push(r);
+        Err(e) => r.problem = Some(format!("cannot evaluate at random points: {e}")),
     }
-    Ok(out)
+    let agrees = symbolic.iter().all(|z| *z);
+    r.verdict = if agrees {
+        Verdict::Agrees
+    } else {
+        Verdict::Disagrees
+    };
+    if !agrees {
+        let simplified = cas::simplify_all(diffs.clone())?;
+        let notes_simple = cas::simplify_all(ne.clone())?;
+        for k in (0..diffs.len()).filter(|&k| !symbolic[k]) {
+            r.differences.push(format!(
+                "entry{}: derived {}, notes {}, difference {}",
+                if derived.entry_label(k).is_empty() {
+                    String::new()
+                } else {
+                    format!(" {}", derived.entry_label(k))
+                },
+                de[k],
+                notes_simple[k],
+                simplified[k]
+            ));
+        }
+    }
+    Ok(r)
 }
 
 /// `x` rounded to `figures` significant figures.

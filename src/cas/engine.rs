@@ -17,7 +17,10 @@ const PREFIX: &str = "mb";
 /// Builds the engine's expression directly from ours (no text in between: it is the hot path).
 fn to_atom(e: &Expr) -> Atom {
     match e {
-        Expr::Num(r) => Atom::num((r.numer(), r.denom())),
+        Expr::Num(r) => match r.to_i64_pair() {
+            Some(pair) => Atom::num(pair),
+            None => large_number(r),
+        },
         Expr::Sym(s) => var_atom(s),
         Expr::Add(v) => v.iter().fold(Atom::num(0), |acc, x| acc + &to_atom(x)),
         Expr::Mul(v) => v.iter().fold(Atom::num(1), |acc, x| acc * &to_atom(x)),
@@ -32,9 +35,23 @@ fn to_atom(e: &Expr) -> Atom {
     }
 }
 
+/// A number beyond `i64`, built by exact arithmetic from base-2³² digits (no text in between).
+fn large_number(r: &Rational) -> Atom {
+    let (num, den) = r.abs_parts_base_2_32();
+    let horner = |limbs: &[u32]| {
+        limbs.iter().rev().fold(Atom::num(0), |acc, &l| {
+            acc * &Atom::num(1i64 << 32) + &Atom::num(i64::from(l))
+        })
+    };
+    let sign = if r.is_negative() { -1 } else { 1 };
+    Atom::num(sign) * &horner(&num) / &horner(&den)
+}
+
 fn from_text(text: &str) -> Result<Expr, String> {
-    let parsed = parse(text)
-        .map_err(|e| format!("cannot read the engine's output `{text}`: {}", e.message))?;
+    let text = strip_ansi(text);
+    let parsed = parse(&text).map_err(|_| {
+        format!("the engine produced `{text}`, which is not an exact real number or expression")
+    })?;
     if let Some((name, _)) = parsed.symbols.iter().find(|(s, _)| !s.starts_with(PREFIX)) {
         return Err(format!(
             "unexpected name `{name}` in the engine's output `{text}`"
@@ -43,6 +60,24 @@ fn from_text(text: &str) -> Result<Expr, String> {
     Ok(parsed
         .expr
         .substitute(&|s| s.strip_prefix(PREFIX).map(Expr::sym)))
+}
+
+/// Text without terminal colour codes (ESC [ ... m), which the engine's printer may add.
+fn strip_ansi(text: &str) -> String {
+    let mut out = String::new();
+    let mut chars = text.chars();
+    while let Some(c) = chars.next() {
+        if c == '\u{1b}' {
+            for d in chars.by_ref() {
+                if d.is_ascii_alphabetic() {
+                    break;
+                }
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// Reads the engine's expression back into ours by walking it.
@@ -54,6 +89,13 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, String> {
         AtomView::Num(n) => match n.get_coeff_view() {
             CoefficientView::Natural(num, den, 0, _) => {
                 Expr::Num(Rational::new(num as i128, den as i128).ok_or("zero denominator")?)
+            }
+            CoefficientView::Natural(..) => {
+                return Err(
+                    "the result is a complex number (a square root of a negative \
+                            quantity?)"
+                        .into(),
+                );
             }
             // Large or complex numbers: the printed form says what they are.
             _ => return from_text(&v.to_string()),
@@ -156,7 +198,7 @@ pub fn factor(e: &Expr) -> Result<Expr, String> {
 fn has_symbolic_denominator(e: &Expr) -> bool {
     match e {
         Expr::Pow(b, x) => {
-            (matches!(x.as_ref(), Expr::Num(r) if r.numer() < 0)
+            (matches!(x.as_ref(), Expr::Num(r) if r.is_negative())
                 && !matches!(b.as_ref(), Expr::Num(_)))
                 || has_symbolic_denominator(b)
         }
@@ -205,8 +247,12 @@ fn key_exponent(key: &Atom, var: &str) -> Result<u32, String> {
         Expr::Num(r) if r == Rational::ONE => Ok(0),
         Expr::Sym(s) if s == var => Ok(1),
         Expr::Pow(b, x) => match (*b, *x) {
-            (Expr::Sym(s), Expr::Num(n)) if s == var && n.is_integer() && n.numer() > 0 => {
-                Ok(n.numer() as u32)
+            (Expr::Sym(s), Expr::Num(n))
+                if s == var
+                    && n.to_i64()
+                        .is_some_and(|k| k > 0 && k <= i64::from(u32::MAX)) =>
+            {
+                Ok(n.to_i64().unwrap_or(0) as u32)
             }
             _ => Err(format!("not a polynomial in {var}: `{key}`")),
         },
@@ -229,19 +275,23 @@ fn coefficients(e: &Expr, var: &str) -> Result<Vec<(u32, Expr)>, String> {
     Ok(out)
 }
 
-/// (n)!! with (−1)!! = 0!! = 1.
-fn double_factorial(n: i64) -> i128 {
-    (1..=n.max(0)).rev().step_by(2).map(|k| k as i128).product()
+/// (n)!! with (−1)!! = 0!! = 1, exactly (80!! is beyond i128).
+fn double_factorial(n: i64) -> Rational {
+    (1..=n.max(0))
+        .rev()
+        .step_by(2)
+        .fold(Rational::ONE, |acc, k| {
+            acc.mul(&Rational::int(i128::from(k)))
+        })
 }
 
 /// ∫ cosᵖθ sinᵠθ dθ over [0, 2π] (or [0, π]), by the beta-function formula.
 pub fn trig_moment(p: u32, q: u32, half: bool) -> Expr {
     let (p, q) = (p as i64, q as i64);
     let ratio = || {
-        Expr::rat(
-            double_factorial(p - 1) * double_factorial(q - 1),
-            double_factorial(p + q),
-        )
+        let num = double_factorial(p - 1).mul(&double_factorial(q - 1));
+        let den = double_factorial(p + q);
+        Expr::Num(num.mul(&den.recip().expect("n!! is positive")))
     };
     let pi = Expr::sym("pi");
     if p % 2 == 1 || (!half && q % 2 == 1) {

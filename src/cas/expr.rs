@@ -56,7 +56,7 @@ impl Expr {
         for t in terms {
             match t {
                 Expr::Add(inner) => out.extend(inner),
-                Expr::Num(r) => constant = constant.checked_add(r).expect("rational overflow"),
+                Expr::Num(r) => constant = constant.add(&r),
                 other => out.push(other),
             }
         }
@@ -79,16 +79,12 @@ impl Expr {
                 Expr::Mul(inner) => {
                     for g in inner {
                         match g {
-                            Expr::Num(r) => {
-                                coefficient = coefficient.checked_mul(r).expect("rational overflow")
-                            }
+                            Expr::Num(r) => coefficient = coefficient.mul(&r),
                             other => out.push(other),
                         }
                     }
                 }
-                Expr::Num(r) => {
-                    coefficient = coefficient.checked_mul(r).expect("rational overflow")
-                }
+                Expr::Num(r) => coefficient = coefficient.mul(&r),
                 other => out.push(other),
             }
         }
@@ -124,18 +120,16 @@ impl Expr {
         if let (Expr::Pow(b, p), Expr::Num(q)) = (&base, &exponent)
             && q.is_integer()
             && let Expr::Num(p) = p.as_ref()
-            && let Some(pq) = p.checked_mul(*q)
         {
-            return Expr::pow(b.as_ref().clone(), Expr::Num(pq));
+            return Expr::pow(b.as_ref().clone(), Expr::Num(p.mul(q)));
         }
         Expr::Pow(Box::new(base), Box::new(exponent))
     }
 
     pub fn over(a: Expr, b: Expr) -> Expr {
         if let Expr::Num(r) = &b
-            && !r.is_zero()
+            && let Some(inv) = r.recip()
         {
-            let inv = Rational::new(r.denom(), r.numer()).unwrap();
             return Expr::mul(vec![Expr::Num(inv), a]);
         }
         Expr::mul(vec![a, Expr::pow(b, Expr::int(-1))])
@@ -268,8 +262,8 @@ impl Expr {
             Expr::Pow(a, b) => {
                 let base = a.eval(env)?;
                 match b.as_ref() {
-                    Expr::Num(r) if r.is_integer() && r.numer().unsigned_abs() < 64 => {
-                        base.powi(r.numer() as i32)
+                    Expr::Num(r) if r.to_i64().is_some_and(|k| k.unsigned_abs() < 64) => {
+                        base.powi(r.to_i64().unwrap_or(1) as i32)
                     }
                     other => base.powf(other.eval(env)?),
                 }
@@ -362,7 +356,7 @@ fn split_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
     let (mut num, mut den) = (Vec::new(), Vec::new());
     for f in v {
         match f {
-            Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(r) if r.numer() < 0 && r.is_integer()) =>
+            Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(r) if r.is_negative() && r.is_integer()) =>
             {
                 let Expr::Num(r) = x.as_ref() else {
                     unreachable!()
@@ -378,9 +372,9 @@ fn split_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
 /// A term of a sum printed with its sign: `(negative, magnitude)`.
 fn split_sign(e: &Expr) -> (bool, Expr) {
     match e {
-        Expr::Num(r) if r.numer() < 0 => (true, Expr::Num(r.negated())),
+        Expr::Num(r) if r.is_negative() => (true, Expr::Num(r.negated())),
         Expr::Mul(v) => match v.first() {
-            Some(Expr::Num(r)) if r.numer() < 0 => {
+            Some(Expr::Num(r)) if r.is_negative() => {
                 let mut rest = v.clone();
                 rest[0] = Expr::Num(r.negated());
                 (true, Expr::mul(rest))
@@ -395,7 +389,7 @@ fn write_text(e: &Expr, out: &mut String, ctx: Prec, rename: &dyn Fn(&str) -> St
     match e {
         Expr::Num(r) => {
             let needs =
-                (!r.is_integer() && ctx > Prec::Product) || (r.numer() < 0 && ctx > Prec::Sum);
+                (!r.is_integer() && ctx > Prec::Product) || (r.is_negative() && ctx > Prec::Sum);
             let needs = needs || (!r.is_integer() && ctx == Prec::Power);
             if needs {
                 out.push('(');
@@ -568,11 +562,12 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
     match e {
         Expr::Num(r) => {
             let body = if r.is_integer() {
-                r.numer().to_string()
+                r.to_string()
             } else {
-                format!("\\frac{{{}}}{{{}}}", r.numer().abs(), r.denom())
+                let (num, den) = r.abs_parts();
+                format!("\\frac{{{num}}}{{{den}}}")
             };
-            let negative = r.numer() < 0;
+            let negative = r.is_negative();
             if negative && ctx > Prec::Sum {
                 out.push_str("\\left(");
             }
@@ -621,15 +616,16 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
             let (mut num, mut den) = (Vec::new(), Vec::new());
             for f in v {
                 match f {
-                    Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(r) if r.numer() < 0) => {
+                    Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(r) if r.is_negative()) => {
                         let Expr::Num(r) = x.as_ref() else {
                             unreachable!()
                         };
                         den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.negated())));
                     }
                     Expr::Num(r) if !r.is_integer() => {
-                        num.push(Expr::int(r.numer()));
-                        den.push(Expr::int(r.denom()));
+                        let (n, d) = r.abs_parts();
+                        num.push(Expr::Num(if r.is_negative() { n.negated() } else { n }));
+                        den.push(Expr::Num(d));
                     }
                     other => num.push(other.clone()),
                 }
@@ -680,7 +676,7 @@ fn write_latex(e: &Expr, out: &mut String, ctx: Prec) {
                     out.push('}');
                     return;
                 }
-                if r.numer() < 0 {
+                if r.is_negative() {
                     out.push_str("\\frac{1}{");
                     write_latex(
                         &Expr::pow(a.as_ref().clone(), Expr::Num(r.negated())),
@@ -784,12 +780,30 @@ pub struct Parsed {
     pub symbols: Vec<(String, usize)>,
 }
 
+/// The longest expression, in bytes, a scene may write: eight times the longest in the shipped
+/// lectures (501), and short enough that parsing and printing stay instant.
+pub const MAX_EXPR_BYTES: usize = 4000;
+
+/// The deepest nesting of parentheses, brackets, calls, signs and powers: real expressions
+/// nest a few levels, and every stage that walks the tree recurses once a level.
+pub const MAX_NESTING: usize = 64;
+
 /// Parses `text` in the scene expression language: numbers, names, `+ - * / ^`, calls,
 /// `[..]` lists and `v[i]` indexing.
 pub fn parse(text: &str) -> Result<Parsed, ParseError> {
+    if text.len() > MAX_EXPR_BYTES {
+        return Err(ParseError {
+            offset: 0,
+            message: format!(
+                "expression of {} bytes; the limit is {MAX_EXPR_BYTES}: split it with [definitions]",
+                text.len()
+            ),
+        });
+    }
     let mut p = Parser {
         src: text.as_bytes(),
         pos: 0,
+        depth: 0,
         symbols: Vec::new(),
     };
     p.skip_ws();
@@ -799,7 +813,7 @@ pub fn parse(text: &str) -> Result<Parsed, ParseError> {
     let expr = p.sum()?;
     p.skip_ws();
     if p.pos < p.src.len() {
-        return Err(p.error(&format!("unexpected `{}`", p.src[p.pos] as char)));
+        return Err(p.error(&unexpected(&p.src[p.pos..], p.src[p.pos])));
     }
     Ok(Parsed {
         expr,
@@ -807,9 +821,21 @@ pub fn parse(text: &str) -> Result<Parsed, ParseError> {
     })
 }
 
+/// "unexpected `x`", naming the whole character (not its first byte) and never a control one.
+fn unexpected(rest: &[u8], first: u8) -> String {
+    let text = String::from_utf8_lossy(&rest[..rest.len().min(4)]);
+    match text.chars().next() {
+        Some(c) if c.is_control() => format!("unexpected control character U+{:04X}", c as u32),
+        Some(c) if !first.is_ascii() => format!("unexpected `{c}`"),
+        _ => format!("unexpected `{}`", first as char),
+    }
+}
+
 struct Parser<'a> {
     src: &'a [u8],
     pos: usize,
+    /// How deep the recursion is: every nesting passes through `unary`.
+    depth: usize,
     symbols: Vec<(String, usize)>,
 }
 
@@ -886,6 +912,18 @@ impl Parser<'_> {
     }
 
     fn unary(&mut self) -> Result<Expr, ParseError> {
+        self.depth += 1;
+        if self.depth > MAX_NESTING {
+            return Err(self.error(&format!(
+                "nested more than {MAX_NESTING} levels deep: simplify it, or split it with [definitions]"
+            )));
+        }
+        let e = self.unary_inner();
+        self.depth -= 1;
+        e
+    }
+
+    fn unary_inner(&mut self) -> Result<Expr, ParseError> {
         match self.peek() {
             Some(b'-') => {
                 self.pos += 1;
@@ -961,12 +999,16 @@ impl Parser<'_> {
                         }
                     }
                 }
-                let text = std::str::from_utf8(&self.src[s..self.pos]).unwrap();
+                let text = std::str::from_utf8(&self.src[s..self.pos]).unwrap_or("?");
                 Rational::parse_decimal(text)
                     .map(Expr::Num)
                     .ok_or(ParseError {
                         offset: s,
-                        message: format!("malformed number `{text}`"),
+                        message: format!(
+                            "malformed number `{text}` (at most {} digits, exponents within ±{})",
+                            super::rational::MAX_DIGITS,
+                            super::rational::MAX_EXPONENT
+                        ),
                     })
             }
             Some(c) if c.is_ascii_alphabetic() => {
@@ -976,9 +1018,7 @@ impl Parser<'_> {
                 {
                     self.pos += 1;
                 }
-                let name = std::str::from_utf8(&self.src[s..self.pos])
-                    .unwrap()
-                    .to_string();
+                let name = String::from_utf8_lossy(&self.src[s..self.pos]).into_owned();
                 if self.peek() == Some(b'(') {
                     self.pos += 1;
                     if self.peek() == Some(b')') {
@@ -998,7 +1038,7 @@ impl Parser<'_> {
             }
             Some(c) => {
                 self.pos = start.max(self.pos);
-                Err(self.error(&format!("unexpected `{}`", c as char)))
+                Err(self.error(&unexpected(&self.src[self.pos..], c)))
             }
         }
     }
@@ -1084,6 +1124,54 @@ mod tests {
             );
         }
         assert!(p("2^t").diff("t").is_err());
+    }
+
+    #[test]
+    fn nesting_and_length_are_limited() {
+        let deep = format!("{}a{}", "(".repeat(6538), ")".repeat(6538));
+        let e = parse(&deep[..MAX_EXPR_BYTES]).unwrap_err();
+        assert!(e.message.contains("nested more than 64"), "{}", e.message);
+        assert_eq!(e.offset, MAX_NESTING);
+        let sines = format!("{}x{}", "sin(".repeat(966), ")".repeat(966));
+        assert!(parse(&sines).unwrap_err().message.contains("limit is 4000"));
+        let sines = format!("{}x{}", "sin(".repeat(100), ")".repeat(100));
+        assert!(parse(&sines).unwrap_err().message.contains("nested"));
+        assert!(
+            parse(&"-".repeat(1000))
+                .unwrap_err()
+                .message
+                .contains("nested")
+        );
+        assert!(
+            parse(&format!("a{}", "^a".repeat(200)))
+                .unwrap_err()
+                .message
+                .contains("nested")
+        );
+        let ok = format!("{}a{}", "(".repeat(60), ")".repeat(60));
+        assert_eq!(p(&ok), Expr::sym("a"));
+    }
+
+    #[test]
+    fn big_and_tiny_numbers_stay_exact() {
+        assert_eq!(p("1e-10").to_text(), "1/10000000000");
+        assert_eq!(p("1e20*1e20").to_text(), format!("1{}", "0".repeat(40)));
+        assert!(
+            parse("1e5000")
+                .unwrap_err()
+                .message
+                .contains("malformed number")
+        );
+    }
+
+    #[test]
+    fn unexpected_characters_are_named_whole() {
+        assert_eq!(
+            parse("a \u{1} b").unwrap_err().message,
+            "unexpected control character U+0001"
+        );
+        assert_eq!(parse("a é").unwrap_err().message, "unexpected `é`");
+        assert_eq!(parse("\\sin x").unwrap_err().message, "unexpected `\\`");
     }
 
     #[test]

@@ -14,6 +14,7 @@ mod trig;
 pub use expr::{Expr, ParseError, Parsed, SCALAR_FUNCTIONS, parse};
 pub use rational::Rational;
 
+use std::cell::RefCell;
 use std::fs::File;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::OnceLock;
@@ -44,52 +45,149 @@ pub struct Roots {
     pub unsolved: Vec<(Expr, u32)>,
 }
 
-type Job = Box<dyn FnOnce() + Send>;
+/// A job is told why the engine may not run, when it may not; it then calls nothing.
+type Job = Box<dyn FnOnce(Option<&CasError>) + Send>;
+
+/// The worker thread's name: the panic hook and the log writer recognise it.
+const WORKER_NAME: &str = "symbolica";
+
+thread_local! {
+    /// What the engine logged during the current job (on the worker thread only).
+    static ENGINE_LOG: RefCell<String> = const { RefCell::new(String::new()) };
+}
+
+/// Where Symbolica's log goes: the job's buffer on the worker thread, so that a warning becomes
+/// part of that job's error; standard error on any other thread. Never standard output, which
+/// carries `--json`.
+struct EngineLog;
+
+impl std::io::Write for EngineLog {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if std::thread::current().name() == Some(WORKER_NAME) {
+            ENGINE_LOG.with(|l| l.borrow_mut().push_str(&String::from_utf8_lossy(buf)));
+            Ok(buf.len())
+        } else {
+            std::io::stderr().write(buf)
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Installs, before the engine's first call, the process's log subscriber (warnings and
+/// errors, plain text, to [`EngineLog`]) and a panic hook that keeps the worker's panics quiet:
+/// `run` catches them and reports them as errors.
+fn contain_the_engine() {
+    let _ = tracing_subscriber::fmt()
+        .with_writer(|| EngineLog)
+        .with_ansi(false)
+        .without_time()
+        .with_target(false)
+        .with_max_level(tracing_subscriber::filter::LevelFilter::WARN)
+        .try_init();
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if std::thread::current().name() != Some(WORKER_NAME) {
+            previous(info);
+        }
+    }));
+}
+
+/// The engine's own words made into one line of ours: what it logged, else its panic message.
+fn engine_message(log: &str, panic: Option<&str>) -> String {
+    let logged = log
+        .lines()
+        .map(|l| {
+            l.trim()
+                .trim_start_matches("WARN")
+                .trim_start_matches("ERROR")
+                .trim()
+        })
+        .find(|l| !l.is_empty());
+    let text = logged.or(panic).unwrap_or("the engine stopped");
+    if text.contains("infinity") {
+        format!("division by zero ({})", text.trim_end_matches('.'))
+    } else {
+        text.lines().next().unwrap_or(text).to_string()
+    }
+}
 
 static WORKER: OnceLock<Sender<Job>> = OnceLock::new();
 static BUSY_NANOS: AtomicU64 = AtomicU64::new(0);
 static CALLS: AtomicU64 = AtomicU64::new(0);
 
-/// The per-user lock file that serialises mechbook processes.
-pub fn lock_path() -> std::path::PathBuf {
-    let user = std::env::var("USER")
-        .or_else(|_| std::env::var("LOGNAME"))
-        .unwrap_or_else(|_| "user".into());
-    std::env::temp_dir().join(format!("mechbook-symbolica-{user}.lock"))
+/// The per-user lock file that serialises mechbook processes: `mechbook/symbolica.lock` in the
+/// user's cache folder (`$XDG_CACHE_HOME`, else `$HOME/.cache`). That is where Symbolica keeps
+/// its own per-user thread permit (observed: `symbolica/locks/` there), so two processes share
+/// this lock exactly when they would share the permit, whatever their `TMPDIR` or `USER`.
+pub fn lock_path() -> Result<std::path::PathBuf, CasError> {
+    let absolute =
+        |v: Option<std::ffi::OsString>| v.map(std::path::PathBuf::from).filter(|p| p.is_absolute());
+    let cache = absolute(std::env::var_os("XDG_CACHE_HOME"))
+        .or_else(|| absolute(std::env::var_os("HOME")).map(|h| h.join(".cache")))
+        .ok_or_else(|| {
+            CasError(
+                "neither HOME nor XDG_CACHE_HOME names a folder: Symbolica keeps its per-user \
+                 permit in the user's cache folder, so set HOME (or XDG_CACHE_HOME)"
+                    .into(),
+            )
+        })?;
+    Ok(cache.join("mechbook").join("symbolica.lock"))
 }
 
-fn take_process_lock() -> Option<File> {
-    let path = lock_path();
+/// Takes the lock, waiting with a message while another mechbook process holds it. Fails, with
+/// what to do, where the cache folder cannot be written: Symbolica would then abort the process
+/// when it cannot place its permit there.
+fn take_process_lock() -> Result<File, CasError> {
+    let path = lock_path()?;
+    let unwritable = |e: std::io::Error| {
+        CasError(format!(
+            "cannot create {}: {e}. Symbolica keeps its per-user permit in this cache folder \
+             and stops the process when it cannot write there: make the folder writable, or \
+             set XDG_CACHE_HOME to a writable folder",
+            path.display()
+        ))
+    };
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).map_err(unwritable)?;
+    }
     let file = File::options()
         .create(true)
         .truncate(false)
         .write(true)
         .open(&path)
-        .ok()?;
-    match file.try_lock() {
-        Ok(()) => Some(file),
-        Err(_) => {
-            eprintln!(
-                "mechbook: waiting for another mechbook process to finish (Symbolica allows one \
-                 process per user without a licence; lock {})",
-                path.display()
-            );
-            file.lock().ok().map(|_| file)
-        }
+        .map_err(unwritable)?;
+    if file.try_lock().is_err() {
+        eprintln!(
+            "mechbook: waiting for another mechbook process to finish (Symbolica allows one \
+             process per user without a licence; lock {})",
+            path.display()
+        );
+        file.lock().map_err(unwritable)?;
     }
+    Ok(file)
+}
+
+/// Whether the engine can run in this process: the lock is taken (or being waited for) and the
+/// cache folder is writable. Commands call it first, so that a refusal is one clear line.
+pub fn ready() -> Result<(), CasError> {
+    run(|| Ok(()))
 }
 
 fn worker() -> &'static Sender<Job> {
     WORKER.get_or_init(|| {
+        contain_the_engine();
         let (tx, rx) = channel::<Job>();
         std::thread::Builder::new()
-            .name("symbolica".into())
+            .name(WORKER_NAME.into())
             .spawn(move || {
-                // Held until the process exits. Without a lock file (read-only temp dir) we still
-                // run; only the cross-process wait is lost.
-                let _lock = take_process_lock();
+                // Held until the process exits.
+                let lock = take_process_lock();
+                let refusal = lock.as_ref().err();
                 for job in rx {
-                    job();
+                    job(refusal);
                 }
             })
             .expect("spawn the Symbolica worker thread");
@@ -102,25 +200,32 @@ fn run<T: Send + 'static>(
     f: impl FnOnce() -> Result<T, String> + Send + 'static,
 ) -> Result<T, CasError> {
     let (tx, rx) = channel();
-    let job: Job = Box::new(move || {
+    let job: Job = Box::new(move |refusal| {
+        if let Some(e) = refusal {
+            let _ = tx.send((Ok(Err(e.0.clone())), String::new()));
+            return;
+        }
         let start = Instant::now();
+        ENGINE_LOG.with(|l| l.borrow_mut().clear());
         let result = catch_unwind(AssertUnwindSafe(f));
+        let log = ENGINE_LOG.with(|l| std::mem::take(&mut *l.borrow_mut()));
         BUSY_NANOS.fetch_add(start.elapsed().as_nanos() as u64, Ordering::Relaxed);
         CALLS.fetch_add(1, Ordering::Relaxed);
-        let _ = tx.send(result);
+        let _ = tx.send((result, log));
     });
     worker()
         .send(job)
         .map_err(|_| CasError("the Symbolica worker has stopped".into()))?;
     match rx.recv() {
-        Ok(Ok(r)) => r.map_err(CasError),
-        Ok(Err(panic)) => {
+        // A warning means the result is not to be trusted (infinity, a failed conversion).
+        Ok((Ok(Ok(_)), log)) if !log.trim().is_empty() => Err(CasError(engine_message(&log, None))),
+        Ok((Ok(r), _)) => r.map_err(CasError),
+        Ok((Err(panic), log)) => {
             let msg = panic
                 .downcast_ref::<String>()
                 .cloned()
-                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_else(|| "panic".into());
-            Err(CasError(format!("engine panicked: {msg}")))
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()));
+            Err(CasError(engine_message(&log, msg.as_deref())))
         }
         Err(_) => Err(CasError("the Symbolica worker has stopped".into())),
     }

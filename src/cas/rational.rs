@@ -1,92 +1,138 @@
 //! Exact rational numbers for our own expression tree.
 //!
-//! The numbers that appear in these derivations are small (1/2, 11/12, 2/3), so an `i128` pair is
-//! plenty; arithmetic is checked and an overflow is reported instead of wrapping.
+//! Arbitrary precision (malachite, which Symbolica's pure-Rust feature set already builds): a
+//! point at 1e-10 m, a mass of 1e30 kg or a long decimal in `[expect]` stays exact, and no
+//! arithmetic can overflow. Numbers that fit in an `i64` pair, as almost all of these
+//! derivations' numbers do, cross to the engine directly.
 
+use malachite_base::num::arithmetic::traits::{Abs, Pow, Reciprocal, Sign};
+use malachite_base::num::basic::traits::{One, Zero};
+use malachite_base::num::conversion::traits::{IsInteger, RoundingFrom};
+use malachite_base::rounding_modes::RoundingMode;
+use malachite_nz::integer::Integer;
+use malachite_nz::natural::Natural;
+use std::cmp::Ordering;
 use std::fmt;
+use std::str::FromStr;
 
-/// A reduced fraction `num/den` with `den > 0`.
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
-)]
-pub struct Rational {
-    num: i128,
-    den: i128,
-}
+/// The most digits, and the largest decimal exponent, a number in a scene may have. Far beyond
+/// any physical quantity (f64 ends at 1e308), and small enough that every number stays cheap.
+pub const MAX_DIGITS: usize = 1000;
+pub const MAX_EXPONENT: i64 = 1000;
 
-fn gcd(mut a: i128, mut b: i128) -> i128 {
-    a = a.abs();
-    b = b.abs();
-    while b != 0 {
-        (a, b) = (b, a % b);
-    }
-    a
-}
+/// A reduced fraction.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Rational(malachite_q::Rational);
 
 impl Rational {
-    pub const ZERO: Rational = Rational { num: 0, den: 1 };
-    pub const ONE: Rational = Rational { num: 1, den: 1 };
+    pub const ZERO: Rational = Rational(malachite_q::Rational::ZERO);
+    pub const ONE: Rational = Rational(malachite_q::Rational::ONE);
 
     /// `num/den`, reduced. `None` when `den` is zero.
     pub fn new(num: i128, den: i128) -> Option<Rational> {
         if den == 0 {
             return None;
         }
-        let g = gcd(num, den).max(1);
-        let sign = if den < 0 { -1 } else { 1 };
-        Some(Rational {
-            num: sign * num / g,
-            den: sign * den / g,
-        })
+        Some(Rational(malachite_q::Rational::from_integers(
+            Integer::from(num),
+            Integer::from(den),
+        )))
     }
 
     pub fn int(n: i128) -> Rational {
-        Rational { num: n, den: 1 }
+        Rational(malachite_q::Rational::from(n))
     }
 
-    pub fn numer(self) -> i128 {
-        self.num
+    pub fn is_zero(&self) -> bool {
+        self.0 == 0u32
     }
 
-    pub fn denom(self) -> i128 {
-        self.den
+    pub fn is_negative(&self) -> bool {
+        self.0.sign() == Ordering::Less
     }
 
-    pub fn is_zero(self) -> bool {
-        self.num == 0
+    pub fn is_positive(&self) -> bool {
+        self.0.sign() == Ordering::Greater
     }
 
-    pub fn is_integer(self) -> bool {
-        self.den == 1
+    pub fn is_integer(&self) -> bool {
+        (&self.0).is_integer()
     }
 
-    pub fn to_f64(self) -> f64 {
-        self.num as f64 / self.den as f64
+    /// The value as an `i64` when it is an integer that fits.
+    pub fn to_i64(&self) -> Option<i64> {
+        i64::try_from(&self.0).ok()
     }
 
-    pub fn negated(self) -> Rational {
-        Rational {
-            num: -self.num,
-            den: self.den,
+    /// The numerator, with the sign, and the (positive) denominator, as `i64`s when both fit.
+    pub fn to_i64_pair(&self) -> Option<(i64, i64)> {
+        let (n, d) = self.0.numerator_and_denominator_ref();
+        let n = i64::try_from(n).ok()?;
+        let d = i64::try_from(d).ok()?;
+        Some((if self.is_negative() { -n } else { n }, d))
+    }
+
+    /// |numerator| and the denominator.
+    pub fn abs_parts(&self) -> (Rational, Rational) {
+        let (n, d) = self.0.to_numerator_and_denominator();
+        (Rational::natural(n), Rational::natural(d))
+    }
+
+    fn natural(n: Natural) -> Rational {
+        Rational(malachite_q::Rational::from(n))
+    }
+
+    /// The limbs of |numerator| and of the denominator, least significant first, in base 2^32:
+    /// how a large number is handed to the engine without text.
+    pub fn abs_parts_base_2_32(&self) -> (Vec<u32>, Vec<u32>) {
+        let halves = |n: &Natural| {
+            n.to_limbs_asc()
+                .into_iter()
+                .flat_map(|l| [l as u32, (l >> 32) as u32])
+                .collect()
+        };
+        let (n, d) = self.0.numerator_and_denominator_ref();
+        (halves(n), halves(d))
+    }
+
+    /// The nearest f64 (beyond its range: ±f64::MAX, or a signed zero).
+    pub fn to_f64(&self) -> f64 {
+        // Both parts exact in f64: one division, correctly rounded, as it always was.
+        if let Some((n, d)) = self.to_i64_pair()
+            && n.unsigned_abs() <= 1 << 53
+            && d <= 1 << 53
+        {
+            return n as f64 / d as f64;
         }
+        f64::rounding_from(&self.0, RoundingMode::Nearest).0
     }
 
-    pub fn checked_mul(self, o: Rational) -> Option<Rational> {
-        Rational::new(self.num.checked_mul(o.num)?, self.den.checked_mul(o.den)?)
+    pub fn negated(&self) -> Rational {
+        Rational(-&self.0)
     }
 
-    pub fn checked_add(self, o: Rational) -> Option<Rational> {
-        let num = self
-            .num
-            .checked_mul(o.den)?
-            .checked_add(o.num.checked_mul(self.den)?)?;
-        Rational::new(num, self.den.checked_mul(o.den)?)
+    pub fn abs(&self) -> Rational {
+        Rational((&self.0).abs())
     }
 
-    /// Parses a decimal such as `12`, `0.25` or `1e-3` exactly.
+    /// 1/x, `None` for zero.
+    pub fn recip(&self) -> Option<Rational> {
+        (!self.is_zero()).then(|| Rational((&self.0).reciprocal()))
+    }
+
+    pub fn add(&self, o: &Rational) -> Rational {
+        Rational(&self.0 + &o.0)
+    }
+
+    pub fn mul(&self, o: &Rational) -> Rational {
+        Rational(&self.0 * &o.0)
+    }
+
+    /// Parses a decimal such as `12`, `0.25` or `1e-3` exactly; `None` when it is not one, or
+    /// has more than [`MAX_DIGITS`] digits or an exponent beyond ±[`MAX_EXPONENT`].
     pub fn parse_decimal(text: &str) -> Option<Rational> {
         let (mantissa, exponent) = match text.find(['e', 'E']) {
-            Some(i) => (&text[..i], text[i + 1..].parse::<i32>().ok()?),
+            Some(i) => (&text[..i], text[i + 1..].parse::<i64>().ok()?),
             None => (text, 0),
         };
         let (int_part, frac_part) = match mantissa.find('.') {
@@ -97,27 +143,38 @@ impl Rational {
             return None;
         }
         let digits = format!("{int_part}{frac_part}");
-        if !digits.chars().all(|c| c.is_ascii_digit()) {
+        if !digits.chars().all(|c| c.is_ascii_digit())
+            || digits.len() > MAX_DIGITS
+            || exponent.abs() > MAX_EXPONENT
+        {
             return None;
         }
-        let num: i128 = digits.parse().ok()?;
-        let scale = exponent - frac_part.len() as i32;
-        let ten = 10i128.checked_pow(scale.unsigned_abs())?;
-        if scale >= 0 {
-            Rational::new(num.checked_mul(ten)?, 1)
-        } else {
-            Rational::new(num, ten)
-        }
+        let num = Natural::from_str(&digits).ok()?;
+        let scale = exponent - frac_part.len() as i64;
+        let ten = malachite_q::Rational::from(10u32).pow(scale);
+        Some(Rational(malachite_q::Rational::from(num) * ten))
     }
 }
 
 impl fmt::Display for Rational {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.den == 1 {
-            write!(f, "{}", self.num)
-        } else {
-            write!(f, "{}/{}", self.num, self.den)
-        }
+        fmt::Display::fmt(&self.0, f)
+    }
+}
+
+/// Stored as its text (`-3/4`), so the cache reads back any size.
+impl serde::Serialize for Rational {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.0.to_string())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Rational {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Rational, D::Error> {
+        let text = String::deserialize(d)?;
+        malachite_q::Rational::from_str(&text)
+            .map(Rational)
+            .map_err(|_| serde::de::Error::custom(format!("not a rational: `{text}`")))
     }
 }
 
@@ -137,14 +194,46 @@ mod tests {
         assert_eq!(Rational::parse_decimal("1e-3"), Rational::new(1, 1000));
         assert_eq!(Rational::parse_decimal("2.5e1"), Rational::new(25, 1));
         assert_eq!(Rational::parse_decimal("."), None);
+        // Beyond i128: exact all the same.
+        let tiny = Rational::parse_decimal("1e-40").unwrap();
+        assert_eq!(tiny.to_string(), format!("1/1{}", "0".repeat(40)));
+        assert_eq!(tiny.to_f64(), 1e-40);
+        assert_eq!(Rational::parse_decimal("1e300").unwrap().to_f64(), 1e300);
+        assert_eq!(Rational::parse_decimal("1e1001"), None);
+        assert_eq!(Rational::parse_decimal(&"9".repeat(1001)), None);
     }
 
     #[test]
-    fn checked_arithmetic() {
+    fn arithmetic_never_overflows() {
         let h = Rational::new(1, 2).unwrap();
         let t = Rational::new(1, 3).unwrap();
-        assert_eq!(h.checked_add(t), Rational::new(5, 6));
-        assert_eq!(h.checked_mul(t), Rational::new(1, 6));
-        assert_eq!(Rational::int(i128::MAX).checked_mul(Rational::int(2)), None);
+        assert_eq!(h.add(&t), Rational::new(5, 6).unwrap());
+        assert_eq!(h.mul(&t), Rational::new(1, 6).unwrap());
+        let big = Rational::int(i128::MAX).mul(&Rational::int(i128::MAX));
+        assert_eq!(
+            big.mul(&Rational::int(2)).to_f64(),
+            2.0 * (i128::MAX as f64).powi(2)
+        );
+        assert_eq!(big.to_i64(), None);
+        assert_eq!(Rational::int(-7).to_i64_pair(), Some((-7, 1)));
+    }
+
+    #[test]
+    fn large_parts_split_into_base_2_32_limbs() {
+        let x = Rational::parse_decimal("1e20").unwrap().negated();
+        let (n, d) = x.abs_parts_base_2_32();
+        let value: u128 = n
+            .iter()
+            .rev()
+            .fold(0, |acc, &l| (acc << 32) | u128::from(l));
+        assert_eq!(value, 100_000_000_000_000_000_000);
+        assert_eq!(d.first(), Some(&1));
+    }
+
+    #[test]
+    fn round_trips_through_serde() {
+        let x = Rational::parse_decimal("1.5e-30").unwrap().negated();
+        let json = serde_json::to_string(&x).unwrap();
+        assert_eq!(serde_json::from_str::<Rational>(&json).unwrap(), x);
     }
 }

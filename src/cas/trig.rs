@@ -36,8 +36,8 @@ fn split_integer_factor(e: &Expr) -> (i64, Expr) {
     match e {
         Expr::Num(r) if r.is_zero() => (0, Expr::int(0)),
         Expr::Mul(v) => match v.first() {
-            Some(Expr::Num(r)) if r.is_integer() && r.numer().abs() <= 12 => {
-                (r.numer() as i64, Expr::mul(v[1..].to_vec()))
+            Some(Expr::Num(r)) if r.to_i64().is_some_and(|k| k.abs() <= 12) => {
+                (r.to_i64().unwrap_or(1), Expr::mul(v[1..].to_vec()))
             }
             _ => (1, e.clone()),
         },
@@ -100,10 +100,9 @@ fn reduce_powers(e: &Expr, from: &str, to: &str) -> Expr {
             let base = rec(a);
             if let (Expr::Call(name, args), Expr::Num(n)) = (&base, b.as_ref())
                 && name == from
-                && n.is_integer()
-                && n.numer() >= 2
+                && let Some(k) = n.to_i64().map(i128::from)
+                && k >= 2
             {
-                let k = n.numer();
                 let other2 = Expr::pow(Expr::call(to, args[0].clone()), Expr::int(2));
                 return Expr::mul(vec![
                     Expr::pow(base.clone(), Expr::int(k % 2)),

@@ -244,7 +244,7 @@ pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, String> {
         }
         Expr::Pow(b, x) => match (evaluate(b, env)?, evaluate(x, env)?) {
             (Scalar(b), Scalar(x)) => Scalar(Expr::pow(b, x)),
-            (Matrix(_), Scalar(Expr::Num(n))) if n.numer() == -1 && n.denom() == 1 => {
+            (Matrix(_), Scalar(Expr::Num(n))) if n.to_i64() == Some(-1) => {
                 return Err("matrix inverses are not supported in claims".into());
             }
             (b, x) => return Err(format!("cannot raise {} to {}", b.kind(), x.kind())),
@@ -267,10 +267,10 @@ pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, String> {
             let Expr::Num(n) = i.as_ref() else {
                 return Err("an index is a literal 0, 1 or 2".into());
             };
-            if !n.is_integer() || !(0..3).contains(&n.numer()) {
+            let Some(k) = n.to_i64().filter(|k| (0..3).contains(k)) else {
                 return Err("an index is a literal 0, 1 or 2".into());
-            }
-            let k = n.numer() as usize;
+            };
+            let k = k as usize;
             match evaluate(a, env)? {
                 Vector(v) => Scalar(v[k].clone()),
                 Matrix(m) => Vector(m[k].clone()),

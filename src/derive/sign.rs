@@ -35,7 +35,7 @@ impl Sign {
 /// The sign of one term of an expanded polynomial in positive symbols, if it is plain.
 fn term_sign(t: &Expr) -> Option<i8> {
     match t {
-        Expr::Num(r) if r.numer() != 0 => Some(if r.numer() > 0 { 1 } else { -1 }),
+        Expr::Num(r) if !r.is_zero() => Some(if r.is_positive() { 1 } else { -1 }),
         // Every symbol is positive, π included.
         Expr::Sym(_) => Some(1),
         // A positive base to any real power is positive.

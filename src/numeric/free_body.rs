@@ -122,6 +122,37 @@ pub fn units(i: &Moments, w0: &Vector3<f64>) -> (Moments, Vector3<f64>, f64) {
     (Moments(i.0.map(|x| x / c)), w0 / s, s)
 }
 
+/// Why the exact solution cannot be trusted for this start, when it cannot: ω(0) so close to
+/// the intermediate axis that the squares of its other components underflow, so that 1 − m
+/// (the distance from the separatrix) is lost and the motion would be taken for the separatrix
+/// itself. In double precision that happens below about 1.5e-154 of |ω|.
+pub fn beyond_double_precision(i: &Moments, w0: &Vector3<f64>) -> Option<String> {
+    let (i, w, _) = units(i, w0);
+    let mut order = [0usize, 1, 2];
+    order.sort_by(|a, b| i.0[*a].total_cmp(&i.0[*b]));
+    let [i1, i2, i3] = order.map(|k| i.0[k]);
+    if i1 == i2 || i2 == i3 {
+        return None;
+    }
+    let [w1, w2, w3] = order.map(|k| w[k]);
+    let t1 = i1 * (i2 - i1) * w1 * w1;
+    let t3 = i3 * (i3 - i2) * w3 * w3;
+    let lost = |w: f64, t: f64| w != 0.0 && t < f64::MIN_POSITIVE;
+    (w2 != 0.0
+        && (lost(w1, t1) || lost(w3, t3))
+        && t1 < f64::MIN_POSITIVE
+        && t3 < f64::MIN_POSITIVE)
+        .then(|| {
+            format!(
+                "ω(0) = ({:e}, {:e}, {:e}) lies within 1.5e-154 of the intermediate axis: the \
+                 squares of its small components underflow, so its distance from the separatrix \
+                 (1 − m) is beyond double precision and the exact solution cannot follow it; \
+                 give those components as 0 (the separatrix) or larger",
+                w0.x, w0.y, w0.z
+            )
+        })
+}
+
 impl ExactSolution {
     pub fn new(i: &Moments, w0: Vector3<f64>) -> ExactSolution {
         let (i, w0, rate) = units(i, &w0);

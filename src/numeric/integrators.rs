@@ -125,7 +125,19 @@ fn deriv(i: &Moments, s: &State) -> State {
     }
 }
 
-/// Integrates from ω0 (attitude 𝟙 at t = 0) to `t_end`, keeping `samples` trace points.
+/// The most steps one integration may take unless told otherwise: about a second of RK4 here,
+/// ten times the largest run the shipped lectures make.
+pub const MAX_STEPS: u64 = 10_000_000;
+
+/// The smallest Dormand–Prince tolerance: a step's error cannot be held below a few ε.
+pub const MIN_TOLERANCE: f64 = 1e-15;
+
+/// The largest phase (in units where the largest moment and |ω(0)| are 1) at which the exact
+/// solution still places the motion within its period: beyond 2⁵², t·λ has no fractional bits.
+const MAX_PHASE: f64 = 4_503_599_627_370_496.0;
+
+/// Integrates from ω0 (attitude 𝟙 at t = 0) to `t_end`, keeping `samples` trace points, in at
+/// most [`MAX_STEPS`] steps.
 pub fn integrate(
     i: &Moments,
     w0: Vector3<f64>,
@@ -133,6 +145,20 @@ pub fn integrate(
     method: Method,
     resolution: Resolution,
     samples: usize,
+) -> Result<Run, String> {
+    integrate_capped(i, w0, t_end, method, resolution, samples, MAX_STEPS)
+}
+
+/// [`integrate`] with a cap of `max_steps` steps: a request that needs more is refused before
+/// it starts (fixed steps) or stopped when it reaches the cap (Dormand–Prince).
+pub fn integrate_capped(
+    i: &Moments,
+    w0: Vector3<f64>,
+    t_end: f64,
+    method: Method,
+    resolution: Resolution,
+    samples: usize,
+    max_steps: u64,
 ) -> Result<Run, String> {
     if !(t_end.is_finite() && t_end >= 0.0) {
         return Err(format!("the end time {t_end} must be a finite number ≥ 0"));
@@ -152,6 +178,22 @@ pub fn integrate(
                 "the tolerance {t} must lie strictly between 0 and 1"
             ));
         }
+        Resolution::Tolerance(t) if t < MIN_TOLERANCE => {
+            return Err(format!(
+                "the tolerance {t} is below what double precision can hold a step to; use \
+                 {MIN_TOLERANCE:e} or more"
+            ));
+        }
+        Resolution::Step(h) if method != Method::Exact => {
+            let needed = (t_end / h).ceil();
+            if needed > max_steps as f64 {
+                return Err(format!(
+                    "T / step = {t_end:e} / {h:e} needs {needed:.3e} steps, more than the cap of \
+                     {max_steps}: take a larger step, a shorter T, or raise the cap (spin's \
+                     --max-steps)"
+                ));
+            }
+        }
         _ => {}
     }
     let start = Instant::now();
@@ -159,11 +201,18 @@ pub fn integrate(
     // I ω² neither overflows nor underflows; every drift and error is relative, so unchanged.
     let (units_i, units_w0, rate) = super::free_body::units(i, &w0);
     let (i, w0, t_end) = (&units_i, units_w0, t_end * rate);
+    if method == Method::Exact && t_end > MAX_PHASE {
+        return Err(format!(
+            "T = {:e} is about {t_end:.1e} radians of motion, beyond the 2^52 at which double \
+             precision can still place the motion within its period; use a shorter T",
+            t_end / rate
+        ));
+    }
     let step = |r| step_of(r, method).map(|h| h * rate);
     let mut run = match method {
         Method::Exact => exact(i, w0, t_end, samples),
         Method::Rk4 => rk4(i, w0, t_end, step(resolution)?, samples),
-        Method::Dopri => dopri(i, w0, t_end, tol_of(resolution)?, samples),
+        Method::Dopri => dopri(i, w0, t_end, tol_of(resolution)?, samples, max_steps)?,
         Method::Splitting | Method::Splitting4 => {
             splitting(i, w0, t_end, step(resolution)?, method, samples)
         }
@@ -281,7 +330,14 @@ fn finish(
 
 /// Dormand–Prince 5(4) with FSAL, local extrapolation and the standard step controller
 /// (Hairer, Nørsett & Wanner, Solving ODE I, II.4–5): error per step ≤ tol·(1 + |y|).
-fn dopri(i: &Moments, w0: Vector3<f64>, t_end: f64, tol: f64, samples: usize) -> Run {
+fn dopri(
+    i: &Moments,
+    w0: Vector3<f64>,
+    t_end: f64,
+    tol: f64,
+    samples: usize,
+    max_steps: u64,
+) -> Result<Run, String> {
     const A: [[f64; 6]; 6] = [
         [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
@@ -335,8 +391,24 @@ fn dopri(i: &Moments, w0: Vector3<f64>, t_end: f64, tol: f64, samples: usize) ->
     let mut h = (0.01 * tol.powf(0.2) / scale).min(t_end.max(f64::MIN_POSITIVE));
     let mut steps = 0u64;
     let mut next_sample = 1usize;
+    let mut tries = 0u64;
     while t < t_end {
         h = h.min(t_end - t);
+        tries += 1;
+        if tries > max_steps {
+            return Err(format!(
+                "Dormand–Prince at tolerance {tol:e} reached the cap of {max_steps} steps at \
+                 {:.1}% of T: loosen the tolerance, shorten T, or raise the cap (spin's \
+                 --max-steps)",
+                100.0 * t / t_end
+            ));
+        }
+        if t + h == t || !h.is_finite() {
+            return Err(format!(
+                "Dormand–Prince at tolerance {tol:e} cannot advance past t = {t:e} (in scaled \
+                 units): the step fell below rounding; loosen the tolerance"
+            ));
+        }
         let mut k = [k1; 7];
         for st in 1..7 {
             let mut y = s;
@@ -381,7 +453,7 @@ fn dopri(i: &Moments, w0: Vector3<f64>, t_end: f64, tol: f64, samples: usize) ->
             k[st] = deriv(i, &y);
         }
     }
-    finish(Method::Dopri, s, steps, rhs, drift, trace, samples)
+    Ok(finish(Method::Dopri, s, steps, rhs, drift, trace, samples))
 }
 
 /// The exact flow of H_a = L_a²/(2 I_a) for time τ: with θ = L_a τ / I_a, L turns by −θ about
@@ -553,6 +625,23 @@ mod tests {
         assert!(e(Method::Rk4, Resolution::Step(f64::NAN)).contains("positive"));
         assert!(e(Method::Dopri, Resolution::Step(0.1)).contains("--tol"));
         assert!(e(Method::Dopri, Resolution::Tolerance(0.0)).contains("between"));
+        assert!(e(Method::Dopri, Resolution::Tolerance(1e-300)).contains("below"));
+        assert!(e(Method::Rk4, Resolution::Step(1e-300)).contains("needs 1.000e300 steps"));
+        let long = |m, r| integrate(&i, w0, 1e300, m, r, 0).unwrap_err();
+        for m in [Method::Rk4, Method::Splitting, Method::Splitting4] {
+            assert!(long(m, Resolution::Step(0.01)).contains("more than the cap"));
+        }
+        assert!(long(Method::Exact, Resolution::Step(1.0)).contains("2^52"));
+        let capped = integrate_capped(
+            &i,
+            w0,
+            1e6,
+            Method::Dopri,
+            Resolution::Tolerance(1e-9),
+            0,
+            1000,
+        );
+        assert!(capped.unwrap_err().contains("cap of 1000 steps"));
         assert!(
             integrate(
                 &i,

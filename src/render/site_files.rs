@@ -79,15 +79,6 @@ struct LectureView {
     pages: Vec<PageLink>,
 }
 
-/// "3/4" -> "lecture-3-4".
-fn lecture_slug(name: &str) -> String {
-    let clean: String = name
-        .chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
-        .collect();
-    format!("lecture-{}", clean.trim_matches('-'))
-}
-
 fn templates(dir: Option<&Path>) -> Result<(tera::Tera, String), String> {
     let mut tera = tera::Tera::default();
     let mut css = String::new();
@@ -158,7 +149,7 @@ pub fn site_files(
             .push(i);
     }
     for (name, idx) in &by_lecture {
-        let slug = lecture_slug(name);
+        let slug = crate::scene::lecture_slug(name);
         for instructor in [false, true] {
             let mut ctx = tera::Context::new();
             ctx.insert("site", course);

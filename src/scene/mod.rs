@@ -22,6 +22,9 @@ pub struct Scene {
     pub source: PathBuf,
     /// A hash of the file's bytes: with the fidelity and the program, the key of the build cache.
     pub content_hash: u64,
+    /// Where `id` and `notes.lecture` are written (line, column), for errors found across files.
+    pub id_at: (usize, usize),
+    pub lecture_at: (usize, usize),
     pub notes: NotesRef,
     /// Symbol name -> its meaning.
     pub symbols: BTreeMap<String, String>,
@@ -407,24 +410,56 @@ pub const CLAIM_FUNCTIONS: &[&str] = &[
 ];
 const RESERVED: &[&str] = &["pi"];
 
+/// Ids that would collide with the site's own files and folders (compared without case, as
+/// some file systems do).
+pub const RESERVED_IDS: &[&str] = &["index", "plots", "handouts", "export", "style"];
+
+/// The longest id or lecture name: file names are made from them with up to ~40 more
+/// characters, and file systems allow 255 bytes.
+pub const MAX_NAME: usize = 64;
+
+/// "3/4" -> "lecture-3-4": the file name of a lecture's handouts.
+pub fn lecture_slug(name: &str) -> String {
+    let clean: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect();
+    format!("lecture-{}", clean.trim_matches('-'))
+}
+
 impl Scene {
+    /// Reads and parses a scene file: a regular file of at most [`MAX_SCENE_BYTES`], in UTF-8.
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        let bytes = read_scene_file(path).map_err(|message| SceneError {
             path: path.to_path_buf(),
-            line: 0,
-            column: 0,
+            line: 1,
+            column: 1,
             field: String::new(),
-            message: format!("cannot read the scene file: {e}"),
+            message,
         })?;
-        Scene::parse(&text, path)
+        match std::str::from_utf8(&bytes) {
+            Ok(text) => Scene::parse(text, path),
+            Err(e) => {
+                let valid = std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or("");
+                let loc = Locator { path, text: valid };
+                Err(loc.error(
+                    valid.len(),
+                    "",
+                    format!(
+                        "invalid UTF-8 (byte 0x{:02x} at byte offset {}): save the file as UTF-8",
+                        bytes[e.valid_up_to()],
+                        e.valid_up_to()
+                    ),
+                ))
+            }
+        }
     }
 
     pub fn parse(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let loc = Locator { path, text };
         let raw: RawScene = toml::from_str(text).map_err(|e| {
             let offset = e.span().map(|s| s.start).unwrap_or(0);
-            let message = e.message().trim().to_string();
-            loc.error(offset, "", message)
+            toml_error(&loc, offset, e.message())
         })?;
         Validator { loc: &loc }.scene(raw)
     }
@@ -432,6 +467,85 @@ impl Scene {
 
 struct Validator<'a> {
     loc: &'a Locator<'a>,
+}
+
+/// The largest scene file read: a hundred times the largest shipped scene.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+
+/// A scene file's bytes: only a regular file (never a device or a FIFO, which could block or
+/// never end), and at most [`MAX_SCENE_BYTES`].
+fn read_scene_file(path: &Path) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read the scene file: {e}"))?;
+    if !meta.is_file() {
+        return Err("not a regular file: a scene is a .toml file".into());
+    }
+    if meta.len() > MAX_SCENE_BYTES {
+        return Err(format!(
+            "the file has {} bytes; a scene file has at most {MAX_SCENE_BYTES}",
+            meta.len()
+        ));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_SCENE_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(|e| format!("cannot read the scene file: {e}"))?;
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
+        return Err(format!("a scene file has at most {MAX_SCENE_BYTES} bytes"));
+    }
+    Ok(bytes)
+}
+
+/// A TOML error, located, with the field it is about when the message does not say, and a
+/// message where the TOML reader gives none (a control character).
+fn toml_error(loc: &Locator, offset: usize, message: &str) -> SceneError {
+    let message = message.trim();
+    if message.is_empty() || message.contains("invalid comment character") {
+        if let Some((at, c)) = loc
+            .text
+            .char_indices()
+            .find(|(_, c)| c.is_control() && !matches!(c, '\t' | '\n' | '\r'))
+        {
+            return loc.error(
+                at,
+                "",
+                format!(
+                    "control character U+{:04X} is not allowed anywhere in TOML, comments \
+                     included: delete it",
+                    c as u32
+                ),
+            );
+        }
+        return loc.error(offset, "", "the TOML reader rejected this");
+    }
+    let field = if message.starts_with("invalid type") || message.starts_with("invalid value") {
+        key_at(loc.text, offset)
+    } else {
+        String::new()
+    };
+    loc.error(offset, &field, message)
+}
+
+/// The dotted key written on the line of `offset` (`body.size`), with its table's name.
+fn key_at(text: &str, offset: usize) -> String {
+    let offset = offset.min(text.len());
+    let before = &text[..offset];
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let line = text[line_start..].lines().next().unwrap_or("");
+    let key = line
+        .split_once('=')
+        .map(|(k, _)| k.trim().trim_matches('"').to_string())
+        .filter(|k| !k.is_empty() && !k.contains(['[', '{', '#']));
+    let table = before[..line_start].lines().rev().find_map(|l| {
+        let l = l.trim();
+        l.starts_with('[')
+            .then(|| l.trim_matches(['[', ']']).trim().to_string())
+    });
+    match (table, key) {
+        (Some(t), Some(k)) => format!("{t}.{k}"),
+        (None, Some(k)) => k,
+        _ => String::new(),
+    }
 }
 
 /// The byte offset of a string's first character inside its quotes.
@@ -538,11 +652,48 @@ impl Validator<'_> {
     }
 
     fn scene(&self, raw: RawScene) -> Result<Scene, SceneError> {
-        if !is_identifier(&raw.id.get_ref().replace('-', "_")) {
+        let id = raw.id.get_ref();
+        if !is_identifier(&id.replace('-', "_")) {
             return Err(self.err(
-                raw.id.span().start,
+                content_start(&raw.id),
                 "id",
-                "an id is letters, digits, `-` and `_`",
+                "an id is letters, digits, `-` and `_`, starting with a letter",
+            ));
+        }
+        if id.len() > MAX_NAME {
+            return Err(self.err(
+                content_start(&raw.id),
+                "id",
+                format!(
+                    "an id of {} characters; the limit is {MAX_NAME}, so that every file name \
+                     made from it fits any file system",
+                    id.len()
+                ),
+            ));
+        }
+        if RESERVED_IDS.contains(&id.to_ascii_lowercase().as_str()) {
+            return Err(self.err(
+                content_start(&raw.id),
+                "id",
+                format!(
+                    "`{id}` is reserved for the site's own {}; choose another id",
+                    if id.eq_ignore_ascii_case("index") {
+                        "index page"
+                    } else {
+                        "folder"
+                    }
+                ),
+            ));
+        }
+        let lecture = raw.notes.lecture.get_ref();
+        if lecture.len() > MAX_NAME || !lecture.chars().any(|c| c.is_ascii_alphanumeric()) {
+            return Err(self.err(
+                content_start(&raw.notes.lecture),
+                "notes.lecture",
+                format!(
+                    "a lecture name has a letter or digit and at most {MAX_NAME} characters, \
+                     such as \"3/4\""
+                ),
             ));
         }
 
@@ -818,12 +969,14 @@ impl Validator<'_> {
         }
 
         Ok(Scene {
+            id_at: self.loc.line_col(content_start(&raw.id)),
+            lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
             id: raw.id.into_inner(),
             title: raw.title,
             source: self.loc.path.to_path_buf(),
             content_hash: content_hash(self.loc.text.as_bytes()),
             notes: NotesRef {
-                lecture: raw.notes.lecture,
+                lecture: raw.notes.lecture.into_inner(),
                 section: raw.notes.section,
                 equations: raw.notes.equations,
             },

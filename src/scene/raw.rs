@@ -46,7 +46,7 @@ impl RawScene {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawNotes {
-    pub lecture: String,
+    pub lecture: Text,
     #[serde(default)]
     pub section: String,
     #[serde(default)]

@@ -7,8 +7,8 @@ use super::SiteError;
 use crate::numeric::fidelity::Fidelity;
 use std::path::{Path, PathBuf};
 
-/// Bumped when the entry format changes.
-const FORMAT: u64 = 1;
+/// Bumped when the entry format changes (2: rationals of any size, stored as text).
+const FORMAT: u64 = 2;
 
 pub struct Cache {
     dir: PathBuf,

@@ -53,7 +53,7 @@ fn a_missing_file_is_named() {
     let out = mechbook(&["derive", "lectures/no-such-scene.toml"]);
     assert_eq!(out.status.code(), Some(1));
     assert!(
-        stderr(&out).contains("lectures/no-such-scene.toml:0:0: cannot read the scene file"),
+        stderr(&out).contains("lectures/no-such-scene.toml:1:1: cannot read the scene file"),
         "{}",
         stderr(&out)
     );

@@ -7,11 +7,13 @@ use std::time::Duration;
 
 #[test]
 fn a_second_process_waits_for_the_lock_with_a_message() {
+    let path = mechbook::cas::lock_path().unwrap();
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
     let lock = std::fs::File::options()
         .create(true)
         .truncate(false)
         .write(true)
-        .open(mechbook::cas::lock_path())
+        .open(&path)
         .unwrap();
     lock.lock().unwrap();
     let mut child = Command::new(env!("CARGO_BIN_EXE_mechbook"))

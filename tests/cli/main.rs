@@ -7,6 +7,7 @@ mod bad_input;
 mod build;
 mod check;
 mod lock;
+mod output;
 mod snapshots;
 mod spin;
 
