@@ -239,20 +239,21 @@ pub fn from_cache(scene: Scene, bytes: &[u8]) -> Option<SceneReport> {
 pub const MAX_DEPTH: usize = 16;
 
 /// Every `.toml` scene under the given folders, plus the files named directly (taken as given,
-/// so a missing or unreadable one is reported), sorted and without duplicates. Symbolic links
-/// are followed, but a folder already visited (a link loop) is not entered twice, and only
-/// regular files are taken.
+/// so a missing or unreadable one is reported), sorted and without duplicates. A symbolic link
+/// to a folder is followed only when the folder lies inside the one being searched and was not
+/// visited yet (so `up -> ..` or `here -> .` add nothing); only regular files are taken, and
+/// the walk goes at most [`MAX_DEPTH`] folders deep.
 pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
     use std::collections::BTreeSet;
-    use std::os::unix::fs::MetadataExt;
     fn collect(
         dir: &Path,
+        root: &Path,
         depth: usize,
-        seen: &mut BTreeSet<(u64, u64)>,
+        seen: &mut BTreeSet<PathBuf>,
         out: &mut Vec<PathBuf>,
     ) -> std::io::Result<()> {
-        let meta = std::fs::metadata(dir)?;
-        if depth > MAX_DEPTH || !seen.insert((meta.dev(), meta.ino())) {
+        let real = dir.canonicalize()?;
+        if depth > MAX_DEPTH || !real.starts_with(root) || !seen.insert(real) {
             return Ok(());
         }
         for entry in std::fs::read_dir(dir)? {
@@ -262,7 +263,7 @@ pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
                 continue;
             };
             if meta.is_dir() {
-                collect(&path, depth + 1, seen, out)?;
+                collect(&path, root, depth + 1, seen, out)?;
             } else if meta.is_file() && path.extension().is_some_and(|x| x == "toml") {
                 out.push(path);
             }
@@ -273,7 +274,7 @@ pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
     let mut seen = BTreeSet::new();
     for p in paths {
         if p.is_dir() {
-            collect(p, 0, &mut seen, &mut out)?;
+            collect(p, &p.canonicalize()?, 0, &mut seen, &mut out)?;
         } else {
             out.push(p.clone());
         }

@@ -421,6 +421,31 @@ pub fn check_quantities(
     Ok(out)
 }
 
+/// Exact principal moments that are distinct but equal at double precision (4e30 + 9e-20 and
+/// 4e30 + 1e-20) are one eigenspace to any numeric solver: merge them as it does, with the
+/// same tolerance, so that the two are compared like with like. Two axes merge into the plane
+/// they span (its normal is their cross product); anything larger is every direction.
+fn merge_equal_in_f64(
+    exact: Vec<(f64, u32, Option<Vector3<f64>>)>,
+) -> Vec<(f64, u32, Option<Vector3<f64>>)> {
+    use crate::numeric::eigen::DEGENERACY_TOLERANCE;
+    let scale = exact.iter().fold(0.0f64, |m, e| m.max(e.0.abs()));
+    let mut out: Vec<(f64, u32, Option<Vector3<f64>>)> = Vec::new();
+    for e in exact {
+        match out.last_mut() {
+            Some(last) if (e.0 - last.0).abs() <= DEGENERACY_TOLERANCE * scale => {
+                let direction = match (last.1, e.1, last.2, e.2) {
+                    (1, 1, Some(u), Some(v)) => Some(u.cross(&v)),
+                    _ => None,
+                };
+                *last = (last.0, last.1 + e.1, direction);
+            }
+            _ => out.push(e),
+        }
+    }
+    out
+}
+
 pub fn check_eigen(
     scene: &Scene,
     d: &Derivation,
@@ -470,6 +495,7 @@ pub fn check_eigen(
         exact.push((s.value.eval(&env)?, s.multiplicity, direction));
     }
     exact.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let exact = merge_equal_in_f64(exact);
     let structure = exact.len() == numeric.len()
         && exact
             .iter()

@@ -180,7 +180,7 @@ pub fn integrate_capped(
         }
         Resolution::Tolerance(t) if t < MIN_TOLERANCE => {
             return Err(format!(
-                "the tolerance {t} is below what double precision can hold a step to; use \
+                "the tolerance {t:e} is below what double precision can hold a step to; use \
                  {MIN_TOLERANCE:e} or more"
             ));
         }
@@ -201,10 +201,21 @@ pub fn integrate_capped(
     // I ω² neither overflows nor underflows; every drift and error is relative, so unchanged.
     let (units_i, units_w0, rate) = super::free_body::units(i, &w0);
     let (i, w0, t_end) = (&units_i, units_w0, t_end * rate);
-    if method == Method::Exact && t_end > MAX_PHASE {
+    if t_end > MAX_PHASE {
         return Err(format!(
-            "T = {:e} is about {t_end:.1e} radians of motion, beyond the 2^52 at which double \
-             precision can still place the motion within its period; use a shorter T",
+            "T = {:e} with |ω(0)| = {:e} is about {t_end:.1e} radians of motion, beyond the 2^52 \
+             at which double precision can still place the motion within its period; use a \
+             shorter T",
+            t_end / rate,
+            w0.amax() * rate
+        ));
+    }
+    // No method follows the motion with fewer than one step per radian or so.
+    if method == Method::Dopri && t_end > max_steps as f64 {
+        return Err(format!(
+            "T = {:e} is about {t_end:.1e} radians of motion: Dormand–Prince needs at least \
+             that many steps, more than the cap of {max_steps}; shorten T, or raise the cap \
+             (spin's --max-steps)",
             t_end / rate
         ));
     }
@@ -632,7 +643,24 @@ mod tests {
             assert!(long(m, Resolution::Step(0.01)).contains("more than the cap"));
         }
         assert!(long(Method::Exact, Resolution::Step(1.0)).contains("2^52"));
+        assert!(long(Method::Dopri, Resolution::Tolerance(1e-9)).contains("2^52"));
+        let fast = |m, r| integrate(&i, w0 * 1e300, 1.0, m, r, 0).unwrap_err();
+        assert!(fast(Method::Rk4, Resolution::Step(0.5)).contains("2^52"));
         let capped = integrate_capped(
+            &i,
+            w0,
+            500.0,
+            Method::Dopri,
+            Resolution::Tolerance(1e-9),
+            0,
+            1000,
+        );
+        assert!(
+            capped
+                .unwrap_err()
+                .contains("reached the cap of 1000 steps")
+        );
+        let refused = integrate_capped(
             &i,
             w0,
             1e6,
@@ -641,7 +669,7 @@ mod tests {
             0,
             1000,
         );
-        assert!(capped.unwrap_err().contains("cap of 1000 steps"));
+        assert!(refused.unwrap_err().contains("at least that many steps"));
         assert!(
             integrate(
                 &i,

@@ -410,6 +410,17 @@ pub const CLAIM_FUNCTIONS: &[&str] = &[
 ];
 const RESERVED: &[&str] = &["pi"];
 
+/// The largest degree and number of terms a dimension, mass or value expression may expand
+/// to: the derivations raise a dimension to the fifth power at most, and the engine's own
+/// budget is degree 30 (`cas`).
+pub const MAX_INPUT_DEGREE: f64 = 6.0;
+pub const MAX_INPUT_TERMS: f64 = 100.0;
+
+/// The longest free-body plot: its end time, and the radians ω turns through by then. The
+/// shipped lectures reach t = 400 and 2.5e3 radians (Earth's polar motion).
+pub const MAX_PLOT_TIME: f64 = 1e4;
+pub const MAX_PLOT_RADIANS: f64 = 1e4;
+
 /// Ids that would collide with the site's own files and folders (compared without case, as
 /// some file systems do).
 pub const RESERVED_IDS: &[&str] = &["index", "plots", "handouts", "export", "style"];
@@ -536,10 +547,20 @@ fn key_at(text: &str, offset: usize) -> String {
         .split_once('=')
         .map(|(k, _)| k.trim().trim_matches('"').to_string())
         .filter(|k| !k.is_empty() && !k.contains(['[', '{', '#']));
-    let table = before[..line_start].lines().rev().find_map(|l| {
-        let l = l.trim();
-        l.starts_with('[')
-            .then(|| l.trim_matches(['[', ']']).trim().to_string())
+    let headers: Vec<&str> = before[..line_start]
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with('['))
+        .collect();
+    // `[[body]]` is an array of tables: name the element, `body[1]`.
+    let table = headers.last().map(|h| {
+        let name = h.trim_matches(['[', ']']).trim();
+        if h.starts_with("[[") {
+            let index = headers.iter().filter(|x| **x == *h).count() - 1;
+            format!("{name}[{index}]")
+        } else {
+            name.to_string()
+        }
     });
     match (table, key) {
         (Some(t), Some(k)) => format!("{t}.{k}"),
@@ -626,6 +647,20 @@ impl Validator<'_> {
             return Err(self.err(start + offset, field, message));
         }
         check_calls(&parsed.expr, claim).map_err(|m| self.err(start, field, m))?;
+        let size = parsed.expr.expansion_size();
+        if !claim && (size.degree > MAX_INPUT_DEGREE || size.terms > MAX_INPUT_TERMS) {
+            return Err(self.err(
+                start,
+                field,
+                format!(
+                    "this expression expands to degree {} with up to {:.0} terms; a scene's \
+                     dimensions and masses stay within degree {MAX_INPUT_DEGREE} and \
+                     {MAX_INPUT_TERMS} terms, so that the derivations stay fast: introduce a \
+                     symbol for it",
+                    size.degree, size.terms
+                ),
+            ));
+        }
         Ok(parsed.expr)
     }
 
@@ -1138,6 +1173,22 @@ impl Validator<'_> {
                     t.span().start,
                     &format!("{field}.t"),
                     "the end time must be a positive number",
+                ));
+            }
+            // The plots integrate with fixed steps of about 0.05 (a quarter of that at
+            // reference fidelity) and draw a few hundred points: these bounds keep every plot
+            // within a few million steps and its curves readable.
+            let turns = t.get_ref() * omega.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+            if *t.get_ref() > MAX_PLOT_TIME || turns > MAX_PLOT_RADIANS {
+                return Err(self.err(
+                    t.span().start,
+                    &format!("{field}.t"),
+                    format!(
+                        "t = {} (t·|ω| = {turns:.3e} radians) is beyond what a plot integrates: \
+                         keep t ≤ {MAX_PLOT_TIME:e} and t·|ω| ≤ {MAX_PLOT_RADIANS:e}, or use \
+                         `mechbook spin` for long runs",
+                        t.get_ref()
+                    ),
                 ));
             }
             return Ok(PlotRequest::FreeBody {
