@@ -139,6 +139,20 @@ pub fn run_scene_with(
     } else {
         Vec::new()
     };
+    // A plot of NaN or infinity is a failure of the inputs' precision, said here, located,
+    // rather than a broken picture or a renderer's error.
+    for f in &figures {
+        let finite = |(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
+        if !f.series.iter().all(|s| s.points.iter().all(finite))
+            || !f.labels.iter().all(|(_, p)| finite(p))
+        {
+            return Err(fail(DeriveError::Unsupported(format!(
+                "plot `{}`: its data is not all finite numbers: the body or ω(0) is beyond \
+                 double precision; check the plot's inertia, omega and t",
+                f.slug
+            ))));
+        }
+    }
     let mut verification = Verification {
         claims: symbolic.claims,
         regressions: symbolic.regressions,

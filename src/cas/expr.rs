@@ -847,9 +847,15 @@ pub const MAX_EXPR_BYTES: usize = 4000;
 /// nest a few levels, and every stage that walks the tree recurses once a level.
 pub const MAX_NESTING: usize = 64;
 
-/// Parses `text` in the scene expression language: numbers, names, `+ - * / ^`, calls,
-/// `[..]` lists and `v[i]` indexing.
-pub fn parse(text: &str) -> Result<Parsed, ParseError> {
+/// The nesting limit for our own texts read back (the engine's output, a derived result):
+/// they can be longer than any scene's input, but never deeper than this, and the recursion
+/// stays far inside a thread's stack.
+const MAX_INTERNAL_NESTING: usize = 256;
+
+/// Parses a scene's `text` in the scene expression language (numbers, names, `+ - * / ^`,
+/// calls, `[..]` lists and `v[i]` indexing), within the input limits: [`MAX_EXPR_BYTES`] and
+/// [`MAX_NESTING`].
+pub fn parse_input(text: &str) -> Result<Parsed, ParseError> {
     if text.len() > MAX_EXPR_BYTES {
         return Err(ParseError {
             offset: 0,
@@ -859,10 +865,20 @@ pub fn parse(text: &str) -> Result<Parsed, ParseError> {
             ),
         });
     }
+    parse_with(text, MAX_NESTING)
+}
+
+/// Parses text that mechbook made itself: no length limit, and a generous nesting limit.
+pub fn parse(text: &str) -> Result<Parsed, ParseError> {
+    parse_with(text, MAX_INTERNAL_NESTING)
+}
+
+fn parse_with(text: &str, max_depth: usize) -> Result<Parsed, ParseError> {
     let mut p = Parser {
         src: text.as_bytes(),
         pos: 0,
         depth: 0,
+        max_depth,
         symbols: Vec::new(),
     };
     p.skip_ws();
@@ -895,6 +911,7 @@ struct Parser<'a> {
     pos: usize,
     /// How deep the recursion is: every nesting passes through `unary`.
     depth: usize,
+    max_depth: usize,
     symbols: Vec<(String, usize)>,
 }
 
@@ -972,9 +989,10 @@ impl Parser<'_> {
 
     fn unary(&mut self) -> Result<Expr, ParseError> {
         self.depth += 1;
-        if self.depth > MAX_NESTING {
+        if self.depth > self.max_depth {
             return Err(self.error(&format!(
-                "nested more than {MAX_NESTING} levels deep: simplify it, or split it with [definitions]"
+                "nested more than {} levels deep: simplify it, or split it with [definitions]",
+                self.max_depth
             )));
         }
         let e = self.unary_inner();
@@ -1188,27 +1206,36 @@ mod tests {
     #[test]
     fn nesting_and_length_are_limited() {
         let deep = format!("{}a{}", "(".repeat(6538), ")".repeat(6538));
-        let e = parse(&deep[..MAX_EXPR_BYTES]).unwrap_err();
+        let e = parse_input(&deep[..MAX_EXPR_BYTES]).unwrap_err();
         assert!(e.message.contains("nested more than 64"), "{}", e.message);
         assert_eq!(e.offset, MAX_NESTING);
         let sines = format!("{}x{}", "sin(".repeat(966), ")".repeat(966));
-        assert!(parse(&sines).unwrap_err().message.contains("limit is 4000"));
-        let sines = format!("{}x{}", "sin(".repeat(100), ")".repeat(100));
-        assert!(parse(&sines).unwrap_err().message.contains("nested"));
         assert!(
-            parse(&"-".repeat(1000))
+            parse_input(&sines)
+                .unwrap_err()
+                .message
+                .contains("limit is 4000")
+        );
+        let sines = format!("{}x{}", "sin(".repeat(100), ")".repeat(100));
+        assert!(parse_input(&sines).unwrap_err().message.contains("nested"));
+        assert!(
+            parse_input(&"-".repeat(1000))
                 .unwrap_err()
                 .message
                 .contains("nested")
         );
         assert!(
-            parse(&format!("a{}", "^a".repeat(200)))
+            parse_input(&format!("a{}", "^a".repeat(200)))
                 .unwrap_err()
                 .message
                 .contains("nested")
         );
         let ok = format!("{}a{}", "(".repeat(60), ")".repeat(60));
-        assert_eq!(p(&ok), Expr::sym("a"));
+        assert_eq!(parse_input(&ok).unwrap().expr, Expr::sym("a"));
+        // Our own texts may be longer (a derived result), never deeper than 256.
+        let long = vec!["a"; 3000].join(" + ");
+        assert!(long.len() > MAX_EXPR_BYTES && parse(&long).is_ok());
+        assert!(parse(&format!("{}a{}", "(".repeat(300), ")".repeat(300))).is_err());
     }
 
     #[test]

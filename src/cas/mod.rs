@@ -11,7 +11,7 @@ mod expr;
 mod rational;
 mod trig;
 
-pub use expr::{Expr, ParseError, Parsed, SCALAR_FUNCTIONS, parse};
+pub use expr::{Expr, ParseError, Parsed, SCALAR_FUNCTIONS, parse, parse_input};
 pub use rational::Rational;
 
 use std::cell::RefCell;

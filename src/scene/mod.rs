@@ -8,7 +8,7 @@ mod raw;
 
 pub use error::{Locator, SceneError};
 
-use crate::cas::{Expr, parse as parse_expr};
+use crate::cas::{Expr, parse_input as parse_expr};
 use raw::{RawBody, RawScene, Text};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -534,7 +534,14 @@ fn toml_error(loc: &Locator, offset: usize, message: &str) -> SceneError {
     } else {
         String::new()
     };
-    loc.error(offset, &field, message)
+    // The TOML reader's message can take two lines ("invalid array" / "expected `]`"): one.
+    let one_line = message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join(": ");
+    loc.error(offset, &field, one_line)
 }
 
 /// The dotted key written on the line of `offset` (`body.size`), with its table's name.
@@ -1143,6 +1150,21 @@ impl Validator<'_> {
                             "the values must be finite numbers",
                         ));
                     }
+                    // Subnormal numbers have lost digits: every product with them is wrong.
+                    if let Some(x) = arr
+                        .iter()
+                        .find(|x| **x != 0.0 && x.abs() < f64::MIN_POSITIVE)
+                    {
+                        return Err(self.err(
+                            v.span().start,
+                            &format!("{field}.{name}"),
+                            format!(
+                                "{x:e} is below {:e}, where double precision keeps its digits: \
+                                 write 0, or use other units",
+                                f64::MIN_POSITIVE
+                            ),
+                        ));
+                    }
                     Ok(arr)
                 };
             let inertia = triple(&rp.inertia, "inertia")?;
@@ -1159,6 +1181,15 @@ impl Validator<'_> {
                     rp.omega.as_ref().map_or(start, |v| v.span().start),
                     &format!("{field}.omega"),
                     "omega must not be zero",
+                ));
+            }
+            let moments = crate::numeric::free_body::Moments(inertia);
+            let w0 = nalgebra::Vector3::from(omega);
+            if let Some(why) = crate::numeric::free_body::beyond_double_precision(&moments, &w0) {
+                return Err(self.err(
+                    rp.omega.as_ref().map_or(start, |v| v.span().start),
+                    &format!("{field}.omega"),
+                    why,
                 ));
             }
             let t = rp.t.as_ref().ok_or_else(|| {
