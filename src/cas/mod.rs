@@ -9,10 +9,12 @@
 mod engine;
 mod expr;
 mod rational;
+mod size;
 mod trig;
 
 pub use expr::{Expr, ParseError, Parsed, SCALAR_FUNCTIONS, parse, parse_input};
 pub use rational::Rational;
+pub use size::ExpansionSize;
 
 use std::cell::RefCell;
 use std::fs::File;

@@ -1,28 +1,9 @@
 //! `build`: the site and the handouts, byte-identical rebuilds, atomic replacement, relative
 //! links and no build-machine paths in the output.
 
-use super::{mechbook, scratch, stderr};
+use super::{mechbook, read_tree, scratch, stderr};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-
-fn read_tree(root: &Path) -> BTreeMap<String, Vec<u8>> {
-    fn walk(dir: &Path, root: &Path, out: &mut BTreeMap<String, Vec<u8>>) {
-        for e in std::fs::read_dir(dir).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                walk(&p, root, out);
-            } else {
-                out.insert(
-                    p.strip_prefix(root).unwrap().to_string_lossy().into_owned(),
-                    std::fs::read(&p).unwrap(),
-                );
-            }
-        }
-    }
-    let mut out = BTreeMap::new();
-    walk(root, root, &mut out);
-    out
-}
 
 /// A scratch folder with the lectures' site built into `site/` inside it.
 fn built_site(name: &str) -> (PathBuf, PathBuf) {

@@ -47,3 +47,27 @@ fn concurrent_runs_all_succeed() {
         assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     }
 }
+
+/// Processes that differ in TMPDIR and USER share Symbolica's permit (it lives in the user's
+/// cache folder), so they must share mechbook's lock too: each waits, none aborts.
+#[test]
+fn processes_with_different_tmpdir_and_user_wait_instead_of_aborting() {
+    let handles: Vec<_> = (0..3)
+        .map(|k| {
+            std::thread::spawn(move || {
+                let tmp = std::env::temp_dir().join(format!("mechbook-tmpdir-{k}"));
+                std::fs::create_dir_all(&tmp).unwrap();
+                Command::new(env!("CARGO_BIN_EXE_mechbook"))
+                    .args(["check", "lectures/lecture-3-4/06-hoop.toml"])
+                    .env("TMPDIR", &tmp)
+                    .env("USER", format!("someone-{k}"))
+                    .output()
+                    .unwrap()
+            })
+        })
+        .collect();
+    for h in handles {
+        let out = h.join().unwrap();
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    }
+}

@@ -2,29 +2,9 @@
 //! the build's inputs is refused; and a build killed at any instant leaves a whole site, the
 //! old one or the new one.
 
-use super::{mechbook, scratch, stderr};
-use std::collections::BTreeMap;
+use super::{mechbook, read_tree as tree, scratch, stderr};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-fn tree(root: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    fn walk(dir: &Path, root: &Path, out: &mut BTreeMap<PathBuf, Vec<u8>>) {
-        for e in std::fs::read_dir(dir).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                walk(&p, root, out);
-            } else {
-                out.insert(
-                    p.strip_prefix(root).unwrap().into(),
-                    std::fs::read(&p).unwrap(),
-                );
-            }
-        }
-    }
-    let mut out = BTreeMap::new();
-    walk(root, root, &mut out);
-    out
-}
 
 #[test]
 fn folders_mechbook_did_not_write_are_refused_and_left_untouched() {
