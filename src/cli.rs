@@ -179,9 +179,8 @@ pub fn main() -> ExitCode {
     }
 }
 
-/// The scenes under `paths`, or `None` when any file is bad: every problem is reported, one
-/// located line each, and nothing is derived (bad input prints nothing on standard output).
-fn load(paths: &[PathBuf]) -> Result<Option<Vec<crate::scene::Scene>>> {
+/// The scene files under `paths`; none at all is an error.
+fn find(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
     let files = pipeline::find_scenes(paths).context("cannot list the scene files")?;
     if files.is_empty() {
         anyhow::bail!(
@@ -193,8 +192,14 @@ fn load(paths: &[PathBuf]) -> Result<Option<Vec<crate::scene::Scene>>> {
                 .join(", ")
         );
     }
-    match pipeline::load_all(&files) {
-        Ok(s) => Ok(Some(s)),
+    Ok(files)
+}
+
+/// The scenes in `files`, or `None` when any is bad: every problem is reported, one located
+/// line each, and nothing is derived (bad input prints nothing on standard output).
+fn load(files: &[PathBuf]) -> Option<Vec<crate::scene::Scene>> {
+    match pipeline::load_all(files) {
+        Ok(s) => Some(s),
         Err(errors) => {
             for e in &errors {
                 eprintln!("mechbook: error: {e}");
@@ -203,7 +208,7 @@ fn load(paths: &[PathBuf]) -> Result<Option<Vec<crate::scene::Scene>>> {
                 "mechbook: {} bad scene file(s); nothing was derived",
                 errors.len()
             );
-            Ok(None)
+            None
         }
     }
 }
@@ -258,36 +263,34 @@ fn run_one(
     fidelity: Option<Fidelity>,
     cache: Option<&Cache>,
 ) -> Result<SceneReport, pipeline::RunError> {
-    {
-        let Some(cache) = cache else {
-            return pipeline::run_scene(scene, fidelity);
-        };
-        let (id, hash) = (scene.id.clone(), scene.content_hash);
-        let fid = fidelity.or(scene.fidelity).unwrap_or_default();
-        let whole = cache
-            .load(&id, hash, Some(&fid))
-            .and_then(|bytes| pipeline::from_cache(scene.clone(), &bytes));
-        let report = match whole {
-            Some(r) => r,
-            None => {
-                let symbolic = cache
-                    .load(&id, hash, None)
-                    .and_then(|bytes| serde_json::from_slice(&bytes).ok());
-                let r = pipeline::run_scene_with(scene, Some(fid), symbolic)?;
-                let mut stored = cache.store(&id, hash, Some(&fid), &pipeline::to_cache(&r));
-                if r.from_cache == pipeline::FromCache::Nothing && stored.is_ok() {
-                    let symbolic = serde_json::to_vec(&pipeline::symbolic_part(&r))
-                        .expect("a report serializes");
-                    stored = cache.store(&id, hash, None, &symbolic);
-                }
-                if let Err(e) = stored {
-                    eprintln!("mechbook: warning: the cache is not updated: {e}");
-                }
-                r
+    let Some(cache) = cache else {
+        return pipeline::run_scene(scene, fidelity);
+    };
+    let (id, hash) = (scene.id.clone(), scene.content_hash);
+    let fid = fidelity.or(scene.fidelity).unwrap_or_default();
+    let whole = cache
+        .load(&id, hash, Some(&fid))
+        .and_then(|bytes| pipeline::from_cache(scene.clone(), &bytes));
+    let report = match whole {
+        Some(r) => r,
+        None => {
+            let symbolic = cache
+                .load(&id, hash, None)
+                .and_then(|bytes| serde_json::from_slice(&bytes).ok());
+            let r = pipeline::run_scene_with(scene, Some(fid), symbolic)?;
+            let mut stored = cache.store(&id, hash, Some(&fid), &pipeline::to_cache(&r));
+            if r.from_cache == pipeline::FromCache::Nothing && stored.is_ok() {
+                let symbolic =
+                    serde_json::to_vec(&pipeline::symbolic_part(&r)).expect("a report serializes");
+                stored = cache.store(&id, hash, None, &symbolic);
             }
-        };
-        Ok(report)
-    }
+            if let Err(e) = stored {
+                eprintln!("mechbook: warning: the cache is not updated: {e}");
+            }
+            r
+        }
+    };
+    Ok(report)
 }
 
 fn default_paths(paths: Vec<PathBuf>) -> Vec<PathBuf> {
@@ -324,12 +327,13 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
                 .unwrap_or_else(|| PathBuf::from("site"));
             // Refused before anything is derived, so a refused build touches nothing. The
             // inputs are the scene files themselves, and the folders named.
+            let files = find(&paths)?;
             let mut inputs = paths.clone();
-            inputs.extend(pipeline::find_scenes(&paths).unwrap_or_default());
+            inputs.extend(files.iter().cloned());
             inputs.extend(templates.clone());
             inputs.push(PathBuf::from("."));
             crate::site::check_output(&out, &inputs)?;
-            let Some(scenes) = load(&paths)? else {
+            let Some(scenes) = load(&files) else {
                 return Ok(ExitCode::from(1));
             };
             let cache = (!no_cache).then(|| Cache::new(&cache));
@@ -378,7 +382,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             json,
             fidelity,
         } => {
-            let Some(scenes) = load(&default_paths(paths))? else {
+            let Some(scenes) = load(&find(&default_paths(paths))?) else {
                 return Ok(ExitCode::from(1));
             };
             let (reports, errors) = run_all(scenes, fidelity, None)?;
@@ -468,7 +472,7 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
             explain,
             fidelity,
         } => {
-            let Some(mut scenes) = load(std::slice::from_ref(&scene))? else {
+            let Some(mut scenes) = load(&find(std::slice::from_ref(&scene))?) else {
                 return Ok(ExitCode::from(1));
             };
             let r = match pipeline::run_scene(scenes.remove(0), fidelity) {

@@ -249,7 +249,7 @@ pub fn from_cache(scene: Scene, bytes: &[u8]) -> Option<SceneReport> {
     })
 }
 
-/// The most folder levels `find_scenes` descends, and the largest scene file it reads.
+/// The most folder levels `find_scenes` descends.
 pub const MAX_DEPTH: usize = 16;
 
 /// Every `.toml` scene under the given folders, plus the files named directly (taken as given,

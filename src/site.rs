@@ -186,7 +186,7 @@ fn remove_stale(parent: &Path, name: &str) {
             continue;
         }
         let path = entry.path();
-        if std::fs::symlink_metadata(path.join(guard::MARKER)).is_ok_and(|m| m.is_file()) {
+        if guard::is_marked(&path) {
             let _ = std::fs::remove_dir_all(&path);
         } else {
             let _ = std::fs::remove_dir(&path);

@@ -37,10 +37,7 @@ pub fn run(a: &SpinArgs) -> Result<String, String> {
     }
     // Subnormal numbers carry fewer than 53 bits: every product with them loses precision.
     for (name, v) in [("inertia", i.0), ("omega", w)] {
-        if let Some(k) = v
-            .iter()
-            .position(|x| *x != 0.0 && x.abs() < f64::MIN_POSITIVE)
-        {
+        if let Some(k) = crate::numeric::free_body::first_subnormal(&v) {
             return Err(format!(
                 "--{name} component {} = {:e} is below {:e}, where double precision keeps \
                  its digits: express the quantities in other units",

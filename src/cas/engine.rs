@@ -25,42 +25,35 @@ pub const MAX_TERMS: f64 = 20_000.0;
 /// fuzzed tensor with entries 1e30 and 1.1e308 did not finish in two minutes).
 pub const MAX_ROOT_DIGITS: usize = 30;
 
-/// A number with more than [`MAX_ROOT_DIGITS`] digits under a fractional power, if any.
-fn large_number_under_a_root(e: &Expr) -> Option<String> {
-    fn any_large(e: &Expr) -> Option<String> {
-        match e {
-            Expr::Num(r) => {
-                let (n, d) = r.abs_parts();
-                let digits = n.to_string().len().max(d.to_string().len());
-                (digits > MAX_ROOT_DIGITS).then(|| format!("{digits}"))
-            }
-            Expr::Sym(_) => None,
-            Expr::Add(v) | Expr::Mul(v) | Expr::Call(_, v) | Expr::List(v) => {
-                v.iter().find_map(any_large)
-            }
-            Expr::Pow(a, b) | Expr::Index(a, b) => any_large(a).or_else(|| any_large(b)),
-        }
-    }
+/// The digits of a number with more than [`MAX_ROOT_DIGITS`] of them under a fractional power
+/// or `sqrt`, if any; `under_root` says whether `e` itself is under one.
+fn large_number_under_a_root(e: &Expr, under_root: bool) -> Option<usize> {
+    let walk = |v: &[Expr], under_root| {
+        v.iter()
+            .find_map(|x| large_number_under_a_root(x, under_root))
+    };
     match e {
-        Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(k) if !k.is_integer()) => {
-            any_large(b).or_else(|| large_number_under_a_root(b))
+        Expr::Num(r) if under_root => {
+            let (n, d) = r.abs_parts();
+            let digits = n.to_string().len().max(d.to_string().len());
+            (digits > MAX_ROOT_DIGITS).then_some(digits)
         }
-        Expr::Call(name, args) if name == "sqrt" => args
-            .iter()
-            .find_map(|a| any_large(a).or_else(|| large_number_under_a_root(a))),
         Expr::Num(_) | Expr::Sym(_) => None,
-        Expr::Add(v) | Expr::Mul(v) | Expr::Call(_, v) | Expr::List(v) => {
-            v.iter().find_map(large_number_under_a_root)
+        Expr::Pow(b, x) => {
+            let root = matches!(x.as_ref(), Expr::Num(k) if !k.is_integer());
+            large_number_under_a_root(b, under_root || root)
+                .or_else(|| large_number_under_a_root(x, under_root))
         }
-        Expr::Pow(a, b) | Expr::Index(a, b) => {
-            large_number_under_a_root(a).or_else(|| large_number_under_a_root(b))
-        }
+        Expr::Call(name, v) => walk(v, under_root || name == "sqrt"),
+        Expr::Add(v) | Expr::Mul(v) | Expr::List(v) => walk(v, under_root),
+        Expr::Index(a, b) => large_number_under_a_root(a, under_root)
+            .or_else(|| large_number_under_a_root(b, under_root)),
     }
 }
 
 /// `e` expanded, unless its expansion could exceed the budget: then an error that says so.
 fn expand(e: &Expr) -> Result<Atom, String> {
-    if let Some(digits) = large_number_under_a_root(e) {
+    if let Some(digits) = large_number_under_a_root(e, false) {
         return Err(format!(
             "a root of a number with {digits} digits, which the engine would have to factor \
              (more than {MAX_ROOT_DIGITS} digits can take longer than any budget): give the \

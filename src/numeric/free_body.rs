@@ -122,6 +122,13 @@ pub fn units(i: &Moments, w0: &Vector3<f64>) -> (Moments, Vector3<f64>, f64) {
     (Moments(i.0.map(|x| x / c)), w0 / s, s)
 }
 
+/// The first value that is subnormal (nonzero, below f64::MIN_POSITIVE): it has lost digits,
+/// so every product with it is wrong.
+pub fn first_subnormal(v: &[f64]) -> Option<usize> {
+    v.iter()
+        .position(|x| *x != 0.0 && x.abs() < f64::MIN_POSITIVE)
+}
+
 /// Why the exact solution cannot be trusted for this start, when it cannot: ω(0) so close to
 /// the intermediate axis that the squares of its other components underflow, so that 1 − m
 /// (the distance from the separatrix) is lost and the motion would be taken for the separatrix
@@ -137,11 +144,7 @@ pub fn beyond_double_precision(i: &Moments, w0: &Vector3<f64>) -> Option<String>
     let [w1, w2, w3] = order.map(|k| w[k]);
     let t1 = i1 * (i2 - i1) * w1 * w1;
     let t3 = i3 * (i3 - i2) * w3 * w3;
-    let lost = |w: f64, t: f64| w != 0.0 && t < f64::MIN_POSITIVE;
-    (w2 != 0.0
-        && (lost(w1, t1) || lost(w3, t3))
-        && t1 < f64::MIN_POSITIVE
-        && t3 < f64::MIN_POSITIVE)
+    (w2 != 0.0 && (w1 != 0.0 || w3 != 0.0) && t1 < f64::MIN_POSITIVE && t3 < f64::MIN_POSITIVE)
         .then(|| {
             format!(
                 "ω(0) = ({:e}, {:e}, {:e}) lies within 1.5e-154 of the intermediate axis: the \

@@ -1034,46 +1034,44 @@ impl Validator<'_> {
                     "`over`, `range` and `samples` belong to a tensor-sweep",
                 ));
             }
-            let triple =
-                |v: &Option<Spanned<Vec<f64>>>, name: &str| -> Result<[f64; 3], SceneError> {
-                    let v = v.as_ref().ok_or_else(|| {
-                        self.err(
-                            start,
-                            &format!("{field}.{name}"),
-                            format!("a {} plot needs `{name} = [x, y, z]`", kind.name()),
-                        )
-                    })?;
-                    let arr = <[f64; 3]>::try_from(v.get_ref().as_slice()).map_err(|_| {
-                        self.err(
-                            v.span().start,
-                            &format!("{field}.{name}"),
-                            format!("expected 3 numbers, found {}", v.get_ref().len()),
-                        )
-                    })?;
-                    if arr.iter().any(|x| !x.is_finite()) {
-                        return Err(self.err(
-                            v.span().start,
-                            &format!("{field}.{name}"),
-                            "the values must be finite numbers",
-                        ));
-                    }
-                    // Subnormal numbers have lost digits: every product with them is wrong.
-                    if let Some(x) = arr
-                        .iter()
-                        .find(|x| **x != 0.0 && x.abs() < f64::MIN_POSITIVE)
-                    {
-                        return Err(self.err(
-                            v.span().start,
-                            &format!("{field}.{name}"),
-                            format!(
-                                "{x:e} is below {:e}, where double precision keeps its digits: \
+            let triple = |v: &Option<Spanned<Vec<f64>>>,
+                          name: &str|
+             -> Result<[f64; 3], SceneError> {
+                let v = v.as_ref().ok_or_else(|| {
+                    self.err(
+                        start,
+                        &format!("{field}.{name}"),
+                        format!("a {} plot needs `{name} = [x, y, z]`", kind.name()),
+                    )
+                })?;
+                let arr = <[f64; 3]>::try_from(v.get_ref().as_slice()).map_err(|_| {
+                    self.err(
+                        v.span().start,
+                        &format!("{field}.{name}"),
+                        format!("expected 3 numbers, found {}", v.get_ref().len()),
+                    )
+                })?;
+                if arr.iter().any(|x| !x.is_finite()) {
+                    return Err(self.err(
+                        v.span().start,
+                        &format!("{field}.{name}"),
+                        "the values must be finite numbers",
+                    ));
+                }
+                // Subnormal numbers have lost digits: every product with them is wrong.
+                if let Some(x) = crate::numeric::free_body::first_subnormal(&arr).map(|k| arr[k]) {
+                    return Err(self.err(
+                        v.span().start,
+                        &format!("{field}.{name}"),
+                        format!(
+                            "{x:e} is below {:e}, where double precision keeps its digits: \
                                  write 0, or use other units",
-                                f64::MIN_POSITIVE
-                            ),
-                        ));
-                    }
-                    Ok(arr)
-                };
+                            f64::MIN_POSITIVE
+                        ),
+                    ));
+                }
+                Ok(arr)
+            };
             let inertia = triple(&rp.inertia, "inertia")?;
             crate::numeric::free_body::Moments::new(inertia).map_err(|m| {
                 self.err(

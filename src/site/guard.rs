@@ -13,6 +13,11 @@ pub const MARKER: &str = ".mechbook-site";
 pub const MARKER_TEXT: &str = "This folder was written by `mechbook build`, which replaces it \
 whole on the next build. Delete this file to keep mechbook from ever replacing the folder.\n";
 
+/// Whether `dir` carries the marker: a site that mechbook wrote.
+pub fn is_marked(dir: &Path) -> bool {
+    std::fs::symlink_metadata(dir.join(MARKER)).is_ok_and(|m| m.is_file())
+}
+
 /// `path` made absolute, with symbolic links resolved as far as the path exists and `..`
 /// applied to what follows, so that two spellings of one folder compare equal.
 pub fn resolve(path: &Path) -> PathBuf {
@@ -78,8 +83,7 @@ pub fn check_output(out: &Path, inputs: &[PathBuf]) -> Result<(), SiteError> {
         source,
     })?;
     let empty = entries.next().is_none();
-    let marked = std::fs::symlink_metadata(out.join(MARKER)).is_ok_and(|m| m.is_file());
-    if empty || marked {
+    if empty || is_marked(out) {
         Ok(())
     } else {
         Err(SiteError::NotASite(out.to_path_buf()))

@@ -2,7 +2,6 @@
 //! links and no build-machine paths in the output.
 
 use super::{mechbook, read_tree, scratch, stderr};
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// A scratch folder with the lectures' site built into `site/` inside it.
