@@ -1,25 +1,43 @@
 //! mechbook: rigid-body lecture scenes -> a verified workbook.
 //!
-//! The pipeline, one module per stage: `scene` (TOML -> Scene) -> `plan` (what to compute) ->
-//! `derive` (symbolic, through `cas`, the only module that touches Symbolica) -> `numeric`
-//! (nalgebra, including the data of plots) -> `verify` (verdicts) -> `render` (HTML, MathML, SVG
-//! in memory) -> `site` (the only writer). `report` prints to the terminal and JSON; `pipeline`
-//! runs the stages.
+//! The modules are the pipeline, in order; each imports only the ones above it (the layering
+//! test in `tests/layering.rs` holds the code to that):
+//!
+//! - `base`: number formatting, the content hash, the seeded generator; imports no stage.
+//! - `cas`: the only module that touches Symbolica; our own exact expression tree.
+//! - `model`: the shared vocabulary: the catalogue of outputs, stages and quantities, exact
+//!   values, fidelity, validated moments, figure data.
+//! - `scene`: TOML -> a validated `Scene`. `plan`: what to compute, and nothing more.
+//! - `derive` (symbolic steps) and `numeric` (quadrature, eigen, integrators, the exact
+//!   solution): numbers with their error and cost.
+//! - `figures`: one file per plot kind, data -> `Figure` with captions written from the data.
+//! - `verify`: symbolic vs numeric vs the notes' claims -> verdicts.
+//! - `pipeline`: runs the stages for one scene, and the build cache's orchestration.
+//! - `report` (terminal, JSON) and `render` (HTML, MathML, SVG in memory).
+//! - `site`: the only code that writes files. `cli`: one file per command.
 
-pub mod bench;
+pub mod base;
+
 pub mod cas;
-pub mod cli;
-pub mod derive;
-pub mod figure;
-pub mod numeric;
-pub mod pipeline;
-pub mod plan;
-pub mod render;
-pub mod report;
+
+pub mod model;
+
 pub mod scene;
-pub mod site;
-pub mod spin;
+
+pub mod plan;
+
+pub mod derive;
+pub mod numeric;
+
+pub mod figures;
+
 pub mod verify;
 
-#[cfg(test)]
-mod extremes;
+pub mod pipeline;
+
+pub mod render;
+pub mod report;
+
+pub mod site;
+
+pub mod cli;

@@ -1,14 +1,18 @@
 //! The thin orchestrator: scene -> plan -> derive -> numeric -> verify. Each stage takes a value
 //! and returns a value; nothing here writes files.
 
+use crate::cas::EvalError;
 use crate::derive::{self, Derivation, DeriveError};
-use crate::figure::Figure;
-use crate::numeric::fidelity::Fidelity;
+use crate::figures::FigureError;
+use crate::model::catalogue::Stage;
+use crate::model::catalogue::quantity;
+use crate::model::fidelity::Fidelity;
+use crate::model::figure::Figure;
 use crate::numeric::{self, NumericReport};
-use crate::plan::{Plan, Stage};
-use crate::scene::{Scene, SceneError};
+use crate::plan::Plan;
+use crate::scene::Scene;
 use crate::verify::{self, Verification};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 /// Everything computed for one scene.
@@ -47,7 +51,19 @@ pub struct RunError {
     pub path: PathBuf,
     pub id: String,
     pub at: (usize, usize),
-    pub source: DeriveError,
+    pub source: StageError,
+}
+
+/// What failed inside a scene's run: the symbolic stage, an evaluation at the scene's values,
+/// or a figure.
+#[derive(Debug, thiserror::Error)]
+pub enum StageError {
+    #[error(transparent)]
+    Derive(#[from] DeriveError),
+    #[error(transparent)]
+    Eval(#[from] EvalError),
+    #[error(transparent)]
+    Figure(#[from] FigureError),
 }
 
 /// What the symbolic stage produced: it depends on the scene file alone (never on the fidelity),
@@ -74,14 +90,15 @@ pub enum FromCache {
 /// The symbolic stage: the derivation, then the claims and the recorded results checked on it.
 pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> {
     let (engine_before, calls_before) = crate::cas::stats();
-    let fail = |source| RunError {
+    let fail = |source: StageError| RunError {
         path: scene.source.clone(),
         id: scene.id.clone(),
         at: scene.id_at,
         source,
     };
-    let derivation = derive::derive(scene, plan).map_err(fail)?;
-    let (claims, regressions) = verify::verify_symbolic(scene, &derivation, plan).map_err(fail)?;
+    let derivation = derive::derive(scene, plan).map_err(|e| fail(e.into()))?;
+    let (claims, regressions) =
+        verify::verify_symbolic(scene, &derivation, plan).map_err(|e| fail(e.into()))?;
     let (engine_after, calls_after) = crate::cas::stats();
     Ok(Symbolic {
         derivation,
@@ -116,7 +133,7 @@ pub fn run_scene_with(
         Some(s) => s,
         None => symbolic_stage(&scene, &plan)?,
     };
-    let fail = |source| RunError {
+    let fail = |source: StageError| RunError {
         path: scene.source.clone(),
         id: scene.id.clone(),
         at: scene.id_at,
@@ -125,17 +142,18 @@ pub fn run_scene_with(
     let derivation = &symbolic.derivation;
     let numeric = if plan.runs(Stage::Quadrature) {
         let parts = &derivation.part_tensors;
-        let total = &derivation.quantities["inertia_tensor"];
+        let total = derivation
+            .get(quantity::INERTIA_TENSOR)
+            .map_err(|e| fail(e.into()))?;
         Some(
             numeric::quadrature_checks(&scene, parts, total, &fidelity)
-                .map_err(|e| fail(DeriveError::Unsupported(e)))?,
+                .map_err(|e| fail(e.into()))?,
         )
     } else {
         None
     };
     let figures = if plan.runs(Stage::Plots) {
-        numeric::plots::figures(&scene, derivation, &fidelity)
-            .map_err(|e| fail(DeriveError::Unsupported(e)))?
+        crate::figures::figures(&scene, derivation, &fidelity).map_err(|e| fail(e.into()))?
     } else {
         Vec::new()
     };
@@ -146,11 +164,12 @@ pub fn run_scene_with(
         if !f.series.iter().all(|s| s.points.iter().all(finite))
             || !f.labels.iter().all(|(_, p)| finite(p))
         {
-            return Err(fail(DeriveError::Unsupported(format!(
-                "plot `{}`: its data is not all finite numbers: the body or ω(0) is beyond \
-                 double precision; check the plot's inertia, omega and t",
-                f.slug
-            ))));
+            return Err(fail(
+                FigureError::NotFinite {
+                    slug: f.slug.clone(),
+                }
+                .into(),
+            ));
         }
     }
     let mut verification = Verification {
@@ -165,7 +184,7 @@ pub fn run_scene_with(
         &plan,
         &mut verification,
     )
-    .map_err(fail)?;
+    .map_err(|e| fail(e.into()))?;
     Ok(SceneReport {
         scene,
         plan,
@@ -247,112 +266,4 @@ pub fn from_cache(scene: Scene, bytes: &[u8]) -> Option<SceneReport> {
         seconds,
         from_cache: FromCache::Everything,
     })
-}
-
-/// The most folder levels `find_scenes` descends.
-pub const MAX_DEPTH: usize = 16;
-
-/// Every `.toml` scene under the given folders, plus the files named directly (taken as given,
-/// so a missing or unreadable one is reported), sorted and without duplicates. A symbolic link
-/// to a folder is followed only when the folder lies inside the one being searched and was not
-/// visited yet (so `up -> ..` or `here -> .` add nothing); only regular files are taken, and
-/// the walk goes at most [`MAX_DEPTH`] folders deep.
-pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
-    use std::collections::BTreeSet;
-    fn collect(
-        dir: &Path,
-        root: &Path,
-        depth: usize,
-        seen: &mut BTreeSet<PathBuf>,
-        out: &mut Vec<PathBuf>,
-    ) -> std::io::Result<()> {
-        let real = dir.canonicalize()?;
-        if depth > MAX_DEPTH || !real.starts_with(root) || !seen.insert(real) {
-            return Ok(());
-        }
-        for entry in std::fs::read_dir(dir)? {
-            let path = entry?.path();
-            // A dangling link or an unreadable entry is skipped, as `find` would.
-            let Ok(meta) = std::fs::metadata(&path) else {
-                continue;
-            };
-            if meta.is_dir() {
-                collect(&path, root, depth + 1, seen, out)?;
-            } else if meta.is_file() && path.extension().is_some_and(|x| x == "toml") {
-                out.push(path);
-            }
-        }
-        Ok(())
-    }
-    let mut out = Vec::new();
-    let mut seen = BTreeSet::new();
-    for p in paths {
-        if p.is_dir() {
-            collect(p, &p.canonicalize()?, 0, &mut seen, &mut out)?;
-        } else {
-            out.push(p.clone());
-        }
-    }
-    out.sort();
-    out.dedup();
-    Ok(out)
-}
-
-/// Loads every scene first, so that one bad file stops the run before any output; every bad one
-/// is reported. Ids must be unique, and two lecture names must not make the same handout file
-/// name.
-pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
-    let mut scenes = Vec::new();
-    let mut errors = Vec::new();
-    for p in paths {
-        match Scene::from_file(p) {
-            Ok(s) => scenes.push(s),
-            Err(e) => errors.push(e),
-        }
-    }
-    let located =
-        |s: &Scene, (line, column): (usize, usize), field: &str, message: String| SceneError {
-            path: s.source.clone(),
-            line,
-            column,
-            field: field.into(),
-            message,
-        };
-    let mut by_id: Vec<&Scene> = scenes.iter().collect();
-    by_id.sort_by(|a, b| (&a.id, &a.source).cmp(&(&b.id, &b.source)));
-    for w in by_id.windows(2) {
-        if w[0].id == w[1].id {
-            let message = format!(
-                "duplicate scene id `{}` (also in {}): page file names come from ids",
-                w[0].id,
-                w[0].source.display()
-            );
-            errors.push(located(w[1], w[1].id_at, "id", message));
-        }
-    }
-    let mut by_slug: std::collections::BTreeMap<String, &Scene> = Default::default();
-    for s in by_id {
-        let slug = crate::scene::lecture_slug(&s.notes.lecture);
-        match by_slug.get(&slug) {
-            Some(first) if first.notes.lecture != s.notes.lecture => {
-                let message = format!(
-                    "lecture `{}` and lecture `{}` (in {}) would share the handout file name \
-                     `{slug}`: name them so that they differ in a letter or digit",
-                    s.notes.lecture,
-                    first.notes.lecture,
-                    first.source.display()
-                );
-                errors.push(located(s, s.lecture_at, "notes.lecture", message));
-            }
-            Some(_) => {}
-            None => {
-                by_slug.insert(slug, s);
-            }
-        }
-    }
-    if errors.is_empty() {
-        Ok(scenes)
-    } else {
-        Err(errors)
-    }
 }

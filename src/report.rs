@@ -1,7 +1,8 @@
 //! Reports for the terminal and as JSON. Pure functions from results to strings: no I/O here.
 
+use crate::base::format::sci;
 use crate::derive::ExactBasis;
-use crate::derive::algebra::Value;
+use crate::model::value::Value;
 use crate::numeric::eigen::Space;
 use crate::pipeline::SceneReport;
 use crate::scene::Verdict;
@@ -147,20 +148,6 @@ fn count(r: &SceneReport, v: Verdict) -> usize {
         .iter()
         .filter(|c| c.verdict == v)
         .count()
-}
-
-/// A relative error or a time in compact scientific form; exact zero prints as 0.
-pub fn sci(x: f64) -> String {
-    if x == 0.0 {
-        "0".into()
-    } else {
-        format!("{x:.1e}")
-    }
-}
-
-/// A tolerance or bound: `1e-10` rather than `1.0e-10`.
-pub fn short(x: f64) -> String {
-    sci(x).replace(".0e", "e")
 }
 
 /// The summary table printed by `check`, with the notes' errata and every failure below it.

@@ -9,11 +9,9 @@ pub mod scratch;
 
 pub use guard::check_output;
 
-use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};
 
-/// The site as relative path -> contents, sorted.
-pub type SiteFiles = BTreeMap<PathBuf, Vec<u8>>;
+use crate::render::SiteFiles;
 
 #[derive(Debug, thiserror::Error)]
 pub enum SiteError {

@@ -4,12 +4,18 @@
 //! confirmed at random parameter points in f64; if the two routes ever disagree, that is reported
 //! as a problem rather than silently trusted.
 
+use crate::base::float::max_relative_error;
+use crate::base::rng::Rng;
+use crate::cas::EvalError;
 use crate::cas::{self, Expr};
 use crate::derive::algebra::{Env, Value, evaluate};
 use crate::derive::{Derivation, ExactBasis, simplify_value};
+use crate::model::catalogue::Stage;
+use crate::model::catalogue::quantity;
+use crate::model::value::vector_at;
 use crate::numeric::NumericReport;
 use crate::numeric::eigen::{Eigenspace, Space, principal_axes};
-use crate::numeric::quadrature::{Method, QuadratureRun, Rng};
+use crate::numeric::quadrature::{Method, QuadratureRun};
 use crate::scene::{Scene, Verdict};
 use nalgebra::{Matrix3, Vector3};
 use std::collections::BTreeMap;
@@ -117,7 +123,7 @@ pub fn claim_env(scene: &Scene, d: &Derivation) -> Env {
 }
 
 /// Is each entry numerically zero at a few random points? (`true` per entry only if at all.)
-fn numerically_zero(diffs: &[Expr], scale: &[Expr], seed: u64) -> Result<Vec<bool>, String> {
+fn numerically_zero(diffs: &[Expr], scale: &[Expr], seed: u64) -> Result<Vec<bool>, EvalError> {
     let mut rng = Rng::new(seed);
     let mut zero = vec![true; diffs.len()];
     let mut names: Vec<String> = diffs
@@ -353,63 +359,44 @@ pub fn within_law(run: &QuadratureRun) -> bool {
     }
 }
 
-fn values_at(v: &Value, values: &BTreeMap<String, f64>) -> Result<Vec<f64>, String> {
-    let env = |s: &str| values.get(s).copied();
-    v.entries().iter().map(|e| e.eval(&env)).collect()
-}
-
-fn rel_error(exact: &[f64], numeric: &[f64]) -> f64 {
-    let scale = exact
-        .iter()
-        .fold(0.0f64, |m, x| m.max(x.abs()))
-        .max(f64::MIN_POSITIVE);
-    exact
-        .iter()
-        .zip(numeric)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
-        / scale
-}
-
 /// Every exact quantity that follows from the tensor, against the same from the numeric tensor.
 pub fn check_quantities(
     scene: &Scene,
     d: &Derivation,
     numeric: &NumericReport,
-) -> Result<Vec<QuantityCheck>, String> {
+) -> Result<Vec<QuantityCheck>, EvalError> {
     let vals = &scene.values;
     let t = numeric.tensor;
-    let env = |s: &str| vals.get(s).copied();
-    let vec_at = |v: &[Expr; 3]| -> Result<Vector3<f64>, String> {
-        Ok(Vector3::new(
-            v[0].eval(&env)?,
-            v[1].eval(&env)?,
-            v[2].eval(&env)?,
-        ))
-    };
-    let mut numeric_of: Vec<(&str, Vec<f64>)> =
-        vec![("inertia_tensor", t.transpose().iter().copied().collect())];
-    let mass = match &d.quantities.get("mass") {
-        Some(m) => values_at(m, vals)?[0],
+    let vec_at = |v: &[Expr; 3]| vector_at(v, vals);
+    let mut numeric_of: Vec<(&str, Vec<f64>)> = vec![(
+        quantity::INERTIA_TENSOR,
+        t.transpose().iter().copied().collect(),
+    )];
+    let mass = match &d.quantities.get(quantity::MASS) {
+        Some(m) => m.numbers_at(vals)?[0],
         None => 0.0,
     };
     if let Some(w) = &scene.omega {
         let w = vec_at(w)?;
-        numeric_of.push(("angular_momentum", (t * w).iter().copied().collect()));
-        numeric_of.push(("kinetic_energy", vec![0.5 * w.dot(&(t * w))]));
+        numeric_of.push((
+            quantity::ANGULAR_MOMENTUM,
+            (t * w).iter().copied().collect(),
+        ));
+        numeric_of.push((quantity::KINETIC_ENERGY, vec![0.5 * w.dot(&(t * w))]));
     }
     if let Some(n) = &scene.axis {
         let n = vec_at(n)?;
         let i_n = n.dot(&(t * n));
-        numeric_of.push(("moment_about_axis", vec![i_n]));
-        numeric_of.push(("radius_of_gyration", vec![(i_n / mass).sqrt()]));
+        numeric_of.push((quantity::MOMENT_ABOUT_AXIS, vec![i_n]));
+        numeric_of.push((quantity::RADIUS_OF_GYRATION, vec![(i_n / mass).sqrt()]));
     }
     let mut out = Vec::new();
     for (name, num) in numeric_of {
         let Some(exact) = d.quantities.get(name) else {
             continue;
         };
-        let exact = values_at(exact, vals)?;
-        let error = rel_error(&exact, &num);
+        let exact = exact.numbers_at(vals)?;
+        let error = max_relative_error(&num, &exact);
         out.push(QuantityCheck {
             name: name.to_string(),
             exact,
@@ -450,7 +437,7 @@ pub fn check_eigen(
     scene: &Scene,
     d: &Derivation,
     tensor: &Matrix3<f64>,
-) -> Result<Option<EigenCheck>, String> {
+) -> Result<Option<EigenCheck>, EvalError> {
     let Some(eigen) = &d.eigen else {
         return Ok(None);
     };
@@ -485,11 +472,9 @@ pub fn check_eigen(
     let mut exact: Vec<(f64, u32, Option<Vector3<f64>>)> = Vec::new();
     for s in &eigen.spaces {
         let direction = match &s.basis {
-            ExactBasis::Axis(v) | ExactBasis::PlaneNormalTo(v) => Some(Vector3::new(
-                v[0].eval(&env)?,
-                v[1].eval(&env)?,
-                v[2].eval(&env)?,
-            )),
+            ExactBasis::Axis(v) | ExactBasis::PlaneNormalTo(v) => {
+                Some(vector_at(v, &scene.values)?)
+            }
             ExactBasis::All => None,
         };
         exact.push((s.value.eval(&env)?, s.multiplicity, direction));
@@ -537,7 +522,6 @@ pub fn verify_symbolic(
     d: &Derivation,
     plan: &crate::plan::Plan,
 ) -> Result<(Vec<ClaimResult>, Vec<RegressionResult>), crate::derive::DeriveError> {
-    use crate::plan::Stage;
     let claims = if plan.runs(Stage::Claims) {
         check_claims(scene, d)?
     } else {
@@ -559,15 +543,12 @@ pub fn verify_numeric(
     numeric: Option<&NumericReport>,
     plan: &crate::plan::Plan,
     v: &mut Verification,
-) -> Result<(), crate::derive::DeriveError> {
-    use crate::plan::Stage;
+) -> Result<(), EvalError> {
     if let Some(n) = numeric {
         v.within_law = n.runs.iter().map(within_law).collect();
-        v.quantities =
-            check_quantities(scene, d, n).map_err(crate::derive::DeriveError::Unsupported)?;
+        v.quantities = check_quantities(scene, d, n)?;
         if plan.runs(Stage::NumericEigen) {
-            v.eigen = check_eigen(scene, d, &n.tensor)
-                .map_err(crate::derive::DeriveError::Unsupported)?;
+            v.eigen = check_eigen(scene, d, &n.tensor)?;
         }
     }
     Ok(())

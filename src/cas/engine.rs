@@ -5,7 +5,8 @@
 //! never collide with Symbolica's built-in names (`pi`, `e`, `i`, ...); π is therefore an
 //! ordinary symbol here, which is sound for exact algebra because π is transcendental.
 
-use super::expr::{Expr, parse};
+use super::expr::Expr;
+use super::parse::parse;
 use super::rational::Rational;
 use super::trig;
 use super::{Integral, Roots};

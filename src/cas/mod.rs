@@ -8,11 +8,14 @@
 
 mod engine;
 mod expr;
+mod parse;
+mod print;
 mod rational;
 mod size;
 mod trig;
 
-pub use expr::{Expr, ParseError, Parsed, SCALAR_FUNCTIONS, parse, parse_input};
+pub use expr::{EvalError, Expr, SCALAR_FUNCTIONS};
+pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use rational::Rational;
 pub use size::ExpansionSize;
 
@@ -290,5 +293,7 @@ pub fn primitive_part(entries: Vec<Expr>) -> Result<Vec<Expr>, CasError> {
     run(move || engine::primitive_part(&entries))
 }
 
+#[cfg(test)]
+mod expr_tests;
 #[cfg(test)]
 mod tests;

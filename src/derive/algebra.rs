@@ -3,75 +3,8 @@
 //! indexing. Everything here only builds trees; the engine simplifies them.
 
 use crate::cas::Expr;
+pub use crate::model::value::{Mat3, Value, Vec3};
 use std::collections::BTreeMap;
-
-pub type Vec3 = [Expr; 3];
-pub type Mat3 = [[Expr; 3]; 3];
-
-// A matrix is nine times a scalar; values are few and short-lived, so boxing buys nothing.
-#[allow(clippy::large_enum_variant)]
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub enum Value {
-    Scalar(Expr),
-    Vector(Vec3),
-    Matrix(Mat3),
-}
-
-impl Value {
-    pub fn kind(&self) -> &'static str {
-        match self {
-            Value::Scalar(_) => "a scalar",
-            Value::Vector(_) => "a vector",
-            Value::Matrix(_) => "a matrix",
-        }
-    }
-
-    /// The entries in row-major order.
-    pub fn entries(&self) -> Vec<Expr> {
-        match self {
-            Value::Scalar(e) => vec![e.clone()],
-            Value::Vector(v) => v.to_vec(),
-            Value::Matrix(m) => m.iter().flatten().cloned().collect(),
-        }
-    }
-
-    /// Rebuilds a value of the same shape from row-major entries.
-    pub fn with_entries(&self, entries: &[Expr]) -> Value {
-        match self {
-            Value::Scalar(_) => Value::Scalar(entries[0].clone()),
-            Value::Vector(_) => Value::Vector(std::array::from_fn(|i| entries[i].clone())),
-            Value::Matrix(_) => Value::Matrix(std::array::from_fn(|i| {
-                std::array::from_fn(|j| entries[3 * i + j].clone())
-            })),
-        }
-    }
-
-    /// Where entry `k` sits, for messages: `""`, `[1]` or `[0][2]`.
-    pub fn entry_label(&self, k: usize) -> String {
-        match self {
-            Value::Scalar(_) => String::new(),
-            Value::Vector(_) => format!("[{k}]"),
-            Value::Matrix(_) => format!("[{}][{}]", k / 3, k % 3),
-        }
-    }
-
-    /// As an expression in the claim language (lists for vectors and matrices).
-    pub fn to_expr(&self) -> Expr {
-        match self {
-            Value::Scalar(e) => e.clone(),
-            Value::Vector(v) => Expr::List(v.to_vec()),
-            Value::Matrix(m) => Expr::List(m.iter().map(|r| Expr::List(r.to_vec())).collect()),
-        }
-    }
-
-    pub fn to_text(&self) -> String {
-        self.to_expr().to_text()
-    }
-
-    pub fn to_latex(&self) -> String {
-        self.to_expr().to_latex()
-    }
-}
 
 pub fn zero3() -> Vec3 {
     std::array::from_fn(|_| Expr::int(0))

@@ -5,7 +5,8 @@
 use super::algebra::Value;
 use super::{Derivation, earth, euler, free_top, poinsot, stability};
 use crate::cas::Expr;
-use crate::numeric::free_body::{ExactSolution, Moments, euler_rhs, invariants};
+use crate::model::moments::Moments;
+use crate::numeric::free_body::{ExactSolution, euler_rhs, invariants};
 use crate::numeric::integrators::{Method, Resolution, integrate};
 use nalgebra::{Matrix3, Vector3};
 use std::collections::BTreeMap;
@@ -130,7 +131,7 @@ fn the_stability_table_matches_numeric_eigenvalues_for_every_ordering() {
     };
     let omega_sq = entries(&d, "oscillation_frequency_squared");
     let base = [1.0, 2.0, 2.7];
-    for perm in stability::ORDERINGS {
+    for perm in crate::model::moments::ORDERINGS {
         let i = [base[perm[0]], base[perm[1]], base[perm[2]]];
         let moments = Moments::new(i).unwrap();
         for k in 0..3 {

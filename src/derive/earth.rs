@@ -5,9 +5,7 @@
 use super::algebra::Value;
 use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr};
-
-/// The symbols of the symbolic part: the equatorial and polar moments and H.
-pub const SYMBOLS: &[&str] = &["A", "C", "H"];
+use crate::model::catalogue::quantity;
 
 /// Dynamical ellipticity H = (C − A)/C = 3.2737949e-3 (REFERENCE.md: IERS Conventions 2010,
 /// Table 1.1).
@@ -34,7 +32,7 @@ fn number_step(
     value: Expr,
     why: &str,
 ) -> Result<(), DeriveError> {
-    let v = value.eval(&|_| None).map_err(DeriveError::Unsupported)?;
+    let v = value.eval(&|_| None)?;
     d.steps.push(Step::note(
         title,
         format!("{} = {} = {}", lhs.0, value.to_text(), fmt_decimal(v)),
@@ -103,7 +101,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     let beta_value = at_h(&beta)?;
     number_step(
         d,
-        "earth_beta",
+        quantity::EARTH_BETA,
         "β from the measured H",
         ("beta", "\\beta"),
         beta_value.clone(),
@@ -114,7 +112,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     let sidereal = cas::simplify(&Expr::over(Expr::int(1), beta_value))?;
     number_step(
         d,
-        "euler_period_sidereal_days",
+        quantity::EULER_PERIOD_SIDEREAL_DAYS,
         "Euler period in sidereal days",
         ("P", "P / \\mathrm{sidereal}\\,\\mathrm{day}"),
         sidereal.clone(),
@@ -125,7 +123,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     let solar = cas::simplify(&Expr::mul(vec![sidereal, solar_per_sidereal]))?;
     number_step(
         d,
-        "euler_period_solar_days",
+        quantity::EULER_PERIOD_SOLAR_DAYS,
         "Euler period in mean solar days",
         ("P", "P / \\mathrm{day}"),
         solar.clone(),
@@ -134,7 +132,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     let ratio = cas::simplify(&Expr::over(Expr::int(CHANDLER_DAYS), solar))?;
     number_step(
         d,
-        "chandler_ratio",
+        quantity::CHANDLER_RATIO,
         "Observed Chandler period over the Euler period",
         ("ratio", "433\\,\\mathrm{d} / P"),
         ratio,
@@ -148,7 +146,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     ]))?;
     number_step(
         d,
-        "bulge_km",
+        quantity::BULGE_KM,
         "Equatorial bulge a − c in km",
         ("a - c", "a - c"),
         bulge,
@@ -156,7 +154,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     )?;
     number_step(
         d,
-        "bulge_fraction",
+        quantity::BULGE_FRACTION,
         "Bulge as a fraction of the radius",
         ("(a - c)/a", "(a - c)/a"),
         cas::simplify(&flattening)?,

@@ -5,11 +5,7 @@
 use super::algebra::{Value, Vec3, add_vec, cross, diag, mat_vec, sub_vec};
 use super::{Derivation, DeriveError, Step, factored, simplify_value};
 use crate::cas::Expr;
-
-/// The symbols this stage writes its results in; a scene that asks for it declares them.
-pub const SYMBOLS: &[&str] = &[
-    "I1", "I2", "I3", "w1", "w2", "w3", "wd1", "wd2", "wd3", "N1", "N2", "N3",
-];
+use crate::model::catalogue::quantity;
 
 fn vector(names: [&str; 3]) -> Vec3 {
     names.map(Expr::sym)
@@ -110,10 +106,10 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
          only if a product ω_j ω_k does, so two components of ω are zero: ω lies along a \
          principal axis",
     ));
-    d.set("principal_momentum", l.clone());
-    d.set("gyroscopic_term", gyroscopic.clone());
-    d.set("euler_equations", lhs);
-    d.set("body_rate_of_momentum", body_rate_of_momentum);
+    d.set(quantity::PRINCIPAL_MOMENTUM, l.clone());
+    d.set(quantity::GYROSCOPIC_TERM, gyroscopic.clone());
+    d.set(quantity::EULER_EQUATIONS, lhs);
+    d.set(quantity::BODY_RATE_OF_MOMENTUM, body_rate_of_momentum);
     let rates = simplify_value(&Value::Vector(torque_free_rates(&moments(), &w)))?;
     d.steps.push(Step::equation(
         "Torque-free rates",
@@ -121,6 +117,6 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         &factored(&rates)?,
         "eqs (63)–(65) with N = 0, each divided by its moment",
     ));
-    d.set("torque_free_rates", rates);
+    d.set(quantity::TORQUE_FREE_RATES, rates);
     Ok(())
 }

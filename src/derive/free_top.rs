@@ -7,8 +7,7 @@ use super::euler::{omega, rate_along, torque_free_rates};
 use super::sign::{Sign, sign_over_positive};
 use super::{Derivation, DeriveError, Step, factored, simplify_value, values_equal};
 use crate::cas::{self, Expr};
-
-pub const SYMBOLS: &[&str] = &["I1", "I3", "w1", "w2", "w3", "A", "t", "theta"];
+use crate::model::catalogue::quantity;
 
 fn s(name: &str) -> Expr {
     Expr::sym(name)
@@ -74,7 +73,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "eq (69): differentiate dω1/dt along the motion and use dω2/dt; this is −β²ω3²ω1, \
          a harmonic oscillator of angular frequency βω3",
     ));
-    d.set("w1_second_derivative", Value::Scalar(second));
+    d.set(quantity::W1_SECOND_DERIVATIVE, Value::Scalar(second));
 
     // The closed form, substituted back into all three of Euler's equations.
     let phase = Expr::add(vec![
@@ -115,8 +114,11 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "ω1 = A cos(βω3 t + θ), ω2 = A sin(βω3 t + θ), ω3 constant: the residual of Euler's \
          equations reduces to zero",
     ));
-    d.set("symmetric_solution", Value::Vector(solution.clone()));
-    d.set("symmetric_residual", residual);
+    d.set(
+        quantity::SYMMETRIC_SOLUTION,
+        Value::Vector(solution.clone()),
+    );
+    d.set(quantity::SYMMETRIC_RESIDUAL, residual);
 
     let omega_squared = scalar(dot(&solution, &solution))?;
     d.steps.push(Step::equation(
@@ -125,7 +127,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(omega_squared.clone()),
         "eq (70): sin² + cos² = 1, so ω is constant",
     ));
-    d.set("omega_squared", Value::Scalar(omega_squared.clone()));
+    d.set(
+        quantity::OMEGA_SQUARED,
+        Value::Scalar(omega_squared.clone()),
+    );
 
     // The angle of (ω1, ω2) advances at (ω1 ω̇2 − ω2 ω̇1)/(ω1² + ω2²).
     let turning = Expr::over(
@@ -145,7 +150,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(precession.clone()),
         "the angle of (ω1, ω2) in the body advances at βω3: the body cone",
     ));
-    d.set("precession_rate", Value::Scalar(precession));
+    d.set(quantity::PRECESSION_RATE, Value::Scalar(precession));
 
     let two_t = scalar(dot(&solution, &l))?;
     let l_squared = scalar(dot(&l, &l))?;
@@ -161,8 +166,8 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(l_squared.clone()),
         "|Iω|² along the solution: constant, as it must be without torque",
     ));
-    d.set("twice_energy", Value::Scalar(two_t.clone()));
-    d.set("momentum_squared", Value::Scalar(l_squared.clone()));
+    d.set(quantity::TWICE_ENERGY, Value::Scalar(two_t.clone()));
+    d.set(quantity::MOMENTUM_SQUARED, Value::Scalar(l_squared.clone()));
 
     let body_tan2 = scalar(tan_squared_from_axis(&solution))?;
     d.steps.push(Step::equation(
@@ -189,9 +194,12 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "(I1/I3)² tan² α_b: L leans further from the axis than ω when I3 < I1, less when I3 > I1; \
          ω, L and the axis lie in one plane",
     ));
-    d.set("body_cone_tan_squared", Value::Scalar(body_tan2));
-    d.set("space_cone_cos_squared", Value::Scalar(space_cos2));
-    d.set("momentum_tilt_tan_squared", Value::Scalar(tilt_tan2));
+    d.set(quantity::BODY_CONE_TAN_SQUARED, Value::Scalar(body_tan2));
+    d.set(quantity::SPACE_CONE_COS_SQUARED, Value::Scalar(space_cos2));
+    d.set(
+        quantity::MOMENTUM_TILT_TAN_SQUARED,
+        Value::Scalar(tilt_tan2),
+    );
 
     // α_b > α_s ⟺ cos α_s > cos α_b = ω3/ω ⟺ 2T > ω3 L ⟺ (2T)² − ω3² L² > 0 (both sides positive).
     let cone_order = scalar(Expr::minus(
@@ -232,6 +240,6 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
          I3 > I1, always has α_b > α_s; a cigar-shaped (prolate) one, I3 < I1, has α_b < α_s \
          only when 2 I3 < I1 (1 − tan² α_b)",
     ));
-    d.set("cone_order", Value::Scalar(cone_order));
+    d.set(quantity::CONE_ORDER, Value::Scalar(cone_order));
     Ok(())
 }

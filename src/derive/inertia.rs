@@ -7,6 +7,7 @@ use super::algebra::{
 use super::bodies::{MassModel, mass_model, place};
 use super::{Derivation, DeriveError, Step, simplify_value, values_equal};
 use crate::cas::{self, Expr, Integral};
+use crate::model::catalogue::quantity;
 use crate::scene::{Body, Scene};
 
 /// The six independent entries of a symmetric tensor, and their labels.
@@ -199,8 +200,8 @@ fn body_part(
             }
             if index == 0 {
                 // The first body's integrand and position, for claims about the notes' integrals.
-                d.set("integrand", Value::Matrix(symmetric(&integrands)));
-                d.set("position", position);
+                d.set(quantity::INTEGRAND, Value::Matrix(symmetric(&integrands)));
+                d.set(quantity::POSITION, position);
             }
             let moment = first_moment.then(|| std::array::from_fn(|i| results[7 + i].clone()));
             Ok(Part {
@@ -242,8 +243,8 @@ pub fn derive_tensor(
             "the integrals above, assembled; I is symmetric"
         },
     ));
-    d.set("inertia_tensor", tensor);
-    d.set("mass", Value::Scalar(mass.clone()));
+    d.set(quantity::INERTIA_TENSOR, tensor);
+    d.set(quantity::MASS, Value::Scalar(mass.clone()));
     if first_moment {
         let sum = parts
             .iter()
@@ -259,19 +260,19 @@ pub fn derive_tensor(
             &centre,
             "R = (1/M) ∫ r dm, from the same integrals",
         ));
-        d.set("centre_of_mass", centre);
+        d.set(quantity::CENTRE_OF_MASS, centre);
     }
     Ok(())
 }
 
 /// Proves I_origin = I_cm + M(d²𝟙 − ddᵀ), with I_cm integrated directly about the centre of mass.
 pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
-    let Some(Value::Vector(centre)) = d.quantities.get("centre_of_mass").cloned() else {
+    let Some(Value::Vector(centre)) = d.quantities.get(quantity::CENTRE_OF_MASS).cloned() else {
         return Err(DeriveError::Inconsistent(
             "parallel axis without a centre of mass".into(),
         ));
     };
-    let Some(Value::Scalar(mass)) = d.quantities.get("mass").cloned() else {
+    let Some(Value::Scalar(mass)) = d.quantities.get(quantity::MASS).cloned() else {
         return Err(DeriveError::Inconsistent(
             "parallel axis without a mass".into(),
         ));
@@ -314,7 +315,7 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         &theorem,
         "eqs (20)–(22) in tensor form; the cross term vanishes because Σ m r' = 0 about the centre of mass",
     ));
-    let direct = d.quantities["inertia_tensor"].clone();
+    let direct = d.quantities[quantity::INERTIA_TENSOR].clone();
     if !values_equal(&theorem, &direct)? {
         return Err(DeriveError::Inconsistent(
             "the parallel-axis theorem does not reproduce the direct tensor".into(),
@@ -326,6 +327,6 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R\\vec R^{T}\\right) - \\overleftrightarrow{I} = 0".into(),
         "every entry of the difference simplifies to zero",
     ));
-    d.set("inertia_cm", about_cm);
+    d.set(quantity::INERTIA_CM, about_cm);
     Ok(())
 }

@@ -6,6 +6,7 @@ use super::algebra::{Value, Vec3, add_vec, cross, dot, mat_vec, scale_vec};
 use super::bodies::place;
 use super::{Derivation, DeriveError, Step, simplify_value, values_equal};
 use crate::cas::{self, Expr};
+use crate::model::catalogue::quantity;
 use crate::scene::{Scene, Shape};
 
 /// Every point mass of the scene in the frame, or `None` if a body is continuous.
@@ -21,7 +22,7 @@ fn point_masses(scene: &Scene) -> Option<Vec<(Expr, Vec3)>> {
 }
 
 fn tensor(d: &Derivation) -> super::algebra::Mat3 {
-    match &d.quantities["inertia_tensor"] {
+    match &d.quantities[quantity::INERTIA_TENSOR] {
         Value::Matrix(m) => m.clone(),
         _ => unreachable!("the tensor is a matrix"),
     }
@@ -75,7 +76,7 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
             "eqs (3)–(5): L = Σ m r × (ω × r), expanded; equal to I ω entry by entry",
         )
     });
-    two_routes(d, "angular_momentum", l, direct)
+    two_routes(d, quantity::ANGULAR_MOMENTUM, l, direct)
 }
 
 pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
@@ -106,7 +107,7 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
             "eqs (16), (23): T = ½ Σ m |ω × r|²; equal to ½ ωᵀ I ω",
         )
     });
-    two_routes(d, "kinetic_energy", Value::Scalar(t), direct)
+    two_routes(d, quantity::KINETIC_ENERGY, Value::Scalar(t), direct)
 }
 
 pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
@@ -133,14 +134,19 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
             "eq (20): I_n = Σ m |r × n|², the squared distance from the axis; equal to nᵀ I n",
         )
     });
-    two_routes(d, "moment_about_axis", Value::Scalar(moment), direct)
+    two_routes(
+        d,
+        quantity::MOMENT_ABOUT_AXIS,
+        Value::Scalar(moment),
+        direct,
+    )
 }
 
 pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
-    let Value::Scalar(moment) = d.quantities["moment_about_axis"].clone() else {
+    let Value::Scalar(moment) = d.quantities[quantity::MOMENT_ABOUT_AXIS].clone() else {
         unreachable!()
     };
-    let Value::Scalar(mass) = d.quantities["mass"].clone() else {
+    let Value::Scalar(mass) = d.quantities[quantity::MASS].clone() else {
         unreachable!()
     };
     let r0 = Expr::pow(cas::simplify(&Expr::over(moment, mass))?, Expr::rat(1, 2));
@@ -151,8 +157,8 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
         "eq (58): R₀² = I_n / M",
     ));
     d.quantities
-        .insert("radius_of_gyration".into(), Value::Scalar(r0));
-    if let Some(Value::Vector(moments)) = d.quantities.get("principal_moments").cloned() {
+        .insert(quantity::RADIUS_OF_GYRATION.into(), Value::Scalar(r0));
+    if let Some(Value::Vector(moments)) = d.quantities.get(quantity::PRINCIPAL_MOMENTS).cloned() {
         let semi: Vec<Expr> = moments
             .iter()
             .map(|i| Expr::pow(i.clone(), Expr::rat(-1, 2)))

@@ -18,8 +18,10 @@ pub mod stability;
 
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
-use crate::cas::{self, CasError, Expr};
-use crate::plan::{Plan, Stage};
+use crate::cas::{self, CasError, EvalError, Expr};
+use crate::model::catalogue::Stage;
+use crate::model::catalogue::quantity;
+use crate::plan::Plan;
 use crate::scene::Scene;
 use algebra::Value;
 use std::collections::BTreeMap;
@@ -64,6 +66,11 @@ pub enum DeriveError {
     Inconsistent(String),
     #[error("{0}")]
     Unsupported(String),
+    #[error(transparent)]
+    Eval(#[from] EvalError),
+    /// A stage read a quantity that an earlier stage should have set: a bug in the plan.
+    #[error("internal inconsistency: quantity `{0}` was not derived")]
+    Missing(&'static str),
 }
 
 /// Everything the symbolic stage produced for a scene.
@@ -80,6 +87,11 @@ pub struct Derivation {
 impl Derivation {
     fn set(&mut self, name: &str, value: Value) {
         self.quantities.insert(name.to_string(), value);
+    }
+
+    /// A derived quantity by name; missing means a stage ran before the one that sets it.
+    pub fn get(&self, name: &'static str) -> Result<&Value, DeriveError> {
+        self.quantities.get(name).ok_or(DeriveError::Missing(name))
     }
 }
 
@@ -116,7 +128,7 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     if plan.runs(Stage::ParallelAxis) {
         inertia::derive_parallel_axis(scene, &mut d)?;
     }
-    if plan.runs(Stage::Principal) && d.quantities.contains_key("inertia_tensor") {
+    if plan.runs(Stage::Principal) && d.quantities.contains_key(quantity::INERTIA_TENSOR) {
         principal::derive_principal(&mut d)?;
     }
     if plan.runs(Stage::AngularMomentum) {

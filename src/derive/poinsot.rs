@@ -7,8 +7,7 @@ use super::euler::{moments, omega, rate_along, torque_free_rates};
 use super::stability::classify;
 use super::{Derivation, DeriveError, Step, factored};
 use crate::cas::{self, Expr};
-
-pub const SYMBOLS: &[&str] = &["I1", "I2", "I3", "w1", "w2", "w3", "L1", "L2", "L3"];
+use crate::model::catalogue::quantity;
 
 fn scalar(d: &mut Derivation, name: &str, e: Expr) -> Result<Expr, DeriveError> {
     let e = cas::simplify(&e)?;
@@ -25,8 +24,8 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let w = omega();
     let inertia = diag(i.clone());
     let l = mat_vec(&inertia, &w);
-    let two_t = scalar(d, "twice_energy", dot(&w, &l))?;
-    let l_squared = scalar(d, "momentum_squared", dot(&l, &l))?;
+    let two_t = scalar(d, quantity::TWICE_ENERGY, dot(&w, &l))?;
+    let l_squared = scalar(d, quantity::MOMENTUM_SQUARED, dot(&l, &l))?;
     d.steps.push(Step::equation(
         "Twice the kinetic energy",
         ("2T", "2T"),
@@ -61,7 +60,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let c2 = Expr::pow(two_t.clone(), Expr::int(-1));
     let f = scalar(
         d,
-        "ellipsoid_value",
+        quantity::ELLIPSOID_VALUE,
         Expr::mul(vec![c2.clone(), two_t.clone()]),
     )?;
     d.steps.push(Step::equation(
@@ -91,7 +90,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     if !(factors[0] == factors[1] && factors[1] == factors[2]) {
         return Err(DeriveError::Inconsistent("∇F is not parallel to L".into()));
     }
-    let gradient = scalar(d, "gradient_factor_squared", factors[0].clone())?;
+    let gradient = scalar(d, quantity::GRADIENT_FACTOR_SQUARED, factors[0].clone())?;
     d.steps.push(Step::equation(
         "The normal to the ellipsoid is along L",
         (
@@ -105,7 +104,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     // The distance ρ·L/L = c ω·L/L = c 2T/L, squared.
     let distance = scalar(
         d,
-        "plane_distance_squared",
+        quantity::PLANE_DISTANCE_SQUARED,
         Expr::over(Expr::mul(vec![c2.clone(), sq(&two_t)]), l_squared.clone()),
     )?;
     d.steps.push(Step::equation(
@@ -129,7 +128,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     };
     let energy = scalar(
         d,
-        "energy_from_momentum",
+        quantity::ENERGY_FROM_MOMENTUM,
         Expr::mul(vec![Expr::rat(1, 2), in_l(&two_t)]),
     )?;
     d.steps.push(Step::equation(
@@ -147,7 +146,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     });
     let gap = cas::simplify_all(gap.to_vec())?;
     d.set(
-        "momentum_gap",
+        quantity::MOMENTUM_GAP,
         Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
     );
     d.steps.push(Step::equation(
@@ -193,18 +192,21 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
          with c_i = 1 − I_k/I_i: entry k is c_a c_b, positive for an ellipse (the polhode closes \
          around axis k) and negative for a hyperbola (it does not)",
     ));
-    d.set("polhode_conic_product", Value::Vector(product.clone()));
+    d.set(
+        quantity::POLHODE_CONIC_PRODUCT,
+        Value::Vector(product.clone()),
+    );
 
     let (closure, _) = classify(&product, "the polhode conic")?;
     d.steps.push(Step::equation(
         "Which polhodes close",
-        ("polhode_closure", "\\mathrm{closure}"),
+        (quantity::POLHODE_CLOSURE, "\\mathrm{closure}"),
         &Value::Matrix(closure.clone()),
         "row k: axis k; columns: its moment is the largest, the smallest, the intermediate; \
          1 closed curves around it, −1 none. Curves close around the largest and the smallest \
          axis (eqs 86, 87) and cross at the intermediate one: the separatrix",
     ));
-    d.set("polhode_closure", Value::Matrix(closure));
+    d.set(quantity::POLHODE_CLOSURE, Value::Matrix(closure));
 
     // The separatrix L² = 2T I2: c1 L1² + c3 L3² = 0, two planes through axis 2.
     let slope = cas::simplify(&Expr::negate(Expr::over(
@@ -224,6 +226,6 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "on L² = 2T I2 the L2² terms cancel and c1 L1² + c3 L3² = 0: two planes through axis 2, \
          real when I2 lies between I1 and I3",
     ));
-    d.set("separatrix_slope_squared", Value::Scalar(slope));
+    d.set(quantity::SEPARATRIX_SLOPE_SQUARED, Value::Scalar(slope));
     Ok(())
 }

@@ -6,6 +6,7 @@
 use super::algebra::{Mat3, Value, Vec3, cross, det};
 use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr};
+use crate::model::catalogue::quantity;
 
 /// The λ of the characteristic polynomial; `__` never occurs in scene names.
 pub const LAMBDA: &str = "lambda__";
@@ -57,7 +58,7 @@ fn first_nonzero(candidates: Vec<Vec3>) -> Result<Option<Vec3>, DeriveError> {
 }
 
 pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
-    let Value::Matrix(tensor) = d.quantities["inertia_tensor"].clone() else {
+    let Value::Matrix(tensor) = d.quantities[quantity::INERTIA_TENSOR].clone() else {
         unreachable!()
     };
     let lambda = Expr::sym(LAMBDA);
@@ -155,7 +156,7 @@ pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
             .collect();
         if moments.len() == 3 {
             d.set(
-                "principal_moments",
+                quantity::PRINCIPAL_MOMENTS,
                 Value::Vector([moments[0].clone(), moments[1].clone(), moments[2].clone()]),
             );
         }

@@ -7,8 +7,8 @@
 //! reported as undecided rather than guessed.
 
 use super::DeriveError;
+use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
-use crate::numeric::quadrature::Rng;
 
 /// Points tried when looking for a positive and a negative value.
 const WITNESS_POINTS: usize = 200;
@@ -108,14 +108,13 @@ fn takes_both_signs(num: &Expr, den: &Expr) -> Result<bool, DeriveError> {
             .map(|n| (n.clone(), 10f64.powf(6.0 * rng.uniform() - 3.0)))
             .collect();
         let env = |s: &str| point.iter().find(|(n, _)| n == s).map(|(_, v)| *v);
-        let value = num.eval(&env).map_err(DeriveError::Unsupported)?;
-        let d = den.eval(&env).map_err(DeriveError::Unsupported)?;
+        let value = num.eval(&env)?;
+        let d = den.eval(&env)?;
         // Clearly non-zero: far above the round-off of the sum of the terms' sizes.
         let size: f64 = terms
             .iter()
             .map(|t| t.eval(&env).map(f64::abs))
-            .sum::<Result<f64, String>>()
-            .map_err(DeriveError::Unsupported)?;
+            .sum::<Result<f64, _>>()?;
         if value.abs() > 1e-9 * size && d != 0.0 {
             if value * d > 0.0 {
                 positive = true;

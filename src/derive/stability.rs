@@ -7,21 +7,11 @@ use super::euler::{moments, omega, torque_free_rates};
 use super::sign::{Sign, signs_over_positive};
 use super::{Derivation, DeriveError, Step, factored, simplify_value};
 use crate::cas::{self, Expr};
-
-pub const SYMBOLS: &[&str] = &["I1", "I2", "I3", "w1", "w2", "w3"];
+use crate::model::catalogue::quantity;
+use crate::model::moments::ORDERINGS;
 
 /// Columns of the stability table: the axis has the largest, the smallest or the middle moment.
 pub const CLASSES: [&str; 3] = ["largest", "smallest", "intermediate"];
-
-/// Every ordering of the axes, as (smallest, middle, largest).
-pub const ORDERINGS: [[usize; 3]; 6] = [
-    [0, 1, 2],
-    [0, 2, 1],
-    [1, 0, 2],
-    [1, 2, 0],
-    [2, 0, 1],
-    [2, 1, 0],
-];
 
 fn words(sign: Sign) -> &'static str {
     match sign {
@@ -178,10 +168,10 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         ));
     }
     d.set(
-        "oscillation_frequency_squared",
+        quantity::OSCILLATION_FREQUENCY_SQUARED,
         Value::Vector(omega_sq.clone()),
     );
-    d.set("amplitude_ratio_squared", Value::Vector(ratio));
+    d.set(quantity::AMPLITUDE_RATIO_SQUARED, Value::Vector(ratio));
 
     let (stability, by_order) = classify(&omega_sq, "Ω²")?;
     for (order, signs) in by_order {
@@ -210,12 +200,12 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
     }
     d.steps.push(Step::equation(
         "Stability of each axis",
-        ("stability", "\\mathrm{stability}"),
+        (quantity::STABILITY, "\\mathrm{stability}"),
         &Value::Matrix(stability.clone()),
         "row k: axis k; columns: its moment is the largest, the smallest, the intermediate; \
          1 stable, −1 unstable. The same for every axis: only the intermediate axis is unstable",
     ));
-    d.set("stability", Value::Matrix(stability));
+    d.set(quantity::STABILITY, Value::Matrix(stability));
     let growth = cas::simplify(&Expr::negate(omega_sq[1].clone()))?;
     d.steps.push(Step::equation(
         "Growth rate about the intermediate axis 2",
@@ -223,6 +213,6 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         &factored(&Value::Scalar(growth.clone()))?,
         "for I1 < I2 < I3, Ω2² < 0 and a small deviation grows as exp(σt) with σ² = −Ω2²",
     ));
-    d.set("growth_rate_squared", Value::Scalar(growth));
+    d.set(quantity::GROWTH_RATE_SQUARED, Value::Scalar(growth));
     Ok(())
 }

@@ -90,7 +90,7 @@ fn every_body_kind_matches_its_numeric_quadrature() {
         let r = run(body, symbols, values, ALL);
         assert_cross_checked(&r);
         // A tensor is symmetric and its diagonal obeys the triangle inequality I1 + I2 >= I3.
-        let m = crate::numeric::matrix_at(&tensor(&r), &r.scene.values).unwrap();
+        let m = tensor(&r).matrix_at(&r.scene.values).unwrap();
         assert_eq!(m, m.transpose());
         for (i, j, k) in [(0, 1, 2), (1, 2, 0), (2, 0, 1)] {
             assert!(m[(i, i)] + m[(j, j)] >= m[(k, k)] - 1e-15);

@@ -1,9 +1,10 @@
 //! A body with numbers in place of symbols, and the inertia tensor of a weighted point set.
 //! This code shares no formula with the symbolic route: only the scene's geometry.
 
+use crate::cas::EvalError;
+use crate::model::value::{Values, eval_at, vector_at};
 use crate::scene::{Body, Shape};
 use nalgebra::{Matrix3, Rotation3, Vector3};
-use std::collections::BTreeMap;
 
 #[derive(Debug, Clone)]
 pub enum NumShape {
@@ -47,12 +48,9 @@ pub struct NumBody {
 
 impl NumBody {
     /// Evaluates a scene body at the scene's values.
-    pub fn from_scene(body: &Body, values: &BTreeMap<String, f64>) -> Result<NumBody, String> {
-        let env = |s: &str| values.get(s).copied();
-        let ev = |e: &crate::cas::Expr| e.eval(&env);
-        let v3 = |v: &[crate::cas::Expr; 3]| -> Result<Vector3<f64>, String> {
-            Ok(Vector3::new(ev(&v[0])?, ev(&v[1])?, ev(&v[2])?))
-        };
+    pub fn from_scene(body: &Body, values: &Values) -> Result<NumBody, EvalError> {
+        let ev = |e: &crate::cas::Expr| eval_at(e, values);
+        let v3 = |v: &[crate::cas::Expr; 3]| vector_at(v, values);
         let shape = match &body.shape {
             Shape::Box { size, centred } => NumShape::Box {
                 size: v3(size)?,
@@ -86,7 +84,7 @@ impl NumBody {
             Shape::Points(pts) => NumShape::Points(
                 pts.iter()
                     .map(|(m, at)| Ok((ev(m)?, v3(at)?)))
-                    .collect::<Result<_, String>>()?,
+                    .collect::<Result<_, EvalError>>()?,
             ),
         };
         let mut rotation = Matrix3::identity();
@@ -128,6 +126,5 @@ pub fn tensor_of_points(points: impl Iterator<Item = (f64, Vector3<f64>)>) -> Ma
 
 /// Relative max-norm distance between two tensors, scaled by the larger entry of `exact`.
 pub fn relative_error(approx: &Matrix3<f64>, exact: &Matrix3<f64>) -> f64 {
-    let scale = exact.amax().max(f64::MIN_POSITIVE);
-    (approx - exact).amax() / scale
+    crate::base::float::max_relative_error(approx.as_slice(), exact.as_slice())
 }

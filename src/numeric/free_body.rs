@@ -4,44 +4,8 @@
 //! and spherical cases in closed form.
 
 use super::elliptic::{amplitude_to_u, complete_k, jacobi};
+use crate::model::moments::{Moments, units};
 use nalgebra::Vector3;
-
-/// Validated principal moments.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Moments(pub [f64; 3]);
-
-impl Moments {
-    /// Positive, finite, and each at most the sum of the other two (a real body's moments obey
-    /// the triangle inequality, since I_a + I_b − I_c = 2∫ρ x_c² dV ≥ 0).
-    pub fn new(i: [f64; 3]) -> Result<Moments, String> {
-        for (k, v) in i.iter().enumerate() {
-            if !v.is_finite() {
-                return Err(format!("moment I{} = {v} is not a finite number", k + 1));
-            }
-            if *v <= 0.0 {
-                return Err(format!("moment I{} = {v} must be positive", k + 1));
-            }
-        }
-        for k in 0..3 {
-            let (a, b) = (i[(k + 1) % 3], i[(k + 2) % 3]);
-            // A relative slack of a few ε lets a thin rod or a lamina (equality) through.
-            if i[k] > (a + b) * (1.0 + 4.0 * f64::EPSILON) {
-                return Err(format!(
-                    "moments ({}, {}, {}) break the triangle inequality: I{} = {} > I{} + I{} = {}",
-                    i[0],
-                    i[1],
-                    i[2],
-                    k + 1,
-                    i[k],
-                    (k + 1) % 3 + 1,
-                    (k + 2) % 3 + 1,
-                    a + b
-                ));
-            }
-        }
-        Ok(Moments(i))
-    }
-}
 
 /// ω̇ for N = 0: I1 ω̇1 = (I2 − I3) ω2 ω3 and cyclically (eqs 63–65).
 pub fn euler_rhs(i: &Moments, w: &Vector3<f64>) -> Vector3<f64> {
@@ -102,58 +66,6 @@ pub struct ExactSolution {
     motion: Motion,
     /// ω in those units is ω / `rate`, and t is t · `rate`.
     rate: f64,
-}
-
-/// The nearest power of two: scaling by it is exact, so nondimensionalizing loses no bits.
-fn power_of_two_near(x: f64) -> f64 {
-    if x.is_finite() && x > 0.0 {
-        2f64.powi(x.log2().round() as i32)
-    } else {
-        1.0
-    }
-}
-
-/// Units that keep every intermediate (I ω², I ω, ...) far from overflow and underflow: the
-/// free body is unchanged by I → I/c, and ω → ω/s with t → t·s maps solutions onto solutions.
-/// Returns the scaled moments, the scaled ω(0) and s. Powers of two, so nothing is rounded.
-pub fn units(i: &Moments, w0: &Vector3<f64>) -> (Moments, Vector3<f64>, f64) {
-    let c = power_of_two_near(i.0.iter().copied().fold(0.0, f64::max));
-    let s = power_of_two_near(w0.amax());
-    (Moments(i.0.map(|x| x / c)), w0 / s, s)
-}
-
-/// The first value that is subnormal (nonzero, below f64::MIN_POSITIVE): it has lost digits,
-/// so every product with it is wrong.
-pub fn first_subnormal(v: &[f64]) -> Option<usize> {
-    v.iter()
-        .position(|x| *x != 0.0 && x.abs() < f64::MIN_POSITIVE)
-}
-
-/// Why the exact solution cannot be trusted for this start, when it cannot: ω(0) so close to
-/// the intermediate axis that the squares of its other components underflow, so that 1 − m
-/// (the distance from the separatrix) is lost and the motion would be taken for the separatrix
-/// itself. In double precision that happens below about 1.5e-154 of |ω|.
-pub fn beyond_double_precision(i: &Moments, w0: &Vector3<f64>) -> Option<String> {
-    let (i, w, _) = units(i, w0);
-    let mut order = [0usize, 1, 2];
-    order.sort_by(|a, b| i.0[*a].total_cmp(&i.0[*b]));
-    let [i1, i2, i3] = order.map(|k| i.0[k]);
-    if i1 == i2 || i2 == i3 {
-        return None;
-    }
-    let [w1, w2, w3] = order.map(|k| w[k]);
-    let t1 = i1 * (i2 - i1) * w1 * w1;
-    let t3 = i3 * (i3 - i2) * w3 * w3;
-    (w2 != 0.0 && (w1 != 0.0 || w3 != 0.0) && t1 < f64::MIN_POSITIVE && t3 < f64::MIN_POSITIVE)
-        .then(|| {
-            format!(
-                "ω(0) = ({:e}, {:e}, {:e}) lies within 1.5e-154 of the intermediate axis: the \
-                 squares of its small components underflow, so its distance from the separatrix \
-                 (1 − m) is beyond double precision and the exact solution cannot follow it; \
-                 give those components as 0 (the separatrix) or larger",
-                w0.x, w0.y, w0.z
-            )
-        })
 }
 
 impl ExactSolution {
@@ -333,7 +245,7 @@ impl Elliptic {
 
 /// The six orderings of three axes, for tests.
 #[cfg(test)]
-use crate::derive::stability::ORDERINGS as PERMUTATIONS;
+use crate::model::moments::ORDERINGS as PERMUTATIONS;
 
 #[cfg(test)]
 mod tests {
@@ -420,26 +332,6 @@ mod tests {
                 assert!((tt - t0).abs() < 1e-14 * t0 && (ll - l0).abs() < 1e-14 * l0);
             }
         }
-    }
-
-    #[test]
-    fn bad_moments_are_rejected_with_a_reason() {
-        assert!(
-            Moments::new([0.0, 1.0, 1.0])
-                .unwrap_err()
-                .contains("positive")
-        );
-        assert!(
-            Moments::new([f64::NAN, 1.0, 1.0])
-                .unwrap_err()
-                .contains("finite")
-        );
-        assert!(
-            Moments::new([1.0, 1.0, 3.0])
-                .unwrap_err()
-                .contains("triangle")
-        );
-        assert!(Moments::new([1.0, 1.0, 2.0]).is_ok(), "a lamina is a body");
     }
 }
 

@@ -3,7 +3,8 @@
 //! splittings of H = Σ L_i²/(2I_i) into exact rotations about the body axes (McLachlan 1993),
 //! which keep |L| to round-off. Each run reports its cost and its invariant drifts.
 
-use super::free_body::{ExactSolution, Moments, euler_rhs, invariants};
+use super::free_body::{ExactSolution, euler_rhs, invariants};
+use crate::model::moments::Moments;
 use nalgebra::{Matrix3, Vector3};
 use std::time::Instant;
 
@@ -136,6 +137,64 @@ pub const MIN_TOLERANCE: f64 = 1e-15;
 /// solution still places the motion within its period: beyond 2⁵², t·λ has no fractional bits.
 const MAX_PHASE: f64 = 4_503_599_627_370_496.0;
 
+/// Why an integration was refused or stopped: each says what to change.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum IntegrationError {
+    #[error("the end time {t_end} must be a finite number ≥ 0")]
+    EndTime { t_end: f64 },
+    #[error("ω(0) = ({}, {}, {}) must be finite", .omega[0], .omega[1], .omega[2])]
+    NotFinite { omega: [f64; 3] },
+    #[error("the step {h} must be a positive number")]
+    Step { h: f64 },
+    #[error("the tolerance {tol} must lie strictly between 0 and 1")]
+    Tolerance { tol: f64 },
+    #[error(
+        "the tolerance {tol:e} is below what double precision can hold a step to; use \
+         {MIN_TOLERANCE:e} or more"
+    )]
+    BelowPrecision { tol: f64 },
+    #[error(
+        "T / step = {t_end:e} / {h:e} needs {needed:.3e} steps, more than the cap of {cap}: take \
+         a larger step, a shorter T, or raise the cap (spin's --max-steps)"
+    )]
+    StepsOverCap {
+        t_end: f64,
+        h: f64,
+        needed: f64,
+        cap: u64,
+    },
+    #[error(
+        "T = {t_end:e} with |ω(0)| = {omega:e} is about {radians:.1e} radians of motion, beyond \
+         the 2^52 at which double precision can still place the motion within its period; use \
+         a shorter T"
+    )]
+    PhaseTooLarge {
+        t_end: f64,
+        omega: f64,
+        radians: f64,
+    },
+    #[error(
+        "T = {t_end:e} is about {radians:.1e} radians of motion: Dormand–Prince needs at least \
+         that many steps, more than the cap of {cap}; shorten T, or raise the cap (spin's \
+         --max-steps)"
+    )]
+    DopriOverCap { t_end: f64, radians: f64, cap: u64 },
+    #[error("{method} takes --step, not --tol")]
+    TakesStep { method: &'static str },
+    #[error("dopri takes --tol, not --step")]
+    TakesTolerance,
+    #[error(
+        "Dormand–Prince at tolerance {tol:e} reached the cap of {cap} steps at {percent:.1}% of \
+         T: loosen the tolerance, shorten T, or raise the cap (spin's --max-steps)"
+    )]
+    DopriReachedCap { tol: f64, cap: u64, percent: f64 },
+    #[error(
+        "Dormand–Prince at tolerance {tol:e} cannot advance past t = {t:e} (in scaled units): \
+         the step fell below rounding; loosen the tolerance"
+    )]
+    DopriStalled { tol: f64, t: f64 },
+}
+
 /// Integrates from ω0 (attitude 𝟙 at t = 0) to `t_end`, keeping `samples` trace points, in at
 /// most [`MAX_STEPS`] steps.
 pub fn integrate(
@@ -145,7 +204,7 @@ pub fn integrate(
     method: Method,
     resolution: Resolution,
     samples: usize,
-) -> Result<Run, String> {
+) -> Result<Run, IntegrationError> {
     integrate_capped(i, w0, t_end, method, resolution, samples, MAX_STEPS)
 }
 
@@ -159,39 +218,34 @@ pub fn integrate_capped(
     resolution: Resolution,
     samples: usize,
     max_steps: u64,
-) -> Result<Run, String> {
+) -> Result<Run, IntegrationError> {
     if !(t_end.is_finite() && t_end >= 0.0) {
-        return Err(format!("the end time {t_end} must be a finite number ≥ 0"));
+        return Err(IntegrationError::EndTime { t_end });
     }
     if w0.iter().any(|x| !x.is_finite()) {
-        return Err(format!(
-            "ω(0) = ({}, {}, {}) must be finite",
-            w0.x, w0.y, w0.z
-        ));
+        return Err(IntegrationError::NotFinite {
+            omega: [w0.x, w0.y, w0.z],
+        });
     }
     match resolution {
         Resolution::Step(h) if !(h.is_finite() && h > 0.0) => {
-            return Err(format!("the step {h} must be a positive number"));
+            return Err(IntegrationError::Step { h });
         }
         Resolution::Tolerance(t) if !(t.is_finite() && t > 0.0 && t < 1.0) => {
-            return Err(format!(
-                "the tolerance {t} must lie strictly between 0 and 1"
-            ));
+            return Err(IntegrationError::Tolerance { tol: t });
         }
         Resolution::Tolerance(t) if t < MIN_TOLERANCE => {
-            return Err(format!(
-                "the tolerance {t:e} is below what double precision can hold a step to; use \
-                 {MIN_TOLERANCE:e} or more"
-            ));
+            return Err(IntegrationError::BelowPrecision { tol: t });
         }
         Resolution::Step(h) if method != Method::Exact => {
             let needed = (t_end / h).ceil();
             if needed > max_steps as f64 {
-                return Err(format!(
-                    "T / step = {t_end:e} / {h:e} needs {needed:.3e} steps, more than the cap of \
-                     {max_steps}: take a larger step, a shorter T, or raise the cap (spin's \
-                     --max-steps)"
-                ));
+                return Err(IntegrationError::StepsOverCap {
+                    t_end,
+                    h,
+                    needed,
+                    cap: max_steps,
+                });
             }
         }
         _ => {}
@@ -199,25 +253,22 @@ pub fn integrate_capped(
     let start = Instant::now();
     // In units where the largest moment and |ω(0)| are near 1 (exact powers of two), so that
     // I ω² neither overflows nor underflows; every drift and error is relative, so unchanged.
-    let (units_i, units_w0, rate) = super::free_body::units(i, &w0);
+    let (units_i, units_w0, rate) = crate::model::moments::units(i, &w0);
     let (i, w0, t_end) = (&units_i, units_w0, t_end * rate);
     if t_end > MAX_PHASE {
-        return Err(format!(
-            "T = {:e} with |ω(0)| = {:e} is about {t_end:.1e} radians of motion, beyond the 2^52 \
-             at which double precision can still place the motion within its period; use a \
-             shorter T",
-            t_end / rate,
-            w0.amax() * rate
-        ));
+        return Err(IntegrationError::PhaseTooLarge {
+            t_end: t_end / rate,
+            omega: w0.amax() * rate,
+            radians: t_end,
+        });
     }
     // No method follows the motion with fewer than one step per radian or so.
     if method == Method::Dopri && t_end > max_steps as f64 {
-        return Err(format!(
-            "T = {:e} is about {t_end:.1e} radians of motion: Dormand–Prince needs at least \
-             that many steps, more than the cap of {max_steps}; shorten T, or raise the cap \
-             (spin's --max-steps)",
-            t_end / rate
-        ));
+        return Err(IntegrationError::DopriOverCap {
+            t_end: t_end / rate,
+            radians: t_end,
+            cap: max_steps,
+        });
     }
     let step = |r| step_of(r, method).map(|h| h * rate);
     let mut run = match method {
@@ -239,17 +290,17 @@ pub fn integrate_capped(
     Ok(run)
 }
 
-fn step_of(r: Resolution, m: Method) -> Result<f64, String> {
+fn step_of(r: Resolution, m: Method) -> Result<f64, IntegrationError> {
     match r {
         Resolution::Step(h) => Ok(h),
-        Resolution::Tolerance(_) => Err(format!("{} takes --step, not --tol", m.name())),
+        Resolution::Tolerance(_) => Err(IntegrationError::TakesStep { method: m.name() }),
     }
 }
 
-fn tol_of(r: Resolution) -> Result<f64, String> {
+fn tol_of(r: Resolution) -> Result<f64, IntegrationError> {
     match r {
         Resolution::Tolerance(t) => Ok(t),
-        Resolution::Step(_) => Err("dopri takes --tol, not --step".into()),
+        Resolution::Step(_) => Err(IntegrationError::TakesTolerance),
     }
 }
 
@@ -348,7 +399,7 @@ fn dopri(
     tol: f64,
     samples: usize,
     max_steps: u64,
-) -> Result<Run, String> {
+) -> Result<Run, IntegrationError> {
     const A: [[f64; 6]; 6] = [
         [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
         [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
@@ -407,18 +458,14 @@ fn dopri(
         h = h.min(t_end - t);
         tries += 1;
         if tries > max_steps {
-            return Err(format!(
-                "Dormand–Prince at tolerance {tol:e} reached the cap of {max_steps} steps at \
-                 {:.1}% of T: loosen the tolerance, shorten T, or raise the cap (spin's \
-                 --max-steps)",
-                100.0 * t / t_end
-            ));
+            return Err(IntegrationError::DopriReachedCap {
+                tol,
+                cap: max_steps,
+                percent: 100.0 * t / t_end,
+            });
         }
         if t + h == t || !h.is_finite() {
-            return Err(format!(
-                "Dormand–Prince at tolerance {tol:e} cannot advance past t = {t:e} (in scaled \
-                 units): the step fell below rounding; loosen the tolerance"
-            ));
+            return Err(IntegrationError::DopriStalled { tol, t });
         }
         let mut k = [k1; 7];
         for st in 1..7 {
@@ -632,20 +679,60 @@ mod tests {
     fn bad_resolutions_are_errors() {
         let (i, w0) = case();
         let e = |m, r| integrate(&i, w0, 1.0, m, r, 0).unwrap_err();
-        assert!(e(Method::Rk4, Resolution::Step(-0.1)).contains("positive"));
-        assert!(e(Method::Rk4, Resolution::Step(f64::NAN)).contains("positive"));
-        assert!(e(Method::Dopri, Resolution::Step(0.1)).contains("--tol"));
-        assert!(e(Method::Dopri, Resolution::Tolerance(0.0)).contains("between"));
-        assert!(e(Method::Dopri, Resolution::Tolerance(1e-300)).contains("below"));
-        assert!(e(Method::Rk4, Resolution::Step(1e-300)).contains("needs 1.000e300 steps"));
+        assert!(
+            e(Method::Rk4, Resolution::Step(-0.1))
+                .to_string()
+                .contains("positive")
+        );
+        assert!(
+            e(Method::Rk4, Resolution::Step(f64::NAN))
+                .to_string()
+                .contains("positive")
+        );
+        assert!(
+            e(Method::Dopri, Resolution::Step(0.1))
+                .to_string()
+                .contains("--tol")
+        );
+        assert!(
+            e(Method::Dopri, Resolution::Tolerance(0.0))
+                .to_string()
+                .contains("between")
+        );
+        assert!(
+            e(Method::Dopri, Resolution::Tolerance(1e-300))
+                .to_string()
+                .contains("below")
+        );
+        assert!(
+            e(Method::Rk4, Resolution::Step(1e-300))
+                .to_string()
+                .contains("needs 1.000e300 steps")
+        );
         let long = |m, r| integrate(&i, w0, 1e300, m, r, 0).unwrap_err();
         for m in [Method::Rk4, Method::Splitting, Method::Splitting4] {
-            assert!(long(m, Resolution::Step(0.01)).contains("more than the cap"));
+            assert!(
+                long(m, Resolution::Step(0.01))
+                    .to_string()
+                    .contains("more than the cap")
+            );
         }
-        assert!(long(Method::Exact, Resolution::Step(1.0)).contains("2^52"));
-        assert!(long(Method::Dopri, Resolution::Tolerance(1e-9)).contains("2^52"));
+        assert!(
+            long(Method::Exact, Resolution::Step(1.0))
+                .to_string()
+                .contains("2^52")
+        );
+        assert!(
+            long(Method::Dopri, Resolution::Tolerance(1e-9))
+                .to_string()
+                .contains("2^52")
+        );
         let fast = |m, r| integrate(&i, w0 * 1e300, 1.0, m, r, 0).unwrap_err();
-        assert!(fast(Method::Rk4, Resolution::Step(0.5)).contains("2^52"));
+        assert!(
+            fast(Method::Rk4, Resolution::Step(0.5))
+                .to_string()
+                .contains("2^52")
+        );
         let capped = integrate_capped(
             &i,
             w0,
@@ -658,6 +745,7 @@ mod tests {
         assert!(
             capped
                 .unwrap_err()
+                .to_string()
                 .contains("reached the cap of 1000 steps")
         );
         let refused = integrate_capped(
@@ -669,7 +757,12 @@ mod tests {
             0,
             1000,
         );
-        assert!(refused.unwrap_err().contains("at least that many steps"));
+        assert!(
+            refused
+                .unwrap_err()
+                .to_string()
+                .contains("at least that many steps")
+        );
         assert!(
             integrate(
                 &i,

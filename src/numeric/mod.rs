@@ -5,20 +5,18 @@
 pub mod body;
 pub mod eigen;
 pub mod elliptic;
-pub mod fidelity;
 pub mod free_body;
-pub mod free_body_plots;
 pub mod integrators;
-pub mod plots;
+pub mod pareto;
 pub mod quadrature;
 
-use crate::derive::algebra::Value;
+use crate::cas::EvalError;
+use crate::model::fidelity::Fidelity;
+use crate::model::value::Value;
 use crate::scene::Scene;
 use body::{NumBody, relative_error};
-use fidelity::Fidelity;
 use nalgebra::Matrix3;
 use quadrature::{QuadratureRun, climb, reference_rule, run};
-use std::collections::BTreeMap;
 
 /// Numeric work done on this thread so far: proof, in `derive --explain`, that a scene ran only
 /// the integrations and quadratures it asked for. Thread-local, so parallel tests do not mix.
@@ -88,33 +86,19 @@ pub struct NumericReport {
     pub seconds: f64,
 }
 
-/// Evaluates an exact matrix value at the scene's values.
-pub fn matrix_at(value: &Value, values: &BTreeMap<String, f64>) -> Result<Matrix3<f64>, String> {
-    let env = |s: &str| values.get(s).copied();
-    let e = value.entries();
-    if e.len() != 9 {
-        return Err("not a matrix".into());
-    }
-    let mut m = Matrix3::zeros();
-    for (k, x) in e.iter().enumerate() {
-        m[(k / 3, k % 3)] = x.eval(&env)?;
-    }
-    Ok(m)
-}
-
 /// Climbs every method's ladder for every body at the fidelity, and sums each body's exact rule.
 pub fn quadrature_checks(
     scene: &Scene,
     exact_parts: &[Value],
     exact_total: &Value,
     fidelity: &Fidelity,
-) -> Result<NumericReport, String> {
+) -> Result<NumericReport, EvalError> {
     let start = std::time::Instant::now();
     let mut runs = Vec::new();
     let mut total = Matrix3::zeros();
     for (i, body) in scene.bodies.iter().enumerate() {
         let nb = NumBody::from_scene(body, &scene.values)?;
-        let exact = matrix_at(&exact_parts[i], &scene.values)?;
+        let exact = exact_parts[i].matrix_at(&scene.values)?;
         runs.extend(climb(
             &nb,
             &exact,
@@ -124,7 +108,7 @@ pub fn quadrature_checks(
         let (method, level) = reference_rule(&nb.shape);
         total += run(&nb, method, level, &exact, scene.seed).tensor;
     }
-    let exact_total = matrix_at(exact_total, &scene.values)?;
+    let exact_total = exact_total.matrix_at(&scene.values)?;
     Ok(NumericReport {
         runs,
         tensor_error: relative_error(&total, &exact_total),

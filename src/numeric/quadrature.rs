@@ -6,6 +6,7 @@
 //! coordinates (REFERENCE.md, "Quadrature"), then carried into the frame.
 
 use super::body::{NumBody, NumShape, relative_error, tensor_of_points};
+use crate::base::rng::Rng;
 use nalgebra::{Matrix3, Vector3};
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -124,7 +125,7 @@ impl Stop {
 pub fn climb(
     body: &NumBody,
     exact: &Matrix3<f64>,
-    fidelity: &super::fidelity::Fidelity,
+    fidelity: &crate::model::fidelity::Fidelity,
     seed: u64,
 ) -> Vec<QuadratureRun> {
     let mut runs = Vec::new();
@@ -197,23 +198,6 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
             (x, 2.0 / ((1.0 - x * x) * dp * dp))
         })
         .collect()
-}
-
-/// A seeded SplitMix64 stream of uniform numbers in [0, 1): deterministic across runs.
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Rng {
-        Rng(seed)
-    }
-    pub fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// Points on [lo, lo+len]: Gauss–Legendre, midpoint or vertex rule, weights summing to 1.

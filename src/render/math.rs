@@ -1,11 +1,12 @@
 //! LaTeX -> MathML at build time, so pages need no JavaScript and no network.
 
+use super::RenderError;
 use pulldown_latex::config::DisplayMode;
 use pulldown_latex::{Parser, RenderConfig, Storage, push_mathml};
 
 /// MathML for one formula, displayed as a block or inline. A formula the converter cannot read is
 /// an error naming it, never a silently broken page.
-pub fn mathml(latex: &str, block: bool) -> Result<String, String> {
+pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
     let storage = Storage::new();
     let parser = Parser::new(latex, &storage);
     let config = RenderConfig {
@@ -17,17 +18,23 @@ pub fn mathml(latex: &str, block: bool) -> Result<String, String> {
         ..RenderConfig::default()
     };
     let mut out = String::new();
-    push_mathml(&mut out, parser, config).map_err(|e| format!("cannot render `{latex}`: {e}"))?;
+    push_mathml(&mut out, parser, config).map_err(|e| RenderError::Math {
+        latex: latex.into(),
+        message: e.to_string(),
+    })?;
     // The converter renders what it cannot parse in red inside <merror>: treat that as failure.
     if out.contains("<merror") {
-        return Err(format!("cannot render `{latex}`: {out}"));
+        return Err(RenderError::Math {
+            latex: latex.into(),
+            message: out,
+        });
     }
     // `\cos^{2}` comes out as an <msup> of three children (a space, `cos`, the exponent), which
     // browsers draw as a small "cos2": the printer writes `{\cos}^{2}` instead; catch any other.
     if out.contains("<msup><mspace") {
-        return Err(format!(
-            "`{latex}` gives a malformed <msup>: write `{{\\op}}^{{k}}`"
-        ));
+        return Err(RenderError::MalformedPower {
+            latex: latex.into(),
+        });
     }
     Ok(escape_bare_less_than(&out))
 }

@@ -5,14 +5,16 @@ pub mod math;
 pub mod plot;
 mod site_files;
 
-pub use site_files::{Course, site_files};
+pub use site_files::{Course, SiteFiles, site_files};
 
+use crate::base::format::sci;
 use crate::derive::ExactBasis;
-use crate::derive::algebra::Value;
+use crate::model::catalogue::quantity;
+use crate::model::value::Value;
 use crate::pipeline::SceneReport;
-use crate::report::sci;
 use crate::scene::Verdict;
 use serde::Serialize;
+use std::path::PathBuf;
 
 #[derive(Debug, Clone, Serialize)]
 pub struct Link {
@@ -100,8 +102,48 @@ pub struct PageView {
 }
 
 /// The file a scene's plot is written to, relative to the site root.
-pub fn figure_file(r: &SceneReport, fig: &crate::figure::Figure) -> String {
+pub fn figure_file(r: &SceneReport, fig: &crate::model::figure::Figure) -> String {
     format!("plots/{}-{}.svg", r.scene.id, fig.slug)
+}
+
+/// Why a page, a plot or the course settings could not be rendered.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error("{}:{line}:{column}: {message}", path.display())]
+    Course {
+        path: PathBuf,
+        line: usize,
+        column: usize,
+        message: String,
+    },
+    #[error("cannot read {}: {error}", path.display())]
+    Read {
+        path: PathBuf,
+        error: std::io::Error,
+    },
+    #[error("template {name}: {message}")]
+    Template { name: String, message: String },
+    #[error("cannot render `{latex}`: {message}")]
+    Math { latex: String, message: String },
+    #[error("`{latex}` gives a malformed <msup>: write `{{\\op}}^{{k}}`")]
+    MalformedPower { latex: String },
+    #[error("plot `{slug}`: {message}")]
+    Plot { slug: String, message: String },
+    /// Any of the above, in one scene's page.
+    #[error("{}: {error}", path.display())]
+    InScene {
+        path: PathBuf,
+        error: Box<RenderError>,
+    },
+}
+
+impl RenderError {
+    fn in_scene(self, r: &SceneReport) -> RenderError {
+        RenderError::InScene {
+            path: r.scene.source.clone(),
+            error: Box::new(self),
+        }
+    }
 }
 
 /// The file a scene's page is written to.
@@ -109,7 +151,7 @@ pub fn page_file(r: &SceneReport) -> String {
     format!("{}.html", r.scene.id)
 }
 
-fn value_math(v: &Value) -> Result<String, String> {
+fn value_math(v: &Value) -> Result<String, RenderError> {
     math::mathml(&v.to_latex(), true)
 }
 
@@ -119,7 +161,7 @@ pub fn page_view(
     prev: Option<&SceneReport>,
     next: Option<&SceneReport>,
     timings: bool,
-) -> Result<PageView, String> {
+) -> Result<PageView, RenderError> {
     let s = &r.scene;
     let link = |o: Option<&SceneReport>| {
         o.map(|o| Link {
@@ -138,10 +180,10 @@ pub fn page_view(
                 why: st.why.clone(),
             })
         })
-        .collect::<Result<Vec<_>, String>>()?;
+        .collect::<Result<Vec<_>, RenderError>>()?;
     let mut results = Vec::new();
     for (name, v) in &r.derivation.quantities {
-        if name == "integrand" || name == "position" {
+        if name == quantity::INTEGRAND || name == quantity::POSITION {
             continue;
         }
         results.push(StepView {
@@ -194,9 +236,11 @@ pub fn page_view(
         let derived = if c.derived.is_empty() {
             String::new()
         } else {
-            crate::cas::parse(&c.derived)
-                .map_err(|e| e.message)
-                .and_then(|p| math::mathml(&p.expr.to_latex(), false))?
+            let parsed = crate::cas::parse(&c.derived).map_err(|e| RenderError::Math {
+                latex: c.derived.clone(),
+                message: e.message,
+            })?;
+            math::mathml(&parsed.expr.to_latex(), false)?
         };
         claims.push(ClaimView {
             eq: c.eq.clone(),
@@ -230,7 +274,7 @@ pub fn page_view(
                     v.clone(),
                 ))
             })
-            .collect::<Result<_, String>>()?,
+            .collect::<Result<_, RenderError>>()?,
         bodies: s.bodies.iter().map(describe_body).collect(),
         steps,
         results,

@@ -2,7 +2,8 @@
 //! `1e-k` tick labels, so one code path serves every combination of scales. The plot area is
 //! white with dark ink, so it reads the same on a light or a dark page and on paper.
 
-use crate::figure::{Figure, Legend, Mark, Scale};
+use super::RenderError;
+use crate::model::figure::{Figure, Legend, Mark, Scale};
 use plotters::prelude::*;
 
 const SIZE: (u32, u32) = (720, 440);
@@ -56,17 +57,21 @@ fn tick(v: f64, s: Scale) -> String {
 }
 
 /// Draws the figure; the result always starts with `<svg` and carries `<title>` and `<desc>`.
-pub fn svg(fig: &Figure) -> Result<String, String> {
+pub fn svg(fig: &Figure) -> Result<String, RenderError> {
     let mut out = String::new();
     {
         let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
-        draw(fig, &root).map_err(|e| format!("plot `{}`: {e}", fig.slug))?;
-        root.present()
-            .map_err(|e| format!("plot `{}`: {e}", fig.slug))?;
+        let failed = |e: &dyn std::fmt::Display| RenderError::Plot {
+            slug: fig.slug.clone(),
+            message: e.to_string(),
+        };
+        draw(fig, &root).map_err(|e| failed(&e))?;
+        root.present().map_err(|e| failed(&e))?;
     }
-    let head_end = out
-        .find('>')
-        .ok_or_else(|| format!("plot `{}`: no <svg> element", fig.slug))?;
+    let head_end = out.find('>').ok_or_else(|| RenderError::Plot {
+        slug: fig.slug.clone(),
+        message: "no <svg> element".into(),
+    })?;
     let meta = format!(
         "\n<title>{}</title>\n<desc>{}</desc>",
         xml_escape(&fig.title),
@@ -184,7 +189,7 @@ fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figure::Series;
+    use crate::model::figure::Series;
 
     fn fig() -> Figure {
         Figure {
@@ -235,6 +240,6 @@ mod tests {
     fn a_figure_without_points_is_an_error() {
         let mut f = fig();
         f.series.clear();
-        assert!(svg(&f).unwrap_err().contains("no finite points"));
+        assert!(svg(&f).unwrap_err().to_string().contains("no finite points"));
     }
 }

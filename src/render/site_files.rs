@@ -1,12 +1,15 @@
 //! Reports -> the site's files (HTML, CSS) through the Tera templates, as bytes in memory.
 //! Writing them is `site`'s job.
 
+use super::RenderError;
 use super::{PageView, figure_file, page_file, page_view, plot};
 use crate::pipeline::SceneReport;
-use crate::site::SiteFiles;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+
+/// The site as relative path -> contents, sorted: what `site` writes.
+pub type SiteFiles = BTreeMap<PathBuf, Vec<u8>>;
 
 /// The templates, embedded as defaults; a user's folder overrides them file by file.
 const DEFAULTS: &[(&str, &str)] = &[
@@ -49,17 +52,25 @@ impl Default for Course {
 
 impl Course {
     /// Reads `path` if it exists; errors name the file, line and column.
-    pub fn load(path: &Path) -> Result<Course, String> {
+    pub fn load(path: &Path) -> Result<Course, RenderError> {
         match std::fs::read_to_string(path) {
             Ok(text) => toml::from_str(&text).map_err(|e| {
                 let (line, col) = e
                     .span()
                     .map(|s| crate::scene::Locator { path, text: &text }.line_col(s.start))
                     .unwrap_or((0, 0));
-                format!("{}:{line}:{col}: {}", path.display(), e.message().trim())
+                RenderError::Course {
+                    path: path.to_path_buf(),
+                    line,
+                    column: col,
+                    message: e.message().trim().to_string(),
+                }
             }),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Course::default()),
-            Err(e) => Err(format!("cannot read {}: {e}", path.display())),
+            Err(error) => Err(RenderError::Read {
+                path: path.to_path_buf(),
+                error,
+            }),
         }
     }
 }
@@ -79,34 +90,42 @@ struct LectureView {
     pages: Vec<PageLink>,
 }
 
-fn templates(dir: Option<&Path>) -> Result<(tera::Tera, String), String> {
+fn templates(dir: Option<&Path>) -> Result<(tera::Tera, String), RenderError> {
     let mut tera = tera::Tera::default();
     let mut css = String::new();
     for (name, default) in DEFAULTS {
         let text = match dir.map(|d| d.join(name)).filter(|p| p.exists()) {
-            Some(p) => std::fs::read_to_string(&p)
-                .map_err(|e| format!("cannot read {}: {e}", p.display()))?,
+            Some(p) => std::fs::read_to_string(&p).map_err(|error| RenderError::Read {
+                path: p.clone(),
+                error,
+            })?,
             None => default.to_string(),
         };
         if *name == "style.css" {
             css = text;
         } else {
             tera.add_raw_template(name, &text)
-                .map_err(|e| format!("template {name}: {e:?}"))?;
+                .map_err(|e| RenderError::Template {
+                    name: name.to_string(),
+                    message: format!("{e:?}"),
+                })?;
         }
     }
     Ok((tera, css))
 }
 
-fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<Vec<u8>, String> {
+fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<Vec<u8>, RenderError> {
     tera.render(name, ctx).map(String::into_bytes).map_err(|e| {
-        let mut msg = format!("template {name}: {e}");
+        let mut message = e.to_string();
         let mut source = std::error::Error::source(&e);
         while let Some(s) = source {
-            msg.push_str(&format!(": {s}"));
+            message.push_str(&format!(": {s}"));
             source = s.source();
         }
-        msg
+        RenderError::Template {
+            name: name.to_string(),
+            message,
+        }
     })
 }
 
@@ -117,17 +136,16 @@ pub fn site_files(
     course: &Course,
     template_dir: Option<&Path>,
     timings: bool,
-) -> Result<SiteFiles, String> {
+) -> Result<SiteFiles, RenderError> {
     let (tera, css) = templates(template_dir)?;
     let mut files = SiteFiles::new();
     files.insert(PathBuf::from("style.css"), css.into_bytes());
     let mut pages: Vec<PageView> = Vec::new();
     for (i, r) in reports.iter().enumerate() {
         let prev = i.checked_sub(1).map(|j| &reports[j]);
-        let view = page_view(r, prev, reports.get(i + 1), timings)
-            .map_err(|e| format!("{}: {e}", r.scene.source.display()))?;
+        let view = page_view(r, prev, reports.get(i + 1), timings).map_err(|e| e.in_scene(r))?;
         for fig in &r.figures {
-            let svg = plot::svg(fig).map_err(|e| format!("{}: {e}", r.scene.source.display()))?;
+            let svg = plot::svg(fig).map_err(|e| e.in_scene(r))?;
             files.insert(PathBuf::from(figure_file(r, fig)), svg.into_bytes());
         }
         let mut ctx = tera::Context::new();

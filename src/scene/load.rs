@@ -1,8 +1,10 @@
-//! Reading a scene file: only a regular file of bounded size, and TOML errors made into one
-//! located line with the field they are about.
+//! Finding and reading scene files: the folder walk, only regular files of bounded size, TOML
+//! errors made into one located line with the field they are about, and the checks across
+//! files (unique ids, distinct handout names).
 
 use super::error::{Locator, SceneError};
-use std::path::Path;
+use super::types::{Scene, lecture_slug};
+use std::path::{Path, PathBuf};
 
 /// The largest scene file read: a hundred times the largest shipped scene.
 pub const MAX_SCENE_BYTES: u64 = 1 << 20;
@@ -97,5 +99,113 @@ fn key_at(text: &str, offset: usize) -> String {
         (Some(t), Some(k)) => format!("{t}.{k}"),
         (None, Some(k)) => k,
         _ => String::new(),
+    }
+}
+
+/// The most folder levels `find_scenes` descends.
+pub const MAX_DEPTH: usize = 16;
+
+/// Every `.toml` scene under the given folders, plus the files named directly (taken as given,
+/// so a missing or unreadable one is reported), sorted and without duplicates. A symbolic link
+/// to a folder is followed only when the folder lies inside the one being searched and was not
+/// visited yet (so `up -> ..` or `here -> .` add nothing); only regular files are taken, and
+/// the walk goes at most [`MAX_DEPTH`] folders deep.
+pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
+    use std::collections::BTreeSet;
+    fn collect(
+        dir: &Path,
+        root: &Path,
+        depth: usize,
+        seen: &mut BTreeSet<PathBuf>,
+        out: &mut Vec<PathBuf>,
+    ) -> std::io::Result<()> {
+        let real = dir.canonicalize()?;
+        if depth > MAX_DEPTH || !real.starts_with(root) || !seen.insert(real) {
+            return Ok(());
+        }
+        for entry in std::fs::read_dir(dir)? {
+            let path = entry?.path();
+            // A dangling link or an unreadable entry is skipped, as `find` would.
+            let Ok(meta) = std::fs::metadata(&path) else {
+                continue;
+            };
+            if meta.is_dir() {
+                collect(&path, root, depth + 1, seen, out)?;
+            } else if meta.is_file() && path.extension().is_some_and(|x| x == "toml") {
+                out.push(path);
+            }
+        }
+        Ok(())
+    }
+    let mut out = Vec::new();
+    let mut seen = BTreeSet::new();
+    for p in paths {
+        if p.is_dir() {
+            collect(p, &p.canonicalize()?, 0, &mut seen, &mut out)?;
+        } else {
+            out.push(p.clone());
+        }
+    }
+    out.sort();
+    out.dedup();
+    Ok(out)
+}
+
+/// Loads every scene first, so that one bad file stops the run before any output; every bad one
+/// is reported. Ids must be unique, and two lecture names must not make the same handout file
+/// name.
+pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
+    let mut scenes = Vec::new();
+    let mut errors = Vec::new();
+    for p in paths {
+        match Scene::from_file(p) {
+            Ok(s) => scenes.push(s),
+            Err(e) => errors.push(e),
+        }
+    }
+    let located =
+        |s: &Scene, (line, column): (usize, usize), field: &str, message: String| SceneError {
+            path: s.source.clone(),
+            line,
+            column,
+            field: field.into(),
+            message,
+        };
+    let mut by_id: Vec<&Scene> = scenes.iter().collect();
+    by_id.sort_by(|a, b| (&a.id, &a.source).cmp(&(&b.id, &b.source)));
+    for w in by_id.windows(2) {
+        if w[0].id == w[1].id {
+            let message = format!(
+                "duplicate scene id `{}` (also in {}): page file names come from ids",
+                w[0].id,
+                w[0].source.display()
+            );
+            errors.push(located(w[1], w[1].id_at, "id", message));
+        }
+    }
+    let mut by_slug: std::collections::BTreeMap<String, &Scene> = Default::default();
+    for s in by_id {
+        let slug = lecture_slug(&s.notes.lecture);
+        match by_slug.get(&slug) {
+            Some(first) if first.notes.lecture != s.notes.lecture => {
+                let message = format!(
+                    "lecture `{}` and lecture `{}` (in {}) would share the handout file name \
+                     `{slug}`: name them so that they differ in a letter or digit",
+                    s.notes.lecture,
+                    first.notes.lecture,
+                    first.source.display()
+                );
+                errors.push(located(s, s.lecture_at, "notes.lecture", message));
+            }
+            Some(_) => {}
+            None => {
+                by_slug.insert(slug, s);
+            }
+        }
+    }
+    if errors.is_empty() {
+        Ok(scenes)
+    } else {
+        Err(errors)
     }
 }

@@ -1,4 +1,6 @@
 use super::*;
+use crate::model::catalogue::Output;
+use std::path::Path;
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
     Scene::parse(text, Path::new("lectures/x.toml"))

@@ -4,7 +4,9 @@
 //! file renamed into place), so a crash mid-write leaves no half-written entry.
 
 use super::SiteError;
-use crate::numeric::fidelity::Fidelity;
+use crate::model::fidelity::Fidelity;
+use crate::pipeline::{self, FromCache, RunError, SceneReport};
+use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 
 /// Bumped when the entry format changes (2: rationals of any size, stored as text).
@@ -32,7 +34,7 @@ impl Cache {
         let program = format!("{FORMAT}:{}:{exe}", env!("CARGO_PKG_VERSION"));
         Cache {
             dir: dir.to_path_buf(),
-            program: crate::scene::content_hash(program.as_bytes()),
+            program: crate::base::hash::content_hash(program.as_bytes()),
         }
     }
 
@@ -55,8 +57,38 @@ impl Cache {
                 ),
             ),
         };
-        let hash = crate::scene::content_hash(key.as_bytes());
+        let hash = crate::base::hash::content_hash(key.as_bytes());
         self.dir.join(format!("{id}.{kind}.{hash:016x}.json"))
+    }
+
+    /// Runs one scene, or takes it from the cache: the whole report when the cache holds it
+    /// for this fidelity, else the symbolic results when it holds those, with only the numeric
+    /// stage run again. Comes back with the report and, when the new results could not be
+    /// stored, why (the build goes on without them).
+    pub fn run_scene(
+        &self,
+        scene: Scene,
+        fidelity: Option<Fidelity>,
+    ) -> Result<(SceneReport, Option<SiteError>), RunError> {
+        let (id, hash) = (scene.id.clone(), scene.content_hash);
+        let fid = fidelity.or(scene.fidelity).unwrap_or_default();
+        let whole = self
+            .load(&id, hash, Some(&fid))
+            .and_then(|bytes| pipeline::from_cache(scene.clone(), &bytes));
+        if let Some(r) = whole {
+            return Ok((r, None));
+        }
+        let symbolic = self
+            .load(&id, hash, None)
+            .and_then(|bytes| serde_json::from_slice(&bytes).ok());
+        let r = pipeline::run_scene_with(scene, Some(fid), symbolic)?;
+        let mut stored = self.store(&id, hash, Some(&fid), &pipeline::to_cache(&r));
+        if r.from_cache == FromCache::Nothing && stored.is_ok() {
+            let symbolic =
+                serde_json::to_vec(&pipeline::symbolic_part(&r)).expect("a report serializes");
+            stored = self.store(&id, hash, None, &symbolic);
+        }
+        Ok((r, stored.err()))
     }
 
     /// The stored bytes, or `None` on a miss (including an unreadable entry).

@@ -12,7 +12,7 @@
 //! Quick run (part of `cargo test --release`): 40 mutants per scene. Longer run:
 //! `MECHBOOK_FUZZ_MUTANTS=300 MECHBOOK_FUZZ_SEED=7 cargo test --release --test fuzz -- --ignored --nocapture`.
 
-use mechbook::numeric::fidelity::Fidelity;
+use mechbook::model::fidelity::Fidelity;
 use mechbook::pipeline;
 use mechbook::scene::Scene;
 use std::collections::BTreeMap;
@@ -283,8 +283,9 @@ fn guarded(bytes: Vec<u8>, path: PathBuf) -> Result<Outcome, String> {
 }
 
 fn scenes() -> Vec<(PathBuf, Vec<u8>)> {
-    let mut files = pipeline::find_scenes(&["lectures".into(), "tests/fixtures/valid".into()])
-        .expect("the scene folders");
+    let mut files =
+        mechbook::scene::find_scenes(&["lectures".into(), "tests/fixtures/valid".into()])
+            .expect("the scene folders");
     files.sort();
     files
         .into_iter()

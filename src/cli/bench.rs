@@ -8,17 +8,72 @@
 //!
 //! Pure measurement: the caller decides where the Markdown and the SVGs go.
 
-use crate::figure::Figure;
+use crate::base::format::sci;
+use crate::model::fidelity::Fidelity;
+use crate::model::figure::Figure;
+use crate::model::moments::Moments;
 use crate::numeric::body::{NumBody, NumShape};
-use crate::numeric::fidelity::Fidelity;
-use crate::numeric::free_body::{ExactSolution, Moments};
-use crate::report::sci;
+use crate::numeric::free_body::ExactSolution;
 use crate::site::scratch;
+use anyhow::{Context, Result, anyhow, bail};
 use nalgebra::{Matrix3, Vector3};
 use std::fmt::Write;
+use std::io::{IsTerminal, Write as _};
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::process::ExitCode;
 use std::time::Instant;
+
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    /// Write bench.md, integrators-pareto.svg and quadrature-pareto.svg here (the folder
+    /// is replaced whole), e.g. docs/bench.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// The scenes to build (a copy is built, never these files).
+    #[arg(long, default_value = "lectures")]
+    pub lectures: PathBuf,
+    /// Runs of each build; the report gives the fastest and the median.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=50))]
+    pub repeats: u64,
+}
+
+/// Measures, prints the report, and with `--out` writes it and its figures.
+pub fn run(args: BenchArgs) -> Result<ExitCode> {
+    let BenchArgs {
+        out,
+        lectures,
+        repeats,
+    } = args;
+    if let Some(out) = &out {
+        crate::site::check_output(out, &[lectures.clone(), PathBuf::from(".")])?;
+    }
+    let tty = std::io::stderr().is_terminal();
+    let bench = measure(&lectures, repeats as usize, |line| {
+        if tty {
+            eprint!("\r\x1b[2Kbench: {line}");
+        }
+    })?;
+    if tty {
+        eprint!("\r\x1b[2K");
+    }
+    if let Some(out) = out {
+        let mut files = crate::render::SiteFiles::new();
+        files.insert("bench.md".into(), bench.markdown.clone().into_bytes());
+        for f in &bench.figures {
+            let svg = crate::render::plot::svg(f)?;
+            files.insert(format!("{}.svg", f.slug).into(), svg.into_bytes());
+        }
+        crate::site::write_site(&out, &files)?;
+        eprintln!(
+            "mechbook: wrote bench.md and {} SVGs into {}",
+            bench.figures.len(),
+            out.display()
+        );
+    }
+    std::io::stdout().write_all(bench.markdown.as_bytes())?;
+    Ok(ExitCode::SUCCESS)
+}
 
 /// The benchmark's results: the Markdown report and the figures it draws.
 pub struct Bench {
@@ -28,11 +83,7 @@ pub struct Bench {
 
 /// Runs every part. `lectures` is the folder of scenes to build; `repeats` runs each build
 /// that many times and reports the fastest and the median.
-pub fn run(
-    lectures: &Path,
-    repeats: usize,
-    mut progress: impl FnMut(&str),
-) -> Result<Bench, String> {
+pub fn measure(lectures: &Path, repeats: usize, mut progress: impl FnMut(&str)) -> Result<Bench> {
     let mut md = String::from("# mechbook bench\n\n");
     let _ = writeln!(
         md,
@@ -42,7 +93,7 @@ pub fn run(
 
     progress("integrators");
     md.push_str("## Integrators\n\n");
-    md.push_str(&crate::spin::bench_table(&mut progress));
+    md.push_str(&super::spin::bench_table(&mut progress));
 
     progress("error against cost");
     let figures = pareto_figures()?;
@@ -71,7 +122,7 @@ pub fn run(
 
     progress("symbolic stage");
     md.push_str(&symbolic_stage(lectures, repeats)?);
-    if let Some(m) = crate::cli::peak_memory_mib() {
+    if let Some(m) = super::peak_memory_mib() {
         let _ = writeln!(md, "\nPeak memory of the bench process itself: {m:.0} MiB.");
     }
     Ok(Bench {
@@ -82,11 +133,13 @@ pub fn run(
 
 /// The integrators on REFERENCE.md's case over 100 periods at reference fidelity, and the
 /// quadrature methods on the notes' cube about its corner.
-fn pareto_figures() -> Result<Vec<Figure>, String> {
+fn pareto_figures() -> Result<Vec<Figure>> {
     let i = Moments::new([1.0, 2.0, 3.0])?;
     let w0 = Vector3::new(1.0, 0.1, 0.5);
-    let period = ExactSolution::new(&i, w0).period().ok_or("not periodic")?;
-    let mut integrators = crate::numeric::free_body_plots::integrator_pareto(
+    let period = ExactSolution::new(&i, w0)
+        .period()
+        .context("not periodic")?;
+    let mut integrators = crate::figures::integrator_pareto::integrator_pareto(
         &i,
         w0,
         100.0 * period,
@@ -105,7 +158,7 @@ fn pareto_figures() -> Result<Vec<Figure>, String> {
     };
     // Eq (35): I = M a² [[2/3, −1/4, −1/4], …] about a corner.
     let exact = Matrix3::from_fn(|r, c| if r == c { 2.0 / 3.0 } else { -0.25 });
-    let quadrature = crate::numeric::plots::convergence(
+    let quadrature = crate::figures::convergence::convergence(
         &cube,
         &exact,
         1,
@@ -116,19 +169,19 @@ fn pareto_figures() -> Result<Vec<Figure>, String> {
 }
 
 /// One child build: its wall time and the peak memory it printed.
-fn child_build(args: &[&str]) -> Result<(f64, f64), String> {
-    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+fn child_build(args: &[&str]) -> Result<(f64, f64)> {
+    let exe = std::env::current_exe()?;
     let start = Instant::now();
     let out = Command::new(exe)
         .arg("build")
         .args(args)
         .env("SYMBOLICA_HIDE_BANNER", "1")
         .output()
-        .map_err(|e| format!("cannot run mechbook build: {e}"))?;
+        .context("cannot run mechbook build")?;
     let seconds = start.elapsed().as_secs_f64();
     let err = String::from_utf8_lossy(&out.stderr);
     if !out.status.success() {
-        return Err(format!("mechbook build {} failed: {err}", args.join(" ")));
+        bail!("mechbook build {} failed: {err}", args.join(" "));
     }
     let peak = err
         .split("peak memory ")
@@ -145,10 +198,7 @@ struct Timing {
     peak: f64,
 }
 
-fn timed(
-    repeats: usize,
-    mut one: impl FnMut() -> Result<(f64, f64), String>,
-) -> Result<Timing, String> {
+fn timed(repeats: usize, mut one: impl FnMut() -> Result<(f64, f64)>) -> Result<Timing> {
     let mut runs = Vec::new();
     for _ in 0..repeats.max(1) {
         runs.push(one()?);
@@ -163,16 +213,11 @@ fn timed(
 }
 
 /// Whole-site builds of a copy of `lectures`, each in a fresh child process.
-fn builds(
-    lectures: &Path,
-    repeats: usize,
-    progress: &mut impl FnMut(&str),
-) -> Result<String, String> {
-    let io = |e: std::io::Error| e.to_string();
-    let dir = scratch::folder("bench").map_err(io)?;
+fn builds(lectures: &Path, repeats: usize, progress: &mut impl FnMut(&str)) -> Result<String> {
+    let dir = scratch::folder("bench")?;
     let result = (|| {
         let scenes = dir.join("lectures");
-        scratch::copy_tree(lectures, &scenes).map_err(io)?;
+        scratch::copy_tree(lectures, &scenes)?;
         let s = |p: &PathBuf| p.to_string_lossy().into_owned();
         let (scenes_arg, site, cache) = (s(&scenes), s(&dir.join("site")), s(&dir.join("cache")));
         let base = [
@@ -211,10 +256,9 @@ fn builds(
         ));
         progress("one scene changed");
         // The last scene in name order: the same one on every machine.
-        let edited = crate::pipeline::find_scenes(std::slice::from_ref(&scenes))
-            .map_err(io)?
+        let edited = crate::scene::find_scenes(std::slice::from_ref(&scenes))?
             .pop()
-            .ok_or("no scene to edit")?;
+            .context("no scene to edit")?;
         let mut edits = 0;
         rows.push((
             format!(
@@ -223,7 +267,7 @@ fn builds(
             ),
             timed(repeats, || {
                 edits += 1;
-                scratch::append_line(&edited, &format!("# bench edit {edits}")).map_err(io)?;
+                scratch::append_line(&edited, &format!("# bench edit {edits}"))?;
                 build(with(&[]))
             })?,
         ));
@@ -232,7 +276,7 @@ fn builds(
             rows.push((
                 format!("{fidelity}, symbolic results cached: only the numerics run"),
                 timed(repeats, || {
-                    scratch::drop_reports(&dir.join("cache")).map_err(io)?;
+                    scratch::drop_reports(&dir.join("cache"))?;
                     build(with(&["--fidelity", fidelity]))
                 })?,
             ));
@@ -242,7 +286,7 @@ fn builds(
              lecture scenes, timed from outside (start-up included); {repeats} run(s) each. Peak \
              memory is the largest the build printed (Linux VmHWM).\n\n\
              | build | fastest s | median s | peak MiB |\n|---|---|---|---|\n",
-            crate::pipeline::find_scenes(std::slice::from_ref(&scenes)).map_or(0, |v| v.len())
+            crate::scene::find_scenes(std::slice::from_ref(&scenes)).map_or(0, |v| v.len())
         );
         for (name, t) in &rows {
             let _ = writeln!(
@@ -274,15 +318,17 @@ fn builds(
 
 /// The symbolic stage alone: derivation, claims and recorded results of every scene, in this
 /// process; the fastest of `repeats` passes.
-fn symbolic_stage(lectures: &Path, repeats: usize) -> Result<String, String> {
-    let files =
-        crate::pipeline::find_scenes(&[lectures.to_path_buf()]).map_err(|e| e.to_string())?;
-    let scenes = crate::pipeline::load_all(&files).map_err(|errors| {
-        errors
-            .iter()
-            .map(|e| e.to_string())
-            .collect::<Vec<_>>()
-            .join("; ")
+fn symbolic_stage(lectures: &Path, repeats: usize) -> Result<String> {
+    let files = crate::scene::find_scenes(&[lectures.to_path_buf()])?;
+    let scenes = crate::scene::load_all(&files).map_err(|errors| {
+        anyhow!(
+            "{}",
+            errors
+                .iter()
+                .map(|e| e.to_string())
+                .collect::<Vec<_>>()
+                .join("; ")
+        )
     })?;
     let mut best = f64::INFINITY;
     let (mut calls, mut engine) = (0, 0.0);
@@ -291,7 +337,7 @@ fn symbolic_stage(lectures: &Path, repeats: usize) -> Result<String, String> {
         let (mut c, mut e) = (0, 0.0);
         for scene in &scenes {
             let plan = crate::plan::Plan::for_scene(scene);
-            let s = crate::pipeline::symbolic_stage(scene, &plan).map_err(|e| e.to_string())?;
+            let s = crate::pipeline::symbolic_stage(scene, &plan)?;
             (c, e) = (c + s.engine_calls, e + s.seconds);
         }
         let wall = start.elapsed().as_secs_f64();

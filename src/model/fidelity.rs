@@ -113,7 +113,7 @@ impl Fidelity {
             Level::Draft => "draft".into(),
             Level::Standard => "standard".into(),
             Level::Reference => "reference".into(),
-            Level::Target => format!("target {}", crate::report::short(self.tolerance)),
+            Level::Target => format!("target {}", crate::base::format::short(self.tolerance)),
         }
     }
 }
@@ -130,7 +130,7 @@ impl fmt::Display for Fidelity {
             f,
             "{} (target relative error {}, at most {} points per quadrature run)",
             self.name(),
-            crate::report::short(self.tolerance),
+            crate::base::format::short(self.tolerance),
             self.max_points()
         )
     }

@@ -1,0 +1,6 @@
+//! The bottom layer: neutral utilities that know nothing of mechanics or of any stage.
+
+pub mod float;
+pub mod format;
+pub mod hash;
+pub mod rng;

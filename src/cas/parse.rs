@@ -1,0 +1,302 @@
+//! The expression parser: scene text and our own printed text back into an [`Expr`], within
+//! limits on length and nesting.
+
+use super::expr::Expr;
+use super::rational::Rational;
+
+/// A parse error: what went wrong and the byte offset in the text.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParseError {
+    pub offset: usize,
+    pub message: String,
+}
+
+/// A parsed expression with the byte offset of every symbol, so that callers can point at an
+/// undefined one.
+#[derive(Debug, Clone)]
+pub struct Parsed {
+    pub expr: Expr,
+    pub symbols: Vec<(String, usize)>,
+}
+
+/// The longest expression, in bytes, a scene may write: eight times the longest in the shipped
+/// lectures (501), and short enough that parsing and printing stay instant.
+pub const MAX_EXPR_BYTES: usize = 4000;
+
+/// The deepest nesting of parentheses, brackets, calls, signs and powers: real expressions
+/// nest a few levels, and every stage that walks the tree recurses once a level.
+pub const MAX_NESTING: usize = 64;
+
+/// The nesting limit for our own texts read back (the engine's output, a derived result):
+/// they can be longer than any scene's input, but never deeper than this, and the recursion
+/// stays far inside a thread's stack.
+const MAX_INTERNAL_NESTING: usize = 256;
+
+/// Parses a scene's `text` in the scene expression language (numbers, names, `+ - * / ^`,
+/// calls, `[..]` lists and `v[i]` indexing), within the input limits: [`MAX_EXPR_BYTES`] and
+/// [`MAX_NESTING`].
+pub fn parse_input(text: &str) -> Result<Parsed, ParseError> {
+    if text.len() > MAX_EXPR_BYTES {
+        return Err(ParseError {
+            offset: 0,
+            message: format!(
+                "expression of {} bytes; the limit is {MAX_EXPR_BYTES}: split it with [definitions]",
+                text.len()
+            ),
+        });
+    }
+    parse_with(text, MAX_NESTING)
+}
+
+/// Parses text that mechbook made itself: no length limit, and a generous nesting limit.
+pub fn parse(text: &str) -> Result<Parsed, ParseError> {
+    parse_with(text, MAX_INTERNAL_NESTING)
+}
+
+fn parse_with(text: &str, max_depth: usize) -> Result<Parsed, ParseError> {
+    let mut p = Parser {
+        src: text.as_bytes(),
+        pos: 0,
+        depth: 0,
+        max_depth,
+        symbols: Vec::new(),
+    };
+    p.skip_ws();
+    if p.pos >= p.src.len() {
+        return Err(p.error("empty expression"));
+    }
+    let expr = p.sum()?;
+    p.skip_ws();
+    if p.pos < p.src.len() {
+        return Err(p.error(&unexpected(&p.src[p.pos..], p.src[p.pos])));
+    }
+    Ok(Parsed {
+        expr,
+        symbols: p.symbols,
+    })
+}
+
+/// "unexpected `x`", naming the whole character (not its first byte) and never a control one.
+fn unexpected(rest: &[u8], first: u8) -> String {
+    let text = String::from_utf8_lossy(&rest[..rest.len().min(4)]);
+    match text.chars().next() {
+        Some(c) if c.is_control() => format!("unexpected control character U+{:04X}", c as u32),
+        Some(c) if !first.is_ascii() => format!("unexpected `{c}`"),
+        _ => format!("unexpected `{}`", first as char),
+    }
+}
+
+struct Parser<'a> {
+    src: &'a [u8],
+    pos: usize,
+    /// How deep the recursion is: every nesting passes through `unary`.
+    depth: usize,
+    max_depth: usize,
+    symbols: Vec<(String, usize)>,
+}
+
+impl Parser<'_> {
+    fn error(&self, message: &str) -> ParseError {
+        ParseError {
+            offset: self.pos,
+            message: message.to_string(),
+        }
+    }
+
+    fn skip_ws(&mut self) {
+        while self.pos < self.src.len() && self.src[self.pos].is_ascii_whitespace() {
+            self.pos += 1;
+        }
+    }
+
+    fn peek(&mut self) -> Option<u8> {
+        self.skip_ws();
+        self.src.get(self.pos).copied()
+    }
+
+    fn expect(&mut self, c: u8) -> Result<(), ParseError> {
+        if self.peek() == Some(c) {
+            self.pos += 1;
+            Ok(())
+        } else {
+            Err(self.error(&format!("expected `{}`", c as char)))
+        }
+    }
+
+    fn sum(&mut self) -> Result<Expr, ParseError> {
+        let mut terms = vec![self.product()?];
+        loop {
+            match self.peek() {
+                Some(b'+') => {
+                    self.pos += 1;
+                    terms.push(self.product()?);
+                }
+                Some(b'-') => {
+                    self.pos += 1;
+                    terms.push(Expr::negate(self.product()?));
+                }
+                _ => break,
+            }
+        }
+        Ok(Expr::add(terms))
+    }
+
+    fn product(&mut self) -> Result<Expr, ParseError> {
+        let mut factors = vec![self.unary()?];
+        loop {
+            match self.peek() {
+                Some(b'*') => {
+                    self.pos += 1;
+                    factors.push(self.unary()?);
+                }
+                Some(b'/') => {
+                    self.pos += 1;
+                    let at = self.pos;
+                    let d = self.unary()?;
+                    if d.is_zero() {
+                        return Err(ParseError {
+                            offset: at,
+                            message: "division by zero".into(),
+                        });
+                    }
+                    factors.push(Expr::over(Expr::int(1), d));
+                }
+                _ => break,
+            }
+        }
+        Ok(Expr::mul(factors))
+    }
+
+    fn unary(&mut self) -> Result<Expr, ParseError> {
+        self.depth += 1;
+        if self.depth > self.max_depth {
+            return Err(self.error(&format!(
+                "nested more than {} levels deep: simplify it, or split it with [definitions]",
+                self.max_depth
+            )));
+        }
+        let e = self.unary_inner();
+        self.depth -= 1;
+        e
+    }
+
+    fn unary_inner(&mut self) -> Result<Expr, ParseError> {
+        match self.peek() {
+            Some(b'-') => {
+                self.pos += 1;
+                Ok(Expr::negate(self.unary()?))
+            }
+            Some(b'+') => {
+                self.pos += 1;
+                self.unary()
+            }
+            _ => self.power(),
+        }
+    }
+
+    fn power(&mut self) -> Result<Expr, ParseError> {
+        let base = self.postfix()?;
+        if self.peek() == Some(b'^') {
+            self.pos += 1;
+            // Right-associative; the exponent may carry its own sign.
+            let exponent = self.unary()?;
+            return Ok(Expr::pow(base, exponent));
+        }
+        Ok(base)
+    }
+
+    fn postfix(&mut self) -> Result<Expr, ParseError> {
+        let mut e = self.atom()?;
+        while self.peek() == Some(b'[') {
+            self.pos += 1;
+            let i = self.sum()?;
+            self.expect(b']')?;
+            e = Expr::Index(Box::new(e), Box::new(i));
+        }
+        Ok(e)
+    }
+
+    fn atom(&mut self) -> Result<Expr, ParseError> {
+        let start = self.pos;
+        match self.peek() {
+            None => Err(self.error("unexpected end of expression")),
+            Some(b'(') => {
+                self.pos += 1;
+                let e = self.sum()?;
+                self.expect(b')')?;
+                Ok(e)
+            }
+            Some(b'[') => {
+                self.pos += 1;
+                let mut items = vec![self.sum()?];
+                while self.peek() == Some(b',') {
+                    self.pos += 1;
+                    items.push(self.sum()?);
+                }
+                self.expect(b']')?;
+                Ok(Expr::List(items))
+            }
+            Some(c) if c.is_ascii_digit() || c == b'.' => {
+                let s = self.pos;
+                while self.pos < self.src.len()
+                    && (self.src[self.pos].is_ascii_digit() || self.src[self.pos] == b'.')
+                {
+                    self.pos += 1;
+                }
+                // An exponent `e-3` only when a digit follows.
+                if self.pos + 1 < self.src.len() && matches!(self.src[self.pos], b'e' | b'E') {
+                    let mut q = self.pos + 1;
+                    if matches!(self.src[q], b'+' | b'-') {
+                        q += 1;
+                    }
+                    if q < self.src.len() && self.src[q].is_ascii_digit() {
+                        self.pos = q;
+                        while self.pos < self.src.len() && self.src[self.pos].is_ascii_digit() {
+                            self.pos += 1;
+                        }
+                    }
+                }
+                let text = std::str::from_utf8(&self.src[s..self.pos]).unwrap_or("?");
+                Rational::parse_decimal(text)
+                    .map(Expr::Num)
+                    .ok_or(ParseError {
+                        offset: s,
+                        message: format!(
+                            "malformed number `{text}` (at most {} digits, exponents within ±{})",
+                            super::rational::MAX_DIGITS,
+                            super::rational::MAX_EXPONENT
+                        ),
+                    })
+            }
+            Some(c) if c.is_ascii_alphabetic() => {
+                let s = self.pos;
+                while self.pos < self.src.len()
+                    && (self.src[self.pos].is_ascii_alphanumeric() || self.src[self.pos] == b'_')
+                {
+                    self.pos += 1;
+                }
+                let name = String::from_utf8_lossy(&self.src[s..self.pos]).into_owned();
+                if self.peek() == Some(b'(') {
+                    self.pos += 1;
+                    if self.peek() == Some(b')') {
+                        self.pos += 1;
+                        return Ok(Expr::Call(name, Vec::new()));
+                    }
+                    let mut args = vec![self.sum()?];
+                    while self.peek() == Some(b',') {
+                        self.pos += 1;
+                        args.push(self.sum()?);
+                    }
+                    self.expect(b')')?;
+                    return Ok(Expr::Call(name, args));
+                }
+                self.symbols.push((name.clone(), s));
+                Ok(Expr::Sym(name))
+            }
+            Some(c) => {
+                self.pos = start.max(self.pos);
+                Err(self.error(&unexpected(&self.src[self.pos..], c)))
+            }
+        }
+    }
+}

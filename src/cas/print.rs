@@ -1,0 +1,478 @@
+//! Printing an expression: one walk over the tree, shared by the plain text the parser and the
+//! engine read back and the LaTeX the pages show. The walk decides what both agree on (signs in
+//! sums, negative products, where parentheses go); a [`Style`] writes each node's own syntax.
+
+use super::expr::Expr;
+use super::rational::Rational;
+use std::fmt;
+
+impl Expr {
+    /// Plain text in the syntax the parser reads back (and that Symbolica reads).
+    pub fn to_text(&self) -> String {
+        self.to_text_with(&|n| n.to_string())
+    }
+
+    /// Text with every symbol renamed, for engines with reserved names.
+    pub fn to_text_with(&self, rename: &dyn Fn(&str) -> String) -> String {
+        let mut s = String::new();
+        write(self, &mut s, Prec::Sum, &Text { rename });
+        s
+    }
+
+    pub fn to_latex(&self) -> String {
+        let mut s = String::new();
+        write(self, &mut s, Prec::Sum, &Latex);
+        s
+    }
+}
+
+impl fmt::Display for Expr {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.to_text())
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, PartialOrd)]
+enum Prec {
+    Sum,
+    Product,
+    /// A factor of a product.
+    Factor,
+    /// The base or exponent of a power.
+    Power,
+}
+
+/// Splits product factors into the numerator and the inverted denominator factors.
+fn split_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
+    let (mut num, mut den) = (Vec::new(), Vec::new());
+    for f in v {
+        match f {
+            Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(r) if r.is_negative() && r.is_integer()) =>
+            {
+                let Expr::Num(r) = x.as_ref() else {
+                    unreachable!()
+                };
+                den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.negated())));
+            }
+            other => num.push(other.clone()),
+        }
+    }
+    (num, den)
+}
+
+/// A term of a sum printed with its sign: `(negative, magnitude)`.
+fn split_sign(e: &Expr) -> (bool, Expr) {
+    match e {
+        Expr::Num(r) if r.is_negative() => (true, Expr::Num(r.negated())),
+        Expr::Mul(v) => match v.first() {
+            Some(Expr::Num(r)) if r.is_negative() => {
+                let mut rest = v.clone();
+                rest[0] = Expr::Num(r.negated());
+                (true, Expr::mul(rest))
+            }
+            _ => (false, e.clone()),
+        },
+        _ => (false, e.clone()),
+    }
+}
+
+/// One output syntax: how parentheses open and close, and how each kind of node is written.
+/// Sums and negative products are the walk's own.
+trait Style {
+    fn open(&self) -> &'static str;
+    fn close(&self) -> &'static str;
+    fn symbol(&self, name: &str, out: &mut String);
+    fn number(&self, r: &Rational, ctx: Prec, out: &mut String);
+    /// A product with no leading minus sign; `factors` are its factors.
+    fn product(&self, factors: &[Expr], ctx: Prec, out: &mut String);
+    fn power(&self, a: &Expr, b: &Expr, ctx: Prec, out: &mut String);
+    fn call(&self, n: &str, args: &[Expr], out: &mut String);
+    fn list(&self, v: &[Expr], out: &mut String);
+    fn index(&self, e: &Expr, out: &mut String);
+}
+
+fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
+    match e {
+        Expr::Num(r) => style.number(r, ctx, out),
+        Expr::Sym(s) => style.symbol(s, out),
+        Expr::Add(v) => {
+            if ctx > Prec::Sum {
+                out.push_str(style.open());
+            }
+            for (i, t) in v.iter().enumerate() {
+                let (negative, mag) = split_sign(t);
+                if i == 0 {
+                    if negative {
+                        out.push('-');
+                    }
+                } else {
+                    out.push_str(if negative { " - " } else { " + " });
+                }
+                write(&mag, out, Prec::Product, style);
+            }
+            if ctx > Prec::Sum {
+                out.push_str(style.close());
+            }
+        }
+        Expr::Mul(v) => {
+            let (negative, mag) = split_sign(e);
+            if !negative {
+                return style.product(v, ctx, out);
+            }
+            if ctx > Prec::Sum {
+                out.push_str(style.open());
+            }
+            out.push('-');
+            write(&mag, out, Prec::Product, style);
+            if ctx > Prec::Sum {
+                out.push_str(style.close());
+            }
+        }
+        Expr::Pow(a, b) => style.power(a, b, ctx, out),
+        Expr::Call(n, args) => style.call(n, args, out),
+        Expr::List(v) => style.list(v, out),
+        Expr::Index(..) => style.index(e, out),
+    }
+}
+
+/// The parser's syntax, with symbols renamed on the way out.
+struct Text<'a> {
+    rename: &'a dyn Fn(&str) -> String,
+}
+
+impl Style for Text<'_> {
+    fn open(&self) -> &'static str {
+        "("
+    }
+    fn close(&self) -> &'static str {
+        ")"
+    }
+    fn symbol(&self, name: &str, out: &mut String) {
+        out.push_str(&(self.rename)(name));
+    }
+    fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
+        let needs =
+            (!r.is_integer() && ctx > Prec::Product) || (r.is_negative() && ctx > Prec::Sum);
+        let needs = needs || (!r.is_integer() && ctx == Prec::Power);
+        if needs {
+            out.push('(');
+        }
+        out.push_str(&r.to_string());
+        if needs {
+            out.push(')');
+        }
+    }
+    fn product(&self, v: &[Expr], ctx: Prec, out: &mut String) {
+        if ctx > Prec::Product {
+            out.push('(');
+        }
+        // Factors with negative integer exponents go below a fraction bar: (y^2 + z^2)/a^3.
+        let (num, den) = split_fraction(v);
+        for (i, f) in num.iter().enumerate() {
+            if i > 0 {
+                out.push('*');
+            }
+            // A leading positive fraction reads correctly without parentheses: 1/2*M.
+            let ctx = if i == 0 && matches!(f, Expr::Num(_)) {
+                Prec::Product
+            } else {
+                Prec::Factor
+            };
+            write(f, out, ctx, self);
+        }
+        if num.is_empty() {
+            out.push('1');
+        }
+        if !den.is_empty() {
+            out.push('/');
+            let d = Expr::mul(den);
+            write(
+                &d,
+                out,
+                if matches!(d, Expr::Mul(_)) {
+                    Prec::Power
+                } else {
+                    Prec::Factor
+                },
+                self,
+            );
+        }
+        if ctx > Prec::Product {
+            out.push(')');
+        }
+    }
+    fn power(&self, a: &Expr, b: &Expr, ctx: Prec, out: &mut String) {
+        if ctx > Prec::Factor {
+            out.push('(');
+        }
+        write(a, out, Prec::Power, self);
+        out.push('^');
+        write(b, out, Prec::Power, self);
+        if ctx > Prec::Factor {
+            out.push(')');
+        }
+    }
+    fn call(&self, n: &str, args: &[Expr], out: &mut String) {
+        out.push_str(n);
+        out.push('(');
+        for (i, a) in args.iter().enumerate() {
+            if i > 0 {
+                out.push_str(", ");
+            }
+            write(a, out, Prec::Sum, self);
+        }
+        out.push(')');
+    }
+    fn list(&self, v: &[Expr], out: &mut String) {
+        out.push('[');
+        for (i, a) in v.iter().enumerate() {
+            if i > 0 {
+                out.push_str(", ");
+            }
+            write(a, out, Prec::Sum, self);
+        }
+        out.push(']');
+    }
+    fn index(&self, e: &Expr, out: &mut String) {
+        let Expr::Index(a, i) = e else {
+            unreachable!("an index")
+        };
+        write(a, out, Prec::Power, self);
+        out.push('[');
+        write(i, out, Prec::Sum, self);
+        out.push(']');
+    }
+}
+
+const GREEK: &[&str] = &[
+    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
+    "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "phi", "chi", "psi", "omega", "Gamma",
+    "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Phi", "Psi", "Omega",
+];
+
+/// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
+/// `inertia_tensor` -> upright text.
+fn latex_symbol(s: &str) -> String {
+    if let Some((_, tail)) = s.split_once('_')
+        && !tail.chars().all(|c| c.is_ascii_digit())
+    {
+        return format!("\\mathrm{{{}}}", s.replace('_', "\\_"));
+    }
+    let split = s
+        .char_indices()
+        .find(|(i, c)| *i > 0 && (c.is_ascii_digit() || *c == '_'))
+        .map(|(i, _)| i);
+    let (head, tail) = match split {
+        Some(i) => (&s[..i], s[i..].trim_start_matches('_')),
+        None => (s, ""),
+    };
+    // ω is written w in scene files: w1 is ω₁ and wd1 its rate.
+    let numbered = !tail.is_empty() && tail.chars().all(|c| c.is_ascii_digit());
+    let head = if numbered && head == "w" {
+        "\\omega".to_string()
+    } else if numbered && head == "wd" {
+        "\\dot{\\omega}".to_string()
+    } else if GREEK.contains(&head) {
+        format!("\\{head}")
+    } else if head.len() > 1
+        && head.starts_with('I')
+        && head[1..].chars().all(|c| "xyz".contains(c))
+    {
+        return format!("I_{{{}}}", &head[1..]);
+    } else if head.len() > 1 {
+        format!("\\mathrm{{{head}}}")
+    } else {
+        head.to_string()
+    };
+    if tail.is_empty() {
+        head
+    } else {
+        format!("{head}_{{{tail}}}")
+    }
+}
+
+/// LaTeX for the pages (converted to MathML at build time).
+struct Latex;
+
+impl Style for Latex {
+    fn open(&self) -> &'static str {
+        "\\left("
+    }
+    fn close(&self) -> &'static str {
+        "\\right)"
+    }
+    fn symbol(&self, name: &str, out: &mut String) {
+        out.push_str(&latex_symbol(name));
+    }
+    fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
+        let body = if r.is_integer() {
+            r.to_string()
+        } else {
+            let (num, den) = r.abs_parts();
+            format!("\\frac{{{num}}}{{{den}}}")
+        };
+        let negative = r.is_negative();
+        if negative && ctx > Prec::Sum {
+            out.push_str("\\left(");
+        }
+        if negative && !r.is_integer() {
+            out.push('-');
+        }
+        out.push_str(&body);
+        if negative && ctx > Prec::Sum {
+            out.push_str("\\right)");
+        }
+    }
+    fn product(&self, v: &[Expr], ctx: Prec, out: &mut String) {
+        // Collect negative powers into a fraction.
+        let (mut num, mut den) = (Vec::new(), Vec::new());
+        for f in v {
+            match f {
+                Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(r) if r.is_negative()) => {
+                    let Expr::Num(r) = x.as_ref() else {
+                        unreachable!()
+                    };
+                    den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.negated())));
+                }
+                Expr::Num(r) if !r.is_integer() => {
+                    let (n, d) = r.abs_parts();
+                    num.push(Expr::Num(if r.is_negative() { n.negated() } else { n }));
+                    den.push(Expr::Num(d));
+                }
+                other => num.push(other.clone()),
+            }
+        }
+        if ctx > Prec::Product {
+            out.push_str("\\left(");
+        }
+        let write_factors = |fs: &[Expr], out: &mut String| {
+            let fs: Vec<&Expr> = fs.iter().filter(|f| !f.is_one()).collect();
+            if fs.is_empty() {
+                out.push('1');
+            }
+            // A lone factor needs no parentheses: \frac{a + b}{c}, not \frac{(a + b)}{c}.
+            let ctx = if fs.len() == 1 {
+                Prec::Sum
+            } else {
+                Prec::Power
+            };
+            for (i, f) in fs.iter().enumerate() {
+                if i > 0 {
+                    out.push_str(if matches!(f, Expr::Num(_)) {
+                        " \\cdot "
+                    } else {
+                        " "
+                    });
+                }
+                write(f, out, ctx, self);
+            }
+        };
+        if den.is_empty() {
+            write_factors(&num, out);
+        } else {
+            out.push_str("\\frac{");
+            write_factors(&num, out);
+            out.push_str("}{");
+            write_factors(&den, out);
+            out.push('}');
+        }
+        if ctx > Prec::Product {
+            out.push_str("\\right)");
+        }
+    }
+    fn power(&self, a: &Expr, b: &Expr, _ctx: Prec, out: &mut String) {
+        if let Expr::Num(r) = b {
+            if *r == Rational::new(1, 2).unwrap() {
+                out.push_str("\\sqrt{");
+                write(a, out, Prec::Sum, self);
+                out.push('}');
+                return;
+            }
+            if r.is_negative() {
+                out.push_str("\\frac{1}{");
+                write(
+                    &Expr::pow(a.clone(), Expr::Num(r.negated())),
+                    out,
+                    Prec::Sum,
+                    self,
+                );
+                out.push('}');
+                return;
+            }
+        }
+        // sin(x)^2 prints as {\sin}^{2}(x): the braces keep the converter's MathML valid.
+        if let Expr::Call(n, args) = a
+            && (n == "sin" || n == "cos")
+        {
+            out.push_str(&format!("\\,{{\\{n}}}^{{"));
+            write(b, out, Prec::Sum, self);
+            out.push_str("}\\left(");
+            write(&args[0], out, Prec::Sum, self);
+            out.push_str("\\right)");
+            return;
+        }
+        write(a, out, Prec::Power, self);
+        out.push_str("^{");
+        write(b, out, Prec::Sum, self);
+        out.push('}');
+    }
+    fn call(&self, n: &str, args: &[Expr], out: &mut String) {
+        if n == "sqrt" && args.len() == 1 {
+            out.push_str("\\sqrt{");
+            write(&args[0], out, Prec::Sum, self);
+            out.push('}');
+            return;
+        }
+        if n == "sin" || n == "cos" {
+            out.push_str(&format!("\\{n}\\left("));
+        } else {
+            out.push_str(&format!("\\operatorname{{{n}}}\\left("));
+        }
+        for (i, a) in args.iter().enumerate() {
+            if i > 0 {
+                out.push_str(", ");
+            }
+            write(a, out, Prec::Sum, self);
+        }
+        out.push_str("\\right)");
+    }
+    fn list(&self, v: &[Expr], out: &mut String) {
+        let is_matrix = v.iter().all(|r| matches!(r, Expr::List(_)));
+        out.push_str("\\begin{pmatrix}");
+        for (i, row) in v.iter().enumerate() {
+            if i > 0 {
+                out.push_str(if is_matrix { " \\\\ " } else { " & " });
+            }
+            match row {
+                Expr::List(cells) if is_matrix => {
+                    for (j, c) in cells.iter().enumerate() {
+                        if j > 0 {
+                            out.push_str(" & ");
+                        }
+                        write(c, out, Prec::Sum, self);
+                    }
+                }
+                other => write(other, out, Prec::Sum, self),
+            }
+        }
+        out.push_str("\\end{pmatrix}");
+    }
+    fn index(&self, e: &Expr, out: &mut String) {
+        // v[0][2] -> v_{0 2}: one subscript for the whole chain.
+        let mut indices = Vec::new();
+        let mut base = e;
+        while let Expr::Index(b, i) = base {
+            indices.push(i.as_ref());
+            base = b;
+        }
+        write(base, out, Prec::Power, self);
+        out.push_str("_{");
+        for (k, i) in indices.iter().rev().enumerate() {
+            if k > 0 {
+                out.push(' ');
+            }
+            write(i, out, Prec::Sum, self);
+        }
+        out.push('}');
+    }
+}

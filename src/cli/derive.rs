@@ -1,0 +1,58 @@
+//! `mechbook derive`: one scene's steps, results, numeric cross-check and claims.
+
+use super::{FidelityArg, find, load};
+use crate::pipeline;
+use crate::report;
+use anyhow::Result;
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(clap::Args, Debug)]
+pub struct DeriveArgs {
+    /// The scene file.
+    pub scene: PathBuf,
+    /// Print the scene as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// Show which stages ran and which were skipped, and why.
+    #[arg(long)]
+    pub explain: bool,
+    #[command(flatten)]
+    pub fidelity: FidelityArg,
+}
+
+pub fn run(args: DeriveArgs) -> Result<ExitCode> {
+    let DeriveArgs {
+        scene,
+        json,
+        explain,
+        fidelity: FidelityArg { fidelity },
+    } = args;
+    let Some(mut scenes) = load(&find(std::slice::from_ref(&scene))?) else {
+        return Ok(ExitCode::from(1));
+    };
+    let r = match pipeline::run_scene(scenes.remove(0), fidelity) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("mechbook: error: {e}");
+            return Ok(ExitCode::from(1));
+        }
+    };
+    let text = if json {
+        serde_json::to_string_pretty(&report::scene_json(&r))? + "\n"
+    } else {
+        let mut t = report::derivation_text(&r);
+        if explain {
+            t.push('\n');
+            t.push_str(&report::explain_text(&r));
+        }
+        t
+    };
+    std::io::stdout().write_all(text.as_bytes())?;
+    Ok(if r.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}

@@ -1,0 +1,235 @@
+//! The command line (clap derive): one file per command, each an args struct and a `run`; the
+//! doc comments are the help text.
+
+mod bench;
+mod build;
+mod check;
+mod derive;
+mod spin;
+
+use crate::model::fidelity::Fidelity;
+use crate::pipeline::{self, SceneReport};
+use crate::site::cache::Cache;
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Reproduce every derivation of a rigid-body mechanics course twice, exactly (Symbolica) and
+/// numerically (nalgebra), and check both against what the lecture notes claim.
+///
+/// Scenes are TOML files, one per derivation (see docs/scenes.md). Exit status: 0 when every
+/// check passes, 1 when a check fails or an input is bad, 2 when the command line is wrong.
+#[derive(Parser, Debug)]
+#[command(name = "mechbook", version, about, long_about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Derive and verify every scene; print a summary table; fail when anything changed.
+    ///
+    /// A scene records the verdict it expects for each claim of the notes and, optionally, its
+    /// exact results. `check` exits with 1 when a verdict or a result differs from the record,
+    /// or when exact and numeric results disagree: a regression test for the derivations.
+    /// It writes no files.
+    Check(check::CheckArgs),
+    /// Build the course site: an index, one page per scene, and per lecture a student and an
+    /// instructor handout for printing.
+    ///
+    /// Course settings (title, author, base_url, output) come from mechbook.toml when it
+    /// exists. The site is written to a temporary folder beside the output and renamed into
+    /// place, so a failed build leaves the previous site untouched; the same scenes give the same
+    /// bytes. Exits with 1 (after writing) when a check of the scenes fails.
+    Build(build::BuildArgs),
+    /// Integrate a free rigid body's Euler equations and compare with the exact solution.
+    ///
+    /// The body frame is principal: give the three principal moments and ω(0) in it. Methods:
+    /// `exact` (Jacobi elliptic functions: the reference), `rk4` and the splittings `splitting`
+    /// (Strang, 2nd order) and `splitting4` (triple jump, 4th order) with a fixed `--step`
+    /// (default 0.01), `dopri` (adaptive Dormand–Prince 5(4)) with `--tol` (default 1e-9).
+    /// Prints ω(T), its error against the exact solution, the largest drift of the energy and
+    /// of |L| along the way, the right-hand-side evaluations and the seconds.
+    Spin(spin::SpinArgs),
+    /// Measure the speed–accuracy trade and print a Markdown report.
+    ///
+    /// The integrators side by side on REFERENCE.md's case (I = 1,2,3, ω(0) = 1,0.1,0.5, 100
+    /// periods); error against cost for every integrator and quadrature method, with Pareto
+    /// fronts; whole-site builds in child processes (cold at each fidelity, warm, after a
+    /// one-scene edit, numerics only) with their peak memory; and the symbolic stage alone.
+    /// Takes about a minute. With --out, writes bench.md and the SVGs into that folder.
+    Bench(bench::BenchArgs),
+    /// Derive one scene and print its steps, results, numeric cross-check and claims.
+    Derive(derive::DeriveArgs),
+}
+
+/// `--fidelity`, shared by the commands that run the numeric stage.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct FidelityArg {
+    /// draft, standard, reference, or a target tolerance such as 1e-6: overrides each scene's
+    /// `[numeric] fidelity` (default standard).
+    #[arg(long, value_parser = parse_fidelity)]
+    pub fidelity: Option<Fidelity>,
+}
+
+/// The process's peak resident memory (Linux's VmHWM), for the build summary and `bench`.
+pub fn peak_memory_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
+    Fidelity::parse(s)
+}
+
+/// Parses the command line and runs it. Usage errors exit with 2 (clap's convention).
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("mechbook: error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// The scene files under `paths`; none at all is an error.
+fn find(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
+    let files = crate::scene::find_scenes(paths).context("cannot list the scene files")?;
+    if files.is_empty() {
+        anyhow::bail!(
+            "no scene files (*.toml) found in {}",
+            paths
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    Ok(files)
+}
+
+/// The scenes in `files`, or `None` when any is bad: every problem is reported, one located
+/// line each, and nothing is derived (bad input prints nothing on standard output).
+fn load(files: &[PathBuf]) -> Option<Vec<crate::scene::Scene>> {
+    match crate::scene::load_all(files) {
+        Ok(s) => Some(s),
+        Err(errors) => {
+            for e in &errors {
+                eprintln!("mechbook: error: {e}");
+            }
+            eprintln!(
+                "mechbook: {} bad scene file(s); nothing was derived",
+                errors.len()
+            );
+            None
+        }
+    }
+}
+
+/// One frame of the progress bar: `[#####·····] 5/10 scene-id`.
+fn progress_bar(done: usize, total: usize, label: &str) -> String {
+    const WIDTH: usize = 24;
+    let filled = (done * WIDTH).checked_div(total).unwrap_or(WIDTH);
+    format!(
+        "[{}{}] {done}/{total} {label}",
+        "#".repeat(filled),
+        "·".repeat(WIDTH - filled)
+    )
+}
+
+/// Runs every scene, or takes it from the cache, with a progress bar on stderr when it is a
+/// terminal. A scene that fails is reported on stderr, one located line, and the others still
+/// run; the count of failed scenes comes back with the reports.
+fn run_all(
+    scenes: Vec<crate::scene::Scene>,
+    fidelity: Option<Fidelity>,
+    cache: Option<&Cache>,
+) -> Result<(Vec<SceneReport>, usize)> {
+    let progress = std::io::stderr().is_terminal();
+    let total = scenes.len();
+    let mut reports = Vec::new();
+    let mut failed = 0;
+    for (i, scene) in scenes.into_iter().enumerate() {
+        if progress {
+            eprint!("\r\x1b[2K{}", progress_bar(i, total, &scene.id));
+        }
+        let run = match cache {
+            Some(cache) => cache
+                .run_scene(scene, fidelity)
+                .map(|(report, not_stored)| {
+                    if let Some(e) = not_stored {
+                        eprintln!("mechbook: warning: the cache is not updated: {e}");
+                    }
+                    report
+                }),
+            None => pipeline::run_scene(scene, fidelity),
+        };
+        match run {
+            Ok(r) => reports.push(r),
+            Err(e) => {
+                if progress {
+                    eprint!("\r\x1b[2K");
+                }
+                eprintln!("mechbook: error: {e}");
+                failed += 1;
+            }
+        }
+    }
+    if progress {
+        eprint!("\r\x1b[2K");
+    }
+    Ok((reports, failed))
+}
+
+fn default_paths(paths: Vec<PathBuf>) -> Vec<PathBuf> {
+    if paths.is_empty() {
+        vec![PathBuf::from("lectures")]
+    } else {
+        paths
+    }
+}
+
+pub fn run(cli: Cli) -> Result<ExitCode> {
+    if matches!(
+        cli.command,
+        Command::Build { .. } | Command::Check { .. } | Command::Derive { .. }
+    ) {
+        crate::cas::ready()?;
+    }
+    match cli.command {
+        Command::Check(args) => check::run(args),
+        Command::Build(args) => build::run(args),
+        Command::Spin(args) => spin::run(args),
+        Command::Bench(args) => bench::run(args),
+        Command::Derive(args) => derive::run(args),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::progress_bar;
+
+    #[test]
+    fn the_progress_bar_fills_in_proportion() {
+        assert_eq!(
+            progress_bar(0, 4, "a"),
+            format!("[{}] 0/4 a", "·".repeat(24))
+        );
+        assert_eq!(
+            progress_bar(1, 4, "b"),
+            format!("[{}{}] 1/4 b", "#".repeat(6), "·".repeat(18))
+        );
+        assert_eq!(
+            progress_bar(4, 4, "c"),
+            format!("[{}] 4/4 c", "#".repeat(24))
+        );
+        assert_eq!(progress_bar(0, 0, ""), format!("[{}] 0/0 ", "#".repeat(24)));
+    }
+}

@@ -1,0 +1,91 @@
+//! The free-body figures' dispatch and the helpers they share: sample times, the figure
+//! frame, and the text that names the body and its motion.
+
+use super::FigureError;
+use crate::base::format::sci;
+use crate::model::fidelity::Fidelity;
+use crate::model::figure::Figure;
+use crate::model::figure::Legend;
+use crate::model::figure::Scale;
+use crate::model::figure::Series;
+use crate::model::moments::Moments;
+use crate::numeric::free_body::ExactSolution;
+use crate::scene::FreeBodyPlot;
+use nalgebra::Vector3;
+
+pub fn figure(
+    kind: FreeBodyPlot,
+    inertia: [f64; 3],
+    omega: [f64; 3],
+    t: f64,
+    fidelity: &Fidelity,
+) -> Result<Figure, FigureError> {
+    let i = Moments::new(inertia)?;
+    let w0 = Vector3::from(omega);
+    let f = fidelity;
+    match kind {
+        FreeBodyPlot::OmegaVsTime => super::omega_vs_time::omega_vs_time(&i, w0, t, f),
+        FreeBodyPlot::Polhodes => super::polhodes::polhodes(&i, w0, f),
+        FreeBodyPlot::Drift => super::drift::drift(&i, w0, t, f),
+        FreeBodyPlot::Flip => super::flip::flip(&i, w0, t, f),
+        FreeBodyPlot::AxisSpins => super::axis_spins::axis_spins(&i, w0, t, f),
+        FreeBodyPlot::Herpolhode => super::herpolhode::herpolhode(&i, w0, t, f),
+        FreeBodyPlot::PolarMotion => super::polar_motion::polar_motion(&i, w0, f),
+        FreeBodyPlot::Cones => super::cones::cones(&i, w0, t, f),
+        FreeBodyPlot::IntegratorPareto => super::integrator_pareto::integrator_pareto(&i, w0, t, f),
+    }
+}
+
+pub(super) fn times(t_end: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|j| t_end * j as f64 / n as f64).collect()
+}
+
+pub(super) fn fig(
+    slug: &str,
+    title: String,
+    desc: String,
+    x: &str,
+    y: &str,
+    series: Vec<Series>,
+) -> Figure {
+    Figure {
+        slug: slug.into(),
+        title,
+        desc,
+        x_label: x.into(),
+        y_label: y.into(),
+        x_scale: Scale::Linear,
+        y_scale: Scale::Linear,
+        equal_aspect: false,
+        series,
+        labels: Vec::new(),
+        legend: Legend::UpperRight,
+        accuracy: Vec::new(),
+    }
+}
+
+pub(super) fn body_text(i: &Moments, w0: &Vector3<f64>) -> String {
+    format!(
+        "I = ({}, {}, {}), ω(0) = ({}, {}, {})",
+        i.0[0], i.0[1], i.0[2], w0.x, w0.y, w0.z
+    )
+}
+
+pub(super) fn motion_text(sol: &ExactSolution) -> String {
+    let mut s = String::new();
+    if let Some((m, mc)) = sol.parameter() {
+        s.push_str(&format!("m = {m:.6} (1 − m = {}), ", sci(mc)));
+    }
+    match sol.period() {
+        Some(p) => s.push_str(&format!("period of ω {p:.6}")),
+        None => s.push_str("steady rotation"),
+    }
+    s
+}
+
+/// Indices of the smallest, middle and largest moments.
+pub(super) fn sorted_axes(i: &Moments) -> [usize; 3] {
+    let mut o = [0, 1, 2];
+    o.sort_by(|a, b| i.0[*a].total_cmp(&i.0[*b]));
+    o
+}

@@ -1,0 +1,154 @@
+//! Figures: the data of every plot a scene asks for (`[[plot]]`), one file per plot kind.
+//! Numeric code computes the numbers; each figure here draws them and writes its title and
+//! description from them, so the alt text says what the picture shows.
+
+mod accuracy;
+mod axis_spins;
+mod cones;
+pub mod convergence;
+mod drift;
+mod flip;
+mod free_body;
+mod herpolhode;
+pub mod integrator_pareto;
+mod omega_vs_time;
+pub mod polar_motion;
+mod polhodes;
+mod principal_axes;
+mod projection;
+mod tensor_sweep;
+
+use crate::cas::EvalError;
+use crate::derive::Derivation;
+use crate::model::fidelity::Fidelity;
+use crate::model::figure::Figure;
+use crate::model::moments::MomentsError;
+use crate::numeric::body::NumBody;
+use crate::numeric::integrators::IntegrationError;
+use crate::scene::PlotRequest;
+use crate::scene::Scene;
+
+/// Why a figure could not be drawn.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FigureError {
+    #[error(transparent)]
+    Eval(#[from] EvalError),
+    #[error(transparent)]
+    Moments(#[from] MomentsError),
+    #[error(transparent)]
+    Integration(#[from] IntegrationError),
+    #[error("a convergence plot needs a continuous body, not point masses")]
+    PointMasses,
+    #[error("axis-spins needs one component of omega larger than the other two")]
+    NoLargestComponent,
+    #[error("the flip needs three different moments")]
+    FlipNeedsThreeMoments,
+    #[error("polhodes need unequal moments (a sphere has none)")]
+    SphereHasNoPolhodes,
+    #[error("the cones need a symmetric body: exactly two equal moments")]
+    NotSymmetric,
+    #[error("polar motion needs a wobble (ω1 or ω2 non-zero)")]
+    NoWobble,
+    #[error(
+        "plot `{slug}`: its data is not all finite numbers: the body or ω(0) is beyond double \
+         precision; check the plot's inertia, omega and t"
+    )]
+    NotFinite { slug: String },
+    #[error("no integrator settings")]
+    NoSettings,
+    #[error("the principal-axes plot needs the exact eigenspaces")]
+    NoEigenspaces,
+}
+
+/// Colour roles: indices into the renderer's palette (`render::plot`), so that a law and its
+/// measurement, or one axis across several curves, share a colour.
+mod colour {
+    /// Blue: the main measured curve, or the first of a family.
+    pub const PRIMARY: usize = 0;
+    /// Vermilion: what stands against the main curve (a separatrix, a second body axis).
+    pub const CONTRAST: usize = 1;
+    /// Green: a third curve, or motion about the other end axis.
+    pub const SECONDARY: usize = 2;
+    /// Ochre: markers placed over the curves.
+    pub const ACCENT: usize = 4;
+    /// Grey: a reference drawn under the data (an ellipsoid, a law, the Pareto front).
+    pub const REFERENCE: usize = 5;
+}
+
+/// A series' legend entry: only the first series of a family is named, so that the legend
+/// lists the family once.
+fn legend_entry(first: bool, name: &str) -> String {
+    if first { name.into() } else { String::new() }
+}
+
+/// Curve resolution of exact functions.
+const CURVE_POINTS: usize = 181;
+
+/// Errors below this are drawn at it: a log axis cannot show an exact zero.
+pub const ERROR_FLOOR: f64 = 1e-17;
+
+pub fn figures(
+    scene: &Scene,
+    d: &Derivation,
+    fidelity: &Fidelity,
+) -> Result<Vec<Figure>, FigureError> {
+    let mut out = Vec::new();
+    for p in &scene.plots {
+        match p {
+            PlotRequest::TensorSweep {
+                over,
+                from,
+                to,
+                samples,
+            } => out.push(tensor_sweep::tensor_sweep(
+                scene, d, over, *from, *to, *samples,
+            )?),
+            PlotRequest::Convergence => {
+                for (i, body) in scene.bodies.iter().enumerate() {
+                    let nb = NumBody::from_scene(body, &scene.values)?;
+                    let exact = d.part_tensors[i].matrix_at(&scene.values)?;
+                    let slug = if scene.bodies.len() == 1 {
+                        "convergence".to_string()
+                    } else {
+                        format!("convergence-{}", i + 1)
+                    };
+                    out.push(convergence::convergence(
+                        &nb, &exact, scene.seed, slug, fidelity,
+                    )?);
+                }
+            }
+            PlotRequest::PrincipalAxes => out.push(principal_axes::principal_view(scene, d)?),
+            PlotRequest::FreeBody {
+                kind,
+                inertia,
+                omega,
+                t,
+            } => out.push(free_body::figure(*kind, *inertia, *omega, *t, fidelity)?),
+        }
+        // Two plots of one kind in a scene get distinct file names.
+        let last = out.len() - 1;
+        let taken = |slug: &str| out[..last].iter().any(|f| f.slug == slug);
+        if taken(&out[last].slug) {
+            let base = out[last].slug.clone();
+            let n = (2..).find(|n| !taken(&format!("{base}-{n}"))).unwrap();
+            out[last].slug = format!("{base}-{n}");
+        }
+    }
+    Ok(out)
+}
+
+fn trim_num(x: f64) -> String {
+    if (x - std::f64::consts::PI).abs() < 1e-12 {
+        "π".into()
+    } else {
+        format!("{x:.4}")
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .into()
+    }
+}
+
+#[cfg(test)]
+mod free_body_tests;
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,65 @@
+//! The projections behind the 3-D views: an oblique view of a point, a basis of a plane, and
+//! the outline of a body.
+
+use crate::numeric::body::NumBody;
+use crate::numeric::body::NumShape;
+use nalgebra::Vector3;
+
+/// A fixed oblique view: azimuth 25°, elevation 20°, chosen so that no frame axis or body
+/// diagonal points at the viewer.
+pub(super) fn project(p: &Vector3<f64>) -> (f64, f64) {
+    let (az, el) = (25f64.to_radians(), 20f64.to_radians());
+    let right = Vector3::new(-az.sin(), az.cos(), 0.0);
+    let up = Vector3::new(-el.sin() * az.cos(), -el.sin() * az.sin(), el.cos());
+    (p.dot(&right), p.dot(&up))
+}
+
+/// Two unit vectors spanning the plane normal to `n`.
+pub(super) fn plane_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let n = n.normalize();
+    let e = Vector3::ith(n.iamin(), 1.0);
+    let u = n.cross(&e).normalize();
+    (u, n.cross(&u))
+}
+
+pub(super) fn segment(a: Vector3<f64>, b: Vector3<f64>) -> [(f64, f64); 2] {
+    [project(&a), project(&b)]
+}
+
+/// Polylines of the body's outline in the scene frame, broken into separate segments.
+pub(super) fn outline(nb: &NumBody) -> Vec<Vec<Vector3<f64>>> {
+    match &nb.shape {
+        NumShape::Box { size, centred } => {
+            let lo = if *centred {
+                -size / 2.0
+            } else {
+                Vector3::zeros()
+            };
+            let corner = |k: usize| {
+                Vector3::new(
+                    lo.x + size.x * (k & 1) as f64,
+                    lo.y + size.y * ((k >> 1) & 1) as f64,
+                    lo.z + size.z * ((k >> 2) & 1) as f64,
+                )
+            };
+            let mut edges = Vec::new();
+            for a in 0..8usize {
+                for bit in [1, 2, 4] {
+                    if a & bit == 0 {
+                        edges.push(vec![nb.place(&corner(a)), nb.place(&corner(a | bit))]);
+                    }
+                }
+            }
+            edges
+        }
+        NumShape::Hoop { radius } | NumShape::Disk { radius } => vec![
+            (0..=72)
+                .map(|k| {
+                    let t = k as f64 * std::f64::consts::TAU / 72.0;
+                    nb.place(&Vector3::new(radius * t.cos(), radius * t.sin(), 0.0))
+                })
+                .collect(),
+        ],
+        _ => Vec::new(),
+    }
+}

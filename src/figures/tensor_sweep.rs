@@ -1,0 +1,158 @@
+//! The tensor-sweep figure: the tensor's entries against one symbol, exact curves with
+//! quadrature at sample values.
+
+use super::CURVE_POINTS;
+use super::FigureError;
+use super::trim_num;
+use crate::base::format::sci;
+use crate::cas::EvalError;
+use crate::derive::Derivation;
+use crate::model::catalogue::quantity;
+use crate::model::figure::Accuracy;
+use crate::model::figure::Figure;
+use crate::model::figure::Legend;
+use crate::model::figure::Mark;
+use crate::model::figure::Scale;
+use crate::model::figure::Series;
+use crate::numeric::body::NumBody;
+use crate::numeric::quadrature::reference_rule;
+use crate::numeric::quadrature::run;
+use crate::scene::Scene;
+use nalgebra::Matrix3;
+use std::collections::BTreeMap;
+
+pub(super) const ENTRIES: [(usize, usize, &str); 6] = [
+    (0, 0, "I_xx"),
+    (1, 1, "I_yy"),
+    (2, 2, "I_zz"),
+    (0, 1, "I_xy"),
+    (0, 2, "I_xz"),
+    (1, 2, "I_yz"),
+];
+
+pub(super) fn values_with(scene: &Scene, name: &str, v: f64) -> BTreeMap<String, f64> {
+    let mut values = scene.values.clone();
+    values.insert(name.to_string(), v);
+    values
+}
+
+/// The tensor's entries against one symbol: exact curves, and at `samples` values the sum of
+/// each body's reference quadrature rule.
+pub(super) fn tensor_sweep(
+    scene: &Scene,
+    d: &Derivation,
+    over: &str,
+    from: f64,
+    to: f64,
+    samples: usize,
+) -> Result<Figure, FigureError> {
+    let exact = &d.quantities[quantity::INERTIA_TENSOR];
+    let at = |k: usize, n: usize| from + (to - from) * k as f64 / (n - 1) as f64;
+    let curve: Vec<(f64, Matrix3<f64>)> = (0..CURVE_POINTS)
+        .map(|k| {
+            let x = at(k, CURVE_POINTS);
+            Ok((x, exact.matrix_at(&values_with(scene, over, x))?))
+        })
+        .collect::<Result<_, EvalError>>()?;
+    let mut numeric = Vec::new();
+    let mut worst: f64 = 0.0;
+    let mut rule_names = Vec::new();
+    let (mut points, mut predicted, mut seconds) = (0u64, 0.0f64, 0.0);
+    for k in 0..samples {
+        let x = at(k, samples);
+        let values = values_with(scene, over, x);
+        let mut total = Matrix3::zeros();
+        for (i, body) in scene.bodies.iter().enumerate() {
+            let nb = NumBody::from_scene(body, &values)?;
+            let (method, level) = reference_rule(&nb.shape);
+            let part = d.part_tensors[i].matrix_at(&values)?;
+            let r = run(&nb, method, level, &part, scene.seed);
+            points += r.points as u64;
+            predicted = predicted.max(r.predicted_error);
+            seconds += r.seconds;
+            if k == 0 {
+                rule_names.push(format!("{}, {} points", method.name(), r.points));
+            }
+            total += r.tensor;
+        }
+        worst = worst.max((total - exact.matrix_at(&values)?).amax());
+        numeric.push((x, total));
+    }
+    let scale = curve.iter().map(|(_, m)| m.amax()).fold(0.0, f64::max);
+    let mut series = Vec::new();
+    let mut shown = Vec::new();
+    let mut zero = Vec::new();
+    for (colour, (i, j, name)) in ENTRIES.iter().enumerate() {
+        let ys: Vec<f64> = curve.iter().map(|(_, m)| m[(*i, *j)]).collect();
+        // An entry that is zero along the whole range is named in the description, not drawn.
+        if ys
+            .iter()
+            .all(|y| y.abs() <= 1e-14 * scale.max(f64::MIN_POSITIVE))
+        {
+            zero.push(*name);
+            continue;
+        }
+        let (lo, hi) = ys
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
+                (a.min(*y), b.max(*y))
+            });
+        shown.push(format!("{name} from {lo:.3} to {hi:.3}"));
+        series.push(Series {
+            name: format!("{name} exact"),
+            mark: Mark::Line,
+            colour,
+            points: curve.iter().map(|(x, m)| (*x, m[(*i, *j)])).collect(),
+        });
+        series.push(Series {
+            name: String::new(),
+            mark: Mark::Points,
+            colour,
+            points: numeric.iter().map(|(x, m)| (*x, m[(*i, *j)])).collect(),
+        });
+    }
+    let fixed: Vec<String> = scene
+        .values
+        .iter()
+        .filter(|(k, _)| k.as_str() != over)
+        .map(|(k, v)| format!("{k} = {v}"))
+        .collect();
+    let desc = format!(
+        "Inertia tensor entries of {} against {over} from {} to {}, at {}. Over this range {}{}. \
+         Dots: {samples} values of {over} by quadrature with {}, at most {} from the exact curves.",
+        scene.title.to_lowercase(),
+        trim_num(from),
+        trim_num(to),
+        fixed.join(", "),
+        shown.join("; "),
+        if zero.is_empty() {
+            String::new()
+        } else {
+            format!("; {} stay zero", zero.join(", "))
+        },
+        rule_names.join(", "),
+        sci(worst),
+    );
+    Ok(Figure {
+        slug: format!("tensor-vs-{over}"),
+        title: format!("Tensor entries against {over}"),
+        desc,
+        x_label: over.to_string(),
+        y_label: "entry".into(),
+        x_scale: Scale::Linear,
+        y_scale: Scale::Linear,
+        equal_aspect: false,
+        series,
+        labels: Vec::new(),
+        legend: Legend::MiddleRight,
+        accuracy: vec![Accuracy {
+            result: format!("tensor at {samples} values of {over}"),
+            method: rule_names.join(", "),
+            true_error: Some(worst / scale.max(f64::MIN_POSITIVE)),
+            estimated_error: Some(predicted),
+            cost: points,
+            unit: "points".into(),
+            seconds,
+        }],
+    })
+}

@@ -1,0 +1,278 @@
+//! What a validated scene holds: its bodies, claims, plots and requests.
+
+use crate::cas::Expr;
+use crate::model::catalogue::Output;
+use crate::model::fidelity::Fidelity;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+#[derive(Debug, Clone)]
+pub struct Scene {
+    pub id: String,
+    pub title: String,
+    /// The path the scene was read from, as given (never made absolute).
+    pub source: PathBuf,
+    /// A hash of the file's bytes: with the fidelity and the program, the key of the build cache.
+    pub content_hash: u64,
+    /// Where `id` and `notes.lecture` are written (line, column), for errors found across files.
+    pub id_at: (usize, usize),
+    pub lecture_at: (usize, usize),
+    pub notes: NotesRef,
+    /// Symbol name -> its meaning.
+    pub symbols: BTreeMap<String, String>,
+    /// Abbreviations used in claims, such as `lambda = M/(2*pi*R)`.
+    pub definitions: BTreeMap<String, Expr>,
+    pub vectors: BTreeMap<String, [Expr; 3]>,
+    pub omega: Option<[Expr; 3]>,
+    pub axis: Option<[Expr; 3]>,
+    pub bodies: Vec<Body>,
+    pub claims: Vec<Claim>,
+    pub wants: Vec<Output>,
+    pub plots: Vec<PlotRequest>,
+    pub values: BTreeMap<String, f64>,
+    pub seed: u64,
+    /// `[numeric] fidelity`: this scene's default, which `--fidelity` overrides.
+    pub fidelity: Option<Fidelity>,
+    /// Recorded results: quantity name -> expected exact value (the regression record).
+    pub expect: BTreeMap<String, Expr>,
+}
+
+#[derive(Debug, Clone)]
+pub struct NotesRef {
+    pub lecture: String,
+    pub section: String,
+    pub equations: Vec<String>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    X,
+    Y,
+    Z,
+}
+
+impl Axis {
+    pub fn index(self) -> usize {
+        self as usize
+    }
+    pub fn name(self) -> &'static str {
+        ["x", "y", "z"][self as usize]
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Body {
+    pub label: String,
+    pub shape: Shape,
+    /// Total mass; for point sets, the sum of the point masses.
+    pub mass: Expr,
+    /// Applied in order to the body's own coordinates, then `shift`.
+    pub rotations: Vec<(Axis, Expr)>,
+    pub shift: [Expr; 3],
+}
+
+#[derive(Debug, Clone)]
+pub enum Shape {
+    /// Sides along x, y, z; the body's origin at a corner or at the centre.
+    Box {
+        size: [Expr; 3],
+        centred: bool,
+    },
+    /// A thin rod along an axis, from its end or centred.
+    Rod {
+        length: Expr,
+        along: Axis,
+        centred: bool,
+    },
+    /// A thin hoop (ring) of radius R in the xy-plane, centred.
+    Hoop {
+        radius: Expr,
+    },
+    /// A thin uniform disk in the xy-plane, centred.
+    Disk {
+        radius: Expr,
+    },
+    /// A solid cylinder about z, centred.
+    Cylinder {
+        radius: Expr,
+        height: Expr,
+    },
+    Sphere {
+        radius: Expr,
+    },
+    /// A thin spherical shell.
+    Shell {
+        radius: Expr,
+    },
+    Points(Vec<(Expr, [Expr; 3])>),
+}
+
+impl Shape {
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Shape::Box { .. } => "box",
+            Shape::Rod { .. } => "rod",
+            Shape::Hoop { .. } => "hoop",
+            Shape::Disk { .. } => "disk",
+            Shape::Cylinder { .. } => "cylinder",
+            Shape::Sphere { .. } => "sphere",
+            Shape::Shell { .. } => "shell",
+            Shape::Points(_) => "points",
+        }
+    }
+
+    /// The names of the shape's integration variables; scene symbols may not reuse them.
+    pub fn variables(&self) -> &'static [&'static str] {
+        match self {
+            Shape::Box { .. } => &["x", "y", "z"],
+            Shape::Rod { .. } => &["s"],
+            Shape::Hoop { .. } => &["theta"],
+            Shape::Disk { .. } => &["r", "theta"],
+            Shape::Cylinder { .. } => &["r", "theta", "z"],
+            Shape::Sphere { .. } => &["r", "theta", "phi"],
+            Shape::Shell { .. } => &["theta", "phi"],
+            Shape::Points(_) => &[],
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    Agrees,
+    Disagrees,
+    NotCheckable,
+}
+
+impl Verdict {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Verdict::Agrees => "agrees",
+            Verdict::Disagrees => "disagrees",
+            Verdict::NotCheckable => "not-checkable",
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Claim {
+    pub eq: String,
+    pub statement: String,
+    /// The derived side, in the claim language (`inertia_tensor[0][1]`, `cross(a, b)`).
+    pub quantity: Option<Expr>,
+    /// The notes' side, restated.
+    pub value: Option<Expr>,
+    /// Set when the notes give a number to this many significant figures: both sides are then
+    /// numbers, and they agree when the derived one rounds to the notes' value.
+    pub figures: Option<u32>,
+    pub expect: Verdict,
+    pub line: usize,
+}
+
+/// A plot a scene asks for; `numeric::plots` computes its data.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PlotRequest {
+    /// The tensor's entries against one symbol: exact curves, with quadrature at sample values.
+    TensorSweep {
+        over: String,
+        from: f64,
+        to: f64,
+        samples: usize,
+    },
+    /// Quadrature error against points for every method, with each method's error law.
+    Convergence,
+    /// The principal axes in a projected 3-D view of the body.
+    PrincipalAxes,
+    /// A torque-free body given by its principal moments and ω(0), integrated to `t`.
+    FreeBody {
+        kind: FreeBodyPlot,
+        inertia: [f64; 3],
+        omega: [f64; 3],
+        t: f64,
+    },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FreeBodyPlot {
+    /// ω(t) by the exact solution, with Dormand–Prince points.
+    OmegaVsTime,
+    /// Polhodes on the energy ellipsoid in L-space, with the separatrix.
+    Polhodes,
+    /// Energy and |L| drift against time for each integrator, log scale.
+    Drift,
+    /// The tennis racket: ω along the intermediate axis flips; flip times measured vs predicted.
+    Flip,
+    /// The same small wobble started about each principal axis: only the intermediate one departs.
+    AxisSpins,
+    /// The herpolhode: ω's tip traced on the invariable plane in space.
+    Herpolhode,
+    /// Earth's polar motion over one Euler period (symmetric top with the given moments).
+    PolarMotion,
+    /// The symmetric top's body and space cones, with their measured half-angles.
+    Cones,
+    /// Error at `t` against right-hand-side evaluations for every integrator and step, with
+    /// the Pareto front.
+    IntegratorPareto,
+}
+
+impl FreeBodyPlot {
+    pub const ALL: &'static [(&'static str, FreeBodyPlot)] = &[
+        ("omega-vs-time", FreeBodyPlot::OmegaVsTime),
+        ("polhodes", FreeBodyPlot::Polhodes),
+        ("drift", FreeBodyPlot::Drift),
+        ("flip", FreeBodyPlot::Flip),
+        ("axis-spins", FreeBodyPlot::AxisSpins),
+        ("herpolhode", FreeBodyPlot::Herpolhode),
+        ("polar-motion", FreeBodyPlot::PolarMotion),
+        ("cones", FreeBodyPlot::Cones),
+        ("integrator-pareto", FreeBodyPlot::IntegratorPareto),
+    ];
+
+    pub fn name(self) -> &'static str {
+        FreeBodyPlot::ALL
+            .iter()
+            .find(|(_, k)| *k == self)
+            .unwrap()
+            .0
+    }
+}
+
+impl PlotRequest {
+    pub const KINDS: &'static [&'static str] = &[
+        "tensor-sweep",
+        "convergence",
+        "principal-axes",
+        "omega-vs-time",
+        "polhodes",
+        "drift",
+        "flip",
+        "axis-spins",
+        "herpolhode",
+        "polar-motion",
+        "cones",
+        "integrator-pareto",
+    ];
+
+    pub fn kind(&self) -> &'static str {
+        match self {
+            PlotRequest::TensorSweep { .. } => "tensor-sweep",
+            PlotRequest::Convergence => "convergence",
+            PlotRequest::PrincipalAxes => "principal-axes",
+            PlotRequest::FreeBody { kind, .. } => kind.name(),
+        }
+    }
+
+    /// Plots of a body's tensor need a `[[body]]`; free-body plots carry their own.
+    pub fn needs_body(&self) -> bool {
+        !matches!(self, PlotRequest::FreeBody { .. })
+    }
+}
+
+/// "3/4" -> "lecture-3-4": the file name of a lecture's handouts.
+pub fn lecture_slug(name: &str) -> String {
+    let clean: String = name
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect();
+    format!("lecture-{}", clean.trim_matches('-'))
+}

@@ -1,0 +1,191 @@
+//! `[[claim]]` and `[expect]`: statements in the claim language, and recorded results.
+
+use super::{Validator, content_start};
+use crate::cas::Expr;
+use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, is_quantity};
+use crate::scene::error::SceneError;
+use crate::scene::raw::{RawClaim, RawScene, Text};
+use crate::scene::types::{Claim, Verdict};
+use crate::scene::validate::CLAIM_FUNCTIONS;
+use std::collections::{BTreeMap, BTreeSet};
+
+impl Validator<'_> {
+    /// Every claim, its names checked against what the scene defines and derives.
+    pub(super) fn claims(
+        &self,
+        raw: &RawScene,
+        claim_names: &BTreeSet<String>,
+    ) -> Result<Vec<Claim>, SceneError> {
+        let mut claims = Vec::new();
+        for (i, c) in raw.claims.iter().enumerate() {
+            claims.push(self.claim(
+                c.get_ref(),
+                c.span().start,
+                &format!("claim[{i}]"),
+                claim_names,
+            )?);
+        }
+        Ok(claims)
+    }
+
+    /// `[expect]`: recorded results, by quantity.
+    pub(super) fn expect(
+        &self,
+        raw: &RawScene,
+        allowed: &BTreeSet<String>,
+        variables: &BTreeSet<String>,
+    ) -> Result<BTreeMap<String, Expr>, SceneError> {
+        let mut expect = BTreeMap::new();
+        for (name, value) in &raw.expect {
+            let n = name.get_ref();
+            if !is_quantity(n) {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("expect.{n}"),
+                    format!(
+                        "`{n}` is not a derived quantity; expected one of: {}, {}",
+                        QUANTITIES.join(", "),
+                        DYNAMICS_QUANTITIES.join(", ")
+                    ),
+                ));
+            }
+            let mut scope = allowed.clone();
+            scope.extend(variables.iter().cloned());
+            expect.insert(
+                n.clone(),
+                self.claim_expr(value, &format!("expect.{n}"), &scope)?,
+            );
+        }
+        Ok(expect)
+    }
+
+    fn claim(
+        &self,
+        c: &RawClaim,
+        offset: usize,
+        field: &str,
+        names: &BTreeSet<String>,
+    ) -> Result<Claim, SceneError> {
+        let eq = c.eq.get_ref();
+        let digits = eq.trim_end_matches(|ch: char| ch.is_ascii_lowercase());
+        if digits.is_empty()
+            || !digits.chars().all(|ch| ch.is_ascii_digit())
+            || eq.len() - digits.len() > 1
+        {
+            return Err(self.err(content_start(&c.eq), &format!("{field}.eq"), "an equation number is digits with at most one letter after them, as \"31\" or \"22a\""));
+        }
+        let expect = match c.expect.get_ref().as_str() {
+            "agrees" => Verdict::Agrees,
+            "disagrees" => Verdict::Disagrees,
+            "not-checkable" => Verdict::NotCheckable,
+            other => {
+                return Err(self.err(
+                    content_start(&c.expect),
+                    &format!("{field}.expect"),
+                    format!(
+                        "unknown verdict `{other}`; expected agrees, disagrees or not-checkable"
+                    ),
+                ));
+            }
+        };
+        let quantity = c
+            .quantity
+            .as_ref()
+            .map(|q| self.claim_expr(q, &format!("{field}.quantity"), names))
+            .transpose()?;
+        let value = c
+            .value
+            .as_ref()
+            .map(|v| self.claim_expr(v, &format!("{field}.value"), names))
+            .transpose()?;
+        if expect != Verdict::NotCheckable && (quantity.is_none() || value.is_none()) {
+            return Err(self.err(
+                offset,
+                field,
+                "a checkable claim needs both `quantity` and `value`",
+            ));
+        }
+        let figures = match &c.figures {
+            None => None,
+            Some(f) if (1..=15).contains(f.get_ref()) => Some(*f.get_ref() as u32),
+            Some(f) => {
+                return Err(self.err(
+                    f.span().start,
+                    &format!("{field}.figures"),
+                    "significant figures are a whole number from 1 to 15",
+                ));
+            }
+        };
+        Ok(Claim {
+            eq: eq.clone(),
+            statement: c.statement.clone(),
+            quantity,
+            value,
+            figures,
+            expect,
+            line: self.loc.line_col(offset).0,
+        })
+    }
+
+    pub(super) fn claim_expr(
+        &self,
+        t: &Text,
+        field: &str,
+        names: &BTreeSet<String>,
+    ) -> Result<Expr, SceneError> {
+        self.parse_checked(t.get_ref(), content_start(t), field, names, true)
+    }
+}
+
+/// Checks that every call names a known function with the right number of arguments.
+pub(super) fn check_calls(e: &Expr, claim_language: bool) -> Result<(), String> {
+    let mut result = Ok(());
+    let allowed: &[&str] = if claim_language {
+        CLAIM_FUNCTIONS
+    } else {
+        crate::cas::SCALAR_FUNCTIONS
+    };
+    fn walk(e: &Expr, allowed: &[&str], claim: bool, out: &mut Result<(), String>) {
+        match e {
+            Expr::Call(name, args) => {
+                if !allowed.contains(&name.as_str()) {
+                    *out = Err(format!("unknown function `{name}`"));
+                    return;
+                }
+                let arity = match name.as_str() {
+                    "dot" | "cross" | "outer" | "diff" => 2,
+                    "diag" | "subs" => 3,
+                    "eye" => 0,
+                    _ => 1,
+                };
+                if name != "eye" && args.len() != arity {
+                    *out = Err(format!(
+                        "`{name}` takes {arity} argument(s), got {}",
+                        args.len()
+                    ));
+                }
+                args.iter().for_each(|a| walk(a, allowed, claim, out));
+            }
+            Expr::List(v) | Expr::Add(v) | Expr::Mul(v) => {
+                if !claim && matches!(e, Expr::List(_)) {
+                    *out = Err("a list is not allowed here".into());
+                }
+                v.iter().for_each(|a| walk(a, allowed, claim, out));
+            }
+            Expr::Index(a, b) => {
+                if !claim {
+                    *out = Err("indexing is not allowed here".into());
+                }
+                walk(a, allowed, claim, out);
+                walk(b, allowed, claim, out);
+            }
+            Expr::Pow(a, b) => {
+                walk(a, allowed, claim, out);
+                walk(b, allowed, claim, out);
+            }
+            Expr::Num(_) | Expr::Sym(_) => {}
+        }
+    }
+    walk(e, allowed, claim_language, &mut result);
+    result
+}

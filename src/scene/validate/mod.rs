@@ -1,0 +1,418 @@
+//! Validation: a raw scene's fields checked part by part (symbols, bodies, claims, plots),
+//! each error located at its field.
+
+mod bodies;
+mod claims;
+mod plots;
+mod symbols;
+
+use super::error::{Locator, SceneError};
+use super::raw::{RawScene, Text};
+use super::types::{Claim, NotesRef, Scene};
+use crate::cas::{Expr, parse_input as parse_expr};
+use crate::model::catalogue::{Output, QUANTITIES};
+use claims::check_calls;
+use std::collections::{BTreeMap, BTreeSet};
+use toml::Spanned;
+
+pub const CLAIM_FUNCTIONS: &[&str] = &[
+    "diff",
+    "sin",
+    "cos",
+    "sqrt",
+    "dot",
+    "cross",
+    "outer",
+    "transpose",
+    "eye",
+    "diag",
+    "rot_x",
+    "rot_y",
+    "rot_z",
+    "trace",
+    "det",
+    "sign",
+    "subs",
+];
+const RESERVED: &[&str] = &["pi"];
+
+/// The largest degree and number of terms a dimension, mass or value expression may expand
+/// to: the derivations raise a dimension to the fifth power at most, and the engine's own
+/// budget is degree 30 (`cas`).
+pub const MAX_INPUT_DEGREE: f64 = 6.0;
+pub const MAX_INPUT_TERMS: f64 = 100.0;
+
+/// The longest free-body plot: its end time, and the radians ω turns through by then. The
+/// shipped lectures reach t = 400 and 2.5e3 radians (Earth's polar motion).
+pub const MAX_PLOT_TIME: f64 = 1e4;
+pub const MAX_PLOT_RADIANS: f64 = 1e4;
+
+/// Ids that would collide with the site's own files and folders (compared without case, as
+/// some file systems do).
+pub const RESERVED_IDS: &[&str] = &["index", "plots", "handouts", "export", "style"];
+
+/// The longest id or lecture name: file names are made from them with up to ~40 more
+/// characters, and file systems allow 255 bytes.
+pub const MAX_NAME: usize = 64;
+
+pub(super) struct Validator<'a> {
+    pub(super) loc: &'a Locator<'a>,
+}
+
+/// The byte offset of a string's first character inside its quotes.
+pub(super) fn content_start<T>(s: &Spanned<T>) -> usize {
+    s.span().start + 1
+}
+
+fn is_identifier(s: &str) -> bool {
+    let mut chars = s.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && !s.contains("__")
+}
+
+impl Validator<'_> {
+    /// The scene, its parts validated in the order a reader meets them, so that the first
+    /// error reported is the first in the file's logic.
+    pub(super) fn scene(&self, raw: RawScene) -> Result<Scene, SceneError> {
+        self.names(&raw)?;
+        let symbols = self.symbols(&raw)?;
+        let mut allowed: BTreeSet<String> = symbols.keys().cloned().collect();
+        allowed.insert("pi".into());
+        // Bodies first: their integration variables may not be symbols.
+        let bodies = self.bodies(&raw, &allowed)?;
+        let variables: BTreeSet<String> = bodies
+            .iter()
+            .flat_map(|b| b.shape.variables().iter().map(|s| s.to_string()))
+            .collect();
+        let (definitions, vectors, mut claim_names) =
+            self.definitions_and_vectors(&raw, &allowed, &variables)?;
+        let omega = raw
+            .omega
+            .as_ref()
+            .map(|v| self.vec3(v, "omega", &allowed))
+            .transpose()?;
+        let axis = raw
+            .axis
+            .as_ref()
+            .map(|v| self.vec3(v, "axis", &allowed))
+            .transpose()?;
+        if omega.is_some() {
+            claim_names.insert("omega".into());
+        }
+        if axis.is_some() {
+            claim_names.insert("axis".into());
+        }
+        let claims = self.claims(&raw, &claim_names)?;
+        let wants = self.wants(&raw)?;
+        let plots = self.plots(&raw, &symbols)?;
+        self.requests(
+            &raw,
+            &symbols,
+            &bodies,
+            &claims,
+            &wants,
+            &plots,
+            [omega.is_some(), axis.is_some()],
+        )?;
+        let values = self.values(&raw, &symbols, &bodies, omega.iter().chain(axis.iter()))?;
+        let fidelity = match &raw.numeric.fidelity {
+            Some(f) => Some(
+                crate::model::fidelity::Fidelity::parse(f.get_ref())
+                    .map_err(|m| self.err(content_start(f), "numeric.fidelity", m))?,
+            ),
+            None => None,
+        };
+        let expect = self.expect(&raw, &allowed, &variables)?;
+        Ok(Scene {
+            id_at: self.loc.line_col(content_start(&raw.id)),
+            lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
+            id: raw.id.into_inner(),
+            title: raw.title,
+            source: self.loc.path.to_path_buf(),
+            content_hash: crate::base::hash::content_hash(self.loc.text.as_bytes()),
+            notes: NotesRef {
+                lecture: raw.notes.lecture.into_inner(),
+                section: raw.notes.section,
+                equations: raw.notes.equations,
+            },
+            symbols,
+            definitions,
+            vectors,
+            omega,
+            axis,
+            bodies,
+            claims,
+            wants,
+            plots,
+            values,
+            seed: raw.numeric.seed.unwrap_or(1),
+            fidelity,
+            expect,
+        })
+    }
+
+    /// The id and the lecture name, which name files.
+    fn names(&self, raw: &RawScene) -> Result<(), SceneError> {
+        let id = raw.id.get_ref();
+        if !is_identifier(&id.replace('-', "_")) {
+            return Err(self.err(
+                content_start(&raw.id),
+                "id",
+                "an id is letters, digits, `-` and `_`, starting with a letter",
+            ));
+        }
+        if id.len() > MAX_NAME {
+            return Err(self.err(
+                content_start(&raw.id),
+                "id",
+                format!(
+                    "an id of {} characters; the limit is {MAX_NAME}, so that every file name \
+                     made from it fits any file system",
+                    id.len()
+                ),
+            ));
+        }
+        if RESERVED_IDS.contains(&id.to_ascii_lowercase().as_str()) {
+            return Err(self.err(
+                content_start(&raw.id),
+                "id",
+                format!(
+                    "`{id}` is reserved for the site's own {}; choose another id",
+                    if id.eq_ignore_ascii_case("index") {
+                        "index page"
+                    } else {
+                        "folder"
+                    }
+                ),
+            ));
+        }
+        let lecture = raw.notes.lecture.get_ref();
+        if lecture.len() > MAX_NAME || !lecture.chars().any(|c| c.is_ascii_alphanumeric()) {
+            return Err(self.err(
+                content_start(&raw.notes.lecture),
+                "notes.lecture",
+                format!(
+                    "a lecture name has a letter or digit and at most {MAX_NAME} characters, \
+                     such as \"3/4\""
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The outputs asked for, by name.
+    fn wants(&self, raw: &RawScene) -> Result<Vec<Output>, SceneError> {
+        let mut wants = Vec::new();
+        for (i, w) in raw.outputs.want.get_ref().iter().enumerate() {
+            let Some((_, o)) = Output::ALL.iter().find(|(n, _)| n == w.get_ref()) else {
+                let names: Vec<&str> = Output::ALL.iter().map(|(n, _)| *n).collect();
+                return Err(self.err(
+                    content_start(w),
+                    &format!("outputs.want[{i}]"),
+                    format!(
+                        "unknown output `{}`; expected one of: {}",
+                        w.get_ref(),
+                        names.join(", ")
+                    ),
+                ));
+            };
+            wants.push(*o);
+        }
+        wants.sort();
+        wants.dedup();
+        Ok(wants)
+    }
+
+    /// What the requests need from the rest of the scene: a body, symbols, `omega`, `axis`.
+    #[allow(clippy::too_many_arguments)]
+    fn requests(
+        &self,
+        raw: &RawScene,
+        symbols: &BTreeMap<String, String>,
+        bodies: &[super::types::Body],
+        claims: &[Claim],
+        wants: &[Output],
+        plots: &[super::types::PlotRequest],
+        [has_omega, has_axis]: [bool; 2],
+    ) -> Result<(), SceneError> {
+        if let Some(k) = plots.iter().position(|p| p.needs_body())
+            && bodies.is_empty()
+        {
+            return Err(self.err(
+                raw.plots[k].span().start,
+                &format!("plot[{k}]"),
+                format!("a {} plot needs at least one [[body]]", plots[k].kind()),
+            ));
+        }
+        if wants.is_empty() && claims.is_empty() && plots.is_empty() {
+            return Err(self.err(
+                raw.outputs_span(),
+                "outputs.want",
+                "the scene asks for nothing: list at least one output or claim",
+            ));
+        }
+        for w in wants {
+            let Some(needed) = w.free_body_symbols() else {
+                continue;
+            };
+            if let Some(missing) = needed.iter().find(|n| !symbols.contains_key(**n)) {
+                return Err(self.err(
+                    raw.outputs_span(),
+                    "outputs.want",
+                    format!(
+                        "output `{}` writes its results in {}; declare `{missing}` under [symbols]",
+                        w.name(),
+                        needed.join(", ")
+                    ),
+                ));
+            }
+        }
+        if bodies.is_empty() {
+            if let Some(w) = wants.iter().find(|w| w.free_body_symbols().is_none()) {
+                return Err(self.err(
+                    raw.outputs_span(),
+                    "outputs.want",
+                    format!("output `{}` needs at least one [[body]]", w.name()),
+                ));
+            }
+            let uses_body = |c: &&Claim| {
+                c.quantity
+                    .iter()
+                    .chain(c.value.iter())
+                    .any(|e| e.symbols().iter().any(|s| QUANTITIES.contains(&s.as_str())))
+            };
+            if let Some(c) = claims.iter().find(uses_body) {
+                return Err(self.err(
+                    self.line_offset(c.line),
+                    "claim",
+                    format!(
+                        "claim ({}) uses a derived quantity, but the scene has no [[body]]",
+                        c.eq
+                    ),
+                ));
+            }
+        }
+        if (wants.contains(&Output::AngularMomentum) || wants.contains(&Output::KineticEnergy))
+            && !has_omega
+        {
+            return Err(self.err(
+                raw.outputs_span(),
+                "omega",
+                "angular_momentum and kinetic_energy need `omega = [..]`",
+            ));
+        }
+        if (wants.contains(&Output::MomentAboutAxis) || wants.contains(&Output::Gyration))
+            && !has_axis
+        {
+            return Err(self.err(
+                raw.outputs_span(),
+                "axis",
+                "moment_about_axis and gyration need `axis = [..]`",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The byte offset where a 1-based line starts.
+    pub(super) fn line_offset(&self, line: usize) -> usize {
+        self.loc
+            .text
+            .split_inclusive('\n')
+            .take(line.saturating_sub(1))
+            .map(str::len)
+            .sum()
+    }
+
+    pub(super) fn err(&self, offset: usize, field: &str, msg: impl Into<String>) -> SceneError {
+        self.loc.error(offset, field, msg)
+    }
+
+    /// Parses an expression and checks that every symbol is one of `allowed`.
+    pub(super) fn expr(
+        &self,
+        t: &Text,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<Expr, SceneError> {
+        self.expr_str(t.get_ref(), content_start(t), field, allowed)
+    }
+
+    /// Parses `text`, which starts at byte `start` of the file.
+    pub(super) fn expr_str(
+        &self,
+        text: &str,
+        start: usize,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<Expr, SceneError> {
+        self.parse_checked(text, start, field, allowed, false)
+    }
+
+    /// Parses `text` (at byte `start` of the file), checks its names against `names` and its
+    /// calls against the scalar functions, or the claim language's when `claim` is set.
+    pub(super) fn parse_checked(
+        &self,
+        text: &str,
+        start: usize,
+        field: &str,
+        names: &BTreeSet<String>,
+        claim: bool,
+    ) -> Result<Expr, SceneError> {
+        let parsed = parse_expr(text).map_err(|e| {
+            self.err(
+                start + e.offset,
+                field,
+                format!("malformed expression: {}", e.message),
+            )
+        })?;
+        if let Some((name, offset)) = parsed.symbols.iter().find(|(n, _)| !names.contains(n)) {
+            let message = if claim {
+                format!(
+                    "undefined name `{name}` (not a symbol, definition, vector or derived quantity)"
+                )
+            } else {
+                format!("undefined symbol `{name}` (declare it under [symbols])")
+            };
+            return Err(self.err(start + offset, field, message));
+        }
+        check_calls(&parsed.expr, claim).map_err(|m| self.err(start, field, m))?;
+        let size = parsed.expr.expansion_size();
+        if !claim && (size.degree > MAX_INPUT_DEGREE || size.terms > MAX_INPUT_TERMS) {
+            return Err(self.err(
+                start,
+                field,
+                format!(
+                    "this expression expands to degree {} with up to {:.0} terms; a scene's \
+                     dimensions and masses stay within degree {MAX_INPUT_DEGREE} and \
+                     {MAX_INPUT_TERMS} terms, so that the derivations stay fast: introduce a \
+                     symbol for it",
+                    size.degree, size.terms
+                ),
+            ));
+        }
+        Ok(parsed.expr)
+    }
+
+    pub(super) fn vec3(
+        &self,
+        v: &Spanned<Vec<Text>>,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<[Expr; 3], SceneError> {
+        if v.get_ref().len() != 3 {
+            return Err(self.err(
+                v.span().start,
+                field,
+                format!("expected 3 components, found {}", v.get_ref().len()),
+            ));
+        }
+        let items: Vec<Expr> = v
+            .get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, t)| self.expr(t, &format!("{field}[{i}]"), allowed))
+            .collect::<Result<_, _>>()?;
+        Ok([items[0].clone(), items[1].clone(), items[2].clone()])
+    }
+}

@@ -1,0 +1,241 @@
+//! `[[plot]]`: the plots a scene asks for, with their ranges and free-body settings.
+
+use super::{MAX_PLOT_RADIANS, MAX_PLOT_TIME, Validator, content_start};
+use crate::scene::error::SceneError;
+use crate::scene::raw::{RawPlot, RawScene};
+use crate::scene::types::{FreeBodyPlot, PlotRequest};
+use std::collections::{BTreeMap, BTreeSet};
+use toml::Spanned;
+
+impl Validator<'_> {
+    /// Every plot, in order.
+    pub(super) fn plots(
+        &self,
+        raw: &RawScene,
+        symbols: &BTreeMap<String, String>,
+    ) -> Result<Vec<PlotRequest>, SceneError> {
+        let mut plots = Vec::new();
+        for (i, p) in raw.plots.iter().enumerate() {
+            plots.push(self.plot(p, &format!("plot[{i}]"), symbols)?);
+        }
+        Ok(plots)
+    }
+
+    fn plot(
+        &self,
+        p: &Spanned<RawPlot>,
+        field: &str,
+        symbols: &BTreeMap<String, String>,
+    ) -> Result<PlotRequest, SceneError> {
+        let rp = p.get_ref();
+        let start = p.span().start;
+        let sweep_fields = rp.over.is_some() || rp.range.is_some() || rp.samples.is_some();
+        let body_fields = rp.inertia.is_some() || rp.omega.is_some() || rp.t.is_some();
+        if let Some((_, kind)) = FreeBodyPlot::ALL
+            .iter()
+            .find(|(n, _)| n == rp.kind.get_ref())
+        {
+            if sweep_fields {
+                return Err(self.err(
+                    start,
+                    field,
+                    "`over`, `range` and `samples` belong to a tensor-sweep",
+                ));
+            }
+            let triple =
+                |v: &Option<Spanned<Vec<f64>>>, name: &str| -> Result<[f64; 3], SceneError> {
+                    let v = v.as_ref().ok_or_else(|| {
+                        self.err(
+                            start,
+                            &format!("{field}.{name}"),
+                            format!("a {} plot needs `{name} = [x, y, z]`", kind.name()),
+                        )
+                    })?;
+                    let arr = <[f64; 3]>::try_from(v.get_ref().as_slice()).map_err(|_| {
+                        self.err(
+                            v.span().start,
+                            &format!("{field}.{name}"),
+                            format!("expected 3 numbers, found {}", v.get_ref().len()),
+                        )
+                    })?;
+                    if arr.iter().any(|x| !x.is_finite()) {
+                        return Err(self.err(
+                            v.span().start,
+                            &format!("{field}.{name}"),
+                            "the values must be finite numbers",
+                        ));
+                    }
+                    // Subnormal numbers have lost digits: every product with them is wrong.
+                    if let Some(x) = crate::base::float::first_subnormal(&arr).map(|k| arr[k]) {
+                        return Err(self.err(
+                            v.span().start,
+                            &format!("{field}.{name}"),
+                            format!(
+                                "{x:e} is below {:e}, where double precision keeps its digits: \
+                                 write 0, or use other units",
+                                f64::MIN_POSITIVE
+                            ),
+                        ));
+                    }
+                    Ok(arr)
+                };
+            let inertia = triple(&rp.inertia, "inertia")?;
+            crate::model::moments::Moments::new(inertia).map_err(|m| {
+                self.err(
+                    rp.inertia.as_ref().map_or(start, |v| v.span().start),
+                    &format!("{field}.inertia"),
+                    m.to_string(),
+                )
+            })?;
+            let omega = triple(&rp.omega, "omega")?;
+            if omega.iter().all(|x| *x == 0.0) {
+                return Err(self.err(
+                    rp.omega.as_ref().map_or(start, |v| v.span().start),
+                    &format!("{field}.omega"),
+                    "omega must not be zero",
+                ));
+            }
+            let moments = crate::model::moments::Moments(inertia);
+            let w0 = nalgebra::Vector3::from(omega);
+            if let Some(why) = crate::model::moments::beyond_double_precision(&moments, &w0) {
+                return Err(self.err(
+                    rp.omega.as_ref().map_or(start, |v| v.span().start),
+                    &format!("{field}.omega"),
+                    why.to_string(),
+                ));
+            }
+            let t = rp.t.as_ref().ok_or_else(|| {
+                self.err(
+                    start,
+                    &format!("{field}.t"),
+                    format!("a {} plot needs `t`, the end time", kind.name()),
+                )
+            })?;
+            if !(t.get_ref().is_finite() && *t.get_ref() > 0.0) {
+                return Err(self.err(
+                    t.span().start,
+                    &format!("{field}.t"),
+                    "the end time must be a positive number",
+                ));
+            }
+            // The plots integrate with fixed steps of about 0.05 (a quarter of that at
+            // reference fidelity) and draw a few hundred points: these bounds keep every plot
+            // within a few million steps and its curves readable.
+            let turns = t.get_ref() * omega.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+            if *t.get_ref() > MAX_PLOT_TIME || turns > MAX_PLOT_RADIANS {
+                return Err(self.err(
+                    t.span().start,
+                    &format!("{field}.t"),
+                    format!(
+                        "t = {} (t·|ω| = {turns:.3e} radians) is beyond what a plot integrates: \
+                         keep t ≤ {MAX_PLOT_TIME:e} and t·|ω| ≤ {MAX_PLOT_RADIANS:e}, or use \
+                         `mechbook spin` for long runs",
+                        t.get_ref()
+                    ),
+                ));
+            }
+            return Ok(PlotRequest::FreeBody {
+                kind: *kind,
+                inertia,
+                omega,
+                t: *t.get_ref(),
+            });
+        }
+        if body_fields {
+            return Err(self.err(
+                start,
+                field,
+                "`inertia`, `omega` and `t` belong to the free-body plot kinds",
+            ));
+        }
+        let request = match rp.kind.get_ref().as_str() {
+            "tensor-sweep" => {
+                let over = rp.over.as_ref().ok_or_else(|| {
+                    self.err(
+                        start,
+                        &format!("{field}.over"),
+                        "a tensor-sweep needs `over`, the symbol on the x axis",
+                    )
+                })?;
+                if !symbols.contains_key(over.get_ref()) {
+                    return Err(self.err(
+                        content_start(over),
+                        &format!("{field}.over"),
+                        format!("`{}` is not a declared symbol", over.get_ref()),
+                    ));
+                }
+                let range = rp.range.as_ref().ok_or_else(|| {
+                    self.err(
+                        start,
+                        &format!("{field}.range"),
+                        "a tensor-sweep needs `range = [from, to]`",
+                    )
+                })?;
+                let ends: Vec<f64> = range
+                    .get_ref()
+                    .iter()
+                    .enumerate()
+                    .map(|(i, t)| {
+                        let f = format!("{field}.range[{i}]");
+                        let e = self.expr_str(
+                            t.get_ref(),
+                            content_start(t),
+                            &f,
+                            &BTreeSet::from(["pi".to_string()]),
+                        )?;
+                        e.eval(&|_| None)
+                            .map_err(|m| self.err(content_start(t), &f, m.to_string()))
+                    })
+                    .collect::<Result<_, _>>()?;
+                if ends.len() != 2 || !ends.iter().all(|x| x.is_finite()) || ends[0] >= ends[1] {
+                    return Err(self.err(
+                        range.span().start,
+                        &format!("{field}.range"),
+                        "expected two numbers [from, to] with from < to",
+                    ));
+                }
+                let samples = rp.samples.as_ref().map_or(Ok(7), |n| {
+                    usize::try_from(*n.get_ref())
+                        .ok()
+                        .filter(|k| (2..=1000).contains(k))
+                        .ok_or_else(|| {
+                            self.err(
+                                n.span().start,
+                                &format!("{field}.samples"),
+                                "samples is a whole number from 2 to 1000",
+                            )
+                        })
+                })?;
+                PlotRequest::TensorSweep {
+                    over: over.get_ref().clone(),
+                    from: ends[0],
+                    to: ends[1],
+                    samples,
+                }
+            }
+            "convergence" => PlotRequest::Convergence,
+            "principal-axes" => PlotRequest::PrincipalAxes,
+            other => {
+                return Err(self.err(
+                    content_start(&rp.kind),
+                    &format!("{field}.kind"),
+                    format!(
+                        "unknown plot kind `{other}`; expected one of: {}",
+                        PlotRequest::KINDS.join(", ")
+                    ),
+                ));
+            }
+        };
+        if sweep_fields && !matches!(request, PlotRequest::TensorSweep { .. }) {
+            return Err(self.err(
+                start,
+                field,
+                format!(
+                    "`over`, `range` and `samples` belong to a tensor-sweep, not a {}",
+                    request.kind()
+                ),
+            ));
+        }
+        Ok(request)
+    }
+}

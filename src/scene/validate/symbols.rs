@@ -1,0 +1,141 @@
+//! The names a scene declares: symbols, definitions, vectors, and the numeric values of the
+//! symbols its bodies use.
+
+use super::bodies::body_symbols;
+use super::{RESERVED, Validator, is_identifier};
+use crate::cas::Expr;
+use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, is_quantity};
+use crate::scene::error::SceneError;
+use crate::scene::raw::RawScene;
+use crate::scene::types::Body;
+use crate::scene::validate::CLAIM_FUNCTIONS;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Definitions, vectors, and every name a claim may use.
+type ClaimNames = (
+    BTreeMap<String, Expr>,
+    BTreeMap<String, [Expr; 3]>,
+    BTreeSet<String>,
+);
+
+impl Validator<'_> {
+    /// `[symbols]`: names that are not reserved, quantities or functions.
+    pub(super) fn symbols(&self, raw: &RawScene) -> Result<BTreeMap<String, String>, SceneError> {
+        let mut symbols = BTreeMap::new();
+        for (name, meaning) in &raw.symbols {
+            let n = name.get_ref();
+            if !is_identifier(n)
+                || RESERVED.contains(&n.as_str())
+                || is_quantity(n)
+                || CLAIM_FUNCTIONS.contains(&n.as_str())
+            {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("symbols.{n}"),
+                    format!("`{n}` cannot be a symbol name"),
+                ));
+            }
+            symbols.insert(n.clone(), meaning.clone());
+        }
+        Ok(symbols)
+    }
+
+    /// `[definitions]` and `[vectors]`, and with them the names a claim may use.
+    pub(super) fn definitions_and_vectors(
+        &self,
+        raw: &RawScene,
+        allowed: &BTreeSet<String>,
+        variables: &BTreeSet<String>,
+    ) -> Result<ClaimNames, SceneError> {
+        let mut definitions = BTreeMap::new();
+        let mut claim_names = allowed.clone();
+        for (name, value) in &raw.definitions {
+            let n = name.get_ref();
+            if !is_identifier(n) || allowed.contains(n) {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("definitions.{n}"),
+                    format!("`{n}` cannot be defined here (not a name, or already a symbol)"),
+                ));
+            }
+            let mut scope = allowed.clone();
+            scope.extend(variables.iter().cloned());
+            definitions.insert(
+                n.clone(),
+                self.expr(value, &format!("definitions.{n}"), &scope)?,
+            );
+            claim_names.insert(n.clone());
+        }
+
+        let mut vectors = BTreeMap::new();
+        for (name, v) in &raw.vectors {
+            let n = name.get_ref();
+            if !is_identifier(n) || claim_names.contains(n) {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("vectors.{n}"),
+                    format!("`{n}` cannot name a vector (not a name, or already used)"),
+                ));
+            }
+            vectors.insert(n.clone(), self.vec3(v, &format!("vectors.{n}"), &allowed)?);
+        }
+        claim_names.extend(vectors.keys().cloned());
+        claim_names.extend(variables.iter().cloned());
+        claim_names.extend(
+            QUANTITIES
+                .iter()
+                .chain(DYNAMICS_QUANTITIES)
+                .map(|s| s.to_string()),
+        );
+        Ok((definitions, vectors, claim_names))
+    }
+
+    /// `[numeric] values`: finite, one per symbol the bodies, `omega` and `axis` use.
+    pub(super) fn values<'e>(
+        &self,
+        raw: &RawScene,
+        symbols: &BTreeMap<String, String>,
+        bodies: &[Body],
+        vectors: impl Iterator<Item = &'e [Expr; 3]>,
+    ) -> Result<BTreeMap<String, f64>, SceneError> {
+        // Numeric values: finite, one per symbol the bodies, omega and axis use.
+        let mut values = BTreeMap::new();
+        for (name, v) in &raw.numeric.values {
+            let n = name.get_ref();
+            let field = format!("numeric.values.{n}");
+            if !symbols.contains_key(n) {
+                return Err(self.err(
+                    name.span().start,
+                    &field,
+                    format!("`{n}` is not a declared symbol"),
+                ));
+            }
+            if !v.get_ref().is_finite() {
+                return Err(self.err(v.span().start, &field, "the value must be a finite number"));
+            }
+            values.insert(n.clone(), *v.get_ref());
+        }
+        let mut used: BTreeSet<String> = BTreeSet::new();
+        for b in bodies {
+            used.extend(body_symbols(b));
+        }
+        for v in vectors {
+            v.iter().for_each(|e| used.extend(e.symbols()));
+        }
+        used.remove("pi");
+        for s in &used {
+            if !values.contains_key(s) {
+                let declared = raw.symbols.keys().find(|k| k.get_ref() == s);
+                return Err(self.err(
+                    declared.map_or(0, |k| k.span().start),
+                    "numeric.values",
+                    format!("no numeric value for symbol `{s}`"),
+                ));
+            }
+        }
+        for (i, rb) in raw.bodies.iter().enumerate() {
+            self.check_positive(rb.get_ref(), &format!("body[{i}]"), &values)?;
+        }
+        Ok(values)
+    }
+}

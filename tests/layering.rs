@@ -1,0 +1,249 @@
+//! The layering rule, held as a test: the modules of `src/` are the pipeline, and every
+//! `crate::` path in library code points to a module above its own in this list. Siblings on
+//! one rank (derive and numeric; report and render) do not import each other either, so the
+//! graph has no circle. Test code (`tests.rs`, `*_tests.rs`, `#[cfg(test)] mod` blocks) may
+//! reach anywhere.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The pipeline, top to bottom, as ranks: a module may import only lower ranks.
+const LAYERS: &[&[&str]] = &[
+    &["base"],
+    &["cas"],
+    &["model"],
+    &["scene"],
+    &["plan"],
+    &["derive", "numeric"],
+    &["figures"],
+    &["verify"],
+    &["pipeline"],
+    &["report", "render"],
+    &["site"],
+    &["cli"],
+];
+
+fn rank(module: &str) -> Option<usize> {
+    LAYERS.iter().position(|layer| layer.contains(&module))
+}
+
+/// `foo.rs` and `foo/...` both belong to module `foo`.
+fn top_module(relative: &str) -> String {
+    let first = relative.split('/').next().unwrap_or(relative);
+    first.strip_suffix(".rs").unwrap_or(first).to_string()
+}
+
+fn is_test_file(relative: &str) -> bool {
+    let name = relative.rsplit('/').next().unwrap_or(relative);
+    name == "tests.rs" || name.ends_with("_tests.rs")
+}
+
+/// The text without its `#[cfg(test)] mod name { ... }` blocks.
+fn without_test_modules(text: &str) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find("#[cfg(test)]") {
+        let after = rest[at + "#[cfg(test)]".len()..].trim_start();
+        let is_inline_mod = after.starts_with("mod ")
+            && after
+                .find(['{', ';'])
+                .is_some_and(|k| after.as_bytes()[k] == b'{');
+        if !is_inline_mod {
+            out.push_str(&rest[..at + 1]);
+            rest = &rest[at + 1..];
+            continue;
+        }
+        out.push_str(&rest[..at]);
+        let open = at + (rest[at..].len() - after.len()) + after.find('{').unwrap();
+        let mut depth = 0usize;
+        let mut end = rest.len();
+        for (k, c) in rest[open..].char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        end = open + k + 1;
+                        break;
+                    }
+                }
+                _ => {}
+            }
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Every module `text` names through `crate::x` or `use crate::{x, y}`.
+fn imported_modules(text: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    let ident = |s: &str| -> String {
+        s.chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    for (at, _) in text.match_indices("crate::") {
+        let before = text[..at].chars().next_back();
+        if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+            continue;
+        }
+        let rest = &text[at + "crate::".len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            let group = &group[..group.find('}').unwrap_or(group.len())];
+            for part in group.split(',') {
+                let name = ident(part.trim());
+                if !name.is_empty() {
+                    found.push(name);
+                }
+            }
+        } else {
+            let name = ident(rest);
+            if !name.is_empty() {
+                found.push(name);
+            }
+        }
+    }
+    found
+}
+
+/// (from, to, file) for every import of another top-level module by library code.
+fn edges(files: &BTreeMap<String, String>) -> Vec<(String, String, String)> {
+    let mut out = Vec::new();
+    for (relative, text) in files {
+        if is_test_file(relative) || relative == "lib.rs" || relative == "main.rs" {
+            continue;
+        }
+        let from = top_module(relative);
+        for to in imported_modules(&without_test_modules(text)) {
+            if to != from {
+                out.push((from.clone(), to, relative.clone()));
+            }
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// What breaks the rule: an unknown module, or an import that is not of a lower rank.
+fn violations(files: &BTreeMap<String, String>) -> Vec<String> {
+    let mut out = Vec::new();
+    for relative in files.keys() {
+        let m = top_module(relative);
+        if !matches!(m.as_str(), "lib" | "main") && rank(&m).is_none() {
+            out.push(format!("{relative}: module `{m}` is not in LAYERS"));
+        }
+    }
+    for (from, to, file) in edges(files) {
+        match (rank(&from), rank(&to)) {
+            (Some(a), Some(b)) if b < a => {}
+            (Some(_), Some(_)) => out.push(format!(
+                "{file}: `{from}` imports `{to}`, which is not below it in the pipeline"
+            )),
+            _ => {}
+        }
+    }
+    out
+}
+
+fn read_tree(root: &Path, dir: &Path, files: &mut BTreeMap<String, String>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            read_tree(root, &path, files);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            let relative = path
+                .strip_prefix(root)
+                .unwrap()
+                .to_string_lossy()
+                .into_owned();
+            files.insert(relative, std::fs::read_to_string(&path).unwrap());
+        }
+    }
+}
+
+#[test]
+fn every_import_points_down_the_pipeline() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = BTreeMap::new();
+    read_tree(&root, &root, &mut files);
+    assert!(files.len() > 40, "read {} files", files.len());
+    let problems = violations(&files);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    // The walk found the real graph: the pipeline reads the scene, cli reads the pipeline.
+    let found = edges(&files);
+    for (a, b) in [
+        ("pipeline", "scene"),
+        ("cli", "pipeline"),
+        ("figures", "numeric"),
+    ] {
+        assert!(
+            found.iter().any(|(f, t, _)| f == a && t == b),
+            "no edge {a} -> {b}"
+        );
+    }
+}
+
+#[test]
+fn lib_declares_the_modules_in_pipeline_order() {
+    let lib =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("src/lib.rs")).unwrap();
+    let ranks: Vec<usize> = lib
+        .lines()
+        .filter_map(|l| l.strip_prefix("pub mod "))
+        .map(|m| rank(m.trim_end_matches(';')).expect("a module of LAYERS"))
+        .collect();
+    assert_eq!(ranks.len(), LAYERS.iter().map(|l| l.len()).sum::<usize>());
+    assert!(ranks.windows(2).all(|w| w[0] <= w[1]), "{ranks:?}");
+}
+
+#[test]
+fn the_checker_finds_backward_edges_circles_and_strays() {
+    let files = BTreeMap::from([
+        // Backward: numeric reaching up into figures.
+        (
+            "numeric/plots.rs".to_string(),
+            "use crate::figures::Figure;\n".to_string(),
+        ),
+        // A circle between siblings, one side through a `use crate::{..}` group.
+        (
+            "derive/mod.rs".to_string(),
+            "use crate::{cas, numeric};\n".to_string(),
+        ),
+        (
+            "numeric/mod.rs".to_string(),
+            "fn f() { crate::derive::go() }\n".to_string(),
+        ),
+        // Allowed: downward, and anything in test code.
+        (
+            "verify.rs".to_string(),
+            "use crate::scene::Scene;\n#[cfg(test)]\nmod tests {\n    use crate::cli::run;\n}\n"
+                .to_string(),
+        ),
+        (
+            "scene/tests.rs".to_string(),
+            "use crate::site::write;\n".to_string(),
+        ),
+        ("stray.rs".to_string(), String::new()),
+    ]);
+    let problems = violations(&files);
+    assert_eq!(problems.len(), 4, "{problems:#?}");
+    assert!(problems[0].contains("module `stray`"));
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.contains("`derive` imports `numeric`"))
+    );
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.contains("`numeric` imports `derive`"))
+    );
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.contains("`numeric` imports `figures`"))
+    );
+}
