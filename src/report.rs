@@ -2,7 +2,7 @@
 
 use crate::base::format::sci;
 use crate::derive::ExactBasis;
-use crate::model::value::Value;
+use crate::model::value::{Value, eval_at};
 use crate::numeric::eigen::Space;
 use crate::pipeline::SceneReport;
 use crate::scene::Verdict;
@@ -17,11 +17,10 @@ fn num(x: f64) -> Json {
 }
 
 fn numeric_entries(v: &Value, r: &SceneReport) -> Json {
-    let env = |s: &str| r.scene.values.get(s).copied();
     let vals: Vec<Json> = v
         .entries()
         .iter()
-        .map(|e| e.eval(&env).map(num).unwrap_or(Json::Null))
+        .map(|e| eval_at(e, &r.scene.values).map(num).unwrap_or(Json::Null))
         .collect();
     match v {
         Value::Scalar(_) => vals.into_iter().next().unwrap_or(Json::Null),
@@ -94,10 +93,9 @@ pub fn scene_json(r: &SceneReport) -> Json {
                 ExactBasis::PlaneNormalTo(n) => ("plane-normal-to", Some(vec_text(n))),
                 ExactBasis::All => ("all", None),
             };
-            let env = |x: &str| s.values.get(x).copied();
             json!({
                 "value": sp.value.to_text(),
-                "numeric": sp.value.eval(&env).map(num).unwrap_or(Json::Null),
+                "numeric": eval_at(&sp.value, &s.values).map(num).unwrap_or(Json::Null),
                 "multiplicity": sp.multiplicity,
                 "eigenspace": kind,
                 "direction": dir,
@@ -142,14 +140,6 @@ pub fn scene_json(r: &SceneReport) -> Json {
     })
 }
 
-fn count(r: &SceneReport, v: Verdict) -> usize {
-    r.verification
-        .claims
-        .iter()
-        .filter(|c| c.verdict == v)
-        .count()
-}
-
 /// The summary table printed by `check`, with the notes' errata and every failure below it.
 pub fn check_table(reports: &[SceneReport]) -> String {
     let mut out = String::new();
@@ -171,9 +161,9 @@ pub fn check_table(reports: &[SceneReport]) -> String {
             r.scene.id,
             r.scene.notes.lecture,
             r.derivation.quantities.len(),
-            count(r, Verdict::Agrees),
-            count(r, Verdict::Disagrees),
-            count(r, Verdict::NotCheckable),
+            r.verification.count(Verdict::Agrees),
+            r.verification.count(Verdict::Disagrees),
+            r.verification.count(Verdict::NotCheckable),
             worst.map(sci).unwrap_or_else(|| "-".into()),
             r.symbolic_seconds * 1e3,
             if r.passed() { "ok" } else { "FAILED" }
@@ -181,8 +171,7 @@ pub fn check_table(reports: &[SceneReport]) -> String {
     }
     let errata: Vec<_> = reports
         .iter()
-        .flat_map(|r| r.verification.claims.iter().map(move |c| (r, c)))
-        .filter(|(_, c)| c.verdict == Verdict::Disagrees)
+        .flat_map(|r| r.verification.errata().map(move |c| (r, c)))
         .collect();
     if !errata.is_empty() {
         let _ = writeln!(
@@ -261,15 +250,15 @@ pub fn check_table(reports: &[SceneReport]) -> String {
         claims,
         reports
             .iter()
-            .map(|r| count(r, Verdict::Agrees))
+            .map(|r| r.verification.count(Verdict::Agrees))
             .sum::<usize>(),
         reports
             .iter()
-            .map(|r| count(r, Verdict::Disagrees))
+            .map(|r| r.verification.count(Verdict::Disagrees))
             .sum::<usize>(),
         reports
             .iter()
-            .map(|r| count(r, Verdict::NotCheckable))
+            .map(|r| r.verification.count(Verdict::NotCheckable))
             .sum::<usize>(),
         symbolic * 1e3,
         calls,

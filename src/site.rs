@@ -118,6 +118,7 @@ pub fn write_site(out: &Path, files: &SiteFiles) -> Result<(), SiteError> {
 /// Swaps two folders in one step (Linux's `renameat2` with `RENAME_EXCHANGE`). Where the file
 /// system cannot, it falls back to two renames, with a short instant in which `b` is missing.
 #[cfg(target_os = "linux")]
+#[allow(unsafe_code)]
 fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
     use std::os::unix::ffi::OsStrExt;
     let c = |p: &Path| {
@@ -199,6 +200,7 @@ fn process_alive(pid: u32) -> bool {
             return false;
         };
         // SAFETY: signal 0 only asks whether the process exists.
+        #[allow(unsafe_code)]
         let r = unsafe { libc::kill(pid, 0) };
         r == 0 || std::io::Error::last_os_error().raw_os_error() == Some(libc::EPERM)
     }

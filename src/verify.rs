@@ -12,7 +12,7 @@ use crate::derive::algebra::{Env, Value, evaluate};
 use crate::derive::{Derivation, ExactBasis, simplify_value};
 use crate::model::catalogue::Stage;
 use crate::model::catalogue::quantity;
-use crate::model::value::vector_at;
+use crate::model::value::{eval_at, vector_at};
 use crate::numeric::NumericReport;
 use crate::numeric::eigen::{Eigenspace, Space, principal_axes};
 use crate::numeric::quadrature::{Method, QuadratureRun};
@@ -92,6 +92,18 @@ pub struct Verification {
 }
 
 impl Verification {
+    /// The claims that received verdict `v`.
+    pub fn count(&self, v: Verdict) -> usize {
+        self.claims.iter().filter(|c| c.verdict == v).count()
+    }
+
+    /// The notes' errata: the claims the derivation disagrees with.
+    pub fn errata(&self) -> impl Iterator<Item = &ClaimResult> {
+        self.claims
+            .iter()
+            .filter(|c| c.verdict == Verdict::Disagrees)
+    }
+
     pub fn passed(&self) -> bool {
         self.claims.iter().all(ClaimResult::passed)
             && self.regressions.iter().all(|r| r.unchanged)
@@ -158,7 +170,10 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
         // other claims are still checked.
         out.push(check_claim(scene, &env, i, claim).unwrap_or_else(|e| {
             let mut r = unchecked(claim);
-            r.problem = Some(format!("the algebra engine failed on this claim: {}", e.0));
+            r.problem = Some(format!(
+                "the algebra engine failed on this claim: {}",
+                e.reason
+            ));
             r
         }));
     }
@@ -225,7 +240,7 @@ fn check_claim(
                 }
                 r.precision = Some(detail);
             }
-            Err(e) => r.problem = Some(e),
+            Err(e) => r.problem = Some(e.to_string()),
         }
         return Ok(r);
     }
@@ -299,18 +314,36 @@ pub fn round_to_figures(x: f64, figures: u32) -> f64 {
     (x * scale).round() / scale
 }
 
+/// A side of a claim given to significant figures that is not a number.
+#[derive(Debug, thiserror::Error)]
+enum NotANumber {
+    #[error("the {side} side is not a number: {error}")]
+    Eval {
+        side: &'static str,
+        error: EvalError,
+    },
+    #[error("the {side} side is {kind}, not a number")]
+    Kind {
+        side: &'static str,
+        kind: &'static str,
+    },
+}
+
 /// Do two numbers agree at the precision the notes give? Both sides must be numbers.
 fn rounded_agreement(
     derived: &Value,
     notes: &Value,
     figures: u32,
-) -> Result<(bool, String), String> {
-    let number = |v: &Value, side: &str| -> Result<f64, String> {
+) -> Result<(bool, String), NotANumber> {
+    let number = |v: &Value, side: &'static str| -> Result<f64, NotANumber> {
         match v {
             Value::Scalar(e) => e
                 .eval(&|_| None)
-                .map_err(|e| format!("the {side} side is not a number: {e}")),
-            other => Err(format!("the {side} side is {}, not a number", other.kind())),
+                .map_err(|error| NotANumber::Eval { side, error }),
+            other => Err(NotANumber::Kind {
+                side,
+                kind: other.kind(),
+            }),
         }
     };
     let (d, n) = (number(derived, "derived")?, number(notes, "notes'")?);
@@ -477,7 +510,7 @@ pub fn check_eigen(
             }
             ExactBasis::All => None,
         };
-        exact.push((s.value.eval(&env)?, s.multiplicity, direction));
+        exact.push((eval_at(&s.value, &scene.values)?, s.multiplicity, direction));
     }
     exact.sort_by(|a, b| a.0.total_cmp(&b.0));
     let exact = merge_equal_in_f64(exact);

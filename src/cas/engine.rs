@@ -26,6 +26,44 @@ pub const MAX_TERMS: f64 = 20_000.0;
 /// fuzzed tensor with entries 1e30 and 1.1e308 did not finish in two minutes).
 pub const MAX_ROOT_DIGITS: usize = 30;
 
+/// What the engine could not do, or gave back in a form we do not read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EngineError {
+    #[error(
+        "a root of a number with {digits} digits, which the engine would have to factor (more \
+         than {MAX_ROOT_DIGITS} digits can take longer than any budget): give the quantities in \
+         units where their values have fewer digits"
+    )]
+    LargeRoot { digits: usize },
+    #[error(
+        "an expression whose expansion could reach degree {degree} with {terms:.0e} terms, beyond \
+         the engine's budget of degree {MAX_DEGREE} and {MAX_TERMS:.0e} terms: give the body's \
+         dimensions as simpler expressions (a single symbol each, with [definitions] for the \
+         rest)"
+    )]
+    OverBudget { degree: f64, terms: f64 },
+    #[error("the engine produced `{text}`, which is not an exact real number or expression")]
+    Unreadable { text: String },
+    #[error("unexpected name `{name}` in the engine's output `{text}`")]
+    UnexpectedNameIn { name: String, text: String },
+    #[error("zero denominator")]
+    ZeroDenominator,
+    #[error("the result is a complex number (a square root of a negative quantity?)")]
+    Complex,
+    #[error("unexpected name `{name}` from the engine")]
+    UnexpectedName { name: String },
+    #[error("unexpected function `{name}` from the engine")]
+    UnexpectedFunction { name: String },
+    #[error("not a rational function: `{expr}`")]
+    NotRational { expr: String },
+    #[error("not a polynomial in {var}: `{key}`")]
+    NotPolynomial { var: String, key: String },
+    #[error("cannot integrate: {var} also appears as `{coeff}`")]
+    VariableInCoefficient { var: String, coeff: String },
+    #[error("cannot integrate over {var}: `{coeff}` is not a polynomial in cos {var}, sin {var}")]
+    NotTrigPolynomial { var: String, coeff: String },
+}
+
 /// The digits of a number with more than [`MAX_ROOT_DIGITS`] of them under a fractional power
 /// or `sqrt`, if any; `under_root` says whether `e` itself is under one.
 fn large_number_under_a_root(e: &Expr, under_root: bool) -> Option<usize> {
@@ -53,23 +91,16 @@ fn large_number_under_a_root(e: &Expr, under_root: bool) -> Option<usize> {
 }
 
 /// `e` expanded, unless its expansion could exceed the budget: then an error that says so.
-fn expand(e: &Expr) -> Result<Atom, String> {
+fn expand(e: &Expr) -> Result<Atom, EngineError> {
     if let Some(digits) = large_number_under_a_root(e, false) {
-        return Err(format!(
-            "a root of a number with {digits} digits, which the engine would have to factor \
-             (more than {MAX_ROOT_DIGITS} digits can take longer than any budget): give the \
-             quantities in units where their values have fewer digits"
-        ));
+        return Err(EngineError::LargeRoot { digits });
     }
     let size = e.expansion_size();
     if size.degree > MAX_DEGREE || size.terms > MAX_TERMS {
-        return Err(format!(
-            "an expression whose expansion could reach degree {} with {:.0e} terms, beyond the \
-             engine's budget of degree {MAX_DEGREE} and {MAX_TERMS:.0e} terms: give the body's \
-             dimensions as simpler expressions (a single symbol each, with [definitions] for \
-             the rest)",
-            size.degree, size.terms
-        ));
+        return Err(EngineError::OverBudget {
+            degree: size.degree,
+            terms: size.terms,
+        });
     }
     Ok(to_atom(e).expand())
 }
@@ -107,15 +138,14 @@ fn large_number(r: &Rational) -> Atom {
     Atom::num(sign) * &horner(&num) / &horner(&den)
 }
 
-fn from_text(text: &str) -> Result<Expr, String> {
+fn from_text(text: &str) -> Result<Expr, EngineError> {
     let text = strip_ansi(text);
-    let parsed = parse(&text).map_err(|_| {
-        format!("the engine produced `{text}`, which is not an exact real number or expression")
-    })?;
+    let parsed = parse(&text).map_err(|_| EngineError::Unreadable { text: text.clone() })?;
     if let Some((name, _)) = parsed.symbols.iter().find(|(s, _)| !s.starts_with(PREFIX)) {
-        return Err(format!(
-            "unexpected name `{name}` in the engine's output `{text}`"
-        ));
+        return Err(EngineError::UnexpectedNameIn {
+            name: name.clone(),
+            text,
+        });
     }
     Ok(parsed
         .expr
@@ -141,21 +171,17 @@ fn strip_ansi(text: &str) -> String {
 }
 
 /// Reads the engine's expression back into ours by walking it.
-fn from_view(v: AtomView<'_>) -> Result<Expr, String> {
+fn from_view(v: AtomView<'_>) -> Result<Expr, EngineError> {
     let all = |it: &mut dyn Iterator<Item = AtomView<'_>>| {
         it.map(from_view).collect::<Result<Vec<_>, _>>()
     };
     Ok(match v {
         AtomView::Num(n) => match n.get_coeff_view() {
-            CoefficientView::Natural(num, den, 0, _) => {
-                Expr::Num(Rational::new(num as i128, den as i128).ok_or("zero denominator")?)
-            }
+            CoefficientView::Natural(num, den, 0, _) => Expr::Num(
+                Rational::new(num as i128, den as i128).ok_or(EngineError::ZeroDenominator)?,
+            ),
             CoefficientView::Natural(..) => {
-                return Err(
-                    "the result is a complex number (a square root of a negative \
-                            quantity?)"
-                        .into(),
-                );
+                return Err(EngineError::Complex);
             }
             // Large or complex numbers: the printed form says what they are.
             _ => return from_text(&v.to_string()),
@@ -164,7 +190,7 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, String> {
             let name = x.get_symbol().get_stripped_name().to_string();
             match name.strip_prefix(PREFIX) {
                 Some(n) => Expr::sym(n),
-                None => return Err(format!("unexpected name `{name}` from the engine")),
+                None => return Err(EngineError::UnexpectedName { name }),
             }
         }
         AtomView::Fun(f) => {
@@ -176,10 +202,9 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, String> {
             } else if s == Symbol::SQRT {
                 "sqrt"
             } else {
-                return Err(format!(
-                    "unexpected function `{}` from the engine",
-                    s.get_stripped_name()
-                ));
+                return Err(EngineError::UnexpectedFunction {
+                    name: s.get_stripped_name().to_string(),
+                });
             };
             Expr::Call(name.into(), all(&mut f.iter())?)
         }
@@ -193,7 +218,7 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, String> {
     })
 }
 
-fn from_atom(a: &Atom) -> Result<Expr, String> {
+fn from_atom(a: &Atom) -> Result<Expr, EngineError> {
     from_view(a.as_view())
 }
 
@@ -202,7 +227,7 @@ fn var_atom(name: &str) -> Atom {
 }
 
 /// Expanded, with rational functions brought to one reduced fraction.
-fn normal_form(e: &Expr) -> Result<Expr, String> {
+fn normal_form(e: &Expr) -> Result<Expr, EngineError> {
     let atom = expand(e)?;
     let expanded = from_atom(&atom)?;
     if !has_symbolic_denominator(&expanded) || trig::has_fractional_power(e) {
@@ -215,15 +240,15 @@ fn normal_form(e: &Expr) -> Result<Expr, String> {
 }
 
 /// A rational function in the engine's form; an expression with a fractional power is not one.
-fn rational_function(e: &Expr) -> Result<RationalPolynomial<IntegerRing, u16>, String> {
+fn rational_function(e: &Expr) -> Result<RationalPolynomial<IntegerRing, u16>, EngineError> {
     if trig::has_fractional_power(e) {
-        return Err(format!("not a rational function: `{e}`"));
+        return Err(EngineError::NotRational { expr: e.to_text() });
     }
     Ok(expand(e)?.to_rational_polynomial(&Q, &Z, None))
 }
 
 /// The expanded numerator and denominator of a rational function (no fractional powers).
-pub fn fraction(e: &Expr) -> Result<(Expr, Expr), String> {
+pub fn fraction(e: &Expr) -> Result<(Expr, Expr), EngineError> {
     let rat = rational_function(e)?;
     Ok((
         from_atom(&rat.numerator.to_expression().expand())?,
@@ -233,9 +258,9 @@ pub fn fraction(e: &Expr) -> Result<(Expr, Expr), String> {
 
 /// A rational function as a product of irreducible factors over the rationals, numerator over
 /// denominator, so that a step can show where an expression vanishes or changes sign.
-pub fn factor(e: &Expr) -> Result<Expr, String> {
+pub fn factor(e: &Expr) -> Result<Expr, EngineError> {
     let rat = rational_function(e)?;
-    let product = |poly: &MultivariatePolynomial<_, u16>| -> Result<Expr, String> {
+    let product = |poly: &MultivariatePolynomial<_, u16>| -> Result<Expr, EngineError> {
         if poly.is_constant() {
             return from_atom(&poly.to_expression());
         }
@@ -271,7 +296,7 @@ fn has_symbolic_denominator(e: &Expr) -> bool {
 }
 
 /// A canonical expanded form: sin powers reduced with sin² = 1 − cos², fractions combined.
-pub fn simplify(e: &Expr) -> Result<Expr, String> {
+pub fn simplify(e: &Expr) -> Result<Expr, EngineError> {
     let first = normal_form(e)?;
     let reduced = trig::reduce_sin_powers(&first);
     if reduced == first {
@@ -285,7 +310,7 @@ pub fn simplify(e: &Expr) -> Result<Expr, String> {
 /// one denominator, and the numerator is reduced with sin² = 1 − cos²: the powers of cos, and sin
 /// times them, are a basis modulo sin² + cos² = 1, so the reduced numerator is zero exactly when
 /// the expression is (for independent angles).
-pub fn is_zero(e: &Expr) -> Result<bool, String> {
+pub fn is_zero(e: &Expr) -> Result<bool, EngineError> {
     let e = trig::expand_multiple_angles(e);
     let atom = expand(&e)?;
     let numerator = if trig::has_fractional_power(&e) {
@@ -302,7 +327,11 @@ pub fn is_zero(e: &Expr) -> Result<bool, String> {
 }
 
 /// The exponent of `var` in a coefficient-list key such as `1`, `mbx` or `mbx^3`.
-fn key_exponent(key: &Atom, var: &str) -> Result<u32, String> {
+fn key_exponent(key: &Atom, var: &str) -> Result<u32, EngineError> {
+    let not_polynomial = || EngineError::NotPolynomial {
+        var: var.into(),
+        key: key.to_string(),
+    };
     match from_atom(key)? {
         Expr::Num(r) if r == Rational::ONE => Ok(0),
         Expr::Sym(s) if s == var => Ok(1),
@@ -314,21 +343,24 @@ fn key_exponent(key: &Atom, var: &str) -> Result<u32, String> {
             {
                 Ok(n.to_i64().unwrap_or(0) as u32)
             }
-            _ => Err(format!("not a polynomial in {var}: `{key}`")),
+            _ => Err(not_polynomial()),
         },
-        _ => Err(format!("not a polynomial in {var}: `{key}`")),
+        _ => Err(not_polynomial()),
     }
 }
 
 /// (power of `var`, coefficient) pairs of an expanded polynomial in `var`.
-fn coefficients(e: &Expr, var: &str) -> Result<Vec<(u32, Expr)>, String> {
+fn coefficients(e: &Expr, var: &str) -> Result<Vec<(u32, Expr)>, EngineError> {
     let atom = expand(e)?;
     let x = var_atom(var);
     let mut out = Vec::new();
     for (key, coeff) in atom.coefficient_list::<i8>(std::slice::from_ref(&x)) {
         let coeff = from_atom(&coeff)?;
         if coeff.symbols().iter().any(|s| s == var) {
-            return Err(format!("cannot integrate: {var} also appears as `{coeff}`"));
+            return Err(EngineError::VariableInCoefficient {
+                var: var.into(),
+                coeff: coeff.to_text(),
+            });
         }
         out.push((key_exponent(&key, var)?, coeff));
     }
@@ -365,7 +397,7 @@ pub fn trig_moment(p: u32, q: u32, half: bool) -> Expr {
     }
 }
 
-pub fn integrate(integrand: &Expr, domain: &[Integral]) -> Result<Expr, String> {
+pub fn integrate(integrand: &Expr, domain: &[Integral]) -> Result<Expr, EngineError> {
     let mut current = integrand.clone();
     for integral in domain {
         current = match integral {
@@ -392,9 +424,10 @@ pub fn integrate(integrand: &Expr, domain: &[Integral]) -> Result<Expr, String> 
                 for (p, coeff_c) in coefficients(&named, c)? {
                     for (q, coeff) in coefficients(&coeff_c, s)? {
                         if coeff.symbols().iter().any(|x| x == var) {
-                            return Err(format!(
-                                "cannot integrate over {var}: `{coeff}` is not a polynomial in cos {var}, sin {var}"
-                            ));
+                            return Err(EngineError::NotTrigPolynomial {
+                                var: var.clone(),
+                                coeff: coeff.to_text(),
+                            });
                         }
                         total.push(Expr::mul(vec![coeff, trig_moment(p, q, *half)]));
                     }
@@ -407,14 +440,15 @@ pub fn integrate(integrand: &Expr, domain: &[Integral]) -> Result<Expr, String> 
     Ok(current)
 }
 
-pub fn roots(poly: &Expr, var: &str) -> Result<Roots, String> {
+pub fn roots(poly: &Expr, var: &str) -> Result<Roots, EngineError> {
     let (h, args) = trig::to_half_angle(poly);
     let rat: RationalPolynomial<_, u16> = expand(&h)?.to_rational_polynomial(&Q, &Z, None);
     let mut out = Roots {
         roots: Vec::new(),
         unsolved: Vec::new(),
     };
-    let back = |e: Expr| -> Result<Expr, String> { simplify(&trig::from_half_angle(&e, &args)) };
+    let back =
+        |e: Expr| -> Result<Expr, EngineError> { simplify(&trig::from_half_angle(&e, &args)) };
     for (factor, mult) in rat.numerator.factor() {
         let factor = from_atom(&factor.to_expression())?;
         let mut c = [Expr::int(0), Expr::int(0), Expr::int(0)];
@@ -459,7 +493,7 @@ pub fn roots(poly: &Expr, var: &str) -> Result<Roots, String> {
 
 /// Divides the entries by their common factor: the factors of a + z1·b + z2·c (fresh
 /// z's) that do not contain the z's are exactly the common content of a, b and c.
-pub fn primitive_part(entries: &[Expr]) -> Result<Vec<Expr>, String> {
+pub fn primitive_part(entries: &[Expr]) -> Result<Vec<Expr>, EngineError> {
     // A common factor can hide behind sin² = 1 − cos² (sin²α written as 1 − cos²α), so try the
     // entries as they are and with either square rewritten, and keep the shortest result.
     let forms = [
@@ -479,7 +513,7 @@ pub fn primitive_part(entries: &[Expr]) -> Result<Vec<Expr>, String> {
     Ok(best.expect("three forms were tried"))
 }
 
-fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, String> {
+fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, EngineError> {
     let combined = Expr::add(
         entries
             .iter()

@@ -20,6 +20,17 @@ pub enum Expr {
     Index(Box<Expr>, Box<Expr>),
 }
 
+/// Why an expression has no derivative here.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum DiffError {
+    #[error("cannot differentiate a power whose exponent depends on `{var}`")]
+    VariableExponent { var: String },
+    #[error("cannot differentiate `{name}`")]
+    Function { name: String },
+    #[error("only scalar expressions can be differentiated")]
+    NotScalar,
+}
+
 /// Why an expression has no f64 value.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EvalError {
@@ -223,7 +234,7 @@ impl Expr {
 
     /// The derivative with respect to `x` by the sum, product and chain rules (no simplification:
     /// the engine's zero test does that).
-    pub fn diff(&self, x: &str) -> Result<Expr, String> {
+    pub fn diff(&self, x: &str) -> Result<Expr, DiffError> {
         Ok(match self {
             Expr::Num(_) => Expr::int(0),
             Expr::Sym(s) => Expr::int(i128::from(s == x)),
@@ -239,9 +250,7 @@ impl Expr {
             }
             Expr::Pow(a, b) => {
                 if b.symbols().iter().any(|s| s == x) {
-                    return Err(format!(
-                        "cannot differentiate a power whose exponent depends on `{x}`"
-                    ));
+                    return Err(DiffError::VariableExponent { var: x.into() });
                 }
                 let lower = Expr::pow(
                     a.as_ref().clone(),
@@ -255,11 +264,11 @@ impl Expr {
                     "sin" => Expr::call("cos", u.clone()),
                     "cos" => Expr::negate(Expr::call("sin", u.clone())),
                     "sqrt" => Expr::over(Expr::int(1), Expr::mul(vec![Expr::int(2), self.clone()])),
-                    _ => return Err(format!("cannot differentiate `{name}`")),
+                    _ => return Err(DiffError::Function { name: name.clone() }),
                 };
                 Expr::mul(vec![outer, u.diff(x)?])
             }
-            _ => return Err("only scalar expressions can be differentiated".into()),
+            _ => return Err(DiffError::NotScalar),
         })
     }
 

@@ -14,7 +14,8 @@ mod rational;
 mod size;
 mod trig;
 
-pub use expr::{EvalError, Expr, SCALAR_FUNCTIONS};
+pub use engine::EngineError;
+pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
 pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use rational::Rational;
 pub use size::ExpansionSize;
@@ -27,10 +28,45 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Sender, channel};
 use std::time::Instant;
 
-/// A failure inside the engine. It is a bug in mechbook or a limit of the engine, never bad input.
+/// A failure inside the engine, or a reason it cannot run. It is a bug in mechbook or a limit of
+/// the engine, never bad input.
 #[derive(Debug, Clone, thiserror::Error)]
-#[error("computer algebra failed: {0}")]
-pub struct CasError(pub String);
+#[error("computer algebra failed: {reason}")]
+pub struct CasError {
+    pub reason: CasFailure,
+}
+
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum CasFailure {
+    #[error("{0}")]
+    Engine(EngineError),
+    /// What the engine logged or panicked with, in words (see `engine_message`).
+    #[error("{0}")]
+    Reported(String),
+    #[error("the Symbolica worker has stopped")]
+    Stopped,
+    #[error(
+        "neither HOME nor XDG_CACHE_HOME names a folder: Symbolica keeps its per-user permit in \
+         the user's cache folder, so set HOME (or XDG_CACHE_HOME)"
+    )]
+    NoCacheFolder,
+    #[error(
+        "cannot create {}: {error}. Symbolica keeps its per-user permit in this cache folder and \
+         stops the process when it cannot write there: make the folder writable, or set \
+         XDG_CACHE_HOME to a writable folder",
+        path.display()
+    )]
+    LockUnwritable {
+        path: std::path::PathBuf,
+        error: String,
+    },
+}
+
+impl From<CasFailure> for CasError {
+    fn from(reason: CasFailure) -> CasError {
+        CasError { reason }
+    }
+}
 
 /// One integration, applied to an integrand in order.
 #[derive(Debug, Clone)]
@@ -132,13 +168,7 @@ pub fn lock_path() -> Result<std::path::PathBuf, CasError> {
         |v: Option<std::ffi::OsString>| v.map(std::path::PathBuf::from).filter(|p| p.is_absolute());
     let cache = absolute(std::env::var_os("XDG_CACHE_HOME"))
         .or_else(|| absolute(std::env::var_os("HOME")).map(|h| h.join(".cache")))
-        .ok_or_else(|| {
-            CasError(
-                "neither HOME nor XDG_CACHE_HOME names a folder: Symbolica keeps its per-user \
-                 permit in the user's cache folder, so set HOME (or XDG_CACHE_HOME)"
-                    .into(),
-            )
-        })?;
+        .ok_or(CasError::from(CasFailure::NoCacheFolder))?;
     Ok(cache.join("mechbook").join("symbolica.lock"))
 }
 
@@ -148,12 +178,10 @@ pub fn lock_path() -> Result<std::path::PathBuf, CasError> {
 fn take_process_lock() -> Result<File, CasError> {
     let path = lock_path()?;
     let unwritable = |e: std::io::Error| {
-        CasError(format!(
-            "cannot create {}: {e}. Symbolica keeps its per-user permit in this cache folder \
-             and stops the process when it cannot write there: make the folder writable, or \
-             set XDG_CACHE_HOME to a writable folder",
-            path.display()
-        ))
+        CasError::from(CasFailure::LockUnwritable {
+            path: path.clone(),
+            error: e.to_string(),
+        })
     };
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir).map_err(unwritable)?;
@@ -202,17 +230,18 @@ fn worker() -> &'static Sender<Job> {
 
 /// Runs `f` on the worker and returns its result. A panic inside the engine becomes an error.
 fn run<T: Send + 'static>(
-    f: impl FnOnce() -> Result<T, String> + Send + 'static,
+    f: impl FnOnce() -> Result<T, EngineError> + Send + 'static,
 ) -> Result<T, CasError> {
     let (tx, rx) = channel();
     let job: Job = Box::new(move |refusal| {
         if let Some(e) = refusal {
-            let _ = tx.send((Ok(Err(e.0.clone())), String::new()));
+            let _ = tx.send((Ok(Err(e.clone())), String::new()));
             return;
         }
         let start = Instant::now();
         ENGINE_LOG.with(|l| l.borrow_mut().clear());
-        let result = catch_unwind(AssertUnwindSafe(f));
+        let result = catch_unwind(AssertUnwindSafe(f))
+            .map(|r| r.map_err(|e| CasError::from(CasFailure::Engine(e))));
         let log = ENGINE_LOG.with(|l| std::mem::take(&mut *l.borrow_mut()));
         BUSY_NANOS.fetch_add(start.elapsed().as_nanos() as u64, Ordering::Relaxed);
         CALLS.fetch_add(1, Ordering::Relaxed);
@@ -220,19 +249,21 @@ fn run<T: Send + 'static>(
     });
     worker()
         .send(job)
-        .map_err(|_| CasError("the Symbolica worker has stopped".into()))?;
+        .map_err(|_| CasError::from(CasFailure::Stopped))?;
     match rx.recv() {
         // A warning means the result is not to be trusted (infinity, a failed conversion).
-        Ok((Ok(Ok(_)), log)) if !log.trim().is_empty() => Err(CasError(engine_message(&log, None))),
-        Ok((Ok(r), _)) => r.map_err(CasError),
+        Ok((Ok(Ok(_)), log)) if !log.trim().is_empty() => {
+            Err(CasFailure::Reported(engine_message(&log, None)).into())
+        }
+        Ok((Ok(r), _)) => r,
         Ok((Err(panic), log)) => {
             let msg = panic
                 .downcast_ref::<String>()
                 .cloned()
                 .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()));
-            Err(CasError(engine_message(&log, msg.as_deref())))
+            Err(CasFailure::Reported(engine_message(&log, msg.as_deref())).into())
         }
-        Err(_) => Err(CasError("the Symbolica worker has stopped".into())),
+        Err(_) => Err(CasFailure::Stopped.into()),
     }
 }
 

@@ -7,7 +7,7 @@ mod check;
 mod derive;
 mod spin;
 
-use crate::model::fidelity::Fidelity;
+use crate::model::fidelity::{Fidelity, FidelityError};
 use crate::pipeline::{self, SceneReport};
 use crate::site::cache::Cache;
 use anyhow::{Context, Result};
@@ -83,7 +83,7 @@ pub fn peak_memory_mib() -> Option<f64> {
     Some(kib / 1024.0)
 }
 
-fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
+fn parse_fidelity(s: &str) -> Result<Fidelity, FidelityError> {
     Fidelity::parse(s)
 }
 

@@ -2,7 +2,7 @@
 //! `dot`, `cross`, `outer`, `transpose`, `eye()`, `diag`, `rot_x/y/z`, `trace`, products and
 //! indexing. Everything here only builds trees; the engine simplifies them.
 
-use crate::cas::Expr;
+use crate::cas::{DiffError, Expr};
 pub use crate::model::value::{Mat3, Value, Vec3};
 use std::collections::BTreeMap;
 
@@ -144,11 +144,39 @@ pub fn rotation(axis: usize, angle: &Expr) -> Mat3 {
     }
 }
 
+/// A claim expression that does not make sense: a type error, in words.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ClaimError {
+    #[error("cannot add {0} and {1}")]
+    Add(&'static str, &'static str),
+    #[error("cannot multiply {0} by {1} (use dot, cross or outer)")]
+    Multiply(&'static str, &'static str),
+    #[error("matrix inverses are not supported in claims")]
+    Inverse,
+    #[error("cannot raise {0} to {1}")]
+    Power(&'static str, &'static str),
+    #[error("lists have 3 entries, this one has {0}")]
+    ListLength(usize),
+    #[error("a list holds three scalars or three rows")]
+    ListShape,
+    #[error("an index is a literal 0, 1 or 2")]
+    Index,
+    #[error("cannot index a scalar")]
+    IndexScalar,
+    #[error("`{name}` cannot take {kinds}")]
+    Arguments { name: String, kinds: String },
+    #[error(transparent)]
+    Diff(#[from] DiffError),
+    /// `sign(f)` could not be decided; the reason, in words.
+    #[error("{0}")]
+    Sign(String),
+}
+
 /// The names a claim expression can use, bound to values.
 pub type Env = BTreeMap<String, Value>;
 
 /// Evaluates an expression of the claim language to a value. Errors are type errors, in words.
-pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, String> {
+pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, ClaimError> {
     use Value::*;
     Ok(match e {
         Expr::Num(_) => Scalar(e.clone()),
@@ -163,7 +191,7 @@ pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, String> {
                     (Scalar(a), Scalar(b)) => Scalar(Expr::add(vec![a, b])),
                     (Vector(a), Vector(b)) => Vector(add_vec(&a, &b)),
                     (Matrix(a), Matrix(b)) => Matrix(mat_add(&a, &b)),
-                    (a, b) => return Err(format!("cannot add {} and {}", a.kind(), b.kind())),
+                    (a, b) => return Err(ClaimError::Add(a.kind(), b.kind())),
                 };
             }
             acc
@@ -178,9 +206,9 @@ pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, String> {
         Expr::Pow(b, x) => match (evaluate(b, env)?, evaluate(x, env)?) {
             (Scalar(b), Scalar(x)) => Scalar(Expr::pow(b, x)),
             (Matrix(_), Scalar(Expr::Num(n))) if n.to_i64() == Some(-1) => {
-                return Err("matrix inverses are not supported in claims".into());
+                return Err(ClaimError::Inverse);
             }
-            (b, x) => return Err(format!("cannot raise {} to {}", b.kind(), x.kind())),
+            (b, x) => return Err(ClaimError::Power(b.kind(), x.kind())),
         },
         Expr::List(items) => {
             let vals: Vec<Value> = items
@@ -188,26 +216,26 @@ pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, String> {
                 .map(|i| evaluate(i, env))
                 .collect::<Result<_, _>>()?;
             if vals.len() != 3 {
-                return Err(format!("lists have 3 entries, this one has {}", vals.len()));
+                return Err(ClaimError::ListLength(vals.len()));
             }
             match (&vals[0], &vals[1], &vals[2]) {
                 (Scalar(a), Scalar(b), Scalar(c)) => Vector([a.clone(), b.clone(), c.clone()]),
                 (Vector(a), Vector(b), Vector(c)) => Matrix([a.clone(), b.clone(), c.clone()]),
-                _ => return Err("a list holds three scalars or three rows".into()),
+                _ => return Err(ClaimError::ListShape),
             }
         }
         Expr::Index(a, i) => {
             let Expr::Num(n) = i.as_ref() else {
-                return Err("an index is a literal 0, 1 or 2".into());
+                return Err(ClaimError::Index);
             };
             let Some(k) = n.to_i64().filter(|k| (0..3).contains(k)) else {
-                return Err("an index is a literal 0, 1 or 2".into());
+                return Err(ClaimError::Index);
             };
             let k = k as usize;
             match evaluate(a, env)? {
                 Vector(v) => Scalar(v[k].clone()),
                 Matrix(m) => Vector(m[k].clone()),
-                Scalar(_) => return Err("cannot index a scalar".into()),
+                Scalar(_) => return Err(ClaimError::IndexScalar),
             }
         }
         Expr::Call(name, args) => {
@@ -220,7 +248,7 @@ pub fn evaluate(e: &Expr, env: &Env) -> Result<Value, String> {
     })
 }
 
-fn multiply(a: Value, b: Value) -> Result<Value, String> {
+fn multiply(a: Value, b: Value) -> Result<Value, ClaimError> {
     use Value::*;
     Ok(match (a, b) {
         (Scalar(a), Scalar(b)) => Scalar(Expr::mul(vec![a, b])),
@@ -229,19 +257,18 @@ fn multiply(a: Value, b: Value) -> Result<Value, String> {
         (Matrix(m), Vector(v)) => Vector(mat_vec(&m, &v)),
         (Matrix(a), Matrix(b)) => Matrix(mat_mul(&a, &b)),
         (a, b) => {
-            return Err(format!(
-                "cannot multiply {} by {} (use dot, cross or outer)",
-                a.kind(),
-                b.kind()
-            ));
+            return Err(ClaimError::Multiply(a.kind(), b.kind()));
         }
     })
 }
 
-fn call(name: &str, args: Vec<Value>) -> Result<Value, String> {
+fn call(name: &str, args: Vec<Value>) -> Result<Value, ClaimError> {
     use Value::*;
     let kinds: Vec<&str> = args.iter().map(|a| a.kind()).collect();
-    let bad = || format!("`{name}` cannot take {}", kinds.join(" and "));
+    let bad = || ClaimError::Arguments {
+        name: name.to_string(),
+        kinds: kinds.join(" and "),
+    };
     Ok(match (name, args.as_slice()) {
         ("sin" | "cos" | "sqrt", [Scalar(x)]) => Scalar(Expr::call(name, x.clone())),
         ("dot", [Vector(a), Vector(b)]) => Scalar(dot(a, b)),
@@ -276,8 +303,8 @@ fn call(name: &str, args: Vec<Value>) -> Result<Value, String> {
         // 1 or −1 when the sign is the same for all positive values of the symbols, 0 when it
         // is not (see `derive::sign`).
         ("sign", [f]) => {
-            let signs =
-                super::sign::signs_over_positive(&f.entries()).map_err(|e| e.to_string())?;
+            let signs = super::sign::signs_over_positive(&f.entries())
+                .map_err(|e| ClaimError::Sign(e.to_string()))?;
             let e: Vec<Expr> = signs.iter().map(|s| Expr::int(s.as_int())).collect();
             f.with_entries(&e)
         }
@@ -293,7 +320,7 @@ mod tests {
     use super::*;
     use crate::cas::parse;
 
-    fn ev(s: &str, env: &Env) -> Result<Value, String> {
+    fn ev(s: &str, env: &Env) -> Result<Value, ClaimError> {
         evaluate(&parse(s).unwrap().expr, env)
     }
 
@@ -348,8 +375,14 @@ mod tests {
             Value::Vector([Expr::int(1), Expr::int(2), Expr::int(3)]),
         );
         let e = ev("cross(r, dot(r, r))", &env).unwrap_err();
-        assert!(e.contains("cross") && e.contains("a scalar"), "{e}");
-        assert!(ev("r*r", &env).unwrap_err().contains("dot"));
+        assert_eq!(
+            e,
+            ClaimError::Arguments {
+                name: "cross".into(),
+                kinds: "a vector and a scalar".into()
+            }
+        );
+        assert!(ev("r*r", &env).unwrap_err().to_string().contains("dot"));
         assert!(ev("r[3]", &env).is_err());
     }
 }

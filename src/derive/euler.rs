@@ -34,7 +34,7 @@ pub fn rate_along(f: &Expr, w: &Vec3, rates: &Vec3) -> Result<Expr, DeriveError>
         let Expr::Sym(name) = wi else {
             unreachable!("ω is a vector of symbols")
         };
-        let partial = f.diff(name).map_err(DeriveError::Unsupported)?;
+        let partial = f.diff(name).map_err(DeriveError::from)?;
         terms.push(Expr::mul(vec![partial, ri.clone()]));
     }
     Ok(Expr::add(terms))

@@ -18,7 +18,7 @@ pub mod stability;
 
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
-use crate::cas::{self, CasError, EvalError, Expr};
+use crate::cas::{self, CasError, DiffError, EvalError, Expr};
 use crate::model::catalogue::Stage;
 use crate::model::catalogue::quantity;
 use crate::plan::Plan;
@@ -64,10 +64,12 @@ pub enum DeriveError {
     /// Two routes that must agree did not: a bug, never a property of the input.
     #[error("internal inconsistency: {0}")]
     Inconsistent(String),
-    #[error("{0}")]
-    Unsupported(String),
+    #[error("cannot decide the sign of `{expr}` for positive values of its symbols")]
+    UndecidedSign { expr: String },
     #[error(transparent)]
     Eval(#[from] EvalError),
+    #[error(transparent)]
+    Diff(#[from] DiffError),
     /// A stage read a quantity that an earlier stage should have set: a bug in the plan.
     #[error("internal inconsistency: quantity `{0}` was not derived")]
     Missing(&'static str),

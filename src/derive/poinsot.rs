@@ -74,7 +74,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let f_rho = dot(&rho_names, &mat_vec(&inertia, &rho_names));
     let grad: Vec<Expr> = ["r1", "r2", "r3"]
         .iter()
-        .map(|x| f_rho.diff(x).map_err(DeriveError::Unsupported))
+        .map(|x| f_rho.diff(x).map_err(DeriveError::from))
         .collect::<Result<_, _>>()?;
     // ∇F_i / L_i with ρ_i = c ω_i, squared, then c² = 1/(2T).
     let factors: Vec<Expr> = (0..3)
@@ -166,7 +166,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
             conic[k]
                 .diff(&format!("L{}", x + 1))
                 .and_then(|e| e.diff(&format!("L{}", x + 1)))
-                .map_err(DeriveError::Unsupported)
+                .map_err(DeriveError::from)
         };
         let (a, b) = ((k + 1) % 3, (k + 2) % 3);
         let c = cas::simplify_all(vec![coeff(k)?, coeff(a)?, coeff(b)?])?;
@@ -213,11 +213,11 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         conic[1]
             .diff("L1")
             .and_then(|e| e.diff("L1"))
-            .map_err(DeriveError::Unsupported)?,
+            .map_err(DeriveError::from)?,
         conic[1]
             .diff("L3")
             .and_then(|e| e.diff("L3"))
-            .map_err(DeriveError::Unsupported)?,
+            .map_err(DeriveError::from)?,
     )))?;
     d.steps.push(Step::equation(
         "The separatrix",

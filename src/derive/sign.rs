@@ -77,9 +77,7 @@ pub fn signs_over_positive(exprs: &[Expr]) -> Result<Vec<Sign>, DeriveError> {
             if takes_both_signs(&num, &den)? {
                 Ok(Sign::NotFixed)
             } else {
-                Err(DeriveError::Unsupported(format!(
-                    "cannot decide the sign of `{e}` for positive values of its symbols"
-                )))
+                Err(DeriveError::UndecidedSign { expr: e.to_text() })
             }
         })
         .collect()

@@ -104,9 +104,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         let on_axis =
             |e: &Expr| e.substitute(&|s| (s == name(a) || s == name(b)).then(|| Expr::int(0)));
         let partial = |f: &Expr, x: usize| -> Result<Expr, DeriveError> {
-            Ok(on_axis(
-                &f.diff(&name(x)).map_err(DeriveError::Unsupported)?,
-            ))
+            Ok(on_axis(&f.diff(&name(x)).map_err(DeriveError::from)?))
         };
         let entries = vec![
             partial(&r[a], a)?,

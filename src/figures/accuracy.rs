@@ -3,8 +3,7 @@
 
 use crate::model::figure::Accuracy;
 use crate::model::moments::Moments;
-use crate::numeric::free_body::ExactSolution;
-use crate::numeric::free_body::invariants;
+use crate::numeric::free_body::{ExactSolution, invariants};
 use crate::numeric::integrators::Run;
 use nalgebra::Vector3;
 

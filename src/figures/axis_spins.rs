@@ -1,15 +1,10 @@
 //! The same small wobble started about each principal axis: only the intermediate one departs.
 
 use super::FigureError;
-use super::accuracy::exact_accuracy;
-use super::accuracy::merged;
-use super::free_body::fig;
-use super::free_body::sorted_axes;
-use super::free_body::times;
+use super::accuracy::{exact_accuracy, merged};
+use super::free_body::{fig, sorted_axes, times};
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Mark;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Mark, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::ExactSolution;
 use nalgebra::Vector3;

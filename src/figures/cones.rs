@@ -1,20 +1,15 @@
 //! The symmetric top's body and space cones, with their measured half-angles.
 
-use super::FigureError;
 use super::accuracy::run_accuracy;
-use super::colour;
+use super::free_body::dopri_trace;
 use super::free_body::fig;
 use super::projection::project;
+use super::{FigureError, colour};
 use crate::base::format::short;
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Mark;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Mark, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::invariants;
-use crate::numeric::integrators::Method;
-use crate::numeric::integrators::Resolution;
-use crate::numeric::integrators::integrate;
 use nalgebra::Vector3;
 
 /// The symmetric top (eqs 69–71): in space, ω sweeps the space cone about the fixed L while the
@@ -36,15 +31,7 @@ pub(super) fn cones(
     let w = w0.norm();
     let e3 = Vector3::ith(c, 1.0);
     let l_body = Vector3::new(v[0] * w0.x, v[1] * w0.y, v[2] * w0.z);
-    let tol = fid.ode_tolerance(1e-11);
-    let dp = integrate(
-        i,
-        w0,
-        t_end,
-        Method::Dopri,
-        Resolution::Tolerance(tol),
-        fid.samples(400),
-    )?;
+    let (dp, tol) = dopri_trace(i, w0, t_end, fid, 400)?;
     let angle = |a: &Vector3<f64>, b: &Vector3<f64>| {
         a.normalize().dot(&b.normalize()).clamp(-1.0, 1.0).acos()
     };

@@ -1,24 +1,13 @@
 //! The convergence figure: quadrature error against points for every method, with each
 //! method's error law and the Pareto front.
 
-use super::ERROR_FLOOR;
-use super::FigureError;
-use super::colour;
+use super::{ERROR_FLOOR, FigureError, colour};
 use crate::base::format::sci;
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Accuracy;
-use crate::model::figure::Figure;
-use crate::model::figure::Legend;
-use crate::model::figure::Mark;
-use crate::model::figure::Scale;
-use crate::model::figure::Series;
-use crate::numeric::body::NumBody;
-use crate::numeric::body::NumShape;
+use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::numeric::body::{NumBody, NumShape};
 use crate::numeric::pareto::pareto_front;
-use crate::numeric::quadrature::Method;
-use crate::numeric::quadrature::QuadratureRun;
-use crate::numeric::quadrature::point_count;
-use crate::numeric::quadrature::run;
+use crate::numeric::quadrature::{Method, QuadratureRun, point_count, run};
 use nalgebra::Matrix3;
 
 /// The levels swept per method: about one per factor of 2–10 in points, up to ~3·10⁵ points.

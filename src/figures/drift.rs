@@ -1,23 +1,14 @@
 //! The drift of the invariants 2T and |L| against time for each integrator.
 
-use super::ERROR_FLOOR;
-use super::FigureError;
 use super::accuracy::run_accuracy;
-use super::free_body::body_text;
-use super::free_body::fig;
-use crate::base::format::sci;
-use crate::base::format::short;
+use super::free_body::{body_text, fig};
+use super::{ERROR_FLOOR, FigureError};
+use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Legend;
-use crate::model::figure::Mark;
-use crate::model::figure::Scale;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Legend, Mark, Scale, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::invariants;
-use crate::numeric::integrators::Method;
-use crate::numeric::integrators::Resolution;
-use crate::numeric::integrators::integrate;
+use crate::numeric::integrators::{Method, Resolution, integrate};
 use nalgebra::Vector3;
 
 pub(super) fn drift(

@@ -1,27 +1,15 @@
 //! The tennis racket: ω along the intermediate axis flips; flip times measured against the
 //! prediction.
 
-use super::FigureError;
-use super::accuracy::exact_accuracy;
-use super::accuracy::run_accuracy;
-use super::colour;
-use super::free_body::fig;
-use super::free_body::sorted_axes;
-use super::free_body::times;
-use crate::base::format::sci;
-use crate::base::format::short;
+use super::accuracy::{exact_accuracy, run_accuracy};
+use super::free_body::{dopri_trace, fig, sorted_axes, times};
+use super::{FigureError, colour};
+use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Legend;
-use crate::model::figure::Mark;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Legend, Mark, Series};
 use crate::model::moments::Moments;
-use crate::numeric::free_body::ExactSolution;
-use crate::numeric::free_body::invariants;
-use crate::numeric::integrators::Method;
-use crate::numeric::integrators::Resolution;
+use crate::numeric::free_body::{ExactSolution, invariants};
 use crate::numeric::integrators::Run;
-use crate::numeric::integrators::integrate;
 use nalgebra::Vector3;
 
 /// Times where component `k` changes sign, by linear interpolation between trace samples.
@@ -55,15 +43,7 @@ pub(super) fn flip(
     // limit; flips every 2K/λ ≈ ln(16/(1 − m))/σ.
     let sigma = (two_t / ib).sqrt() * ((ic - ib) * (ib - ia) / (ia * ic)).sqrt();
     let approx = (16.0 / mc).ln() / sigma;
-    let tol = fid.ode_tolerance(1e-11);
-    let dp = integrate(
-        i,
-        w0,
-        t_end,
-        Method::Dopri,
-        Resolution::Tolerance(tol),
-        fid.samples(4000),
-    )?;
+    let (dp, tol) = dopri_trace(i, w0, t_end, fid, 4000)?;
     let flips = sign_changes(&dp, b);
     let measured = if flips.len() >= 2 {
         Some((flips[flips.len() - 1] - flips[0]) / (flips.len() - 1) as f64)

@@ -4,12 +4,10 @@
 use super::FigureError;
 use crate::base::format::sci;
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Legend;
-use crate::model::figure::Scale;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Legend, Scale, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::ExactSolution;
+use crate::numeric::integrators::{IntegrationError, Method, Resolution, Run, integrate};
 use crate::scene::FreeBodyPlot;
 use nalgebra::Vector3;
 
@@ -88,4 +86,25 @@ pub(super) fn sorted_axes(i: &Moments) -> [usize; 3] {
     let mut o = [0, 1, 2];
     o.sort_by(|a, b| i.0[*a].total_cmp(&i.0[*b]));
     o
+}
+
+/// Dormand–Prince at the fidelity's tolerance (1e-11 at standard), with the trace sampled at
+/// `samples` points at standard fidelity: the attitude-following run several figures draw.
+pub(super) fn dopri_trace(
+    i: &Moments,
+    w0: Vector3<f64>,
+    t_end: f64,
+    fid: &Fidelity,
+    samples: usize,
+) -> Result<(Run, f64), IntegrationError> {
+    let tol = fid.ode_tolerance(1e-11);
+    let run = integrate(
+        i,
+        w0,
+        t_end,
+        Method::Dopri,
+        Resolution::Tolerance(tol),
+        fid.samples(samples),
+    )?;
+    Ok((run, tol))
 }

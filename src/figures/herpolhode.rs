@@ -1,22 +1,14 @@
 //! The herpolhode: ω's tip traced on the invariable plane in space.
 
-use super::FigureError;
 use super::accuracy::run_accuracy;
-use super::colour;
-use super::free_body::body_text;
-use super::free_body::fig;
+use super::free_body::{body_text, dopri_trace, fig};
 use super::projection::plane_basis;
-use crate::base::format::sci;
-use crate::base::format::short;
+use super::{FigureError, colour};
+use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Mark;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Mark, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::invariants;
-use crate::numeric::integrators::Method;
-use crate::numeric::integrators::Resolution;
-use crate::numeric::integrators::integrate;
 use nalgebra::Vector3;
 
 pub(super) fn herpolhode(
@@ -29,15 +21,7 @@ pub(super) fn herpolhode(
     let l_space = Vector3::new(i.0[0] * w0.x, i.0[1] * w0.y, i.0[2] * w0.z);
     let n = l_space.normalize();
     let (u, v) = plane_basis(&n);
-    let tol = fid.ode_tolerance(1e-11);
-    let dp = integrate(
-        i,
-        w0,
-        t_end,
-        Method::Dopri,
-        Resolution::Tolerance(tol),
-        fid.samples(3000),
-    )?;
+    let (dp, tol) = dopri_trace(i, w0, t_end, fid, 3000)?;
     let mut height_dev: f64 = 0.0;
     let expected = two_t.sqrt() / l;
     let pts: Vec<(f64, f64)> = dp

@@ -1,25 +1,14 @@
 //! The integrator Pareto figure: error at the end time against right-hand-side evaluations
 //! for every integrator and step, with the Pareto front.
 
-use super::ERROR_FLOOR;
-use super::FigureError;
-use super::colour;
-use super::free_body::body_text;
-use super::free_body::fig;
-use crate::base::format::sci;
-use crate::base::format::short;
+use super::free_body::{body_text, fig};
+use super::{ERROR_FLOOR, FigureError, colour};
+use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Accuracy;
-use crate::model::figure::Figure;
-use crate::model::figure::Legend;
-use crate::model::figure::Mark;
-use crate::model::figure::Scale;
-use crate::model::figure::Series;
+use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::ExactSolution;
-use crate::numeric::integrators::Method;
-use crate::numeric::integrators::Resolution;
-use crate::numeric::integrators::integrate;
+use crate::numeric::integrators::{Method, Resolution, integrate};
 use crate::numeric::pareto::pareto_front;
 use nalgebra::Vector3;
 

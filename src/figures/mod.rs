@@ -25,8 +25,7 @@ use crate::model::figure::Figure;
 use crate::model::moments::MomentsError;
 use crate::numeric::body::NumBody;
 use crate::numeric::integrators::IntegrationError;
-use crate::scene::PlotRequest;
-use crate::scene::Scene;
+use crate::scene::{PlotRequest, Scene};
 
 /// Why a figure could not be drawn.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

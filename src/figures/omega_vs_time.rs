@@ -1,24 +1,14 @@
 //! ω(t) by the exact solution, with Dormand–Prince points.
 
 use super::FigureError;
-use super::accuracy::exact_accuracy;
-use super::accuracy::run_accuracy;
-use super::free_body::body_text;
-use super::free_body::fig;
-use super::free_body::motion_text;
-use super::free_body::times;
-use crate::base::format::sci;
-use crate::base::format::short;
+use super::accuracy::{exact_accuracy, run_accuracy};
+use super::free_body::{body_text, fig, motion_text, times};
+use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Legend;
-use crate::model::figure::Mark;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Legend, Mark, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::ExactSolution;
-use crate::numeric::integrators::Method;
-use crate::numeric::integrators::Resolution;
-use crate::numeric::integrators::integrate;
+use crate::numeric::integrators::{Method, Resolution, integrate};
 use nalgebra::Vector3;
 
 pub(super) fn omega_vs_time(

@@ -1,15 +1,11 @@
 //! Earth's polar motion over one Euler period, with the Chandler period beside it.
 
-use super::FigureError;
 use super::accuracy::exact_accuracy;
-use super::colour;
-use super::free_body::fig;
-use super::free_body::times;
+use super::free_body::{fig, times};
+use super::{FigureError, colour};
 use crate::derive::earth;
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Mark;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Mark, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::ExactSolution;
 use nalgebra::Vector3;

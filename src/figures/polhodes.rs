@@ -1,20 +1,13 @@
 //! Polhodes on the energy ellipsoid in L-space, with the separatrix.
 
-use super::FigureError;
-use super::accuracy::exact_accuracy;
-use super::accuracy::merged;
-use super::free_body::fig;
-use super::free_body::sorted_axes;
-use super::free_body::times;
+use super::accuracy::{exact_accuracy, merged};
+use super::free_body::{fig, sorted_axes, times};
 use super::projection::project;
-use super::{colour, legend_entry};
+use super::{FigureError, colour, legend_entry};
 use crate::model::fidelity::Fidelity;
-use crate::model::figure::Figure;
-use crate::model::figure::Mark;
-use crate::model::figure::Series;
+use crate::model::figure::{Figure, Mark, Series};
 use crate::model::moments::Moments;
-use crate::numeric::free_body::ExactSolution;
-use crate::numeric::free_body::invariants;
+use crate::numeric::free_body::{ExactSolution, invariants};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
 

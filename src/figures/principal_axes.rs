@@ -1,35 +1,21 @@
 //! The principal-axes figure: the body's outline with its principal axes, projected.
 
-use super::FigureError;
-use super::projection::outline;
-use super::projection::plane_basis;
-use super::projection::project;
-use super::projection::segment;
-use super::{colour, legend_entry};
+use super::projection::{outline, plane_basis, project, segment};
+use super::{FigureError, colour, legend_entry};
 use crate::base::format::sci;
-use crate::derive::Derivation;
-use crate::derive::ExactBasis;
-use crate::model::figure::Accuracy;
-use crate::model::figure::Figure;
-use crate::model::figure::Legend;
-use crate::model::figure::Mark;
-use crate::model::figure::Scale;
-use crate::model::figure::Series;
-use crate::model::value::Value;
+use crate::derive::{Derivation, ExactBasis};
+use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::model::value::{Value, eval_at, vector_at};
 use crate::numeric::body::NumBody;
-use crate::numeric::eigen::Space;
-use crate::numeric::eigen::principal_axes;
-use crate::numeric::quadrature::reference_rule;
-use crate::numeric::quadrature::run;
+use crate::numeric::eigen::{Space, principal_axes};
+use crate::numeric::quadrature::{reference_rule, run};
 use crate::scene::Scene;
-use nalgebra::Matrix3;
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 
 /// The principal axes through the frame origin in a projected 3-D view of the body: exact axes as
 /// lines, and the numeric `SymmetricEigen` axes of the reference quadrature as dots at their tips.
 pub(super) fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, FigureError> {
     let eigen = d.eigen.as_ref().ok_or(FigureError::NoEigenspaces)?;
-    let env = |s: &str| scene.values.get(s).copied();
     let mut bodies = Vec::new();
     let mut numeric_tensor = Matrix3::zeros();
     let (mut points, mut seconds, mut rules) = (0u64, 0.0, Vec::new());
@@ -74,9 +60,9 @@ pub(super) fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, Fi
     let mut parts = Vec::new();
     let mut exact_dirs: Vec<Vector3<f64>> = Vec::new();
     for (colour, sp) in eigen.spaces.iter().enumerate() {
-        let value = sp.value.eval(&env)?;
+        let value = eval_at(&sp.value, &scene.values)?;
         let v3 = |v: &[crate::cas::Expr; 3]| -> Result<Vector3<f64>, FigureError> {
-            Ok(Vector3::new(v[0].eval(&env)?, v[1].eval(&env)?, v[2].eval(&env)?).normalize())
+            Ok(vector_at(v, &scene.values)?.normalize())
         };
         let (dirs, what) = match &sp.basis {
             ExactBasis::Axis(a) => {

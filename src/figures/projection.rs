@@ -1,8 +1,7 @@
 //! The projections behind the 3-D views: an oblique view of a point, a basis of a plane, and
 //! the outline of a body.
 
-use crate::numeric::body::NumBody;
-use crate::numeric::body::NumShape;
+use crate::numeric::body::{NumBody, NumShape};
 use nalgebra::Vector3;
 
 /// A fixed oblique view: azimuth 25°, elevation 20°, chosen so that no frame axis or body

@@ -1,22 +1,14 @@
 //! The tensor-sweep figure: the tensor's entries against one symbol, exact curves with
 //! quadrature at sample values.
 
-use super::CURVE_POINTS;
-use super::FigureError;
-use super::trim_num;
+use super::{CURVE_POINTS, FigureError, trim_num};
 use crate::base::format::sci;
 use crate::cas::EvalError;
 use crate::derive::Derivation;
 use crate::model::catalogue::quantity;
-use crate::model::figure::Accuracy;
-use crate::model::figure::Figure;
-use crate::model::figure::Legend;
-use crate::model::figure::Mark;
-use crate::model::figure::Scale;
-use crate::model::figure::Series;
+use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
 use crate::numeric::body::NumBody;
-use crate::numeric::quadrature::reference_rule;
-use crate::numeric::quadrature::run;
+use crate::numeric::quadrature::{reference_rule, run};
 use crate::scene::Scene;
 use nalgebra::Matrix3;
 use std::collections::BTreeMap;

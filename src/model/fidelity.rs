@@ -14,6 +14,17 @@ pub enum Level {
     Target,
 }
 
+/// A fidelity that is not one.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FidelityError {
+    #[error(
+        "the target tolerance {0:e} must lie in [1e-15, 1): below 1e-15 round-off alone exceeds it"
+    )]
+    Tolerance(f64),
+    #[error("unknown fidelity `{0}`: use {names}", names = Fidelity::NAMES)]
+    Unknown(String),
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Fidelity {
     pub level: Level,
@@ -41,7 +52,7 @@ impl Fidelity {
     pub const NAMES: &'static str = "draft, standard, reference, or a tolerance such as 1e-6";
 
     /// `draft`, `standard`, `reference`, or a target tolerance strictly between 1e-15 and 1.
-    pub fn parse(s: &str) -> Result<Fidelity, String> {
+    pub fn parse(s: &str) -> Result<Fidelity, FidelityError> {
         match s.trim() {
             "draft" => Ok(Fidelity::DRAFT),
             "standard" => Ok(Fidelity::STANDARD),
@@ -51,14 +62,8 @@ impl Fidelity {
                     level: Level::Target,
                     tolerance: t,
                 }),
-                Ok(t) => Err(format!(
-                    "the target tolerance {t:e} must lie in [1e-15, 1): below 1e-15 round-off \
-                     alone exceeds it"
-                )),
-                Err(_) => Err(format!(
-                    "unknown fidelity `{other}`: use {}",
-                    Fidelity::NAMES
-                )),
+                Ok(t) => Err(FidelityError::Tolerance(t)),
+                Err(_) => Err(FidelityError::Unknown(other.to_string())),
             },
         }
     }

@@ -12,7 +12,6 @@ use crate::derive::ExactBasis;
 use crate::model::catalogue::quantity;
 use crate::model::value::Value;
 use crate::pipeline::SceneReport;
-use crate::scene::Verdict;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -279,12 +278,7 @@ pub fn page_view(
         steps,
         results,
         numeric,
-        errata: r
-            .verification
-            .claims
-            .iter()
-            .filter(|c| c.verdict == Verdict::Disagrees)
-            .count(),
+        errata: r.verification.errata().count(),
         claims,
         figures: r
             .figures

@@ -240,6 +240,11 @@ mod tests {
     fn a_figure_without_points_is_an_error() {
         let mut f = fig();
         f.series.clear();
-        assert!(svg(&f).unwrap_err().to_string().contains("no finite points"));
+        assert!(
+            svg(&f)
+                .unwrap_err()
+                .to_string()
+                .contains("no finite points")
+        );
     }
 }

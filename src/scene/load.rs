@@ -11,26 +11,38 @@ pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 
 /// A scene file's bytes: only a regular file (never a device or a FIFO, which could block or
 /// never end), and at most [`MAX_SCENE_BYTES`].
-pub(super) fn read_scene_file(path: &Path) -> Result<Vec<u8>, String> {
+pub(super) fn read_scene_file(path: &Path) -> Result<Vec<u8>, ReadError> {
     use std::io::Read;
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read the scene file: {e}"))?;
+    let unreadable = |e: std::io::Error| ReadError::Unreadable(e.to_string());
+    let meta = std::fs::metadata(path).map_err(unreadable)?;
     if !meta.is_file() {
-        return Err("not a regular file: a scene is a .toml file".into());
+        return Err(ReadError::NotAFile);
     }
     if meta.len() > MAX_SCENE_BYTES {
-        return Err(format!(
-            "the file has {} bytes; a scene file has at most {MAX_SCENE_BYTES}",
-            meta.len()
-        ));
+        return Err(ReadError::TooLarge(meta.len()));
     }
     let mut bytes = Vec::new();
     std::fs::File::open(path)
         .and_then(|f| f.take(MAX_SCENE_BYTES + 1).read_to_end(&mut bytes))
-        .map_err(|e| format!("cannot read the scene file: {e}"))?;
+        .map_err(unreadable)?;
     if bytes.len() as u64 > MAX_SCENE_BYTES {
-        return Err(format!("a scene file has at most {MAX_SCENE_BYTES} bytes"));
+        return Err(ReadError::Grew);
     }
     Ok(bytes)
+}
+
+/// Why a scene file's bytes could not be read.
+#[derive(Debug, thiserror::Error)]
+pub(super) enum ReadError {
+    #[error("cannot read the scene file: {0}")]
+    Unreadable(String),
+    #[error("not a regular file: a scene is a .toml file")]
+    NotAFile,
+    #[error("the file has {0} bytes; a scene file has at most {MAX_SCENE_BYTES}")]
+    TooLarge(u64),
+    /// The file grew past the limit while it was read.
+    #[error("a scene file has at most {MAX_SCENE_BYTES} bytes")]
+    Grew,
 }
 
 /// A TOML error, located, with the field it is about when the message does not say, and a

@@ -28,12 +28,12 @@ use validate::Validator;
 impl Scene {
     /// Reads and parses a scene file: a regular file of at most [`MAX_SCENE_BYTES`], in UTF-8.
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
-        let bytes = read_scene_file(path).map_err(|message| SceneError {
+        let bytes = read_scene_file(path).map_err(|e| SceneError {
             path: path.to_path_buf(),
             line: 1,
             column: 1,
             field: String::new(),
-            message,
+            message: e.to_string(),
         })?;
         match std::str::from_utf8(&bytes) {
             Ok(text) => Scene::parse(text, path),

@@ -138,18 +138,35 @@ impl Validator<'_> {
 }
 
 /// Checks that every call names a known function with the right number of arguments.
-pub(super) fn check_calls(e: &Expr, claim_language: bool) -> Result<(), String> {
+/// A call, list or index the expression's language does not have.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub(super) enum CallError {
+    #[error("unknown function `{0}`")]
+    Unknown(String),
+    #[error("`{name}` takes {arity} argument(s), got {got}")]
+    Arity {
+        name: String,
+        arity: usize,
+        got: usize,
+    },
+    #[error("a list is not allowed here")]
+    List,
+    #[error("indexing is not allowed here")]
+    Index,
+}
+
+pub(super) fn check_calls(e: &Expr, claim_language: bool) -> Result<(), CallError> {
     let mut result = Ok(());
     let allowed: &[&str] = if claim_language {
         CLAIM_FUNCTIONS
     } else {
         crate::cas::SCALAR_FUNCTIONS
     };
-    fn walk(e: &Expr, allowed: &[&str], claim: bool, out: &mut Result<(), String>) {
+    fn walk(e: &Expr, allowed: &[&str], claim: bool, out: &mut Result<(), CallError>) {
         match e {
             Expr::Call(name, args) => {
                 if !allowed.contains(&name.as_str()) {
-                    *out = Err(format!("unknown function `{name}`"));
+                    *out = Err(CallError::Unknown(name.clone()));
                     return;
                 }
                 let arity = match name.as_str() {
@@ -159,22 +176,23 @@ pub(super) fn check_calls(e: &Expr, claim_language: bool) -> Result<(), String> 
                     _ => 1,
                 };
                 if name != "eye" && args.len() != arity {
-                    *out = Err(format!(
-                        "`{name}` takes {arity} argument(s), got {}",
-                        args.len()
-                    ));
+                    *out = Err(CallError::Arity {
+                        name: name.clone(),
+                        arity,
+                        got: args.len(),
+                    });
                 }
                 args.iter().for_each(|a| walk(a, allowed, claim, out));
             }
             Expr::List(v) | Expr::Add(v) | Expr::Mul(v) => {
                 if !claim && matches!(e, Expr::List(_)) {
-                    *out = Err("a list is not allowed here".into());
+                    *out = Err(CallError::List);
                 }
                 v.iter().for_each(|a| walk(a, allowed, claim, out));
             }
             Expr::Index(a, b) => {
                 if !claim {
-                    *out = Err("indexing is not allowed here".into());
+                    *out = Err(CallError::Index);
                 }
                 walk(a, allowed, claim, out);
                 walk(b, allowed, claim, out);

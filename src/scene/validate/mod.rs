@@ -119,7 +119,7 @@ impl Validator<'_> {
         let fidelity = match &raw.numeric.fidelity {
             Some(f) => Some(
                 crate::model::fidelity::Fidelity::parse(f.get_ref())
-                    .map_err(|m| self.err(content_start(f), "numeric.fidelity", m))?,
+                    .map_err(|m| self.err(content_start(f), "numeric.fidelity", m.to_string()))?,
             ),
             None => None,
         };
@@ -376,7 +376,7 @@ impl Validator<'_> {
             };
             return Err(self.err(start + offset, field, message));
         }
-        check_calls(&parsed.expr, claim).map_err(|m| self.err(start, field, m))?;
+        check_calls(&parsed.expr, claim).map_err(|m| self.err(start, field, m.to_string()))?;
         let size = parsed.expr.expansion_size();
         if !claim && (size.degree > MAX_INPUT_DEGREE || size.terms > MAX_INPUT_TERMS) {
             return Err(self.err(

@@ -11,6 +11,9 @@ use crate::scene::types::Body;
 use crate::scene::validate::CLAIM_FUNCTIONS;
 use std::collections::{BTreeMap, BTreeSet};
 
+/// Symbol name -> its meaning.
+type Meanings = BTreeMap<String, String>;
+
 /// Definitions, vectors, and every name a claim may use.
 type ClaimNames = (
     BTreeMap<String, Expr>,
@@ -20,7 +23,7 @@ type ClaimNames = (
 
 impl Validator<'_> {
     /// `[symbols]`: names that are not reserved, quantities or functions.
-    pub(super) fn symbols(&self, raw: &RawScene) -> Result<BTreeMap<String, String>, SceneError> {
+    pub(super) fn symbols(&self, raw: &RawScene) -> Result<Meanings, SceneError> {
         let mut symbols = BTreeMap::new();
         for (name, meaning) in &raw.symbols {
             let n = name.get_ref();
