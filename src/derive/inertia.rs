@@ -315,7 +315,7 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         &theorem,
         "eqs (20)–(22) in tensor form; the cross term vanishes because Σ m r' = 0 about the centre of mass",
     ));
-    let direct = d.quantities[quantity::INERTIA_TENSOR].clone();
+    let direct = d.get(quantity::INERTIA_TENSOR)?.clone();
     if !values_equal(&theorem, &direct)? {
         return Err(DeriveError::Inconsistent(
             "the parallel-axis theorem does not reproduce the direct tensor".into(),

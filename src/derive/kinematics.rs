@@ -21,9 +21,9 @@ fn point_masses(scene: &Scene) -> Option<Vec<(Expr, Vec3)>> {
     Some(all)
 }
 
-fn tensor(d: &Derivation) -> super::algebra::Mat3 {
-    match &d.quantities[quantity::INERTIA_TENSOR] {
-        Value::Matrix(m) => m.clone(),
+fn tensor(d: &Derivation) -> Result<super::algebra::Mat3, DeriveError> {
+    match d.get(quantity::INERTIA_TENSOR)? {
+        Value::Matrix(m) => Ok(m.clone()),
         _ => unreachable!("the tensor is a matrix"),
     }
 }
@@ -57,7 +57,7 @@ fn two_routes(
 
 pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     let omega = scene.omega.clone().expect("validated: omega is given");
-    let l = simplify_value(&Value::Vector(mat_vec(&tensor(d), &omega)))?;
+    let l = simplify_value(&Value::Vector(mat_vec(&tensor(d)?, &omega)))?;
     d.steps.push(Step::equation(
         "Angular momentum from the tensor",
         ("L", "\\vec L"),
@@ -84,7 +84,7 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
     let half = Expr::rat(1, 2);
     let t = cas::simplify(&Expr::mul(vec![
         half.clone(),
-        dot(&omega, &mat_vec(&tensor(d), &omega)),
+        dot(&omega, &mat_vec(&tensor(d)?, &omega)),
     ]))?;
     d.steps.push(Step::equation(
         "Kinetic energy from the tensor",
@@ -112,7 +112,7 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
 
 pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     let n = scene.axis.clone().expect("validated: axis is given");
-    let moment = cas::simplify(&dot(&n, &mat_vec(&tensor(d), &n)))?;
+    let moment = cas::simplify(&dot(&n, &mat_vec(&tensor(d)?, &n)))?;
     d.steps.push(Step::equation(
         "Moment of inertia about the axis n",
         ("I_n", "I_{n}"),
@@ -143,10 +143,10 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
 }
 
 pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
-    let Value::Scalar(moment) = d.quantities[quantity::MOMENT_ABOUT_AXIS].clone() else {
+    let Value::Scalar(moment) = d.get(quantity::MOMENT_ABOUT_AXIS)?.clone() else {
         unreachable!()
     };
-    let Value::Scalar(mass) = d.quantities[quantity::MASS].clone() else {
+    let Value::Scalar(mass) = d.get(quantity::MASS)?.clone() else {
         unreachable!()
     };
     let r0 = Expr::pow(cas::simplify(&Expr::over(moment, mass))?, Expr::rat(1, 2));

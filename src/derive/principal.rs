@@ -58,7 +58,7 @@ fn first_nonzero(candidates: Vec<Vec3>) -> Result<Option<Vec3>, DeriveError> {
 }
 
 pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
-    let Value::Matrix(tensor) = d.quantities[quantity::INERTIA_TENSOR].clone() else {
+    let Value::Matrix(tensor) = d.get(quantity::INERTIA_TENSOR)?.clone() else {
         unreachable!()
     };
     let lambda = Expr::sym(LAMBDA);

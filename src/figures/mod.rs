@@ -19,7 +19,7 @@ mod projection;
 mod tensor_sweep;
 
 use crate::cas::EvalError;
-use crate::derive::Derivation;
+use crate::derive::{Derivation, DeriveError};
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::Figure;
 use crate::model::moments::MomentsError;
@@ -28,7 +28,7 @@ use crate::numeric::integrators::IntegrationError;
 use crate::scene::{PlotRequest, Scene};
 
 /// Why a figure could not be drawn.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum FigureError {
     #[error(transparent)]
     Eval(#[from] EvalError),
@@ -36,6 +36,8 @@ pub enum FigureError {
     Moments(#[from] MomentsError),
     #[error(transparent)]
     Integration(#[from] IntegrationError),
+    #[error(transparent)]
+    Derive(#[from] Box<DeriveError>),
     #[error("a convergence plot needs a continuous body, not point masses")]
     PointMasses,
     #[error("axis-spins needs one component of omega larger than the other two")]

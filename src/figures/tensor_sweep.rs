@@ -38,7 +38,7 @@ pub(super) fn tensor_sweep(
     to: f64,
     samples: usize,
 ) -> Result<Figure, FigureError> {
-    let exact = &d.quantities[quantity::INERTIA_TENSOR];
+    let exact = d.get(quantity::INERTIA_TENSOR).map_err(Box::new)?;
     let at = |k: usize, n: usize| from + (to - from) * k as f64 / (n - 1) as f64;
     let curve: Vec<(f64, Matrix3<f64>)> = (0..CURVE_POINTS)
         .map(|k| {

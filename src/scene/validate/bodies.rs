@@ -17,7 +17,7 @@ impl Validator<'_> {
     ) -> Result<Vec<Body>, SceneError> {
         let mut bodies = Vec::new();
         for (i, b) in raw.bodies.iter().enumerate() {
-            bodies.push(self.body(b, &format!("body[{i}]"), &allowed)?);
+            bodies.push(self.body(b, &format!("body[{i}]"), allowed)?);
         }
         for (i, b) in bodies.iter().enumerate() {
             for v in b.shape.variables() {

@@ -80,7 +80,7 @@ impl Validator<'_> {
                     format!("`{n}` cannot name a vector (not a name, or already used)"),
                 ));
             }
-            vectors.insert(n.clone(), self.vec3(v, &format!("vectors.{n}"), &allowed)?);
+            vectors.insert(n.clone(), self.vec3(v, &format!("vectors.{n}"), allowed)?);
         }
         claim_names.extend(vectors.keys().cloned());
         claim_names.extend(variables.iter().cloned());

@@ -1,0 +1,110 @@
+use crate::pipeline::run_scene;
+use crate::scene::{Scene, Verdict};
+use std::path::Path;
+
+const SCENE: &str = r#"
+id = "t"
+title = "t"
+notes = { lecture = "x" }
+symbols = { m = "mass", a = "side" }
+vectors = { r = ["a", "0", "0"] }
+[[body]]
+kind = "box"
+size = ["a", "a", "a"]
+mass = "m"
+origin = "centre"
+[outputs]
+want = []
+[numeric]
+values = { m = 1.0, a = 1.0 }
+"#;
+
+fn claims(claims: &str) -> Vec<super::ClaimResult> {
+    let s = Scene::parse(&format!("{SCENE}{claims}"), Path::new("t.toml")).unwrap();
+    run_scene(s, None).unwrap().verification.claims
+}
+
+fn claim(quantity: &str, value: &str, expect: &str) -> String {
+    format!(
+        "[[claim]]\neq = \"1\"\nstatement = \"s\"\nquantity = \"{quantity}\"\nvalue = \"{value}\"\nexpect = \"{expect}\"\n"
+    )
+}
+
+#[test]
+fn agreeing_and_disagreeing_claims() {
+    let r = claims(
+        &[
+            claim("inertia_tensor", "m*a^2/6*eye()", "agrees"),
+            claim("inertia_tensor[0][0]", "m*a^2/12", "disagrees"),
+        ]
+        .concat(),
+    );
+    assert_eq!(r[0].verdict, Verdict::Agrees);
+    assert!(r[0].passed() && r[0].differences.is_empty());
+    assert_eq!(r[1].verdict, Verdict::Disagrees);
+    assert!(r[1].passed());
+    assert!(
+        r[1].differences[0].contains("difference 1/12*m*a^2"),
+        "{:?}",
+        r[1].differences
+    );
+}
+
+#[test]
+fn a_wrong_recorded_verdict_fails_the_check() {
+    let r = claims(&claim("inertia_tensor[1][1]", "m*a^2/6", "disagrees"));
+    assert_eq!(r[0].verdict, Verdict::Agrees);
+    assert!(!r[0].passed());
+}
+
+#[test]
+fn ill_formed_and_mismatched_claims_disagree() {
+    let r = claims(
+        &[
+            claim("inertia_tensor", "cross(r, dot(r, r))", "disagrees"),
+            claim("inertia_tensor", "m*a^2", "disagrees"),
+        ]
+        .concat(),
+    );
+    assert!(
+        r[0].differences[0].contains("ill-formed"),
+        "{:?}",
+        r[0].differences
+    );
+    assert!(r[1].differences[0].contains("a scalar") && r[1].differences[0].contains("a matrix"));
+    assert!(r.iter().all(|c| c.passed()));
+}
+
+#[test]
+fn a_derived_side_that_does_not_evaluate_is_a_problem() {
+    let r = claims(&claim("r*r", "0", "agrees"));
+    assert!(r[0].problem.as_ref().unwrap().contains("does not evaluate"));
+    assert!(!r[0].passed());
+}
+
+#[test]
+fn rough_numbers_agree_only_at_the_precision_given() {
+    assert_eq!(super::round_to_figures(303.6246, 1), 300.0);
+    assert_eq!(super::round_to_figures(303.6246, 3), 304.0);
+    assert_eq!(super::round_to_figures(3.2845e-3, 2), 3.3e-3);
+    assert_eq!(super::round_to_figures(-21.38, 1), -20.0);
+    // The Earth period, 303.62 days, is "about 300" at one figure but not at three.
+    let rough = |figures: u32| {
+        format!(
+            "[[claim]]\neq = \"89\"\nstatement = \"s\"\nquantity = \"euler_period_solar_days\"\nvalue = \"300\"\nfigures = {figures}\nexpect = \"agrees\"\n"
+        )
+    };
+    let scene = |figures: u32| {
+        format!(
+            "id = \"e\"\ntitle = \"e\"\nnotes = {{ lecture = \"3/9\" }}\nsymbols = {{ A = \"a\", C = \"c\", H = \"h\" }}\n[outputs]\nwant = []\n{}",
+            rough(figures)
+        )
+    };
+    let verdict = |figures| {
+        let s = Scene::parse(&scene(figures), Path::new("e.toml")).unwrap();
+        run_scene(s, None).unwrap().verification.claims[0].verdict
+    };
+    assert_eq!(verdict(1), Verdict::Agrees);
+    assert_eq!(verdict(2), Verdict::Agrees);
+    assert_eq!(verdict(3), Verdict::Disagrees);
+}
