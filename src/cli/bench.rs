@@ -6,7 +6,8 @@
 //!   cold, warm, after a one-scene edit, and at each fidelity, with each child's peak memory;
 //! - the symbolic stage alone, in this process, after the children (one Symbolica user at once).
 //!
-//! Pure measurement: the caller decides where the Markdown and the SVGs go.
+//! `measure` only measures; `run` prints the report and, with `--out`, hands it and its SVGs to
+//! `site` to write.
 
 use crate::base::format::sci;
 use crate::model::fidelity::Fidelity;

@@ -169,7 +169,7 @@ pub struct Claim {
     pub line: usize,
 }
 
-/// A plot a scene asks for; `numeric::plots` computes its data.
+/// A plot a scene asks for; `figures` draws it from the numbers `numeric` computes.
 #[derive(Debug, Clone, PartialEq)]
 pub enum PlotRequest {
     /// The tensor's entries against one symbol: exact curves, with quadrature at sample values.
