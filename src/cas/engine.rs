@@ -9,7 +9,7 @@ use super::expr::Expr;
 use super::parse::parse;
 use super::rational::Rational;
 use super::trig;
-use super::{Integral, Roots};
+use super::{AngleSpan, Integral, Roots};
 use symbolica::coefficient::CoefficientView;
 use symbolica::prelude::*;
 
@@ -377,8 +377,10 @@ fn double_factorial(n: i64) -> Rational {
         })
 }
 
-/// ∫ cosᵖθ sinᵠθ dθ over [0, 2π] (or [0, π]), by the beta-function formula.
-pub fn trig_moment(p: u32, q: u32, half: bool) -> Expr {
+/// ∫ cosᵖθ sinᵠθ dθ over [0, 2π], [0, π] or [0, π/2], by the beta-function formula: over
+/// [0, π/2] it is (p−1)!!(q−1)!!/(p+q)!!, times π/2 when p and q are both even; the longer
+/// ranges add copies of it with signs.
+pub fn trig_moment(p: u32, q: u32, span: AngleSpan) -> Expr {
     let (p, q) = (p as i64, q as i64);
     let ratio = || {
         let num = double_factorial(p - 1).mul(&double_factorial(q - 1));
@@ -386,6 +388,14 @@ pub fn trig_moment(p: u32, q: u32, half: bool) -> Expr {
         Expr::Num(num.mul(&den.recip().expect("n!! is positive")))
     };
     let pi = Expr::sym("pi");
+    let half = match span {
+        AngleSpan::Quarter if p % 2 == 0 && q % 2 == 0 => {
+            return Expr::mul(vec![Expr::rat(1, 2), pi, ratio()]);
+        }
+        AngleSpan::Quarter => return ratio(),
+        AngleSpan::Half => true,
+        AngleSpan::Full => false,
+    };
     if p % 2 == 1 || (!half && q % 2 == 1) {
         Expr::int(0)
     } else if !half {
@@ -417,7 +427,7 @@ pub fn integrate(integrand: &Expr, domain: &[Integral]) -> Result<Expr, EngineEr
                         .collect(),
                 )
             }
-            Integral::Trig { var, half } => {
+            Integral::Trig { var, span } => {
                 let (c, s) = ("c__", "s__");
                 let named = trig::name_trig_of(&current, var, c, s);
                 let mut total = Vec::new();
@@ -429,7 +439,7 @@ pub fn integrate(integrand: &Expr, domain: &[Integral]) -> Result<Expr, EngineEr
                                 coeff: coeff.to_text(),
                             });
                         }
-                        total.push(Expr::mul(vec![coeff, trig_moment(p, q, *half)]));
+                        total.push(Expr::mul(vec![coeff, trig_moment(p, q, *span)]));
                     }
                 }
                 Expr::add(total)
@@ -551,12 +561,8 @@ mod tests {
         // Checked against direct numeric integration, not a table.
         for p in 0..5u32 {
             for q in 0..5u32 {
-                for half in [false, true] {
-                    let upper = if half {
-                        std::f64::consts::PI
-                    } else {
-                        2.0 * std::f64::consts::PI
-                    };
+                for span in [AngleSpan::Full, AngleSpan::Half, AngleSpan::Quarter] {
+                    let upper = span.upper();
                     let n = 20_000;
                     let h = upper / n as f64;
                     let numeric: f64 = (0..n)
@@ -565,10 +571,10 @@ mod tests {
                             t.cos().powi(p as i32) * t.sin().powi(q as i32) * h
                         })
                         .sum();
-                    let exact = trig_moment(p, q, half).eval(&|_| None).unwrap();
+                    let exact = trig_moment(p, q, span).eval(&|_| None).unwrap();
                     assert!(
                         (numeric - exact).abs() < 1e-7,
-                        "p={p} q={q} half={half}: {numeric} vs {exact}"
+                        "p={p} q={q} {span:?}: {numeric} vs {exact}"
                     );
                 }
             }

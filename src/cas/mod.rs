@@ -73,8 +73,29 @@ impl From<CasFailure> for CasError {
 pub enum Integral {
     /// ∫ from `lo` to `hi` d`var` of a polynomial in `var`.
     Poly { var: String, lo: Expr, hi: Expr },
-    /// ∫ over [0, 2π] (or [0, π] when `half`) d`var` of a polynomial in cos(var), sin(var).
-    Trig { var: String, half: bool },
+    /// ∫ over [0, 2π], [0, π] or [0, π/2] d`var` of a polynomial in cos(var), sin(var).
+    Trig { var: String, span: AngleSpan },
+}
+
+/// The range of an angle integral, from 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AngleSpan {
+    /// [0, 2π].
+    Full,
+    /// [0, π].
+    Half,
+    /// [0, π/2].
+    Quarter,
+}
+
+impl AngleSpan {
+    pub fn upper(self) -> f64 {
+        match self {
+            AngleSpan::Full => 2.0 * std::f64::consts::PI,
+            AngleSpan::Half => std::f64::consts::PI,
+            AngleSpan::Quarter => std::f64::consts::FRAC_PI_2,
+        }
+    }
 }
 
 /// The exact roots of a polynomial, found by factoring it over the rationals.

@@ -44,20 +44,16 @@ fn polynomial_integrals_match_numeric_quadrature() {
 #[test]
 fn trigonometric_integrals_match_numeric_quadrature() {
     let integrand = p("cos(t)^2*sin(t)^2*k + sin(t)^3 + cos(t)*q");
-    for half in [false, true] {
+    for span in [AngleSpan::Full, AngleSpan::Half, AngleSpan::Quarter] {
         let exact = integrate_all(
             vec![integrand.clone()],
             vec![Integral::Trig {
                 var: "t".into(),
-                half,
+                span,
             }],
         )
         .unwrap();
-        let upper = if half {
-            std::f64::consts::PI
-        } else {
-            2.0 * std::f64::consts::PI
-        };
+        let upper = span.upper();
         let numeric = midpoint(
             |t| at(&integrand, &[("t", t), ("k", 0.8), ("q", 2.0)]),
             0.0,
@@ -65,7 +61,7 @@ fn trigonometric_integrals_match_numeric_quadrature() {
         );
         assert!(
             (at(&exact[0], &[("k", 0.8), ("q", 2.0)]) - numeric).abs() < 1e-7,
-            "half={half}: {}",
+            "{span:?}: {}",
             exact[0]
         );
     }
@@ -86,7 +82,7 @@ fn integrating_a_non_polynomial_is_an_error() {
         vec![p("t*cos(t)")],
         vec![Integral::Trig {
             var: "t".into(),
-            half: false,
+            span: AngleSpan::Full,
         }],
     );
     assert!(e.is_err());

@@ -2,8 +2,8 @@
 //! the domain of its parameters. Uniform density: density = M / (length, area or volume).
 
 use super::algebra::{Vec3, add_vec, mat_vec, rotation};
-use crate::cas::{Expr, Integral};
-use crate::scene::{Body, Shape};
+use crate::cas::{AngleSpan, Expr, Integral};
+use crate::scene::{Body, ConeOrigin, Shape};
 
 /// A continuous body: dm = `density_jacobian` · d(params) at `local` (body coordinates).
 pub struct Continuum {
@@ -46,11 +46,23 @@ fn poly(var: &str, lo: Expr, hi: Expr) -> Integral {
     }
 }
 
-fn period(var: &str, half: bool) -> Integral {
+fn period(var: &str, span: AngleSpan) -> Integral {
     Integral::Trig {
         var: var.into(),
-        half,
+        span,
     }
+}
+
+/// R² − r², or R³ − r³: what a hole of radius r leaves of the full disk or ball.
+fn radial_span(radius: &Expr, inner: &Option<Expr>, power: i128) -> Expr {
+    match inner {
+        None => pow(radius, power),
+        Some(r) => Expr::minus(pow(radius, power), pow(r, power)),
+    }
+}
+
+fn inner_or_zero(inner: &Option<Expr>) -> Expr {
+    inner.clone().unwrap_or_else(|| Expr::int(0))
 }
 
 fn cos(v: &str) -> Expr {
@@ -76,6 +88,7 @@ pub fn mass_model(body: &Body) -> MassModel {
             domain,
         })
     };
+    let full = AngleSpan::Full;
     match &body.shape {
         Shape::Box { size, centred } => {
             let volume = Expr::mul(size.to_vec());
@@ -92,6 +105,22 @@ pub fn mass_model(body: &Body) -> MassModel {
                 "rho",
                 [e("x"), e("y"), e("z")],
                 vec![range(0, "x"), range(1, "y"), range(2, "z")],
+            )
+        }
+        Shape::Plate { size, centred } => {
+            let range = |i: usize, v: &str| {
+                if *centred {
+                    poly(v, Expr::negate(half(&size[i])), half(&size[i]))
+                } else {
+                    poly(v, Expr::int(0), size[i].clone())
+                }
+            };
+            continuum(
+                Expr::over(m.clone(), Expr::mul(size.to_vec())),
+                Expr::int(1),
+                "sigma",
+                [e("x"), e("y"), zero],
+                vec![range(0, "x"), range(1, "y")],
             )
         }
         Shape::Rod {
@@ -124,10 +153,13 @@ pub fn mass_model(body: &Body) -> MassModel {
                 Expr::mul(vec![radius.clone(), sin("theta")]),
                 zero,
             ],
-            vec![period("theta", false)],
+            vec![period("theta", full)],
         ),
-        Shape::Disk { radius } => continuum(
-            Expr::over(m.clone(), Expr::mul(vec![pi, pow(radius, 2)])),
+        Shape::Disk { radius, inner } => continuum(
+            Expr::over(
+                m.clone(),
+                Expr::mul(vec![pi, radial_span(radius, inner, 2)]),
+            ),
             e("r"),
             "sigma",
             [
@@ -136,14 +168,18 @@ pub fn mass_model(body: &Body) -> MassModel {
                 zero,
             ],
             vec![
-                period("theta", false),
-                poly("r", Expr::int(0), radius.clone()),
+                period("theta", full),
+                poly("r", inner_or_zero(inner), radius.clone()),
             ],
         ),
-        Shape::Cylinder { radius, height } => continuum(
+        Shape::Cylinder {
+            radius,
+            height,
+            inner,
+        } => continuum(
             Expr::over(
                 m.clone(),
-                Expr::mul(vec![pi, pow(radius, 2), height.clone()]),
+                Expr::mul(vec![pi, radial_span(radius, inner, 2), height.clone()]),
             ),
             e("r"),
             "rho",
@@ -153,31 +189,89 @@ pub fn mass_model(body: &Body) -> MassModel {
                 e("z"),
             ],
             vec![
-                period("theta", false),
-                poly("r", Expr::int(0), radius.clone()),
+                period("theta", full),
+                poly("r", inner_or_zero(inner), radius.clone()),
                 poly("z", Expr::negate(half(height)), half(height)),
             ],
         ),
-        Shape::Sphere { radius } => continuum(
+        Shape::Sphere { radius, inner } => continuum(
             Expr::over(
                 Expr::mul(vec![Expr::int(3), m.clone()]),
-                Expr::mul(vec![Expr::int(4), pi, pow(radius, 3)]),
+                Expr::mul(vec![Expr::int(4), pi, radial_span(radius, inner, 3)]),
             ),
             Expr::mul(vec![pow(&e("r"), 2), sin("theta")]),
             "rho",
             spherical(&e("r")),
             vec![
-                period("phi", false),
-                period("theta", true),
-                poly("r", Expr::int(0), radius.clone()),
+                period("phi", full),
+                period("theta", AngleSpan::Half),
+                poly("r", inner_or_zero(inner), radius.clone()),
             ],
         ),
+        Shape::Hemisphere { radius, centred } => {
+            // θ over [0, π/2]: the dome towards +z. The centre of mass is 3R/8 above the face.
+            let mut local = spherical(&e("r"));
+            if *centred {
+                local[2] = Expr::minus(
+                    local[2].clone(),
+                    Expr::mul(vec![Expr::rat(3, 8), radius.clone()]),
+                );
+            }
+            continuum(
+                Expr::over(
+                    Expr::mul(vec![Expr::int(3), m.clone()]),
+                    Expr::mul(vec![Expr::int(2), pi, pow(radius, 3)]),
+                ),
+                Expr::mul(vec![pow(&e("r"), 2), sin("theta")]),
+                "rho",
+                local,
+                vec![
+                    period("phi", full),
+                    period("theta", AngleSpan::Quarter),
+                    poly("r", Expr::int(0), radius.clone()),
+                ],
+            )
+        }
+        Shape::Cone {
+            radius,
+            height,
+            origin,
+        } => {
+            // z runs from the apex; the cross-section there has radius Rz/h, and s ∈ [0, 1] is
+            // the fraction of it, so every limit is constant: dV = s (Rz/h)² ds dθ dz.
+            let section = Expr::over(Expr::mul(vec![radius.clone(), e("z")]), height.clone());
+            let along = match origin {
+                ConeOrigin::Apex => e("z"),
+                ConeOrigin::Base => Expr::minus(height.clone(), e("z")),
+                ConeOrigin::Centre => {
+                    Expr::minus(Expr::mul(vec![Expr::rat(3, 4), height.clone()]), e("z"))
+                }
+            };
+            continuum(
+                Expr::over(
+                    Expr::mul(vec![Expr::int(3), m.clone()]),
+                    Expr::mul(vec![pi, pow(radius, 2), height.clone()]),
+                ),
+                Expr::mul(vec![e("s"), pow(&section, 2)]),
+                "rho",
+                [
+                    Expr::mul(vec![e("s"), section.clone(), cos("theta")]),
+                    Expr::mul(vec![e("s"), section, sin("theta")]),
+                    along,
+                ],
+                vec![
+                    period("theta", full),
+                    poly("s", Expr::int(0), Expr::int(1)),
+                    poly("z", Expr::int(0), height.clone()),
+                ],
+            )
+        }
         Shape::Shell { radius } => continuum(
             Expr::over(m.clone(), Expr::mul(vec![Expr::int(4), pi, pow(radius, 2)])),
             Expr::mul(vec![pow(radius, 2), sin("theta")]),
             "sigma",
             spherical(radius),
-            vec![period("phi", false), period("theta", true)],
+            vec![period("phi", full), period("theta", AngleSpan::Half)],
         ),
         Shape::Points(pts) => MassModel::Points(pts.clone()),
     }

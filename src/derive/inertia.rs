@@ -6,7 +6,7 @@ use super::algebra::{
 };
 use super::bodies::{MassModel, mass_model, place};
 use super::{Derivation, DeriveError, Step, simplify_value, values_equal};
-use crate::cas::{self, Expr, Integral};
+use crate::cas::{self, AngleSpan, Expr, Integral};
 use crate::model::catalogue::quantity;
 use crate::scene::{Body, Scene};
 
@@ -28,12 +28,26 @@ fn describe(domain: &[Integral]) -> String {
         .iter()
         .map(|i| match i {
             Integral::Poly { var, lo, hi } => format!("{var} from {lo} to {hi}"),
-            Integral::Trig { var, half } => {
-                format!("{var} over [0, {}]", if *half { "π" } else { "2π" })
-            }
+            Integral::Trig { var, span } => format!("{var} over [0, {}]", span_text(*span)),
         })
         .collect();
     parts.join(", ")
+}
+
+fn span_text(span: AngleSpan) -> &'static str {
+    match span {
+        AngleSpan::Full => "2π",
+        AngleSpan::Half => "π",
+        AngleSpan::Quarter => "π/2",
+    }
+}
+
+fn span_latex(span: AngleSpan) -> &'static str {
+    match span {
+        AngleSpan::Full => "2\\pi",
+        AngleSpan::Half => "\\pi",
+        AngleSpan::Quarter => "\\frac{\\pi}{2}",
+    }
 }
 
 /// ∫_{lo}^{hi} … f dx dy: the limits outermost first, the differentials innermost first.
@@ -43,10 +57,7 @@ fn integral_latex(integrand: &Expr, domain: &[Integral]) -> String {
     for i in domain.iter().rev() {
         let (lo, hi) = match i {
             Integral::Poly { lo, hi, .. } => (lo.to_latex(), hi.to_latex()),
-            Integral::Trig { half, .. } => (
-                "0".into(),
-                if *half { "\\pi".into() } else { "2\\pi".into() },
-            ),
+            Integral::Trig { span, .. } => ("0".into(), span_latex(*span).into()),
         };
         prefix.push_str(&format!("\\int_{{{lo}}}^{{{hi}}} "));
     }

@@ -164,6 +164,8 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
 }
 
 #[cfg(test)]
+mod bodies_tests;
+#[cfg(test)]
 mod dynamics_tests;
 #[cfg(test)]
 mod tests;

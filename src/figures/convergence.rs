@@ -15,7 +15,7 @@ pub(super) fn sweep(shape: &NumShape) -> Result<Vec<(Method, Vec<usize>)>, Figur
     use Method::*;
     let mc = (MonteCarlo, vec![100, 1_000, 10_000, 100_000, 1_000_000]);
     Ok(match shape {
-        NumShape::Box { .. } => vec![
+        NumShape::Box { .. } | NumShape::Plate { .. } => vec![
             (GaussLegendre, vec![1, 2, 3, 4]),
             (MidpointLattice, vec![2, 4, 8, 16, 32, 64, 128]),
             (VertexLattice, vec![2, 4, 8, 16, 32, 64, 128]),

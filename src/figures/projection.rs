@@ -51,14 +51,70 @@ pub(super) fn outline(nb: &NumBody) -> Vec<Vec<Vector3<f64>>> {
             }
             edges
         }
-        NumShape::Hoop { radius } | NumShape::Disk { radius } => vec![
-            (0..=72)
-                .map(|k| {
-                    let t = k as f64 * std::f64::consts::TAU / 72.0;
-                    nb.place(&Vector3::new(radius * t.cos(), radius * t.sin(), 0.0))
-                })
-                .collect(),
-        ],
+        NumShape::Plate { size, centred } => {
+            let lo = if *centred { -size / 2.0 } else { size * 0.0 };
+            let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.0, 0.0)];
+            vec![
+                corners
+                    .iter()
+                    .map(|(i, j)| {
+                        nb.place(&Vector3::new(lo.x + i * size.x, lo.y + j * size.y, 0.0))
+                    })
+                    .collect(),
+            ]
+        }
+        NumShape::Hoop { radius } => vec![circle(nb, *radius, 0.0)],
+        NumShape::Disk { radius, inner } => {
+            let mut lines = vec![circle(nb, *radius, 0.0)];
+            if *inner > 0.0 {
+                lines.push(circle(nb, *inner, 0.0));
+            }
+            lines
+        }
+        NumShape::Cone {
+            radius,
+            height,
+            apex,
+            direction,
+        } => {
+            // The base's rim and four lines from the apex to it.
+            let base = apex + direction * height;
+            let mut lines = vec![circle(nb, *radius, base)];
+            for k in 0..4 {
+                let t = k as f64 * std::f64::consts::FRAC_PI_2;
+                lines.push(vec![
+                    nb.place(&Vector3::new(0.0, 0.0, *apex)),
+                    nb.place(&Vector3::new(radius * t.cos(), radius * t.sin(), base)),
+                ]);
+            }
+            lines
+        }
+        NumShape::Hemisphere { radius, face } => {
+            // The rim of the flat face and two meridians over the dome.
+            let mut lines = vec![circle(nb, *radius, *face)];
+            for (cx, cy) in [(1.0, 0.0), (0.0, 1.0)] {
+                lines.push(
+                    (0..=36)
+                        .map(|k| {
+                            let t = k as f64 * std::f64::consts::PI / 36.0;
+                            let (h, z) = (radius * t.cos(), radius * t.sin());
+                            nb.place(&Vector3::new(cx * h, cy * h, face + z))
+                        })
+                        .collect(),
+                );
+            }
+            lines
+        }
         _ => Vec::new(),
     }
+}
+
+/// A circle of radius `r` about the z axis at height `z`, in the scene frame.
+fn circle(nb: &NumBody, r: f64, z: f64) -> Vec<Vector3<f64>> {
+    (0..=72)
+        .map(|k| {
+            let t = k as f64 * std::f64::consts::TAU / 72.0;
+            nb.place(&Vector3::new(r * t.cos(), r * t.sin(), z))
+        })
+        .collect()
 }

@@ -3,8 +3,8 @@
 
 use crate::cas::EvalError;
 use crate::model::value::{Values, eval_at, vector_at};
-use crate::scene::{Body, Shape};
-use nalgebra::{Matrix3, Rotation3, Vector3};
+use crate::scene::{Body, ConeOrigin, Shape};
+use nalgebra::{Matrix3, Rotation3, Vector2, Vector3};
 
 #[derive(Debug, Clone)]
 pub enum NumShape {
@@ -17,18 +17,38 @@ pub enum NumShape {
         along: usize,
         centred: bool,
     },
+    Plate {
+        size: Vector2<f64>,
+        centred: bool,
+    },
     Hoop {
         radius: f64,
     },
+    /// `inner` is 0 for a full disk, cylinder or ball.
     Disk {
         radius: f64,
+        inner: f64,
     },
     Cylinder {
         radius: f64,
         height: f64,
+        inner: f64,
     },
     Sphere {
         radius: f64,
+        inner: f64,
+    },
+    /// The apex at z = `apex`; the base at z = apex + `direction`·h.
+    Cone {
+        radius: f64,
+        height: f64,
+        apex: f64,
+        direction: f64,
+    },
+    /// The dome towards +z; the flat face at z = `face`.
+    Hemisphere {
+        radius: f64,
+        face: f64,
     },
     Shell {
         radius: f64,
@@ -51,6 +71,7 @@ impl NumBody {
     pub fn from_scene(body: &Body, values: &Values) -> Result<NumBody, EvalError> {
         let ev = |e: &crate::cas::Expr| eval_at(e, values);
         let v3 = |v: &[crate::cas::Expr; 3]| vector_at(v, values);
+        let inner_at = |i: &Option<crate::cas::Expr>| i.as_ref().map_or(Ok(0.0), ev);
         let shape = match &body.shape {
             Shape::Box { size, centred } => NumShape::Box {
                 size: v3(size)?,
@@ -65,19 +86,55 @@ impl NumBody {
                 along: along.index(),
                 centred: *centred,
             },
+            Shape::Plate { size, centred } => NumShape::Plate {
+                size: Vector2::new(ev(&size[0])?, ev(&size[1])?),
+                centred: *centred,
+            },
             Shape::Hoop { radius } => NumShape::Hoop {
                 radius: ev(radius)?,
             },
-            Shape::Disk { radius } => NumShape::Disk {
+            Shape::Disk { radius, inner } => NumShape::Disk {
                 radius: ev(radius)?,
+                inner: inner_at(inner)?,
             },
-            Shape::Cylinder { radius, height } => NumShape::Cylinder {
+            Shape::Cylinder {
+                radius,
+                height,
+                inner,
+            } => NumShape::Cylinder {
                 radius: ev(radius)?,
                 height: ev(height)?,
+                inner: inner_at(inner)?,
             },
-            Shape::Sphere { radius } => NumShape::Sphere {
+            Shape::Sphere { radius, inner } => NumShape::Sphere {
                 radius: ev(radius)?,
+                inner: inner_at(inner)?,
             },
+            Shape::Cone {
+                radius,
+                height,
+                origin,
+            } => {
+                let h = ev(height)?;
+                let (apex, direction) = match origin {
+                    ConeOrigin::Apex => (0.0, 1.0),
+                    ConeOrigin::Base => (h, -1.0),
+                    ConeOrigin::Centre => (0.75 * h, -1.0),
+                };
+                NumShape::Cone {
+                    radius: ev(radius)?,
+                    height: h,
+                    apex,
+                    direction,
+                }
+            }
+            Shape::Hemisphere { radius, centred } => {
+                let r = ev(radius)?;
+                NumShape::Hemisphere {
+                    radius: r,
+                    face: if *centred { -0.375 * r } else { 0.0 },
+                }
+            }
             Shape::Shell { radius } => NumShape::Shell {
                 radius: ev(radius)?,
             },

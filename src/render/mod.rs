@@ -8,6 +8,7 @@ mod site_files;
 pub use site_files::{Course, SiteFiles, site_files};
 
 use crate::base::format::sci;
+use crate::cas::Expr;
 use crate::derive::ExactBasis;
 use crate::model::catalogue::quantity;
 use crate::model::value::Value;
@@ -308,10 +309,15 @@ pub fn page_view(
 }
 
 fn describe_body(b: &crate::scene::Body) -> String {
-    let mut d = if b.label == b.shape.kind() {
-        format!("{}, mass {}", b.label, b.mass)
+    let mass = if b.subtract {
+        format!("a hole removing mass {}", Expr::negate(b.mass.clone()))
     } else {
-        format!("{} ({}), mass {}", b.label, b.shape.kind(), b.mass)
+        format!("mass {}", b.mass)
+    };
+    let mut d = if b.label == b.shape.kind() {
+        format!("{}, {mass}", b.label)
+    } else {
+        format!("{} ({}), {mass}", b.label, b.shape.kind())
     };
     for (axis, angle) in &b.rotations {
         d.push_str(&format!(", rotated by {angle} about {}", axis.name()));

@@ -69,6 +69,12 @@ pub struct RawBody {
     pub length: Option<Text>,
     #[serde(default)]
     pub height: Option<Text>,
+    /// The hole's radius of an annulus, a tube or a thick shell.
+    #[serde(default)]
+    pub inner_radius: Option<Text>,
+    /// A hole: its `mass` is the mass removed.
+    #[serde(default)]
+    pub subtract: Option<bool>,
     /// Where the body's own origin sits: `corner` or `centre` for a box, `end` or `centre` for a rod.
     #[serde(default)]
     pub origin: Option<Text>,

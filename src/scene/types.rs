@@ -64,8 +64,11 @@ impl Axis {
 pub struct Body {
     pub label: String,
     pub shape: Shape,
-    /// Total mass; for point sets, the sum of the point masses.
+    /// Signed mass: negative for a hole (`subtract = true`), whose removed mass is its negation.
+    /// For point sets, the sum of the (signed) point masses.
     pub mass: Expr,
+    /// A hole: material removed from the bodies before it.
+    pub subtract: bool,
     /// Applied in order to the body's own coordinates, then `shift`.
     pub rotations: Vec<(Axis, Expr)>,
     pub shift: [Expr; 3],
@@ -88,17 +91,38 @@ pub enum Shape {
     Hoop {
         radius: Expr,
     },
-    /// A thin uniform disk in the xy-plane, centred.
+    /// A thin rectangle [0,a]×[0,b] in the xy-plane, or centred.
+    Plate {
+        size: [Expr; 2],
+        centred: bool,
+    },
+    /// A thin uniform disk in the xy-plane, centred; an annulus when `inner` is given.
     Disk {
         radius: Expr,
+        inner: Option<Expr>,
     },
-    /// A solid cylinder about z, centred.
+    /// A solid cylinder about z, centred; a tube when `inner` is given.
     Cylinder {
         radius: Expr,
         height: Expr,
+        inner: Option<Expr>,
     },
+    /// A solid ball, centred; a thick shell when `inner` is given.
     Sphere {
         radius: Expr,
+        inner: Option<Expr>,
+    },
+    /// A solid cone about z of base radius R and height h.
+    Cone {
+        radius: Expr,
+        height: Expr,
+        origin: ConeOrigin,
+    },
+    /// A solid half ball, its dome towards +z; the origin at the flat face's centre, or at the
+    /// centre of mass (3R/8 above the face).
+    Hemisphere {
+        radius: Expr,
+        centred: bool,
     },
     /// A thin spherical shell.
     Shell {
@@ -113,10 +137,13 @@ impl Shape {
             Shape::Box { .. } => "box",
             Shape::Rod { .. } => "rod",
             Shape::Hoop { .. } => "hoop",
+            Shape::Plate { .. } => "plate",
             Shape::Disk { .. } => "disk",
             Shape::Cylinder { .. } => "cylinder",
             Shape::Sphere { .. } => "sphere",
             Shape::Shell { .. } => "shell",
+            Shape::Cone { .. } => "cone",
+            Shape::Hemisphere { .. } => "hemisphere",
             Shape::Points(_) => "points",
         }
     }
@@ -127,13 +154,27 @@ impl Shape {
             Shape::Box { .. } => &["x", "y", "z"],
             Shape::Rod { .. } => &["s"],
             Shape::Hoop { .. } => &["theta"],
+            Shape::Plate { .. } => &["x", "y"],
             Shape::Disk { .. } => &["r", "theta"],
             Shape::Cylinder { .. } => &["r", "theta", "z"],
             Shape::Sphere { .. } => &["r", "theta", "phi"],
             Shape::Shell { .. } => &["theta", "phi"],
+            Shape::Cone { .. } => &["s", "theta", "z"],
+            Shape::Hemisphere { .. } => &["r", "theta", "phi"],
             Shape::Points(_) => &[],
         }
     }
+}
+
+/// Where a cone's own origin sits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConeOrigin {
+    /// The apex at the origin, the base at z = h.
+    Apex,
+    /// The base's centre at the origin, the apex at z = h.
+    Base,
+    /// The centre of mass at the origin (h/4 above the base), the apex at z = 3h/4.
+    Centre,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]

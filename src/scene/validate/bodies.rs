@@ -4,7 +4,23 @@ use super::{Validator, content_start};
 use crate::cas::{Expr, parse_input as parse_expr};
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawBody, RawScene, Text};
-use crate::scene::types::{Axis, Body, Shape};
+use crate::scene::types::{Axis, Body, ConeOrigin, Shape};
+
+/// The body kinds a scene may name.
+pub const BODY_KINDS: &[&str] = &[
+    "box",
+    "plate",
+    "rod",
+    "hoop",
+    "ring",
+    "disk",
+    "cylinder",
+    "sphere",
+    "shell",
+    "cone",
+    "hemisphere",
+    "points",
+];
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
 
@@ -54,19 +70,30 @@ impl Validator<'_> {
             ("radius", rb.radius.is_some()),
             ("length", rb.length.is_some()),
             ("height", rb.height.is_some()),
+            ("inner_radius", rb.inner_radius.is_some()),
             ("origin", rb.origin.is_some()),
             ("along", rb.along.is_some()),
             ("points", !rb.points.is_empty()),
             ("mass", rb.mass.is_some()),
         ];
         let applies: &[&str] = match kind {
-            "box" => &["size", "origin", "mass"],
+            "box" | "plate" => &["size", "origin", "mass"],
             "rod" => &["length", "along", "origin", "mass"],
-            "hoop" | "ring" | "disk" | "sphere" | "shell" => &["radius", "mass"],
-            "cylinder" => &["radius", "height", "mass"],
+            "hoop" | "ring" | "shell" => &["radius", "mass"],
+            "disk" | "sphere" => &["radius", "inner_radius", "mass"],
+            "cylinder" => &["radius", "height", "inner_radius", "mass"],
+            "cone" => &["radius", "height", "origin", "mass"],
+            "hemisphere" => &["radius", "origin", "mass"],
             "points" => &["points"],
             other => {
-                return Err(self.err(content_start(&rb.kind), &format!("{field}.kind"), format!("unknown body kind `{other}`; expected box, rod, hoop, ring, disk, cylinder, sphere, shell or points")));
+                return Err(self.err(
+                    content_start(&rb.kind),
+                    &format!("{field}.kind"),
+                    format!(
+                        "unknown body kind `{other}`; expected {}",
+                        BODY_KINDS.join(", ")
+                    ),
+                ));
             }
         };
         if let Some((name, _)) = present.iter().find(|(n, p)| *p && !applies.contains(n)) {
@@ -76,17 +103,30 @@ impl Validator<'_> {
                 format!("field `{name}` does not apply to a {kind}"),
             ));
         }
-        let origin = |choices: [&str; 2]| -> Result<bool, SceneError> {
-            match &rb.origin {
-                None => Ok(false),
-                Some(o) if o.get_ref() == choices[0] => Ok(false),
-                Some(o) if o.get_ref() == "centre" || o.get_ref() == "center" => Ok(true),
-                Some(o) => Err(self.err(
+        // The first choice is the default; `center` is accepted for `centre`.
+        let origin_choice = |choices: &[&str]| -> Result<usize, SceneError> {
+            let Some(o) = &rb.origin else { return Ok(0) };
+            let given = match o.get_ref().as_str() {
+                "center" => "centre",
+                g => g,
+            };
+            choices.iter().position(|c| *c == given).ok_or_else(|| {
+                let quoted: Vec<String> = choices.iter().map(|c| format!("`{c}`")).collect();
+                let (last, rest) = quoted.split_last().expect("two choices or more");
+                self.err(
                     content_start(o),
                     &format!("{field}.origin"),
-                    format!("expected `{}` or `centre`", choices[0]),
-                )),
-            }
+                    format!("expected {} or {last} for a {kind}", rest.join(", ")),
+                )
+            })
+        };
+        let origin =
+            |choices: [&str; 2]| -> Result<bool, SceneError> { Ok(origin_choice(&choices)? == 1) };
+        let inner = || -> Result<Option<Expr>, SceneError> {
+            rb.inner_radius
+                .as_ref()
+                .map(|t| self.expr(t, &format!("{field}.inner_radius"), allowed))
+                .transpose()
         };
         let shape = match kind {
             "box" => {
@@ -121,18 +161,44 @@ impl Validator<'_> {
                     centred: origin(["end", "centre"])?,
                 }
             }
+            "plate" => {
+                let Some(size) = &rb.size else {
+                    return Err(self.err(
+                        start,
+                        &format!("{field}.size"),
+                        "missing field `size = [a, b]` for a plate",
+                    ));
+                };
+                Shape::Plate {
+                    size: self.vec2(size, &format!("{field}.size"), allowed)?,
+                    centred: origin(["corner", "centre"])?,
+                }
+            }
             "hoop" | "ring" => Shape::Hoop {
                 radius: req(&rb.radius, "radius")?,
             },
             "disk" => Shape::Disk {
                 radius: req(&rb.radius, "radius")?,
+                inner: inner()?,
             },
             "cylinder" => Shape::Cylinder {
                 radius: req(&rb.radius, "radius")?,
                 height: req(&rb.height, "height")?,
+                inner: inner()?,
             },
             "sphere" => Shape::Sphere {
                 radius: req(&rb.radius, "radius")?,
+                inner: inner()?,
+            },
+            "cone" => Shape::Cone {
+                radius: req(&rb.radius, "radius")?,
+                height: req(&rb.height, "height")?,
+                origin: [ConeOrigin::Apex, ConeOrigin::Base, ConeOrigin::Centre]
+                    [origin_choice(&["apex", "base", "centre"])?],
+            },
+            "hemisphere" => Shape::Hemisphere {
+                radius: req(&rb.radius, "radius")?,
+                centred: origin(["base", "centre"])?,
             },
             "shell" => Shape::Shell {
                 radius: req(&rb.radius, "radius")?,
@@ -156,9 +222,17 @@ impl Validator<'_> {
                 Shape::Points(pts)
             }
         };
-        let mass = match &shape {
-            Shape::Points(pts) => Expr::add(pts.iter().map(|(m, _)| m.clone()).collect()),
-            _ => req(&rb.mass, "mass")?,
+        let subtract = rb.subtract.unwrap_or(false);
+        // A hole carries its removed mass with a minus sign, so every sum over bodies is right.
+        let signed = |m: Expr| if subtract { Expr::negate(m) } else { m };
+        let (shape, mass) = match shape {
+            Shape::Points(pts) => {
+                let pts: Vec<(Expr, [Expr; 3])> =
+                    pts.into_iter().map(|(m, at)| (signed(m), at)).collect();
+                let mass = Expr::add(pts.iter().map(|(m, _)| m.clone()).collect());
+                (Shape::Points(pts), mass)
+            }
+            shape => (shape, signed(req(&rb.mass, "mass")?)),
         };
         let mut rotations = Vec::new();
         for (j, r) in rb.rotate.iter().enumerate() {
@@ -188,6 +262,7 @@ impl Validator<'_> {
             label: rb.label.clone().unwrap_or_else(|| shape.kind().to_string()),
             shape,
             mass,
+            subtract,
             rotations,
             shift,
         })
@@ -207,6 +282,7 @@ impl Validator<'_> {
         }
         for (name, t) in [
             ("radius", &rb.radius),
+            ("inner_radius", &rb.inner_radius),
             ("length", &rb.length),
             ("height", &rb.height),
         ] {
@@ -235,7 +311,51 @@ impl Validator<'_> {
                 ));
             }
         }
+        if let (Some(inner), Some(outer)) = (&rb.inner_radius, &rb.radius) {
+            let at = |t: &Text| parse_expr(t.get_ref()).expect("validated").expr.eval(&env);
+            if let (Ok(i), Ok(o)) = (at(inner), at(outer))
+                && i >= o
+            {
+                return Err(self.err(
+                    content_start(inner),
+                    &format!("{field}.inner_radius"),
+                    format!(
+                        "must be less than `radius`, but is {i} against {o} at the scene's values"
+                    ),
+                ));
+            }
+        }
         Ok(())
+    }
+
+    /// Holes may not remove more than there is: the bodies' total mass must stay positive.
+    pub(super) fn check_total_mass(
+        &self,
+        raw: &RawScene,
+        bodies: &[Body],
+        values: &BTreeMap<String, f64>,
+    ) -> Result<(), SceneError> {
+        if !bodies.iter().any(|b| b.subtract) {
+            return Ok(());
+        }
+        let env = |s: &str| values.get(s).copied();
+        let mut total = 0.0;
+        for b in bodies {
+            total += b.mass.eval(&env).unwrap_or(f64::NAN);
+        }
+        if total.is_finite() && total > 0.0 {
+            return Ok(());
+        }
+        let at = raw
+            .bodies
+            .iter()
+            .rposition(|b| b.get_ref().subtract == Some(true));
+        let start = at.map_or(0, |i| raw.bodies[i].span().start);
+        Err(self.err(
+            start,
+            &format!("body[{}].mass", at.unwrap_or(0)),
+            format!("the holes remove more than the bodies hold: the total mass is {total} at the scene's values; it must stay positive"),
+        ))
     }
 }
 
@@ -246,11 +366,23 @@ pub(super) fn body_symbols(b: &Body) -> BTreeSet<String> {
     match &b.shape {
         Shape::Box { size, .. } => exprs.extend(size.iter()),
         Shape::Rod { length, .. } => exprs.push(length),
-        Shape::Hoop { radius }
-        | Shape::Disk { radius }
-        | Shape::Sphere { radius }
-        | Shape::Shell { radius } => exprs.push(radius),
-        Shape::Cylinder { radius, height } => exprs.extend([radius, height]),
+        Shape::Plate { size, .. } => exprs.extend(size.iter()),
+        Shape::Hoop { radius } | Shape::Shell { radius } | Shape::Hemisphere { radius, .. } => {
+            exprs.push(radius)
+        }
+        Shape::Disk { radius, inner } | Shape::Sphere { radius, inner } => {
+            exprs.push(radius);
+            exprs.extend(inner);
+        }
+        Shape::Cylinder {
+            radius,
+            height,
+            inner,
+        } => {
+            exprs.extend([radius, height]);
+            exprs.extend(inner);
+        }
+        Shape::Cone { radius, height, .. } => exprs.extend([radius, height]),
         Shape::Points(pts) => pts.iter().for_each(|(m, at)| {
             exprs.push(m);
             exprs.extend(at.iter());

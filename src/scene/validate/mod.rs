@@ -394,25 +394,45 @@ impl Validator<'_> {
         Ok(parsed.expr)
     }
 
+    pub(super) fn vec2(
+        &self,
+        v: &Spanned<Vec<Text>>,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<[Expr; 2], SceneError> {
+        let items = self.exprs(v, 2, field, allowed)?;
+        Ok([items[0].clone(), items[1].clone()])
+    }
+
     pub(super) fn vec3(
         &self,
         v: &Spanned<Vec<Text>>,
         field: &str,
         allowed: &BTreeSet<String>,
     ) -> Result<[Expr; 3], SceneError> {
-        if v.get_ref().len() != 3 {
+        let items = self.exprs(v, 3, field, allowed)?;
+        Ok([items[0].clone(), items[1].clone(), items[2].clone()])
+    }
+
+    /// A list of exactly `n` expressions.
+    fn exprs(
+        &self,
+        v: &Spanned<Vec<Text>>,
+        n: usize,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<Vec<Expr>, SceneError> {
+        if v.get_ref().len() != n {
             return Err(self.err(
                 v.span().start,
                 field,
-                format!("expected 3 components, found {}", v.get_ref().len()),
+                format!("expected {n} components, found {}", v.get_ref().len()),
             ));
         }
-        let items: Vec<Expr> = v
-            .get_ref()
+        v.get_ref()
             .iter()
             .enumerate()
             .map(|(i, t)| self.expr(t, &format!("{field}[{i}]"), allowed))
-            .collect::<Result<_, _>>()?;
-        Ok([items[0].clone(), items[1].clone(), items[2].clone()])
+            .collect()
     }
 }

@@ -139,6 +139,7 @@ impl Validator<'_> {
         for (i, rb) in raw.bodies.iter().enumerate() {
             self.check_positive(rb.get_ref(), &format!("body[{i}]"), &values)?;
         }
+        self.check_total_mass(raw, bodies, &values)?;
         Ok(values)
     }
 }
