@@ -116,6 +116,17 @@ pub fn scene_json(r: &SceneReport) -> Json {
         "passed": r.passed(),
         "quantities": quantities,
         "principal_axes": principal,
+        "principal_moments": r.verification.principal.as_ref().map(|p| json!({
+            "values": p.exact.iter().map(|v| num(*v)).collect::<Vec<_>>(),
+            "closed_form": p.closed_form,
+            "numeric": p.numeric.iter().flat_map(|e| std::iter::repeat_n(num(e.value), e.multiplicity)).collect::<Vec<_>>(),
+            "axes": p.numeric.iter().map(|e| match &e.space {
+                Space::Axis(v) => json!({ "axis": ([v.x, v.y, v.z].map(num)) }),
+                Space::PlaneNormalTo(v) => json!({ "plane_normal_to": ([v.x, v.y, v.z].map(num)) }),
+                Space::All => json!("all"),
+            }).collect::<Vec<_>>(),
+            "error": num(p.error),
+        })),
         "claims": claims,
         "numeric_checks": numeric_checks,
         "exact_vs_numeric": r.verification.quantities.iter().map(|q| json!({
@@ -287,7 +298,7 @@ pub fn derivation_text(r: &SceneReport) -> String {
             i + 1,
             step.title,
             step.text,
-            step.why
+            step.why_in(&s.cite)
         );
     }
     if let Some(n) = &r.numeric {

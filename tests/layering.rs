@@ -247,3 +247,35 @@ fn the_checker_finds_backward_edges_circles_and_strays() {
             .any(|p| p.contains("`numeric` imports `figures`"))
     );
 }
+
+#[test]
+fn every_cited_step_is_in_the_catalogue_and_back() {
+    // The keys the derivations give their steps (`cited("key", …)`) against the list that
+    // validates a scene's `[cite]` table: a key missing from either would be uncitable or dead.
+    let mut used = std::collections::BTreeSet::new();
+    for entry in std::fs::read_dir("src/derive").unwrap() {
+        let text = std::fs::read_to_string(entry.unwrap().path()).unwrap();
+        for part in text.split("cited(").skip(1) {
+            if let Some(rest) = part.trim_start().strip_prefix('"') {
+                let key = rest.split('"').next().unwrap();
+                if !key.is_empty() {
+                    used.insert(key.to_string());
+                }
+            }
+        }
+    }
+    let catalogue = std::fs::read_to_string("src/model/catalogue.rs").unwrap();
+    let list = &catalogue[catalogue.find("CITABLE_STEPS").unwrap()..];
+    let list = &list[..list.find("];").unwrap()];
+    let listed: std::collections::BTreeSet<String> = list
+        .lines()
+        .filter_map(|l| {
+            l.trim()
+                .strip_prefix('"')?
+                .strip_suffix("\",")
+                .map(String::from)
+        })
+        .collect();
+    assert!(used.len() >= 28, "{used:?}");
+    assert_eq!(used, listed);
+}

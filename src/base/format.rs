@@ -13,3 +13,43 @@ pub fn sci(x: f64) -> String {
 pub fn short(x: f64) -> String {
     sci(x).replace(".0e", "e")
 }
+
+/// A computed value to `digits` significant figures, in plain notation between 1e-4 and 1e6 (no
+/// trailing zeros: 0.5, not 0.500000) and in scientific notation outside: 0.570436, 4.21566,
+/// 1.2e-7 → 1.20e-7 at three figures.
+pub fn significant(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let magnitude = x.abs().log10().floor() as i32;
+    if (-4..6).contains(&magnitude) {
+        let decimals = (digits as i32 - 1 - magnitude).max(0) as usize;
+        let plain = format!("{x:.decimals$}");
+        if plain.contains('.') {
+            plain
+                .trim_end_matches('0')
+                .trim_end_matches('.')
+                .to_string()
+        } else {
+            plain
+        }
+    } else {
+        format!("{x:.prec$e}", prec = digits.saturating_sub(1))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn significant_figures() {
+        assert_eq!(significant(0.5704361, 6), "0.570436");
+        assert_eq!(significant(4.215662, 6), "4.21566");
+        assert_eq!(significant(-18.75, 3), "-18.8");
+        assert_eq!(significant(1.2e-7, 3), "1.20e-7");
+        assert_eq!(significant(0.0, 6), "0");
+        assert_eq!(significant(0.5, 6), "0.5");
+        assert_eq!(significant(1200.0, 3), "1200");
+    }
+}

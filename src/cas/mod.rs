@@ -10,6 +10,7 @@ mod engine;
 mod expr;
 mod parse;
 mod print;
+mod radical;
 mod rational;
 mod size;
 mod trig;
@@ -17,6 +18,7 @@ mod trig;
 pub use engine::EngineError;
 pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
 pub use parse::{ParseError, Parsed, parse, parse_input};
+pub use radical::pull_squares;
 pub use rational::Rational;
 pub use size::ExpansionSize;
 

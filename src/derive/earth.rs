@@ -3,7 +3,7 @@
 //! Chandler period, and the size of the equatorial bulge. All exact rationals from cited data.
 
 use super::algebra::Value;
-use super::{Derivation, DeriveError, Step};
+use super::{Derivation, DeriveError, Step, cited};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 
@@ -93,7 +93,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         "β for an oblate Earth",
         ("beta", "\\beta = \\frac{C - A}{A}"),
         &Value::Scalar(beta.clone()),
-        "β = (I3 − I1)/I1 of eqs (88)–(89) with I1 = I2 = A and I3 = C",
+        cited("earth-beta", "β = (I3 − I1)/I1 with I1 = I2 = A and I3 = C"),
     ));
     let at_h = |e: &Expr| {
         cas::simplify(&e.substitute(&|n| (n == "H").then(|| rat(DYNAMICAL_ELLIPTICITY))))

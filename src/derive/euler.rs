@@ -3,7 +3,7 @@
 //! symmetric top, the stability analysis and Poinsot's construction start from.
 
 use super::algebra::{Value, Vec3, add_vec, cross, diag, mat_vec, sub_vec};
-use super::{Derivation, DeriveError, Step, factored, simplify_value};
+use super::{Derivation, DeriveError, Step, cited, factored, simplify_value};
 use crate::cas::Expr;
 use crate::model::catalogue::quantity;
 
@@ -52,7 +52,10 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         "Angular momentum in the principal frame",
         ("L", "\\vec L"),
         &l,
-        "eq (61): the tensor is diagonal in the principal frame, so L_j = I_j ω_j (no sum)",
+        cited(
+            "principal-frame-momentum",
+            "the tensor is diagonal in the principal frame, so L_j = I_j ω_j (no sum)",
+        ),
     ));
     let Value::Vector(lv) = &l else {
         unreachable!()
@@ -85,8 +88,11 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
             "\\left.\\frac{d\\vec L}{dt}\\right|_{\\mathrm{body}} + \\vec\\omega\\times\\vec L",
         ),
         &lhs,
-        "eq (60): this sum is the rate of L in space, which equals the torque N; \
-         component by component these are eqs (63)–(65)",
+        cited(
+            "euler-equations",
+            "this sum is the rate of L in space, which equals the torque N; \
+         component by component these are Euler's equations",
+        ),
     ));
     let body_rate_of_momentum = simplify_value(&Value::Vector(sub_vec(&n, g)))?;
     d.steps.push(Step::equation(
@@ -115,7 +121,10 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         "Torque-free rates",
         ("dw/dt", "\\dot{\\vec\\omega}"),
         &factored(&rates)?,
-        "eqs (63)–(65) with N = 0, each divided by its moment",
+        cited(
+            "torque-free-rates",
+            "Euler's equations with N = 0, each divided by its moment",
+        ),
     ));
     d.set(quantity::TORQUE_FREE_RATES, rates);
     Ok(())

@@ -5,7 +5,7 @@
 use super::algebra::{Value, Vec3, cross, diag, dot, mat_vec};
 use super::euler::{omega, rate_along, torque_free_rates};
 use super::sign::{Sign, sign_over_positive};
-use super::{Derivation, DeriveError, Step, factored, simplify_value, values_equal};
+use super::{Derivation, DeriveError, Step, cited, factored, simplify_value, values_equal};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 
@@ -40,7 +40,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "Euler's equations with I2 = I1 and N = 0",
         ("dw/dt", "\\dot{\\vec\\omega}"),
         &factored(&rates)?,
-        "eqs (63)–(65) solved for the rates; the third vanishes, so ω3 is constant: eq (66)",
+        cited(
+            "symmetric-rates",
+            "Euler's equations solved for the rates; the third vanishes, so ω3 is constant",
+        ),
     ));
     let Value::Vector(r) = &rates else {
         unreachable!()
@@ -63,15 +66,21 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "\\dot\\omega_{1} = -\\beta\\,\\omega_{3}\\,\\omega_{2},\\quad \
          \\dot\\omega_{2} = \\beta\\,\\omega_{3}\\,\\omega_{1}"
             .into(),
-        "eqs (67)–(68), equal to the rates above term by term; the second has no '= 0'",
+        cited(
+            "symmetric-beta-rates",
+            "equal to the rates above term by term",
+        ),
     ));
     let second = scalar(rate_along(&r[0], &w, r)?)?;
     d.steps.push(Step::equation(
         "Second derivative of ω1",
         ("d2w1/dt2", "\\ddot\\omega_{1}"),
         &factored(&Value::Scalar(second.clone()))?,
-        "eq (69): differentiate dω1/dt along the motion and use dω2/dt; this is −β²ω3²ω1, \
+        cited(
+            "symmetric-oscillator",
+            "differentiate dω1/dt along the motion and use dω2/dt; this is −β²ω3²ω1, \
          a harmonic oscillator of angular frequency βω3",
+        ),
     ));
     d.set(quantity::W1_SECOND_DERIVATIVE, Value::Scalar(second));
 
@@ -125,7 +134,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "Magnitude of ω",
         ("|w|^2", "\\omega^{2}"),
         &Value::Scalar(omega_squared.clone()),
-        "eq (70): sin² + cos² = 1, so ω is constant",
+        cited(
+            "symmetric-omega-constant",
+            "sin² + cos² = 1, so ω is constant",
+        ),
     ));
     d.set(
         quantity::OMEGA_SQUARED,
@@ -184,7 +196,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "Space cone",
         ("cos^2 alpha_s", "\\cos^{2}\\alpha_{s}"),
         &Value::Scalar(space_cos2.clone()),
-        "eq (71): α_s is the angle between ω and the fixed L, cos α_s = ω·L/(ωL) = 2T/(ωL)",
+        cited(
+            "space-cone",
+            "α_s is the angle between ω and the fixed L, cos α_s = ω·L/(ωL) = 2T/(ωL)",
+        ),
     ));
     let tilt_tan2 = scalar(tan_squared_from_axis(&l))?;
     d.steps.push(Step::equation(

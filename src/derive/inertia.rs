@@ -5,7 +5,7 @@ use super::algebra::{
     Mat3, Value, Vec3, add_vec, inertia_kernel, mat_add, mat_scale, scale_vec, sub_vec, zero3,
 };
 use super::bodies::{MassModel, mass_model, place};
-use super::{Derivation, DeriveError, Step, simplify_value, values_equal};
+use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
 use crate::cas::{self, AngleSpan, Expr, Integral};
 use crate::model::catalogue::quantity;
 use crate::scene::{Body, Scene};
@@ -118,7 +118,10 @@ fn body_part(
                 &format!("{label}: sum over the point masses"),
                 ("I", "I"),
                 &tensor,
-                "eq (10) with the integral replaced by Σ mᵢ(rᵢ²𝟙 − rᵢrᵢᵀ)",
+                cited(
+                    "point-tensor",
+                    "the tensor's integral replaced by Σ mᵢ(rᵢ²𝟙 − rᵢrᵢᵀ)",
+                ),
             ));
             let Value::Matrix(tensor) = tensor else {
                 unreachable!()
@@ -207,6 +210,7 @@ fn body_part(
                         results[k + 1].to_latex()
                     ),
                     why: why_integrate(&c.domain),
+                    cite: String::new(),
                 });
             }
             if index == 0 {
@@ -322,9 +326,15 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
     let theorem = simplify_value(&Value::Matrix(mat_add(cm, &shift_term)))?;
     d.steps.push(Step::equation(
         "Parallel-axis theorem",
-        ("I_cm + M(R²𝟙 − RRᵀ)", "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R \\vec R^{T}\\right)"),
+        (
+            "I_cm + M(R²𝟙 − RRᵀ)",
+            "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R \\vec R^{T}\\right)",
+        ),
         &theorem,
-        "eqs (20)–(22) in tensor form; the cross term vanishes because Σ m r' = 0 about the centre of mass",
+        cited(
+            "parallel-axis",
+            "in tensor form; the cross term vanishes because Σ m r' = 0 about the centre of mass",
+        ),
     ));
     let direct = d.get(quantity::INERTIA_TENSOR)?.clone();
     if !values_equal(&theorem, &direct)? {

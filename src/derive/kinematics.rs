@@ -4,7 +4,7 @@
 
 use super::algebra::{Value, Vec3, add_vec, cross, dot, mat_vec, scale_vec};
 use super::bodies::place;
-use super::{Derivation, DeriveError, Step, simplify_value, values_equal};
+use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::scene::{Scene, Shape};
@@ -34,7 +34,7 @@ fn two_routes(
     d: &mut Derivation,
     name: &str,
     from_tensor: Value,
-    direct: Option<(Value, &str, &str)>,
+    direct: Option<(Value, &str, super::Why)>,
 ) -> Result<(), DeriveError> {
     if let Some((direct, what, why)) = direct {
         let direct = simplify_value(&direct)?;
@@ -62,7 +62,7 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         "Angular momentum from the tensor",
         ("L", "\\vec L"),
         &l,
-        "eq (8): L = I ω",
+        cited("angular-momentum", "L = I ω"),
     ));
     let direct = point_masses(scene).map(|pts| {
         let sum = pts
@@ -73,7 +73,10 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         (
             Value::Vector(sum),
             "L",
-            "eqs (3)–(5): L = Σ m r × (ω × r), expanded; equal to I ω entry by entry",
+            cited(
+                "angular-momentum-direct",
+                "L = Σ m r × (ω × r), expanded; equal to I ω entry by entry",
+            ),
         )
     });
     two_routes(d, quantity::ANGULAR_MOMENTUM, l, direct)
@@ -90,7 +93,7 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
         "Kinetic energy from the tensor",
         ("T", "T"),
         &Value::Scalar(t.clone()),
-        "eqs (17), (25): T = ½ ωᵀ I ω",
+        cited("kinetic-energy", "T = ½ ωᵀ I ω"),
     ));
     let direct = point_masses(scene).map(|pts| {
         let sum = Expr::add(
@@ -104,7 +107,10 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
         (
             Value::Scalar(sum),
             "T",
-            "eqs (16), (23): T = ½ Σ m |ω × r|²; equal to ½ ωᵀ I ω",
+            cited(
+                "kinetic-energy-direct",
+                "T = ½ Σ m |ω × r|²; equal to ½ ωᵀ I ω",
+            ),
         )
     });
     two_routes(d, quantity::KINETIC_ENERGY, Value::Scalar(t), direct)
@@ -117,7 +123,7 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
         "Moment of inertia about the axis n",
         ("I_n", "I_{n}"),
         &Value::Scalar(moment.clone()),
-        "eqs (18), (55): I_n = nᵀ I n",
+        cited("moment-about-axis", "I_n = nᵀ I n"),
     ));
     let direct = point_masses(scene).map(|pts| {
         let sum = Expr::add(
@@ -131,7 +137,10 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
         (
             Value::Scalar(sum),
             "I_n",
-            "eq (20): I_n = Σ m |r × n|², the squared distance from the axis; equal to nᵀ I n",
+            cited(
+                "moment-about-axis-direct",
+                "I_n = Σ m |r × n|², the squared distance from the axis; equal to nᵀ I n",
+            ),
         )
     });
     two_routes(
@@ -154,7 +163,7 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
         "Radius of gyration about n",
         ("R_0", "R_{0}"),
         &Value::Scalar(r0.clone()),
-        "eq (58): R₀² = I_n / M",
+        cited("gyration", "R₀² = I_n / M"),
     ));
     d.quantities
         .insert(quantity::RADIUS_OF_GYRATION.into(), Value::Scalar(r0));
@@ -175,7 +184,7 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
                 semi[1].to_latex(),
                 semi[2].to_latex()
             ),
-            "eqs (56)–(57) with ρ = n/√I_n: the ellipsoid's semi-axis along principal axis i is 1/√Iᵢ",
+            cited("inertia-ellipsoid", "with ρ = n/√I_n, the ellipsoid's semi-axis along principal axis i is 1/√Iᵢ"),
         ));
     }
     Ok(())

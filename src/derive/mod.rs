@@ -32,27 +32,68 @@ pub struct Step {
     /// The statement as plain text and as LaTeX.
     pub text: String,
     pub latex: String,
-    /// Why it follows, in one line.
+    /// Why it follows, in one line, in general terms: no course's equation numbers.
     pub why: String,
+    /// The key by which a scene's `[cite]` table names its own notes' equations for this step.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub cite: String,
+}
+
+/// A step's reason, with the citation key a scene may map to its notes' equations.
+pub struct Why {
+    pub key: &'static str,
+    pub text: String,
+}
+
+/// A reason that a scene may cite: `[cite] key = "eq (51)"` prints "eq (51): text".
+pub fn cited(key: &'static str, text: &str) -> Why {
+    Why {
+        key,
+        text: text.to_string(),
+    }
+}
+
+impl From<&str> for Why {
+    fn from(text: &str) -> Why {
+        cited("", text)
+    }
+}
+
+impl From<&String> for Why {
+    fn from(text: &String) -> Why {
+        cited("", text)
+    }
 }
 
 impl Step {
     /// `lhs = value`, with `lhs` given as (text, LaTeX).
-    pub fn equation(title: &str, lhs: (&str, &str), value: &Value, why: &str) -> Step {
+    pub fn equation(title: &str, lhs: (&str, &str), value: &Value, why: impl Into<Why>) -> Step {
+        let why = why.into();
         Step {
             title: title.to_string(),
             text: format!("{} = {}", lhs.0, value.to_text()),
             latex: format!("{} = {}", lhs.1, value.to_latex()),
-            why: why.to_string(),
+            why: why.text,
+            cite: why.key.to_string(),
         }
     }
 
-    pub fn note(title: &str, text: String, latex: String, why: &str) -> Step {
+    pub fn note(title: &str, text: String, latex: String, why: impl Into<Why>) -> Step {
+        let why = why.into();
         Step {
             title: title.to_string(),
             text,
             latex,
-            why: why.to_string(),
+            why: why.text,
+            cite: why.key.to_string(),
+        }
+    }
+
+    /// The reason as a course prints it: prefixed by the scene's citation for this step, if any.
+    pub fn why_in(&self, cites: &std::collections::BTreeMap<String, String>) -> String {
+        match cites.get(&self.cite) {
+            Some(c) if !self.cite.is_empty() => format!("{c}: {}", self.why),
+            _ => self.why.clone(),
         }
     }
 }
@@ -131,7 +172,7 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
         inertia::derive_parallel_axis(scene, &mut d)?;
     }
     if plan.runs(Stage::Principal) && d.quantities.contains_key(quantity::INERTIA_TENSOR) {
-        principal::derive_principal(&mut d)?;
+        principal::derive_principal(scene, &mut d)?;
     }
     if plan.runs(Stage::AngularMomentum) {
         kinematics::angular_momentum(scene, &mut d)?;

@@ -5,7 +5,7 @@
 use super::algebra::{Value, Vec3, diag, dot, mat_vec};
 use super::euler::{moments, omega, rate_along, torque_free_rates};
 use super::stability::classify;
-use super::{Derivation, DeriveError, Step, factored};
+use super::{Derivation, DeriveError, Step, cited, factored};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 
@@ -30,13 +30,13 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "Twice the kinetic energy",
         ("2T", "2T"),
         &Value::Scalar(two_t.clone()),
-        "eq (78): 2T = ω·L = ωᵀIω",
+        cited("twice-energy", "2T = ω·L = ωᵀIω"),
     ));
     d.steps.push(Step::equation(
         "Angular momentum squared",
         ("L^2", "L^{2}"),
         &Value::Scalar(l_squared.clone()),
-        "eq (84): L_i = I_i ω_i",
+        cited("momentum-squared", "L_i = I_i ω_i"),
     ));
     let rates = torque_free_rates(&i, &w);
     let invariant_rates = cas::simplify_all(vec![
@@ -67,7 +67,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "The point ρ = ω/√(2T) lies on the inertia ellipsoid",
         ("F(rho)", "F(\\vec\\rho) = \\vec\\rho^{T} I \\vec\\rho"),
         &Value::Scalar(f),
-        "eqs (77), (79): ρᵀIρ = ωᵀIω/(2T)",
+        cited("ellipsoid-point", "ρᵀIρ = ωᵀIω/(2T)"),
     ));
     // ∇F = 2Iρ = 2c L: the factor squared is 4c² = 2/T.
     let rho_names = ["r1", "r2", "r3"].map(Expr::sym);
@@ -98,8 +98,11 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
             "\\left(\\frac{\\nabla_{\\rho}F}{\\vec L}\\right)^{2}",
         ),
         &Value::Scalar(gradient),
-        "eq (80): ∇F = 2Iρ = 2L/√(2T), the same factor for all three components, so ∇F ∥ L; \
+        cited(
+            "ellipsoid-gradient",
+            "∇F = 2Iρ = 2L/√(2T), the same factor for all three components, so ∇F ∥ L; \
          the factor is √(2/T)",
+        ),
     ));
     // The distance ρ·L/L = c ω·L/L = c 2T/L, squared.
     let distance = scalar(
@@ -114,7 +117,10 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
             "\\left(\\frac{\\vec\\rho\\cdot\\vec L}{L}\\right)^{2}",
         ),
         &Value::Scalar(distance),
-        "eq (81): ρ·L/L = ω·L/(L√(2T)) = √(2T)/L, constant because T and L are",
+        cited(
+            "invariable-plane",
+            "ρ·L/L = ω·L/(L√(2T)) = √(2T)/L, constant because T and L are",
+        ),
     ));
 
     // L-space: ω_i = L_i/I_i.
@@ -135,8 +141,11 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "Energy in terms of L",
         ("T", "T"),
         &Value::Scalar(energy),
-        "eq (82): T = Σ L_i²/(2I_i); with 2T fixed this is the energy ellipsoid of eq (83), \
+        cited(
+            "energy-ellipsoid",
+            "T = Σ L_i²/(2I_i); with 2T fixed this is the energy ellipsoid, \
          semi-axes √(2T I_i)",
+        ),
     ));
     let gap: Vec3 = std::array::from_fn(|k| {
         Expr::minus(

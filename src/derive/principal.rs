@@ -4,9 +4,13 @@
 //! (rank 1), or every direction (rank 0).
 
 use super::algebra::{Mat3, Value, Vec3, cross, det};
-use super::{Derivation, DeriveError, Step};
-use crate::cas::{self, Expr};
+use super::{Derivation, DeriveError, Step, cited};
+use crate::base::format::significant;
+use crate::cas::{self, Expr, pull_squares};
 use crate::model::catalogue::quantity;
+use crate::model::value::{Values, eval_at};
+use crate::scene::Scene;
+use std::collections::BTreeSet;
 
 /// The λ of the characteristic polynomial; `__` never occurs in scene names.
 pub const LAMBDA: &str = "lambda__";
@@ -17,6 +21,62 @@ pub struct ExactEigen {
     pub spaces: Vec<ExactSpace>,
     /// Irreducible factors of degree ≥ 3 whose roots are left to the numerics.
     pub unsolved: Vec<(Expr, u32)>,
+    /// When the whole cubic is irreducible: its three real roots in trigonometric form.
+    #[serde(default)]
+    pub closed_form: Option<CubicRoots>,
+}
+
+/// The three real roots of λ³ − e₁λ² + e₂λ − e₃ (a symmetric tensor's characteristic cubic) by
+/// Viète's trigonometric method: λ_k = e₁/3 + 2ρ cos(φ/3 − 2πk/3), k = 0, 1, 2, where
+/// ρ = √(−p/3), cos φ = −q/(2ρ³), and t³ + pt + q is the cubic depressed by λ = t + e₁/3.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct CubicRoots {
+    pub centre: Expr,
+    pub rho: Expr,
+    pub cos_phi: Expr,
+}
+
+impl CubicRoots {
+    /// The three roots at the scene's values, ascending.
+    pub fn at(&self, values: &Values) -> Result<[f64; 3], crate::cas::EvalError> {
+        let (c, rho) = (eval_at(&self.centre, values)?, eval_at(&self.rho, values)?);
+        // Round-off may put cos φ a hair outside [−1, 1] at a double root.
+        let phi = eval_at(&self.cos_phi, values)?.clamp(-1.0, 1.0).acos();
+        let mut roots = [0, 1, 2].map(|k| {
+            c + 2.0 * rho * (phi / 3.0 - 2.0 * std::f64::consts::PI * k as f64 / 3.0).cos()
+        });
+        roots.sort_by(f64::total_cmp);
+        Ok(roots)
+    }
+}
+
+/// The symbols known to be positive: those of a body's mass or dimension written as a product
+/// of symbols with a positive coefficient, positive at the scene's values (a mass m, a side 2a).
+/// √(m² a⁴) may then be written m a².
+pub fn positive_symbols(scene: &Scene) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for b in &scene.bodies {
+        for e in b.dimensions() {
+            let monomial = match e {
+                Expr::Sym(_) => true,
+                Expr::Mul(fs) => fs.iter().all(|f| match f {
+                    Expr::Num(r) => r.is_positive(),
+                    Expr::Sym(_) => true,
+                    Expr::Pow(b, k) => matches!(**b, Expr::Sym(_)) && matches!(**k, Expr::Num(_)),
+                    _ => false,
+                }),
+                _ => false,
+            };
+            if monomial {
+                out.extend(
+                    e.symbols()
+                        .into_iter()
+                        .filter(|s| scene.values.get(s).is_some_and(|v| *v > 0.0)),
+                );
+            }
+        }
+    }
+    out
 }
 
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
@@ -57,7 +117,44 @@ fn first_nonzero(candidates: Vec<Vec3>) -> Result<Option<Vec3>, DeriveError> {
     Ok(None)
 }
 
-pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
+/// The trigonometric form of the roots of the tensor's characteristic cubic.
+fn cubic_roots(tensor: &Mat3, positive: &dyn Fn(&str) -> bool) -> Result<CubicRoots, DeriveError> {
+    let t = |i: usize, j: usize| tensor[i][j].clone();
+    let prod = |a: Expr, b: Expr| Expr::mul(vec![a, b]);
+    let e1 = Expr::add(vec![t(0, 0), t(1, 1), t(2, 2)]);
+    let e2 = Expr::add(vec![
+        prod(t(0, 0), t(1, 1)),
+        prod(t(1, 1), t(2, 2)),
+        prod(t(0, 0), t(2, 2)),
+        Expr::negate(prod(t(0, 1), t(0, 1))),
+        Expr::negate(prod(t(1, 2), t(1, 2))),
+        Expr::negate(prod(t(0, 2), t(0, 2))),
+    ]);
+    let e3 = det(tensor);
+    let pw = |e: &Expr, n: i128| Expr::pow(e.clone(), Expr::int(n));
+    // p = e₂ − e₁²/3, q = −2e₁³/27 + e₁e₂/3 − e₃.
+    let p = Expr::minus(e2.clone(), Expr::mul(vec![Expr::rat(1, 3), pw(&e1, 2)]));
+    let q = Expr::add(vec![
+        Expr::mul(vec![Expr::rat(-2, 27), pw(&e1, 3)]),
+        Expr::mul(vec![Expr::rat(1, 3), e1.clone(), e2]),
+        Expr::negate(e3),
+    ]);
+    let minus_p_third = cas::simplify(&Expr::mul(vec![Expr::rat(-1, 3), p]))?;
+    let rho = pull_squares(&Expr::pow(minus_p_third, Expr::rat(1, 2)), positive);
+    let cos_phi = cas::simplify(&Expr::over(
+        Expr::negate(q),
+        Expr::mul(vec![Expr::int(2), pw(&rho, 3)]),
+    ))?;
+    Ok(CubicRoots {
+        centre: cas::simplify(&Expr::mul(vec![Expr::rat(1, 3), e1]))?,
+        rho,
+        cos_phi: pull_squares(&cos_phi, positive),
+    })
+}
+
+pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
+    let positive_set = positive_symbols(scene);
+    let positive = |s: &str| positive_set.contains(s);
     let Value::Matrix(tensor) = d.get(quantity::INERTIA_TENSOR)?.clone() else {
         unreachable!()
     };
@@ -71,9 +168,15 @@ pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
             "\\det\\left(\\overleftrightarrow{{I}} - \\lambda \\mathbb{{1}}\\right) = {}",
             shown(&characteristic).to_latex()
         ),
-        "eq (51): the principal moments are the roots",
+        cited(
+            "characteristic-polynomial",
+            "the principal moments are the roots",
+        ),
     ));
-    let roots = cas::roots(&characteristic, LAMBDA)?;
+    let mut roots = cas::roots(&characteristic, LAMBDA)?;
+    for (value, _) in roots.roots.iter_mut() {
+        *value = pull_squares(value, &positive);
+    }
     let mut spaces = Vec::new();
     for (value, multiplicity) in &roots.roots {
         let m = shifted(&tensor, value);
@@ -107,7 +210,7 @@ pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
                     "\\text{{axis along }} {}",
                     Value::Vector(a.clone()).to_latex()
                 ),
-                "eq (52): the cross product of two independent rows of I − λ𝟙 spans its null space",
+                cited("principal-axis", "the cross product of two independent rows of I − λ𝟙 spans its null space"),
             ),
             ExactBasis::PlaneNormalTo(n) => (
                 format!(
@@ -118,12 +221,12 @@ pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
                     "\\text{{every axis}} \\perp {}",
                     Value::Vector(n.clone()).to_latex()
                 ),
-                "a double root: I − λ𝟙 has rank 1, so its null space is the plane normal to its one independent row",
+                "a double root: I − λ𝟙 has rank 1, so its null space is the plane normal to its one independent row".into(),
             ),
             ExactBasis::All => (
                 "every axis".into(),
                 "\\text{every axis}".into(),
-                "a triple root: I is a multiple of the identity",
+                "a triple root: I is a multiple of the identity".into(),
             ),
         };
         d.steps.push(Step::note(
@@ -146,9 +249,39 @@ pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
             "Irreducible factor",
             format!("({})^{mult}", shown(factor)),
             format!("\\left({}\\right)^{{{mult}}}", shown(factor).to_latex()),
-            "no rational factorisation: its roots are left to the numeric eigen-solver",
+            "no factorisation over the rationals: no root is rational in the symbols",
         ));
     }
+    // A symmetric tensor's cubic has three real roots: when it does not factor, Viète's
+    // trigonometric form gives them exactly.
+    let closed_form = if roots.roots.is_empty() && roots.unsolved.len() == 1 {
+        let c = cubic_roots(&tensor, &positive)?;
+        let two_rho = Expr::mul(vec![Expr::int(2), c.rho.clone()]);
+        let values = match c.at(&scene.values) {
+            Ok(v) => format!(
+                "; at the scene's values λ = {}",
+                v.map(|x| significant(x, 6)).join(", ")
+            ),
+            Err(_) => String::new(),
+        };
+        d.steps.push(Step::note(
+            "Principal moments in closed form",
+            format!(
+                "λ_k = {} + ({})·cos(φ/3 − 2πk/3), k = 0, 1, 2, where cos φ = {}{values}",
+                c.centre, two_rho, c.cos_phi
+            ),
+            format!(
+                "\\lambda_k = {} + \\left({}\\right) \\cos\\left(\\frac{{\\varphi}}{{3}} - \\frac{{2\\pi k}}{{3}}\\right),\\; k = 0, 1, 2,\\quad \\cos\\varphi = {}",
+                c.centre.to_latex(),
+                two_rho.to_latex(),
+                c.cos_phi.to_latex()
+            ),
+            "three real roots (I is symmetric): depress the cubic by λ = t + tr I/3 to t³ + pt + q, then t = 2ρ cos θ with ρ = √(−p/3) turns it into cos 3θ = −q/(2ρ³) (Viète)",
+        ));
+        Some(c)
+    } else {
+        None
+    };
     if roots.unsolved.is_empty() {
         let moments: Vec<Expr> = spaces
             .iter()
@@ -165,6 +298,7 @@ pub fn derive_principal(d: &mut Derivation) -> Result<(), DeriveError> {
         characteristic,
         spaces,
         unsolved: roots.unsolved,
+        closed_form,
     });
     Ok(())
 }

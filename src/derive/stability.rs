@@ -5,7 +5,7 @@
 use super::algebra::{Mat3, Value};
 use super::euler::{moments, omega, torque_free_rates};
 use super::sign::{Sign, signs_over_positive};
-use super::{Derivation, DeriveError, Step, factored, simplify_value};
+use super::{Derivation, DeriveError, Step, cited, factored, simplify_value};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::moments::ORDERINGS;
@@ -90,7 +90,10 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         "Torque-free Euler equations",
         ("dw/dt", "\\dot{\\vec\\omega}"),
         &factored(&rates)?,
-        "eqs (74)–(76) with N = 0, solved for the rates",
+        cited(
+            "stability-rates",
+            "Euler's equations with N = 0, solved for the rates",
+        ),
     ));
     let Value::Vector(r) = rates else {
         unreachable!()
@@ -138,7 +141,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
             ),
             &format!(
                 "ω = ω{} e{} plus small ω{ta}, ω{tb}: keep first-order terms; dω{}/dt ∝ ω{ta}ω{tb} \
-                 is second order and dropped, as in the notes",
+                 is second order and dropped",
                 k + 1,
                 k + 1,
                 k + 1

@@ -69,7 +69,7 @@ pub(super) fn axis_spins(
          other two axes; the exact solution gives the angle between ω and the axis it started on \
          (180° is a full reversal). Largest angle over t ≤ {t_end}: axis 1 ({}) {:.3}°, axis 2 \
          ({}) {:.3}°, axis 3 ({}) {:.3}°. Only the axis with the intermediate moment departs, as \
-         the sign of Ω² in eqs (72)–(73) predicts.",
+         the sign of Ω² in the linearised equations predicts.",
         i.0[0],
         i.0[1],
         i.0[2],

@@ -105,6 +105,32 @@ pub(super) fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, Fi
             });
         }
     }
+    // An irreducible cubic: its roots are in closed form but its axes are not, so the axes drawn
+    // are those of the exact tensor at the scene's values, found by SymmetricEigen.
+    if eigen.spaces.is_empty()
+        && let Some(c) = &eigen.closed_form
+    {
+        let exact = d
+            .get(crate::model::catalogue::quantity::INERTIA_TENSOR)
+            .map_err(|e| FigureError::Derive(Box::new(e)))?
+            .matrix_at(&scene.values)?;
+        let roots = c.at(&scene.values)?;
+        for (colour, sp) in principal_axes(&exact).into_iter().enumerate() {
+            let Space::Axis(u) = sp.space else { continue };
+            exact_dirs.push(u);
+            let value = roots[colour.min(2)];
+            parts.push(format!(
+                "moment {value:.4} (closed form), axis ({:.4}, {:.4}, {:.4})",
+                u.x, u.y, u.z
+            ));
+            series.push(Series {
+                name: format!("I = {value:.4}"),
+                mark: Mark::Line,
+                colour,
+                points: segment(-u * reach, u * reach).to_vec(),
+            });
+        }
+    }
     // The numeric single axes, found independently from the quadrature tensor.
     let mut worst_angle: f64 = 0.0;
     let mut tips = Vec::new();

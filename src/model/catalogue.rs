@@ -333,3 +333,35 @@ pub const SYMMETRIC_TOP_SYMBOLS: &[&str] = &["I1", "I3", "w1", "w2", "w3", "A", 
 pub const STABILITY_SYMBOLS: &[&str] = &["I1", "I2", "I3", "w1", "w2", "w3"];
 pub const POINSOT_SYMBOLS: &[&str] = &["I1", "I2", "I3", "w1", "w2", "w3", "L1", "L2", "L3"];
 pub const EARTH_SYMBOLS: &[&str] = &["A", "C", "H"];
+
+/// The keys of every step a scene may cite, for validating `[cite]`; derive's steps carry them.
+pub const CITABLE_STEPS: &[&str] = &[
+    "angular-momentum",
+    "angular-momentum-direct",
+    "characteristic-polynomial",
+    "earth-beta",
+    "ellipsoid-gradient",
+    "ellipsoid-point",
+    "energy-ellipsoid",
+    "euler-equations",
+    "gyration",
+    "inertia-ellipsoid",
+    "invariable-plane",
+    "kinetic-energy",
+    "kinetic-energy-direct",
+    "moment-about-axis",
+    "moment-about-axis-direct",
+    "momentum-squared",
+    "parallel-axis",
+    "point-tensor",
+    "principal-axis",
+    "principal-frame-momentum",
+    "space-cone",
+    "stability-rates",
+    "symmetric-beta-rates",
+    "symmetric-omega-constant",
+    "symmetric-oscillator",
+    "symmetric-rates",
+    "torque-free-rates",
+    "twice-energy",
+];

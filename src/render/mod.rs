@@ -177,7 +177,7 @@ pub fn page_view(
             Ok(StepView {
                 title: st.title.clone(),
                 math: math::mathml(&st.latex, true)?,
-                why: st.why.clone(),
+                why: st.why_in(&s.cite),
             })
         })
         .collect::<Result<Vec<_>, RenderError>>()?;
@@ -210,6 +210,9 @@ pub fn page_view(
                 why: String::new(),
             });
         }
+    }
+    if let Some(p) = &r.verification.principal {
+        results.push(principal_values_view(s, p)?);
     }
     let numeric = r
         .numeric
@@ -305,6 +308,55 @@ pub fn page_view(
         passed: r.passed(),
         prev: link(prev),
         next: link(next),
+    })
+}
+
+/// The principal moments as numbers, with the axes when only the numerics give them, and how
+/// well the two routes agree.
+fn principal_values_view(
+    s: &crate::scene::Scene,
+    p: &crate::verify::PrincipalValues,
+) -> Result<StepView, RenderError> {
+    use crate::base::format::significant;
+    use crate::numeric::eigen::Space;
+    let values: Vec<String> = p.exact.iter().map(|v| significant(*v, 6)).collect();
+    let symbols: Vec<String> = s.values.keys().cloned().collect();
+    let mut latex = format!("\\lambda = {}", values.join(",\\; "));
+    if p.closed_form {
+        let axes: Vec<String> = p
+            .numeric
+            .iter()
+            .filter_map(|e| match &e.space {
+                Space::Axis(v) => Some(format!(
+                    "\\left({}, {}, {}\\right)",
+                    significant(v.x, 4),
+                    significant(v.y, 4),
+                    significant(v.z, 4)
+                )),
+                _ => None,
+            })
+            .collect();
+        if !axes.is_empty() {
+            latex.push_str(&format!("\\quad \\text{{axes }} {}", axes.join(",\\; ")));
+        }
+    }
+    let route = if p.closed_form {
+        "the closed form above"
+    } else {
+        "the exact roots"
+    };
+    Ok(StepView {
+        title: "principal moments at the scene's values".into(),
+        math: math::mathml(&latex, true)?,
+        why: format!(
+            "at {}: {route} evaluated, and the eigen-solver on the exact tensor agrees to {} (relative)",
+            symbols
+                .iter()
+                .map(|k| format!("{k} = {}", s.values[k]))
+                .collect::<Vec<_>>()
+                .join(", "),
+            sci(p.error)
+        ),
     })
 }
 

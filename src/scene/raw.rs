@@ -34,6 +34,9 @@ pub struct RawScene {
     pub numeric: RawNumeric,
     #[serde(default)]
     pub expect: BTreeMap<Spanned<String>, Text>,
+    /// Step key -> the notes' citation for it (`characteristic-polynomial = "eq (51)"`).
+    #[serde(default)]
+    pub cite: BTreeMap<Spanned<String>, Text>,
 }
 
 impl RawScene {

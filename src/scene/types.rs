@@ -35,6 +35,8 @@ pub struct Scene {
     pub fidelity: Option<Fidelity>,
     /// Recorded results: quantity name -> expected exact value (the regression record).
     pub expect: BTreeMap<String, Expr>,
+    /// Step key -> how this course's notes cite it, such as `eq (51)`.
+    pub cite: BTreeMap<String, String>,
 }
 
 #[derive(Debug, Clone)]
@@ -129,6 +131,36 @@ pub enum Shape {
         radius: Expr,
     },
     Points(Vec<(Expr, [Expr; 3])>),
+}
+
+impl Body {
+    /// The mass and the lengths that size the body (not its placement), as written.
+    pub fn dimensions(&self) -> Vec<&Expr> {
+        let mut out = vec![&self.mass];
+        match &self.shape {
+            Shape::Box { size, .. } => out.extend(size.iter()),
+            Shape::Plate { size, .. } => out.extend(size.iter()),
+            Shape::Rod { length, .. } => out.push(length),
+            Shape::Hoop { radius } | Shape::Shell { radius } | Shape::Hemisphere { radius, .. } => {
+                out.push(radius)
+            }
+            Shape::Disk { radius, inner } | Shape::Sphere { radius, inner } => {
+                out.push(radius);
+                out.extend(inner);
+            }
+            Shape::Cylinder {
+                radius,
+                height,
+                inner,
+            } => {
+                out.extend([radius, height]);
+                out.extend(inner);
+            }
+            Shape::Cone { radius, height, .. } => out.extend([radius, height]),
+            Shape::Points(pts) => out.extend(pts.iter().map(|(m, _)| m)),
+        }
+        out
+    }
 }
 
 impl Shape {

@@ -9,15 +9,14 @@ use crate::base::rng::Rng;
 use crate::cas::EvalError;
 use crate::cas::{self, Expr};
 use crate::derive::algebra::{Env, Value, evaluate};
-use crate::derive::{Derivation, ExactBasis, simplify_value};
+use crate::derive::{Derivation, simplify_value};
 use crate::model::catalogue::Stage;
 use crate::model::catalogue::quantity;
-use crate::model::value::{eval_at, vector_at};
+use crate::model::value::vector_at;
 use crate::numeric::NumericReport;
-use crate::numeric::eigen::{Eigenspace, Space, principal_axes};
+use crate::numeric::eigen::Eigenspace;
 use crate::numeric::quadrature::{Method, QuadratureRun};
 use crate::scene::{Scene, Verdict};
-use nalgebra::{Matrix3, Vector3};
 use std::collections::BTreeMap;
 
 /// Exact and numeric values of the same quantity must agree this closely (relative), the
@@ -87,6 +86,8 @@ pub struct Verification {
     pub regressions: Vec<RegressionResult>,
     pub quantities: Vec<QuantityCheck>,
     pub eigen: Option<EigenCheck>,
+    #[serde(default)]
+    pub principal: Option<PrincipalValues>,
     /// For each quadrature run: did it stay within its error law?
     pub within_law: Vec<bool>,
 }
@@ -109,6 +110,10 @@ impl Verification {
             && self.regressions.iter().all(|r| r.unchanged)
             && self.quantities.iter().all(|q| q.passed)
             && self.eigen.as_ref().is_none_or(|e| e.passed)
+            && self
+                .principal
+                .as_ref()
+                .is_none_or(|p| p.error <= PRINCIPAL_AGREEMENT)
             && self.within_law.iter().all(|w| *w)
     }
 }
@@ -441,112 +446,6 @@ pub fn check_quantities(
     Ok(out)
 }
 
-/// Exact principal moments that are distinct but equal at double precision (4e30 + 9e-20 and
-/// 4e30 + 1e-20) are one eigenspace to any numeric solver: merge them as it does, with the
-/// same tolerance, so that the two are compared like with like. Two axes merge into the plane
-/// they span (its normal is their cross product); anything larger is every direction.
-fn merge_equal_in_f64(
-    exact: Vec<(f64, u32, Option<Vector3<f64>>)>,
-) -> Vec<(f64, u32, Option<Vector3<f64>>)> {
-    use crate::numeric::eigen::DEGENERACY_TOLERANCE;
-    let scale = exact.iter().fold(0.0f64, |m, e| m.max(e.0.abs()));
-    let mut out: Vec<(f64, u32, Option<Vector3<f64>>)> = Vec::new();
-    for e in exact {
-        match out.last_mut() {
-            Some(last) if (e.0 - last.0).abs() <= DEGENERACY_TOLERANCE * scale => {
-                let direction = match (last.1, e.1, last.2, e.2) {
-                    (1, 1, Some(u), Some(v)) => Some(u.cross(&v)),
-                    _ => None,
-                };
-                *last = (last.0, last.1 + e.1, direction);
-            }
-            _ => out.push(e),
-        }
-    }
-    out
-}
-
-pub fn check_eigen(
-    scene: &Scene,
-    d: &Derivation,
-    tensor: &Matrix3<f64>,
-) -> Result<Option<EigenCheck>, EvalError> {
-    let Some(eigen) = &d.eigen else {
-        return Ok(None);
-    };
-    let env = |s: &str| scene.values.get(s).copied();
-    let numeric = principal_axes(tensor);
-    if !eigen.unsolved.is_empty() {
-        // No exact roots: each numeric eigenvalue must be a root of the exact characteristic
-        // polynomial. Near a simple root |p(λ)| ≈ |p'(λ)|·|Δλ| ≤ 3‖I‖²·ε‖I‖, so the residual is
-        // measured relative to ‖I‖³.
-        let scale = numeric.iter().fold(0.0f64, |m, e| m.max(e.value.abs()));
-        let mut residual = 0.0f64;
-        for e in &numeric {
-            let at_root = |s: &str| {
-                if s == crate::derive::LAMBDA {
-                    Some(e.value)
-                } else {
-                    env(s)
-                }
-            };
-            let p = eigen.characteristic.eval(&at_root)?;
-            residual = residual.max(p.abs() / scale.max(f64::MIN_POSITIVE).powi(3));
-        }
-        return Ok(Some(EigenCheck {
-            exact: Vec::new(),
-            numeric,
-            value_error: residual,
-            axis_error: 0.0,
-            passed: residual <= EXACT_VS_NUMERIC,
-        }));
-    }
-    // (value, multiplicity, the axis or plane normal if any) at the scene's values.
-    let mut exact: Vec<(f64, u32, Option<Vector3<f64>>)> = Vec::new();
-    for s in &eigen.spaces {
-        let direction = match &s.basis {
-            ExactBasis::Axis(v) | ExactBasis::PlaneNormalTo(v) => {
-                Some(vector_at(v, &scene.values)?)
-            }
-            ExactBasis::All => None,
-        };
-        exact.push((eval_at(&s.value, &scene.values)?, s.multiplicity, direction));
-    }
-    exact.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let exact = merge_equal_in_f64(exact);
-    let structure = exact.len() == numeric.len()
-        && exact
-            .iter()
-            .zip(&numeric)
-            .all(|(e, n)| e.1 as usize == n.multiplicity)
-        && eigen.unsolved.is_empty();
-    let scale = exact
-        .iter()
-        .fold(0.0f64, |m, e| m.max(e.0.abs()))
-        .max(f64::MIN_POSITIVE);
-    let mut value_error = 0.0f64;
-    let mut axis_error = 0.0f64;
-    if structure {
-        for (e, n) in exact.iter().zip(&numeric) {
-            value_error = value_error.max((e.0 - n.value).abs() / scale);
-            let num_dir = match &n.space {
-                Space::Axis(v) | Space::PlaneNormalTo(v) => Some(*v),
-                Space::All => None,
-            };
-            if let (Some(v), Some(u)) = (e.2, num_dir) {
-                axis_error = axis_error.max(1.0 - (v.normalize().dot(&u)).abs());
-            }
-        }
-    }
-    Ok(Some(EigenCheck {
-        exact: exact.iter().map(|e| (e.0, e.1)).collect(),
-        numeric,
-        value_error,
-        axis_error,
-        passed: structure && value_error <= EXACT_VS_NUMERIC && axis_error <= EXACT_VS_NUMERIC,
-    }))
-}
-
 /// Runs every check the plan's stages made possible.
 /// The symbolic checks: the notes' claims and the recorded results. They depend on the scene
 /// and its derivation only, never on the fidelity.
@@ -577,6 +476,9 @@ pub fn verify_numeric(
     plan: &crate::plan::Plan,
     v: &mut Verification,
 ) -> Result<(), EvalError> {
+    if plan.runs(Stage::Principal) {
+        v.principal = principal_values(scene, d)?;
+    }
     if let Some(n) = numeric {
         v.within_law = n.runs.iter().map(within_law).collect();
         v.quantities = check_quantities(scene, d, n)?;
@@ -586,6 +488,9 @@ pub fn verify_numeric(
     }
     Ok(())
 }
+
+mod principal;
+pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
 
 #[cfg(test)]
 mod tests;

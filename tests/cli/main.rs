@@ -6,6 +6,7 @@
 mod bad_input;
 mod build;
 mod check;
+mod course;
 mod hostile;
 mod lock;
 mod output;

@@ -360,33 +360,11 @@ impl Validator<'_> {
 }
 
 pub(super) fn body_symbols(b: &Body) -> BTreeSet<String> {
-    let mut exprs: Vec<&Expr> = vec![&b.mass];
+    let mut exprs: Vec<&Expr> = b.dimensions();
     exprs.extend(b.shift.iter());
     exprs.extend(b.rotations.iter().map(|(_, a)| a));
-    match &b.shape {
-        Shape::Box { size, .. } => exprs.extend(size.iter()),
-        Shape::Rod { length, .. } => exprs.push(length),
-        Shape::Plate { size, .. } => exprs.extend(size.iter()),
-        Shape::Hoop { radius } | Shape::Shell { radius } | Shape::Hemisphere { radius, .. } => {
-            exprs.push(radius)
-        }
-        Shape::Disk { radius, inner } | Shape::Sphere { radius, inner } => {
-            exprs.push(radius);
-            exprs.extend(inner);
-        }
-        Shape::Cylinder {
-            radius,
-            height,
-            inner,
-        } => {
-            exprs.extend([radius, height]);
-            exprs.extend(inner);
-        }
-        Shape::Cone { radius, height, .. } => exprs.extend([radius, height]),
-        Shape::Points(pts) => pts.iter().for_each(|(m, at)| {
-            exprs.push(m);
-            exprs.extend(at.iter());
-        }),
+    if let Shape::Points(pts) = &b.shape {
+        pts.iter().for_each(|(_, at)| exprs.extend(at.iter()));
     }
     exprs.iter().flat_map(|e| e.symbols()).collect()
 }

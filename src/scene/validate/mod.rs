@@ -71,6 +71,9 @@ fn is_identifier(s: &str) -> bool {
         && !s.contains("__")
 }
 
+/// Step key -> the notes' citation for it.
+type Citations = BTreeMap<String, String>;
+
 impl Validator<'_> {
     /// The scene, its parts validated in the order a reader meets them, so that the first
     /// error reported is the first in the file's logic.
@@ -124,6 +127,7 @@ impl Validator<'_> {
             None => None,
         };
         let expect = self.expect(&raw, &allowed, &variables)?;
+        let cite = self.cites(&raw)?;
         Ok(Scene {
             id_at: self.loc.line_col(content_start(&raw.id)),
             lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
@@ -149,7 +153,38 @@ impl Validator<'_> {
             seed: raw.numeric.seed.unwrap_or(1),
             fidelity,
             expect,
+            cite,
         })
+    }
+
+    /// `[cite]`: each key must name a step that cites, and each citation be one short line.
+    fn cites(&self, raw: &RawScene) -> Result<Citations, SceneError> {
+        use crate::model::catalogue::CITABLE_STEPS;
+        let mut out = BTreeMap::new();
+        for (key, text) in &raw.cite {
+            let field = format!("cite.{}", key.get_ref());
+            if !CITABLE_STEPS.contains(&key.get_ref().as_str()) {
+                return Err(self.err(
+                    key.span().start,
+                    &field,
+                    format!(
+                        "no step is called `{}`; the steps a scene may cite are {}",
+                        key.get_ref(),
+                        CITABLE_STEPS.join(", ")
+                    ),
+                ));
+            }
+            let t = text.get_ref();
+            if t.trim().is_empty() || t.len() > 80 || t.chars().any(char::is_control) {
+                return Err(self.err(
+                    content_start(text),
+                    &field,
+                    "a citation is one line of at most 80 characters, such as \"eq (51)\"",
+                ));
+            }
+            out.insert(key.get_ref().clone(), t.clone());
+        }
+        Ok(out)
     }
 
     /// The id and the lecture name, which name files.

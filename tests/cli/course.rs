@@ -1,0 +1,117 @@
+//! A course written from docs/scenes.md alone (tests/course): new bodies, a box a × 2a × 3a and
+//! three point masses whose characteristic cubics do not factor. Their principal moments must
+//! reach the page and `--json`, equal to an eigen-solver run here on tensors written by hand.
+
+use crate::{mechbook, scratch, stdout};
+use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+
+fn moments(t: Matrix3<f64>) -> Vec<f64> {
+    let mut v: Vec<f64> = SymmetricEigen::new(t).eigenvalues.iter().copied().collect();
+    v.sort_by(f64::total_cmp);
+    v
+}
+
+#[test]
+fn irreducible_cubics_show_their_moments_in_json_and_on_the_page() {
+    let out = mechbook(&["check", "--json", "tests/course"]);
+    assert_eq!(out.status.code(), Some(0), "{}", crate::stderr(&out));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let scene = |id: &str| {
+        json["scenes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["id"] == id)
+            .unwrap_or_else(|| panic!("no scene {id}"))
+            .clone()
+    };
+    // The box [0,1]×[0,2]×[0,3] of unit mass about its corner: I_xx = (b² + c²)/3,
+    // I_xy = −ab/4, and so on.
+    let (a, b, c) = (1.0, 2.0, 3.0);
+    let box_tensor = Matrix3::new(
+        (b * b + c * c) / 3.0,
+        -a * b / 4.0,
+        -a * c / 4.0,
+        -a * b / 4.0,
+        (a * a + c * c) / 3.0,
+        -b * c / 4.0,
+        -a * c / 4.0,
+        -b * c / 4.0,
+        (a * a + b * b) / 3.0,
+    );
+    // Σ m (r² 𝟙 − r rᵀ) over the three points of 02-three-points.toml at m = d = 1.
+    let points = [
+        (1.0, Vector3::new(1.0, 0.0, 0.0)),
+        (2.0, Vector3::new(0.0, 1.0, 1.0)),
+        (3.0, Vector3::new(1.0, 2.0, 0.0)),
+    ];
+    let point_tensor = points.iter().fold(Matrix3::zeros(), |t, (m, r)| {
+        t + *m * (Matrix3::identity() * r.norm_squared() - r * r.transpose())
+    });
+    let build = scratch("course-site");
+    let site = build.join("site");
+    let built = mechbook(&["build", "tests/course", "--out", site.to_str().unwrap()]);
+    assert_eq!(built.status.code(), Some(0), "{}", crate::stderr(&built));
+    for (id, tensor) in [("box-123", box_tensor), ("three-points", point_tensor)] {
+        let s = scene(id);
+        assert_eq!(s["passed"], true, "{id}");
+        let p = &s["principal_moments"];
+        assert_eq!(p["closed_form"], true, "{id}: the cubic should not factor");
+        let expected = moments(tensor);
+        for (k, want) in expected.iter().enumerate() {
+            let got = p["values"][k].as_f64().unwrap();
+            assert!(
+                (got - want).abs() < 1e-13 * want.abs().max(1.0),
+                "{id} λ{k}: {got} vs {want}"
+            );
+        }
+        let page = std::fs::read_to_string(site.join(format!("{id}.html"))).unwrap();
+        assert!(page.contains("principal moments at the scene"), "{id}");
+        for want in &expected {
+            let shown = format!("<mn>{}</mn>", mechbook::base::format::significant(*want, 6));
+            assert!(page.contains(&shown), "{id}: {shown} not on the page");
+        }
+        // The closed form is a step of the worked solution.
+        assert!(page.contains("Principal moments in closed form"), "{id}");
+    }
+    // The box's principal-axes plot draws three axes, not floating dots.
+    let svg = std::fs::read_to_string(site.join("plots/box-123-principal-axes.svg")).unwrap();
+    assert!(
+        svg.contains("I = 0.5689") && svg.contains("I = 4.5556"),
+        "axes missing"
+    );
+    let _ = std::fs::remove_dir_all(build);
+}
+
+#[test]
+fn a_course_of_its_own_cites_no_equation_of_the_shipped_notes() {
+    let build = scratch("course-neutral");
+    let site = build.join("site");
+    let built = mechbook(&["build", "tests/course", "--out", site.to_str().unwrap()]);
+    assert_eq!(built.status.code(), Some(0), "{}", crate::stderr(&built));
+    let mut pages = 0;
+    for entry in walk(&site) {
+        if entry.extension().is_some_and(|x| x == "html") {
+            let text = std::fs::read_to_string(&entry).unwrap();
+            for needle in ["eq (", "eqs (", "as in the notes", "Lecture Sheet"] {
+                assert!(!text.contains(needle), "{}: `{needle}`", entry.display());
+            }
+            pages += 1;
+        }
+    }
+    assert!(pages >= 7, "{pages} pages");
+    let _ = std::fs::remove_dir_all(build);
+}
+
+fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            out.extend(walk(&p));
+        } else {
+            out.push(p);
+        }
+    }
+    out
+}
