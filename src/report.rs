@@ -197,6 +197,29 @@ pub fn check_table(reports: &[SceneReport]) -> String {
             }
         }
     }
+    let undecided: Vec<_> = reports
+        .iter()
+        .flat_map(|r| {
+            r.verification
+                .claims
+                .iter()
+                .filter(|c| c.verdict == Verdict::Undecided)
+                .map(move |c| (r, c))
+        })
+        .collect();
+    if !undecided.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nUndecided: the symbolic and random-point tests disagree ({}):",
+            undecided.len()
+        );
+        for (r, c) in undecided {
+            let _ = writeln!(out, "  eq ({}) [{}] {}", c.eq, r.scene.id, c.statement);
+            for d in &c.differences {
+                let _ = writeln!(out, "      {d}");
+            }
+        }
+    }
     let mut failures = Vec::new();
     for r in reports {
         let src = r.scene.source.display();
@@ -254,9 +277,14 @@ pub fn check_table(reports: &[SceneReport]) -> String {
     let claims: usize = reports.iter().map(|r| r.verification.claims.len()).sum();
     let symbolic: f64 = reports.iter().map(|r| r.symbolic_seconds).sum();
     let calls: u64 = reports.iter().map(|r| r.engine_calls).sum();
+    let count = |v: Verdict| -> usize { reports.iter().map(|r| r.verification.count(v)).sum() };
+    let undecided = match count(Verdict::Undecided) {
+        0 => String::new(),
+        n => format!(", {n} undecided"),
+    };
     let _ = writeln!(
         out,
-        "\n{} scene(s), {} claim(s): {} agree, {} disagree, {} not checkable; symbolic stage {:.1} ms in {} engine calls; {}",
+        "\n{} scene(s), {} claim(s): {} agree, {} disagree, {} not checkable{undecided}; symbolic stage {:.1} ms in {} engine calls; {}",
         reports.len(),
         claims,
         reports

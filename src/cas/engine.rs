@@ -311,7 +311,7 @@ pub fn simplify(e: &Expr) -> Result<Expr, EngineError> {
 /// times them, are a basis modulo sin² + cos² = 1, so the reduced numerator is zero exactly when
 /// the expression is (for independent angles).
 pub fn is_zero(e: &Expr) -> Result<bool, EngineError> {
-    let e = trig::expand_multiple_angles(e);
+    let e = trig::expand_multiple_angles(&trig::common_angle_base(e));
     let atom = expand(&e)?;
     let numerator = if trig::has_fractional_power(&e) {
         atom

@@ -288,6 +288,14 @@ impl Parser<'_> {
                         args.push(self.sum()?);
                     }
                     self.expect(b')')?;
+                    // tan x is read as sin x / cos x, so that every later stage knows it.
+                    if name == "tan" && args.len() == 1 {
+                        let x = args.remove(0);
+                        return Ok(Expr::over(
+                            Expr::call("sin", x.clone()),
+                            Expr::call("cos", x),
+                        ));
+                    }
                     return Ok(Expr::Call(name, args));
                 }
                 self.symbols.push((name.clone(), s));

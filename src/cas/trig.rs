@@ -6,12 +6,30 @@
 //! (for independent arguments).
 
 use super::expr::Expr;
+use super::rational::Rational;
 
 /// sin(k·x), cos(k·x) for integer k → polynomials in sin x, cos x; sin 0 = 0, cos 0 = 1.
 pub fn expand_multiple_angles(e: &Expr) -> Expr {
     match e {
         Expr::Call(name, args) if (name == "sin" || name == "cos") && args.len() == 1 => {
             let arg = expand_multiple_angles(&args[0]);
+            // A shift by a multiple of π/2 swaps sin and cos with a sign: cos(π/2 − θ) = sin θ.
+            if let Some((quarters, rest)) = split_quarter_turns(&arg) {
+                let (swap, sign) = match (name.as_str(), quarters) {
+                    ("sin", 0) | ("cos", 0) => (false, 1),
+                    ("sin", 1) => (true, 1),
+                    ("cos", 1) => (true, -1),
+                    (_, 2) => (false, -1),
+                    ("sin", _) => (true, -1),
+                    _ => (true, 1),
+                };
+                let other = if name == "sin" { "cos" } else { "sin" };
+                let f = if swap { other } else { name.as_str() };
+                return Expr::mul(vec![
+                    Expr::int(sign),
+                    expand_multiple_angles(&Expr::call(f, rest)),
+                ]);
+            }
             let (k, rest) = split_integer_factor(&arg);
             if k == 0 {
                 return Expr::int(if name == "sin" { 0 } else { 1 });
@@ -29,6 +47,97 @@ pub fn expand_multiple_angles(e: &Expr) -> Expr {
         Expr::Pow(a, b) => Expr::pow(expand_multiple_angles(a), expand_multiple_angles(b)),
         other => other.clone(),
     }
+}
+
+/// x + cπ with 2c an integer → (2c mod 4, x): the shift in quarter turns. `None` without such
+/// a term.
+fn split_quarter_turns(arg: &Expr) -> Option<(i64, Expr)> {
+    let terms: Vec<Expr> = match arg {
+        Expr::Add(v) => v.clone(),
+        other => vec![other.clone()],
+    };
+    let mut halves = 0i64;
+    let mut found = false;
+    let mut rest = Vec::new();
+    for t in terms {
+        let c = match &t {
+            Expr::Sym(p) if p == "pi" => Some(Rational::ONE),
+            Expr::Mul(v) if v.len() == 2 && v[1] == Expr::sym("pi") => match &v[0] {
+                Expr::Num(r) => Some(r.clone()),
+                _ => None,
+            },
+            _ => None,
+        };
+        match c.and_then(|c| c.mul(&Rational::int(2)).to_i64()) {
+            Some(h) => {
+                halves += h;
+                found = true;
+            }
+            _ => rest.push(t),
+        }
+    }
+    found.then(|| (halves.rem_euclid(4), Expr::add(rest)))
+}
+
+/// Every symbol that appears in a sine or cosine argument with a fractional coefficient (θ/2 beside
+/// θ), replaced by a multiple of a fresh symbol u so that each argument is an integer multiple:
+/// θ → 2u. The expression is zero exactly when the result is, so this serves `is_zero` only.
+pub fn common_angle_base(e: &Expr) -> Expr {
+    let mut denominators: std::collections::BTreeMap<String, i64> = Default::default();
+    collect_fractional_angles(e, &mut denominators);
+    if denominators.is_empty() {
+        return e.clone();
+    }
+    e.substitute(&|s| {
+        denominators.get(s).map(|l| {
+            Expr::mul(vec![
+                Expr::int(i128::from(*l)),
+                Expr::sym(&format!("{s}__base")),
+            ])
+        })
+    })
+}
+
+fn collect_fractional_angles(e: &Expr, out: &mut std::collections::BTreeMap<String, i64>) {
+    match e {
+        Expr::Call(name, args) if (name == "sin" || name == "cos") && args.len() == 1 => {
+            let terms: Vec<&Expr> = match &args[0] {
+                Expr::Add(v) => v.iter().collect(),
+                other => vec![other],
+            };
+            for t in terms {
+                if let Expr::Mul(v) = t
+                    && let [Expr::Num(r), Expr::Sym(s)] = v.as_slice()
+                    && s != "pi"
+                    && !r.is_integer()
+                    && let Some((_, den)) = r.to_i64_pair()
+                    && den <= 12
+                {
+                    let l = out.entry(s.clone()).or_insert(1);
+                    *l = lcm(*l, den.abs());
+                }
+            }
+            collect_fractional_angles(&args[0], out);
+        }
+        Expr::Call(_, v) | Expr::Add(v) | Expr::Mul(v) => {
+            v.iter().for_each(|x| collect_fractional_angles(x, out))
+        }
+        Expr::Pow(a, b) => {
+            collect_fractional_angles(a, out);
+            collect_fractional_angles(b, out);
+        }
+        _ => {}
+    }
+}
+
+fn lcm(a: i64, b: i64) -> i64 {
+    let gcd = |mut x: i64, mut y: i64| {
+        while y != 0 {
+            (x, y) = (y, x % y);
+        }
+        x
+    };
+    a / gcd(a, b) * b
 }
 
 /// `k*x` → (k, x) for a small integer k; anything else → (1, e); zero → (0, 0).
@@ -225,5 +334,56 @@ mod tests {
         assert!((at(&e, 0.9) - at(&h, 0.9)).abs() < 1e-14);
         let back = from_half_angle(&Expr::sym("t__0"), &args);
         assert!((at(&back, 0.9) - (0.45f64).tan()).abs() < 1e-14);
+    }
+}
+
+#[cfg(test)]
+mod shift_tests {
+    use super::*;
+    use crate::cas::parse;
+
+    fn value(e: &Expr, theta: f64) -> f64 {
+        e.eval(&|s| match s {
+            "theta" => Some(theta),
+            "theta__base" => Some(theta / 2.0),
+            _ => None,
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn shifts_by_quarter_turns_become_sin_or_cos_of_the_rest() {
+        // Checked by value at several angles, against the unrewritten expression.
+        for (input, expected) in [
+            ("cos(pi/2 - theta)", "sin(theta)"),
+            ("sin(pi - theta)", "sin(theta)"),
+            ("cos(theta + pi)", "-cos(theta)"),
+            ("sin(theta - pi/2)", "-cos(theta)"),
+            ("cos(3*pi/2 + theta)", "sin(theta)"),
+            ("sin(5*pi/2)", "1"),
+        ] {
+            let got = expand_multiple_angles(&parse(input).unwrap().expr);
+            assert_eq!(got, parse(expected).unwrap().expr, "{input}");
+            for t in [0.3, 1.1, -2.0] {
+                let before = value(&parse(input).unwrap().expr, t);
+                assert!((value(&got, t) - before).abs() < 1e-14, "{input} at {t}");
+            }
+        }
+        // A third of a turn is left alone: its sine is not rational.
+        let third = parse("sin(pi/3 + theta)").unwrap().expr;
+        assert_eq!(expand_multiple_angles(&third), third);
+    }
+
+    #[test]
+    fn half_angles_share_a_base_with_whole_ones() {
+        let e = parse("cos(theta/2)^2 - (1 + cos(theta))/2").unwrap().expr;
+        let based = common_angle_base(&e);
+        assert!(
+            based.symbols().contains(&"theta__base".to_string()),
+            "{based}"
+        );
+        for t in [0.3, 1.1] {
+            assert!((value(&based, t) - value(&e, t)).abs() < 1e-14);
+        }
     }
 }

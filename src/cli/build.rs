@@ -43,8 +43,17 @@ pub fn run(args: BuildArgs) -> Result<ExitCode> {
         no_cache,
     } = args;
     let start = std::time::Instant::now();
-    let course = crate::render::Course::load(std::path::Path::new("mechbook.toml"))?;
     let paths = default_paths(paths);
+    // The course's settings sit beside its scenes (`build my-course/`), or in the working folder.
+    let beside = paths
+        .iter()
+        .map(|p| p.join("mechbook.toml"))
+        .find(|p| p.is_file());
+    let course = crate::render::Course::load(
+        beside
+            .as_deref()
+            .unwrap_or(std::path::Path::new("mechbook.toml")),
+    )?;
     let out = out
         .or(course.output.clone())
         .unwrap_or_else(|| PathBuf::from("site"));

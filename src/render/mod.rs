@@ -40,6 +40,8 @@ pub struct ClaimView {
     pub differences: Vec<String>,
     /// For a number the notes give roughly: how it was rounded to compare.
     pub precision: Option<String>,
+    /// `notes` or `mistake`.
+    pub role: &'static str,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -253,6 +255,10 @@ pub fn page_view(
             derived,
             differences: c.differences.clone(),
             precision: c.precision.clone(),
+            role: match c.role {
+                crate::scene::ClaimRole::Notes => "notes",
+                crate::scene::ClaimRole::Mistake => "mistake",
+            },
         });
     }
     Ok(PageView {

@@ -33,6 +33,29 @@ pub struct Course {
     /// The output folder (default `site`).
     #[serde(default)]
     pub output: Option<PathBuf>,
+    /// Titles of the lectures: `[[lecture]] id = "3/4"`, `title = "The inertia tensor"`.
+    #[serde(default, rename = "lecture")]
+    pub lectures: Vec<LectureTitle>,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LectureTitle {
+    /// The `notes.lecture` of its scenes.
+    pub id: String,
+    pub title: String,
+}
+
+impl Course {
+    /// A lecture's heading: its title from `mechbook.toml`, else "Lecture 3/4" for an id that
+    /// starts with a digit, else the id itself ("Bodies of revolution").
+    pub fn lecture_heading(&self, id: &str) -> String {
+        match self.lectures.iter().find(|l| l.id == id) {
+            Some(l) => l.title.clone(),
+            None if id.starts_with(|c: char| c.is_ascii_digit()) => format!("Lecture {id}"),
+            None => id.to_string(),
+        }
+    }
 }
 
 fn default_title() -> String {
@@ -46,6 +69,7 @@ impl Default for Course {
             author: String::new(),
             base_url: String::new(),
             output: None,
+            lectures: Vec::new(),
         }
     }
 }
@@ -85,6 +109,7 @@ struct PageLink {
 #[derive(Serialize)]
 struct LectureView {
     name: String,
+    heading: String,
     student: String,
     instructor: String,
     pages: Vec<PageLink>,
@@ -151,6 +176,7 @@ pub fn site_files(
         let mut ctx = tera::Context::new();
         ctx.insert("site", course);
         ctx.insert("page", &view);
+        ctx.insert("lecture_heading", &course.lecture_heading(&view.lecture));
         files.insert(
             PathBuf::from(page_file(r)),
             render(&tera, "page.html", &ctx)?,
@@ -171,7 +197,10 @@ pub fn site_files(
         for instructor in [false, true] {
             let mut ctx = tera::Context::new();
             ctx.insert("site", course);
-            ctx.insert("lecture", &serde_json::json!({ "name": name }));
+            ctx.insert(
+                "lecture",
+                &serde_json::json!({ "name": name, "heading": course.lecture_heading(name) }),
+            );
             ctx.insert("instructor", &instructor);
             let chosen: Vec<&PageView> = idx.iter().map(|&i| &pages[i]).collect();
             ctx.insert("pages", &chosen);
@@ -185,6 +214,7 @@ pub fn site_files(
             idx[0],
             LectureView {
                 name: name.clone(),
+                heading: course.lecture_heading(name),
                 student: format!("handouts/{slug}-student.html"),
                 instructor: format!("handouts/{slug}-instructor.html"),
                 pages: idx

@@ -117,6 +117,9 @@ fn key_at(text: &str, offset: usize) -> String {
 /// The most folder levels `find_scenes` descends.
 pub const MAX_DEPTH: usize = 16;
 
+/// The course's settings file in a scene folder: not a scene.
+pub const COURSE_FILE: &str = "mechbook.toml";
+
 /// Every `.toml` scene under the given folders, plus the files named directly (taken as given,
 /// so a missing or unreadable one is reported), sorted and without duplicates. A symbolic link
 /// to a folder is followed only when the folder lies inside the one being searched and was not
@@ -143,7 +146,10 @@ pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
             };
             if meta.is_dir() {
                 collect(&path, root, depth + 1, seen, out)?;
-            } else if meta.is_file() && path.extension().is_some_and(|x| x == "toml") {
+            } else if meta.is_file()
+                && path.extension().is_some_and(|x| x == "toml")
+                && path.file_name().is_some_and(|n| n != COURSE_FILE)
+            {
                 out.push(path);
             }
         }

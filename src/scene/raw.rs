@@ -119,6 +119,9 @@ pub struct RawClaim {
     #[serde(default)]
     pub figures: Option<Spanned<i64>>,
     pub expect: Text,
+    /// `notes` (default): the notes' own statement; `mistake`: a common mistake for students.
+    #[serde(default)]
+    pub role: Option<Text>,
 }
 
 #[derive(Deserialize)]

@@ -215,6 +215,9 @@ pub enum Verdict {
     Agrees,
     Disagrees,
     NotCheckable,
+    /// The symbolic test and the random-point test contradict each other: neither an
+    /// agreement nor an erratum until someone looks.
+    Undecided,
 }
 
 impl Verdict {
@@ -223,6 +226,7 @@ impl Verdict {
             Verdict::Agrees => "agrees",
             Verdict::Disagrees => "disagrees",
             Verdict::NotCheckable => "not-checkable",
+            Verdict::Undecided => "undecided",
         }
     }
 }
@@ -239,7 +243,18 @@ pub struct Claim {
     /// numbers, and they agree when the derived one rounds to the notes' value.
     pub figures: Option<u32>,
     pub expect: Verdict,
+    pub role: ClaimRole,
     pub line: usize,
+}
+
+/// What a claim is: the notes' statement, whose disagreement is an erratum, or a common mistake
+/// written down on purpose for students to spot, whose disagreement is the point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ClaimRole {
+    #[default]
+    Notes,
+    Mistake,
 }
 
 /// A plot a scene asks for; `figures` draws it from the numbers `numeric` computes.

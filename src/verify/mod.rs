@@ -16,7 +16,7 @@ use crate::model::value::vector_at;
 use crate::numeric::NumericReport;
 use crate::numeric::eigen::Eigenspace;
 use crate::numeric::quadrature::{Method, QuadratureRun};
-use crate::scene::{Scene, Verdict};
+use crate::scene::{ClaimRole, Scene, Verdict};
 use std::collections::BTreeMap;
 
 /// Exact and numeric values of the same quantity must agree this closely (relative), the
@@ -42,6 +42,8 @@ pub struct ClaimResult {
     pub problem: Option<String>,
     /// For a number the notes give roughly: the derived value, rounded as the notes round.
     pub precision: Option<String>,
+    #[serde(default)]
+    pub role: ClaimRole,
     pub line: usize,
 }
 
@@ -98,11 +100,12 @@ impl Verification {
         self.claims.iter().filter(|c| c.verdict == v).count()
     }
 
-    /// The notes' errata: the claims the derivation disagrees with.
+    /// The notes' errata: the notes' own claims the derivation disagrees with (a common
+    /// mistake written down on purpose is not one).
     pub fn errata(&self) -> impl Iterator<Item = &ClaimResult> {
         self.claims
             .iter()
-            .filter(|c| c.verdict == Verdict::Disagrees)
+            .filter(|c| c.verdict == Verdict::Disagrees && c.role == ClaimRole::Notes)
     }
 
     pub fn passed(&self) -> bool {
@@ -201,6 +204,7 @@ fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
         differences: Vec::new(),
         problem: None,
         precision: None,
+        role: claim.role,
         line: claim.line,
     }
 }
@@ -272,13 +276,24 @@ fn check_claim(
         .collect();
     match numerically_zero(&diffs, &scale, scene.seed.wrapping_add(i as u64)) {
         Ok(numeric) => {
-            if let Some(k) = (0..diffs.len()).find(|&k| symbolic[k] != numeric[k]) {
-                r.problem = Some(format!(
-                    "entry {}: the symbolic test says {}, the numeric test at random points says {}",
-                    derived.entry_label(k),
-                    if symbolic[k] { "zero" } else { "non-zero" },
-                    if numeric[k] { "zero" } else { "non-zero" }
-                ));
+            // The two tests contradict each other: report both and decide nothing. The
+            // engine may have missed an identity (a "non-zero" that is zero), or the random
+            // points may all have missed where the difference lives.
+            let conflicts: Vec<usize> = (0..diffs.len())
+                .filter(|&k| symbolic[k] != numeric[k])
+                .collect();
+            if !conflicts.is_empty() {
+                r.verdict = Verdict::Undecided;
+                for k in conflicts {
+                    let label = derived.entry_label(k);
+                    r.differences.push(format!(
+                        "entry{}: the symbolic test says the difference is {}, the test at {CONFIRMATION_POINTS} random points says {}; check this claim by hand or restate it",
+                        if label.is_empty() { String::new() } else { format!(" {label}") },
+                        if symbolic[k] { "zero" } else { "not zero" },
+                        if numeric[k] { "zero" } else { "not zero" }
+                    ));
+                }
+                return Ok(r);
             }
         }
         Err(e) => r.problem = Some(format!("cannot evaluate at random points: {e}")),

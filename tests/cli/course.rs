@@ -100,6 +100,21 @@ fn a_course_of_its_own_cites_no_equation_of_the_shipped_notes() {
         }
     }
     assert!(pages >= 7, "{pages} pages");
+    // Titles from the course's mechbook.toml, or the lecture's own name; the course and its
+    // author on every handout.
+    let index = std::fs::read_to_string(site.join("index.html")).unwrap();
+    assert!(index.contains("<h2>Sheet 1: bodies whose moments do not factor</h2>"));
+    assert!(index.contains("<h2>Bodies of revolution</h2>"));
+    let handout = std::fs::read_to_string(site.join("handouts/lecture-1-student.html")).unwrap();
+    assert!(handout.contains("Moments of inertia beyond the lecture notes · A. Instructor"));
+    // A common mistake written on purpose is shown as one, and counted as no erratum.
+    let cone = std::fs::read_to_string(site.join("cone-apex.html")).unwrap();
+    assert!(cone.contains("A common mistake, and why it is wrong"));
+    assert!(!cone.contains("Erratum"));
+    assert!(
+        !index.contains("errat"),
+        "the index counts a deliberate mistake as an erratum"
+    );
     let _ = std::fs::remove_dir_all(build);
 }
 
@@ -114,4 +129,34 @@ fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
         }
     }
     out
+}
+
+#[test]
+fn a_conflict_between_the_two_tests_is_undecided_never_an_erratum() {
+    // sin(π/3 + θ) = sin θ/2 + √3 cos θ/2 is true, but the symbolic test expands only quarter
+    // turns: it says "not zero" while every random point says zero.
+    let dir = scratch("undecided");
+    let scene = dir.join("third.toml");
+    std::fs::write(
+        &scene,
+        "id = \"third\"\ntitle = \"t\"\nnotes = { lecture = \"T\" }\nsymbols = { theta = \"angle\" }\n[outputs]\nwant = []\n[[claim]]\neq = \"1\"\nstatement = \"a third of a turn\"\nquantity = \"sin(pi/3 + theta)\"\nvalue = \"sin(theta)/2 + sqrt(3)*cos(theta)/2\"\nexpect = \"agrees\"\n",
+    )
+    .unwrap();
+    let out = mechbook(&["check", scene.to_str().unwrap()]);
+    let text = stdout(&out);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("Undecided: the symbolic and random-point tests disagree (1)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("says the difference is not zero, the test at 3 random points says zero"),
+        "{text}"
+    );
+    assert!(
+        text.contains("verdict undecided but the scene records agrees"),
+        "{text}"
+    );
+    assert!(!text.contains("Where the notes disagree"), "{text}");
+    let _ = std::fs::remove_dir_all(dir);
 }

@@ -5,7 +5,7 @@ use crate::cas::Expr;
 use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, is_quantity};
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawClaim, RawScene, Text};
-use crate::scene::types::{Claim, Verdict};
+use crate::scene::types::{Claim, ClaimRole, Verdict};
 use crate::scene::validate::CLAIM_FUNCTIONS;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -67,23 +67,39 @@ impl Validator<'_> {
         names: &BTreeSet<String>,
     ) -> Result<Claim, SceneError> {
         let eq = c.eq.get_ref();
+        // Digits in dot-separated groups, then at most one letter: 31, 22a, 5.1, 5.1a, 3.2.4.
         let digits = eq.trim_end_matches(|ch: char| ch.is_ascii_lowercase());
         if digits.is_empty()
-            || !digits.chars().all(|ch| ch.is_ascii_digit())
+            || eq.len() > 16
+            || !digits
+                .split('.')
+                .all(|g| !g.is_empty() && g.chars().all(|ch| ch.is_ascii_digit()))
             || eq.len() - digits.len() > 1
         {
-            return Err(self.err(content_start(&c.eq), &format!("{field}.eq"), "an equation number is digits with at most one letter after them, as \"31\" or \"22a\""));
+            return Err(self.err(content_start(&c.eq), &format!("{field}.eq"), "an equation number is digits, in groups separated by dots, with at most one letter after them, as \"31\", \"22a\" or \"5.1a\""));
         }
+        let role = match c.role.as_ref().map(|r| r.get_ref().as_str()) {
+            None | Some("notes") => ClaimRole::Notes,
+            Some("mistake") => ClaimRole::Mistake,
+            Some(other) => {
+                return Err(self.err(
+                    content_start(c.role.as_ref().expect("present")),
+                    &format!("{field}.role"),
+                    format!("unknown role `{other}`; expected `notes` (the notes' statement, the default) or `mistake` (a common mistake for students to spot)"),
+                ));
+            }
+        };
         let expect = match c.expect.get_ref().as_str() {
             "agrees" => Verdict::Agrees,
             "disagrees" => Verdict::Disagrees,
             "not-checkable" => Verdict::NotCheckable,
+            "undecided" => Verdict::Undecided,
             other => {
                 return Err(self.err(
                     content_start(&c.expect),
                     &format!("{field}.expect"),
                     format!(
-                        "unknown verdict `{other}`; expected agrees, disagrees or not-checkable"
+                        "unknown verdict `{other}`; expected agrees, disagrees, not-checkable or undecided"
                     ),
                 ));
             }
@@ -123,6 +139,7 @@ impl Validator<'_> {
             value,
             figures,
             expect,
+            role,
             line: self.loc.line_col(offset).0,
         })
     }

@@ -20,6 +20,7 @@ pub const CLAIM_FUNCTIONS: &[&str] = &[
     "sin",
     "cos",
     "sqrt",
+    "tan",
     "dot",
     "cross",
     "outer",
@@ -119,6 +120,9 @@ impl Validator<'_> {
             [omega.is_some(), axis.is_some()],
         )?;
         let values = self.values(&raw, &symbols, &bodies, omega.iter().chain(axis.iter()))?;
+        if let (Some(n), Some(raw_axis)) = (&axis, &raw.axis) {
+            self.unit_axis(n, raw_axis.span().start, &values)?;
+        }
         let fidelity = match &raw.numeric.fidelity {
             Some(f) => Some(
                 crate::model::fidelity::Fidelity::parse(f.get_ref())
@@ -155,6 +159,34 @@ impl Validator<'_> {
             expect,
             cite,
         })
+    }
+
+    /// `axis` is a direction: a non-unit vector would scale I_n by its squared length.
+    fn unit_axis(
+        &self,
+        n: &[Expr; 3],
+        at: usize,
+        values: &BTreeMap<String, f64>,
+    ) -> Result<(), SceneError> {
+        let env = |s: &str| values.get(s).copied();
+        let mut squared = 0.0;
+        for e in n {
+            let v = e
+                .eval(&env)
+                .map_err(|m| self.err(at, "axis", m.to_string()))?;
+            squared += v * v;
+        }
+        if (squared.sqrt() - 1.0).abs() > 1e-12 {
+            return Err(self.err(
+                at,
+                "axis",
+                format!(
+                    "the axis must be a unit vector, but its length is {} at the scene's values; divide each component by the length, or write it as [\"sin(u)*cos(v)\", \"sin(u)*sin(v)\", \"cos(u)\"]",
+                    crate::base::format::significant(squared.sqrt(), 6)
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// `[cite]`: each key must name a step that cites, and each citation be one short line.
