@@ -1,0 +1,25 @@
+// Measures what would run off a printed A4 page: each page of the built sites is laid out at
+// the printable width (718 px: A4 at 96 dpi less 1.9 cm margins) with print styles, and every
+// element whose right edge passes the page is counted (outermost only). Not yet part of CI:
+// long formulas do not break across lines yet (issue 13). Usage, with playwright-core
+// resolvable as in .ci/run:  node print-width.mjs SITE_DIR [SITE_DIR ...]
+import { chromium } from "playwright-core";
+import { readdirSync, statSync } from "node:fs";
+import { join } from "node:path";
+import { pathToFileURL } from "node:url";
+const pages = [];
+for (const site of process.argv.slice(2)) (function walk(d) { for (const n of readdirSync(d).sort()) { const p = join(d, n); if (statSync(p).isDirectory()) walk(p); else if (n.endsWith(".html")) pages.push(p); } })(site);
+const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox"] });
+const page = await browser.newPage({ viewport: { width: 718, height: 1000 } }); // A4 printable width at 96 dpi, 1.9 cm margins
+await page.emulateMedia({ media: "print" });
+for (const f of pages) {
+  await page.goto(pathToFileURL(f).href);
+  const r = await page.evaluate(() => {
+    const w = document.documentElement.clientWidth;
+    const wide = [...document.querySelectorAll("body *")].filter(e => e.getBoundingClientRect().right > w + 1 && getComputedStyle(e).display !== "none");
+    const top = wide.filter(e => !wide.includes(e.parentElement));
+    return { w, n: top.length, worst: Math.max(0, ...top.map(e => e.getBoundingClientRect().right)), tags: top.slice(0, 3).map(e => e.tagName + ":" + (e.textContent || "").slice(0, 40)) };
+  });
+  if (r.n) console.log(f, r.n, Math.round(r.worst), r.tags.join(" | "));
+}
+await browser.close();
