@@ -6,6 +6,7 @@ use crate::model::value::{Value, eval_at};
 use crate::numeric::eigen::Space;
 use crate::pipeline::SceneReport;
 use crate::scene::Verdict;
+use crate::verify::ClaimResult;
 use serde_json::{Value as Json, json};
 use std::fmt::Write;
 
@@ -151,12 +152,35 @@ pub fn scene_json(r: &SceneReport) -> Json {
     })
 }
 
+/// A heading with the count, then each claim with its scene and the lines that explain it.
+fn list_claims(out: &mut String, heading: &str, claims: &[(&SceneReport, &ClaimResult)]) {
+    if claims.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "\n{heading} ({}):", claims.len());
+    for (r, c) in claims {
+        let _ = writeln!(out, "  eq ({}) [{}] {}", c.eq, r.scene.id, c.statement);
+        for d in &c.differences {
+            let _ = writeln!(out, "      {d}");
+        }
+    }
+}
+
 /// The summary table printed by `check`, with the notes' errata and every failure below it.
 pub fn check_table(reports: &[SceneReport]) -> String {
     let mut out = String::new();
+    // Columns as wide as their longest entry: a course may name its lectures in words.
+    let id_width = reports
+        .iter()
+        .map(|r| r.scene.id.len())
+        .fold(28, usize::max);
+    let lecture_width = reports
+        .iter()
+        .map(|r| r.scene.notes.lecture.chars().count())
+        .fold(4, usize::max);
     let _ = writeln!(
         out,
-        "{:<28} {:>4} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9} {:>6}",
+        "{:<id_width$} {:>lecture_width$} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9} {:>6}",
         "scene", "lect", "results", "agree", "disagree", "n/c", "exact~num", "symb ms", "status"
     );
     for r in reports {
@@ -168,7 +192,7 @@ pub fn check_table(reports: &[SceneReport]) -> String {
             .fold(None, |m: Option<f64>, e| Some(m.map_or(e, |m| m.max(e))));
         let _ = writeln!(
             out,
-            "{:<28} {:>4} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9.2} {:>6}",
+            "{:<id_width$} {:>lecture_width$} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9.2} {:>6}",
             r.scene.id,
             r.scene.notes.lecture,
             r.derivation.quantities.len(),
@@ -184,19 +208,11 @@ pub fn check_table(reports: &[SceneReport]) -> String {
         .iter()
         .flat_map(|r| r.verification.errata().map(move |c| (r, c)))
         .collect();
-    if !errata.is_empty() {
-        let _ = writeln!(
-            out,
-            "\nWhere the notes disagree with the derivation ({}):",
-            errata.len()
-        );
-        for (r, c) in errata {
-            let _ = writeln!(out, "  eq ({}) [{}] {}", c.eq, r.scene.id, c.statement);
-            for d in &c.differences {
-                let _ = writeln!(out, "      {d}");
-            }
-        }
-    }
+    list_claims(
+        &mut out,
+        "Where the notes disagree with the derivation",
+        &errata,
+    );
     let undecided: Vec<_> = reports
         .iter()
         .flat_map(|r| {
@@ -207,19 +223,11 @@ pub fn check_table(reports: &[SceneReport]) -> String {
                 .map(move |c| (r, c))
         })
         .collect();
-    if !undecided.is_empty() {
-        let _ = writeln!(
-            out,
-            "\nUndecided: the symbolic and random-point tests disagree ({}):",
-            undecided.len()
-        );
-        for (r, c) in undecided {
-            let _ = writeln!(out, "  eq ({}) [{}] {}", c.eq, r.scene.id, c.statement);
-            for d in &c.differences {
-                let _ = writeln!(out, "      {d}");
-            }
-        }
-    }
+    list_claims(
+        &mut out,
+        "Undecided: the symbolic and random-point tests disagree",
+        &undecided,
+    );
     let mut failures = Vec::new();
     for r in reports {
         let src = r.scene.source.display();

@@ -53,6 +53,15 @@ fn period(var: &str, span: AngleSpan) -> Integral {
     }
 }
 
+/// A side of length `len` along `var`: [0, len], or centred on 0.
+fn side(var: &str, len: &Expr, centred: bool) -> Integral {
+    if centred {
+        poly(var, Expr::negate(half(len)), half(len))
+    } else {
+        poly(var, Expr::int(0), len.clone())
+    }
+}
+
 /// R² − r², or R³ − r³: what a hole of radius r leaves of the full disk or ball.
 fn radial_span(radius: &Expr, inner: &Option<Expr>, power: i128) -> Expr {
     match inner {
@@ -90,39 +99,24 @@ pub fn mass_model(body: &Body) -> MassModel {
     };
     let full = AngleSpan::Full;
     match &body.shape {
-        Shape::Box { size, centred } => {
-            let volume = Expr::mul(size.to_vec());
-            let range = |i: usize, v: &str| {
-                if *centred {
-                    poly(v, Expr::negate(half(&size[i])), half(&size[i]))
-                } else {
-                    poly(v, Expr::int(0), size[i].clone())
-                }
-            };
-            continuum(
-                Expr::over(m.clone(), volume),
-                Expr::int(1),
-                "rho",
-                [e("x"), e("y"), e("z")],
-                vec![range(0, "x"), range(1, "y"), range(2, "z")],
-            )
-        }
-        Shape::Plate { size, centred } => {
-            let range = |i: usize, v: &str| {
-                if *centred {
-                    poly(v, Expr::negate(half(&size[i])), half(&size[i]))
-                } else {
-                    poly(v, Expr::int(0), size[i].clone())
-                }
-            };
-            continuum(
-                Expr::over(m.clone(), Expr::mul(size.to_vec())),
-                Expr::int(1),
-                "sigma",
-                [e("x"), e("y"), zero],
-                vec![range(0, "x"), range(1, "y")],
-            )
-        }
+        Shape::Box { size, centred } => continuum(
+            Expr::over(m.clone(), Expr::mul(size.to_vec())),
+            Expr::int(1),
+            "rho",
+            [e("x"), e("y"), e("z")],
+            vec![
+                side("x", &size[0], *centred),
+                side("y", &size[1], *centred),
+                side("z", &size[2], *centred),
+            ],
+        ),
+        Shape::Plate { size, centred } => continuum(
+            Expr::over(m.clone(), Expr::mul(size.to_vec())),
+            Expr::int(1),
+            "sigma",
+            [e("x"), e("y"), zero],
+            vec![side("x", &size[0], *centred), side("y", &size[1], *centred)],
+        ),
         Shape::Rod {
             length,
             along,

@@ -84,6 +84,21 @@ fn irreducible_cubics_show_their_moments_in_json_and_on_the_page() {
 }
 
 #[test]
+fn the_check_table_keeps_its_columns_with_lectures_named_in_words() {
+    let out = mechbook(&["check", "tests/course"]);
+    let text = stdout(&out);
+    assert_eq!(out.status.code(), Some(0), "{text}");
+    // "Bodies of revolution" is wider than the header's "lect": every row still ends its status
+    // in the header's last column.
+    let rows: Vec<&str> = text.lines().take_while(|l| !l.is_empty()).collect();
+    assert!(rows.len() >= 8, "{text}");
+    let width = rows[0].chars().count();
+    for row in &rows[1..] {
+        assert_eq!(row.chars().count(), width, "misaligned: {row}\n{text}");
+    }
+}
+
+#[test]
 fn a_course_of_its_own_cites_no_equation_of_the_shipped_notes() {
     let build = scratch("course-neutral");
     let site = build.join("site");
