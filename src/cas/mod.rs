@@ -8,6 +8,7 @@
 
 mod engine;
 mod expr;
+mod factor;
 mod parse;
 mod print;
 mod radical;

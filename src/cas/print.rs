@@ -3,6 +3,7 @@
 //! sums, negative products, where parentheses go); a [`Style`] writes each node's own syntax.
 
 use super::expr::Expr;
+use super::factor::common_factor;
 use super::rational::Rational;
 use std::fmt;
 
@@ -20,8 +21,14 @@ impl Expr {
     }
 
     pub fn to_latex(&self) -> String {
+        self.to_latex_named(&|_| None)
+    }
+
+    /// LaTeX with some symbols given a symbol of their own: a claim's `inertia_tensor[0][1]`
+    /// prints as I_{xy} when `named("inertia_tensor")` is `I`.
+    pub fn to_latex_named(&self, named: &dyn Fn(&str) -> Option<&'static str>) -> String {
         let mut s = String::new();
-        write(self, &mut s, Prec::Sum, &Latex);
+        write(self, &mut s, Prec::Sum, &Latex { named });
         s
     }
 }
@@ -87,6 +94,11 @@ trait Style {
     fn product(&self, factors: &[Expr], ctx: Prec, out: &mut String);
     fn power(&self, a: &Expr, b: &Expr, ctx: Prec, out: &mut String);
     fn call(&self, n: &str, args: &[Expr], out: &mut String);
+    /// Whether a sum is written as its common factor times the rest (pages only: the text
+    /// form is read back by the parser and the engine).
+    fn factors_sums(&self) -> bool {
+        false
+    }
     fn list(&self, v: &[Expr], out: &mut String);
     fn index(&self, e: &Expr, out: &mut String);
 }
@@ -96,6 +108,24 @@ fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
         Expr::Num(r) => style.number(r, ctx, out),
         Expr::Sym(s) => style.symbol(s, out),
         Expr::Add(v) => {
+            if ctx == Prec::Sum
+                && style.factors_sums()
+                && let Some((factor, rest)) = common_factor(v)
+            {
+                // c (a + b): the factor, then the sum left in parentheses.
+                let (negative, factor) = split_sign(&factor);
+                if negative {
+                    out.push('-');
+                }
+                if !factor.is_one() {
+                    write(&factor, out, Prec::Product, style);
+                    out.push(' ');
+                }
+                out.push_str(style.open());
+                write(&Expr::Add(rest), out, Prec::Sum, style);
+                out.push_str(style.close());
+                return;
+            }
             if ctx > Prec::Sum {
                 out.push_str(style.open());
             }
@@ -292,9 +322,62 @@ fn latex_symbol(s: &str) -> String {
 }
 
 /// LaTeX for the pages (converted to MathML at build time).
-struct Latex;
+struct Latex<'a> {
+    named: &'a dyn Fn(&str) -> Option<&'static str>,
+}
 
-impl Style for Latex {
+impl Latex<'_> {
+    /// The claim language's vector and matrix functions in their usual notation: a · b, a × b,
+    /// f gᵀ, Aᵀ, 𝟙, R_z(ψ), ∂f/∂x, f|ₓ₌ᵥ. Returns false for any other call.
+    fn claim_call(&self, n: &str, args: &[Expr], out: &mut String) -> bool {
+        let put = |e: &Expr, ctx: Prec, out: &mut String| write(e, out, ctx, self);
+        match (n, args) {
+            ("dot" | "cross", [a, b]) => {
+                put(a, Prec::Factor, out);
+                out.push_str(if n == "dot" { " \\cdot " } else { " \\times " });
+                put(b, Prec::Factor, out);
+            }
+            ("outer", [a, b]) => {
+                put(a, Prec::Power, out);
+                out.push_str("\\, ");
+                put(b, Prec::Power, out);
+                out.push_str("^{T}");
+            }
+            ("transpose", [a]) => {
+                put(a, Prec::Power, out);
+                out.push_str("^{T}");
+            }
+            ("eye", []) => out.push_str("\\mathbb{1}"),
+            ("rot_x" | "rot_y" | "rot_z", [angle]) => {
+                out.push_str(&format!("R_{{{}}}\\left(", &n[4..]));
+                put(angle, Prec::Sum, out);
+                out.push_str("\\right)");
+            }
+            ("diff", [f, x]) => {
+                out.push_str("\\frac{\\partial}{\\partial ");
+                put(x, Prec::Power, out);
+                out.push('}');
+                put(f, Prec::Power, out);
+            }
+            ("subs", [f, x, v]) => {
+                out.push_str("\\left.");
+                put(f, Prec::Sum, out);
+                out.push_str("\\right|_{");
+                put(x, Prec::Sum, out);
+                out.push_str(" = ");
+                put(v, Prec::Sum, out);
+                out.push('}');
+            }
+            _ => return false,
+        }
+        true
+    }
+}
+
+impl Style for Latex<'_> {
+    fn factors_sums(&self) -> bool {
+        true
+    }
     fn open(&self) -> &'static str {
         "\\left("
     }
@@ -302,7 +385,10 @@ impl Style for Latex {
         "\\right)"
     }
     fn symbol(&self, name: &str, out: &mut String) {
-        out.push_str(&latex_symbol(name));
+        match (self.named)(name) {
+            Some(symbol) => out.push_str(symbol),
+            None => out.push_str(&latex_symbol(name)),
+        }
     }
     fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
         let body = if r.is_integer() {
@@ -423,6 +509,9 @@ impl Style for Latex {
             out.push('}');
             return;
         }
+        if self.claim_call(n, args, out) {
+            return;
+        }
         if n == "sin" || n == "cos" {
             out.push_str(&format!("\\{n}\\left("));
         } else {
@@ -464,6 +553,26 @@ impl Style for Latex {
         while let Expr::Index(b, i) = base {
             indices.push(i.as_ref());
             base = b;
+        }
+        // A named vector or tensor takes axis letters: I_{xy}, L_{z}.
+        if let Expr::Sym(name) = base
+            && let Some(symbol) = (self.named)(name)
+        {
+            let axes: Option<String> = indices
+                .iter()
+                .rev()
+                .map(|i| match i {
+                    Expr::Num(r) if r.is_integer() => ["0", "1", "2"]
+                        .iter()
+                        .position(|d| r.to_string() == *d)
+                        .map(|k| ['x', 'y', 'z'][k]),
+                    _ => None,
+                })
+                .collect();
+            if let Some(axes) = axes {
+                out.push_str(&format!("{{{symbol}}}_{{{axes}}}"));
+                return;
+            }
         }
         write(base, out, Prec::Power, self);
         out.push_str("_{");

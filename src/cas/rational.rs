@@ -128,6 +128,15 @@ impl Rational {
         Rational(&self.0 * &o.0)
     }
 
+    /// The largest positive rational of which both are integer multiples: the gcd of the
+    /// numerators over the lcm of the denominators (gcd(1/4, 1/6) = 1/12).
+    pub fn gcd(&self, o: &Rational) -> Rational {
+        use malachite_base::num::arithmetic::traits::{Gcd, Lcm};
+        let n = self.0.numerator_ref().gcd(o.0.numerator_ref());
+        let d = self.0.denominator_ref().lcm(o.0.denominator_ref());
+        Rational(malachite_q::Rational::from_naturals(n, d))
+    }
+
     /// Parses a decimal such as `12`, `0.25` or `1e-3` exactly; `None` when it is not one, or
     /// has more than [`MAX_DIGITS`] digits or an exponent beyond ±[`MAX_EXPONENT`].
     pub fn parse_decimal(text: &str) -> Option<Rational> {

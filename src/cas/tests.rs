@@ -190,3 +190,28 @@ fn many_threads_share_the_one_worker() {
     let (seconds, calls) = stats();
     assert!(calls >= 8 && seconds > 0.0);
 }
+
+#[test]
+fn claim_functions_print_in_their_usual_notation() {
+    let named = |n: &str| (n == "inertia_tensor").then_some("I");
+    for (text, latex) in [
+        ("dot(a, b)", "a \\cdot b"),
+        ("cross(a, b + c)", "a \\times \\left(b + c\\right)"),
+        ("outer(f, g)", "f\\, g^{T}"),
+        (
+            "transpose(rot_z(psi))*eye()",
+            "R_{z}\\left(\\psi\\right)^{T} \\mathbb{1}",
+        ),
+        ("diff(T, w1)", "\\frac{\\partial}{\\partial \\omega_{1}}T"),
+        ("subs(f, x, 0)", "\\left.f\\right|_{x = 0}"),
+        ("inertia_tensor[0][1]", "{I}_{xy}"),
+        ("inertia_tensor[k][1]", "I_{k 1}"),
+    ] {
+        assert_eq!(p(text).to_latex_named(&named), latex, "{text}");
+    }
+    // Without a name the quantity stays an upright word.
+    assert_eq!(
+        p("inertia_tensor[0][1]").to_latex(),
+        "\\mathrm{inertia\\_tensor}_{0 1}"
+    );
+}

@@ -16,7 +16,7 @@ mod principal;
 pub mod sign;
 pub mod stability;
 
-pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
+pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA, eigenvalue_letter};
 
 use crate::cas::{self, CasError, DiffError, EvalError, Expr};
 use crate::model::catalogue::Stage;

@@ -9,7 +9,7 @@ use crate::base::format::significant;
 use crate::cas::{self, Expr, pull_squares};
 use crate::model::catalogue::quantity;
 use crate::model::value::{Values, eval_at};
-use crate::scene::Scene;
+use crate::scene::{Scene, Shape};
 use std::collections::BTreeSet;
 
 /// The λ of the characteristic polynomial; `__` never occurs in scene names.
@@ -152,20 +152,35 @@ fn cubic_roots(tensor: &Mat3, positive: &dyn Fn(&str) -> bool) -> Result<CubicRo
     })
 }
 
+/// The eigenvalue's letter on a page, as text and as a symbol name: λ, or μ where a rod's or a
+/// hoop's line density is λ already (so that no letter means two things on one page).
+pub fn eigenvalue_letter(scene: &Scene) -> (&'static str, &'static str) {
+    let line_density = scene
+        .bodies
+        .iter()
+        .any(|b| matches!(b.shape, Shape::Rod { .. } | Shape::Hoop { .. }));
+    if line_density {
+        ("μ", "mu")
+    } else {
+        ("λ", "lambda")
+    }
+}
+
 pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     let positive_set = positive_symbols(scene);
     let positive = |s: &str| positive_set.contains(s);
+    let (ev, ev_name) = eigenvalue_letter(scene);
     let Value::Matrix(tensor) = d.get(quantity::INERTIA_TENSOR)?.clone() else {
         unreachable!()
     };
     let lambda = Expr::sym(LAMBDA);
     let characteristic = cas::simplify(&det(&shifted(&tensor, &lambda)))?;
-    let shown = |e: &Expr| e.substitute(&|s| (s == LAMBDA).then(|| Expr::sym("lambda")));
+    let shown = |e: &Expr| e.substitute(&|s| (s == LAMBDA).then(|| Expr::sym(ev_name)));
     d.steps.push(Step::note(
         "Characteristic polynomial",
-        format!("det(I − λ𝟙) = {}", shown(&characteristic)),
+        format!("det(I − {ev}𝟙) = {}", shown(&characteristic)),
         format!(
-            "\\det\\left(\\overleftrightarrow{{I}} - \\lambda \\mathbb{{1}}\\right) = {}",
+            "\\det\\left(\\overleftrightarrow{{I}} - \\{ev_name} \\mathbb{{1}}\\right) = {}",
             shown(&characteristic).to_latex()
         ),
         cited(
@@ -210,7 +225,10 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
                     "\\text{{axis along }} {}",
                     Value::Vector(a.clone()).to_latex()
                 ),
-                cited("principal-axis", "the cross product of two independent rows of I − λ𝟙 spans its null space"),
+                cited(
+                    "principal-axis",
+                    &format!("the cross product of two independent rows of I − {ev}𝟙 spans its null space"),
+                ),
             ),
             ExactBasis::PlaneNormalTo(n) => (
                 format!(
@@ -221,7 +239,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
                     "\\text{{every axis}} \\perp {}",
                     Value::Vector(n.clone()).to_latex()
                 ),
-                "a double root: I − λ𝟙 has rank 1, so its null space is the plane normal to its one independent row".into(),
+                format!("a double root: I − {ev}𝟙 has rank 1, so its null space is the plane normal to its one independent row").as_str().into(),
             ),
             ExactBasis::All => (
                 "every axis".into(),
@@ -234,8 +252,8 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
                 "Principal moment {} (multiplicity {multiplicity})",
                 spaces.len() + 1
             ),
-            format!("λ = {value}: {text}"),
-            format!("\\lambda = {}: \\; {latex}", value.to_latex()),
+            format!("{ev} = {value}: {text}"),
+            format!("\\{ev_name} = {}: \\; {latex}", value.to_latex()),
             why,
         ));
         spaces.push(ExactSpace {
@@ -259,7 +277,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         let two_rho = Expr::mul(vec![Expr::int(2), c.rho.clone()]);
         let values = match c.at(&scene.values) {
             Ok(v) => format!(
-                "; at the scene's values λ = {}",
+                "; at the scene's values {ev} = {}",
                 v.map(|x| significant(x, 6)).join(", ")
             ),
             Err(_) => String::new(),
@@ -267,16 +285,16 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         d.steps.push(Step::note(
             "Principal moments in closed form",
             format!(
-                "λ_k = {} + ({})·cos(φ/3 − 2πk/3), k = 0, 1, 2, where cos φ = {}{values}",
+                "{ev}_k = {} + ({})·cos(φ/3 − 2πk/3), k = 0, 1, 2, where cos φ = {}{values}",
                 c.centre, two_rho, c.cos_phi
             ),
             format!(
-                "\\lambda_k = {} + \\left({}\\right) \\cos\\left(\\frac{{\\varphi}}{{3}} - \\frac{{2\\pi k}}{{3}}\\right),\\; k = 0, 1, 2,\\quad \\cos\\varphi = {}",
+                "\\{ev_name}_k = {} + \\left({}\\right) \\cos\\left(\\frac{{\\varphi}}{{3}} - \\frac{{2\\pi k}}{{3}}\\right),\\; k = 0, 1, 2,\\quad \\cos\\varphi = {}",
                 c.centre.to_latex(),
                 two_rho.to_latex(),
                 c.cos_phi.to_latex()
             ),
-            "three real roots (I is symmetric): depress the cubic by λ = t + tr I/3 to t³ + pt + q, then t = 2ρ cos θ with ρ = √(−p/3) turns it into cos 3θ = −q/(2ρ³) (Viète)",
+            format!("three real roots (I is symmetric): depress the cubic by {ev} = t + tr I/3 to t³ + pt + q, then t = 2ρ cos θ with ρ = √(−p/3) turns it into cos 3θ = −q/(2ρ³) (Viète)").as_str(),
         ));
         Some(c)
     } else {

@@ -195,3 +195,35 @@ fn only_requested_stages_run() {
     assert!(!r.derivation.quantities.contains_key("centre_of_mass"));
     assert!(r.verification.quantities.is_empty());
 }
+
+#[test]
+fn the_eigenvalue_takes_another_letter_where_lambda_is_a_line_density() {
+    let letters = |body: &str| {
+        let r = run(body, "M = \"m\", R = \"r\"", "M = 2.0, R = 1.0", ALL);
+        let latex: String = r.derivation.steps.iter().map(|s| s.latex.clone()).collect();
+        (latex.contains("\\lambda"), latex.contains("\\mu"))
+    };
+    // A hoop's mass element is λ R dθ: the characteristic polynomial is in μ.
+    let hoop = "[[body]]\nkind = \"hoop\"\nradius = \"R\"\nmass = \"M\"\n";
+    assert_eq!(letters(hoop), (true, true));
+    let r = run(hoop, "M = \"m\", R = \"r\"", "M = 2.0, R = 1.0", ALL);
+    let polynomial = r
+        .derivation
+        .steps
+        .iter()
+        .find(|s| s.title == "Characteristic polynomial")
+        .unwrap();
+    assert!(
+        polynomial.latex.contains("- \\mu \\mathbb{1}"),
+        "{}",
+        polynomial.latex
+    );
+    assert!(
+        !polynomial.latex.contains("\\lambda"),
+        "{}",
+        polynomial.latex
+    );
+    // A sphere has no line density: λ as usual.
+    let sphere = "[[body]]\nkind = \"sphere\"\nradius = \"R\"\nmass = \"M\"\n";
+    assert_eq!(letters(sphere), (true, false));
+}

@@ -265,6 +265,22 @@ pub mod quantity {
     pub const BULGE_FRACTION: &str = "bulge_fraction";
 }
 
+/// The symbol a page prints for a derived quantity a claim names, where one is standard and
+/// clashes with no scene symbol: a claim's `inertia_tensor[0][1]` reads I_{xy}. Other names
+/// print as upright words.
+pub fn quantity_symbol(name: &str) -> Option<&'static str> {
+    Some(match name {
+        quantity::INERTIA_TENSOR => "I",
+        quantity::INERTIA_CM => "I^{\\mathrm{cm}}",
+        quantity::ANGULAR_MOMENTUM | quantity::ANGULAR_MOMENTUM_DIRECT => "L",
+        quantity::KINETIC_ENERGY | quantity::KINETIC_ENERGY_DIRECT => "T",
+        quantity::MOMENT_ABOUT_AXIS | quantity::MOMENT_ABOUT_AXIS_DIRECT => "I_{n}",
+        quantity::CENTRE_OF_MASS => "R^{\\mathrm{cm}}",
+        quantity::POSITION => "\\vec{r}",
+        _ => return None,
+    })
+}
+
 /// Names a claim may use for derived quantities, and the functions of the claim language.
 pub const QUANTITIES: &[&str] = &[
     quantity::MASS,

@@ -1,6 +1,7 @@
 //! LaTeX -> MathML at build time, so pages need no JavaScript and no network.
 
 use super::RenderError;
+use super::linebreak;
 use pulldown_latex::config::DisplayMode;
 use pulldown_latex::{Parser, RenderConfig, Storage, push_mathml};
 
@@ -39,6 +40,51 @@ pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
     Ok(escape_bare_less_than(&out))
 }
 
+/// A display formula: one block `<math>` when it fits a line; else its pieces, each an inline
+/// `<math>` in display style, in a `<div class="formula">` that the browser wraps between them.
+pub fn block(latex: &str) -> Result<String, RenderError> {
+    let pieces = linebreak::pieces(latex, linebreak::LINE);
+    if let [one] = pieces.as_slice() {
+        return mathml(one, true);
+    }
+    let mut out = String::from("<div class=\"formula\">");
+    for (k, piece) in pieces.iter().enumerate() {
+        if k > 0 {
+            out.push(' ');
+        }
+        let m = mathml(&binary(k, piece), false)?;
+        out.push_str(&m.replacen("<math", "<math displaystyle=\"true\"", 1));
+    }
+    out.push_str("</div>");
+    Ok(out)
+}
+
+/// A piece after the first that starts with +, − or = keeps the spacing of a binary operator:
+/// `{}` before it, else MathML sets it as a sign.
+fn binary(k: usize, piece: &str) -> String {
+    if k > 0 && piece.starts_with(['+', '-', '=']) {
+        format!("{{}}{piece}")
+    } else {
+        piece.to_string()
+    }
+}
+
+/// Whether a formula, set in pieces, would take at most `lines` lines.
+pub fn fits_lines(latex: &str, lines: usize) -> bool {
+    linebreak::width_of(latex) <= linebreak::LINE * lines as f32
+}
+
+/// A formula within a sentence: inline `<math>` pieces separated by spaces, where the line may
+/// wrap, once it is wider than half a line.
+pub fn inline(latex: &str) -> Result<String, RenderError> {
+    let pieces = linebreak::pieces(latex, linebreak::LINE / 2.0);
+    let mut out = Vec::with_capacity(pieces.len());
+    for (k, piece) in pieces.iter().enumerate() {
+        out.push(mathml(&binary(k, piece), false)?);
+    }
+    Ok(out.join(" "))
+}
+
 /// The converter writes `a < b` as `<mo><</mo>`, which is not valid HTML: escape every `<` that
 /// does not open a tag.
 fn escape_bare_less_than(mathml: &str) -> String {
@@ -72,6 +118,7 @@ mod tests {
             "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R \\vec R^{T}\\right)",
             "\\sqrt{\\frac{I_{n}}{M}}",
             "\\int dm = m",
+            "{I}_{xy} = \\left.R_{z}\\left(\\psi\\right)^{T} \\mathbb{1}\\right|_{x = 0}",
         ] {
             let m = mathml(latex, true).unwrap_or_else(|e| panic!("{e}"));
             assert!(
@@ -96,6 +143,21 @@ mod tests {
         let m = mathml("I_{1} < I_{2} > I_{3}", false).unwrap();
         assert!(m.contains("<mo>&lt;</mo>") && !m.contains("<mo><"), "{m}");
         assert!(m.starts_with("<math") && m.ends_with("</math>"), "{m}");
+    }
+
+    #[test]
+    fn a_long_formula_is_set_in_pieces_that_keep_binary_spacing() {
+        let terms: Vec<String> = (0..40).map(|k| format!("a_{{{k}}}")).collect();
+        let m = block(&format!("T = {}", terms.join(" + "))).unwrap();
+        assert!(
+            m.starts_with("<div class=\"formula\"><math displaystyle=\"true\""),
+            "{m}"
+        );
+        assert_eq!(m.matches("<math").count(), 41, "{m}");
+        // The pieces after the first start with an empty row, so + is an infix operator.
+        assert_eq!(m.matches("<mrow></mrow><mo>+</mo>").count(), 39, "{m}");
+        let short = block("T = a + b").unwrap();
+        assert!(short.starts_with("<math display=\"block\""), "{short}");
     }
 
     #[test]

@@ -1,6 +1,9 @@
 //! Page views for the templates: plain data built from the reports, with the math already
 //! converted to MathML. No file I/O here.
 
+mod linebreak;
+#[cfg(test)]
+mod linebreak_tests;
 pub mod math;
 pub mod plot;
 mod site_files;
@@ -10,9 +13,10 @@ pub use site_files::{Course, SiteFiles, site_files};
 use crate::base::format::sci;
 use crate::cas::Expr;
 use crate::derive::ExactBasis;
-use crate::model::catalogue::quantity;
+use crate::model::catalogue::{quantity, quantity_symbol};
 use crate::model::value::Value;
 use crate::pipeline::SceneReport;
+use crate::scene::Verdict;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -34,7 +38,9 @@ pub struct ClaimView {
     pub eq: String,
     pub statement: String,
     pub verdict: String,
-    /// The notes' formula and the derived one, as MathML (empty when not checkable).
+    /// The quantity claimed, the notes' formula for it and the derived one, as MathML (empty
+    /// when not checkable).
+    pub quantity: String,
     pub notes: String,
     pub derived: String,
     pub differences: Vec<String>,
@@ -154,7 +160,7 @@ pub fn page_file(r: &SceneReport) -> String {
 }
 
 fn value_math(v: &Value) -> Result<String, RenderError> {
-    math::mathml(&v.to_latex(), true)
+    math::block(&v.to_latex())
 }
 
 /// Builds the view of one page. `timings` adds measured seconds to the numeric table.
@@ -178,7 +184,7 @@ pub fn page_view(
         .map(|st| {
             Ok(StepView {
                 title: st.title.clone(),
-                math: math::mathml(&st.latex, true)?,
+                math: math::block(&st.latex)?,
                 why: st.why_in(&s.cite),
             })
         })
@@ -208,7 +214,7 @@ pub fn page_view(
             };
             results.push(StepView {
                 title: format!("principal moment (multiplicity {})", sp.multiplicity),
-                math: math::mathml(&format!("{}{dir}", sp.value.to_latex()), true)?,
+                math: math::block(&format!("{}{dir}", sp.value.to_latex()))?,
                 why: String::new(),
             });
         }
@@ -234,7 +240,7 @@ pub fn page_view(
     let mut claims = Vec::new();
     for (c, claim) in r.verification.claims.iter().zip(&s.claims) {
         let render = |e: Option<&crate::cas::Expr>| {
-            e.map(|e| math::mathml(&e.to_latex(), false))
+            e.map(|e| math::inline(&e.to_latex_named(&quantity_symbol)))
                 .transpose()
                 .map(Option::unwrap_or_default)
         };
@@ -245,12 +251,20 @@ pub fn page_view(
                 latex: c.derived.clone(),
                 message: e.message,
             })?;
-            math::mathml(&parsed.expr.to_latex(), false)?
+            let latex = parsed.expr.to_latex();
+            // Beside a claim that agrees, the derived form is a courtesy: left out when it
+            // would fill more than three lines (it is in `check --json`).
+            if c.verdict == Verdict::Agrees && !math::fits_lines(&latex, 3) {
+                String::new()
+            } else {
+                math::inline(&latex)?
+            }
         };
         claims.push(ClaimView {
             eq: c.eq.clone(),
             statement: c.statement.clone(),
             verdict: c.verdict.as_str().into(),
+            quantity: render(claim.quantity.as_ref())?,
             notes: render(claim.value.as_ref())?,
             derived,
             differences: c.differences.clone(),
@@ -327,7 +341,8 @@ fn principal_values_view(
     use crate::numeric::eigen::Space;
     let values: Vec<String> = p.exact.iter().map(|v| significant(*v, 6)).collect();
     let symbols: Vec<String> = s.values.keys().cloned().collect();
-    let mut latex = format!("\\lambda = {}", values.join(",\\; "));
+    let (_, letter) = crate::derive::eigenvalue_letter(s);
+    let mut latex = format!("\\{letter} = {}", values.join(",\\; "));
     if p.closed_form {
         let axes: Vec<String> = p
             .numeric
@@ -353,7 +368,7 @@ fn principal_values_view(
     };
     Ok(StepView {
         title: "principal moments at the scene's values".into(),
-        math: math::mathml(&latex, true)?,
+        math: math::block(&latex)?,
         why: format!(
             "at {}: {route} evaluated, and the eigen-solver on the exact tensor agrees to {} (relative)",
             symbols

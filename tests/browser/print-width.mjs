@@ -1,8 +1,9 @@
 // Measures what would run off a printed A4 page: each page of the built sites is laid out at
 // the printable width (718 px: A4 at 96 dpi less 1.9 cm margins) with print styles, and every
-// element whose right edge passes the page is counted (outermost only). Not yet part of CI:
-// long formulas do not break across lines yet (issue 13). Usage, with playwright-core
-// resolvable as in .ci/run:  node print-width.mjs SITE_DIR [SITE_DIR ...]
+// element whose right edge passes the page is counted (outermost only). Any such element fails
+// the run (exit 1): long formulas are cut into pieces that wrap (src/render/linebreak.rs).
+// Run by .ci/run on the lectures and tests/course. Usage, with playwright-core resolvable as in
+// .ci/run:  node print-width.mjs SITE_DIR [SITE_DIR ...]
 import { chromium } from "playwright-core";
 import { readdirSync, statSync } from "node:fs";
 import { join } from "node:path";
@@ -12,6 +13,7 @@ for (const site of process.argv.slice(2)) (function walk(d) { for (const n of re
 const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox"] });
 const page = await browser.newPage({ viewport: { width: 718, height: 1000 } }); // A4 printable width at 96 dpi, 1.9 cm margins
 await page.emulateMedia({ media: "print" });
+let failing = 0;
 for (const f of pages) {
   await page.goto(pathToFileURL(f).href);
   const r = await page.evaluate(() => {
@@ -20,6 +22,8 @@ for (const f of pages) {
     const top = wide.filter(e => !wide.includes(e.parentElement));
     return { w, n: top.length, worst: Math.max(0, ...top.map(e => e.getBoundingClientRect().right)), tags: top.slice(0, 3).map(e => e.tagName + ":" + (e.textContent || "").slice(0, 40)) };
   });
-  if (r.n) console.log(f, r.n, Math.round(r.worst), r.tags.join(" | "));
+  if (r.n) { console.log(f, r.n, Math.round(r.worst), r.tags.join(" | ")); failing++; }
 }
 await browser.close();
+console.log(`print width: ${pages.length} pages laid out at 718 px, ${failing} with an element wider than the page`);
+process.exit(failing ? 1 : 0);

@@ -1,0 +1,530 @@
+//! Long formulas broken into pieces a browser can wrap. Chromium's MathML does not break lines,
+//! so a formula wider than the page is cut into pieces at its sums, equals signs and commas, each
+//! set as its own `<math>`; the browser wraps between them, on screen and on paper. A long
+//! parenthesised sum opens into `\Bigl( … \Bigr)` around its terms; a long numerator over a
+//! short denominator becomes the factor 1/d before it; a wide matrix stacks its long cells.
+//!
+//! Widths are estimated in characters of a typical formula: about 0.66 em each.
+
+/// A formula this wide is set as one block; wider ones are cut into pieces. Measured in Chromium,
+/// a unit is about 0.66 em, and a step's text column (A4 less margins, or the screen's 52 rem,
+/// less the list's indent and the pieces' hanging indent) about 64 units.
+pub const LINE: f32 = 56.0;
+/// A numerator or radicand wider than this is worth opening.
+const CELL: f32 = 20.0;
+
+/// The LaTeX our printer writes, as a tree: brace groups, `\left…\right` pairs and environments
+/// are single nodes, so that a cut never falls inside one.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Node {
+    Tok(String),
+    Group(Vec<Node>),
+    Delim {
+        open: String,
+        inner: Vec<Node>,
+        close: String,
+    },
+    Env {
+        name: String,
+        body: Vec<Node>,
+    },
+}
+
+fn tokens(latex: &str) -> Vec<String> {
+    let chars: Vec<char> = latex.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if c == '\\' && i + 1 < chars.len() {
+            let mut j = i + 1;
+            if chars[j].is_ascii_alphabetic() {
+                while j < chars.len() && chars[j].is_ascii_alphabetic() {
+                    j += 1;
+                }
+            } else {
+                j += 1;
+            }
+            out.push(chars[i..j].iter().collect());
+            i = j;
+        } else {
+            out.push(c.to_string());
+            i += 1;
+        }
+    }
+    out
+}
+
+/// Reads nodes until `stop` (a closing brace, `\right` or `\end`), which is left unread.
+fn parse(toks: &[String], pos: &mut usize) -> Vec<Node> {
+    let mut out = Vec::new();
+    while *pos < toks.len() {
+        let t = toks[*pos].as_str();
+        match t {
+            "}" | "\\right" | "\\end" => return out,
+            "{" => {
+                *pos += 1;
+                let inner = parse(toks, pos);
+                *pos += 1; // the `}`
+                out.push(Node::Group(inner));
+            }
+            "\\left" => {
+                let open = format!("\\left{}", toks.get(*pos + 1).map_or("", |s| s));
+                *pos += 2;
+                let inner = parse(toks, pos);
+                let close = format!("\\right{}", toks.get(*pos + 1).map_or("", |s| s));
+                *pos += 2;
+                out.push(Node::Delim { open, inner, close });
+            }
+            "\\begin" => {
+                let name = env_name(toks, pos);
+                let body = parse(toks, pos);
+                env_name(toks, pos); // the matching \end{name}
+                out.push(Node::Env { name, body });
+            }
+            _ => {
+                out.push(Node::Tok(t.to_string()));
+                *pos += 1;
+            }
+        }
+    }
+    out
+}
+
+/// Reads `\begin{name}` or `\end{name}` at `pos` and returns the name.
+fn env_name(toks: &[String], pos: &mut usize) -> String {
+    *pos += 1;
+    let mut name = String::new();
+    if toks.get(*pos).is_some_and(|t| t == "{") {
+        *pos += 1;
+        while let Some(t) = toks.get(*pos) {
+            *pos += 1;
+            if t == "}" {
+                break;
+            }
+            name.push_str(t);
+        }
+    }
+    name
+}
+
+pub(super) fn tree(latex: &str) -> Vec<Node> {
+    let toks = tokens(latex);
+    let mut pos = 0;
+    let mut out = Vec::new();
+    // A stray closer (unbalanced input) is kept as text, so that nothing is lost.
+    while pos < toks.len() {
+        out.extend(parse(&toks, &mut pos));
+        if pos < toks.len() {
+            out.push(Node::Tok(toks[pos].clone()));
+            pos += 1;
+        }
+    }
+    out
+}
+
+fn write(nodes: &[Node], out: &mut String) {
+    for n in nodes {
+        match n {
+            Node::Tok(t) => out.push_str(t),
+            Node::Group(v) => {
+                out.push('{');
+                write(v, out);
+                out.push('}');
+            }
+            Node::Delim { open, inner, close } => {
+                out.push_str(open);
+                write(inner, out);
+                out.push_str(close);
+            }
+            Node::Env { name, body } => {
+                out.push_str(&format!("\\begin{{{name}}}"));
+                write(body, out);
+                out.push_str(&format!("\\end{{{name}}}"));
+            }
+        }
+    }
+}
+
+pub(super) fn latex(nodes: &[Node]) -> String {
+    let mut s = String::new();
+    write(nodes, &mut s);
+    s
+}
+
+fn tok(n: &Node) -> Option<&str> {
+    match n {
+        Node::Tok(t) => Some(t),
+        _ => None,
+    }
+}
+
+/// The estimated width of a sequence of nodes, in characters.
+pub(super) fn width(nodes: &[Node]) -> f32 {
+    let mut w = 0.0;
+    let mut i = 0;
+    while i < nodes.len() {
+        let n = &nodes[i];
+        let script = i > 0 && matches!(tok(&nodes[i - 1]), Some("^" | "_"));
+        w += match n {
+            Node::Tok(t) => match t.as_str() {
+                "\\frac" => {
+                    let part = |k: usize| match nodes.get(i + k) {
+                        Some(Node::Group(v)) => width(v),
+                        Some(other) => width(std::slice::from_ref(other)),
+                        None => 0.0,
+                    };
+                    let w = part(1).max(part(2)) + 0.5;
+                    i += 2;
+                    w
+                }
+                "\\text" | "\\mathrm" | "\\operatorname" | "\\mathbb" => {
+                    let w = match nodes.get(i + 1) {
+                        Some(Node::Group(v)) => latex(v).chars().count() as f32,
+                        _ => 1.0,
+                    };
+                    i += 1;
+                    w
+                }
+                "+" | "-" | "=" | "<" | ">" | "\\approx" | "\\perp" | "\\times" => 2.0,
+                "\\sin" | "\\cos" | "\\det" | "\\tan" => 4.0,
+                "\\quad" => 2.0,
+                "\\;"
+                | "\\,"
+                | "\\left"
+                | "\\right"
+                | "\\vec"
+                | "\\dot"
+                | "\\ddot"
+                | "^"
+                | "_"
+                | "{"
+                | "}"
+                | "&"
+                | "\\\\"
+                | "\\overleftrightarrow" => 0.0,
+                " " => 0.0,
+                "," => 1.0,
+                t if t.starts_with('\\') => 1.0,
+                t => t.chars().count() as f32,
+            },
+            Node::Group(v) => width(v) * if script { 0.7 } else { 1.0 },
+            Node::Delim { inner, .. } => width(inner) + 1.0,
+            Node::Env { name, body } => env_width(name, body),
+        };
+        i += 1;
+    }
+    w
+}
+
+/// Rows (split at `\\`) of cells (split at `&`).
+fn cells(body: &[Node]) -> Vec<Vec<Vec<Node>>> {
+    let mut rows = vec![vec![Vec::new()]];
+    for n in body {
+        match tok(n) {
+            Some("\\\\") => rows.push(vec![Vec::new()]),
+            Some("&") => rows.last_mut().unwrap().push(Vec::new()),
+            _ => rows.last_mut().unwrap().last_mut().unwrap().push(n.clone()),
+        }
+    }
+    rows
+}
+
+/// A matrix's columns with their gaps; `aligned` (our stacked cells) has none.
+fn env_width(name: &str, body: &[Node]) -> f32 {
+    let (gap, sides) = if name == "aligned" {
+        (0.0, 0.0)
+    } else {
+        (1.5, 1.0)
+    };
+    let rows = cells(body);
+    let columns = rows.iter().map(Vec::len).max().unwrap_or(0);
+    let widest = |j: usize| {
+        rows.iter()
+            .filter_map(|r| r.get(j))
+            .map(|c| width(c))
+            .fold(0.0, f32::max)
+    };
+    (0..columns).map(|j| widest(j) + gap).sum::<f32>() + sides
+}
+
+fn is_operator(t: &str) -> bool {
+    matches!(t, "+" | "-" | "=" | "\\approx" | "<" | ">")
+}
+
+/// Cuts a sequence before each binary +, − and = and after each comma at its own level. Each
+/// segment keeps its operator, so that the pieces read as the whole.
+pub(super) fn segments(nodes: &[Node]) -> Vec<Vec<Node>> {
+    let mut out: Vec<Vec<Node>> = vec![Vec::new()];
+    let mut previous: Option<&Node> = None; // the last node that is not a space
+    for n in nodes {
+        let t = tok(n);
+        let binary = t.is_some_and(is_operator)
+            && previous.is_some_and(|p| {
+                !tok(p).is_some_and(|p| is_operator(p) || matches!(p, "^" | "_" | "," | "&"))
+            });
+        if binary && !out.last().unwrap().is_empty() {
+            out.push(Vec::new());
+        }
+        out.last_mut().unwrap().push(n.clone());
+        if t == Some(",") {
+            out.push(Vec::new());
+        }
+        if t != Some(" ") {
+            previous = Some(n);
+        }
+    }
+    out.retain(|s| s.iter().any(|n| tok(n) != Some(" ")));
+    out
+}
+
+fn has_cut(nodes: &[Node]) -> bool {
+    segments(nodes).len() > 1
+}
+
+fn has_fraction(nodes: &[Node]) -> bool {
+    nodes.iter().any(|n| match n {
+        Node::Tok(t) => t == "\\frac",
+        Node::Group(v) | Node::Delim { inner: v, .. } | Node::Env { body: v, .. } => {
+            has_fraction(v)
+        }
+    })
+}
+
+/// Where a segment can open: a parenthesised sum or list, a fraction with a long numerator, or
+/// a one-row matrix (a vector). Returns the widest such node's index.
+fn opening(seg: &[Node]) -> Option<usize> {
+    let mut best: Option<(usize, f32)> = None;
+    for (i, n) in seg.iter().enumerate() {
+        let w = match n {
+            Node::Delim { open, inner, .. }
+                if open == "\\left(" && (has_cut(inner) || opening(inner).is_some()) =>
+            {
+                width(inner)
+            }
+            Node::Tok(t) if t == "\\sqrt" => match seg.get(i + 1) {
+                Some(Node::Group(num)) if width(num) > CELL => width(num),
+                _ => continue,
+            },
+            Node::Tok(t) if t == "\\frac" => match (seg.get(i + 1), seg.get(i + 2)) {
+                (Some(Node::Group(num)), Some(Node::Group(den)))
+                    if width(num).max(width(den)) > CELL =>
+                {
+                    width(num).max(width(den))
+                }
+                _ => continue,
+            },
+            Node::Env { name, body } if name == "pmatrix" && cells(body).len() == 1 => {
+                env_width(name, body)
+            }
+            _ => continue,
+        };
+        if best.is_none_or(|(_, b)| w > b) {
+            best = Some((i, w));
+        }
+    }
+    best.map(|(i, _)| i)
+}
+
+/// The pieces of one segment, opening its widest group while it is wider than `limit`.
+fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
+    if width(&seg) <= limit {
+        return vec![latex(&seg)];
+    }
+    let Some(i) = opening(&seg) else {
+        return vec![latex(&seg)];
+    };
+    let (before, rest) = seg.split_at(i);
+    let (node, after) = (&rest[0], &rest[1..]);
+    let (inner, after): (Vec<Node>, &[Node]) = match node {
+        Node::Tok(t) if t == "\\sqrt" => {
+            // \sqrt{s} → (s)^{1/2}: a radical cannot break, a bracket can.
+            let Some(Node::Group(radicand)) = rest.get(1) else {
+                return vec![latex(&seg)];
+            };
+            let mut reshaped = before.to_vec();
+            reshaped.push(Node::Delim {
+                open: "\\left(".into(),
+                inner: radicand.clone(),
+                close: "\\right)".into(),
+            });
+            reshaped.extend(tree("^{1/2}"));
+            reshaped.extend(rest[2..].iter().cloned());
+            return open_segment(reshaped, limit);
+        }
+        Node::Tok(_) => {
+            let (Some(Node::Group(num)), Some(Node::Group(den))) = (rest.get(1), rest.get(2))
+            else {
+                return vec![latex(&seg)];
+            };
+            let bracket = |v: &[Node]| {
+                if has_cut(v) {
+                    vec![Node::Delim {
+                        open: "\\left(".into(),
+                        inner: v.to_vec(),
+                        close: "\\right)".into(),
+                    }]
+                } else {
+                    v.to_vec()
+                }
+            };
+            let mut reshaped = before.to_vec();
+            if width(num) >= width(den) {
+                // \frac{n}{d} → \frac{1}{d} (n): the numerator's terms can then wrap.
+                reshaped.extend(tree("\\frac{1}"));
+                reshaped.push(Node::Group(den.clone()));
+                reshaped.extend(bracket(num));
+            } else {
+                // \frac{n}{d} → n (d)^{-1}.
+                if latex(num).trim() != "1" {
+                    reshaped.extend(num.iter().cloned());
+                }
+                reshaped.extend(bracket(den));
+                reshaped.extend(tree("^{-1}"));
+            }
+            reshaped.extend(rest[3..].iter().cloned());
+            return open_segment(reshaped, limit);
+        }
+        Node::Delim { inner, .. } => (inner.clone(), after),
+        Node::Env { body, .. } => {
+            // A vector (a one-row matrix) as a tuple: its entries separated by commas.
+            let row = cells(body).remove(0);
+            let mut inner = Vec::new();
+            for (k, cell) in row.into_iter().enumerate() {
+                if k > 0 {
+                    inner.push(Node::Tok(",".into()));
+                    inner.push(Node::Tok(" ".into()));
+                }
+                inner.extend(cell);
+            }
+            (inner, after)
+        }
+        Node::Group(_) => return vec![latex(&seg)],
+    };
+    let big = if has_fraction(&inner) { "Big" } else { "big" };
+    let mut inner_pieces = pieces_of(&inner, limit);
+    let last = inner_pieces.len() - 1;
+    inner_pieces[0] = format!("{}\\{big}l({}", latex(before), inner_pieces[0]);
+    inner_pieces[last] = format!("{}\\{big}r){}", inner_pieces[last], latex(after));
+    inner_pieces
+}
+
+fn pieces_of(nodes: &[Node], limit: f32) -> Vec<String> {
+    segments(nodes)
+        .into_iter()
+        .flat_map(|s| open_segment(s, limit))
+        .map(|s| s.trim().to_string())
+        .collect()
+}
+
+/// A matrix whose cells are long, with each long cell stacked on short lines (left-aligned,
+/// later lines indented).
+fn stack_cells(nodes: Vec<Node>) -> Vec<Node> {
+    nodes
+        .into_iter()
+        .map(|n| match n {
+            Node::Env { name, body } if name == "pmatrix" && cells(&body).len() > 1 => {
+                let rows = cells(&body);
+                // The columns share a line, less room for a name and an equals sign.
+                let columns = rows.iter().map(Vec::len).max().unwrap_or(1) as f32;
+                // Each column: its gap (1.5) and the \quad of a continued line (2).
+                let cell_width = ((LINE - 6.0) / columns - 3.5).max(12.0);
+                let mut out = String::new();
+                for (r, row) in rows.iter().enumerate() {
+                    if r > 0 {
+                        out.push_str(" \\\\ ");
+                    }
+                    for (c, cell) in row.iter().enumerate() {
+                        if c > 0 {
+                            out.push_str(" & ");
+                        }
+                        out.push_str(&stacked(cell, cell_width));
+                    }
+                }
+                let body = tree(&out);
+                if env_width(&name, &body) <= LINE - 6.0 {
+                    Node::Env { name, body }
+                } else {
+                    // Too wide even stacked: the rows as a tuple of tuples, which can wrap.
+                    as_tuples(&rows)
+                }
+            }
+            Node::Group(v) => Node::Group(stack_cells(v)),
+            other => other,
+        })
+        .collect()
+}
+
+/// ((a, b), (c, d)): a matrix as the tuple of its rows, in brackets that open when wide.
+fn as_tuples(rows: &[Vec<Vec<Node>>]) -> Node {
+    let tuple = |items: Vec<Vec<Node>>| {
+        let mut inner = Vec::new();
+        for (k, item) in items.into_iter().enumerate() {
+            if k > 0 {
+                inner.push(Node::Tok(",".into()));
+                inner.push(Node::Tok(" ".into()));
+            }
+            inner.extend(item);
+        }
+        Node::Delim {
+            open: "\\left(".into(),
+            inner,
+            close: "\\right)".into(),
+        }
+    };
+    tuple(rows.iter().map(|r| vec![tuple(r.clone())]).collect())
+}
+
+/// One cell on lines of at most `most` characters: `\begin{aligned}` with `&` at each line's
+/// start.
+fn stacked(cell: &[Node], most: f32) -> String {
+    if width(cell) <= most {
+        return latex(cell);
+    }
+    let mut lines: Vec<String> = Vec::new();
+    for piece in pieces_of(cell, most) {
+        let w = width(&tree(&piece));
+        match lines.last_mut() {
+            Some(line) if width(&tree(line)) + w <= most => {
+                line.push(' ');
+                line.push_str(&piece);
+            }
+            _ => lines.push(piece),
+        }
+    }
+    if lines.len() < 2 {
+        return latex(cell);
+    }
+    let body: Vec<String> = lines
+        .iter()
+        .enumerate()
+        .map(|(k, l)| {
+            if k == 0 {
+                format!("&{l}")
+            } else {
+                format!("&\\quad {l}")
+            }
+        })
+        .collect();
+    format!("\\begin{{aligned}}{}\\end{{aligned}}", body.join(" \\\\ "))
+}
+
+/// The estimated width of a formula, in characters.
+pub fn width_of(formula: &str) -> f32 {
+    width(&tree(formula))
+}
+
+/// A formula as the pieces to set: one piece when it is at most `limit` wide, else its pieces
+/// at sums, equals signs and commas, long groups opened, long matrix cells stacked. Display
+/// formulas take `LINE`; formulas within a sentence a shorter limit, as they start mid-line.
+pub fn pieces(formula: &str, limit: f32) -> Vec<String> {
+    let nodes = tree(formula);
+    if width(&nodes) <= limit {
+        return vec![formula.to_string()];
+    }
+    let nodes = stack_cells(nodes);
+    if width(&nodes) <= limit {
+        return vec![latex(&nodes)];
+    }
+    pieces_of(&nodes, limit)
+}
