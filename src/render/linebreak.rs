@@ -343,11 +343,7 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
                 return vec![latex(&seg)];
             };
             let mut reshaped = before.to_vec();
-            reshaped.push(Node::Delim {
-                open: "\\left(".into(),
-                inner: radicand.clone(),
-                close: "\\right)".into(),
-            });
+            reshaped.push(bracket(radicand.clone()));
             reshaped.extend(tree("^{1/2}"));
             reshaped.extend(rest[2..].iter().cloned());
             return open_segment(reshaped, limit);
@@ -357,13 +353,9 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
             else {
                 return vec![latex(&seg)];
             };
-            let bracket = |v: &[Node]| {
+            let bracketed_if_cut = |v: &[Node]| {
                 if has_cut(v) {
-                    vec![Node::Delim {
-                        open: "\\left(".into(),
-                        inner: v.to_vec(),
-                        close: "\\right)".into(),
-                    }]
+                    vec![bracket(v.to_vec())]
                 } else {
                     v.to_vec()
                 }
@@ -373,13 +365,13 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
                 // \frac{n}{d} → \frac{1}{d} (n): the numerator's terms can then wrap.
                 reshaped.extend(tree("\\frac{1}"));
                 reshaped.push(Node::Group(den.clone()));
-                reshaped.extend(bracket(num));
+                reshaped.extend(bracketed_if_cut(num));
             } else {
                 // \frac{n}{d} → n (d)^{-1}.
                 if latex(num).trim() != "1" {
                     reshaped.extend(num.iter().cloned());
                 }
-                reshaped.extend(bracket(den));
+                reshaped.extend(bracketed_if_cut(den));
                 reshaped.extend(tree("^{-1}"));
             }
             reshaped.extend(rest[3..].iter().cloned());
@@ -388,16 +380,7 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
         Node::Delim { inner, .. } => (inner.clone(), after),
         Node::Env { body, .. } => {
             // A vector (a one-row matrix) as a tuple: its entries separated by commas.
-            let row = cells(body).remove(0);
-            let mut inner = Vec::new();
-            for (k, cell) in row.into_iter().enumerate() {
-                if k > 0 {
-                    inner.push(Node::Tok(",".into()));
-                    inner.push(Node::Tok(" ".into()));
-                }
-                inner.extend(cell);
-            }
-            (inner, after)
+            (comma_separated(cells(body).remove(0)), after)
         }
         Node::Group(_) => return vec![latex(&seg)],
     };
@@ -457,22 +440,30 @@ fn stack_cells(nodes: Vec<Node>) -> Vec<Node> {
 
 /// ((a, b), (c, d)): a matrix as the tuple of its rows, in brackets that open when wide.
 fn as_tuples(rows: &[Vec<Vec<Node>>]) -> Node {
-    let tuple = |items: Vec<Vec<Node>>| {
-        let mut inner = Vec::new();
-        for (k, item) in items.into_iter().enumerate() {
-            if k > 0 {
-                inner.push(Node::Tok(",".into()));
-                inner.push(Node::Tok(" ".into()));
-            }
-            inner.extend(item);
-        }
-        Node::Delim {
-            open: "\\left(".into(),
-            inner,
-            close: "\\right)".into(),
-        }
-    };
+    let tuple = |items: Vec<Vec<Node>>| bracket(comma_separated(items));
     tuple(rows.iter().map(|r| vec![tuple(r.clone())]).collect())
+}
+
+/// `\left( … \right)` around `inner`.
+fn bracket(inner: Vec<Node>) -> Node {
+    Node::Delim {
+        open: "\\left(".into(),
+        inner,
+        close: "\\right)".into(),
+    }
+}
+
+/// a, b, c: the items with a comma and a space between them.
+fn comma_separated(items: Vec<Vec<Node>>) -> Vec<Node> {
+    let mut out = Vec::new();
+    for (k, item) in items.into_iter().enumerate() {
+        if k > 0 {
+            out.push(Node::Tok(",".into()));
+            out.push(Node::Tok(" ".into()));
+        }
+        out.extend(item);
+    }
+    out
 }
 
 /// One cell on lines of at most `most` characters: `\begin{aligned}` with `&` at each line's
