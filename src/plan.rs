@@ -5,7 +5,7 @@
 
 use crate::cas::Expr;
 use crate::model::catalogue::{Output, Stage, is_quantity, stage_for_quantity};
-use crate::scene::{PlotRequest, Scene};
+use crate::scene::{FreeInertia, PlotRequest, Scene};
 use std::collections::BTreeSet;
 
 #[derive(Debug, Clone)]
@@ -51,7 +51,15 @@ impl Plan {
                 wanted.push((Stage::Tensor, why.clone()));
             }
             if *p == PlotRequest::PrincipalAxes {
-                wanted.push((Stage::Principal, why));
+                wanted.push((Stage::Principal, why.clone()));
+            }
+            // The body's own moments are taken about its centre of mass.
+            if let PlotRequest::FreeBody {
+                inertia: FreeInertia::Principal,
+                ..
+            } = p
+            {
+                wanted.push((Stage::CentreOfMass, why));
             }
         }
         for c in &scene.claims {

@@ -57,7 +57,7 @@ pub fn scene_json(r: &SceneReport) -> Json {
                 "verdict": c.verdict.as_str(),
                 "expected": c.expected.as_str(),
                 "passed": c.passed(),
-                "differences": c.differences,
+                "differences": c.differences.iter().map(|d| d.to_text()).collect::<Vec<_>>(),
                 "problem": c.problem,
                 "precision": c.precision,
             })

@@ -8,6 +8,7 @@ use super::bodies::{MassModel, mass_model, place};
 use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
 use crate::cas::{self, AngleSpan, Expr, Integral};
 use crate::model::catalogue::quantity;
+use crate::model::prose::Prose;
 use crate::scene::{Body, Scene};
 
 /// The six independent entries of a symmetric tensor, and their labels.
@@ -23,15 +24,24 @@ fn symmetric(entries: &[Expr]) -> Mat3 {
     m
 }
 
-fn describe(domain: &[Integral]) -> String {
-    let parts: Vec<String> = domain
-        .iter()
-        .map(|i| match i {
-            Integral::Poly { var, lo, hi } => format!("{var} from {lo} to {hi}"),
-            Integral::Trig { var, span } => format!("{var} over [0, {}]", span_text(*span)),
-        })
-        .collect();
-    parts.join(", ")
+/// The ranges of integration: "x from −a/2 to a/2, θ over [0, 2π]", the ends as formulas.
+fn describe(mut prose: Prose, domain: &[Integral]) -> Prose {
+    for (k, i) in domain.iter().enumerate() {
+        if k > 0 {
+            prose = prose.text(", ");
+        }
+        prose = match i {
+            Integral::Poly { var, lo, hi } => prose
+                .text(&format!("{var} from "))
+                .math(lo.to_text(), lo.to_latex())
+                .text(" to ")
+                .math(hi.to_text(), hi.to_latex()),
+            Integral::Trig { var, span } => {
+                prose.text(&format!("{var} over [0, {}]", span_text(*span)))
+            }
+        };
+    }
+    prose
 }
 
 fn span_text(span: AngleSpan) -> &'static str {
@@ -70,7 +80,7 @@ fn integral_latex(integrand: &Expr, domain: &[Integral]) -> String {
     format!("{prefix}{}{differentials}", integrand.to_latex())
 }
 
-fn why_integrate(domain: &[Integral]) -> String {
+fn why_integrate(domain: &[Integral]) -> Prose {
     let trig = domain.iter().any(|i| matches!(i, Integral::Trig { .. }));
     let poly = domain.iter().any(|i| matches!(i, Integral::Poly { .. }));
     let mut why = String::from("expand, then ");
@@ -85,7 +95,7 @@ fn why_integrate(domain: &[Integral]) -> String {
     if poly {
         why.push_str("integrate the polynomial term by term");
     }
-    format!("{why} ({})", describe(domain))
+    describe(Prose::default().text(&format!("{why} (")), domain).text(")")
 }
 
 /// What one body contributes: its mass, tensor about the frame origin and first moment ∫x dm.
@@ -156,7 +166,7 @@ fn body_part(
             let (density, jacobian) = (&shown[0], &shown[1]);
             d.steps.push(Step::note(
                 &format!("{label}: mass element"),
-                format!("dm = {density} * {jacobian} d({}), with {} = {density}", describe(&c.domain), c.density_name),
+                format!("dm = {density} * {jacobian} d({}), with {} = {density}", describe(Prose::default(), &c.domain).to_text(), c.density_name),
                 format!(
                     "dm = {rho} \\cdot {} , \\quad {rho} = {}",
                     jacobian.to_latex(),
@@ -195,7 +205,7 @@ fn body_part(
                 &format!("{label}: total mass"),
                 ("∫dm", "\\int dm"),
                 &Value::Scalar(results[0].clone()),
-                &why_integrate(&c.domain),
+                why_integrate(&c.domain),
             ));
             for (k, (i, j)) in UNIQUE.iter().enumerate() {
                 let name = format!("I{}{}", AXES[*i], AXES[*j]);
@@ -209,8 +219,9 @@ fn body_part(
                         integral_latex(&integrands[k], &c.domain),
                         results[k + 1].to_latex()
                     ),
-                    why: why_integrate(&c.domain),
+                    why: why_integrate(&c.domain).to_text(),
                     cite: String::new(),
+                    why_math: why_integrate(&c.domain),
                 });
             }
             if index == 0 {

@@ -21,6 +21,7 @@ pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA, eigenvalue_lette
 use crate::cas::{self, CasError, DiffError, EvalError, Expr};
 use crate::model::catalogue::Stage;
 use crate::model::catalogue::quantity;
+use crate::model::prose::Prose;
 use crate::plan::Plan;
 use crate::scene::Scene;
 use algebra::Value;
@@ -37,12 +38,16 @@ pub struct Step {
     /// The key by which a scene's `[cite]` table names its own notes' equations for this step.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub cite: String,
+    /// The reason with its formulas as LaTeX, where it has any (`why` is its text).
+    #[serde(default, skip_serializing_if = "Prose::is_empty")]
+    pub why_math: Prose,
 }
 
 /// A step's reason, with the citation key a scene may map to its notes' equations.
 pub struct Why {
     pub key: &'static str,
     pub text: String,
+    pub math: Prose,
 }
 
 /// A reason that a scene may cite: `[cite] key = "eq (51)"` prints "eq (51): text".
@@ -50,6 +55,17 @@ pub fn cited(key: &'static str, text: &str) -> Why {
     Why {
         key,
         text: text.to_string(),
+        math: Prose::default(),
+    }
+}
+
+impl From<Prose> for Why {
+    fn from(prose: Prose) -> Why {
+        Why {
+            key: "",
+            text: prose.to_text(),
+            math: prose,
+        }
     }
 }
 
@@ -75,6 +91,7 @@ impl Step {
             latex: format!("{} = {}", lhs.1, value.to_latex()),
             why: why.text,
             cite: why.key.to_string(),
+            why_math: why.math,
         }
     }
 
@@ -86,6 +103,7 @@ impl Step {
             latex,
             why: why.text,
             cite: why.key.to_string(),
+            why_math: why.math,
         }
     }
 

@@ -192,6 +192,20 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     for (value, _) in roots.roots.iter_mut() {
         *value = pull_squares(value, &positive);
     }
+    // The factoriser's order of factors differs between builds: put the moments in ascending
+    // order at the scene's values (those it cannot evaluate last), ties by their text.
+    let key = |e: &Expr| (eval_at(e, &scene.values).ok(), e.to_text());
+    roots.roots.sort_by(|(a, _), (b, _)| {
+        let ((va, ta), (vb, tb)) = (key(a), key(b));
+        let by_value = match (va, vb) {
+            (Some(x), Some(y)) => x.total_cmp(&y),
+            _ => std::cmp::Ordering::Equal,
+        };
+        (va.is_none().cmp(&vb.is_none()))
+            .then(by_value)
+            .then(ta.cmp(&tb))
+    });
+    roots.unsolved.sort_by_key(|(factor, _)| factor.to_text());
     let mut spaces = Vec::new();
     for (value, multiplicity) in &roots.roots {
         let m = shifted(&tensor, value);

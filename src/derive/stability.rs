@@ -9,6 +9,7 @@ use super::{Derivation, DeriveError, Step, cited, factored, simplify_value};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::moments::ORDERINGS;
+use crate::model::prose::Prose;
 
 /// Columns of the stability table: the axis has the largest, the smallest or the middle moment.
 pub const CLASSES: [&str; 3] = ["largest", "smallest", "intermediate"];
@@ -161,11 +162,21 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
                 &format!("\\Omega_{{{}}}^{{2}}", k + 1),
             ),
             &factored(&Value::Scalar(omega_sq[k].clone()))?,
-            &format!(
-                "ω{ta} = a cos(Ωt + θ), ω{tb} = b sin(Ωt + θ) solve the pair when Ω² = −(product of \
-                 the two coefficients); then (a/b)² = {}",
-                factored(&Value::Scalar(ratio[k].clone()))?.to_text()
-            ),
+            {
+                let ratio = factored(&Value::Scalar(ratio[k].clone()))?;
+                Prose::default()
+                    .text(&format!(
+                        "ω{ta} = a cos(Ωt + θ), ω{tb} = b sin(Ωt + θ) solve the pair when Ω² = \
+                         −(product of the two coefficients); then "
+                    ))
+                    .math(
+                        format!("(a/b)² = {}", ratio.to_text()),
+                        format!(
+                            "\\left(\\frac{{a}}{{b}}\\right)^{{2}} = {}",
+                            ratio.to_latex()
+                        ),
+                    )
+            },
         ));
     }
     d.set(

@@ -227,3 +227,50 @@ fn the_eigenvalue_takes_another_letter_where_lambda_is_a_line_density() {
     let sphere = "[[body]]\nkind = \"sphere\"\nradius = \"R\"\nmass = \"M\"\n";
     assert_eq!(letters(sphere), (true, false));
 }
+
+#[test]
+fn principal_moments_come_in_ascending_order_and_match_the_eigen_solver() {
+    // Cases whose characteristic cubic factors into several pieces, which the factoriser may
+    // list in any order: an L of three squares, a box, a disk on a rod.
+    let cases = [
+        (
+            "[[body]]\nkind = \"plate\"\nsize = [\"2*a\", \"a\"]\nmass = \"2*M\"\n\
+             [[body]]\nkind = \"plate\"\nsize = [\"a\", \"a\"]\nmass = \"M\"\nshift = [\"0\", \"a\", \"0\"]\n",
+            "M = \"m\", a = \"a\"",
+            "M = 1.0, a = 1.0",
+        ),
+        (
+            "[[body]]\nkind = \"box\"\nsize = [\"3*a\", \"a\", \"2*a\"]\nmass = \"M\"\norigin = \"centre\"\n",
+            "M = \"m\", a = \"a\"",
+            "M = 1.0, a = 1.0",
+        ),
+        (
+            "[[body]]\nkind = \"plate\"\nsize = [\"a\", \"2*a\"]\nmass = \"M\"\norigin = \"centre\"\n",
+            "M = \"m\", a = \"a\"",
+            "M = 2.0, a = 0.5",
+        ),
+    ];
+    for (body, symbols, values) in cases {
+        let r = run(body, symbols, values, ALL);
+        let Value::Vector(moments) = &r.derivation.quantities["principal_moments"] else {
+            panic!("no principal moments for {body}")
+        };
+        let exact: Vec<f64> = moments
+            .iter()
+            .map(|m| crate::model::value::eval_at(m, &r.scene.values).unwrap())
+            .collect();
+        let numeric = tensor(&r).matrix_at(&r.scene.values).unwrap();
+        let mut eigen: Vec<f64> = nalgebra::SymmetricEigen::new(numeric)
+            .eigenvalues
+            .iter()
+            .copied()
+            .collect();
+        eigen.sort_by(f64::total_cmp);
+        for (x, e) in exact.iter().zip(&eigen) {
+            assert!(
+                (x - e).abs() <= 1e-13 * e.abs().max(1.0),
+                "{exact:?} vs {eigen:?}"
+            );
+        }
+    }
+}

@@ -25,7 +25,7 @@ use crate::model::figure::Figure;
 use crate::model::moments::MomentsError;
 use crate::numeric::body::NumBody;
 use crate::numeric::integrators::IntegrationError;
-use crate::scene::{PlotRequest, Scene};
+use crate::scene::{FreeInertia, PlotRequest, Scene};
 
 /// Why a figure could not be drawn.
 #[derive(Debug, thiserror::Error)]
@@ -124,7 +124,13 @@ pub fn figures(
                 inertia,
                 omega,
                 t,
-            } => out.push(free_body::figure(*kind, *inertia, *omega, *t, fidelity)?),
+            } => {
+                let inertia = match inertia {
+                    FreeInertia::Given(i) => *i,
+                    FreeInertia::Principal => own_principal_moments(scene, d)?,
+                };
+                out.push(free_body::figure(*kind, inertia, *omega, *t, fidelity)?)
+            }
         }
         // Two plots of one kind in a scene get distinct file names.
         let last = out.len() - 1;
@@ -136,6 +142,33 @@ pub fn figures(
         }
     }
     Ok(out)
+}
+
+/// The principal moments of the scene's bodies about their centre of mass, at the scene's
+/// values, ascending: I_cm = I − M(R²𝟙 − R Rᵀ) from the exact tensor, mass and centre.
+fn own_principal_moments(scene: &Scene, d: &Derivation) -> Result<[f64; 3], FigureError> {
+    use crate::model::catalogue::quantity;
+    use crate::model::value::{Value, eval_at, vector_at};
+    let get = |name| d.get(name).map_err(|e| FigureError::Derive(Box::new(e)));
+    let tensor = get(quantity::INERTIA_TENSOR)?.matrix_at(&scene.values)?;
+    let (Value::Scalar(mass), Value::Vector(centre)) =
+        (get(quantity::MASS)?, get(quantity::CENTRE_OF_MASS)?)
+    else {
+        unreachable!("the mass is a scalar and the centre a vector")
+    };
+    let m = eval_at(mass, &scene.values)?;
+    let r = vector_at(centre, &scene.values)?;
+    let about_centre =
+        tensor - m * (r.norm_squared() * nalgebra::Matrix3::identity() - r * r.transpose());
+    let mut moments: Vec<f64> = nalgebra::SymmetricEigen::new(about_centre)
+        .eigenvalues
+        .iter()
+        .copied()
+        .collect();
+    moments.sort_by(f64::total_cmp);
+    let moments = [moments[0], moments[1], moments[2]];
+    crate::model::moments::Moments::new(moments)?;
+    Ok(moments)
 }
 
 fn trim_num(x: f64) -> String {

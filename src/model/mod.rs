@@ -6,4 +6,5 @@ pub mod catalogue;
 pub mod fidelity;
 pub mod figure;
 pub mod moments;
+pub mod prose;
 pub mod value;

@@ -37,7 +37,7 @@ pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
             latex: latex.into(),
         });
     }
-    Ok(escape_bare_less_than(&out))
+    Ok(space_attributes(&escape_bare_less_than(&out)))
 }
 
 /// A display formula: one block `<math>` when it fits a line; else its pieces, each an inline
@@ -103,6 +103,30 @@ fn escape_bare_less_than(mathml: &str) -> String {
     out
 }
 
+/// The converter writes `\bigl(` as `<mo … stretchy="true"minsize="1.2em" …>`, with no space
+/// between two attributes, which HTML does not allow: put one after every attribute value that
+/// another attribute follows directly.
+fn space_attributes(mathml: &str) -> String {
+    let mut out = String::with_capacity(mathml.len());
+    let (mut in_tag, mut in_value) = (false, false);
+    let mut chars = mathml.chars().peekable();
+    while let Some(c) = chars.next() {
+        out.push(c);
+        match c {
+            '<' if !in_value => in_tag = true,
+            '>' if !in_value => in_tag = false,
+            '"' if in_tag => {
+                in_value = !in_value;
+                if !in_value && chars.peek().is_some_and(|n| n.is_ascii_alphabetic()) {
+                    out.push(' ');
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -158,6 +182,20 @@ mod tests {
         assert_eq!(m.matches("<mrow></mrow><mo>+</mo>").count(), 39, "{m}");
         let short = block("T = a + b").unwrap();
         assert!(short.starts_with("<math display=\"block\""), "{short}");
+    }
+
+    #[test]
+    fn attributes_of_a_sized_bracket_are_spaced() {
+        let m = mathml("\\Bigl(a + b\\Bigr) \\bigl(c\\bigr) < d", false).unwrap();
+        assert!(m.contains("stretchy=\"true\" minsize=\"1.8em\""), "{m}");
+        assert!(m.contains("stretchy=\"true\" minsize=\"1.2em\""), "{m}");
+        // No attribute value anywhere is followed directly by a letter.
+        let glued = m
+            .split('"')
+            .skip(2)
+            .step_by(2)
+            .any(|after| after.starts_with(|c: char| c.is_ascii_alphabetic()));
+        assert!(!glued, "{m}");
     }
 
     #[test]

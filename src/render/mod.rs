@@ -31,6 +31,9 @@ pub struct StepView {
     pub title: String,
     pub math: String,
     pub why: String,
+    /// A result at the scene's numbers: "at m = 1, a = 2:" and its MathML (empty for a step,
+    /// for a number, or where a symbol has no value).
+    pub at: String,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -43,6 +46,7 @@ pub struct ClaimView {
     pub quantity: String,
     pub notes: String,
     pub derived: String,
+    /// Each as HTML, its formulas as MathML.
     pub differences: Vec<String>,
     /// For a number the notes give roughly: how it was rounded to compare.
     pub precision: Option<String>,
@@ -159,8 +163,86 @@ pub fn page_file(r: &SceneReport) -> String {
     format!("{}.html", r.scene.id)
 }
 
+/// A sentence as HTML: its text escaped, its formulas as MathML.
+fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError> {
+    use crate::model::prose::Piece;
+    let mut out = String::new();
+    for piece in &prose.0 {
+        match piece {
+            Piece::Text(t) => out.push_str(&tera::escape_html(t)),
+            Piece::Math { latex, .. } => out.push_str(&math::inline(latex)?),
+        }
+    }
+    Ok(out)
+}
+
+/// A step's reason as HTML: its text escaped, its formulas as MathML.
+fn why_html(
+    st: &crate::derive::Step,
+    cites: &std::collections::BTreeMap<String, String>,
+) -> Result<String, RenderError> {
+    if st.why_math.is_empty() {
+        return Ok(tera::escape_html(&st.why_in(cites)));
+    }
+    let cite = match cites.get(&st.cite) {
+        Some(c) if !st.cite.is_empty() => tera::escape_html(&format!("{c}: ")),
+        _ => String::new(),
+    };
+    Ok(format!("{cite}{}", prose_html(&st.why_math)?))
+}
+
 fn value_math(v: &Value) -> Result<String, RenderError> {
     math::block(&v.to_latex())
+}
+
+/// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
+/// of the symbols it contains) and the number, vector or matrix as MathML. Empty when the result
+/// is a number already or a symbol in it has no value.
+fn value_at_numbers(
+    v: &Value,
+    values: &crate::model::value::Values,
+) -> Result<String, RenderError> {
+    use crate::base::format::significant;
+    let symbols: std::collections::BTreeSet<String> =
+        v.entries().iter().flat_map(|e| e.symbols()).collect();
+    let Ok(numbers) = v.numbers_at(values) else {
+        return Ok(String::new());
+    };
+    // A number or a bare symbol (a mass M) says nothing new at the numbers.
+    let plain = v
+        .entries()
+        .iter()
+        .all(|e| matches!(e, Expr::Num(_) | Expr::Sym(_)));
+    if symbols.is_empty() || plain {
+        return Ok(String::new());
+    }
+    let n: Vec<String> = numbers.iter().map(|x| significant(*x, 6)).collect();
+    let latex = match v {
+        Value::Scalar(_) => n[0].clone(),
+        Value::Vector(_) => format!("\\begin{{pmatrix}}{}\\end{{pmatrix}}", n.join(" & ")),
+        Value::Matrix(_) => format!(
+            "\\begin{{pmatrix}}{}\\end{{pmatrix}}",
+            n.chunks(3)
+                .map(|row| row.join(" & "))
+                .collect::<Vec<_>>()
+                .join(" \\\\ ")
+        ),
+    };
+    let at: Vec<String> = symbols
+        .iter()
+        .map(|k| {
+            format!(
+                "{} = {}",
+                Expr::sym(k).to_latex(),
+                significant(values[k], 6)
+            )
+        })
+        .collect();
+    Ok(format!(
+        "at {}: {}",
+        math::inline(&at.join(",\\; "))?,
+        math::inline(&latex)?
+    ))
 }
 
 /// Builds the view of one page. `timings` adds measured seconds to the numeric table.
@@ -185,7 +267,8 @@ pub fn page_view(
             Ok(StepView {
                 title: st.title.clone(),
                 math: math::block(&st.latex)?,
-                why: st.why_in(&s.cite),
+                why: why_html(st, &s.cite)?,
+                at: String::new(),
             })
         })
         .collect::<Result<Vec<_>, RenderError>>()?;
@@ -198,6 +281,7 @@ pub fn page_view(
             title: name.replace('_', " "),
             math: value_math(v)?,
             why: String::new(),
+            at: value_at_numbers(v, &s.values)?,
         });
     }
     if let Some(e) = &r.derivation.eigen {
@@ -216,6 +300,7 @@ pub fn page_view(
                 title: format!("principal moment (multiplicity {})", sp.multiplicity),
                 math: math::block(&format!("{}{dir}", sp.value.to_latex()))?,
                 why: String::new(),
+                at: String::new(),
             });
         }
     }
@@ -267,7 +352,11 @@ pub fn page_view(
             quantity: render(claim.quantity.as_ref())?,
             notes: render(claim.value.as_ref())?,
             derived,
-            differences: c.differences.clone(),
+            differences: c
+                .differences
+                .iter()
+                .map(prose_html)
+                .collect::<Result<_, _>>()?,
             precision: c.precision.clone(),
             role: match c.role {
                 crate::scene::ClaimRole::Notes => "notes",
@@ -367,9 +456,10 @@ fn principal_values_view(
         "the exact roots"
     };
     Ok(StepView {
+        at: String::new(),
         title: "principal moments at the scene's values".into(),
         math: math::block(&latex)?,
-        why: format!(
+        why: tera::escape_html(&format!(
             "at {}: {route} evaluated, and the eigen-solver on the exact tensor agrees to {} (relative)",
             symbols
                 .iter()
@@ -377,7 +467,7 @@ fn principal_values_view(
                 .collect::<Vec<_>>()
                 .join(", "),
             sci(p.error)
-        ),
+        )),
     })
 }
 

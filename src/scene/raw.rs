@@ -151,7 +151,9 @@ pub struct RawPlot {
     pub range: Option<Spanned<Vec<Text>>>,
     pub samples: Option<Spanned<i64>>,
     /// For the free-body kinds: principal moments, ω(0) in the body frame, and the end time.
-    pub inertia: Option<Spanned<Vec<f64>>>,
-    pub omega: Option<Spanned<Vec<f64>>>,
+    /// Each of the three is a number or an expression of the scene's symbols; `inertia` may
+    /// also be "principal" (the scene's own body). Read as TOML values for errors that say which.
+    pub inertia: Option<Spanned<toml::Value>>,
+    pub omega: Option<Spanned<toml::Value>>,
     pub t: Option<Spanned<f64>>,
 }

@@ -274,10 +274,18 @@ pub enum PlotRequest {
     /// A torque-free body given by its principal moments and ω(0), integrated to `t`.
     FreeBody {
         kind: FreeBodyPlot,
-        inertia: [f64; 3],
+        inertia: FreeInertia,
         omega: [f64; 3],
         t: f64,
     },
+}
+
+/// A free-body plot's principal moments: given, or those of the scene's own bodies about their
+/// centre of mass (known only once the tensor is derived).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FreeInertia {
+    Given([f64; 3]),
+    Principal,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -350,9 +358,20 @@ impl PlotRequest {
         }
     }
 
-    /// Plots of a body's tensor need a `[[body]]`; free-body plots carry their own.
+    pub fn is_free_body(&self) -> bool {
+        matches!(self, PlotRequest::FreeBody { .. })
+    }
+
+    /// Plots of a body's tensor need a `[[body]]`; free-body plots carry their own, unless they
+    /// take the principal moments of the scene's body.
     pub fn needs_body(&self) -> bool {
-        !matches!(self, PlotRequest::FreeBody { .. })
+        !matches!(
+            self,
+            PlotRequest::FreeBody {
+                inertia: FreeInertia::Given(_),
+                ..
+            }
+        )
     }
 }
 

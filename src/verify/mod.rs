@@ -12,6 +12,7 @@ use crate::derive::algebra::{Env, Value, evaluate};
 use crate::derive::{Derivation, simplify_value};
 use crate::model::catalogue::Stage;
 use crate::model::catalogue::quantity;
+use crate::model::prose::Prose;
 use crate::model::value::vector_at;
 use crate::numeric::NumericReport;
 use crate::numeric::eigen::Eigenspace;
@@ -37,7 +38,7 @@ pub struct ClaimResult {
     pub verdict: Verdict,
     pub expected: Verdict,
     /// For a disagreement: each entry that differs, with both sides and their difference.
-    pub differences: Vec<String>,
+    pub differences: Vec<Prose>,
     /// A problem with the check itself (the two routes disagree, a type error), if any.
     pub problem: Option<String>,
     /// For a number the notes give roughly: the derived value, rounded as the notes round.
@@ -232,7 +233,7 @@ fn check_claim(
         Err(e) => {
             r.verdict = Verdict::Disagrees;
             r.differences
-                .push(format!("the notes' formula is ill-formed: {e}"));
+                .push(format!("the notes' formula is ill-formed: {e}").into());
             return Ok(r);
         }
     };
@@ -245,7 +246,7 @@ fn check_claim(
                     Verdict::Disagrees
                 };
                 if !agrees {
-                    r.differences.push(detail.clone());
+                    r.differences.push(detail.clone().into());
                 }
                 r.precision = Some(detail);
             }
@@ -255,11 +256,14 @@ fn check_claim(
     }
     if std::mem::discriminant(&derived) != std::mem::discriminant(&notes) {
         r.verdict = Verdict::Disagrees;
-        r.differences.push(format!(
-            "the notes give {}, the derivation {}",
-            notes.kind(),
-            derived.kind()
-        ));
+        r.differences.push(
+            format!(
+                "the notes give {}, the derivation {}",
+                notes.kind(),
+                derived.kind()
+            )
+            .into(),
+        );
         return Ok(r);
     }
     let (de, ne) = (derived.entries(), notes.entries());
@@ -291,7 +295,7 @@ fn check_claim(
                         if label.is_empty() { String::new() } else { format!(" {label}") },
                         if symbolic[k] { "zero" } else { "not zero" },
                         if numeric[k] { "zero" } else { "not zero" }
-                    ));
+                    ).into());
                 }
                 return Ok(r);
             }
@@ -308,17 +312,27 @@ fn check_claim(
         let simplified = cas::simplify_all(diffs.clone())?;
         let notes_simple = cas::simplify_all(ne.clone())?;
         for k in (0..diffs.len()).filter(|&k| !symbolic[k]) {
-            r.differences.push(format!(
-                "entry{}: derived {}, notes {}, difference {}",
-                if derived.entry_label(k).is_empty() {
-                    String::new()
-                } else {
-                    format!(" {}", derived.entry_label(k))
-                },
-                de[k],
-                notes_simple[k],
-                simplified[k]
-            ));
+            let label = derived.entry_label(k);
+            let label = if label.is_empty() {
+                String::new()
+            } else {
+                format!(" {label}")
+            };
+            let formula = |e: &Expr| (e.to_text(), e.to_latex());
+            let ((dt, dl), (nt, nl), (ft, fl)) = (
+                formula(&de[k]),
+                formula(&notes_simple[k]),
+                formula(&simplified[k]),
+            );
+            r.differences.push(
+                Prose::default()
+                    .text(&format!("entry{label}: derived "))
+                    .math(dt, dl)
+                    .text(", notes ")
+                    .math(nt, nl)
+                    .text(", difference ")
+                    .math(ft, fl),
+            );
         }
     }
     Ok(r)

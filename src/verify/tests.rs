@@ -44,7 +44,9 @@ fn agreeing_and_disagreeing_claims() {
     assert_eq!(r[1].verdict, Verdict::Disagrees);
     assert!(r[1].passed());
     assert!(
-        r[1].differences[0].contains("difference 1/12*m*a^2"),
+        r[1].differences[0]
+            .to_text()
+            .contains("difference 1/12*m*a^2"),
         "{:?}",
         r[1].differences
     );
@@ -67,11 +69,14 @@ fn ill_formed_and_mismatched_claims_disagree() {
         .concat(),
     );
     assert!(
-        r[0].differences[0].contains("ill-formed"),
+        r[0].differences[0].to_text().contains("ill-formed"),
         "{:?}",
         r[0].differences
     );
-    assert!(r[1].differences[0].contains("a scalar") && r[1].differences[0].contains("a matrix"));
+    assert!(
+        r[1].differences[0].to_text().contains("a scalar")
+            && r[1].differences[0].to_text().contains("a matrix")
+    );
     assert!(r.iter().all(|c| c.passed()));
 }
 

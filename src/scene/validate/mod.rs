@@ -109,7 +109,9 @@ impl Validator<'_> {
         }
         let claims = self.claims(&raw, &claim_names)?;
         let wants = self.wants(&raw)?;
-        let plots = self.plots(&raw, &symbols)?;
+        // Values before plots: a free-body plot's inertia and omega may be expressions.
+        let values = self.values(&raw, &symbols, &bodies, omega.iter().chain(axis.iter()))?;
+        let plots = self.plots(&raw, &symbols, &values)?;
         self.requests(
             &raw,
             &symbols,
@@ -119,7 +121,6 @@ impl Validator<'_> {
             &plots,
             [omega.is_some(), axis.is_some()],
         )?;
-        let values = self.values(&raw, &symbols, &bodies, omega.iter().chain(axis.iter()))?;
         if let (Some(n), Some(raw_axis)) = (&axis, &raw.axis) {
             self.unit_axis(n, raw_axis.span().start, &values)?;
         }
@@ -306,11 +307,14 @@ impl Validator<'_> {
         if let Some(k) = plots.iter().position(|p| p.needs_body())
             && bodies.is_empty()
         {
-            return Err(self.err(
-                raw.plots[k].span().start,
-                &format!("plot[{k}]"),
-                format!("a {} plot needs at least one [[body]]", plots[k].kind()),
-            ));
+            let message = if plots[k].is_free_body() {
+                "`inertia = \"principal\"` takes the moments of the scene's body, but there is \
+                 no [[body]]: add one, or give the moments as `inertia = [I1, I2, I3]`"
+                    .to_string()
+            } else {
+                format!("the {} plot needs at least one [[body]]", plots[k].kind())
+            };
+            return Err(self.err(raw.plots[k].span().start, &format!("plot[{k}]"), message));
         }
         if wants.is_empty() && claims.is_empty() && plots.is_empty() {
             return Err(self.err(

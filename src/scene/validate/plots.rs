@@ -3,7 +3,7 @@
 use super::{MAX_PLOT_RADIANS, MAX_PLOT_TIME, Validator, content_start};
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawPlot, RawScene};
-use crate::scene::types::{FreeBodyPlot, PlotRequest};
+use crate::scene::types::{FreeBodyPlot, FreeInertia, PlotRequest};
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
 
@@ -13,10 +13,11 @@ impl Validator<'_> {
         &self,
         raw: &RawScene,
         symbols: &BTreeMap<String, String>,
+        values: &BTreeMap<String, f64>,
     ) -> Result<Vec<PlotRequest>, SceneError> {
         let mut plots = Vec::new();
         for (i, p) in raw.plots.iter().enumerate() {
-            plots.push(self.plot(p, &format!("plot[{i}]"), symbols)?);
+            plots.push(self.plot(p, &format!("plot[{i}]"), symbols, values)?);
         }
         Ok(plots)
     }
@@ -26,6 +27,7 @@ impl Validator<'_> {
         p: &Spanned<RawPlot>,
         field: &str,
         symbols: &BTreeMap<String, String>,
+        values: &BTreeMap<String, f64>,
     ) -> Result<PlotRequest, SceneError> {
         let rp = p.get_ref();
         let start = p.span().start;
@@ -42,67 +44,36 @@ impl Validator<'_> {
                     "`over`, `range` and `samples` belong to a tensor-sweep",
                 ));
             }
-            let triple =
-                |v: &Option<Spanned<Vec<f64>>>, name: &str| -> Result<[f64; 3], SceneError> {
-                    let v = v.as_ref().ok_or_else(|| {
+            let inertia = match rp.inertia.as_ref() {
+                Some(v) if v.get_ref().as_str() == Some("principal") => FreeInertia::Principal,
+                _ => {
+                    let inertia = self.free_body_triple(p, field, "inertia", symbols, values)?;
+                    crate::model::moments::Moments::new(inertia).map_err(|m| {
                         self.err(
-                            start,
-                            &format!("{field}.{name}"),
-                            format!("a {} plot needs `{name} = [x, y, z]`", kind.name()),
+                            rp.inertia.as_ref().map_or(start, |v| v.span().start),
+                            &format!("{field}.inertia"),
+                            m.to_string(),
                         )
                     })?;
-                    let arr = <[f64; 3]>::try_from(v.get_ref().as_slice()).map_err(|_| {
-                        self.err(
-                            v.span().start,
-                            &format!("{field}.{name}"),
-                            format!("expected 3 numbers, found {}", v.get_ref().len()),
-                        )
-                    })?;
-                    if arr.iter().any(|x| !x.is_finite()) {
-                        return Err(self.err(
-                            v.span().start,
-                            &format!("{field}.{name}"),
-                            "the values must be finite numbers",
-                        ));
-                    }
-                    // Subnormal numbers have lost digits: every product with them is wrong.
-                    if let Some(x) = crate::base::float::first_subnormal(&arr).map(|k| arr[k]) {
-                        return Err(self.err(
-                            v.span().start,
-                            &format!("{field}.{name}"),
-                            format!(
-                                "{x:e} is below {:e}, where double precision keeps its digits: \
-                                 write 0, or use other units",
-                                f64::MIN_POSITIVE
-                            ),
-                        ));
-                    }
-                    Ok(arr)
-                };
-            let inertia = triple(&rp.inertia, "inertia")?;
-            crate::model::moments::Moments::new(inertia).map_err(|m| {
-                self.err(
-                    rp.inertia.as_ref().map_or(start, |v| v.span().start),
-                    &format!("{field}.inertia"),
-                    m.to_string(),
-                )
-            })?;
-            let omega = triple(&rp.omega, "omega")?;
+                    FreeInertia::Given(inertia)
+                }
+            };
+            let omega = self.free_body_triple(p, field, "omega", symbols, values)?;
+            let omega_at = rp.omega.as_ref().map_or(start, |v| v.span().start);
             if omega.iter().all(|x| *x == 0.0) {
                 return Err(self.err(
-                    rp.omega.as_ref().map_or(start, |v| v.span().start),
+                    omega_at,
                     &format!("{field}.omega"),
                     "omega must not be zero",
                 ));
             }
-            let moments = crate::model::moments::Moments(inertia);
-            let w0 = nalgebra::Vector3::from(omega);
-            if let Some(why) = crate::model::moments::beyond_double_precision(&moments, &w0) {
-                return Err(self.err(
-                    rp.omega.as_ref().map_or(start, |v| v.span().start),
-                    &format!("{field}.omega"),
-                    why.to_string(),
-                ));
+            // The scene's own moments are checked against ω(0) when they are known (figures).
+            if let FreeInertia::Given(inertia) = inertia {
+                let moments = crate::model::moments::Moments(inertia);
+                let w0 = nalgebra::Vector3::from(omega);
+                if let Some(why) = crate::model::moments::beyond_double_precision(&moments, &w0) {
+                    return Err(self.err(omega_at, &format!("{field}.omega"), why.to_string()));
+                }
             }
             let t = rp.t.as_ref().ok_or_else(|| {
                 self.err(
@@ -237,5 +208,96 @@ impl Validator<'_> {
             ));
         }
         Ok(request)
+    }
+
+    /// A free-body plot's `inertia` or `omega`: three numbers, or expressions of the scene's
+    /// symbols evaluated at their `[numeric]` values; finite and not subnormal.
+    fn free_body_triple(
+        &self,
+        p: &Spanned<RawPlot>,
+        field: &str,
+        name: &str,
+        symbols: &BTreeMap<String, String>,
+        values: &BTreeMap<String, f64>,
+    ) -> Result<[f64; 3], SceneError> {
+        let rp = p.get_ref();
+        let v = if name == "inertia" {
+            &rp.inertia
+        } else {
+            &rp.omega
+        };
+        let field = format!("{field}.{name}");
+        let principal = if name == "inertia" {
+            ", or \"principal\" for the scene's own body"
+        } else {
+            ""
+        };
+        let v = v.as_ref().ok_or_else(|| {
+            self.err(
+                p.span().start,
+                &field,
+                format!(
+                    "a {} plot needs `{name} = [x, y, z]`{principal}",
+                    rp.kind.get_ref()
+                ),
+            )
+        })?;
+        let at = v.span().start;
+        let wrong = || {
+            self.err(
+                at,
+                &field,
+                format!(
+                    "expected three numbers or expressions of the scene's symbols, such as \
+                     [1, 2, \"3*m*a^2\"]{principal}"
+                ),
+            )
+        };
+        let items = v.get_ref().as_array().ok_or_else(wrong)?;
+        if items.len() != 3 {
+            return Err(self.err(
+                at,
+                &field,
+                format!("expected 3 components, found {}", items.len()),
+            ));
+        }
+        let mut allowed: BTreeSet<String> = symbols.keys().cloned().collect();
+        allowed.insert("pi".into());
+        let mut arr = [0.0; 3];
+        for (k, item) in items.iter().enumerate() {
+            let f = format!("{field}[{k}]");
+            arr[k] = match item {
+                toml::Value::Integer(n) => *n as f64,
+                toml::Value::Float(x) => *x,
+                toml::Value::String(text) => {
+                    let e = self.parse_checked(text, at, &f, &allowed, false)?;
+                    e.eval(&|s| values.get(s).copied()).map_err(|m| match m {
+                        crate::cas::EvalError::NoValue(s) => self.err(
+                            at,
+                            &f,
+                            format!("`{s}` has no value: give it one under [numeric] values"),
+                        ),
+                        m => self.err(at, &f, m.to_string()),
+                    })?
+                }
+                _ => return Err(wrong()),
+            };
+        }
+        if arr.iter().any(|x| !x.is_finite()) {
+            return Err(self.err(at, &field, "the values must be finite numbers"));
+        }
+        // Subnormal numbers have lost digits: every product with them is wrong.
+        if let Some(x) = crate::base::float::first_subnormal(&arr).map(|k| arr[k]) {
+            return Err(self.err(
+                at,
+                &field,
+                format!(
+                    "{x:e} is below {:e}, where double precision keeps its digits: write 0, or \
+                     use other units",
+                    f64::MIN_POSITIVE
+                ),
+            ));
+        }
+        Ok(arr)
     }
 }
