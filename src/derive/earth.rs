@@ -6,6 +6,7 @@ use super::algebra::Value;
 use super::{Derivation, DeriveError, Step, cited};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
+use crate::model::prose::Prose;
 
 /// Dynamical ellipticity H = (C − A)/C = 3.2737949e-3 (REFERENCE.md: IERS Conventions 2010,
 /// Table 1.1).
@@ -93,7 +94,15 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         "β for an oblate Earth",
         ("beta", "\\beta = \\frac{C - A}{A}"),
         &Value::Scalar(beta.clone()),
-        cited("earth-beta", "β = (I3 − I1)/I1 with I1 = I2 = A and I3 = C"),
+        cited(
+            "earth-beta",
+            Prose::default()
+                .math("β = (I3 − I1)/I1", r"\beta = \frac{I_{3} - I_{1}}{I_{1}}")
+                .text(" with ")
+                .math("I1 = I2 = A", "I_{1} = I_{2} = A")
+                .text(" and ")
+                .math("I3 = C", "I_{3} = C"),
+        ),
     ));
     let at_h = |e: &Expr| {
         cas::simplify(&e.substitute(&|n| (n == "H").then(|| rat(DYNAMICAL_ELLIPTICITY))))

@@ -8,6 +8,7 @@ use super::sign::{Sign, sign_over_positive};
 use super::{Derivation, DeriveError, Step, cited, factored, simplify_value, values_equal};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
+use crate::model::prose::Prose;
 
 fn s(name: &str) -> Expr {
     Expr::sym(name)
@@ -78,8 +79,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &factored(&Value::Scalar(second.clone()))?,
         cited(
             "symmetric-oscillator",
-            "differentiate dω1/dt along the motion and use dω2/dt; this is −β²ω3²ω1, \
-         a harmonic oscillator of angular frequency βω3",
+            Prose::default()
+                .text("differentiate dω1/dt along the motion and use dω2/dt; this is ")
+                .math("−β²ω3²ω1", r"-\beta^{2}\omega_{3}^{2}\,\omega_{1}")
+                .text(", a harmonic oscillator of angular frequency βω3"),
         ),
     ));
     d.set(quantity::W1_SECOND_DERIVATIVE, Value::Scalar(second));
@@ -136,7 +139,9 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(omega_squared.clone()),
         cited(
             "symmetric-omega-constant",
-            "sin² + cos² = 1, so ω is constant",
+            Prose::default()
+                .math("sin² + cos² = 1", r"\sin^{2} + \cos^{2} = 1")
+                .text(", so ω is constant"),
         ),
     ));
     d.set(
@@ -170,13 +175,23 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "Twice the kinetic energy",
         ("2T", "2T = \\vec\\omega\\cdot\\vec L"),
         &Value::Scalar(two_t.clone()),
-        "ωᵀIω along the solution: constant",
+        Prose::default()
+            .math(
+                "ωᵀIω",
+                r"\vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}",
+            )
+            .text(" along the solution: constant"),
     ));
     d.steps.push(Step::equation(
         "Angular momentum squared",
         ("L^2", "L^{2}"),
         &Value::Scalar(l_squared.clone()),
-        "|Iω|² along the solution: constant, as it must be without torque",
+        Prose::default()
+            .math(
+                "|Iω|²",
+                r"\left|\overleftrightarrow{I}\,\vec{\omega}\right|^{2}",
+            )
+            .text(" along the solution: constant, as it must be without torque"),
     ));
     d.set(quantity::TWICE_ENERGY, Value::Scalar(two_t.clone()));
     d.set(quantity::MOMENTUM_SQUARED, Value::Scalar(l_squared.clone()));
@@ -186,7 +201,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "Body cone",
         ("tan^2 alpha_b", "\\tan^{2}\\alpha_{b}"),
         &Value::Scalar(body_tan2.clone()),
-        "α_b is the angle between ω and the symmetry axis: tan α_b = A/ω3",
+        Prose::default()
+            .math("α_b", r"\alpha_{b}")
+            .text(" is the angle between ω and the symmetry axis: ")
+            .math("tan α_b = A/ω3", r"\tan\alpha_{b} = \frac{A}{\omega_{3}}"),
     ));
     let space_cos2 = scalar(Expr::over(
         Expr::pow(two_t.clone(), Expr::int(2)),
@@ -198,7 +216,13 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(space_cos2.clone()),
         cited(
             "space-cone",
-            "α_s is the angle between ω and the fixed L, cos α_s = ω·L/(ωL) = 2T/(ωL)",
+            Prose::default()
+                .math("α_s", r"\alpha_{s}")
+                .text(" is the angle between ω and the fixed L, ")
+                .math(
+                    "cos α_s = ω·L/(ωL) = 2T/(ωL)",
+                    r"\cos\alpha_{s} = \frac{\vec{\omega}\cdot\vec{L}}{\omega L} = \frac{2T}{\omega L}",
+                ),
         ),
     ));
     let tilt_tan2 = scalar(tan_squared_from_axis(&l))?;

@@ -32,13 +32,18 @@ fn describe(mut prose: Prose, domain: &[Integral]) -> Prose {
         }
         prose = match i {
             Integral::Poly { var, lo, hi } => prose
-                .text(&format!("{var} from "))
+                .math(var.to_string(), Expr::sym(var).to_latex())
+                .text(" from ")
                 .math(lo.to_text(), lo.to_latex())
                 .text(" to ")
                 .math(hi.to_text(), hi.to_latex()),
-            Integral::Trig { var, span } => {
-                prose.text(&format!("{var} over [0, {}]", span_text(*span)))
-            }
+            Integral::Trig { var, span } => prose
+                .math(var.to_string(), Expr::sym(var).to_latex())
+                .text(" over ")
+                .math(
+                    format!("[0, {}]", span_text(*span)),
+                    format!("\\left[0, {}\\right]", span_latex(*span)),
+                ),
         };
     }
     prose
@@ -130,7 +135,12 @@ fn body_part(
                 &tensor,
                 cited(
                     "point-tensor",
-                    "the tensor's integral replaced by Σ mᵢ(rᵢ²𝟙 − rᵢrᵢᵀ)",
+                    Prose::default()
+                        .text("the tensor's integral replaced by ")
+                        .math(
+                            "Σ mᵢ(rᵢ²𝟙 − rᵢrᵢᵀ)",
+                            r"\sum_{i} m_{i}\left(r_{i}^{2}\mathbb{1} - \vec{r}_{i}\vec{r}_{i}^{T}\right)",
+                        ),
                 ),
             ));
             let Value::Matrix(tensor) = tensor else {
@@ -284,7 +294,9 @@ pub fn derive_tensor(
             "Centre of mass",
             ("R", "\\vec R"),
             &centre,
-            "R = (1/M) ∫ r dm, from the same integrals",
+            Prose::default()
+                .math("R = (1/M) ∫ r dm", r"\vec{R} = \frac{1}{M}\int \vec{r}\,dm")
+                .text(", from the same integrals"),
         ));
         d.set(quantity::CENTRE_OF_MASS, centre);
     }
@@ -344,7 +356,10 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         &theorem,
         cited(
             "parallel-axis",
-            "in tensor form; the cross term vanishes because Σ m r' = 0 about the centre of mass",
+            Prose::default()
+                .text("in tensor form; the cross term vanishes because ")
+                .math("Σ m r' = 0", r"\sum m\,\vec{r}\,' = 0")
+                .text(" about the centre of mass"),
         ),
     ));
     let direct = d.get(quantity::INERTIA_TENSOR)?.clone();

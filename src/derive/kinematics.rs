@@ -7,6 +7,7 @@ use super::bodies::place;
 use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
+use crate::model::prose::Prose;
 use crate::scene::{Scene, Shape};
 
 /// Every point mass of the scene in the frame, or `None` if a body is continuous.
@@ -62,7 +63,10 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         "Angular momentum from the tensor",
         ("L", "\\vec L"),
         &l,
-        cited("angular-momentum", "L = I ω"),
+        cited(
+            "angular-momentum",
+            Prose::default().math("L = I ω", r"\vec{L} = \overleftrightarrow{I}\,\vec{\omega}"),
+        ),
     ));
     let direct = point_masses(scene).map(|pts| {
         let sum = pts
@@ -75,7 +79,14 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
             "L",
             cited(
                 "angular-momentum-direct",
-                "L = Σ m r × (ω × r), expanded; equal to I ω entry by entry",
+                Prose::default()
+                    .math(
+                        "L = Σ m r × (ω × r)",
+                        r"\vec{L} = \sum m\,\vec{r}\times(\vec{\omega}\times\vec{r})",
+                    )
+                    .text(", expanded; equal to ")
+                    .math("I ω", r"\overleftrightarrow{I}\,\vec{\omega}")
+                    .text(" entry by entry"),
             ),
         )
     });
@@ -93,7 +104,13 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
         "Kinetic energy from the tensor",
         ("T", "T"),
         &Value::Scalar(t.clone()),
-        cited("kinetic-energy", "T = ½ ωᵀ I ω"),
+        cited(
+            "kinetic-energy",
+            Prose::default().math(
+                "T = ½ ωᵀ I ω",
+                r"T = \frac{1}{2}\vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}",
+            ),
+        ),
     ));
     let direct = point_masses(scene).map(|pts| {
         let sum = Expr::add(
@@ -109,7 +126,16 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
             "T",
             cited(
                 "kinetic-energy-direct",
-                "T = ½ Σ m |ω × r|²; equal to ½ ωᵀ I ω",
+                Prose::default()
+                    .math(
+                        "T = ½ Σ m |ω × r|²",
+                        r"T = \frac{1}{2}\sum m\,\left|\vec{\omega}\times\vec{r}\right|^{2}",
+                    )
+                    .text("; equal to ")
+                    .math(
+                        "½ ωᵀ I ω",
+                        r"\frac{1}{2}\vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}",
+                    ),
             ),
         )
     });
@@ -123,7 +149,13 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
         "Moment of inertia about the axis n",
         ("I_n", "I_{n}"),
         &Value::Scalar(moment.clone()),
-        cited("moment-about-axis", "I_n = nᵀ I n"),
+        cited(
+            "moment-about-axis",
+            Prose::default().math(
+                "I_n = nᵀ I n",
+                r"I_{n} = \vec{n}^{T}\overleftrightarrow{I}\,\vec{n}",
+            ),
+        ),
     ));
     let direct = point_masses(scene).map(|pts| {
         let sum = Expr::add(
@@ -139,7 +171,13 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
             "I_n",
             cited(
                 "moment-about-axis-direct",
-                "I_n = Σ m |r × n|², the squared distance from the axis; equal to nᵀ I n",
+                Prose::default()
+                    .math(
+                        "I_n = Σ m |r × n|²",
+                        r"I_{n} = \sum m\,\left|\vec{r}\times\vec{n}\right|^{2}",
+                    )
+                    .text(", the squared distance from the axis; equal to ")
+                    .math("nᵀ I n", r"\vec{n}^{T}\overleftrightarrow{I}\,\vec{n}"),
             ),
         )
     });
@@ -163,7 +201,10 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
         "Radius of gyration about n",
         ("R_0", "R_{0}"),
         &Value::Scalar(r0.clone()),
-        cited("gyration", "R₀² = I_n / M"),
+        cited(
+            "gyration",
+            Prose::default().math("R₀² = I_n / M", r"R_{0}^{2} = \frac{I_{n}}{M}"),
+        ),
     ));
     d.quantities
         .insert(quantity::RADIUS_OF_GYRATION.into(), Value::Scalar(r0));
@@ -184,7 +225,11 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
                 semi[1].to_latex(),
                 semi[2].to_latex()
             ),
-            cited("inertia-ellipsoid", "with ρ = n/√I_n, the ellipsoid's semi-axis along principal axis i is 1/√Iᵢ"),
+            cited("inertia-ellipsoid", Prose::default()
+                    .text("with ")
+                    .math("ρ = n/√I_n", r"\vec{\rho} = \frac{\vec{n}}{\sqrt{I_{n}}}")
+                    .text(", the ellipsoid's semi-axis along principal axis i is ")
+                    .math("1/√Iᵢ", r"\frac{1}{\sqrt{I_{i}}}")),
         ));
     }
     Ok(())

@@ -51,12 +51,8 @@ pub struct Why {
 }
 
 /// A reason that a scene may cite: `[cite] key = "eq (51)"` prints "eq (51): text".
-pub fn cited(key: &'static str, text: &str) -> Why {
-    Why {
-        key,
-        text: text.to_string(),
-        math: Prose::default(),
-    }
+pub fn cited(key: &'static str, why: impl Into<Why>) -> Why {
+    Why { key, ..why.into() }
 }
 
 impl From<Prose> for Why {
@@ -71,13 +67,17 @@ impl From<Prose> for Why {
 
 impl From<&str> for Why {
     fn from(text: &str) -> Why {
-        cited("", text)
+        Why {
+            key: "",
+            text: text.to_string(),
+            math: Prose::default(),
+        }
     }
 }
 
 impl From<&String> for Why {
     fn from(text: &String) -> Why {
-        cited("", text)
+        Why::from(text.as_str())
     }
 }
 

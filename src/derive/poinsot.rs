@@ -8,6 +8,7 @@ use super::stability::classify;
 use super::{Derivation, DeriveError, Step, cited, factored};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
+use crate::model::prose::Prose;
 
 fn scalar(d: &mut Derivation, name: &str, e: Expr) -> Result<Expr, DeriveError> {
     let e = cas::simplify(&e)?;
@@ -30,13 +31,16 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "Twice the kinetic energy",
         ("2T", "2T"),
         &Value::Scalar(two_t.clone()),
-        cited("twice-energy", "2T = ω·L = ωᵀIω"),
+        cited("twice-energy", Prose::default().math("2T = ω·L = ωᵀIω", r"2T = \vec{\omega}\cdot\vec{L} = \vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}")),
     ));
     d.steps.push(Step::equation(
         "Angular momentum squared",
         ("L^2", "L^{2}"),
         &Value::Scalar(l_squared.clone()),
-        cited("momentum-squared", "L_i = I_i ω_i"),
+        cited(
+            "momentum-squared",
+            Prose::default().math("L_i = I_i ω_i", r"L_{i} = I_{i}\,\omega_{i}"),
+        ),
     ));
     let rates = torque_free_rates(&i, &w);
     let invariant_rates = cas::simplify_all(vec![
@@ -67,7 +71,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "The point ρ = ω/√(2T) lies on the inertia ellipsoid",
         ("F(rho)", "F(\\vec\\rho) = \\vec\\rho^{T} I \\vec\\rho"),
         &Value::Scalar(f),
-        cited("ellipsoid-point", "ρᵀIρ = ωᵀIω/(2T)"),
+        cited("ellipsoid-point", Prose::default().math("ρᵀIρ = ωᵀIω/(2T)", r"\vec{\rho}^{T}\overleftrightarrow{I}\,\vec{\rho} = \frac{\vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}}{2T}")),
     ));
     // ∇F = 2Iρ = 2c L: the factor squared is 4c² = 2/T.
     let rho_names = ["r1", "r2", "r3"].map(Expr::sym);
@@ -100,8 +104,15 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(gradient),
         cited(
             "ellipsoid-gradient",
-            "∇F = 2Iρ = 2L/√(2T), the same factor for all three components, so ∇F ∥ L; \
-         the factor is √(2/T)",
+            Prose::default()
+                .math(
+                    "∇F = 2Iρ = 2L/√(2T)",
+                    r"\nabla F = 2\overleftrightarrow{I}\,\vec{\rho} = \frac{2\vec{L}}{\sqrt{2T}}",
+                )
+                .text(", the same factor for all three components, so ")
+                .math("∇F ∥ L", r"\nabla F \parallel \vec{L}")
+                .text("; the factor is ")
+                .math("√(2/T)", r"\sqrt{\frac{2}{T}}"),
         ),
     ));
     // The distance ρ·L/L = c ω·L/L = c 2T/L, squared.
@@ -119,7 +130,9 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(distance),
         cited(
             "invariable-plane",
-            "ρ·L/L = ω·L/(L√(2T)) = √(2T)/L, constant because T and L are",
+            Prose::default()
+                .math("ρ·L/L = ω·L/(L√(2T)) = √(2T)/L", r"\frac{\vec{\rho}\cdot\vec{L}}{L} = \frac{\vec{\omega}\cdot\vec{L}}{L\sqrt{2T}} = \frac{\sqrt{2T}}{L}")
+                .text(", constant because T and L are"),
         ),
     ));
 
@@ -143,8 +156,10 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(energy),
         cited(
             "energy-ellipsoid",
-            "T = Σ L_i²/(2I_i); with 2T fixed this is the energy ellipsoid, \
-         semi-axes √(2T I_i)",
+            Prose::default()
+                .math("T = Σ L_i²/(2I_i)", r"T = \sum_{i}\frac{L_{i}^{2}}{2I_{i}}")
+                .text("; with 2T fixed this is the energy ellipsoid, semi-axes ")
+                .math("√(2T I_i)", r"\sqrt{2T\,I_{i}}"),
         ),
     ));
     let gap: Vec3 = std::array::from_fn(|k| {
@@ -162,8 +177,12 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "How far L² is from 2T I_k",
         ("L^2 - 2T I_k", "L^{2} - 2T I_{k}"),
         &Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
-        "entry k is Σ_i I_i (I_i − I_k) ω_i²: non-negative when I_k is the smallest moment and \
-         non-positive when it is the largest, so 2T I_min ≤ L² ≤ 2T I_max (eq 85)",
+        Prose::default()
+            .text("entry k is ")
+            .math("Σ_i I_i (I_i − I_k) ω_i²", r"\sum_{i} I_{i}\left(I_{i} - I_{k}\right)\omega_{i}^{2}")
+            .text(": non-negative when I_k is the smallest moment and non-positive when it is the largest, so ")
+            .math("2T I_min ≤ L² ≤ 2T I_max", r"2T\,I_{\min} \le L^{2} \le 2T\,I_{\max}")
+            .text(" (eq 85)"),
     ));
 
     // Near axis k, eliminate L_k: L² − 2T I_k = Σ_{i≠k} L_i² (1 − I_k/I_i), a conic in the
@@ -197,9 +216,14 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "The polhode near each axis",
         ("c_a c_b", "c_{a}\\,c_{b}"),
         &factored(&Value::Vector(product.clone()))?,
-        "near axis k the sphere and the ellipsoid meet where c_a L_a² + c_b L_b² = L² − 2T I_k \
-         with c_i = 1 − I_k/I_i: entry k is c_a c_b, positive for an ellipse (the polhode closes \
-         around axis k) and negative for a hyperbola (it does not)",
+        Prose::default()
+            .text("near axis k the sphere and the ellipsoid meet where ")
+            .math("c_a L_a² + c_b L_b² = L² − 2T I_k", r"c_{a}L_{a}^{2} + c_{b}L_{b}^{2} = L^{2} - 2T\,I_{k}")
+            .text(" with ")
+            .math("c_i = 1 − I_k/I_i", r"c_{i} = 1 - \frac{I_{k}}{I_{i}}")
+            .text(": entry k is ")
+            .math("c_a c_b", r"c_{a}c_{b}")
+            .text(", positive for an ellipse (the polhode closes around axis k) and negative for a hyperbola (it does not)"),
     ));
     d.set(
         quantity::POLHODE_CONIC_PRODUCT,
@@ -232,8 +256,17 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "The separatrix",
         ("(L3/L1)^2", "\\left(\\frac{L_{3}}{L_{1}}\\right)^{2}"),
         &factored(&Value::Scalar(slope.clone()))?,
-        "on L² = 2T I2 the L2² terms cancel and c1 L1² + c3 L3² = 0: two planes through axis 2, \
-         real when I2 lies between I1 and I3",
+        Prose::default()
+            .text("on ")
+            .math("L² = 2T I2", r"L^{2} = 2T\,I_{2}")
+            .text(" the ")
+            .math("L2²", r"L_{2}^{2}")
+            .text(" terms cancel and ")
+            .math(
+                "c1 L1² + c3 L3² = 0",
+                r"c_{1}L_{1}^{2} + c_{3}L_{3}^{2} = 0",
+            )
+            .text(": two planes through axis 2, real when I2 lies between I1 and I3"),
     ));
     d.set(quantity::SEPARATRIX_SLOPE_SQUARED, Value::Scalar(slope));
     Ok(())

@@ -223,7 +223,15 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         "Growth rate about the intermediate axis 2",
         ("sigma^2", "\\sigma^{2}"),
         &factored(&Value::Scalar(growth.clone()))?,
-        "for I1 < I2 < I3, Ω2² < 0 and a small deviation grows as exp(σt) with σ² = −Ω2²",
+        Prose::default()
+            .text("for ")
+            .math("I1 < I2 < I3", r"I_{1} < I_{2} < I_{3}")
+            .text(", ")
+            .math("Ω2² < 0", r"\Omega_{2}^{2} < 0")
+            .text(" and a small deviation grows as ")
+            .math("exp(σt)", r"e^{\sigma t}")
+            .text(" with ")
+            .math("σ² = −Ω2²", r"\sigma^{2} = -\Omega_{2}^{2}"),
     ));
     d.set(quantity::GROWTH_RATE_SQUARED, Value::Scalar(growth));
     Ok(())

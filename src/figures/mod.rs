@@ -166,7 +166,10 @@ fn own_principal_moments(scene: &Scene, d: &Derivation) -> Result<[f64; 3], Figu
         .copied()
         .collect();
     moments.sort_by(f64::total_cmp);
-    let moments = [moments[0], moments[1], moments[2]];
+    // To 15 significant figures, the eigen-solver's own accuracy: the captions then print
+    // 0.00195, not 0.0019499999999999995.
+    let round = |x: f64| format!("{x:.14e}").parse::<f64>().unwrap_or(x);
+    let moments = [round(moments[0]), round(moments[1]), round(moments[2])];
     crate::model::moments::Moments::new(moments)?;
     Ok(moments)
 }

@@ -277,6 +277,8 @@ pub fn quantity_symbol(name: &str) -> Option<&'static str> {
         quantity::MOMENT_ABOUT_AXIS | quantity::MOMENT_ABOUT_AXIS_DIRECT => "I_{n}",
         quantity::CENTRE_OF_MASS => "R^{\\mathrm{cm}}",
         quantity::POSITION => "\\vec{r}",
+        // The integrand of I_xx is the I_xx per unit of the integration variable.
+        quantity::INTEGRAND => "dI",
         _ => return None,
     })
 }

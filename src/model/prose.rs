@@ -20,8 +20,11 @@ impl Prose {
         self
     }
 
-    pub fn math(mut self, text: String, latex: String) -> Prose {
-        self.0.push(Piece::Math { text, latex });
+    pub fn math(mut self, text: impl Into<String>, latex: impl Into<String>) -> Prose {
+        self.0.push(Piece::Math {
+            text: text.into(),
+            latex: latex.into(),
+        });
         self
     }
 

@@ -37,6 +37,9 @@ pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
             latex: latex.into(),
         });
     }
+    // Cells in display style: a fraction in a matrix at the size of the text, not a script's
+    // (MathML Core sets tables compact).
+    let out = out.replace("<mtable", "<mtable displaystyle=\"true\"");
     Ok(space_attributes(&escape_bare_less_than(&out)))
 }
 

@@ -175,3 +175,31 @@ fn a_conflict_between_the_two_tests_is_undecided_never_an_erratum() {
     assert!(!text.contains("Where the notes disagree"), "{text}");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// 07-book-flip.toml's flip plot takes `inertia = "principal"`: the moments in its caption are
+/// the table's m(w² + d²)/12, m(h² + d²)/12, m(w² + h²)/12 for a box about its centre, although
+/// the scene's box sits on its corner.
+#[test]
+fn a_flip_plot_takes_the_books_own_moments() {
+    let build = scratch("course-book");
+    let site = build.join("site");
+    let built = mechbook(&["build", "tests/course", "--out", site.to_str().unwrap()]);
+    assert_eq!(built.status.code(), Some(0), "{}", crate::stderr(&built));
+    let svg = std::fs::read_to_string(site.join("plots/book-flip-flip.svg")).unwrap();
+    let after = svg.split("of I = (").nth(1).expect("the caption names I");
+    let shown: Vec<f64> = after[..after.find(')').unwrap()]
+        .split(", ")
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let (m, w, h, d): (f64, f64, f64, f64) = (0.4, 0.17, 0.24, 0.03);
+    let table = [
+        m * (w * w + d * d) / 12.0,
+        m * (h * h + d * d) / 12.0,
+        m * (w * w + h * h) / 12.0,
+    ];
+    for (got, want) in shown.iter().zip(table) {
+        assert!((got - want).abs() <= 1e-13 * want, "{shown:?} vs {table:?}");
+    }
+    assert!(svg.contains("flips"), "no flips measured");
+    let _ = std::fs::remove_dir_all(build);
+}
