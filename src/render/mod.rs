@@ -203,8 +203,13 @@ fn value_at_numbers(
     values: &crate::model::value::Values,
 ) -> Result<String, RenderError> {
     use crate::base::format::significant;
-    let symbols: std::collections::BTreeSet<String> =
-        v.entries().iter().flat_map(|e| e.symbols()).collect();
+    // π is a number, not one of the scene's symbols.
+    let symbols: std::collections::BTreeSet<String> = v
+        .entries()
+        .iter()
+        .flat_map(|e| e.symbols())
+        .filter(|s| values.contains_key(s))
+        .collect();
     let Ok(numbers) = v.numbers_at(values) else {
         return Ok(String::new());
     };
@@ -492,4 +497,28 @@ fn describe_body(b: &crate::scene::Body) -> String {
         ));
     }
     d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_result_at_the_numbers_names_its_symbols_but_not_pi() {
+        let values = [("R".to_string(), 2.0), ("M".to_string(), 3.0)].into();
+        let two_pi_r = Expr::mul(vec![Expr::int(2), Expr::sym("pi"), Expr::sym("R")]);
+        let at = value_at_numbers(&Value::Scalar(two_pi_r), &values).unwrap();
+        assert!(at.starts_with("at <math"), "{at}");
+        assert!(at.contains("<mn>12.5664</mn>"), "{at}");
+        assert!(!at.contains("<mi>M</mi>") && !at.contains("π"), "{at}");
+        // A bare symbol or a number has nothing to add.
+        assert_eq!(
+            value_at_numbers(&Value::Scalar(Expr::sym("M")), &values).unwrap(),
+            ""
+        );
+        assert_eq!(
+            value_at_numbers(&Value::Scalar(Expr::int(4)), &values).unwrap(),
+            ""
+        );
+    }
 }
