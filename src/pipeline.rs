@@ -64,6 +64,9 @@ pub enum StageError {
     Eval(#[from] EvalError),
     #[error(transparent)]
     Figure(#[from] FigureError),
+    /// Boxed: a variant's error carries a derivation's or an integration's.
+    #[error(transparent)]
+    Variant(Box<verify::variants::VariantError>),
 }
 
 /// What the symbolic stage produced: it depends on the scene file alone (never on the fidelity),
@@ -185,6 +188,10 @@ pub fn run_scene_with(
         &mut verification,
     )
     .map_err(|e| fail(e.into()))?;
+    if let Some(problem) = &scene.problem {
+        verification.variants = verify::variants::check_variants(&scene, derivation, problem)
+            .map_err(|e| fail(StageError::Variant(Box::new(e))))?;
+    }
     Ok(SceneReport {
         scene,
         plan,

@@ -136,6 +136,30 @@ pub fn scene_json(r: &SceneReport) -> Json {
             "value_error": num(e.value_error), "axis_error": num(e.axis_error), "passed": e.passed })),
         "regressions": r.verification.regressions.iter().map(|g| json!({
             "quantity": g.quantity, "recorded": g.recorded, "derived": g.derived, "unchanged": g.unchanged })).collect::<Vec<_>>(),
+        "variants": r.verification.variants.iter().map(|v| json!({
+            "number": v.number,
+            "values": v.values.iter().map(|(name, text, latex)| (name.clone(), json!({
+                "exact": text,
+                "latex": latex,
+                "numeric": s.problem.as_ref()
+                    .and_then(|p| p.variants.get(v.number - 1))
+                    .and_then(|x| x.values.get(name))
+                    .and_then(|e| e.eval(&|_| None).ok())
+                    .map(num),
+            }))).collect::<serde_json::Map<_, _>>(),
+            "passed": v.passed(),
+            "answers": v.answers.iter().map(|a| json!({
+                "quantity": a.quantity,
+                "exact": a.exact.to_text(),
+                "latex": a.exact.to_latex(),
+                "entries": a.exact.entries().iter().map(|e| e.to_latex()).collect::<Vec<_>>(),
+                "numeric": a.exact_numbers.iter().map(|x| num(*x)).collect::<Vec<_>>(),
+                "independent": a.numeric.iter().map(|x| num(*x)).collect::<Vec<_>>(),
+                "error": num(a.error),
+                "tolerance": num(a.tolerance),
+                "passed": a.passed(),
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
         "steps": r.derivation.steps,
         "stages": stages,
         "symbolic_seconds": num(r.symbolic_seconds),
@@ -150,6 +174,14 @@ pub fn scene_json(r: &SceneReport) -> Json {
                 "seconds": num(a.seconds) })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
     })
+}
+
+/// The relative difference of every variant's every answer from its numeric route.
+fn variant_errors(r: &SceneReport) -> impl Iterator<Item = f64> + '_ {
+    r.verification
+        .variants
+        .iter()
+        .flat_map(|v| v.answers.iter().map(|a| a.error))
 }
 
 /// A heading with the count, then each claim with its scene and the lines that explain it.
@@ -189,6 +221,7 @@ pub fn check_table(reports: &[SceneReport]) -> String {
             .quantities
             .iter()
             .map(|q| q.error)
+            .chain(variant_errors(r))
             .fold(None, |m: Option<f64>, e| Some(m.map_or(e, |m| m.max(e))));
         let _ = writeln!(
             out,
@@ -261,6 +294,17 @@ pub fn check_table(reports: &[SceneReport]) -> String {
                 sci(e.axis_error)
             ));
         }
+        for v in &r.verification.variants {
+            for a in v.answers.iter().filter(|a| !a.passed()) {
+                failures.push(format!(
+                    "{src}: variant {}: `{}`: exact and numeric differ by {} (relative), beyond {}",
+                    v.number,
+                    a.quantity,
+                    sci(a.error),
+                    sci(a.tolerance)
+                ));
+            }
+        }
         if let Some(n) = &r.numeric {
             for (q, ok) in n.runs.iter().zip(&r.verification.within_law) {
                 if !ok {
@@ -281,6 +325,20 @@ pub fn check_table(reports: &[SceneReport]) -> String {
         for f in failures {
             let _ = writeln!(out, "  {f}");
         }
+    }
+    let problems = reports.iter().filter(|r| r.scene.problem.is_some()).count();
+    if problems > 0 {
+        let variants: usize = reports.iter().map(|r| r.verification.variants.len()).sum();
+        let worst = reports
+            .iter()
+            .flat_map(variant_errors)
+            .fold(0.0f64, f64::max);
+        let _ = writeln!(
+            out,
+            "\n{problems} problem(s), {variants} variant(s): every answer exact and cross-checked \
+             numerically, worst relative difference {}",
+            sci(worst)
+        );
     }
     let claims: usize = reports.iter().map(|r| r.verification.claims.len()).sum();
     let symbolic: f64 = reports.iter().map(|r| r.symbolic_seconds).sum();

@@ -38,9 +38,43 @@ pub fn significant(x: f64, digits: usize) -> String {
     }
 }
 
+/// A value to exactly `digits` significant figures, trailing zeros kept (0.5000 at four), as
+/// an answer key gives it; scientific notation below 1e-4 and from 10^digits up.
+pub fn figures(x: f64, digits: usize) -> String {
+    if x == 0.0 {
+        return format!("{:.prec$}", 0.0, prec = digits.saturating_sub(1));
+    }
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    // Rounding may carry into the next power of ten (9.9996 → 10.00): measure after rounding.
+    let rounded: f64 = format!("{x:.prec$e}", prec = digits.saturating_sub(1))
+        .parse()
+        .unwrap_or(x);
+    let magnitude = rounded.abs().log10().floor() as i32;
+    if (-4..digits as i32).contains(&magnitude) {
+        let decimals = (digits as i32 - 1 - magnitude) as usize;
+        format!("{rounded:.decimals$}")
+    } else {
+        format!("{x:.prec$e}", prec = digits.saturating_sub(1))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn exact_figures_keep_their_zeros() {
+        assert_eq!(figures(0.5, 4), "0.5000");
+        assert_eq!(figures(14.083333, 4), "14.08");
+        assert_eq!(figures(9.99996, 4), "10.00");
+        assert_eq!(figures(-0.625, 4), "-0.6250");
+        assert_eq!(figures(1234.56, 4), "1235");
+        assert_eq!(figures(12345.6, 4), "1.235e4");
+        assert_eq!(figures(2.5e-7, 4), "2.500e-7");
+        assert_eq!(figures(0.0, 4), "0.000");
+    }
 
     #[test]
     fn significant_figures() {

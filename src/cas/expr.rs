@@ -307,6 +307,32 @@ impl Expr {
     }
 }
 
+impl Expr {
+    /// The exact value of a scalar built from numbers and symbols bound to rationals by `env`
+    /// with `+`, `*` and integer powers; `None` for anything else (π, a root, a function, an
+    /// unbound symbol) or a division by zero.
+    pub fn eval_rational(&self, env: &dyn Fn(&str) -> Option<Rational>) -> Option<Rational> {
+        match self {
+            Expr::Num(r) => Some(r.clone()),
+            Expr::Sym(s) => env(s),
+            Expr::Add(v) => v.iter().try_fold(Rational::ZERO, |acc, e| {
+                Some(acc.add(&e.eval_rational(env)?))
+            }),
+            Expr::Mul(v) => v.iter().try_fold(Rational::ONE, |acc, e| {
+                Some(acc.mul(&e.eval_rational(env)?))
+            }),
+            Expr::Pow(a, b) => {
+                let k = match b.as_ref() {
+                    Expr::Num(r) => r.to_i64().filter(|k| k.unsigned_abs() <= 64)?,
+                    _ => return None,
+                };
+                a.eval_rational(env)?.pow(k)
+            }
+            _ => None,
+        }
+    }
+}
+
 /// (kind, exponent, lower-case name, name) of a factor; numbers sort first.
 fn factor_key(e: &Expr) -> (u8, f64, String, String) {
     let (base, exponent) = match e {

@@ -64,6 +64,12 @@ impl Rational {
         i64::try_from(&self.0).ok()
     }
 
+    /// ⌊x⌋ as a `u64` when it is non-negative and fits.
+    pub fn floor_to_u64(&self) -> Option<u64> {
+        use malachite_base::num::arithmetic::traits::Floor;
+        u64::try_from(&(&self.0).floor()).ok()
+    }
+
     /// The numerator, with the sign, and the (positive) denominator, as `i64`s when both fit.
     pub fn to_i64_pair(&self) -> Option<(i64, i64)> {
         let (n, d) = self.0.numerator_and_denominator_ref();
@@ -126,6 +132,17 @@ impl Rational {
 
     pub fn mul(&self, o: &Rational) -> Rational {
         Rational(&self.0 * &o.0)
+    }
+
+    /// x^k for an integer k; `None` for 0 to a negative power.
+    pub fn pow(&self, k: i64) -> Option<Rational> {
+        let base = if k < 0 { self.recip()? } else { self.clone() };
+        Some(Rational((&base.0).pow(k.unsigned_abs())))
+    }
+
+    /// The order of two rationals.
+    pub fn compare(&self, o: &Rational) -> Ordering {
+        self.0.cmp(&o.0)
     }
 
     /// The largest positive rational of which both are integer multiples: the gcd of the

@@ -49,6 +49,55 @@ pub fn expand_multiple_angles(e: &Expr) -> Expr {
     }
 }
 
+/// sin and cos of a multiple of π/6 or π/4 replaced by their exact values (cos π/6 = √3/2), so
+/// that a variant's angle such as `pi/6` gives an exact answer; other calls are kept.
+pub fn special_angles(e: &Expr) -> Expr {
+    match e {
+        Expr::Call(name, args) if (name == "sin" || name == "cos") && args.len() == 1 => {
+            let arg = special_angles(&args[0]);
+            let twelfths = match &arg {
+                Expr::Sym(p) if p == "pi" => Some(12),
+                Expr::Mul(v) if v.len() == 2 && v[1] == Expr::sym("pi") => match &v[0] {
+                    Expr::Num(r) => r.mul(&Rational::int(12)).to_i64(),
+                    _ => None,
+                },
+                other if other.is_zero() => Some(0),
+                _ => None,
+            };
+            // sin x = cos(π/2 − x): six twelfths of π.
+            let k = twelfths.map(|k| if name == "sin" { 6 - k } else { k });
+            match k.and_then(cos_twelfths) {
+                Some(v) => v,
+                None => Expr::Call(name.clone(), vec![arg]),
+            }
+        }
+        Expr::Call(name, args) => {
+            Expr::Call(name.clone(), args.iter().map(special_angles).collect())
+        }
+        Expr::Add(v) => Expr::add(v.iter().map(special_angles).collect()),
+        Expr::Mul(v) => Expr::mul(v.iter().map(special_angles).collect()),
+        Expr::Pow(a, b) => Expr::pow(special_angles(a), special_angles(b)),
+        other => other.clone(),
+    }
+}
+
+/// cos(kπ/12) exactly when k is a multiple of 2 or 3.
+fn cos_twelfths(k: i64) -> Option<Expr> {
+    let k = k.rem_euclid(24);
+    let k = if k > 12 { 24 - k } else { k };
+    let (sign, k) = if k > 6 { (-1, 12 - k) } else { (1, k) };
+    let half_root = |n: i128| Expr::mul(vec![Expr::rat(1, 2), Expr::call("sqrt", Expr::int(n))]);
+    let magnitude = match k {
+        0 => Expr::int(1),
+        2 => half_root(3),
+        3 => half_root(2),
+        4 => Expr::rat(1, 2),
+        6 => Expr::int(0),
+        _ => return None,
+    };
+    Some(Expr::mul(vec![Expr::int(sign), magnitude]))
+}
+
 /// x + cπ with 2c an integer → (2c mod 4, x): the shift in quarter turns. `None` without such
 /// a term.
 fn split_quarter_turns(arg: &Expr) -> Option<(i64, Expr)> {

@@ -15,6 +15,7 @@ pub mod poinsot;
 mod principal;
 pub mod sign;
 pub mod stability;
+pub mod variants;
 
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA, eigenvalue_letter};
 
@@ -132,6 +133,12 @@ pub enum DeriveError {
     /// A stage read a quantity that an earlier stage should have set: a bug in the plan.
     #[error("internal inconsistency: quantity `{0}` was not derived")]
     Missing(&'static str),
+    /// A problem's answer still has a symbol once a variant's values are in.
+    #[error(
+        "the answer `{quantity}` depends on `{symbol}`, which has no value: give it a range \
+         under [variants] or a value under [numeric] values"
+    )]
+    NoVariantValue { quantity: String, symbol: String },
 }
 
 /// Everything the symbolic stage produced for a scene.

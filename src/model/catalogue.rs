@@ -265,6 +265,18 @@ pub mod quantity {
     pub const BULGE_FRACTION: &str = "bulge_fraction";
 }
 
+/// The quantities a problem may ask for, each with the output that derives it. Each has a
+/// numeric route independent of the derivation, on which every variant's answer is checked.
+pub const ANSWERS: &[(&str, Output)] = &[
+    (quantity::INERTIA_TENSOR, Output::InertiaTensor),
+    (quantity::PRINCIPAL_MOMENTS, Output::PrincipalAxes),
+    (quantity::ANGULAR_MOMENTUM, Output::AngularMomentum),
+    (quantity::KINETIC_ENERGY, Output::KineticEnergy),
+    (quantity::MOMENT_ABOUT_AXIS, Output::MomentAboutAxis),
+    (quantity::RADIUS_OF_GYRATION, Output::Gyration),
+    (quantity::PRECESSION_RATE, Output::SymmetricTop),
+];
+
 /// The symbol a page prints for a derived quantity a claim names, where one is standard and
 /// clashes with no scene symbol: a claim's `inertia_tensor[0][1]` reads I_{xy}. Other names
 /// print as upright words.

@@ -2,6 +2,7 @@
 //! by `SymmetricEigen`. It evaluates the scene's geometry at its values and never reads a
 //! symbolic result except to measure its own error against it.
 
+pub mod answers;
 pub mod body;
 pub mod eigen;
 pub mod elliptic;

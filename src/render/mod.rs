@@ -5,7 +5,9 @@ mod linebreak;
 #[cfg(test)]
 mod linebreak_tests;
 pub mod math;
+pub mod moodle;
 pub mod plot;
+pub mod problems;
 mod site_files;
 
 pub use site_files::{Course, SiteFiles, site_files};
@@ -222,17 +224,7 @@ fn value_at_numbers(
         return Ok(String::new());
     }
     let n: Vec<String> = numbers.iter().map(|x| significant(*x, 6)).collect();
-    let latex = match v {
-        Value::Scalar(_) => n[0].clone(),
-        Value::Vector(_) => format!("\\begin{{pmatrix}}{}\\end{{pmatrix}}", n.join(" & ")),
-        Value::Matrix(_) => format!(
-            "\\begin{{pmatrix}}{}\\end{{pmatrix}}",
-            n.chunks(3)
-                .map(|row| row.join(" & "))
-                .collect::<Vec<_>>()
-                .join(" \\\\ ")
-        ),
-    };
+    let latex = numbers_latex(v, &n);
     let at: Vec<String> = symbols
         .iter()
         .map(|k| {
@@ -248,6 +240,21 @@ fn value_at_numbers(
         math::inline(&at.join(",\\; "))?,
         math::inline(&latex)?
     ))
+}
+
+/// Numbers written out (`n`, row-major) in the shape of `v`: a number, a column or a matrix.
+pub(crate) fn numbers_latex(v: &Value, n: &[String]) -> String {
+    match v {
+        Value::Scalar(_) => n[0].clone(),
+        Value::Vector(_) => format!("\\begin{{pmatrix}}{}\\end{{pmatrix}}", n.join(" & ")),
+        Value::Matrix(_) => format!(
+            "\\begin{{pmatrix}}{}\\end{{pmatrix}}",
+            n.chunks(3)
+                .map(|row| row.join(" & "))
+                .collect::<Vec<_>>()
+                .join(" \\\\ ")
+        ),
+    }
 }
 
 /// Builds the view of one page. `timings` adds measured seconds to the numeric table.

@@ -2,7 +2,7 @@
 //! Writing them is `site`'s job.
 
 use super::RenderError;
-use super::{PageView, figure_file, page_file, page_view, plot};
+use super::{PageView, figure_file, page_file, page_view, plot, problems};
 use crate::pipeline::SceneReport;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -16,6 +16,14 @@ const DEFAULTS: &[(&str, &str)] = &[
     ("page.html", include_str!("../../templates/page.html")),
     ("index.html", include_str!("../../templates/index.html")),
     ("handout.html", include_str!("../../templates/handout.html")),
+    (
+        "problems-student.html",
+        include_str!("../../templates/problems-student.html"),
+    ),
+    (
+        "problems-key.html",
+        include_str!("../../templates/problems-key.html"),
+    ),
     ("style.css", include_str!("../../templates/style.css")),
 ];
 
@@ -112,6 +120,8 @@ struct LectureView {
     heading: String,
     student: String,
     instructor: String,
+    /// The problem sheet and its key, when the lecture has problems.
+    problems: Option<(String, String)>,
     pages: Vec<PageLink>,
 }
 
@@ -152,6 +162,52 @@ fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<Vec<u8>,
             message,
         }
     })
+}
+
+/// A lecture's problem sheet and answer key, when it has problems: their paths.
+fn problem_sheets(
+    tera: &tera::Tera,
+    course: &Course,
+    lecture: &str,
+    reports: &[&SceneReport],
+    files: &mut SiteFiles,
+) -> Result<Option<(String, String)>, RenderError> {
+    let count = problems::sheet_variants(reports);
+    if count == 0 {
+        return Ok(None);
+    }
+    let slug = crate::scene::lecture_slug(lecture);
+    let heading = course.lecture_heading(lecture);
+    let mut paths = Vec::new();
+    for (kind, title) in [("student", "problem sheet"), ("key", "answer key")] {
+        let mut ctx = tera::Context::new();
+        ctx.insert("site", course);
+        ctx.insert(
+            "lecture",
+            &serde_json::json!({ "name": lecture, "heading": heading }),
+        );
+        ctx.insert(
+            "problems",
+            &reports.iter().filter(|r| r.scene.problem.is_some()).count(),
+        );
+        ctx.insert(
+            "print_css",
+            &problems::print_css(&course.title, &format!("{heading}: {title}"), count),
+        );
+        // The student's sheet is built from statements and values alone: no answer reaches it.
+        if kind == "student" {
+            ctx.insert("variants", &problems::student_sheet(reports)?);
+        } else {
+            ctx.insert("variants", &problems::answer_key(reports)?);
+        }
+        let path = format!("handouts/{slug}-problems-{kind}.html");
+        files.insert(
+            PathBuf::from(&path),
+            render(tera, &format!("problems-{kind}.html"), &ctx)?,
+        );
+        paths.push(path);
+    }
+    Ok(Some((paths[0].clone(), paths[1].clone())))
 }
 
 /// Every file of the site: index, one page per scene, its plots, two handouts per lecture, the
@@ -210,6 +266,8 @@ pub fn site_files(
             );
             files.insert(PathBuf::from(file), render(&tera, "handout.html", &ctx)?);
         }
+        let chosen: Vec<&SceneReport> = idx.iter().map(|&i| &reports[i]).collect();
+        let problems = problem_sheets(&tera, course, name, &chosen, &mut files)?;
         lectures.insert(
             idx[0],
             LectureView {
@@ -217,6 +275,7 @@ pub fn site_files(
                 heading: course.lecture_heading(name),
                 student: format!("handouts/{slug}-student.html"),
                 instructor: format!("handouts/{slug}-instructor.html"),
+                problems,
                 pages: idx
                     .iter()
                     .map(|&i| PageLink {
@@ -227,6 +286,14 @@ pub fn site_files(
                     .collect(),
             },
         );
+    }
+    for r in reports {
+        if let Some(xml) = super::moodle::quiz(r) {
+            files.insert(
+                PathBuf::from(format!("export/moodle/{}.xml", r.scene.id)),
+                xml.into_bytes(),
+            );
+        }
     }
     let mut ctx = tera::Context::new();
     ctx.insert("site", course);

@@ -9,12 +9,13 @@ mod load;
 mod raw;
 mod types;
 mod validate;
+pub mod variants;
 
 pub use error::{Locator, SceneError};
 pub use load::{MAX_DEPTH, MAX_SCENE_BYTES, find_scenes, load_all};
 pub use types::{
     Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia, NotesRef, PlotRequest,
-    Scene, Shape, Verdict, lecture_slug,
+    Problem, Scene, Shape, Variant, Verdict, lecture_slug,
 };
 pub use validate::{
     CLAIM_FUNCTIONS, MAX_INPUT_DEGREE, MAX_INPUT_TERMS, MAX_NAME, MAX_PLOT_RADIANS, MAX_PLOT_TIME,

@@ -37,6 +37,12 @@ pub struct RawScene {
     /// Step key -> the notes' citation for it (`characteristic-polynomial = "eq (51)"`).
     #[serde(default)]
     pub cite: BTreeMap<Spanned<String>, Text>,
+    #[serde(default)]
+    pub problem: Option<Spanned<RawProblem>>,
+    /// `count`, `seed`, `require`, and a range or list for each symbol that varies: read as
+    /// TOML values, since the symbols' names are the scene's own.
+    #[serde(default)]
+    pub variants: Option<Spanned<BTreeMap<Spanned<String>, Spanned<toml::Value>>>>,
 }
 
 impl RawScene {
@@ -122,6 +128,18 @@ pub struct RawClaim {
     /// `notes` (default): the notes' own statement; `mistake`: a common mistake for students.
     #[serde(default)]
     pub role: Option<Text>,
+}
+
+/// A problem for students: its statement with `{symbol}` placeholders and the derived
+/// quantities that answer it.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawProblem {
+    pub statement: Text,
+    pub answers: Spanned<Vec<Text>>,
+    /// A Moodle answer's tolerance, relative to the answer (0.01 is 1%).
+    #[serde(default)]
+    pub tolerance: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]

@@ -37,6 +37,39 @@ pub struct Scene {
     pub expect: BTreeMap<String, Expr>,
     /// Step key -> how this course's notes cite it, such as `eq (51)`.
     pub cite: BTreeMap<String, String>,
+    /// A problem for students, with its variants.
+    pub problem: Option<Problem>,
+}
+
+/// A problem: a statement whose `{symbol}` placeholders each variant fills in, and the derived
+/// quantities that answer it.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    pub statement: String,
+    pub answers: Vec<String>,
+    /// A Moodle answer's tolerance, relative to the answer.
+    pub tolerance: f64,
+    pub variants: Vec<Variant>,
+    /// Where `[problem]` is (line, column), for errors found when its variants are derived.
+    pub at: (usize, usize),
+}
+
+/// One variant of a problem: every symbol with a value, exactly.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variant {
+    /// 1-based.
+    pub number: usize,
+    pub values: BTreeMap<String, Expr>,
+}
+
+impl Variant {
+    /// The values in f64 (π known), for the numeric routes.
+    pub fn numbers(&self) -> BTreeMap<String, f64> {
+        self.values
+            .iter()
+            .map(|(k, e)| (k.clone(), e.eval(&|_| None).unwrap_or(f64::NAN)))
+            .collect()
+    }
 }
 
 #[derive(Debug, Clone)]

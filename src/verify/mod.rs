@@ -93,6 +93,9 @@ pub struct Verification {
     pub principal: Option<PrincipalValues>,
     /// For each quadrature run: did it stay within its error law?
     pub within_law: Vec<bool>,
+    /// A problem's variants, each answer exact against its numeric route.
+    #[serde(default)]
+    pub variants: Vec<variants::VariantCheck>,
 }
 
 impl Verification {
@@ -119,6 +122,7 @@ impl Verification {
                 .as_ref()
                 .is_none_or(|p| p.error <= PRINCIPAL_AGREEMENT)
             && self.within_law.iter().all(|w| *w)
+            && self.variants.iter().all(variants::VariantCheck::passed)
     }
 }
 
@@ -519,6 +523,7 @@ pub fn verify_numeric(
 }
 
 mod principal;
+pub mod variants;
 pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
 
 #[cfg(test)]

@@ -20,7 +20,7 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
     let first = mechbook(&["build", "--out", out.to_str().unwrap()]);
     assert_eq!(first.status.code(), Some(0), "{}", stderr(&first));
     assert!(
-        stderr(&first).contains("built 16 pages, 16 plots and 4 handouts from 15 scenes"),
+        stderr(&first).contains("built 19 pages, 16 plots and 8 handouts from 18 scenes"),
         "{}",
         stderr(&first)
     );
@@ -41,6 +41,9 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
         "symmetric-top.html",
         "plots/poinsot-polhodes.svg",
         "plots/earth-precession-polar-motion.svg",
+        "handouts/lecture-3-4-problems-student.html",
+        "handouts/lecture-3-9-problems-key.html",
+        "export/moodle/problem-box.xml",
     ] {
         assert!(a.contains_key(f), "{f} missing: {:?}", a.keys());
     }
@@ -65,6 +68,14 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
                 !href.starts_with('/') && !href.contains("://"),
                 "{name}: link {href} is not relative"
             );
+            // A link within the page names an element of it.
+            if let Some(id) = href.strip_prefix('#') {
+                assert!(
+                    text.contains(&format!("id=\"{id}\"")),
+                    "{name}: broken link {href}"
+                );
+                continue;
+            }
             let target = Path::new(name).parent().unwrap().join(href);
             let target = target.to_string_lossy().replace("handouts/../", "");
             assert!(a.contains_key(&target), "{name}: broken link {href}");
@@ -243,7 +254,7 @@ fn the_cache_rebuilds_only_what_changed() {
     );
     let (second, b) = build("b", &[]);
     assert!(
-        second.contains("(15 from the cache, 0 re-run numerically"),
+        second.contains("(18 from the cache, 0 re-run numerically"),
         "{second}"
     );
     assert_eq!(a, b, "a site from the cache differs from a derived one");
@@ -268,7 +279,7 @@ fn the_cache_rebuilds_only_what_changed() {
     std::fs::write(&earth, format!("# edited\n{text}")).unwrap();
     let (third, c) = build("c", &[]);
     assert!(
-        third.contains("(14 from the cache, 0 re-run numerically"),
+        third.contains("(17 from the cache, 0 re-run numerically"),
         "{third}"
     );
     assert_eq!(a, c);
@@ -276,7 +287,7 @@ fn the_cache_rebuilds_only_what_changed() {
     // Another fidelity: the symbolic results come from the cache, the numerics run again.
     let (draft, d) = build("d", &["--fidelity", "draft"]);
     assert!(
-        draft.contains("(0 from the cache, 15 re-run numerically"),
+        draft.contains("(0 from the cache, 18 re-run numerically"),
         "{draft}"
     );
     let page = String::from_utf8(d["cube-centre.html"].clone()).unwrap();

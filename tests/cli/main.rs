@@ -10,6 +10,7 @@ mod course;
 mod hostile;
 mod lock;
 mod output;
+mod problems;
 mod snapshots;
 mod spin;
 

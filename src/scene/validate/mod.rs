@@ -4,6 +4,7 @@
 mod bodies;
 mod claims;
 mod plots;
+mod problem;
 mod symbols;
 
 use super::error::{Locator, SceneError};
@@ -133,6 +134,7 @@ impl Validator<'_> {
         };
         let expect = self.expect(&raw, &allowed, &variables)?;
         let cite = self.cites(&raw)?;
+        let problem = self.problem(&raw, &symbols, &values, &wants)?;
         Ok(Scene {
             id_at: self.loc.line_col(content_start(&raw.id)),
             lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
@@ -159,6 +161,7 @@ impl Validator<'_> {
             fidelity,
             expect,
             cite,
+            problem,
         })
     }
 

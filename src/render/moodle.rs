@@ -1,0 +1,153 @@
+//! A problem as a Moodle XML quiz: one question per variant. A variant with one scalar answer
+//! is a `numerical` question; any other is a `cloze` question with one NUMERICAL blank per
+//! entry. Values in the text are TeX between `\(` and `\)`, which Moodle's MathJax filter
+//! typesets. Each blank's tolerance is absolute: the problem's relative tolerance times the
+//! largest entry of its answer, so that a zero entry is not asked for exactly.
+
+use crate::model::value::Value;
+use crate::pipeline::SceneReport;
+use crate::scene::Problem;
+use crate::verify::variants::VariantCheck;
+use std::fmt::Write;
+
+/// Significant figures of an answer and its tolerance in the file.
+const DIGITS: usize = 12;
+
+/// The quiz of a scene with a problem; `None` for a scene without one.
+pub fn quiz(r: &SceneReport) -> Option<String> {
+    let problem = r.scene.problem.as_ref()?;
+    let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<quiz>\n");
+    let _ = writeln!(
+        out,
+        "  <question type=\"category\">\n    <category><text>$course$/top/mechbook/{}</text></category>\n  </question>",
+        xml_text(&r.scene.id)
+    );
+    for v in &r.verification.variants {
+        out.push_str(&question(r, problem, v));
+    }
+    out.push_str("</quiz>\n");
+    Some(out)
+}
+
+fn question(r: &SceneReport, problem: &Problem, v: &VariantCheck) -> String {
+    let name = format!("{} — variant {}", r.scene.title, v.number);
+    let statement = statement_tex(&problem.statement, v);
+    let scalars: usize = v.answers.iter().map(|a| a.exact_numbers.len()).sum();
+    let mut out = String::new();
+    if let [a] = v.answers.as_slice()
+        && scalars == 1
+    {
+        let _ = write!(
+            out,
+            "  <question type=\"numerical\">\n    <name><text>{}</text></name>\n    \
+             <questiontext format=\"html\"><text>{}</text></questiontext>\n    \
+             <generalfeedback format=\"html\"><text>{}</text></generalfeedback>\n    \
+             <defaultgrade>1</defaultgrade>\n    <penalty>0.3333333</penalty>\n    <hidden>0</hidden>\n    \
+             <answer fraction=\"100\" format=\"moodle_auto_format\"><text>{}</text>\
+             <feedback format=\"html\"><text></text></feedback><tolerance>{}</tolerance></answer>\n  \
+             </question>\n",
+            xml_text(&name),
+            cdata(&format!("<p>{statement}</p>")),
+            cdata(&feedback(v)),
+            number(a.exact_numbers[0]),
+            number(tolerance(problem, &a.exact_numbers)),
+        );
+        return out;
+    }
+    let mut text = format!("<p>{statement}</p>\n");
+    for a in &v.answers {
+        let tol = tolerance(problem, &a.exact_numbers);
+        let blank = |x: f64| format!("{{1:NUMERICAL:={}:{}}}", number(x), number(tol));
+        let _ = writeln!(text, "<p>{}:</p>", html_escape(&label(&a.quantity)));
+        match &a.exact {
+            Value::Scalar(_) => {
+                let _ = writeln!(text, "<p>{}</p>", blank(a.exact_numbers[0]));
+            }
+            Value::Vector(_) => {
+                let cells: Vec<String> = a.exact_numbers.iter().map(|x| blank(*x)).collect();
+                let _ = writeln!(text, "<p>( {} )</p>", cells.join(" , "));
+            }
+            Value::Matrix(_) => {
+                text.push_str("<table>\n");
+                for row in a.exact_numbers.chunks(3) {
+                    let cells: Vec<String> = row
+                        .iter()
+                        .map(|x| format!("<td>{}</td>", blank(*x)))
+                        .collect();
+                    let _ = writeln!(text, "<tr>{}</tr>", cells.concat());
+                }
+                text.push_str("</table>\n");
+            }
+        }
+    }
+    let _ = write!(
+        out,
+        "  <question type=\"cloze\">\n    <name><text>{}</text></name>\n    \
+         <questiontext format=\"html\"><text>{}</text></questiontext>\n    \
+         <generalfeedback format=\"html\"><text>{}</text></generalfeedback>\n    \
+         <penalty>0.3333333</penalty>\n    <hidden>0</hidden>\n  </question>\n",
+        xml_text(&name),
+        cdata(&text),
+        cdata(&feedback(v)),
+    );
+    out
+}
+
+/// The exact answers, shown after the attempt.
+fn feedback(v: &VariantCheck) -> String {
+    let parts: Vec<String> = v
+        .answers
+        .iter()
+        .map(|a| {
+            format!(
+                "{}: \\({}\\)",
+                html_escape(&label(&a.quantity)),
+                a.exact.to_latex()
+            )
+        })
+        .collect();
+    format!("<p>Exactly: {}.</p>", parts.join("; "))
+}
+
+/// An answer's absolute tolerance: relative to its largest entry.
+pub fn tolerance(problem: &Problem, numbers: &[f64]) -> f64 {
+    let scale = numbers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    problem.tolerance * scale
+}
+
+fn label(name: &str) -> String {
+    let mut words = name.replace('_', " ");
+    if let Some(first) = words.get(0..1) {
+        words.replace_range(0..1, &first.to_uppercase());
+    }
+    words
+}
+
+/// The statement with each `{name}` as TeX, the rest escaped for HTML.
+fn statement_tex(statement: &str, v: &VariantCheck) -> String {
+    let tex = |latex: &str| Ok(format!("\\({latex}\\)"));
+    super::problems::fill_statement(statement, v, tex, html_escape).expect("TeX never fails")
+}
+
+/// A number as Moodle reads it: plain decimal or `1.5e-7`, never `inf` or `NaN` (those answers
+/// fail their check before a quiz is written).
+fn number(x: f64) -> String {
+    let s = crate::base::format::significant(x, DIGITS);
+    if s == "-0" { "0".into() } else { s }
+}
+
+fn html_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn xml_text(s: &str) -> String {
+    html_escape(s)
+}
+
+/// Text in a CDATA section; a `]]>` inside is split across two sections.
+fn cdata(s: &str) -> String {
+    format!("<![CDATA[{}]]>", s.replace("]]>", "]]]]><![CDATA[>"))
+}

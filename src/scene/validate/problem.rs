@@ -1,0 +1,406 @@
+//! `[problem]` and `[variants]`: the statement's placeholders, the answers, each varying
+//! symbol's range or list, the requirements, and the variants drawn from them.
+
+use super::{Validator, content_start};
+use crate::cas::{Expr, Rational};
+use crate::model::catalogue::{ANSWERS, Output};
+use crate::scene::error::SceneError;
+use crate::scene::raw::RawScene;
+use crate::scene::types::{Problem, Variant};
+use crate::scene::variants::{
+    Comparison, MAX_COMBINATIONS, MAX_VARIANTS, Requirement, draw, range,
+};
+use std::collections::{BTreeMap, BTreeSet};
+use toml::Spanned;
+
+/// A Moodle answer's tolerance when the scene sets none: 1% of the answer.
+pub const DEFAULT_TOLERANCE: f64 = 0.01;
+/// The longest statement, in bytes.
+pub const MAX_STATEMENT: usize = 4000;
+
+type Entry = (Spanned<String>, Spanned<toml::Value>);
+
+impl Validator<'_> {
+    pub(super) fn problem(
+        &self,
+        raw: &RawScene,
+        symbols: &BTreeMap<String, String>,
+        values: &BTreeMap<String, f64>,
+        wants: &[Output],
+    ) -> Result<Option<Problem>, SceneError> {
+        let Some(p) = &raw.problem else {
+            if let Some(v) = &raw.variants {
+                return Err(self.err(
+                    v.span().start,
+                    "variants",
+                    "[variants] without [problem]: add a [problem] with a statement and answers",
+                ));
+            }
+            return Ok(None);
+        };
+        let at = p.span().start;
+        let p = p.get_ref();
+        self.statement(&p.statement, symbols)?;
+        let mut answers = Vec::new();
+        for (i, a) in p.answers.get_ref().iter().enumerate() {
+            let field = format!("problem.answers[{i}]");
+            let name = a.get_ref();
+            let Some((_, output)) = ANSWERS.iter().find(|(q, _)| q == name) else {
+                let names: Vec<&str> = ANSWERS.iter().map(|(q, _)| *q).collect();
+                return Err(self.err(
+                    content_start(a),
+                    &field,
+                    format!(
+                        "`{name}` cannot be a problem's answer; the answers with an independent \
+                         numeric check are {}",
+                        names.join(", ")
+                    ),
+                ));
+            };
+            if !wants.contains(output) {
+                return Err(self.err(
+                    content_start(a),
+                    &field,
+                    format!(
+                        "the answer `{name}` is derived by the output `{}`: add it to outputs.want",
+                        output.name()
+                    ),
+                ));
+            }
+            if answers.contains(name) {
+                return Err(self.err(
+                    content_start(a),
+                    &field,
+                    format!("`{name}` is listed twice"),
+                ));
+            }
+            answers.push(name.clone());
+        }
+        if answers.is_empty() {
+            return Err(self.err(
+                p.answers.span().start,
+                "problem.answers",
+                "a problem needs at least one answer, such as [\"inertia_tensor\"]",
+            ));
+        }
+        let tolerance = match &p.tolerance {
+            Some(t) if !(t.get_ref().is_finite() && *t.get_ref() > 0.0 && *t.get_ref() < 1.0) => {
+                return Err(self.err(
+                    t.span().start,
+                    "problem.tolerance",
+                    "the tolerance is relative to the answer: a number between 0 and 1, such as \
+                     0.01 for 1%",
+                ));
+            }
+            Some(t) => *t.get_ref(),
+            None => DEFAULT_TOLERANCE,
+        };
+        let variants = self.variants(raw, symbols, values)?;
+        Ok(Some(Problem {
+            statement: p.statement.get_ref().clone(),
+            answers,
+            tolerance,
+            variants,
+            at: self.loc.line_col(at),
+        }))
+    }
+
+    /// Every `{name}` must be a symbol; braces come only in such pairs.
+    fn statement(
+        &self,
+        s: &Spanned<String>,
+        symbols: &BTreeMap<String, String>,
+    ) -> Result<(), SceneError> {
+        let text = s.get_ref();
+        let field = "problem.statement";
+        if text.len() > MAX_STATEMENT {
+            return Err(self.err(
+                content_start(s),
+                field,
+                format!(
+                    "the statement is {} bytes; at most {MAX_STATEMENT}",
+                    text.len()
+                ),
+            ));
+        }
+        let mut rest = text.as_str();
+        let mut offset = 0;
+        while let Some(i) = rest.find(['{', '}']) {
+            let at = content_start(s) + offset + i;
+            if rest[i..].starts_with('}') {
+                return Err(self.err(at, field, "a `}` without its `{`"));
+            }
+            let Some(close) = rest[i..].find('}') else {
+                return Err(self.err(at, field, "a `{` without its `}`: write `{symbol}`"));
+            };
+            let name = &rest[i + 1..i + close];
+            if !symbols.contains_key(name) {
+                return Err(self.err(
+                    at,
+                    field,
+                    format!("`{{{name}}}` is not a declared symbol; placeholders name symbols"),
+                ));
+            }
+            offset += i + close + 1;
+            rest = &rest[i + close + 1..];
+        }
+        Ok(())
+    }
+
+    /// The variants: one, at the scene's values, without `[variants]`.
+    fn variants(
+        &self,
+        raw: &RawScene,
+        symbols: &BTreeMap<String, String>,
+        values: &BTreeMap<String, f64>,
+    ) -> Result<Vec<Variant>, SceneError> {
+        // A symbol without a range keeps its [numeric] value, exactly as written in decimal.
+        let fixed: BTreeMap<String, Expr> = values
+            .iter()
+            .filter_map(|(k, v)| {
+                Rational::parse_decimal(&format!("{:e}", v.abs()))
+                    .map(|r| (k.clone(), Expr::Num(if *v < 0.0 { r.negated() } else { r })))
+            })
+            .collect();
+        let Some(table) = &raw.variants else {
+            return Ok(vec![Variant {
+                number: 1,
+                values: fixed,
+            }]);
+        };
+        let table_at = table.span().start;
+        let mut count = None;
+        let mut count_at = table_at;
+        let mut seed = 1u64;
+        let mut require = Vec::new();
+        let mut options: Vec<(String, Vec<Expr>)> = Vec::new();
+        let entries: Vec<Entry> = table.get_ref().clone().into_iter().collect();
+        for (key, value) in &entries {
+            let name = key.get_ref().as_str();
+            let field = format!("variants.{name}");
+            let at = value.span().start;
+            match name {
+                "count" => {
+                    count = Some(self.count(value, &field)?);
+                    count_at = key.span().start;
+                }
+                "seed" => {
+                    seed = value
+                        .get_ref()
+                        .as_integer()
+                        .and_then(|s| u64::try_from(s).ok())
+                        .ok_or_else(|| {
+                            self.err(at, &field, "the seed is a non-negative integer, such as 7")
+                        })?
+                }
+                "require" => require = self.requirements(value, &field, symbols)?,
+                _ if symbols.contains_key(name) => {
+                    options.push((name.to_string(), self.options(value, &field)?))
+                }
+                _ => {
+                    return Err(self.err(
+                        key.span().start,
+                        &field,
+                        format!(
+                            "`{name}` is not a declared symbol (nor count, seed or require); \
+                             declare it under [symbols] to vary it"
+                        ),
+                    ));
+                }
+            }
+        }
+        let count = count.ok_or_else(|| {
+            self.err(
+                table_at,
+                "variants.count",
+                "say how many variants: count = 12",
+            )
+        })?;
+        let combinations = options
+            .iter()
+            .try_fold(1usize, |n, (_, o)| n.checked_mul(o.len()))
+            .filter(|n| *n <= MAX_COMBINATIONS);
+        let Some(combinations) = combinations else {
+            return Err(self.err(
+                table_at,
+                "variants",
+                format!(
+                    "the ranges give more than {MAX_COMBINATIONS} combinations of values; use \
+                     larger steps or fewer values"
+                ),
+            ));
+        };
+        draw(&options, &fixed, &require, count, seed).map_err(|short| {
+            let why = if require.is_empty() {
+                String::new()
+            } else {
+                " meet `require`".to_string()
+            };
+            self.err(
+                count_at,
+                "variants.count",
+                format!(
+                    "count = {count}, but only {} of the {combinations} combinations of values{why}: \
+                     lower the count, widen the ranges or relax `require`",
+                    short.met
+                ),
+            )
+        })
+    }
+
+    fn count(&self, value: &Spanned<toml::Value>, field: &str) -> Result<usize, SceneError> {
+        value
+            .get_ref()
+            .as_integer()
+            .and_then(|n| usize::try_from(n).ok())
+            .filter(|n| (1..=MAX_VARIANTS).contains(n))
+            .ok_or_else(|| {
+                self.err(
+                    value.span().start,
+                    field,
+                    format!("count is a whole number from 1 to {MAX_VARIANTS}"),
+                )
+            })
+    }
+
+    /// A list of exact values to choose from, or `{ from, to, step }`.
+    fn options(&self, value: &Spanned<toml::Value>, field: &str) -> Result<Vec<Expr>, SceneError> {
+        let at = value.span().start;
+        let no_symbols = BTreeSet::from(["pi".to_string()]);
+        let exact = |v: &toml::Value, f: &str| -> Result<Expr, SceneError> {
+            let text = match v {
+                toml::Value::String(s) => s.clone(),
+                toml::Value::Integer(n) => n.to_string(),
+                toml::Value::Float(x) => {
+                    return Err(self.err(
+                        at,
+                        f,
+                        format!(
+                            "write {x} as a string, \"{x}\", so that it stays exact (a TOML \
+                             float is binary)"
+                        ),
+                    ));
+                }
+                _ => return Err(self.err(at, f, "a value is a string such as \"3/2\"")),
+            };
+            self.expr_str(&text, at, f, &no_symbols)
+        };
+        let out = match value.get_ref() {
+            toml::Value::Array(items) => {
+                let mut out: Vec<Expr> = Vec::new();
+                for (i, item) in items.iter().enumerate() {
+                    let e = exact(item, &format!("{field}[{i}]"))?;
+                    if e.eval(&|_| None).is_err() {
+                        return Err(self.err(at, field, "a value is a number"));
+                    }
+                    if out.contains(&e) {
+                        return Err(self.err(
+                            at,
+                            &format!("{field}[{i}]"),
+                            format!("{} is listed twice", e.to_text()),
+                        ));
+                    }
+                    out.push(e);
+                }
+                out
+            }
+            toml::Value::Table(t) => {
+                if let Some(k) = t
+                    .keys()
+                    .find(|k| !["from", "to", "step"].contains(&k.as_str()))
+                {
+                    return Err(self.err(
+                        at,
+                        field,
+                        format!("`{k}`: a range has only from, to and step"),
+                    ));
+                }
+                let part = |k: &str| -> Result<Rational, SceneError> {
+                    let f = format!("{field}.{k}");
+                    let v = t.get(k).ok_or_else(|| {
+                        self.err(
+                            at,
+                            &f,
+                            format!(
+                                "a range needs `{k}`: {{ from = \"1\", to = \"10\", step = \"1\" }}"
+                            ),
+                        )
+                    })?;
+                    match exact(v, &f)?.eval_rational(&|_| None) {
+                        Some(r) => Ok(r),
+                        None => {
+                            Err(self.err(at, &f, "a range's ends and step are rational numbers"))
+                        }
+                    }
+                };
+                let (from, to, step) = (part("from")?, part("to")?, part("step")?);
+                if !step.is_positive() {
+                    return Err(self.err(
+                        at,
+                        &format!("{field}.step"),
+                        "the step must be positive",
+                    ));
+                }
+                range(&from, &to, &step, MAX_COMBINATIONS).ok_or_else(|| {
+                    self.err(
+                        at,
+                        field,
+                        format!("this range has more than {MAX_COMBINATIONS} values"),
+                    )
+                })?
+            }
+            _ => {
+                return Err(self.err(
+                    at,
+                    field,
+                    "give a list of values, [\"1/2\", \"1\"], or a range, { from = \"1\", to = \
+                     \"10\", step = \"1\" }",
+                ));
+            }
+        };
+        if out.is_empty() {
+            return Err(self.err(at, field, "this range or list has no values"));
+        }
+        Ok(out)
+    }
+
+    fn requirements(
+        &self,
+        value: &Spanned<toml::Value>,
+        field: &str,
+        symbols: &BTreeMap<String, String>,
+    ) -> Result<Vec<Requirement>, SceneError> {
+        let at = value.span().start;
+        let Some(items) = value.get_ref().as_array() else {
+            return Err(self.err(at, field, "require is a list such as [\"a < b\"]"));
+        };
+        let mut names: BTreeSet<String> = symbols.keys().cloned().collect();
+        names.insert("pi".into());
+        let mut out = Vec::new();
+        for (i, item) in items.iter().enumerate() {
+            let f = format!("{field}[{i}]");
+            let Some(text) = item.as_str() else {
+                return Err(self.err(at, &f, "a requirement is a string such as \"a < b\""));
+            };
+            let Some((op_text, op)) = Comparison::ALL
+                .iter()
+                .find(|(t, _)| text.contains(t))
+                .copied()
+            else {
+                return Err(self.err(
+                    at,
+                    &f,
+                    "a requirement compares two expressions with <, <=, >, >=, == or !=",
+                ));
+            };
+            let (lhs, rhs) = text.split_once(op_text).expect("found above");
+            out.push(Requirement {
+                text: text.to_string(),
+                lhs: self.expr_str(lhs, at, &f, &names)?,
+                op,
+                rhs: self.expr_str(rhs, at, &f, &names)?,
+            });
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,201 @@
+//! Every variant of a problem, checked: its exact answers (the derivation with the variant's
+//! values substituted) against the independent numeric routes at the variant's numbers.
+
+use super::EXACT_VS_NUMERIC;
+use super::principal::PRINCIPAL_AGREEMENT;
+use crate::base::float::max_relative_error;
+use crate::derive::variants::exact_answers;
+use crate::derive::{Derivation, DeriveError};
+use crate::model::catalogue::quantity;
+use crate::model::value::Value;
+use crate::numeric::answers::{RouteError, Routes};
+use crate::scene::{Problem, Scene};
+
+/// How closely the precession rate integrated at tolerance 1e-12 must match the exact rate
+/// (relative): a hundred times the integrator's tolerance. The shipped variants agree to 2e-15.
+pub const PRECESSION_AGREEMENT: f64 = 1e-10;
+
+/// One variant: its values and each answer, exact and numeric.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct VariantCheck {
+    pub number: usize,
+    /// Each symbol's exact value: (name, text, LaTeX), the varying ones and the fixed ones.
+    pub values: Vec<(String, String, String)>,
+    pub answers: Vec<AnswerCheck>,
+}
+
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct AnswerCheck {
+    pub quantity: String,
+    pub exact: Value,
+    /// The exact answer's entries in f64, and the numeric route's.
+    pub exact_numbers: Vec<f64>,
+    pub numeric: Vec<f64>,
+    pub error: f64,
+    pub tolerance: f64,
+}
+
+impl AnswerCheck {
+    pub fn passed(&self) -> bool {
+        self.error <= self.tolerance
+    }
+}
+
+impl VariantCheck {
+    pub fn passed(&self) -> bool {
+        self.answers.iter().all(AnswerCheck::passed)
+    }
+}
+
+/// A variant that could not be checked.
+#[derive(Debug, thiserror::Error)]
+#[error("variant {number}: {source}")]
+pub struct VariantError {
+    pub number: usize,
+    pub source: VariantFailure,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum VariantFailure {
+    #[error(transparent)]
+    Derive(#[from] DeriveError),
+    #[error("the numeric route failed: {0}")]
+    Route(#[from] RouteError),
+}
+
+/// How closely a route must agree: the quadrature rules are exact for these integrands, so
+/// only rounding separates them; the eigen-solver and the integrator have their own errors.
+pub fn agreement(name: &str) -> f64 {
+    match name {
+        quantity::PRINCIPAL_MOMENTS => PRINCIPAL_AGREEMENT,
+        quantity::PRECESSION_RATE => PRECESSION_AGREEMENT,
+        _ => EXACT_VS_NUMERIC,
+    }
+}
+
+pub fn check_variants(
+    scene: &Scene,
+    d: &Derivation,
+    problem: &Problem,
+) -> Result<Vec<VariantCheck>, VariantError> {
+    let mut out = Vec::new();
+    for v in &problem.variants {
+        let fail = |source: VariantFailure| VariantError {
+            number: v.number,
+            source,
+        };
+        let exact = exact_answers(d, problem, v).map_err(|e| fail(e.into()))?;
+        let numbers = v.numbers();
+        let mut routes = Routes::new(scene, &numbers);
+        let mut answers = Vec::new();
+        for a in exact {
+            let numeric = routes.answer(&a.quantity).map_err(|e| fail(e.into()))?;
+            let exact_numbers: Vec<f64> = a
+                .value
+                .entries()
+                .iter()
+                .map(|e| e.eval(&|_| None).unwrap_or(f64::NAN))
+                .collect();
+            let error = max_relative_error(&numeric, &exact_numbers);
+            answers.push(AnswerCheck {
+                tolerance: agreement(&a.quantity),
+                quantity: a.quantity,
+                exact: a.value,
+                exact_numbers,
+                numeric,
+                // NaN (an answer with no number) fails every comparison: count it as infinite.
+                error: if error.is_nan() { f64::INFINITY } else { error },
+            });
+        }
+        out.push(VariantCheck {
+            number: v.number,
+            values: v
+                .values
+                .iter()
+                .map(|(k, e)| (k.clone(), e.to_text(), e.to_latex()))
+                .collect(),
+            answers,
+        });
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cas::parse;
+    use crate::pipeline::run_scene;
+    use std::path::Path;
+
+    const BOX: &str = r#"
+id = "b"
+title = "b"
+notes = { lecture = "x" }
+symbols = { m = "mass", a = "side", b = "side", c = "side" }
+[[body]]
+kind = "box"
+size = ["a", "b", "c"]
+mass = "m"
+origin = "centre"
+[outputs]
+want = ["inertia_tensor", "principal_axes"]
+[numeric]
+values = { m = 1.0, a = 1.0, b = 2.0, c = 3.0 }
+[problem]
+statement = "A box of mass {m} kg, sides {a}, {b}, {c}."
+answers = ["inertia_tensor", "principal_moments"]
+[variants]
+count = 6
+m = ["1", "2", "3"]
+a = ["1/2", "1"]
+b = ["2", "5/2"]
+c = ["3", "7/2"]
+require = ["a < b"]
+"#;
+
+    #[test]
+    fn every_variant_agrees_with_quadrature_and_a_wrong_derivation_does_not() {
+        let scene = Scene::parse(BOX, Path::new("b.toml")).unwrap();
+        let report = run_scene(scene.clone(), None).unwrap();
+        let checks = &report.verification.variants;
+        assert_eq!(checks.len(), 6);
+        assert!(report.passed());
+        for v in checks {
+            for a in &v.answers {
+                assert!(
+                    a.error <= 1e-15,
+                    "variant {}: {} {}",
+                    v.number,
+                    a.quantity,
+                    a.error
+                );
+            }
+        }
+        // The same problem with the tensor's I_xx made (b² + c²)/6: every variant must fail.
+        let mut wrong = report.derivation.clone();
+        let tensor = wrong.quantities["inertia_tensor"].clone();
+        let mut entries = tensor.entries();
+        entries[0] = parse("m*(b^2 + c^2)/6").unwrap().expr;
+        wrong
+            .quantities
+            .insert("inertia_tensor".into(), tensor.with_entries(&entries));
+        let problem = scene.problem.as_ref().unwrap();
+        let checks = check_variants(&scene, &wrong, problem).unwrap();
+        assert!(checks.iter().all(|v| !v.passed()));
+        assert!(
+            checks.iter().all(|v| v.answers[1].passed()),
+            "the moments are untouched"
+        );
+    }
+
+    #[test]
+    fn an_answer_left_with_a_symbol_is_an_error_that_says_which() {
+        let scene = Scene::parse(BOX, Path::new("b.toml")).unwrap();
+        let report = run_scene(scene.clone(), None).unwrap();
+        let mut problem = scene.problem.clone().unwrap();
+        problem.variants[0].values.remove("c");
+        let e = check_variants(&scene, &report.derivation, &problem).unwrap_err();
+        assert_eq!(e.number, 1);
+        assert!(e.to_string().contains("depends on `c`"), "{e}");
+    }
+}
