@@ -458,6 +458,34 @@ pub fn derivation_text(r: &SceneReport) -> String {
             }
         }
     }
+    if !r.verification.variants.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nVariants of the problem (each answer exact, then against its numeric route):"
+        );
+        for v in &r.verification.variants {
+            let values: Vec<String> = v
+                .values
+                .iter()
+                .map(|(n, t, _)| format!("{n} = {t}"))
+                .collect();
+            let _ = writeln!(out, "  {:>3}. {}", v.number, values.join(", "));
+            for a in &v.answers {
+                let _ = writeln!(
+                    out,
+                    "       {} = {}  ({} {})",
+                    a.quantity,
+                    a.exact.to_text(),
+                    if a.passed() {
+                        "agrees to"
+                    } else {
+                        "FAILS: differs by"
+                    },
+                    sci(a.error)
+                );
+            }
+        }
+    }
     out
 }
 

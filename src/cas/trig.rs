@@ -375,6 +375,38 @@ mod tests {
     }
 
     #[test]
+    fn special_angles_are_exact_and_agree_in_value() {
+        for (k, d) in [
+            (0, 1),
+            (1, 6),
+            (1, 4),
+            (1, 3),
+            (1, 2),
+            (2, 3),
+            (3, 4),
+            (5, 6),
+            (1, 1),
+            (7, 6),
+            (-1, 4),
+            (11, 6),
+        ] {
+            for f in ["sin", "cos"] {
+                let e = parse(&format!("{f}({k}*pi/{d})")).unwrap().expr;
+                let exact = special_angles(&e);
+                assert!(
+                    exact.symbols().iter().all(|s| s != "pi"),
+                    "{f}({k}π/{d}) -> {exact}"
+                );
+                let (a, b) = (e.eval(&|_| None).unwrap(), exact.eval(&|_| None).unwrap());
+                assert!((a - b).abs() < 1e-15, "{f}({k}π/{d}): {a} vs {b}");
+            }
+        }
+        // π/5 has no such value here: it stays as it is.
+        let e = parse("cos(pi/5)").unwrap().expr;
+        assert_eq!(special_angles(&e), e);
+    }
+
+    #[test]
     fn half_angle_substitution_is_exact_in_value() {
         let e = parse("sin(a)^2 + 3*cos(2*a)*sin(a)").unwrap().expr;
         let (h, args) = to_half_angle(&e);

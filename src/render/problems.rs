@@ -103,7 +103,7 @@ pub fn fill_statement(
 
 /// The statement with `{name}` replaced by the variant's value, typeset.
 pub fn statement_html(statement: &str, v: &VariantCheck) -> Result<String, RenderError> {
-    fill_statement(statement, v, math::inline, |t| tera::escape_html(t))
+    fill_statement(statement, v, math::inline, tera::escape_html)
 }
 
 /// The sheet's variants, each with every problem's `make` at its variant on that sheet.

@@ -40,7 +40,7 @@ impl Validator<'_> {
         };
         let at = p.span().start;
         let p = p.get_ref();
-        self.statement(&p.statement, symbols)?;
+        let placeholders = self.statement(&p.statement, symbols)?;
         let mut answers = Vec::new();
         for (i, a) in p.answers.get_ref().iter().enumerate() {
             let field = format!("problem.answers[{i}]");
@@ -96,6 +96,19 @@ impl Validator<'_> {
             None => DEFAULT_TOLERANCE,
         };
         let variants = self.variants(raw, symbols, values)?;
+        if let Some((name, at)) = placeholders
+            .iter()
+            .find(|(name, _)| !variants[0].values.contains_key(name))
+        {
+            return Err(self.err(
+                *at,
+                "problem.statement",
+                format!(
+                    "`{{{name}}}` has no value to put in: give `{name}` a range under [variants] \
+                     or a value under [numeric] values"
+                ),
+            ));
+        }
         Ok(Some(Problem {
             statement: p.statement.get_ref().clone(),
             answers,
@@ -105,12 +118,14 @@ impl Validator<'_> {
         }))
     }
 
-    /// Every `{name}` must be a symbol; braces come only in such pairs.
+    /// Every `{name}` must be a symbol; braces come only in such pairs. The placeholders, each
+    /// with its offset in the file.
     fn statement(
         &self,
         s: &Spanned<String>,
         symbols: &BTreeMap<String, String>,
-    ) -> Result<(), SceneError> {
+    ) -> Result<Vec<(String, usize)>, SceneError> {
+        let mut found = Vec::new();
         let text = s.get_ref();
         let field = "problem.statement";
         if text.len() > MAX_STATEMENT {
@@ -141,10 +156,11 @@ impl Validator<'_> {
                     format!("`{{{name}}}` is not a declared symbol; placeholders name symbols"),
                 ));
             }
+            found.push((name.to_string(), at));
             offset += i + close + 1;
             rest = &rest[i + close + 1..];
         }
-        Ok(())
+        Ok(found)
     }
 
     /// The variants: one, at the scene's values, without `[variants]`.
