@@ -14,7 +14,9 @@
 //! - `verify`: symbolic vs numeric vs the notes' claims -> verdicts.
 //! - `pipeline`: runs the stages for one scene, and the build cache's orchestration.
 //! - `report` (terminal, JSON) and `render` (HTML, MathML, SVG in memory).
-//! - `site`: the only code that writes files. `cli`: one file per command.
+//! - `site`: the only code that writes files (the site, a new course, a blessed scene).
+//! - `serve`: the HTTP server of `mechbook serve`; it reads the written site.
+//! - `cli`: one file per command.
 
 pub mod base;
 
@@ -39,5 +41,7 @@ pub mod render;
 pub mod report;
 
 pub mod site;
+
+pub mod serve;
 
 pub mod cli;

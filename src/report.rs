@@ -198,6 +198,97 @@ fn list_claims(out: &mut String, heading: &str, claims: &[(&SceneReport, &ClaimR
     }
 }
 
+/// One reason a scene fails, on one located line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    pub text: String,
+    /// A verdict or a recorded result that differs from the derivation: `check --bless`
+    /// records the new one. Any other failure is not settled by a record.
+    pub recordable: bool,
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+/// What failed in one scene: the reasons `check` and `derive` exit with 1.
+pub fn failures(r: &SceneReport) -> Vec<Failure> {
+    let mut failures = Vec::new();
+    let src = r.scene.source.display();
+    for c in r.verification.claims.iter().filter(|c| !c.passed()) {
+        let recordable = c.problem.is_none();
+        let why = c.problem.clone().unwrap_or_else(|| {
+            format!(
+                "verdict {} but the scene records {}",
+                c.verdict.as_str(),
+                c.expected.as_str()
+            )
+        });
+        failures.push(Failure {
+            text: format!("{src}:{}: claim ({}): {why}", c.line, c.eq),
+            recordable,
+        });
+    }
+    for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
+        failures.push(Failure {
+            text: format!(
+                "{src}: `{}` changed: recorded {}, derived {}",
+                g.quantity, g.recorded, g.derived
+            ),
+            recordable: true,
+        });
+    }
+    for q in r.verification.quantities.iter().filter(|q| !q.passed) {
+        failures.push(unrecordable(format!(
+            "{src}: `{}`: exact and numeric differ by {} (relative)",
+            q.name,
+            sci(q.error)
+        )));
+    }
+    if let Some(e) = r.verification.eigen.as_ref().filter(|e| !e.passed) {
+        failures.push(unrecordable(format!(
+            "{src}: principal axes: exact and numeric differ (values {}, axes {})",
+            sci(e.value_error),
+            sci(e.axis_error)
+        )));
+    }
+    for v in &r.verification.variants {
+        for a in v.answers.iter().filter(|a| !a.passed()) {
+            failures.push(unrecordable(format!(
+                "{src}: variant {}: `{}`: exact and numeric differ by {} (relative), beyond {}",
+                v.number,
+                a.quantity,
+                sci(a.error),
+                sci(a.tolerance)
+            )));
+        }
+    }
+    if let Some(n) = &r.numeric {
+        for (q, ok) in n.runs.iter().zip(&r.verification.within_law) {
+            if !ok {
+                failures.push(unrecordable(format!(
+                    "{src}: {} {} ({} points): error {} beyond its law {}",
+                    q.body,
+                    q.method.name(),
+                    q.points,
+                    sci(q.error),
+                    sci(q.predicted_error)
+                )));
+            }
+        }
+    }
+    failures
+}
+
+fn unrecordable(text: String) -> Failure {
+    Failure {
+        text,
+        recordable: false,
+    }
+}
+
 /// The summary table printed by `check`, with the notes' errata and every failure below it.
 pub fn check_table(reports: &[SceneReport]) -> String {
     let mut out = String::new();
@@ -261,70 +352,17 @@ pub fn check_table(reports: &[SceneReport]) -> String {
         "Undecided: the symbolic and random-point tests disagree",
         &undecided,
     );
-    let mut failures = Vec::new();
-    for r in reports {
-        let src = r.scene.source.display();
-        for c in r.verification.claims.iter().filter(|c| !c.passed()) {
-            let why = c.problem.clone().unwrap_or_else(|| {
-                format!(
-                    "verdict {} but the scene records {}",
-                    c.verdict.as_str(),
-                    c.expected.as_str()
-                )
-            });
-            failures.push(format!("{src}:{}: claim ({}): {why}", c.line, c.eq));
-        }
-        for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
-            failures.push(format!(
-                "{src}: `{}` changed: recorded {}, derived {}",
-                g.quantity, g.recorded, g.derived
-            ));
-        }
-        for q in r.verification.quantities.iter().filter(|q| !q.passed) {
-            failures.push(format!(
-                "{src}: `{}`: exact and numeric differ by {} (relative)",
-                q.name,
-                sci(q.error)
-            ));
-        }
-        if let Some(e) = r.verification.eigen.as_ref().filter(|e| !e.passed) {
-            failures.push(format!(
-                "{src}: principal axes: exact and numeric differ (values {}, axes {})",
-                sci(e.value_error),
-                sci(e.axis_error)
-            ));
-        }
-        for v in &r.verification.variants {
-            for a in v.answers.iter().filter(|a| !a.passed()) {
-                failures.push(format!(
-                    "{src}: variant {}: `{}`: exact and numeric differ by {} (relative), beyond {}",
-                    v.number,
-                    a.quantity,
-                    sci(a.error),
-                    sci(a.tolerance)
-                ));
-            }
-        }
-        if let Some(n) = &r.numeric {
-            for (q, ok) in n.runs.iter().zip(&r.verification.within_law) {
-                if !ok {
-                    failures.push(format!(
-                        "{src}: {} {} ({} points): error {} beyond its law {}",
-                        q.body,
-                        q.method.name(),
-                        q.points,
-                        sci(q.error),
-                        sci(q.predicted_error)
-                    ));
-                }
-            }
-        }
-    }
+    let failures: Vec<Failure> = reports.iter().flat_map(failures).collect();
     if !failures.is_empty() {
         let _ = writeln!(out, "\nFailures ({}):", failures.len());
         for f in failures {
             let _ = writeln!(out, "  {f}");
         }
+        let _ = writeln!(
+            out,
+            "Once you have reviewed them, `mechbook check --bless` records the derived results \
+             and verdicts in the scenes."
+        );
     }
     let problems = reports.iter().filter(|r| r.scene.problem.is_some()).count();
     if problems > 0 {

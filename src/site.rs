@@ -3,8 +3,10 @@
 //! files are written in sorted order with no timestamps, so the same input gives the same bytes.
 //! Only an empty folder, or one that mechbook wrote, is ever replaced (`guard`).
 
+pub mod bless;
 pub mod cache;
 pub mod guard;
+pub mod init;
 pub mod scratch;
 
 pub use guard::check_output;

@@ -20,6 +20,7 @@ const LAYERS: &[&[&str]] = &[
     &["pipeline"],
     &["report", "render"],
     &["site"],
+    &["serve"],
     &["cli"],
 ];
 

@@ -4,3 +4,4 @@ pub mod float;
 pub mod format;
 pub mod hash;
 pub mod rng;
+pub mod suggest;

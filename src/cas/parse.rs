@@ -86,6 +86,48 @@ fn unexpected(rest: &[u8], first: u8) -> String {
     }
 }
 
+/// What to write instead when the text at `pos` looks like LaTeX (`\frac`, `x^{2}`) or like a
+/// product written without `*` (`2R`, `2 l`, `(a+b)(a-b)`); empty otherwise.
+fn hint(src: &[u8], pos: usize) -> String {
+    let Some(&c) = src.get(pos) else {
+        return String::new();
+    };
+    if matches!(c, b'\\' | b'{' | b'}') {
+        return "; LaTeX is not accepted: write plain text such as sin(x), a/b, sqrt(x), x^2, pi"
+            .into();
+    }
+    let word = |b: u8| b.is_ascii_alphanumeric() || b == b'_' || b == b'.';
+    let mut end = pos;
+    while end > 0 && src[end - 1].is_ascii_whitespace() {
+        end -= 1;
+    }
+    let Some(&last) = end.checked_sub(1).and_then(|i| src.get(i)) else {
+        return String::new();
+    };
+    if !(word(last) || last == b')' || last == b']') || !(c.is_ascii_alphanumeric() || c == b'(') {
+        return String::new();
+    }
+    let mut start = end;
+    while start > 0 && word(src[start - 1]) {
+        start -= 1;
+    }
+    let before = if word(last) {
+        String::from_utf8_lossy(&src[start..end]).into_owned()
+    } else {
+        "…)".into()
+    };
+    let mut after_end = pos;
+    while after_end < src.len() && word(src[after_end]) {
+        after_end += 1;
+    }
+    let after = if c == b'(' {
+        "(…".into()
+    } else {
+        String::from_utf8_lossy(&src[pos..after_end]).into_owned()
+    };
+    format!("; a product needs `*`: write `{before}*{after}`")
+}
+
 struct Parser<'a> {
     src: &'a [u8],
     pos: usize,
@@ -99,7 +141,7 @@ impl Parser<'_> {
     fn error(&self, message: &str) -> ParseError {
         ParseError {
             offset: self.pos,
-            message: message.to_string(),
+            message: format!("{message}{}", hint(self.src, self.pos)),
         }
     }
 

@@ -1,13 +1,14 @@
-//! `mechbook build`: the course site.
+//! `mechbook build`: the course site. `serve` runs the same build on every edit.
 
-use super::{FidelityArg, default_paths, find, load, peak_memory_mib, run_all};
+use super::{FidelityArg, default_paths, find, peak_memory_mib, run_all};
+use crate::model::fidelity::Fidelity;
 use crate::pipeline;
 use crate::site::cache::Cache;
 use anyhow::Result;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-#[derive(clap::Args, Debug)]
+#[derive(clap::Args, Debug, Clone)]
 pub struct BuildArgs {
     /// Scene files or folders (default: lectures/).
     pub paths: Vec<PathBuf>,
@@ -32,77 +33,184 @@ pub struct BuildArgs {
     pub no_cache: bool,
 }
 
-pub fn run(args: BuildArgs) -> Result<ExitCode> {
-    let BuildArgs {
-        paths,
-        out,
-        templates,
-        timings,
-        fidelity: FidelityArg { fidelity },
-        cache,
-        no_cache,
-    } = args;
-    let start = std::time::Instant::now();
-    let paths = default_paths(paths);
-    // The course's settings sit beside its scenes (`build my-course/`), or in the working folder.
-    let beside = paths
-        .iter()
-        .map(|p| p.join("mechbook.toml"))
-        .find(|p| p.is_file());
-    let course = crate::render::Course::load(
-        beside
-            .as_deref()
-            .unwrap_or(std::path::Path::new("mechbook.toml")),
-    )?;
-    let out = out
-        .or(course.output.clone())
-        .unwrap_or_else(|| PathBuf::from("site"));
-    // Refused before anything is derived, so a refused build touches nothing. The
-    // inputs are the scene files themselves, and the folders named.
-    let files = find(&paths)?;
-    let mut inputs = paths.clone();
-    inputs.extend(files.iter().cloned());
-    inputs.extend(templates.clone());
-    inputs.push(PathBuf::from("."));
-    crate::site::check_output(&out, &inputs)?;
-    let Some(scenes) = load(&files) else {
-        return Ok(ExitCode::from(1));
-    };
-    let cache = (!no_cache).then(|| Cache::new(&cache));
-    let (reports, errors) = run_all(scenes, fidelity, cache.as_ref())?;
-    if errors > 0 {
-        eprintln!("mechbook: {errors} scene(s) could not be derived; the site was not written");
-        return Ok(ExitCode::from(1));
-    }
-    let cached = reports
-        .iter()
-        .filter(|r| r.from_cache == pipeline::FromCache::Everything)
-        .count();
-    let symbolic_cached = reports
-        .iter()
-        .filter(|r| r.from_cache == pipeline::FromCache::Symbolic)
-        .count();
-    let files = crate::render::site_files(&reports, &course, templates.as_deref(), timings)?;
-    crate::site::write_site(&out, &files)?;
-    let handouts = files.keys().filter(|p| p.starts_with("handouts")).count();
-    let plots = files.keys().filter(|p| p.starts_with("plots")).count();
-    let failed = reports.iter().filter(|r| !r.passed()).count();
-    eprintln!(
-        "mechbook: built {} pages, {plots} plots and {handouts} handouts from {} scenes ({cached} from the cache, {symbolic_cached} re-run numerically on cached symbolic results) into {} in {:.2} s{}{}",
-        reports.len() + 1,
-        reports.len(),
-        out.display(),
-        start.elapsed().as_secs_f64(),
-        peak_memory_mib().map_or(String::new(), |m| format!(", peak memory {m:.0} MiB")),
-        if failed > 0 {
-            format!("; {failed} scene(s) FAILED their checks (run `mechbook check`)")
-        } else {
-            String::new()
+/// A build settled before anything is derived: what to read and where to write.
+pub struct Build {
+    pub paths: Vec<PathBuf>,
+    /// mechbook.toml: beside the scenes (`build my-course/`), or in the working folder.
+    pub course_file: PathBuf,
+    pub out: PathBuf,
+    pub templates: Option<PathBuf>,
+    timings: bool,
+    fidelity: Option<Fidelity>,
+    cache: Option<Cache>,
+}
+
+/// What one build did.
+pub struct Built {
+    pub summary: String,
+    /// The checks that failed: the site was written, and they are listed here.
+    pub failures: Vec<String>,
+}
+
+/// Why a build wrote nothing; the scene messages are located (file:line:column).
+#[derive(Debug)]
+pub enum NotBuilt {
+    /// Bad scene files: nothing was derived.
+    Scenes(Vec<String>),
+    /// Scenes that could not be derived (`run_all` has printed them).
+    Derive(Vec<String>),
+    /// The course file, the output folder, the templates or the writing.
+    Other(anyhow::Error),
+}
+
+impl NotBuilt {
+    /// Every reason, a line each, for the page `serve` shows.
+    pub fn messages(&self) -> Vec<String> {
+        match self {
+            NotBuilt::Scenes(m) | NotBuilt::Derive(m) => m.clone(),
+            NotBuilt::Other(e) => vec![format!("{e:#}")],
         }
-    );
-    Ok(if failed == 0 {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    }
+}
+
+impl Build {
+    pub fn new(args: BuildArgs) -> Result<Build> {
+        let BuildArgs {
+            paths,
+            out,
+            templates,
+            timings,
+            fidelity: FidelityArg { fidelity },
+            cache,
+            no_cache,
+        } = args;
+        let paths = default_paths(paths)?;
+        let course_file = paths
+            .iter()
+            .map(|p| p.join("mechbook.toml"))
+            .find(|p| p.is_file())
+            .unwrap_or_else(|| PathBuf::from("mechbook.toml"));
+        let course = crate::render::Course::load(&course_file)?;
+        let out = out
+            .or(course.output.clone())
+            .unwrap_or_else(|| PathBuf::from("site"));
+        Ok(Build {
+            paths,
+            course_file,
+            out,
+            templates,
+            timings,
+            fidelity,
+            cache: (!no_cache).then(|| Cache::new(&cache)),
+        })
+    }
+
+    /// Derives every scene (or takes it from the cache) and writes the site, or writes nothing
+    /// and says why.
+    pub fn run(&self) -> Result<Built, NotBuilt> {
+        let start = std::time::Instant::now();
+        let fail = NotBuilt::Other;
+        let course = crate::render::Course::load(&self.course_file).map_err(|e| fail(e.into()))?;
+        // Refused before anything is derived, so a refused build touches nothing. The
+        // inputs are the scene files themselves, and the folders named.
+        let files = find(&self.paths).map_err(fail)?;
+        let mut inputs = self.paths.clone();
+        inputs.extend(files.iter().cloned());
+        inputs.extend(self.templates.clone());
+        inputs.push(PathBuf::from("."));
+        crate::site::check_output(&self.out, &inputs).map_err(|e| fail(e.into()))?;
+        let scenes = crate::scene::load_all(&files)
+            .map_err(|errors| NotBuilt::Scenes(errors.iter().map(ToString::to_string).collect()))?;
+        let (reports, errors) =
+            run_all(scenes, self.fidelity, self.cache.as_ref()).map_err(fail)?;
+        if !errors.is_empty() {
+            return Err(NotBuilt::Derive(errors));
+        }
+        let cached = reports
+            .iter()
+            .filter(|r| r.from_cache == pipeline::FromCache::Everything)
+            .count();
+        let symbolic_cached = reports
+            .iter()
+            .filter(|r| r.from_cache == pipeline::FromCache::Symbolic)
+            .count();
+        let site =
+            crate::render::site_files(&reports, &course, self.templates.as_deref(), self.timings)
+                .map_err(|e| fail(e.into()))?;
+        crate::site::write_site(&self.out, &site).map_err(|e| fail(e.into()))?;
+        let handouts = site.keys().filter(|p| p.starts_with("handouts")).count();
+        let plots = site.keys().filter(|p| p.starts_with("plots")).count();
+        let failures: Vec<String> = reports
+            .iter()
+            .flat_map(crate::report::failures)
+            .map(|f| f.text)
+            .collect();
+        let failed = reports.iter().filter(|r| !r.passed()).count();
+        let summary = format!(
+            "built {} pages, {plots} plots and {handouts} handouts from {} scenes ({cached} from the cache, {symbolic_cached} re-run numerically on cached symbolic results) into {} in {:.2} s{}{}",
+            reports.len() + 1,
+            reports.len(),
+            self.out.display(),
+            start.elapsed().as_secs_f64(),
+            peak_memory_mib().map_or(String::new(), |m| format!(", peak memory {m:.0} MiB")),
+            if failed > 0 {
+                format!("; {failed} scene(s) FAILED their checks (run `mechbook check`)")
+            } else {
+                String::new()
+            }
+        );
+        Ok(Built { summary, failures })
+    }
+
+    /// The files and folders a change to which calls for a new build.
+    pub fn watched(&self) -> Vec<PathBuf> {
+        let mut w = self.paths.clone();
+        w.push(self.course_file.clone());
+        w.extend(self.templates.clone());
+        w
+    }
+
+    pub fn out(&self) -> &Path {
+        &self.out
+    }
+}
+
+pub fn run(args: BuildArgs) -> Result<ExitCode> {
+    let build = Build::new(args)?;
+    match build.run() {
+        Ok(built) => {
+            eprintln!("mechbook: {}", built.summary);
+            Ok(if built.failures.is_empty() {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
+        }
+        Err(not_built) => {
+            report_not_built(not_built)?;
+            Ok(ExitCode::from(1))
+        }
+    }
+}
+
+/// Prints why nothing was built: each bad scene, then a count. Scenes that could not be
+/// derived were printed as they failed; any other reason is returned, for `main` to print.
+pub fn report_not_built(not_built: NotBuilt) -> Result<()> {
+    match not_built {
+        NotBuilt::Scenes(messages) => {
+            for m in &messages {
+                eprintln!("mechbook: error: {m}");
+            }
+            eprintln!(
+                "mechbook: {} bad scene file(s); nothing was derived",
+                messages.len()
+            );
+        }
+        NotBuilt::Derive(messages) => eprintln!(
+            "mechbook: {} scene(s) could not be derived; the site was not written",
+            messages.len()
+        ),
+        NotBuilt::Other(e) => return Err(e),
+    }
+    Ok(())
 }

@@ -50,9 +50,22 @@ pub fn run(args: DeriveArgs) -> Result<ExitCode> {
         t
     };
     std::io::stdout().write_all(text.as_bytes())?;
-    Ok(if r.passed() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    if r.passed() {
+        return Ok(ExitCode::SUCCESS);
+    }
+    // Standard output is the derivation; why it fails goes to standard error, as `check` says it.
+    let failures = report::failures(&r);
+    eprintln!(
+        "mechbook: scene `{}` failed {} check(s):",
+        r.scene.id,
+        failures.len()
+    );
+    for f in failures {
+        eprintln!("  {f}");
+    }
+    eprintln!(
+        "mechbook: once you have reviewed the changes, `mechbook check --bless {}` records them",
+        scene.display()
+    );
+    Ok(ExitCode::from(1))
 }

@@ -4,7 +4,10 @@
 mod bench;
 mod build;
 mod check;
+mod completions;
 mod derive;
+mod init;
+mod serve;
 mod spin;
 
 use crate::model::fidelity::{Fidelity, FidelityError};
@@ -30,6 +33,10 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// Start a new course in a new or empty folder: mechbook.toml, one lecture with an example
+    /// scene, a problem sheet and a free-body plot, a .gitignore and a README saying what to
+    /// edit. It builds at once.
+    Init(init::InitArgs),
     /// Derive and verify every scene; print a summary table; fail when anything changed.
     ///
     /// A scene records the verdict it expects for each claim of the notes and, optionally, its
@@ -64,6 +71,17 @@ pub enum Command {
     Bench(bench::BenchArgs),
     /// Derive one scene and print its steps, results, numeric cross-check and claims.
     Derive(derive::DeriveArgs),
+    /// Build the site, serve it on 127.0.0.1, and rebuild and reload open pages on every edit.
+    ///
+    /// Watches the scenes, the templates and mechbook.toml; only the scenes that changed are
+    /// derived again (the build cache). A build that fails keeps the last good site served and
+    /// shows the error, with file:line:column, at the top of every page until it is fixed. The
+    /// pages are the same bytes as `build`'s, but for a small live-reload script. Stop with
+    /// Ctrl-C.
+    Serve(serve::ServeArgs),
+    /// Print a tab-completion script for a shell, for example
+    /// `mechbook completions bash > ~/.local/share/bash-completion/completions/mechbook`.
+    Completions(completions::CompletionsArgs),
 }
 
 /// `--fidelity`, shared by the commands that run the numeric stage.
@@ -146,16 +164,16 @@ fn progress_bar(done: usize, total: usize, label: &str) -> String {
 
 /// Runs every scene, or takes it from the cache, with a progress bar on stderr when it is a
 /// terminal. A scene that fails is reported on stderr, one located line, and the others still
-/// run; the count of failed scenes comes back with the reports.
+/// run; the failed scenes' messages come back with the reports.
 fn run_all(
     scenes: Vec<crate::scene::Scene>,
     fidelity: Option<Fidelity>,
     cache: Option<&Cache>,
-) -> Result<(Vec<SceneReport>, usize)> {
+) -> Result<(Vec<SceneReport>, Vec<String>)> {
     let progress = std::io::stderr().is_terminal();
     let total = scenes.len();
     let mut reports = Vec::new();
-    let mut failed = 0;
+    let mut failed = Vec::new();
     for (i, scene) in scenes.into_iter().enumerate() {
         if progress {
             eprint!("\r\x1b[2K{}", progress_bar(i, total, &scene.id));
@@ -178,7 +196,7 @@ fn run_all(
                     eprint!("\r\x1b[2K");
                 }
                 eprintln!("mechbook: error: {e}");
-                failed += 1;
+                failed.push(e.to_string());
             }
         }
     }
@@ -188,18 +206,31 @@ fn run_all(
     Ok((reports, failed))
 }
 
-fn default_paths(paths: Vec<PathBuf>) -> Vec<PathBuf> {
-    if paths.is_empty() {
-        vec![PathBuf::from("lectures")]
-    } else {
-        paths
+/// The paths given, or `lectures/` when none: a course's scenes live there.
+fn default_paths(paths: Vec<PathBuf>) -> Result<Vec<PathBuf>> {
+    if !paths.is_empty() {
+        return Ok(paths);
     }
+    let lectures = PathBuf::from("lectures");
+    if !lectures.exists() {
+        anyhow::bail!(
+            "no lectures/ here ({}): run `mechbook init` to start a course, change to a \
+             course's folder, or pass the scene files or folders",
+            std::env::current_dir()
+                .map(|d| d.display().to_string())
+                .unwrap_or_else(|_| "the working folder".into())
+        );
+    }
+    Ok(vec![lectures])
 }
 
 pub fn run(cli: Cli) -> Result<ExitCode> {
     if matches!(
         cli.command,
-        Command::Build { .. } | Command::Check { .. } | Command::Derive { .. }
+        Command::Build { .. }
+            | Command::Check { .. }
+            | Command::Derive { .. }
+            | Command::Serve { .. }
     ) {
         crate::cas::ready()?;
     }
@@ -209,6 +240,9 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
         Command::Spin(args) => spin::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Derive(args) => derive::run(args),
+        Command::Init(args) => init::run(args),
+        Command::Serve(args) => serve::run(args),
+        Command::Completions(args) => completions::run(args),
     }
 }
 

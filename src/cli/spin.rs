@@ -105,8 +105,9 @@ pub fn text(a: &SpinArgs) -> Result<String> {
         .ok_or_else(|| {
             let names: Vec<&str> = Method::ALL.iter().map(|(n, _)| *n).collect();
             anyhow!(
-                "unknown method `{}`; expected one of: {}",
+                "unknown method `{}`{}; the methods are {}",
                 a.method,
+                crate::base::suggest::did_you_mean(&a.method, names.iter().copied()),
                 names.join(", ")
             )
         })?;

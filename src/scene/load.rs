@@ -79,7 +79,24 @@ pub(super) fn toml_error(loc: &Locator, offset: usize, message: &str) -> SceneEr
         .filter(|l| !l.is_empty())
         .collect::<Vec<_>>()
         .join(": ");
-    loc.error(offset, &field, one_line)
+    let hint = unknown_name_hint(&one_line);
+    loc.error(offset, &field, one_line + hint.as_str())
+}
+
+/// For serde's "unknown field `quanity`, expected one of `eq`, `quantity`, …" (and "unknown
+/// variant"): "; did you mean `quantity`?" when one of the expected names is near.
+fn unknown_name_hint(message: &str) -> String {
+    let Some(rest) = message
+        .strip_prefix("unknown field `")
+        .or_else(|| message.strip_prefix("unknown variant `"))
+    else {
+        return String::new();
+    };
+    let Some((name, expected)) = rest.split_once('`') else {
+        return String::new();
+    };
+    let candidates = expected.split('`').skip(1).step_by(2);
+    crate::base::suggest::did_you_mean(name, candidates)
 }
 
 /// The dotted key written on the line of `offset` (`body.size`), with its table's name.

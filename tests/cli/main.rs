@@ -3,6 +3,7 @@
 //! This process never calls Symbolica itself, so the child processes it starts never meet a
 //! second Symbolica user in it; concurrent children wait for each other on mechbook's lock.
 
+mod authoring;
 mod bad_input;
 mod build;
 mod check;
@@ -11,6 +12,7 @@ mod hostile;
 mod lock;
 mod output;
 mod problems;
+mod serve;
 mod snapshots;
 mod spin;
 

@@ -90,7 +90,8 @@ impl Validator<'_> {
                     content_start(&rb.kind),
                     &format!("{field}.kind"),
                     format!(
-                        "unknown body kind `{other}`; expected {}",
+                        "unknown body kind `{other}`{}; the kinds are {}",
+                        crate::base::suggest::did_you_mean(other, BODY_KINDS.iter().copied()),
                         BODY_KINDS.join(", ")
                     ),
                 ));

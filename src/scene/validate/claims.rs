@@ -43,7 +43,11 @@ impl Validator<'_> {
                     name.span().start,
                     &format!("expect.{n}"),
                     format!(
-                        "`{n}` is not a derived quantity; expected one of: {}, {}",
+                        "`{n}` is not a derived quantity{}; the quantities are {}, {}",
+                        crate::base::suggest::did_you_mean(
+                            n,
+                            QUANTITIES.iter().chain(DYNAMICS_QUANTITIES).copied()
+                        ),
                         QUANTITIES.join(", "),
                         DYNAMICS_QUANTITIES.join(", ")
                     ),
@@ -85,7 +89,7 @@ impl Validator<'_> {
                 return Err(self.err(
                     content_start(c.role.as_ref().expect("present")),
                     &format!("{field}.role"),
-                    format!("unknown role `{other}`; expected `notes` (the notes' statement, the default) or `mistake` (a common mistake for students to spot)"),
+                    format!("unknown role `{other}`{}; expected `notes` (the notes' statement, the default) or `mistake` (a common mistake for students to spot)", crate::base::suggest::did_you_mean(other, ["notes", "mistake"])),
                 ));
             }
         };
@@ -99,7 +103,12 @@ impl Validator<'_> {
                     content_start(&c.expect),
                     &format!("{field}.expect"),
                     format!(
-                        "unknown verdict `{other}`; expected agrees, disagrees, not-checkable or undecided"
+                        "unknown verdict `{other}`{}; the verdicts are agrees, disagrees, \
+                         not-checkable and undecided",
+                        crate::base::suggest::did_you_mean(
+                            other,
+                            ["agrees", "disagrees", "not-checkable", "undecided"]
+                        )
                     ),
                 ));
             }
@@ -158,8 +167,15 @@ impl Validator<'_> {
 /// A call, list or index the expression's language does not have.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub(super) enum CallError {
-    #[error("unknown function `{0}`")]
-    Unknown(String),
+    #[error(
+        "unknown function `{name}`{hint}; the functions are {}",
+        allowed.join(", ")
+    )]
+    Unknown {
+        name: String,
+        hint: String,
+        allowed: Vec<&'static str>,
+    },
     #[error("`{name}` takes {arity} argument(s), got {got}")]
     Arity {
         name: String,
@@ -174,16 +190,20 @@ pub(super) enum CallError {
 
 pub(super) fn check_calls(e: &Expr, claim_language: bool) -> Result<(), CallError> {
     let mut result = Ok(());
-    let allowed: &[&str] = if claim_language {
+    let allowed: &[&'static str] = if claim_language {
         CLAIM_FUNCTIONS
     } else {
         crate::cas::SCALAR_FUNCTIONS
     };
-    fn walk(e: &Expr, allowed: &[&str], claim: bool, out: &mut Result<(), CallError>) {
+    fn walk(e: &Expr, allowed: &[&'static str], claim: bool, out: &mut Result<(), CallError>) {
         match e {
             Expr::Call(name, args) => {
                 if !allowed.contains(&name.as_str()) {
-                    *out = Err(CallError::Unknown(name.clone()));
+                    *out = Err(CallError::Unknown {
+                        name: name.clone(),
+                        hint: crate::base::suggest::did_you_mean(name, allowed.iter().copied()),
+                        allowed: allowed.to_vec(),
+                    });
                     return;
                 }
                 let arity = match name.as_str() {

@@ -282,8 +282,9 @@ impl Validator<'_> {
                     content_start(w),
                     &format!("outputs.want[{i}]"),
                     format!(
-                        "unknown output `{}`; expected one of: {}",
+                        "unknown output `{}`{}; the outputs are {}",
                         w.get_ref(),
+                        crate::base::suggest::did_you_mean(w.get_ref(), names.iter().copied()),
                         names.join(", ")
                     ),
                 ));
@@ -441,12 +442,17 @@ impl Validator<'_> {
             )
         })?;
         if let Some((name, offset)) = parsed.symbols.iter().find(|(n, _)| !names.contains(n)) {
+            let hint = crate::base::suggest::did_you_mean(name, names.iter().map(String::as_str));
+            let known = names.iter().cloned().collect::<Vec<_>>().join(", ");
             let message = if claim {
                 format!(
-                    "undefined name `{name}` (not a symbol, definition, vector or derived quantity)"
+                    "undefined name `{name}`{hint}: not a symbol, definition, vector or derived \
+                     quantity of this scene; those are {known}"
                 )
             } else {
-                format!("undefined symbol `{name}` (declare it under [symbols])")
+                format!(
+                    "undefined symbol `{name}`{hint}: declare it under [symbols] (declared: {known})"
+                )
             };
             return Err(self.err(start + offset, field, message));
         }

@@ -191,7 +191,11 @@ impl Validator<'_> {
                     content_start(&rp.kind),
                     &format!("{field}.kind"),
                     format!(
-                        "unknown plot kind `{other}`; expected one of: {}",
+                        "unknown plot kind `{other}`{}; the kinds are {}",
+                        crate::base::suggest::did_you_mean(
+                            other,
+                            PlotRequest::KINDS.iter().copied()
+                        ),
                         PlotRequest::KINDS.join(", ")
                     ),
                 ));

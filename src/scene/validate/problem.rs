@@ -51,8 +51,9 @@ impl Validator<'_> {
                     content_start(a),
                     &field,
                     format!(
-                        "`{name}` cannot be a problem's answer; the answers with an independent \
-                         numeric check are {}",
+                        "`{name}` cannot be a problem's answer{}; the answers with an \
+                         independent numeric check are {}",
+                        crate::base::suggest::did_you_mean(name, names.iter().copied()),
                         names.join(", ")
                     ),
                 ));

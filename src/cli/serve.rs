@@ -1,0 +1,221 @@
+//! `mechbook serve`: build, serve on 127.0.0.1, and rebuild and reload on every edit.
+
+use super::build::{Build, BuildArgs, report_not_built};
+use crate::serve::Server;
+use anyhow::{Context, Result};
+use notify::Watcher;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+#[derive(clap::Args, Debug)]
+pub struct ServeArgs {
+    #[command(flatten)]
+    pub build: BuildArgs,
+    /// The port on 127.0.0.1 (default: a free one, printed at the start).
+    #[arg(long, default_value_t = 0)]
+    pub port: u16,
+    /// Open the index in the default browser.
+    #[arg(long)]
+    pub open: bool,
+}
+
+/// What wakes the build loop.
+enum Wake {
+    Changed(notify::Result<notify::Event>),
+    Stop,
+}
+
+/// Edits that arrive within this of each other make one build: an editor's save is several
+/// events (write, rename, chmod), and "save all" touches several files.
+const SETTLE: Duration = Duration::from_millis(100);
+
+pub fn run(args: ServeArgs) -> Result<ExitCode> {
+    let build = Build::new(args.build)?;
+    let first = build.run();
+    let errors = match first {
+        Ok(built) => {
+            eprintln!("mechbook: {}", built.summary);
+            Vec::new()
+        }
+        Err(not_built) => {
+            let messages = not_built.messages();
+            report_not_built(not_built).or_else(|e| {
+                eprintln!("mechbook: error: {e:#}");
+                anyhow::Ok(())
+            })?;
+            messages
+        }
+    };
+    let (wake, woken) = mpsc::channel();
+    let on_interrupt = {
+        let wake = wake.clone();
+        move || {
+            let _ = wake.send(Wake::Stop);
+        }
+    };
+    let server = Server::start(build.out(), args.port, errors, on_interrupt)?;
+    let url = format!("http://{}/", server.addr());
+    eprintln!(
+        "mechbook: serving {url} from {} (Ctrl-C to stop); watching {}",
+        build.out().display(),
+        build
+            .watched()
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    if args.open {
+        open_in_browser(&url);
+    }
+    let mut watcher = notify::recommended_watcher(move |event| {
+        let _ = wake.send(Wake::Changed(event));
+    })
+    .context("cannot watch the files for changes")?;
+    let watched = build.watched();
+    for path in &watched {
+        // A file is watched through its folder: editors replace a file when they save it.
+        let (target, mode) = if path.is_dir() {
+            (path.clone(), notify::RecursiveMode::Recursive)
+        } else {
+            (folder_of(path), notify::RecursiveMode::NonRecursive)
+        };
+        watcher
+            .watch(&target, mode)
+            .with_context(|| format!("cannot watch {}", target.display()))?;
+    }
+    let relevant = Relevant::new(&watched, build.out());
+    loop {
+        let first = match woken.recv() {
+            Ok(Wake::Changed(Ok(event))) => event,
+            Ok(Wake::Changed(Err(e))) => {
+                eprintln!("mechbook: warning: watching: {e}");
+                continue;
+            }
+            Ok(Wake::Stop) | Err(_) => break,
+        };
+        // Reading a file is an event too (the build reads them all): only writes count.
+        let is_edit = matches!(
+            first.kind,
+            notify::EventKind::Create(_)
+                | notify::EventKind::Modify(_)
+                | notify::EventKind::Remove(_)
+        );
+        if !is_edit || !relevant.any(&first.paths) {
+            continue;
+        }
+        let seen = Instant::now();
+        let mut stop = false;
+        // Take the rest of this save, then build once.
+        while let Ok(w) = woken.recv_timeout(SETTLE) {
+            if matches!(w, Wake::Stop) {
+                stop = true;
+                break;
+            }
+        }
+        if stop {
+            break;
+        }
+        let changed = first
+            .paths
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ");
+        eprintln!("mechbook: changed: {changed}");
+        match build.run() {
+            Ok(built) => {
+                eprintln!("mechbook: {}", built.summary);
+                server.built(Vec::new());
+            }
+            Err(not_built) => {
+                let messages = not_built.messages();
+                if let Err(e) = report_not_built(not_built) {
+                    eprintln!("mechbook: error: {e:#}");
+                }
+                eprintln!(
+                    "mechbook: still serving the last good site, with the error on every page"
+                );
+                server.built(messages);
+            }
+        }
+        eprintln!(
+            "mechbook: {} ms from the change to telling {} open page(s) to reload",
+            seen.elapsed().as_millis(),
+            server.listeners()
+        );
+    }
+    eprintln!("mechbook: stopping");
+    drop(watcher);
+    server.stop();
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The folder holding `path`, or `.` for a bare file name.
+fn folder_of(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+/// Which changed paths call for a build: inside a watched folder or the course file itself,
+/// never in the output, the cache or a hidden or backup file of an editor.
+struct Relevant {
+    folders: Vec<PathBuf>,
+    files: Vec<PathBuf>,
+    out: PathBuf,
+}
+
+impl Relevant {
+    fn new(watched: &[PathBuf], out: &Path) -> Relevant {
+        let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        let (folders, files): (Vec<PathBuf>, Vec<PathBuf>) = watched
+            .iter()
+            .map(|p| absolute(p))
+            .partition(|p| p.is_dir());
+        Relevant {
+            folders,
+            files,
+            out: absolute(out),
+        }
+    }
+
+    fn any(&self, paths: &[PathBuf]) -> bool {
+        paths.iter().any(|p| self.is_relevant(p))
+    }
+
+    fn is_relevant(&self, path: &Path) -> bool {
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy())
+            .unwrap_or_default();
+        if name.starts_with('.') || name.ends_with('~') || name.ends_with(".swp") {
+            return false;
+        }
+        if path.starts_with(&self.out) {
+            return false;
+        }
+        self.files.iter().any(|f| f == path) || self.folders.iter().any(|d| path.starts_with(d))
+    }
+}
+
+/// Asks the desktop to open `url`; says so when it cannot, and goes on serving.
+fn open_in_browser(url: &str) {
+    let opener = if cfg!(target_os = "macos") {
+        "open"
+    } else {
+        "xdg-open"
+    };
+    let spawned = std::process::Command::new(opener)
+        .arg(url)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn();
+    if spawned.is_err() {
+        eprintln!("mechbook: warning: cannot run {opener}; open {url} in a browser yourself");
+    }
+}

@@ -1,0 +1,78 @@
+//! What `serve` adds to a page: the live-reload script and, while the last build failed, the
+//! error at the top. Nothing else of the page changes.
+
+/// Where an open page listens for "rebuilt": server-sent events, one per build.
+pub const EVENTS_PATH: &str = "/__mechbook/events";
+
+/// The script a served page carries: it reloads the page when a build has finished since the
+/// page was made (`generation`), even one that finished before the script connected.
+pub fn reload_snippet(generation: u64) -> String {
+    format!(
+        "<script>/* mechbook serve: live reload */(()=>{{const s=new EventSource(\"{EVENTS_PATH}?since={generation}\");s.onmessage=()=>{{s.close();location.reload();}};}})();</script>"
+    )
+}
+
+/// The failed build's messages, in a box fixed at the top of the page.
+pub fn error_box(messages: &[String]) -> String {
+    let mut html = String::from(
+        "<div id=\"mechbook-serve-error\" role=\"alert\" style=\"position:fixed;top:0;left:0;right:0;z-index:2147483647;max-height:60vh;overflow:auto;margin:0;padding:1em 1.5em;background:#fff4f4;color:#5c0000;border-bottom:3px solid #b00020;font:14px/1.45 ui-monospace,monospace;white-space:pre-wrap\"><strong>mechbook: the last build failed; this is the last good site. Fix the scene and save: the page reloads.</strong>\n",
+    );
+    for m in messages {
+        html.push('\n');
+        html.push_str(&escape(m));
+    }
+    html.push_str("</div>");
+    html
+}
+
+/// `page` with `extra` inserted before its last `</body>` (or at its end).
+pub fn inject(page: &[u8], extra: &str) -> Vec<u8> {
+    let at = page
+        .windows(7)
+        .rposition(|w| w.eq_ignore_ascii_case(b"</body>"))
+        .unwrap_or(page.len());
+    let mut out = Vec::with_capacity(page.len() + extra.len());
+    out.extend_from_slice(&page[..at]);
+    out.extend_from_slice(extra.as_bytes());
+    out.extend_from_slice(&page[at..]);
+    out
+}
+
+/// A page of its own for when no build has succeeded yet.
+pub fn no_site_page(messages: &[String], generation: u64) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>mechbook: build failed</title></head><body>{}{}</body></html>\n",
+        error_box(messages),
+        reload_snippet(generation)
+    )
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_snippet_goes_before_the_last_body_end_and_nothing_else_changes() {
+        let page = b"<html><body><p>a</p></body></html>\n";
+        let out = inject(page, "<x>");
+        assert_eq!(out, b"<html><body><p>a</p><x></body></html>\n");
+        // Removing what was inserted gives the page back, byte for byte.
+        let text = String::from_utf8(out).unwrap();
+        assert_eq!(text.replacen("<x>", "", 1).as_bytes(), page);
+        assert_eq!(inject(b"plain", "<x>"), b"plain<x>");
+    }
+
+    #[test]
+    fn the_error_is_escaped() {
+        let b = error_box(&["a.toml:1:2: unexpected `<`".into()]);
+        assert!(b.contains("a.toml:1:2: unexpected `&lt;`"), "{b}");
+        assert!(!b.contains("`<`"));
+    }
+}

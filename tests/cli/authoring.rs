@@ -1,0 +1,269 @@
+//! The authoring loop as an instructor meets it: `init` a course and build it, `check --bless`
+//! a scene, errors outside a course, `derive` saying why it fails, and shell completions.
+//! (`serve` is in serve.rs.)
+
+use super::{lecture, mechbook, read_tree, scratch, stderr, stdout};
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn mechbook_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mechbook"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run mechbook")
+}
+
+#[test]
+fn init_makes_a_course_that_builds_and_checks_at_once() {
+    let dir = scratch("init");
+    let course = dir.join("my-course");
+    let out = mechbook(&["init", course.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    for f in [
+        "mechbook.toml",
+        "README.md",
+        ".gitignore",
+        "lectures/lecture-1/01-book.toml",
+        "lectures/lecture-1/02-problem-box.toml",
+    ] {
+        assert!(course.join(f).is_file(), "{f} missing");
+    }
+    let ignore = std::fs::read_to_string(course.join(".gitignore")).unwrap();
+    assert!(ignore.contains("/site/") && ignore.contains("/.mechbook-cache/"));
+
+    let built = mechbook_in(&course, &["build"]);
+    assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+    let site = read_tree(&course.join("site"));
+    // The example scene, the problem sheet's pages and its Moodle quiz, and the free-body plot.
+    for f in [
+        "index.html",
+        "book.html",
+        "problem-box.html",
+        "handouts/lecture-1-problems-student.html",
+        "handouts/lecture-1-problems-key.html",
+        "export/moodle/problem-box.xml",
+    ] {
+        assert!(site.contains_key(f), "{f} not built: {:?}", site.keys());
+    }
+    assert!(
+        site.keys().any(|k| k.starts_with("plots/book-flip")),
+        "no flip plot: {:?}",
+        site.keys()
+    );
+    let page = String::from_utf8(site["book.html"].clone()).unwrap();
+    assert!(
+        page.contains("My rigid-body course"),
+        "course title missing"
+    );
+    let checked = mechbook_in(&course, &["check"]);
+    assert_eq!(checked.status.code(), Some(0), "{}", stdout(&checked));
+    // The example's wrong formula is caught, as the scene says it is.
+    assert!(
+        stdout(&checked).contains("1 disagree"),
+        "{}",
+        stdout(&checked)
+    );
+
+    // A second init into the same folder is refused and changes nothing.
+    let before = read_tree(&course);
+    let again = mechbook(&["init", course.to_str().unwrap()]);
+    assert_eq!(again.status.code(), Some(1));
+    assert!(
+        stderr(&again).contains("is not empty"),
+        "{}",
+        stderr(&again)
+    );
+    assert_eq!(read_tree(&course), before);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn init_refuses_a_file_and_fills_an_empty_folder() {
+    let dir = scratch("init-empty");
+    let file = dir.join("notes.txt");
+    std::fs::write(&file, "mine").unwrap();
+    let out = mechbook(&["init", file.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("is a file"), "{}", stderr(&out));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "mine");
+    let empty = dir.join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let out = mechbook_in(&empty, &["init"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(empty.join("lectures/lecture-1/01-book.toml").is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn outside_a_course_the_error_says_what_to_do() {
+    let dir = scratch("outside");
+    for command in ["build", "check"] {
+        let out = mechbook_in(&dir, &[command]);
+        assert_eq!(out.status.code(), Some(1), "{command}");
+        let err = stderr(&out);
+        assert!(
+            err.contains("no lectures/ here") && err.contains("mechbook init"),
+            "{command}: {err}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The hoop scene with its `[expect]` table (and its comment) removed.
+fn hoop_without_expect() -> String {
+    let text = std::fs::read_to_string(lecture("06-hoop.toml")).unwrap();
+    let start = text.find("\n# The results as derived").unwrap();
+    let end = text.find("\n# How these notes number").unwrap();
+    format!("{}{}", &text[..start], &text[end..])
+}
+
+#[test]
+fn bless_records_expect_in_a_scene_without_it_and_check_then_passes() {
+    let dir = scratch("bless-new");
+    let scene = dir.join("hoop.toml");
+    let original = hoop_without_expect();
+    assert!(!original.contains("[expect]"));
+    std::fs::write(&scene, &original).unwrap();
+    let out = mechbook(&["check", "--bless", scene.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let printed = stdout(&out);
+    assert!(
+        printed.contains(
+            "[expect] inertia_tensor = [[1/2*M*R^2, 0, 0], [0, 1/2*M*R^2, 0], [0, 0, M*R^2]]"
+        ),
+        "{printed}"
+    );
+    let blessed = std::fs::read_to_string(&scene).unwrap();
+    // Everything that was there is still there, in order, comments included; [expect] is new.
+    assert!(
+        blessed.starts_with(&original),
+        "the rest of the file changed"
+    );
+    assert!(blessed.contains("[expect]\n"));
+    // The recorded tensor is the shipped scene's, which was reviewed by hand.
+    let shipped = std::fs::read_to_string(lecture("06-hoop.toml")).unwrap();
+    let line = |t: &str, key: &str| {
+        t.lines()
+            .find(|l| l.starts_with(&format!("{key} = ")))
+            .map(str::to_owned)
+    };
+    for key in ["inertia_tensor", "principal_moments"] {
+        assert_eq!(line(&blessed, key), line(&shipped, key), "{key}");
+    }
+    let check = mechbook(&["check", scene.to_str().unwrap()]);
+    assert_eq!(check.status.code(), Some(0), "{}", stdout(&check));
+    // A record is checked: spoil it and check fails again.
+    std::fs::write(
+        &scene,
+        blessed.replace("[0, 0, M*R^2]]\"", "[0, 0, 2*M*R^2]]\""),
+    )
+    .unwrap();
+    assert_eq!(
+        mechbook(&["check", scene.to_str().unwrap()]).status.code(),
+        Some(1)
+    );
+    // Blessing twice changes nothing the second time.
+    std::fs::write(&scene, &blessed).unwrap();
+    let out = mechbook(&["check", "--bless", scene.to_str().unwrap()]);
+    assert!(
+        stdout(&out).contains("blessed: 0 change(s)"),
+        "{}",
+        stdout(&out)
+    );
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), blessed);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bless_updates_a_verdict_and_a_result_and_keeps_comments() {
+    let dir = scratch("bless-change");
+    let scene = dir.join("hoop.toml");
+    let shipped = std::fs::read_to_string(lecture("06-hoop.toml")).unwrap();
+    // A reviewed verdict that is now wrong, with a comment of the author's on its line, and a
+    // recorded result that no longer matches.
+    let edited = shipped
+        .replacen(
+            "expect = \"disagrees\"",
+            "expect = \"agrees\"  # the author's note",
+            1,
+        )
+        .replace(
+            "principal_moments = \"[1/2*M*R^2, 1/2*M*R^2, M*R^2]\"",
+            "principal_moments = \"[M*R^2, M*R^2, M*R^2]\"  # old",
+        );
+    std::fs::write(&scene, &edited).unwrap();
+    assert_eq!(
+        mechbook(&["check", scene.to_str().unwrap()]).status.code(),
+        Some(1)
+    );
+    let out = mechbook(&["check", "--bless", scene.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let printed = stdout(&out);
+    assert!(
+        printed.contains("claim (eq 36): verdict agrees -> disagrees"),
+        "{printed}"
+    );
+    assert!(
+        printed.contains(
+            "[expect] principal_moments: [M*R^2, M*R^2, M*R^2] -> [1/2*M*R^2, 1/2*M*R^2, M*R^2]"
+        ),
+        "{printed}"
+    );
+    assert!(
+        printed.contains("blessed: 2 change(s) in 1 of 1"),
+        "{printed}"
+    );
+    let blessed = std::fs::read_to_string(&scene).unwrap();
+    let expected = shipped
+        .replacen(
+            "expect = \"disagrees\"",
+            "expect = \"disagrees\"  # the author's note",
+            1,
+        )
+        .replace(
+            "principal_moments = \"[1/2*M*R^2, 1/2*M*R^2, M*R^2]\"",
+            "principal_moments = \"[1/2*M*R^2, 1/2*M*R^2, M*R^2]\"  # old",
+        );
+    assert_eq!(blessed, expected);
+    assert_eq!(
+        mechbook(&["check", scene.to_str().unwrap()]).status.code(),
+        Some(0)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn derive_says_why_it_fails() {
+    let dir = scratch("derive-why");
+    let scene = dir.join("hoop.toml");
+    let shipped = std::fs::read_to_string(lecture("06-hoop.toml")).unwrap();
+    std::fs::write(
+        &scene,
+        shipped.replacen("expect = \"disagrees\"", "expect = \"agrees\"", 1),
+    )
+    .unwrap();
+    let out = mechbook(&["derive", scene.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(err.contains("scene `hoop` failed 1 check(s)"), "{err}");
+    assert!(
+        err.contains("claim (36): verdict disagrees but the scene records agrees"),
+        "{err}"
+    );
+    assert!(err.contains("mechbook check --bless"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn completions_are_printed_for_each_shell() {
+    for shell in ["bash", "zsh", "fish"] {
+        let out = mechbook(&["completions", shell]);
+        assert_eq!(out.status.code(), Some(0), "{shell}");
+        let script = stdout(&out);
+        for word in ["init", "serve", "bless", "derive"] {
+            assert!(script.contains(word), "{shell}: no {word}");
+        }
+    }
+    assert_eq!(mechbook(&["completions", "tcsh"]).status.code(), Some(2));
+}

@@ -1,0 +1,259 @@
+//! `mechbook serve` driven as a user would: start it on a free port, fetch pages, edit a scene
+//! and see the change, break it and see the error in the page, fix it, and stop with Ctrl-C.
+
+use super::{read_tree, scratch};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+/// A GET over plain HTTP/1.1: the status code and the body.
+fn get(port: u16, path: &str) -> (u16, Vec<u8>) {
+    let mut s = TcpStream::connect(("127.0.0.1", port)).expect("connect");
+    s.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+    write!(
+        s,
+        "GET {path} HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let mut raw = Vec::new();
+    s.read_to_end(&mut raw).unwrap();
+    let end = raw
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("headers");
+    let head = String::from_utf8_lossy(&raw[..end]).into_owned();
+    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
+    (status, raw[end + 4..].to_vec())
+}
+
+fn page(port: u16, path: &str) -> String {
+    String::from_utf8(get(port, path).1).unwrap()
+}
+
+/// Polls `page` until `ok` holds, for at most `limit`; the time it took.
+fn within(limit: Duration, mut ok: impl FnMut() -> bool) -> Option<Duration> {
+    let start = Instant::now();
+    while start.elapsed() < limit {
+        if ok() {
+            return Some(start.elapsed());
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    None
+}
+
+struct Serving {
+    child: Child,
+    port: u16,
+    lines: mpsc::Receiver<String>,
+}
+
+/// A failed assertion must not leave a server running (it holds mechbook's lock).
+impl Drop for Serving {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn serve(course: &Path) -> Serving {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mechbook"))
+        .args(["serve"])
+        .current_dir(course)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let (tx, lines) = mpsc::channel();
+    let err = child.stderr.take().unwrap();
+    std::thread::spawn(move || {
+        for line in BufReader::new(err).lines() {
+            let Ok(line) = line else { break };
+            if tx.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    // The build may wait for another test's mechbook first (one Symbolica process at a time).
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let port = loop {
+        let line = lines
+            .recv_timeout(deadline.saturating_duration_since(Instant::now()))
+            .expect("serve printed no address");
+        if let Some(at) = line.find("serving http://127.0.0.1:") {
+            let rest = &line[at + "serving http://127.0.0.1:".len()..];
+            break rest[..rest.find('/').unwrap()].parse().unwrap();
+        }
+    };
+    Serving { child, port, lines }
+}
+
+fn interrupt(child: &mut Child) -> Option<i32> {
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    let start = Instant::now();
+    while start.elapsed() < Duration::from_secs(10) {
+        if let Some(status) = child.try_wait().unwrap() {
+            return status.code();
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let _ = child.kill();
+    None
+}
+
+#[test]
+fn serve_rebuilds_on_edit_shows_errors_in_the_page_and_stops_on_ctrl_c() {
+    let dir = scratch("serve");
+    let course = dir.join("course");
+    let out = super::mechbook(&["init", course.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0));
+    let mut s = serve(&course);
+    let port = s.port;
+
+    // The served pages are build's bytes, with only the reload script added.
+    let site = read_tree(&course.join("site"));
+    for (path, bytes) in &site {
+        if path == ".mechbook-site" {
+            continue;
+        }
+        let (status, body) = get(port, &format!("/{path}"));
+        assert_eq!(status, 200, "{path}");
+        if path.ends_with(".html") {
+            let text = String::from_utf8(body).unwrap();
+            let at = text
+                .find("<script>/* mechbook serve: live reload */")
+                .expect(path);
+            let end = text[at..].find("</script>").unwrap() + at + "</script>".len();
+            let without = format!("{}{}", &text[..at], &text[end..]);
+            assert_eq!(without.as_bytes(), &bytes[..], "{path}");
+        } else {
+            assert_eq!(&body, bytes, "{path}");
+        }
+    }
+    assert_eq!(get(port, "/").1, get(port, "/index.html").1);
+    // A path out of the site is refused before any file is looked at.
+    assert_eq!(get(port, "/../../etc/passwd").0, 400);
+    assert_eq!(get(port, "/plots/%2e%2e/%2e%2e/mechbook.toml").0, 400);
+    assert_eq!(get(port, "/no-such-page.html").0, 404);
+
+    // An edit is served within 2 s.
+    let scene = course.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    std::fs::write(
+        &scene,
+        text.replace("A book as a uniform box", "A paperback as a box"),
+    )
+    .unwrap();
+    let took = within(Duration::from_secs(2), || {
+        page(port, "/book.html").contains("A paperback as a box")
+    });
+    assert!(took.is_some(), "the edit was not served within 2 s");
+
+    // A broken scene: the last good page stays, with the located error at its top.
+    std::fs::write(
+        &scene,
+        text.replace(
+            "value = \"m*(h^2 + d^2)/3\"",
+            "value = \"m*(h^2 + 2d^2)/3\"",
+        ),
+    )
+    .unwrap();
+    let shown = within(Duration::from_secs(2), || {
+        page(port, "/book.html").contains("mechbook-serve-error")
+    });
+    assert!(shown.is_some(), "the error was not shown within 2 s");
+    let broken = page(port, "/book.html");
+    assert!(
+        broken.contains("01-book.toml:26:20: field `claim[0].value`"),
+        "{broken}"
+    );
+    assert!(broken.contains("write `2*d`"));
+    assert!(
+        broken.contains("A paperback as a box"),
+        "the last good page is gone"
+    );
+
+    // Fixed: the page comes back without the error.
+    std::fs::write(&scene, &text).unwrap();
+    let back = within(Duration::from_secs(2), || {
+        let p = page(port, "/book.html");
+        !p.contains("mechbook-serve-error") && p.contains("A book as a uniform box")
+    });
+    assert!(
+        back.is_some(),
+        "the fixed page did not come back within 2 s"
+    );
+
+    // An open page is told to reload after each build: the event stream's first event.
+    let mut events = TcpStream::connect(("127.0.0.1", port)).unwrap();
+    events
+        .set_read_timeout(Some(Duration::from_secs(5)))
+        .unwrap();
+    write!(
+        events,
+        "GET /__mechbook/events?since=0 HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"
+    )
+    .unwrap();
+    let mut buf = [0u8; 4096];
+    let mut got = String::new();
+    while !got.contains("data: reload") {
+        let n = events.read(&mut buf).expect("an event");
+        assert!(n > 0, "the stream closed: {got}");
+        got.push_str(&String::from_utf8_lossy(&buf[..n]));
+    }
+
+    // Ctrl-C ends the open stream and the server, with exit 0.
+    assert_eq!(
+        interrupt(&mut s.child),
+        Some(0),
+        "serve did not stop cleanly"
+    );
+    let log: Vec<String> = s.lines.try_iter().collect();
+    assert!(log.iter().any(|l| l.contains("stopping")), "{log:?}");
+    assert!(
+        log.iter()
+            .any(|l| l.contains("ms from the change to telling")),
+        "{log:?}"
+    );
+    // Nothing is left beside the site.
+    let leftovers: Vec<_> = std::fs::read_dir(&course)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".building-") || n.contains(".previous-"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn serve_refuses_a_port_in_use_and_says_what_to_do() {
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = taken.local_addr().unwrap().port().to_string();
+    let dir = scratch("serve-port");
+    let course = dir.join("course");
+    assert_eq!(
+        super::mechbook(&["init", course.to_str().unwrap()])
+            .status
+            .code(),
+        Some(0)
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_mechbook"))
+        .args(["serve", "--port", &port])
+        .current_dir(&course)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = super::stderr(&out);
+    assert!(
+        err.contains(&format!("cannot listen on 127.0.0.1:{port}")),
+        "{err}"
+    );
+    assert!(err.contains("choose another --port"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
