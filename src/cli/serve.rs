@@ -162,7 +162,8 @@ fn folder_of(path: &Path) -> PathBuf {
 }
 
 /// Which changed paths call for a build: inside a watched folder or the course file itself,
-/// never in the output, the cache or a hidden or backup file of an editor.
+/// never in the output, and never under a hidden name (the cache, the site's staging folders,
+/// an editor's swap files) or an editor's backup.
 struct Relevant {
     folders: Vec<PathBuf>,
     files: Vec<PathBuf>,
@@ -192,13 +193,18 @@ impl Relevant {
             .file_name()
             .map(|n| n.to_string_lossy())
             .unwrap_or_default();
-        if name.starts_with('.') || name.ends_with('~') || name.ends_with(".swp") {
+        if name.starts_with('.') || name.ends_with('~') || path.starts_with(&self.out) {
             return false;
         }
-        if path.starts_with(&self.out) {
-            return false;
-        }
-        self.files.iter().any(|f| f == path) || self.folders.iter().any(|d| path.starts_with(d))
+        let hidden = |rel: &Path| {
+            rel.components()
+                .any(|c| c.as_os_str().to_string_lossy().starts_with('.'))
+        };
+        self.files.iter().any(|f| f == path)
+            || self
+                .folders
+                .iter()
+                .any(|d| path.strip_prefix(d).is_ok_and(|rel| !hidden(rel)))
     }
 }
 
@@ -217,5 +223,34 @@ fn open_in_browser(url: &str) {
         .spawn();
     if spawned.is_err() {
         eprintln!("mechbook: warning: cannot run {opener}; open {url} in a browser yourself");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_edits_of_inputs_call_for_a_build() {
+        // `serve .`: the output, the cache and the build's staging folders are inside the
+        // watched folder, and must not start a build (each build writes them: a loop).
+        let r = Relevant {
+            folders: vec![PathBuf::from("/c"), PathBuf::from("/c/templates")],
+            files: vec![PathBuf::from("/c/mechbook.toml")],
+            out: PathBuf::from("/c/site"),
+        };
+        assert!(r.is_relevant(Path::new("/c/lectures/l1/01-book.toml")));
+        assert!(r.is_relevant(Path::new("/c/./mechbook.toml")));
+        assert!(r.is_relevant(Path::new("/c/templates/page.html")));
+        for ignored in [
+            "/c/site/index.html",
+            "/c/.site.building-42/index.html",
+            "/c/.mechbook-cache/ab12/report.json",
+            "/c/lectures/.01-book.toml.swp",
+            "/c/lectures/01-book.toml~",
+            "/elsewhere/x.toml",
+        ] {
+            assert!(!r.is_relevant(Path::new(ignored)), "{ignored}");
+        }
     }
 }
