@@ -113,12 +113,7 @@ impl Build {
         let course = crate::render::Course::load(&self.course_file).map_err(|e| fail(e.into()))?;
         // Refused before anything is derived, so a refused build touches nothing. The
         // inputs are the scene files themselves, and the folders named.
-        let files = find(&self.paths).map_err(fail)?;
-        let mut inputs = self.paths.clone();
-        inputs.extend(files.iter().cloned());
-        inputs.extend(self.templates.clone());
-        inputs.push(PathBuf::from("."));
-        crate::site::check_output(&self.out, &inputs).map_err(|e| fail(e.into()))?;
+        let files = self.check_output().map_err(fail)?;
         let scenes = crate::scene::load_all(&files)
             .map_err(|errors| NotBuilt::Scenes(errors.iter().map(ToString::to_string).collect()))?;
         let (reports, errors) =
@@ -160,6 +155,19 @@ impl Build {
             }
         );
         Ok(Built { summary, failures })
+    }
+
+    /// Refuses an output folder that a build must not replace (one with other content, or
+    /// holding the inputs: the scene files, the folders named, the templates, the current
+    /// folder); returns the scene files.
+    pub fn check_output(&self) -> Result<Vec<PathBuf>> {
+        let files = find(&self.paths)?;
+        let mut inputs = self.paths.clone();
+        inputs.extend(files.iter().cloned());
+        inputs.extend(self.templates.clone());
+        inputs.push(PathBuf::from("."));
+        crate::site::check_output(&self.out, &inputs)?;
+        Ok(files)
     }
 
     /// The files and folders a change to which calls for a new build.

@@ -33,6 +33,9 @@ const SETTLE: Duration = Duration::from_millis(100);
 
 pub fn run(args: ServeArgs) -> Result<ExitCode> {
     let build = Build::new(args.build)?;
+    // Editing a scene cannot fix a refused output folder, and one that is not the site's must
+    // not be served: stop before serving anything.
+    build.check_output()?;
     let first = build.run();
     let errors = match first {
         Ok(built) => {

@@ -215,9 +215,18 @@ async fn file(State(shared): State<Arc<Shared>>, uri: Uri) -> Response {
     let Some(rel) = site_path(uri.path()) else {
         return plain(StatusCode::BAD_REQUEST, "bad path");
     };
+    // A hidden name (the site's marker) is the build's, not the site's.
+    let hidden = rel
+        .components()
+        .any(|c| c.as_os_str().to_string_lossy().starts_with('.'));
     let path = shared.root.join(&rel);
     // Site files are small and local: a blocking read is shorter than the request itself.
-    let bytes = match std::fs::read(&path) {
+    let read = if hidden {
+        Err(std::io::ErrorKind::NotFound.into())
+    } else {
+        std::fs::read(&path)
+    };
+    let bytes = match read {
         Ok(b) => b,
         Err(_) if !status.errors.is_empty() && !shared.root.join("index.html").exists() => {
             return html(

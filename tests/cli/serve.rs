@@ -137,6 +137,9 @@ fn serve_rebuilds_on_edit_shows_errors_in_the_page_and_stops_on_ctrl_c() {
         }
     }
     assert_eq!(get(port, "/").1, get(port, "/index.html").1);
+    // The marker is the build's, not the site's.
+    assert!(site.contains_key(".mechbook-site"));
+    assert_eq!(get(port, "/.mechbook-site").0, 404);
     // A path out of the site is refused before any file is looked at.
     assert_eq!(get(port, "/../../etc/passwd").0, 400);
     assert_eq!(get(port, "/plots/%2e%2e/%2e%2e/mechbook.toml").0, 400);
@@ -255,5 +258,41 @@ fn serve_refuses_a_port_in_use_and_says_what_to_do() {
         "{err}"
     );
     assert!(err.contains("choose another --port"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn serve_refuses_an_output_folder_that_is_not_a_site_and_serves_none_of_it() {
+    let dir = scratch("serve-out");
+    let course = dir.join("course");
+    assert_eq!(
+        super::mechbook(&["init", course.to_str().unwrap()])
+            .status
+            .code(),
+        Some(0)
+    );
+    let notes = dir.join("notes");
+    std::fs::create_dir_all(&notes).unwrap();
+    std::fs::write(notes.join("private.txt"), "mine").unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mechbook"))
+        .args(["serve", "--out", notes.to_str().unwrap()])
+        .current_dir(&course)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Were it served, serve would run until stopped: wait a bounded time.
+    let exited = within(Duration::from_secs(60), || {
+        child.try_wait().unwrap().is_some()
+    });
+    if exited.is_none() {
+        let _ = child.kill();
+    }
+    let out = child.wait_with_output().unwrap();
+    assert!(exited.is_some(), "serve did not stop");
+    assert_eq!(out.status.code(), Some(1));
+    let err = super::stderr(&out);
+    assert!(err.contains("was not written by mechbook"), "{err}");
+    assert!(!err.contains("serving http"), "{err}");
+    assert_eq!(read_tree(&notes).len(), 1);
     std::fs::remove_dir_all(&dir).unwrap();
 }
