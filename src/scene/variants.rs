@@ -86,11 +86,15 @@ impl Requirement {
 pub struct Shortfall {
     pub met: usize,
     pub combinations: usize,
+    /// Whether one combination that met them was the scene's own point, and left out.
+    pub public_left_out: bool,
 }
 
 /// `count` distinct variants: each varying symbol takes one of its `options` (in the order
 /// given), the others their `fixed` value. Combinations are visited in a seeded random order
-/// (a Fisher–Yates shuffle drawn as it goes) and kept when they meet every requirement.
+/// (a Fisher–Yates shuffle drawn as it goes) and kept when they meet every requirement and
+/// are not the scene's own point: `fixed` holds every symbol's `[numeric]` value, at which
+/// the scene's public page shows the answers.
 pub fn draw(
     options: &[(String, Vec<Expr>)],
     fixed: &BTreeMap<String, Expr>,
@@ -102,6 +106,7 @@ pub fn draw(
     let mut order: Vec<u32> = (0..combinations as u32).collect();
     let mut rng = Rng::new(seed);
     let mut out = Vec::with_capacity(count);
+    let mut public_left_out = false;
     for i in 0..combinations {
         if out.len() == count {
             break;
@@ -115,7 +120,12 @@ pub fn draw(
             values.insert(name.clone(), opts[index % opts.len()].clone());
             index /= opts.len();
         }
-        if require.iter().all(|r| r.holds(&values)) {
+        if !require.iter().all(|r| r.holds(&values)) {
+            continue;
+        }
+        if is_public(options, &values, fixed) {
+            public_left_out = true;
+        } else {
             out.push(Variant {
                 number: out.len() + 1,
                 values,
@@ -126,9 +136,26 @@ pub fn draw(
         return Err(Shortfall {
             met: out.len(),
             combinations,
+            public_left_out,
         });
     }
     Ok(out)
+}
+
+/// Whether every varying symbol has its `[numeric]` value, as the numbers the scene's page
+/// is computed at (`pi/3` against 1.0471975511965976).
+fn is_public(
+    options: &[(String, Vec<Expr>)],
+    values: &BTreeMap<String, Expr>,
+    fixed: &BTreeMap<String, Expr>,
+) -> bool {
+    let number = |m: &BTreeMap<String, Expr>, name: &str| m.get(name)?.eval(&|_| None).ok();
+    options.iter().all(
+        |(name, _)| match (number(values, name), number(fixed, name)) {
+            (Some(a), Some(b)) => (a - b).abs() <= 1e-12 * a.abs().max(b.abs()),
+            _ => false,
+        },
+    )
 }
 
 /// `from`, `from + step`, … up to `to` inclusive, or `None` when that is more than `limit`
@@ -209,7 +236,8 @@ mod tests {
             short,
             Shortfall {
                 met: 15,
-                combinations: 36
+                combinations: 36,
+                public_left_out: false,
             }
         );
     }
@@ -220,5 +248,31 @@ mod tests {
         values.insert("t".to_string(), parse("pi/3").unwrap().expr);
         assert!(requirement("t", Comparison::Greater, "1").holds(&values));
         assert!(!requirement("t", Comparison::Greater, "11/10").holds(&values));
+    }
+
+    #[test]
+    fn the_scenes_own_numbers_are_never_a_variant() {
+        // The scene's page shows the answers at its [numeric] values: a variant there would
+        // hand a student their answer. Its value, 3/2, is written 1.5 and compared as a number.
+        let options = vec![(
+            "a".to_string(),
+            (1..=4)
+                .map(|n| parse(&format!("{n}/2")).unwrap().expr)
+                .collect(),
+        )];
+        let fixed = BTreeMap::from([("a".to_string(), parse("1.5").unwrap().expr)]);
+        let v = draw(&options, &fixed, &[], 3, 7).unwrap();
+        let numbers: Vec<f64> = v.iter().map(|x| x.numbers()["a"]).collect();
+        assert!(!numbers.contains(&1.5), "{numbers:?}");
+        assert_eq!(numbers.len(), 3);
+        let short = draw(&options, &fixed, &[], 4, 7).unwrap_err();
+        assert_eq!(
+            short,
+            Shortfall {
+                met: 3,
+                combinations: 4,
+                public_left_out: true,
+            }
+        );
     }
 }

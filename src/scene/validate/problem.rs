@@ -248,18 +248,29 @@ impl Validator<'_> {
             ));
         };
         draw(&options, &fixed, &require, count, seed).map_err(|short| {
-            let why = if require.is_empty() {
+            let mut why = if require.is_empty() {
                 String::new()
             } else {
                 " meet `require`".to_string()
             };
+            if short.public_left_out {
+                why.push_str(if why.is_empty() { " " } else { " and " });
+                why.push_str(
+                    "are not the scene's own [numeric] values (its page shows their answers)",
+                );
+            }
             self.err(
                 count_at,
                 "variants.count",
                 format!(
                     "count = {count}, but only {} of the {combinations} combinations of values{why}: \
-                     lower the count, widen the ranges or relax `require`",
-                    short.met
+                     lower the count{}",
+                    short.met,
+                    if require.is_empty() {
+                        " or widen the ranges"
+                    } else {
+                        ", widen the ranges or relax `require`"
+                    }
                 ),
             )
         })
