@@ -230,17 +230,19 @@ pub fn css_string(s: &str) -> String {
 }
 
 /// The sheet's print rules: the course and sheet title at the top of every page, and the
-/// variant's number at its top right (a named page per variant).
+/// variant's number at its top right (a named page per variant). Opened at `#variant-N` (an
+/// empty marker before `<main>`), the sheet shows and prints variant N alone: one student's.
 pub fn print_css(course: &str, sheet: &str, variants: usize) -> String {
     let mut css = format!(
         "@page {{ margin: 18mm 15mm; @top-left {{ content: {}; font-size: 9pt; }} @bottom-right {{ content: \
-         \"page \" counter(page); font-size: 9pt; }} }}\n",
+         \"page \" counter(page); font-size: 9pt; }} }}\n.pick {{ display: none; }}\n",
         css_string(&format!("{course} · {sheet}"))
     );
     for k in 1..=variants {
         css.push_str(&format!(
             ".variant-{k} {{ page: variant-{k}; }} @page variant-{k} {{ @top-right {{ content: \
-             \"Variant {k}\"; font-size: 9pt; font-weight: bold; }} }}\n"
+             \"Variant {k}\"; font-size: 9pt; font-weight: bold; }} }}\n\
+             #variant-{k}:target ~ main .variant:not(.variant-{k}) {{ display: none; }}\n"
         ));
     }
     css

@@ -1,0 +1,55 @@
+// One student's variant, printed: each student sheet (and its key) opened at #variant-N must
+// show and print that variant alone, one page per problem, and the whole sheet one page per
+// problem of every variant (no blank page, no problem split). Printed as a teacher would: A4 and US Letter, with
+// the sheet's own @page rules. Run by .ci/run. Usage, with playwright-core resolvable as there:
+//   node one-variant.mjs SITE_DIR [SITE_DIR ...]   (PDF_DIR=dir keeps the PDFs to look at)
+import { chromium } from "playwright-core";
+import { readdirSync, writeFileSync } from "node:fs";
+import { join, basename } from "node:path";
+import { pathToFileURL } from "node:url";
+
+const sheets = process.argv.slice(2).flatMap(site => {
+  const dir = join(site, "handouts");
+  return readdirSync(dir).filter(n => n.endsWith("-problems-student.html")).sort().map(n => join(dir, n));
+});
+if (!sheets.length) { console.log("one variant: no student sheet found"); process.exit(1); }
+const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox"] });
+const page = await browser.newPage();
+const pages = pdf => (pdf.toString("latin1").match(/\/Type\s*\/Page[^s]/g) || []).length;
+let failing = 0, printed = 0;
+const fail = (...m) => { console.log("FAIL", ...m); failing++; };
+for (const f of sheets) {
+  const url = pathToFileURL(f).href;
+  await page.goto(url);
+  await page.emulateMedia({ media: "print" });
+  const layout = await page.evaluate(() => [...document.querySelectorAll("section.variant")].map(s => s.querySelectorAll(".sheet-problem").length));
+  const variants = layout.length, problems = layout[0];
+  for (const format of ["A4", "Letter"]) {
+    const all = pages(await page.pdf({ format, preferCSSPageSize: false }));
+    printed++;
+    if (all !== variants * problems) fail(f, format, `whole sheet: ${all} pages for ${variants} variants of ${problems} problem(s)`);
+  }
+  for (const k of [...new Set([1, 2, variants])].filter(k => k <= variants)) {
+    await page.goto(`${url}#variant-${k}`);
+    const shown = await page.evaluate(() => [...document.querySelectorAll("section.variant")].filter(s => getComputedStyle(s).display !== "none").map(s => s.classList[1]));
+    if (shown.length !== 1 || shown[0] !== `variant-${k}`) fail(f, `#variant-${k} shows ${shown.join(", ")}`);
+    for (const format of ["A4", "Letter"]) {
+      const pdf = await page.pdf({ format });
+      printed++;
+      if (pages(pdf) !== problems) fail(f, format, `#variant-${k}: ${pages(pdf)} pages for ${problems} problem(s)`);
+      if (process.env.PDF_DIR && k === 2) writeFileSync(join(process.env.PDF_DIR, `${basename(f, ".html")}-variant-${k}-${format}.pdf`), pdf);
+    }
+  }
+  // The key prints one variant's answers the same way.
+  const key = url.replace("-problems-student.html", "-problems-key.html");
+  await page.goto(`${key}#variant-2`);
+  const keyShown = await page.evaluate(() => [...document.querySelectorAll("section.variant")].filter(s => getComputedStyle(s).display !== "none").map(s => s.classList[1]));
+  if (variants >= 2 && keyShown.join() !== "variant-2") fail(key, `#variant-2 shows ${keyShown.join(", ")}`);
+  // Back to every variant ("Show all variants" is a link to #sheet).
+  await page.goto(`${url}#sheet`);
+  const back = await page.evaluate(() => [...document.querySelectorAll("section.variant")].filter(s => getComputedStyle(s).display !== "none").length);
+  if (back !== variants) fail(f, `#sheet shows ${back} of ${variants} variants`);
+}
+await browser.close();
+console.log(`one variant: ${sheets.length} student sheets, ${printed} PDFs printed (A4 and Letter), ${failing} failing`);
+process.exit(failing ? 1 : 0);
