@@ -55,7 +55,7 @@ pub fn scene_json(r: &SceneReport) -> Json {
                 "notes": c.notes,
                 "derived": c.derived,
                 "verdict": c.verdict.as_str(),
-                "expected": c.expected.as_str(),
+                "expected": c.expected.map(|v| v.as_str()),
                 "passed": c.passed(),
                 "differences": c.differences.iter().map(|d| d.to_text()).collect::<Vec<_>>(),
                 "problem": c.problem,
@@ -219,12 +219,18 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
     let src = r.scene.source.display();
     for c in r.verification.claims.iter().filter(|c| !c.passed()) {
         let recordable = c.problem.is_none();
-        let why = c.problem.clone().unwrap_or_else(|| {
-            format!(
+        let why = c.problem.clone().unwrap_or_else(|| match c.expected {
+            Some(expected) => format!(
                 "verdict {} but the scene records {}",
                 c.verdict.as_str(),
-                c.expected.as_str()
-            )
+                expected.as_str()
+            ),
+            None => format!(
+                "verdict {}, not yet recorded: review it, then add expect = \"{}\" or run \
+                 `mechbook check --bless`",
+                c.verdict.as_str(),
+                c.verdict.as_str()
+            ),
         });
         failures.push(Failure {
             text: format!("{src}:{}: claim ({}): {why}", c.line, c.eq),

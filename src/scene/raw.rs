@@ -124,7 +124,9 @@ pub struct RawClaim {
     /// For a number the notes give roughly: how many significant figures they give.
     #[serde(default)]
     pub figures: Option<Spanned<i64>>,
-    pub expect: Text,
+    /// The reviewed verdict; absent until `check --bless` records it.
+    #[serde(default)]
+    pub expect: Option<Text>,
     /// `notes` (default): the notes' own statement; `mistake`: a common mistake for students.
     #[serde(default)]
     pub role: Option<Text>,

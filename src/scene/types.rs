@@ -275,7 +275,9 @@ pub struct Claim {
     /// Set when the notes give a number to this many significant figures: both sides are then
     /// numbers, and they agree when the derived one rounds to the notes' value.
     pub figures: Option<u32>,
-    pub expect: Verdict,
+    /// The reviewed verdict; `None` until one is recorded (`check` fails until then, and
+    /// `check --bless` records the derived one).
+    pub expect: Option<Verdict>,
     pub role: ClaimRole,
     pub line: usize,
 }

@@ -56,7 +56,7 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
         field: "claim",
     })?;
     for (i, c) in r.verification.claims.iter().enumerate() {
-        if c.problem.is_some() || c.verdict == c.expected {
+        if c.problem.is_some() || c.expected == Some(c.verdict) {
             continue;
         }
         if let Some(table) = tables.get_mut(i) {
@@ -66,7 +66,7 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
                 what: format!(
                     "claim (eq {}): verdict {} -> {}",
                     c.eq,
-                    c.expected.as_str(),
+                    c.expected.map_or("(none)", |v| v.as_str()),
                     c.verdict.as_str()
                 ),
             });

@@ -36,7 +36,8 @@ pub struct ClaimResult {
     pub notes: String,
     pub derived: String,
     pub verdict: Verdict,
-    pub expected: Verdict,
+    /// The scene's reviewed verdict; `None` when none is recorded yet.
+    pub expected: Option<Verdict>,
     /// For a disagreement: each entry that differs, with both sides and their difference.
     pub differences: Vec<Prose>,
     /// A problem with the check itself (the two routes disagree, a type error), if any.
@@ -50,7 +51,7 @@ pub struct ClaimResult {
 
 impl ClaimResult {
     pub fn passed(&self) -> bool {
-        self.verdict == self.expected && self.problem.is_none()
+        self.expected == Some(self.verdict) && self.problem.is_none()
     }
 }
 

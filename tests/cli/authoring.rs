@@ -176,6 +176,58 @@ fn bless_records_expect_in_a_scene_without_it_and_check_then_passes() {
 }
 
 #[test]
+fn a_new_claim_without_a_verdict_fails_check_until_bless_records_it() {
+    let dir = scratch("bless-claim");
+    let scene = dir.join("hoop.toml");
+    // Two claims as an author first writes them: no `expect` yet. The hoop's polar moment is
+    // M R^2 (agrees); the notes' slip of a diameter moment of M R^2 disagrees (M R^2/2).
+    let claims = "\n[[claim]]\neq = \"90\"\nstatement = \"The polar moment is M R^2.\"\n\
+                  quantity = \"inertia_tensor[2][2]\"\nvalue = \"M*R^2\"\n\
+                  \n# A slip to catch.\n[[claim]]\neq = \"91\"\nstatement = \"A diameter moment is M R^2.\"\n\
+                  quantity = \"inertia_tensor[0][0]\"\nvalue = \"M*R^2\"\n";
+    let original = format!(
+        "{}{claims}",
+        std::fs::read_to_string(lecture("06-hoop.toml")).unwrap()
+    );
+    std::fs::write(&scene, &original).unwrap();
+    let check = mechbook(&["check", scene.to_str().unwrap()]);
+    assert_eq!(check.status.code(), Some(1));
+    let report = stdout(&check);
+    for (eq, verdict) in [("90", "agrees"), ("91", "disagrees")] {
+        assert!(
+            report.contains(&format!(
+                "claim ({eq}): verdict {verdict}, not yet recorded: review it, then add expect = \"{verdict}\""
+            )),
+            "{report}"
+        );
+    }
+    let out = mechbook(&["check", "--bless", scene.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let printed = stdout(&out);
+    assert!(
+        printed.contains("claim (eq 90): verdict (none) -> agrees"),
+        "{printed}"
+    );
+    assert!(
+        printed.contains("claim (eq 91): verdict (none) -> disagrees"),
+        "{printed}"
+    );
+    assert!(printed.contains("blessed: 2 change(s)"), "{printed}");
+    let blessed = std::fs::read_to_string(&scene).unwrap();
+    assert!(
+        blessed.contains("value = \"M*R^2\"\nexpect = \"disagrees\"\n"),
+        "{blessed}"
+    );
+    assert!(
+        blessed.contains("\n# A slip to catch.\n[[claim]]"),
+        "{blessed}"
+    );
+    let check = mechbook(&["check", scene.to_str().unwrap()]);
+    assert_eq!(check.status.code(), Some(0), "{}", stdout(&check));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn bless_updates_a_verdict_and_a_result_and_keeps_comments() {
     let dir = scratch("bless-change");
     let scene = dir.join("hoop.toml");

@@ -93,14 +93,16 @@ impl Validator<'_> {
                 ));
             }
         };
-        let expect = match c.expect.get_ref().as_str() {
-            "agrees" => Verdict::Agrees,
-            "disagrees" => Verdict::Disagrees,
-            "not-checkable" => Verdict::NotCheckable,
-            "undecided" => Verdict::Undecided,
-            other => {
-                return Err(self.err(
-                    content_start(&c.expect),
+        let expect = c
+            .expect
+            .as_ref()
+            .map(|e| match e.get_ref().as_str() {
+                "agrees" => Ok(Verdict::Agrees),
+                "disagrees" => Ok(Verdict::Disagrees),
+                "not-checkable" => Ok(Verdict::NotCheckable),
+                "undecided" => Ok(Verdict::Undecided),
+                other => Err(self.err(
+                    content_start(e),
                     &format!("{field}.expect"),
                     format!(
                         "unknown verdict `{other}`{}; the verdicts are agrees, disagrees, \
@@ -110,9 +112,9 @@ impl Validator<'_> {
                             ["agrees", "disagrees", "not-checkable", "undecided"]
                         )
                     ),
-                ));
-            }
-        };
+                )),
+            })
+            .transpose()?;
         let quantity = c
             .quantity
             .as_ref()
@@ -123,11 +125,11 @@ impl Validator<'_> {
             .as_ref()
             .map(|v| self.claim_expr(v, &format!("{field}.value"), names))
             .transpose()?;
-        if expect != Verdict::NotCheckable && (quantity.is_none() || value.is_none()) {
+        if expect != Some(Verdict::NotCheckable) && (quantity.is_none() || value.is_none()) {
             return Err(self.err(
                 offset,
                 field,
-                "a checkable claim needs both `quantity` and `value`",
+                "a checkable claim needs both `quantity` and `value` (or expect = \"not-checkable\")",
             ));
         }
         let figures = match &c.figures {
