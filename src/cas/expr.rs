@@ -339,11 +339,13 @@ fn factor_key(e: &Expr) -> (u8, f64, String, String) {
         Expr::Pow(b, x) => (b.as_ref(), x.eval(&|_| None).unwrap_or(f64::MAX)),
         other => (other, 1.0),
     };
-    let rank = match base {
-        Expr::Num(_) => 0,
-        Expr::Sym(_) => 1,
-        Expr::Call(..) => 2,
-        _ => 3,
+    // The coefficient first, then roots of numbers (1/8*3^(1/2), not 3^(1/2)*(1/8)).
+    let rank = match (e, base) {
+        (Expr::Num(_), _) => 0,
+        (_, Expr::Num(_)) => 1,
+        (_, Expr::Sym(_)) => 2,
+        (_, Expr::Call(..)) => 3,
+        _ => 4,
     };
     let text = base.to_text();
     (rank, exponent, text.to_lowercase(), text)

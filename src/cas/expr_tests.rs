@@ -154,3 +154,16 @@ fn latex_forms() {
     assert_eq!(p("wd2").to_latex(), "\\dot{\\omega}_{2}");
     assert_eq!(p("w").to_latex(), "w");
 }
+
+#[test]
+fn a_product_puts_its_coefficient_before_a_root_of_a_number() {
+    // As the engine returns √3/8: the root and the coefficient, in either order.
+    let root = Expr::pow(Expr::int(3), p("1/2"));
+    for factors in [vec![root.clone(), p("1/8")], vec![p("1/8"), root.clone()]] {
+        let e = Expr::ordered_product(factors);
+        assert_eq!(e.to_text(), "1/8*3^(1/2)");
+        assert_eq!(e.to_latex(), "\\frac{\\sqrt{3}}{8}");
+    }
+    let e = Expr::ordered_product(vec![Expr::sym("M"), root, p("27/32")]);
+    assert_eq!(e.to_text(), "27/32*3^(1/2)*M");
+}
