@@ -41,11 +41,12 @@ pub enum Command {
     ///
     /// A scene records the verdict it expects for each claim of the notes and, optionally, its
     /// exact results. `check` exits with 1 when a verdict or a result differs from the record,
-    /// or when exact and numeric results disagree: a regression test for the derivations.
-    /// It writes no files.
+    /// or when a claim has no verdict yet, or when exact and numeric results disagree: a
+    /// regression test for the derivations. It writes no files, unless `--bless` is given.
     Check(check::CheckArgs),
     /// Build the course site: an index, one page per scene, and per lecture a student and an
-    /// instructor handout for printing.
+    /// instructor handout for printing, a problem sheet with its answer key, and a Moodle quiz
+    /// per problem.
     ///
     /// Course settings (title, author, base_url, output) come from mechbook.toml when it
     /// exists. The site is written to a temporary folder beside the output and renamed into

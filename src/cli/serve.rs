@@ -16,7 +16,8 @@ pub struct ServeArgs {
     /// The port on 127.0.0.1 (default: a free one, printed at the start).
     #[arg(long, default_value_t = 0)]
     pub port: u16,
-    /// Open the index in the default browser.
+    /// Open the index in a browser: `$BROWSER` when it is set, else the desktop's default
+    /// (xdg-open; open on macOS).
     #[arg(long)]
     pub open: bool,
 }
@@ -213,20 +214,40 @@ impl Relevant {
 
 /// Asks the desktop to open `url`; says so when it cannot, and goes on serving.
 fn open_in_browser(url: &str) {
-    let opener = if cfg!(target_os = "macos") {
-        "open"
-    } else {
-        "xdg-open"
-    };
-    let spawned = std::process::Command::new(opener)
-        .arg(url)
+    let (program, args) = browser_command(std::env::var("BROWSER").ok().as_deref(), url);
+    let spawned = std::process::Command::new(&program)
+        .args(&args)
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
         .spawn();
     if spawned.is_err() {
-        eprintln!("mechbook: warning: cannot run {opener}; open {url} in a browser yourself");
+        eprintln!("mechbook: warning: cannot run {program}; open {url} in a browser yourself");
     }
+}
+
+/// The command that opens `url`: `$BROWSER` when set (its first `:`-separated entry, with
+/// `%s` standing for the address, or the address appended, as xdg-open reads it), else the
+/// desktop's opener.
+fn browser_command(browser: Option<&str>, url: &str) -> (String, Vec<String>) {
+    if let Some(entry) = browser.and_then(|b| b.split(':').find(|e| !e.trim().is_empty())) {
+        let mut words = entry.split_whitespace().map(str::to_owned);
+        if let Some(program) = words.next() {
+            let mut args: Vec<String> = words.collect();
+            if args.iter().any(|a| a.contains("%s")) {
+                args = args.iter().map(|a| a.replace("%s", url)).collect();
+            } else {
+                args.push(url.to_owned());
+            }
+            return (program, args);
+        }
+    }
+    let opener = if cfg!(target_os = "macos") {
+        "open"
+    } else {
+        "xdg-open"
+    };
+    (opener.to_owned(), vec![url.to_owned()])
 }
 
 #[cfg(test)]
@@ -255,5 +276,21 @@ mod tests {
         ] {
             assert!(!r.is_relevant(Path::new(ignored)), "{ignored}");
         }
+    }
+
+    #[test]
+    fn the_browser_comes_from_browser_when_set() {
+        let url = "http://127.0.0.1:8000/";
+        let words = |b: Option<&str>| {
+            let (p, a) = browser_command(b, url);
+            std::iter::once(p).chain(a).collect::<Vec<_>>().join(" ")
+        };
+        assert_eq!(words(Some("firefox")), "firefox http://127.0.0.1:8000/");
+        assert_eq!(
+            words(Some("chromium --new-window %s:firefox")),
+            "chromium --new-window http://127.0.0.1:8000/"
+        );
+        assert_eq!(words(Some(" ")), words(None));
+        assert!(words(None).ends_with("open http://127.0.0.1:8000/"));
     }
 }

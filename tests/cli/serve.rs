@@ -60,8 +60,14 @@ impl Drop for Serving {
 }
 
 fn serve(course: &Path) -> Serving {
+    serve_with(course, &[], &[])
+}
+
+fn serve_with(course: &Path, args: &[&str], env: &[(&str, &Path)]) -> Serving {
     let mut child = Command::new(env!("CARGO_BIN_EXE_mechbook"))
-        .args(["serve"])
+        .arg("serve")
+        .args(args)
+        .envs(env.iter().copied())
         .current_dir(course)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -294,5 +300,37 @@ fn serve_refuses_an_output_folder_that_is_not_a_site_and_serves_none_of_it() {
     assert!(err.contains("was not written by mechbook"), "{err}");
     assert!(!err.contains("serving http"), "{err}");
     assert_eq!(read_tree(&notes).len(), 1);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn serve_open_starts_the_browser_named_by_browser_at_the_served_address() {
+    let dir = scratch("serve-open");
+    let course = dir.join("course");
+    assert_eq!(
+        super::mechbook(&["init", course.to_str().unwrap()])
+            .status
+            .code(),
+        Some(0)
+    );
+    // A "browser" that writes down the address it was asked to open.
+    let opened = dir.join("opened.txt");
+    let browser = dir.join("browser.sh");
+    std::fs::write(
+        &browser,
+        format!("#!/bin/sh\nprintf '%s' \"$1\" > '{}'\n", opened.display()),
+    )
+    .unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&browser, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let mut s = serve_with(&course, &["--open"], &[("BROWSER", &browser)]);
+    let asked = within(Duration::from_secs(10), || {
+        std::fs::read_to_string(&opened).is_ok_and(|t| !t.is_empty())
+    });
+    assert!(asked.is_some(), "the browser was not started");
+    let url = std::fs::read_to_string(&opened).unwrap();
+    assert_eq!(url, format!("http://127.0.0.1:{}/", s.port));
+    assert_eq!(get(s.port, "/").0, 200);
+    assert_eq!(interrupt(&mut s.child), Some(0));
     std::fs::remove_dir_all(&dir).unwrap();
 }
