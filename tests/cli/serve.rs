@@ -4,7 +4,7 @@
 use super::{read_tree, scratch};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
@@ -57,6 +57,15 @@ impl Drop for Serving {
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
+}
+
+/// A scratch folder with a course made by `mechbook init` in it: (the folder, the course).
+fn new_course(name: &str) -> (PathBuf, PathBuf) {
+    let dir = scratch(name);
+    let course = dir.join("course");
+    let out = super::mechbook(&["init", course.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", super::stderr(&out));
+    (dir, course)
 }
 
 fn serve(course: &Path) -> Serving {
@@ -115,10 +124,7 @@ fn interrupt(child: &mut Child) -> Option<i32> {
 
 #[test]
 fn serve_rebuilds_on_edit_shows_errors_in_the_page_and_stops_on_ctrl_c() {
-    let dir = scratch("serve");
-    let course = dir.join("course");
-    let out = super::mechbook(&["init", course.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(0));
+    let (dir, course) = new_course("serve");
     let mut s = serve(&course);
     let port = s.port;
 
@@ -244,14 +250,7 @@ fn serve_rebuilds_on_edit_shows_errors_in_the_page_and_stops_on_ctrl_c() {
 fn serve_refuses_a_port_in_use_and_says_what_to_do() {
     let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
     let port = taken.local_addr().unwrap().port().to_string();
-    let dir = scratch("serve-port");
-    let course = dir.join("course");
-    assert_eq!(
-        super::mechbook(&["init", course.to_str().unwrap()])
-            .status
-            .code(),
-        Some(0)
-    );
+    let (dir, course) = new_course("serve-port");
     let out = Command::new(env!("CARGO_BIN_EXE_mechbook"))
         .args(["serve", "--port", &port])
         .current_dir(&course)
@@ -269,14 +268,7 @@ fn serve_refuses_a_port_in_use_and_says_what_to_do() {
 
 #[test]
 fn serve_refuses_an_output_folder_that_is_not_a_site_and_serves_none_of_it() {
-    let dir = scratch("serve-out");
-    let course = dir.join("course");
-    assert_eq!(
-        super::mechbook(&["init", course.to_str().unwrap()])
-            .status
-            .code(),
-        Some(0)
-    );
+    let (dir, course) = new_course("serve-out");
     let notes = dir.join("notes");
     std::fs::create_dir_all(&notes).unwrap();
     std::fs::write(notes.join("private.txt"), "mine").unwrap();
@@ -305,14 +297,7 @@ fn serve_refuses_an_output_folder_that_is_not_a_site_and_serves_none_of_it() {
 
 #[test]
 fn serve_open_starts_the_browser_named_by_browser_at_the_served_address() {
-    let dir = scratch("serve-open");
-    let course = dir.join("course");
-    assert_eq!(
-        super::mechbook(&["init", course.to_str().unwrap()])
-            .status
-            .code(),
-        Some(0)
-    );
+    let (dir, course) = new_course("serve-open");
     // A "browser" that writes down the address it was asked to open.
     let opened = dir.join("opened.txt");
     let browser = dir.join("browser.sh");
