@@ -54,6 +54,22 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> SiteError + '_ {
     }
 }
 
+/// Replaces the file `path` with `bytes` in one rename from a hidden temporary file beside it,
+/// so that it is never half-written (and `serve`, which ignores hidden names, never sees the
+/// temporary one); the temporary file is removed if the rename fails.
+pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), SiteError> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let temp = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
+    std::fs::write(&temp, bytes).map_err(io(&temp))?;
+    std::fs::rename(&temp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temp);
+        io(path)(e)
+    })
+}
+
 /// Writes `files` as the folder `out`, replacing what was there only once everything is written.
 ///
 /// The new site is written beside `out` (with the marker file first), then swapped with the old

@@ -35,11 +35,11 @@ pub struct BuildArgs {
 
 /// A build settled before anything is derived: what to read and where to write.
 pub struct Build {
-    pub paths: Vec<PathBuf>,
+    paths: Vec<PathBuf>,
     /// mechbook.toml: beside the scenes (`build my-course/`), or in the working folder.
-    pub course_file: PathBuf,
-    pub out: PathBuf,
-    pub templates: Option<PathBuf>,
+    course_file: PathBuf,
+    out: PathBuf,
+    templates: Option<PathBuf>,
     timings: bool,
     fidelity: Option<Fidelity>,
     cache: Option<Cache>,

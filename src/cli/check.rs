@@ -77,7 +77,7 @@ fn bless_all(reports: &[SceneReport], errors: usize) -> Result<ExitCode> {
         if blessed.is_empty() {
             continue;
         }
-        bless::write_scene(path, &new_text)?;
+        crate::site::replace_file(path, new_text.as_bytes())?;
         files += 1;
         changes += blessed.len();
         for b in blessed {

@@ -1,7 +1,7 @@
 //! `mechbook serve`: build, serve on 127.0.0.1, and rebuild and reload on every edit.
 
 use super::build::{Build, BuildArgs, report_not_built};
-use crate::serve::Server;
+use crate::serve::{Server, is_hidden};
 use anyhow::{Context, Result};
 use notify::Watcher;
 use std::path::{Path, PathBuf};
@@ -193,22 +193,17 @@ impl Relevant {
     }
 
     fn is_relevant(&self, path: &Path) -> bool {
-        let name = path
+        let backup = path
             .file_name()
-            .map(|n| n.to_string_lossy())
-            .unwrap_or_default();
-        if name.starts_with('.') || name.ends_with('~') || path.starts_with(&self.out) {
+            .is_some_and(|n| n.to_string_lossy().ends_with('~'));
+        if backup || path.starts_with(&self.out) {
             return false;
         }
-        let hidden = |rel: &Path| {
-            rel.components()
-                .any(|c| c.as_os_str().to_string_lossy().starts_with('.'))
-        };
         self.files.iter().any(|f| f == path)
             || self
                 .folders
                 .iter()
-                .any(|d| path.strip_prefix(d).is_ok_and(|rel| !hidden(rel)))
+                .any(|d| path.strip_prefix(d).is_ok_and(|rel| !is_hidden(rel)))
     }
 }
 

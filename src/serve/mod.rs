@@ -215,13 +215,9 @@ async fn file(State(shared): State<Arc<Shared>>, uri: Uri) -> Response {
     let Some(rel) = site_path(uri.path()) else {
         return plain(StatusCode::BAD_REQUEST, "bad path");
     };
-    // A hidden name (the site's marker) is the build's, not the site's.
-    let hidden = rel
-        .components()
-        .any(|c| c.as_os_str().to_string_lossy().starts_with('.'));
     let path = shared.root.join(&rel);
     // Site files are small and local: a blocking read is shorter than the request itself.
-    let read = if hidden {
+    let read = if is_hidden(&rel) {
         Err(std::io::ErrorKind::NotFound.into())
     } else {
         std::fs::read(&path)
@@ -251,6 +247,13 @@ async fn file(State(shared): State<Arc<Shared>>, uri: Uri) -> Response {
         return html(StatusCode::OK, page::inject(&bytes, &extra));
     }
     respond(StatusCode::OK, kind, bytes)
+}
+
+/// Whether a relative path passes through a hidden name: the build's own files (the site's
+/// marker, the cache, staging folders, temporary files) and editors' swap files.
+pub fn is_hidden(rel: &Path) -> bool {
+    rel.components()
+        .any(|c| c.as_os_str().to_string_lossy().starts_with('.'))
 }
 
 /// The file a URL path names inside the site: `/` and `dir/` are their `index.html`; `..`, a

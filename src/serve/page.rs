@@ -19,7 +19,7 @@ pub fn error_box(messages: &[String]) -> String {
     );
     for m in messages {
         html.push('\n');
-        html.push_str(&escape(m));
+        html.push_str(&tera::escape_html(m));
     }
     html.push_str("</div>");
     html
@@ -45,13 +45,6 @@ pub fn no_site_page(messages: &[String], generation: u64) -> String {
         error_box(messages),
         reload_snippet(generation)
     )
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 #[cfg(test)]

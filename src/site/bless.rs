@@ -1,10 +1,10 @@
 //! `check --bless`: a scene's `[expect]` and its claims' verdicts rewritten to what was derived,
-//! in place, with the file's comments and layout kept (toml_edit). The file is replaced in one
-//! rename, so it is never half-written.
+//! in place, with the file's comments and layout kept (toml_edit). `check` writes the file with
+//! `site::replace_file`, in one rename, so it is never half-written.
 
 use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, quantity};
 use crate::pipeline::SceneReport;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use toml_edit::{DocumentMut, Item, TableLike, Value};
 
 /// What `[expect]` records in a scene that has none: every derived result, but the
@@ -26,12 +26,6 @@ pub enum BlessError {
     },
     #[error("{}: `{field}` is not a table or a list of tables, so it cannot be blessed", path.display())]
     Shape { path: PathBuf, field: &'static str },
-    #[error("cannot write {}: {source}", path.display())]
-    Io {
-        path: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
 }
 
 /// One change `--bless` made, located: `file:line: claim (eq 36): agrees -> disagrees`.
@@ -146,22 +140,4 @@ fn set_keeping_decor(table: &mut dyn TableLike, key: &str, text: &str) {
         *value.decor_mut() = old.decor().clone();
     }
     table.insert(key, Item::Value(value));
-}
-
-/// Replaces the scene file with `text` in one rename, from a temporary file beside it.
-pub fn write_scene(path: &Path, text: &str) -> Result<(), BlessError> {
-    let io = |p: &Path| {
-        let p = p.to_path_buf();
-        move |source| BlessError::Io { path: p, source }
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let temp = path.with_file_name(format!(".{name}.bless-{}", std::process::id()));
-    std::fs::write(&temp, text).map_err(io(&temp))?;
-    std::fs::rename(&temp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        io(path)(e)
-    })
 }

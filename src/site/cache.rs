@@ -116,9 +116,7 @@ impl Cache {
             move |source| SiteError::Io { path: p, source }
         };
         std::fs::create_dir_all(&self.dir).map_err(io(&self.dir))?;
-        let tmp = path.with_extension(format!("tmp-{}", std::process::id()));
-        std::fs::write(&tmp, bytes).map_err(io(&tmp))?;
-        std::fs::rename(&tmp, &path).map_err(io(&path))?;
+        super::replace_file(&path, bytes)?;
         let name = path.file_name().map(|n| n.to_os_string());
         let kind = if fidelity.is_some() {
             "report"

@@ -3,10 +3,9 @@
 //   2. every <math> element is rendered as MathML (a MathMLElement) with a non-zero box;
 //   3. every <img> (the SVG plots) has loaded with a non-zero natural size.
 // Usage: node check-pages.mjs SITE_DIR   (playwright-core must be resolvable; see .ci/run)
-import { chromium } from "playwright-core";
-import { readdirSync, statSync, mkdtempSync, rmSync } from "node:fs";
+import { launch } from "./chromium.mjs";
+import { readdirSync, statSync } from "node:fs";
 import { join, resolve } from "node:path";
-import { tmpdir } from "node:os";
 import { pathToFileURL } from "node:url";
 
 const site = resolve(process.argv[2] ?? "site");
@@ -23,13 +22,7 @@ if (pages.length === 0) {
   process.exit(1);
 }
 
-const profile = mkdtempSync(join(tmpdir(), "mechbook-chromium-"));
-const browser = await chromium.launchPersistentContext(profile, {
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  headless: true,
-  args: ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-});
+const browser = await launch();
 let failures = 0;
 let maths = 0;
 let images = 0;
@@ -65,6 +58,5 @@ for (const file of pages) {
   await page.close();
 }
 await browser.close();
-rmSync(profile, { recursive: true, force: true });
 console.log(`browser check: ${pages.length} pages, ${maths} math elements, ${images} plots, ${failures} failing`);
 process.exit(failures ? 1 : 0);

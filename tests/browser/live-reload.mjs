@@ -3,11 +3,10 @@
 // Prints the time from saving the scene to the reloaded page showing the change.
 // Usage: node live-reload.mjs MECHBOOK WORK_DIR [SCREENSHOT_PREFIX]
 //   (playwright-core must be resolvable; see .ci/run). Exits 1 on any failure.
-import { chromium } from "playwright-core";
+import { launch } from "./chromium.mjs";
 import { spawn, execFileSync } from "node:child_process";
-import { readFileSync, writeFileSync, mkdtempSync, rmSync } from "node:fs";
+import { readFileSync, writeFileSync, rmSync } from "node:fs";
 import { join, resolve } from "node:path";
-import { tmpdir } from "node:os";
 
 const mechbook = resolve(process.argv[2]);
 const work = resolve(process.argv[3]);
@@ -29,13 +28,7 @@ const port = await new Promise((ok, fail) => {
 
 let failed = false;
 const fail = (why) => { console.error(`live reload: FAILED: ${why}`); failed = true; };
-const profile = mkdtempSync(join(tmpdir(), "mechbook-chromium-"));
-const browser = await chromium.launchPersistentContext(profile, {
-  executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-  headless: true,
-  args: ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-});
+const browser = await launch();
 const scene = join(course, "lectures/lecture-1/01-book.toml");
 const original = readFileSync(scene, "utf8");
 const times = [];
@@ -78,7 +71,6 @@ try {
   if (errors.length) fail(`page errors: ${errors.join("; ")}`);
 } finally {
   await browser.close();
-  rmSync(profile, { recursive: true, force: true });
   server.kill("SIGINT");
 }
 const code = await new Promise((ok) => server.on("exit", (c) => ok(c)));

@@ -3,7 +3,7 @@
 // problem of every variant (no blank page, no problem split). Printed as a teacher would: A4 and US Letter, with
 // the sheet's own @page rules. Run by .ci/run. Usage, with playwright-core resolvable as there:
 //   node one-variant.mjs SITE_DIR [SITE_DIR ...]   (PDF_DIR=dir keeps the PDFs to look at)
-import { chromium } from "playwright-core";
+import { launch } from "./chromium.mjs";
 import { readdirSync, writeFileSync } from "node:fs";
 import { join, basename } from "node:path";
 import { pathToFileURL } from "node:url";
@@ -13,7 +13,7 @@ const sheets = process.argv.slice(2).flatMap(site => {
   return readdirSync(dir).filter(n => n.endsWith("-problems-student.html")).sort().map(n => join(dir, n));
 });
 if (!sheets.length) { console.log("one variant: no student sheet found"); process.exit(1); }
-const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox"] });
+const browser = await launch();
 const page = await browser.newPage();
 const pages = pdf => (pdf.toString("latin1").match(/\/Type\s*\/Page[^s]/g) || []).length;
 let failing = 0, printed = 0;

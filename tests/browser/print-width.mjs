@@ -4,14 +4,15 @@
 // the run (exit 1): long formulas are cut into pieces that wrap (src/render/linebreak.rs).
 // Run by .ci/run on the lectures and tests/course. Usage, with playwright-core resolvable as in
 // .ci/run:  node print-width.mjs SITE_DIR [SITE_DIR ...]
-import { chromium } from "playwright-core";
+import { launch } from "./chromium.mjs";
 import { readdirSync, statSync } from "node:fs";
 import { join } from "node:path";
 import { pathToFileURL } from "node:url";
 const pages = [];
 for (const site of process.argv.slice(2)) (function walk(d) { for (const n of readdirSync(d).sort()) { const p = join(d, n); if (statSync(p).isDirectory()) walk(p); else if (n.endsWith(".html")) pages.push(p); } })(site);
-const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox"] });
-const page = await browser.newPage({ viewport: { width: 718, height: 1000 } }); // A4 printable width at 96 dpi, 1.9 cm margins
+// A4 printable width at 96 dpi, 1.9 cm margins.
+const browser = await launch({ viewport: { width: 718, height: 1000 } });
+const page = await browser.newPage();
 await page.emulateMedia({ media: "print" });
 let failing = 0;
 for (const f of pages) {
