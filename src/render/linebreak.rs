@@ -371,7 +371,13 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
                 if latex(num).trim() != "1" {
                     reshaped.extend(num.iter().cloned());
                 }
-                reshaped.extend(bracketed_if_cut(den));
+                // More than one atom takes a bracket before its power: `R^{2}` or a root that
+                // opens into (s)^{1/2} would otherwise get a second superscript.
+                if den.len() > 1 {
+                    reshaped.push(bracket(den.clone()));
+                } else {
+                    reshaped.extend(den.iter().cloned());
+                }
                 reshaped.extend(tree("^{-1}"));
             }
             reshaped.extend(rest[3..].iter().cloned());

@@ -92,6 +92,26 @@ fn a_long_denominator_becomes_a_power_of_minus_one() {
 }
 
 #[test]
+fn a_long_root_in_a_denominator_gets_one_power_at_a_time() {
+    // Found by the fuzz suite: (s)^{1/2}^{-1} is a double superscript, which no renderer takes.
+    let terms: Vec<String> = (0..30).map(|k| format!("d_{{{k}}}")).collect();
+    let p = pieces(
+        &format!("\\frac{{1}}{{\\sqrt{{{}}}}}", terms.join(" + ")),
+        LINE,
+    );
+    let all = p.join(" ");
+    assert!(!all.contains("^{1/2}^{-1}"), "{p:?}");
+    assert!(all.ends_with("\\bigr)^{-1}"), "{p:?}");
+    // A long product below the line is inverted whole, not its last factor alone (the erratum
+    // of eq (81) read (2π)(Iω)·(Iω)^{-1}).
+    let factors: Vec<String> = (0..30).map(|k| format!("d_{{{k}}}")).collect();
+    let p = pieces(&format!("\\frac{{1}}{{{}}}", factors.join(" ")), LINE);
+    let all = p.join(" ");
+    assert!(all.starts_with("\\left(d_{0}"), "{p:?}");
+    assert!(all.ends_with("d_{29}\\right)^{-1}"), "{p:?}");
+}
+
+#[test]
 fn a_matrix_too_wide_to_stack_becomes_the_tuple_of_its_rows() {
     let cell =
         "f_{1} g_{2} \\cos\\left(\\chi\\right) \\cos\\left(\\psi\\right) \\sin\\left(\\psi\\right)";
