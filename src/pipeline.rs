@@ -43,15 +43,22 @@ impl SceneReport {
     }
 }
 
-/// A scene that could not be derived: located at the scene's `id` (the scene as a whole), on
-/// one line. A failure inside one claim is not this: it is that claim's problem, at its line.
+/// A scene that could not be derived: located at the scene's `id` (the scene as a whole), or
+/// at the `[[plot]]` that could not be drawn, on one line. A failure inside one claim is not
+/// this: it is that claim's problem, at its line.
 #[derive(Debug, thiserror::Error)]
-#[error("{}:{}:{}: scene `{id}` could not be derived: {source}", path.display(), at.0, at.1)]
+#[error("{}:{}:{}: {}: {source}", path.display(), at.0, at.1, match plot {
+    Some(i) => format!("plot[{i}] of scene `{id}` could not be drawn"),
+    None => format!("scene `{id}` could not be derived"),
+})]
 pub struct RunError {
     pub path: PathBuf,
     pub id: String,
     pub at: (usize, usize),
-    pub source: StageError,
+    /// The plot at fault, when it is one.
+    pub plot: Option<usize>,
+    /// Boxed: the error travels up through every stage.
+    pub source: Box<StageError>,
 }
 
 /// What failed inside a scene's run: the symbolic stage, an evaluation at the scene's values,
@@ -97,7 +104,8 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
         path: scene.source.clone(),
         id: scene.id.clone(),
         at: scene.id_at,
-        source,
+        plot: None,
+        source: Box::new(source),
     };
     let derivation = derive::derive(scene, plan).map_err(|e| fail(e.into()))?;
     let (claims, regressions) =
@@ -140,7 +148,8 @@ pub fn run_scene_with(
         path: scene.source.clone(),
         id: scene.id.clone(),
         at: scene.id_at,
-        source,
+        plot: None,
+        source: Box::new(source),
     };
     let derivation = &symbolic.derivation;
     let numeric = if plan.runs(Stage::Quadrature) {
@@ -156,25 +165,16 @@ pub fn run_scene_with(
         None
     };
     let figures = if plan.runs(Stage::Plots) {
-        crate::figures::figures(&scene, derivation, &fidelity).map_err(|e| fail(e.into()))?
+        crate::figures::figures(&scene, derivation, &fidelity).map_err(|e| RunError {
+            path: scene.source.clone(),
+            id: scene.id.clone(),
+            at: scene.plot_at.get(e.index).copied().unwrap_or(scene.id_at),
+            plot: Some(e.index),
+            source: Box::new(e.source.into()),
+        })?
     } else {
         Vec::new()
     };
-    // A plot of NaN or infinity is a failure of the inputs' precision, said here, located,
-    // rather than a broken picture or a renderer's error.
-    for f in &figures {
-        let finite = |(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
-        if !f.series.iter().all(|s| s.points.iter().all(finite))
-            || !f.labels.iter().all(|(_, p)| finite(p))
-        {
-            return Err(fail(
-                FigureError::NotFinite {
-                    slug: f.slug.clone(),
-                }
-                .into(),
-            ));
-        }
-    }
     let mut verification = Verification {
         claims: symbolic.claims,
         regressions: symbolic.regressions,

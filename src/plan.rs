@@ -79,12 +79,14 @@ impl Plan {
                 wanted.push((s, format!("recorded result `{name}`")));
             }
         }
-        if !scene.expect.is_empty() {
-            wanted.push((
-                Stage::Regression,
-                format!("{} recorded result(s)", scene.expect.len()),
-            ));
-        }
+        wanted.push((
+            Stage::Regression,
+            if scene.expect.is_empty() {
+                "no recorded results: each result fails until it is recorded".to_string()
+            } else {
+                format!("{} recorded result(s)", scene.expect.len())
+            },
+        ));
 
         let mut plan = Plan {
             stages: BTreeSet::new(),
@@ -160,12 +162,13 @@ values = { m = 1.0, a = 1.0 }
     fn tensor_alone_runs_nothing_else() {
         let s = scene(&format!("{HEAD}[outputs]\nwant = [\"inertia_tensor\"]\n"));
         let p = Plan::for_scene(&s);
+        // The record is always checked: with none, each result fails until it is recorded.
         assert_eq!(
             p.stages.iter().copied().collect::<Vec<_>>(),
-            vec![Stage::Tensor]
+            vec![Stage::Tensor, Stage::Regression]
         );
         let skipped = p.explain().iter().filter(|(_, r)| r.is_none()).count();
-        assert_eq!(skipped, Stage::ALL.len() - 1);
+        assert_eq!(skipped, Stage::ALL.len() - 2);
     }
 
     #[test]

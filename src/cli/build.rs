@@ -31,13 +31,70 @@ pub struct BuildArgs {
     /// Derive every scene afresh, and neither read nor write the cache (overrides --cache).
     #[arg(long)]
     pub no_cache: bool,
+    /// Also write the outcome as JSON to this file: `serve` runs each build as a child
+    /// process, so that it never holds the engine, and reads what happened here.
+    #[arg(long, hide = true)]
+    pub status_file: Option<PathBuf>,
+}
+
+impl BuildArgs {
+    /// The same build on a command line, for a child process (`serve`); the output folder as
+    /// this build settled it.
+    pub fn command_line(&self, out: &Path) -> Vec<std::ffi::OsString> {
+        let mut a: Vec<std::ffi::OsString> = vec!["build".into()];
+        a.extend(self.paths.iter().map(|p| p.clone().into_os_string()));
+        a.extend(["--out".into(), out.as_os_str().to_owned()]);
+        if let Some(t) = &self.templates {
+            a.extend(["--templates".into(), t.as_os_str().to_owned()]);
+        }
+        if self.timings {
+            a.push("--timings".into());
+        }
+        if let Some(f) = self.fidelity.fidelity {
+            a.extend(["--fidelity".into(), f.argument().into()]);
+        }
+        if self.no_cache {
+            a.push("--no-cache".into());
+        } else {
+            a.extend(["--cache".into(), self.cache.as_os_str().to_owned()]);
+        }
+        a
+    }
+}
+
+/// What a build did, as `--status-file` records it for `serve`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Outcome {
+    /// Whether the site was written.
+    pub written: bool,
+    /// Why it was not (located messages), or the checks that failed in the site it wrote.
+    pub problems: Vec<String>,
+}
+
+impl Outcome {
+    fn of(result: &Result<Built, NotBuilt>) -> Outcome {
+        match result {
+            Ok(built) => Outcome {
+                written: true,
+                problems: built.failures.clone(),
+            },
+            Err(not_built) => Outcome {
+                written: false,
+                problems: not_built.messages(),
+            },
+        }
+    }
 }
 
 /// A build settled before anything is derived: what to read and where to write.
 pub struct Build {
     paths: Vec<PathBuf>,
-    /// mechbook.toml: beside the scenes (`build my-course/`), or in the working folder.
+    /// mechbook.toml: in a folder named, or the nearest above the scenes, or in the working
+    /// folder.
     course_file: PathBuf,
+    /// Whether every scene of the course is built (no paths were given, or a folder named
+    /// holds the course file): then a `[[lecture]]` that no scene has is an error.
+    whole_course: bool,
     out: PathBuf,
     templates: Option<PathBuf>,
     timings: bool,
@@ -68,7 +125,7 @@ impl NotBuilt {
     pub fn messages(&self) -> Vec<String> {
         match self {
             NotBuilt::Scenes(m) | NotBuilt::Derive(m) => m.clone(),
-            NotBuilt::Other(e) => vec![format!("{e:#}")],
+            NotBuilt::Other(e) => vec![super::one_line(e)],
         }
     }
 }
@@ -83,13 +140,13 @@ impl Build {
             fidelity: FidelityArg { fidelity },
             cache,
             no_cache,
+            status_file: _,
         } = args;
+        // No paths: the course's lectures/, all of it.
+        let defaulted = paths.is_empty();
         let paths = default_paths(paths)?;
-        let course_file = paths
-            .iter()
-            .map(|p| p.join("mechbook.toml"))
-            .find(|p| p.is_file())
-            .unwrap_or_else(|| PathBuf::from("mechbook.toml"));
+        let (course_file, named) = course_file(&paths);
+        let whole_course = named || defaulted;
         let course = crate::render::Course::load(&course_file)?;
         let out = out
             .or(course.output.clone())
@@ -97,6 +154,7 @@ impl Build {
         Ok(Build {
             paths,
             course_file,
+            whole_course,
             out,
             templates,
             timings,
@@ -116,6 +174,12 @@ impl Build {
         let files = self.check_output().map_err(fail)?;
         let scenes = crate::scene::load_all(&files)
             .map_err(|errors| NotBuilt::Scenes(errors.iter().map(ToString::to_string).collect()))?;
+        if self.whole_course {
+            let lectures = scenes.iter().map(|s| s.notes.lecture.as_str()).collect();
+            if let Some(e) = course.unused_lecture(&lectures) {
+                return Err(NotBuilt::Scenes(vec![e.to_string()]));
+            }
+        }
         let (reports, errors) =
             run_all(scenes, self.fidelity, self.cache.as_ref()).map_err(fail)?;
         if !errors.is_empty() {
@@ -183,9 +247,42 @@ impl Build {
     }
 }
 
+/// The course file for `paths`: `mechbook.toml` in a folder named (and then the whole course is
+/// built), else the nearest one in a folder above the first path (`build course/lectures` finds
+/// `course/mechbook.toml`), else the working folder's.
+fn course_file(paths: &[PathBuf]) -> (PathBuf, bool) {
+    if let Some(f) = paths
+        .iter()
+        .map(|p| p.join("mechbook.toml"))
+        .find(|p| p.is_file())
+    {
+        return (f, true);
+    }
+    let above = paths
+        .first()
+        .and_then(|p| std::path::absolute(p).ok())
+        .and_then(|p| {
+            p.ancestors()
+                .skip(1)
+                .map(|a| a.join("mechbook.toml"))
+                .find(|f| f.is_file())
+        });
+    (
+        above.unwrap_or_else(|| PathBuf::from("mechbook.toml")),
+        false,
+    )
+}
+
 pub fn run(args: BuildArgs) -> Result<ExitCode> {
-    let build = Build::new(args)?;
-    match build.run() {
+    let status_file = args.status_file.clone();
+    let result = Build::new(args)
+        .map_err(NotBuilt::Other)
+        .and_then(|build| build.run());
+    if let Some(path) = &status_file {
+        let json = serde_json::to_vec(&Outcome::of(&result))?;
+        crate::site::replace_file(path, &json)?;
+    }
+    match result {
         Ok(built) => {
             eprintln!("mechbook: {}", built.summary);
             Ok(if built.failures.is_empty() {

@@ -13,9 +13,15 @@ use std::process::ExitCode;
 pub struct CheckArgs {
     /// Scene files or folders to search for `*.toml` (default: lectures/).
     pub paths: Vec<PathBuf>,
-    /// Print JSON, `{"scenes": [...]}`, instead of the table.
+    /// Print JSON instead of the table: `{"passed": true, "counts": {...}, "failures": [...],
+    /// "scenes": [...]}`. Symbolica's licence banner also goes to standard output; for a file
+    /// that holds the JSON alone, use --json-file.
     #[arg(long)]
     pub json: bool,
+    /// Also write the JSON report to this file (for a course's CI: it needs no environment
+    /// variable). The table or --json still goes to standard output.
+    #[arg(long, value_name = "FILE", conflicts_with = "bless")]
+    pub json_file: Option<PathBuf>,
     /// Record what was derived as the new expectation: each scene's `[expect]` (created when
     /// missing) and each claim's `expect` verdict are rewritten in the scene file, comments and
     /// layout kept, and every change is printed. Review the changes before committing them.
@@ -30,6 +36,7 @@ pub fn run(args: CheckArgs) -> Result<ExitCode> {
     let CheckArgs {
         paths,
         json,
+        json_file,
         bless,
         fidelity: FidelityArg { fidelity },
     } = args;
@@ -40,11 +47,16 @@ pub fn run(args: CheckArgs) -> Result<ExitCode> {
     if bless {
         return bless_all(&reports, errors.len());
     }
+    let passed = errors.is_empty() && reports.iter().all(SceneReport::passed);
+    let document = || -> Result<String> {
+        Ok(serde_json::to_string_pretty(&report::check_json(&reports, &errors))? + "\n")
+    };
+    if let Some(path) = &json_file {
+        crate::site::replace_file(path, document()?.as_bytes())?;
+    }
     let errors = errors.len();
-    let passed = errors == 0 && reports.iter().all(SceneReport::passed);
     let text = if json {
-        let scenes: Vec<_> = reports.iter().map(report::scene_json).collect();
-        serde_json::to_string_pretty(&serde_json::json!({ "scenes": scenes }))? + "\n"
+        document()?
     } else {
         report::check_table(&reports)
     };
@@ -69,15 +81,25 @@ fn bless_all(reports: &[SceneReport], errors: usize) -> Result<ExitCode> {
     let mut out = String::new();
     let mut files = 0;
     let mut changes = 0;
+    let mut refused = Vec::new();
     for r in reports {
         let path = &r.scene.source;
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        let (new_text, blessed) = bless::blessed_text(&text, r)?;
+        let original =
+            std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+        // Bless only what was checked: a file edited since it was read would get the verdicts of
+        // its old text.
+        if crate::base::hash::content_hash(&original) != r.scene.content_hash {
+            refused.push(bless::BlessError::Changed(path.clone()));
+            continue;
+        }
+        let (new_bytes, blessed) = bless::blessed_bytes(&original, r)?;
         if blessed.is_empty() {
             continue;
         }
-        crate::site::replace_file(path, new_text.as_bytes())?;
+        if let Err(e) = bless::write_in_place(path, &original, &new_bytes) {
+            refused.push(e);
+            continue;
+        }
         files += 1;
         changes += blessed.len();
         for b in blessed {
@@ -103,14 +125,19 @@ fn bless_all(reports: &[SceneReport], errors: usize) -> Result<ExitCode> {
     for f in &unfixable {
         eprintln!("mechbook: not blessed, still failing: {f}");
     }
+    for e in &refused {
+        eprintln!("mechbook: error: {e}");
+    }
     if errors > 0 {
         eprintln!(
             "mechbook: {errors} scene(s) could not be derived (errors above); they were not blessed"
         );
     }
-    Ok(if unfixable.is_empty() && errors == 0 {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    Ok(
+        if unfixable.is_empty() && refused.is_empty() && errors == 0 {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(1)
+        },
+    )
 }

@@ -112,10 +112,28 @@ pub fn main() -> ExitCode {
     match run(cli) {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("mechbook: error: {e:#}");
+            eprintln!("mechbook: error: {}", one_line(&e));
             ExitCode::from(1)
         }
     }
+}
+
+/// An error and its causes on one line, `a: b: c`, each said once: many of our errors already
+/// name their cause ("cannot write x: No space left on device"), which a plain `{:#}` would
+/// print again.
+pub fn one_line(e: &anyhow::Error) -> String {
+    let mut out = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if out.contains(&text) {
+            continue;
+        }
+        if !out.is_empty() {
+            out.push_str(": ");
+        }
+        out.push_str(&text);
+    }
+    out
 }
 
 /// The scene files under `paths`; none at all is an error.
@@ -180,14 +198,15 @@ fn run_all(
             eprint!("\r\x1b[2K{}", progress_bar(i, total, &scene.id));
         }
         let run = match cache {
-            Some(cache) => cache
-                .run_scene(scene, fidelity)
-                .map(|(report, not_stored)| {
-                    if let Some(e) = not_stored {
-                        eprintln!("mechbook: warning: the cache is not updated: {e}");
+            Some(cache) => cache.run_scene(scene, fidelity).map(|(report, warnings)| {
+                for w in warnings {
+                    if progress {
+                        eprint!("\r\x1b[2K");
                     }
-                    report
-                }),
+                    eprintln!("mechbook: warning: {w}");
+                }
+                report
+            }),
             None => pipeline::run_scene(scene, fidelity),
         };
         match run {
@@ -226,12 +245,10 @@ fn default_paths(paths: Vec<PathBuf>) -> Result<Vec<PathBuf>> {
 }
 
 pub fn run(cli: Cli) -> Result<ExitCode> {
+    // `serve` never holds the engine: its builds are child processes.
     if matches!(
         cli.command,
-        Command::Build { .. }
-            | Command::Check { .. }
-            | Command::Derive { .. }
-            | Command::Serve { .. }
+        Command::Build { .. } | Command::Check { .. } | Command::Derive { .. }
     ) {
         crate::cas::ready()?;
     }
@@ -249,7 +266,26 @@ pub fn run(cli: Cli) -> Result<ExitCode> {
 
 #[cfg(test)]
 mod tests {
-    use super::progress_bar;
+    use super::{one_line, progress_bar};
+
+    #[test]
+    fn an_os_error_is_said_once() {
+        let io = std::io::Error::new(std::io::ErrorKind::StorageFull, "No space left on device");
+        let e = crate::site::SiteError::Io {
+            path: "x".into(),
+            source: io,
+        };
+        let e = anyhow::Error::from(e).context("cannot record the verdicts");
+        assert_eq!(
+            one_line(&e),
+            "cannot record the verdicts: cannot write x: No space left on device"
+        );
+        assert_eq!(
+            format!("{e:#}").matches("No space").count(),
+            2,
+            "the case fixed"
+        );
+    }
 
     #[test]
     fn the_progress_bar_fills_in_proportion() {

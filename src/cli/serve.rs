@@ -1,6 +1,6 @@
 //! `mechbook serve`: build, serve on 127.0.0.1, and rebuild and reload on every edit.
 
-use super::build::{Build, BuildArgs, report_not_built};
+use super::build::{Build, BuildArgs, Outcome};
 use crate::serve::{Server, is_hidden};
 use anyhow::{Context, Result};
 use notify::Watcher;
@@ -33,25 +33,10 @@ enum Wake {
 const SETTLE: Duration = Duration::from_millis(100);
 
 pub fn run(args: ServeArgs) -> Result<ExitCode> {
-    let build = Build::new(args.build)?;
+    let build = Build::new(args.build.clone())?;
     // Editing a scene cannot fix a refused output folder, and one that is not the site's must
     // not be served: stop before serving anything.
     build.check_output()?;
-    let first = build.run();
-    let errors = match first {
-        Ok(built) => {
-            eprintln!("mechbook: {}", built.summary);
-            Vec::new()
-        }
-        Err(not_built) => {
-            let messages = not_built.messages();
-            report_not_built(not_built).or_else(|e| {
-                eprintln!("mechbook: error: {e:#}");
-                anyhow::Ok(())
-            })?;
-            messages
-        }
-    };
     let (wake, woken) = mpsc::channel();
     let on_interrupt = {
         let wake = wake.clone();
@@ -59,7 +44,11 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
             let _ = wake.send(Wake::Stop);
         }
     };
-    let server = Server::start(build.out(), args.port, errors, on_interrupt)?;
+    // The port first: a taken one is said at once, before any build.
+    let server = Server::start(build.out(), args.port, on_interrupt)?;
+    let builder = ChildBuild::new(&args.build, build.out())?;
+    let first = builder.run();
+    server.built(first.written, first.problems);
     let url = format!("http://{}/", server.addr());
     eprintln!(
         "mechbook: serving {url} from {} (Ctrl-C to stop); watching {}",
@@ -79,18 +68,12 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     })
     .context("cannot watch the files for changes")?;
     let watched = build.watched();
-    for path in &watched {
-        // A file is watched through its folder: editors replace a file when they save it.
-        let (target, mode) = if path.is_dir() {
-            (path.clone(), notify::RecursiveMode::Recursive)
-        } else {
-            (folder_of(path), notify::RecursiveMode::NonRecursive)
-        };
+    let relevant = Relevant::new(&watched, build.out());
+    for (target, mode) in relevant.watches() {
         watcher
             .watch(&target, mode)
             .with_context(|| format!("cannot watch {}", target.display()))?;
     }
-    let relevant = Relevant::new(&watched, build.out());
     loop {
         let first = match woken.recv() {
             Ok(Wake::Changed(Ok(event))) => event,
@@ -129,20 +112,19 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
             .collect::<Vec<_>>()
             .join(", ");
         eprintln!("mechbook: changed: {changed}");
-        match build.run() {
-            Ok(built) => {
-                eprintln!("mechbook: {}", built.summary);
-                server.built(Vec::new());
-            }
-            Err(not_built) => {
-                let messages = not_built.messages();
-                if let Err(e) = report_not_built(not_built) {
-                    eprintln!("mechbook: error: {e:#}");
-                }
-                eprintln!(
-                    "mechbook: still serving the last good site, with the error on every page"
-                );
-                server.built(messages);
+        let outcome = builder.run();
+        if !outcome.written {
+            eprintln!("mechbook: still serving the last good site, with the error on every page");
+        }
+        server.built(outcome.written, outcome.problems);
+        // A folder that was deleted and made again (a `git checkout`) lost its watch: watch
+        // it anew. Its parent's watch saw it come back.
+        for (target, mode) in relevant.watches() {
+            let _ = watcher.unwatch(&target);
+            if let Err(e) = watcher.watch(&target, mode)
+                && target.exists()
+            {
+                eprintln!("mechbook: warning: cannot watch {}: {e}", target.display());
             }
         }
         eprintln!(
@@ -155,6 +137,63 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     drop(watcher);
     server.stop();
     Ok(ExitCode::SUCCESS)
+}
+
+/// Each build runs as a child process, `mechbook build` with serve's options, so that this
+/// process never holds the engine: `check`, `derive` and another `build` wait at most for one
+/// rebuild. The cache makes a rebuild cheap: only the edited scenes are derived.
+struct ChildBuild {
+    exe: PathBuf,
+    args: Vec<std::ffi::OsString>,
+    status: PathBuf,
+    scratch: PathBuf,
+}
+
+impl ChildBuild {
+    fn new(args: &BuildArgs, out: &Path) -> Result<ChildBuild> {
+        let exe = std::env::current_exe().context("cannot find this program to run its builds")?;
+        let scratch = crate::site::scratch::folder("serve")
+            .context("cannot make a temporary folder for the builds' reports")?;
+        Ok(ChildBuild {
+            exe,
+            args: args.command_line(out),
+            status: scratch.join("status.json"),
+            scratch,
+        })
+    }
+
+    /// One build; its own messages go to this terminal as it prints them.
+    fn run(&self) -> Outcome {
+        crate::site::scratch::remove_file(&self.status);
+        let ran = std::process::Command::new(&self.exe)
+            .args(&self.args)
+            .arg("--status-file")
+            .arg(&self.status)
+            .stdin(std::process::Stdio::null())
+            .status();
+        let report = std::fs::read(&self.status)
+            .ok()
+            .and_then(|bytes| serde_json::from_slice::<Outcome>(&bytes).ok());
+        match (ran, report) {
+            (_, Some(outcome)) => outcome,
+            (Ok(status), None) => Outcome {
+                written: false,
+                problems: vec![format!(
+                    "the build stopped ({status}) without saying why: see serve's terminal"
+                )],
+            },
+            (Err(e), None) => Outcome {
+                written: false,
+                problems: vec![format!("cannot run {}: {e}", self.exe.display())],
+            },
+        }
+    }
+}
+
+impl Drop for ChildBuild {
+    fn drop(&mut self) {
+        crate::site::scratch::remove(&self.scratch);
+    }
 }
 
 /// The folder holding `path`, or `.` for a bare file name.
@@ -186,6 +225,27 @@ impl Relevant {
             files,
             out: absolute(out),
         }
+    }
+
+    /// What to watch: each folder with all below it, and the folder holding each file or
+    /// folder (without what is below), which sees a folder deleted and made again, and an
+    /// editor replacing a file when it saves it. A parent inside a watched folder is left
+    /// out: one watch of a path replaces another.
+    fn watches(&self) -> Vec<(PathBuf, notify::RecursiveMode)> {
+        let mut w: Vec<(PathBuf, notify::RecursiveMode)> = self
+            .folders
+            .iter()
+            .map(|d| (d.clone(), notify::RecursiveMode::Recursive))
+            .collect();
+        for p in self.folders.iter().chain(&self.files) {
+            let parent = folder_of(p);
+            let covered = self.folders.iter().any(|d| parent.starts_with(d))
+                || w.iter().any(|(q, _)| *q == parent);
+            if !covered {
+                w.push((parent, notify::RecursiveMode::NonRecursive));
+            }
+        }
+        w
     }
 
     fn any(&self, paths: &[PathBuf]) -> bool {

@@ -34,7 +34,7 @@ fn diagonal(xx: &str, yy: &str, zz: &str) -> Value {
 /// and the tensor is the table's.
 fn assert_body(body: &str, table: Value) {
     let r = run(body, CHECKED);
-    assert!(r.passed(), "{body}\n{:#?}", r.verification);
+    assert!(r.verification.verified(), "{body}\n{:#?}", r.verification);
     let q = r
         .verification
         .quantities

@@ -92,9 +92,45 @@ pub fn figures(
     scene: &Scene,
     d: &Derivation,
     fidelity: &Fidelity,
-) -> Result<Vec<Figure>, FigureError> {
+) -> Result<Vec<Figure>, PlotFailure> {
     let mut out = Vec::new();
-    for p in &scene.plots {
+    for (index, p) in scene.plots.iter().enumerate() {
+        let first = out.len();
+        plot(scene, d, fidelity, p, &mut out).map_err(|source| PlotFailure { index, source })?;
+        // A plot of NaN or infinity is a failure of the inputs' precision, said here, at the
+        // plot, rather than a broken picture or a renderer's error.
+        for f in &out[first..] {
+            let finite = |(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
+            if !f.series.iter().all(|s| s.points.iter().all(finite))
+                || !f.labels.iter().all(|(_, p)| finite(p))
+            {
+                let source = FigureError::NotFinite {
+                    slug: f.slug.clone(),
+                };
+                return Err(PlotFailure { index, source });
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// A plot that could not be drawn: `plot[index]` of the scene.
+#[derive(Debug, thiserror::Error)]
+#[error("{source}")]
+pub struct PlotFailure {
+    pub index: usize,
+    pub source: FigureError,
+}
+
+/// The figures of one plot request, appended to `out`.
+fn plot(
+    scene: &Scene,
+    d: &Derivation,
+    fidelity: &Fidelity,
+    p: &PlotRequest,
+    out: &mut Vec<Figure>,
+) -> Result<(), FigureError> {
+    {
         match p {
             PlotRequest::TensorSweep {
                 over,
@@ -141,7 +177,7 @@ pub fn figures(
             out[last].slug = format!("{base}-{n}");
         }
     }
-    Ok(out)
+    Ok(())
 }
 
 /// The principal moments of the scene's bodies about their centre of mass, at the scene's

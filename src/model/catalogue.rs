@@ -296,6 +296,13 @@ pub fn quantity_symbol(name: &str) -> Option<&'static str> {
 }
 
 /// Names a claim may use for derived quantities, and the functions of the claim language.
+/// What `[expect]` records of a scene: every derived result, but the intermediate integrands
+/// and positions. A scene without `[expect]` has these not yet recorded, which `check` fails on
+/// until `check --bless` writes them in.
+pub fn recorded_by_default(name: &str) -> bool {
+    name != quantity::INTEGRAND && name != quantity::POSITION
+}
+
 pub const QUANTITIES: &[&str] = &[
     quantity::MASS,
     quantity::CENTRE_OF_MASS,

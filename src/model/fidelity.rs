@@ -112,6 +112,14 @@ impl Fidelity {
         at_standard * scale
     }
 
+    /// The `--fidelity` argument that gives this fidelity back, exactly.
+    pub fn argument(&self) -> String {
+        match self.level {
+            Level::Target => self.tolerance.to_string(),
+            _ => self.name(),
+        }
+    }
+
     /// The name as a scene or the command line gives it.
     pub fn name(&self) -> String {
         match self.level {
@@ -144,6 +152,14 @@ impl fmt::Display for Fidelity {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_argument_parses_back_to_the_same_fidelity() {
+        for f in ["draft", "standard", "reference", "1e-6", "3.3e-9", "0.25"] {
+            let fid = Fidelity::parse(f).unwrap();
+            assert_eq!(Fidelity::parse(&fid.argument()), Ok(fid), "{f}");
+        }
+    }
 
     #[test]
     fn names_and_tolerances_parse() {

@@ -13,8 +13,10 @@ use std::fmt::Write;
 /// Significant figures of an answer and its tolerance in the file.
 const DIGITS: usize = 12;
 
-/// The quiz of a scene with a problem; `None` for a scene without one.
-pub fn quiz(r: &SceneReport) -> Option<String> {
+/// The quiz of a scene with a problem; `None` for a scene without one. `solution` is the
+/// published address of the scene's worked solution (the course's `base_url`), which the
+/// feedback links to.
+pub fn quiz(r: &SceneReport, solution: Option<&str>) -> Option<String> {
     let problem = r.scene.problem.as_ref()?;
     let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<quiz>\n");
     let _ = writeln!(
@@ -23,13 +25,18 @@ pub fn quiz(r: &SceneReport) -> Option<String> {
         xml_text(&r.scene.id)
     );
     for v in &r.verification.variants {
-        out.push_str(&question(r, problem, v));
+        out.push_str(&question(r, problem, v, solution));
     }
     out.push_str("</quiz>\n");
     Some(out)
 }
 
-fn question(r: &SceneReport, problem: &Problem, v: &VariantCheck) -> String {
+fn question(
+    r: &SceneReport,
+    problem: &Problem,
+    v: &VariantCheck,
+    solution: Option<&str>,
+) -> String {
     let name = format!("{} — variant {}", r.scene.title, v.number);
     let statement = statement_tex(&problem.statement, v);
     let scalars: usize = v.answers.iter().map(|a| a.exact_numbers.len()).sum();
@@ -48,7 +55,7 @@ fn question(r: &SceneReport, problem: &Problem, v: &VariantCheck) -> String {
              </question>\n",
             xml_text(&name),
             cdata(&format!("<p>{statement}</p>")),
-            cdata(&feedback(v)),
+            cdata(&feedback(v, solution)),
             number(a.exact_numbers[0]),
             number(tolerance(problem, &a.exact_numbers)),
         );
@@ -88,13 +95,14 @@ fn question(r: &SceneReport, problem: &Problem, v: &VariantCheck) -> String {
          <penalty>0.3333333</penalty>\n    <hidden>0</hidden>\n  </question>\n",
         xml_text(&name),
         cdata(&text),
-        cdata(&feedback(v)),
+        cdata(&feedback(v, solution)),
     );
     out
 }
 
-/// The exact answers, shown after the attempt.
-fn feedback(v: &VariantCheck) -> String {
+/// The exact answers, shown after the attempt, and a link to the worked solution when the site's
+/// address is known.
+fn feedback(v: &VariantCheck, solution: Option<&str>) -> String {
     let parts: Vec<String> = v
         .answers
         .iter()
@@ -106,7 +114,13 @@ fn feedback(v: &VariantCheck) -> String {
             )
         })
         .collect();
-    format!("<p>Exactly: {}.</p>", parts.join("; "))
+    let link = solution.map_or(String::new(), |url| {
+        format!(
+            "<p><a href=\"{}\">The worked solution</a></p>",
+            html_escape(url)
+        )
+    });
+    format!("<p>Exactly: {}.</p>{link}", parts.join("; "))
 }
 
 /// An answer's absolute tolerance: relative to its largest entry.

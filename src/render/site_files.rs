@@ -35,7 +35,8 @@ pub struct Course {
     pub title: String,
     #[serde(default)]
     pub author: String,
-    /// Where the site will be published; links stay relative either way.
+    /// Where the site will be published (`https://…`, no trailing `/`): the Moodle quizzes
+    /// link each question to its worked solution there. The site's own links stay relative.
     #[serde(default)]
     pub base_url: String,
     /// The output folder (default `site`).
@@ -44,6 +45,9 @@ pub struct Course {
     /// Titles of the lectures: `[[lecture]] id = "3/4"`, `title = "The inertia tensor"`.
     #[serde(default, rename = "lecture")]
     pub lectures: Vec<LectureTitle>,
+    /// The file, and where each lecture's `id` is in it, for errors about the lectures.
+    #[serde(skip)]
+    pub source: Option<(PathBuf, Vec<(usize, usize)>)>,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -55,6 +59,34 @@ pub struct LectureTitle {
 }
 
 impl Course {
+    /// A `[[lecture]]` whose id no scene has (a typo, or a lecture since renamed), as an error
+    /// at its line; `lectures` are the scenes' `notes.lecture`.
+    pub fn unused_lecture(
+        &self,
+        lectures: &std::collections::BTreeSet<&str>,
+    ) -> Option<RenderError> {
+        let (i, l) = self
+            .lectures
+            .iter()
+            .enumerate()
+            .find(|(_, l)| !lectures.contains(l.id.as_str()))?;
+        let (path, lines) = self.source.as_ref()?;
+        let (line, column) = lines.get(i).copied().unwrap_or((0, 0));
+        let known: Vec<&str> = lectures.iter().copied().collect();
+        Some(RenderError::Course {
+            path: path.clone(),
+            line,
+            column,
+            message: format!(
+                "field `lecture[{i}].id`: no scene is in lecture `{}`{}; the scenes' lectures \
+                 (notes.lecture) are {}: correct the id, or remove this [[lecture]]",
+                l.id,
+                crate::base::suggest::did_you_mean(&l.id, known.iter().copied()),
+                known.join(", ")
+            ),
+        })
+    }
+
     /// A lecture's heading: its title from `mechbook.toml`, else "Lecture 3/4" for an id that
     /// starts with a digit, else the id itself ("Bodies of revolution").
     pub fn lecture_heading(&self, id: &str) -> String {
@@ -78,6 +110,7 @@ impl Default for Course {
             base_url: String::new(),
             output: None,
             lectures: Vec::new(),
+            source: None,
         }
     }
 }
@@ -86,18 +119,53 @@ impl Course {
     /// Reads `path` if it exists; errors name the file, line and column.
     pub fn load(path: &Path) -> Result<Course, RenderError> {
         match std::fs::read_to_string(path) {
-            Ok(text) => toml::from_str(&text).map_err(|e| {
-                let (line, col) = e
-                    .span()
-                    .map(|s| crate::scene::Locator { path, text: &text }.line_col(s.start))
-                    .unwrap_or((0, 0));
-                RenderError::Course {
-                    path: path.to_path_buf(),
-                    line,
-                    column: col,
-                    message: e.message().trim().to_string(),
+            Ok(text) => {
+                let at = |offset: usize, message: String| {
+                    let (line, column) =
+                        crate::scene::Locator { path, text: &text }.line_col(offset);
+                    RenderError::Course {
+                        path: path.to_path_buf(),
+                        line,
+                        column,
+                        message,
+                    }
+                };
+                let mut course: Course = toml::from_str(&text).map_err(|e| {
+                    at(
+                        e.span().map_or(0, |s| s.start),
+                        e.message().trim().to_string(),
+                    )
+                })?;
+                if let Some((offset, why)) = prose_problem(&text) {
+                    return Err(at(offset, why));
                 }
-            }),
+                if !course.base_url.is_empty() {
+                    course.base_url = web_address(&course.base_url).map_err(|why| {
+                        let offset = toml_edit::ImDocument::parse(text.as_str())
+                            .ok()
+                            .and_then(|d| d.get("base_url").and_then(toml_edit::Item::span))
+                            .map_or(0, |s| s.start + 1);
+                        at(offset, format!("field `base_url`: {why}"))
+                    })?;
+                }
+                let id_offsets = lecture_id_offsets(&text);
+                for (i, l) in course.lectures.iter().enumerate() {
+                    if let Some(first) = course.lectures[..i].iter().position(|f| f.id == l.id) {
+                        return Err(at(
+                            id_offsets.get(i).copied().unwrap_or(0),
+                            format!(
+                                "field `lecture[{i}].id`: lecture `{}` is titled twice (first as \
+                                 lecture[{first}]): keep one",
+                                l.id
+                            ),
+                        ));
+                    }
+                }
+                let loc = crate::scene::Locator { path, text: &text };
+                let lines = id_offsets.iter().map(|o| loc.line_col(*o)).collect();
+                course.source = Some((path.to_path_buf(), lines));
+                Ok(course)
+            }
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Course::default()),
             Err(error) => Err(RenderError::Read {
                 path: path.to_path_buf(),
@@ -105,6 +173,80 @@ impl Course {
             }),
         }
     }
+}
+
+/// Why `base_url` is not a web address.
+#[derive(Debug, thiserror::Error)]
+enum BadAddress {
+    #[error(
+        "`{0}` is not a web address: write where the site is published, such as \
+         \"https://example.edu/mechanics\""
+    )]
+    NotHttp(String),
+    #[error("`{0}` is not a web address: it needs a host and no spaces, quotes or brackets")]
+    Malformed(String),
+}
+
+/// `base_url` checked: an absolute http(s) address, given back without a trailing `/`.
+fn web_address(url: &str) -> Result<String, BadAddress> {
+    let rest = url
+        .strip_prefix("https://")
+        .or_else(|| url.strip_prefix("http://"))
+        .ok_or_else(|| BadAddress::NotHttp(url.to_string()))?;
+    let host = rest.split('/').next().unwrap_or("");
+    if host.is_empty()
+        || url
+            .chars()
+            .any(|c| c.is_whitespace() || c.is_control() || "\"<>\\^`{|}".contains(c))
+    {
+        return Err(BadAddress::Malformed(url.to_string()));
+    }
+    Ok(url.trim_end_matches('/').to_string())
+}
+
+/// Where each `[[lecture]]`'s id is in a course file (the start of its text).
+fn lecture_id_offsets(text: &str) -> Vec<usize> {
+    let Ok(doc) = toml_edit::ImDocument::parse(text) else {
+        return Vec::new();
+    };
+    doc.get("lecture")
+        .and_then(toml_edit::Item::as_array_of_tables)
+        .map(|a| {
+            a.iter()
+                .map(|t| {
+                    t.get("id")
+                        .and_then(toml_edit::Item::span)
+                        .map_or(0, |s| s.start + 1)
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The first title or author in a course file with a control character (TeX that TOML read
+/// as an escape), where it is and why: the same rule as a scene's prose.
+fn prose_problem(text: &str) -> Option<(usize, String)> {
+    let doc = toml_edit::ImDocument::parse(text).ok()?;
+    let mut fields: Vec<(String, &toml_edit::Item)> = ["title", "author"]
+        .iter()
+        .filter_map(|k| doc.get(k).map(|i| (k.to_string(), i)))
+        .collect();
+    if let Some(lectures) = doc
+        .get("lecture")
+        .and_then(toml_edit::Item::as_array_of_tables)
+    {
+        for (i, l) in lectures.iter().enumerate() {
+            if let Some(t) = l.get("title") {
+                fields.push((format!("lecture[{i}].title"), t));
+            }
+        }
+    }
+    fields.into_iter().find_map(|(field, item)| {
+        let value = item.as_str()?;
+        let span = item.span()?;
+        let why = crate::scene::control_character(value, text.get(span.clone())?, false)?;
+        Some((span.start + 1, format!("field `{field}`: {why}")))
+    })
 }
 
 #[derive(Serialize)]
@@ -288,7 +430,9 @@ pub fn site_files(
         );
     }
     for r in reports {
-        if let Some(xml) = super::moodle::quiz(r) {
+        let solution =
+            (!course.base_url.is_empty()).then(|| format!("{}/{}", course.base_url, page_file(r)));
+        if let Some(xml) = super::moodle::quiz(r, solution.as_deref()) {
             files.insert(
                 PathBuf::from(format!("export/moodle/{}.xml", r.scene.id)),
                 xml.into_bytes(),

@@ -206,8 +206,10 @@ pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
             field: field.into(),
             message,
         };
+    // Compared without case: file names that differ only in case are one file on macOS and
+    // Windows.
     let mut by_id: Vec<&Scene> = scenes.iter().collect();
-    by_id.sort_by(|a, b| (&a.id, &a.source).cmp(&(&b.id, &b.source)));
+    by_id.sort_by(|a, b| (a.id.to_lowercase(), &a.source).cmp(&(b.id.to_lowercase(), &b.source)));
     for w in by_id.windows(2) {
         if w[0].id == w[1].id {
             let message = format!(
@@ -216,11 +218,20 @@ pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
                 w[0].source.display()
             );
             errors.push(located(w[1], w[1].id_at, "id", message));
+        } else if w[0].id.to_lowercase() == w[1].id.to_lowercase() {
+            let message = format!(
+                "scene ids `{}` and `{}` (in {}) differ only in case: their pages would be one \
+                 file on a case-insensitive file system (macOS, Windows); rename one",
+                w[1].id,
+                w[0].id,
+                w[0].source.display()
+            );
+            errors.push(located(w[1], w[1].id_at, "id", message));
         }
     }
     let mut by_slug: std::collections::BTreeMap<String, &Scene> = Default::default();
     for s in by_id {
-        let slug = lecture_slug(&s.notes.lecture);
+        let slug = lecture_slug(&s.notes.lecture).to_lowercase();
         match by_slug.get(&slug) {
             Some(first) if first.notes.lecture != s.notes.lecture => {
                 let message = format!(

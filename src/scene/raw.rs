@@ -11,10 +11,10 @@ pub type Text = Spanned<String>;
 #[serde(deny_unknown_fields)]
 pub struct RawScene {
     pub id: Text,
-    pub title: String,
+    pub title: Text,
     pub notes: RawNotes,
     #[serde(default)]
-    pub symbols: BTreeMap<Spanned<String>, String>,
+    pub symbols: BTreeMap<Spanned<String>, Text>,
     #[serde(default)]
     pub definitions: BTreeMap<Spanned<String>, Text>,
     #[serde(default)]
@@ -67,7 +67,7 @@ pub struct RawNotes {
 pub struct RawBody {
     pub kind: Text,
     #[serde(default)]
-    pub label: Option<String>,
+    pub label: Option<Text>,
     #[serde(default)]
     pub mass: Option<Text>,
     #[serde(default)]
@@ -116,7 +116,7 @@ pub struct RawRotation {
 #[serde(deny_unknown_fields)]
 pub struct RawClaim {
     pub eq: Text,
-    pub statement: String,
+    pub statement: Text,
     #[serde(default)]
     pub quantity: Option<Text>,
     #[serde(default)]

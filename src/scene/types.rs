@@ -29,6 +29,10 @@ pub struct Scene {
     pub claims: Vec<Claim>,
     pub wants: Vec<Output>,
     pub plots: Vec<PlotRequest>,
+    /// The line of each `[expect]` key, for a changed result's message.
+    pub expect_lines: BTreeMap<String, usize>,
+    /// Where each plot's `[[plot]]` starts (line, column), for errors about it.
+    pub plot_at: Vec<(usize, usize)>,
     pub values: BTreeMap<String, f64>,
     pub seed: u64,
     /// `[numeric] fidelity`: this scene's default, which `--fidelity` overrides.

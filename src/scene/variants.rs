@@ -55,33 +55,72 @@ impl Comparison {
     }
 }
 
+/// Why a requirement could not be decided for some values.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Undecided {
+    #[error("it cannot be evaluated there ({0})")]
+    Unevaluable(String),
+    #[error(
+        "its two sides agree to double precision there, and the engine cannot show them \
+         equal or different"
+    )]
+    TooClose,
+}
+
+/// Sides closer than this, relative to their size, are compared exactly by the engine: f64
+/// cannot tell `sqrt(2)*sqrt(2)` from 2.
+const NEAR: f64 = 1e-9;
+
 impl Requirement {
-    /// Compared exactly when both sides are rational, in f64 otherwise (π, roots).
-    pub fn holds(&self, values: &BTreeMap<String, Expr>) -> bool {
+    /// Compared exactly: as rationals when both sides are, else in f64 when the sides are far
+    /// apart, else by the engine, which simplifies their difference. A side that is infinite
+    /// or undefined (`1/(a-a)`) is never met: it is refused.
+    pub fn holds(&self, values: &BTreeMap<String, Expr>) -> Result<bool, Undecided> {
         let exact = |e: &Expr| {
             e.eval_rational(&|s| match values.get(s) {
                 Some(Expr::Num(r)) => Some(r.clone()),
                 _ => None,
             })
         };
-        let order = match (exact(&self.lhs), exact(&self.rhs)) {
-            (Some(a), Some(b)) => a.compare(&b),
-            _ => {
-                let env = |s: &str| values.get(s).and_then(|e| e.eval(&|_| None).ok());
-                match (self.lhs.eval(&env), self.rhs.eval(&env)) {
-                    (Ok(a), Ok(b)) => match a.partial_cmp(&b) {
-                        Some(o) => o,
-                        None => return false,
-                    },
-                    _ => return false,
-                }
-            }
+        if let (Some(a), Some(b)) = (exact(&self.lhs), exact(&self.rhs)) {
+            return Ok(self.op.holds(a.compare(&b)));
+        }
+        let env = |s: &str| values.get(s).and_then(|e| e.eval(&|_| None).ok());
+        let side = |e: &Expr| match e.eval(&env) {
+            Ok(x) if x.is_finite() => Ok(x),
+            Ok(x) => Err(Undecided::Unevaluable(format!("a side is {x}"))),
+            Err(m) => Err(Undecided::Unevaluable(m.to_string())),
         };
-        self.op.holds(order)
+        let (a, b) = (side(&self.lhs)?, side(&self.rhs)?);
+        let scale = a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
+        if (a - b).abs() > NEAR * scale {
+            return Ok(self.op.holds(a.total_cmp(&b)));
+        }
+        let difference = Expr::Add(vec![
+            self.lhs.clone(),
+            Expr::Mul(vec![Expr::int(-1), self.rhs.clone()]),
+        ])
+        .substitute(&|s| values.get(s).cloned());
+        match crate::cas::is_zero_all(vec![difference]) {
+            Ok(z) if z == [true] => Ok(self.op.holds(Ordering::Equal)),
+            _ => Err(Undecided::TooClose),
+        }
     }
 }
 
-/// Fewer combinations meet the requirements than variants were asked for.
+/// Why the variants could not be drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DrawError {
+    /// Fewer combinations meet the requirements than variants were asked for.
+    Short(Shortfall),
+    /// Requirement `index` could not be decided at `values`.
+    Undecided {
+        index: usize,
+        values: BTreeMap<String, Expr>,
+        why: Undecided,
+    },
+}
+
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Shortfall {
     pub met: usize,
@@ -101,7 +140,7 @@ pub fn draw(
     require: &[Requirement],
     count: usize,
     seed: u64,
-) -> Result<Vec<Variant>, Shortfall> {
+) -> Result<Vec<Variant>, DrawError> {
     let combinations: usize = options.iter().map(|(_, o)| o.len()).product();
     let mut order: Vec<u32> = (0..combinations as u32).collect();
     let mut rng = Rng::new(seed);
@@ -120,7 +159,18 @@ pub fn draw(
             values.insert(name.clone(), opts[index % opts.len()].clone());
             index /= opts.len();
         }
-        if !require.iter().all(|r| r.holds(&values)) {
+        let mut met = true;
+        for (index, r) in require.iter().enumerate() {
+            match r.holds(&values) {
+                Ok(true) => {}
+                Ok(false) => {
+                    met = false;
+                    break;
+                }
+                Err(why) => return Err(DrawError::Undecided { index, values, why }),
+            }
+        }
+        if !met {
             continue;
         }
         if is_public(options, &values, fixed) {
@@ -133,11 +183,11 @@ pub fn draw(
         }
     }
     if out.len() < count {
-        return Err(Shortfall {
+        return Err(DrawError::Short(Shortfall {
             met: out.len(),
             combinations,
             public_left_out,
-        });
+        }));
     }
     Ok(out)
 }
@@ -234,11 +284,11 @@ mod tests {
         let short = draw(&options, &BTreeMap::new(), &require, 16, 7).unwrap_err();
         assert_eq!(
             short,
-            Shortfall {
+            DrawError::Short(Shortfall {
                 met: 15,
                 combinations: 36,
                 public_left_out: false,
-            }
+            })
         );
     }
 
@@ -246,8 +296,37 @@ mod tests {
     fn a_requirement_with_pi_is_compared_in_floating_point() {
         let mut values = BTreeMap::new();
         values.insert("t".to_string(), parse("pi/3").unwrap().expr);
-        assert!(requirement("t", Comparison::Greater, "1").holds(&values));
-        assert!(!requirement("t", Comparison::Greater, "11/10").holds(&values));
+        assert_eq!(
+            requirement("t", Comparison::Greater, "1").holds(&values),
+            Ok(true)
+        );
+        assert_eq!(
+            requirement("t", Comparison::Greater, "11/10").holds(&values),
+            Ok(false)
+        );
+    }
+
+    #[test]
+    fn a_requirement_is_decided_exactly_or_refused() {
+        let values = BTreeMap::from([("a".to_string(), Expr::int(2))]);
+        // f64 has sqrt(2)*sqrt(2) = 2.0000000000000004: the engine decides.
+        assert_eq!(
+            requirement("sqrt(a)*sqrt(a)", Comparison::Equal, "2").holds(&values),
+            Ok(true)
+        );
+        assert_eq!(
+            requirement("sqrt(a)*sqrt(a)", Comparison::Greater, "2").holds(&values),
+            Ok(false)
+        );
+        assert_eq!(
+            requirement("sqrt(a)*sqrt(a)", Comparison::NotEqual, "a").holds(&values),
+            Ok(false)
+        );
+        // 1/(a-a) is infinite in f64: refused, never met.
+        assert!(matches!(
+            requirement("1/(a-a)", Comparison::Greater, "0").holds(&values),
+            Err(Undecided::Unevaluable(_))
+        ));
     }
 
     #[test]
@@ -268,11 +347,11 @@ mod tests {
         let short = draw(&options, &fixed, &[], 4, 7).unwrap_err();
         assert_eq!(
             short,
-            Shortfall {
+            DrawError::Short(Shortfall {
                 met: 3,
                 combinations: 4,
                 public_left_out: true,
-            }
+            })
         );
     }
 }

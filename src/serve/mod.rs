@@ -7,7 +7,7 @@ pub mod page;
 
 use axum::body::Body;
 use axum::extract::State;
-use axum::http::{HeaderValue, StatusCode, Uri, header};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, Uri, header};
 use axum::response::sse::{Event, Sse};
 use axum::response::{IntoResponse, Response};
 use std::convert::Infallible;
@@ -31,16 +31,20 @@ pub enum ServeError {
     Runtime(#[source] std::io::Error),
 }
 
-/// What the pages are told: the count of builds so far (each one reloads open pages), and the
-/// errors of the last build when it failed. `None` once the server is stopping.
+/// What the pages are told: the count of builds so far (each one reloads open pages), and what
+/// went wrong in the last one: why it wrote nothing, or the checks that failed in the site it
+/// wrote.
 #[derive(Debug, Clone, Default)]
 struct Status {
     generation: u64,
-    errors: Vec<String>,
+    written: bool,
+    problems: Vec<String>,
 }
 
 struct Shared {
     root: PathBuf,
+    /// The port served: only requests for 127.0.0.1 or localhost at it are answered.
+    port: u16,
     status: Mutex<Status>,
     /// The generation, or `None` to end every open event stream at shutdown.
     changes: watch::Sender<Option<u64>>,
@@ -60,7 +64,6 @@ impl Server {
     pub fn start(
         root: &Path,
         port: u16,
-        errors: Vec<String>,
         on_interrupt: impl FnOnce() + Send + 'static,
     ) -> Result<Server, ServeError> {
         let listener = std::net::TcpListener::bind(("127.0.0.1", port))
@@ -74,10 +77,8 @@ impl Server {
         let (changes, _) = watch::channel(Some(0));
         let shared = Arc::new(Shared {
             root: root.to_path_buf(),
-            status: Mutex::new(Status {
-                generation: 0,
-                errors,
-            }),
+            port: addr.port(),
+            status: Mutex::new(Status::default()),
             changes,
         });
         let runtime = tokio::runtime::Builder::new_current_thread()
@@ -130,12 +131,14 @@ impl Server {
         self.addr
     }
 
-    /// A build has finished: `errors` empty when it wrote the site. Open pages reload.
-    pub fn built(&self, errors: Vec<String>) {
+    /// A build has finished: whether it wrote the site, and what went wrong (why it did not,
+    /// or the checks that failed). Open pages reload.
+    pub fn built(&self, written: bool, problems: Vec<String>) {
         let generation = {
             let mut s = self.shared.status.lock().unwrap_or_else(|p| p.into_inner());
             s.generation += 1;
-            s.errors = errors;
+            s.written = written;
+            s.problems = problems;
             s.generation
         };
         self.shared.changes.send_replace(Some(generation));
@@ -174,7 +177,10 @@ async fn interrupted() {
 }
 
 /// One "reload" event for each build after the page's own (`?since=N`), until shutdown.
-async fn events(State(shared): State<Arc<Shared>>, uri: Uri) -> impl IntoResponse {
+async fn events(State(shared): State<Arc<Shared>>, headers: HeaderMap, uri: Uri) -> Response {
+    if !is_loopback_host(&headers, shared.port) {
+        return misdirected(shared.port);
+    }
     let rx = shared.changes.subscribe();
     let since = uri
         .query()
@@ -206,7 +212,10 @@ async fn events(State(shared): State<Arc<Shared>>, uri: Uri) -> impl IntoRespons
 
 /// A file of the site; an HTML page gets the reload script and, after a failed build, the
 /// error. No file outside the site is ever read.
-async fn file(State(shared): State<Arc<Shared>>, uri: Uri) -> Response {
+async fn file(State(shared): State<Arc<Shared>>, headers: HeaderMap, uri: Uri) -> Response {
+    if !is_loopback_host(&headers, shared.port) {
+        return misdirected(shared.port);
+    }
     let status = shared
         .status
         .lock()
@@ -215,19 +224,18 @@ async fn file(State(shared): State<Arc<Shared>>, uri: Uri) -> Response {
     let Some(rel) = site_path(uri.path()) else {
         return plain(StatusCode::BAD_REQUEST, "bad path");
     };
-    let path = shared.root.join(&rel);
     // Site files are small and local: a blocking read is shorter than the request itself.
     let read = if is_hidden(&rel) {
         Err(std::io::ErrorKind::NotFound.into())
     } else {
-        std::fs::read(&path)
+        read_inside(&shared.root, &rel)
     };
     let bytes = match read {
         Ok(b) => b,
-        Err(_) if !status.errors.is_empty() && !shared.root.join("index.html").exists() => {
+        Err(_) if !shared.root.join("index.html").exists() => {
             return html(
                 StatusCode::SERVICE_UNAVAILABLE,
-                page::no_site_page(&status.errors, status.generation).into_bytes(),
+                page::no_site_page(&status.problems, status.generation).into_bytes(),
             );
         }
         Err(_) => {
@@ -240,13 +248,46 @@ async fn file(State(shared): State<Arc<Shared>>, uri: Uri) -> Response {
     let kind = content_type(&rel);
     if kind.starts_with("text/html") {
         let mut extra = String::new();
-        if !status.errors.is_empty() {
-            extra.push_str(&page::error_box(&status.errors));
+        if !status.problems.is_empty() {
+            extra.push_str(&page::error_box(&status.problems, status.written));
         }
         extra.push_str(&page::reload_snippet(status.generation));
         return html(StatusCode::OK, page::inject(&bytes, &extra));
     }
     respond(StatusCode::OK, kind, bytes)
+}
+
+/// A file of the site by its path inside it, never through a link that leads out of it.
+fn read_inside(root: &Path, rel: &Path) -> std::io::Result<Vec<u8>> {
+    let root = std::fs::canonicalize(root)?;
+    let path = std::fs::canonicalize(root.join(rel))?;
+    if !path.starts_with(&root) {
+        return Err(std::io::ErrorKind::NotFound.into());
+    }
+    std::fs::read(path)
+}
+
+/// Whether the request names this server: 127.0.0.1 or localhost, at its port or none. Any
+/// other name is refused, so that a web page elsewhere cannot read the site through a name
+/// it controls (DNS rebinding).
+fn is_loopback_host(headers: &HeaderMap, port: u16) -> bool {
+    let Some(host) = headers.get(header::HOST).and_then(|h| h.to_str().ok()) else {
+        return false;
+    };
+    let (name, at) = match host.rsplit_once(':') {
+        Some((name, p)) => (name, p.parse::<u16>().ok()),
+        None => (host, Some(port)),
+    };
+    at == Some(port) && (name == "127.0.0.1" || name.eq_ignore_ascii_case("localhost"))
+}
+
+fn misdirected(port: u16) -> Response {
+    plain(
+        StatusCode::MISDIRECTED_REQUEST,
+        &format!(
+            "mechbook serve answers only http://127.0.0.1:{port}/ and http://localhost:{port}/"
+        ),
+    )
 }
 
 /// Whether a relative path passes through a hidden name: the build's own files (the site's
@@ -344,5 +385,32 @@ mod tests {
         assert_eq!(site_path("/../etc/passwd"), None);
         assert_eq!(site_path("/plots/%2e%2e/%2e%2e/x"), None);
         assert_eq!(site_path("/%zz"), None);
+    }
+
+    #[test]
+    fn only_the_loopback_names_at_the_port_are_answered() {
+        let with = |host: &str| {
+            let mut h = HeaderMap::new();
+            h.insert(header::HOST, HeaderValue::from_str(host).unwrap());
+            is_loopback_host(&h, 8000)
+        };
+        for ok in [
+            "127.0.0.1:8000",
+            "localhost:8000",
+            "LocalHost:8000",
+            "127.0.0.1",
+        ] {
+            assert!(with(ok), "{ok}");
+        }
+        for refused in [
+            "evil.example:8000",
+            "127.0.0.1:8001",
+            "localhost.evil.example:8000",
+            "127.0.0.1.nip.io:8000",
+            "",
+        ] {
+            assert!(!with(refused), "{refused}");
+        }
+        assert!(!is_loopback_host(&HeaderMap::new(), 8000), "no Host at all");
     }
 }

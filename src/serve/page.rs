@@ -12,10 +12,16 @@ pub fn reload_snippet(generation: u64) -> String {
     )
 }
 
-/// The failed build's messages, in a box fixed at the top of the page.
-pub fn error_box(messages: &[String]) -> String {
-    let mut html = String::from(
-        "<div id=\"mechbook-serve-error\" role=\"alert\" style=\"position:fixed;top:0;left:0;right:0;z-index:2147483647;max-height:60vh;overflow:auto;margin:0;padding:1em 1.5em;background:#fff4f4;color:#5c0000;border-bottom:3px solid #b00020;font:14px/1.45 ui-monospace,monospace;white-space:pre-wrap\"><strong>mechbook: the last build failed; this is the last good site. Fix the scene and save: the page reloads.</strong>\n",
+/// What went wrong in the last build, in a box fixed at the top of the page: why it wrote
+/// nothing, or (`written`) the checks that failed in the site it wrote.
+pub fn error_box(messages: &[String], written: bool) -> String {
+    let heading = if written {
+        "mechbook: the site was built, but these checks failed (run `mechbook check` for the whole report). Fix the scene and save: the page reloads."
+    } else {
+        "mechbook: the last build failed; this is the last good site. Fix the scene and save: the page reloads."
+    };
+    let mut html = format!(
+        "<div id=\"mechbook-serve-error\" role=\"alert\" style=\"position:fixed;top:0;left:0;right:0;z-index:2147483647;max-height:60vh;overflow:auto;margin:0;padding:1em 1.5em;background:#fff4f4;color:#5c0000;border-bottom:3px solid #b00020;font:14px/1.45 ui-monospace,monospace;white-space:pre-wrap\"><strong>{heading}</strong>\n",
     );
     for m in messages {
         html.push('\n');
@@ -38,11 +44,19 @@ pub fn inject(page: &[u8], extra: &str) -> Vec<u8> {
     out
 }
 
-/// A page of its own for when no build has succeeded yet.
+/// A page of its own for when no build has written a site yet: the first build is running
+/// (no messages), or it failed.
 pub fn no_site_page(messages: &[String], generation: u64) -> String {
+    let (title, body) = if messages.is_empty() {
+        (
+            "mechbook: building",
+            "<p>mechbook is building the site; this page reloads when it is done.</p>".to_owned(),
+        )
+    } else {
+        ("mechbook: build failed", error_box(messages, false))
+    };
     format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>mechbook: build failed</title></head><body>{}{}</body></html>\n",
-        error_box(messages),
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{title}</title></head><body>{body}{}</body></html>\n",
         reload_snippet(generation)
     )
 }
@@ -64,7 +78,7 @@ mod tests {
 
     #[test]
     fn the_error_is_escaped() {
-        let b = error_box(&["a.toml:1:2: unexpected `<`".into()]);
+        let b = error_box(&["a.toml:1:2: unexpected `<`".into()], false);
         assert!(b.contains("a.toml:1:2: unexpected `&lt;`"), "{b}");
         assert!(!b.contains("`<`"));
     }

@@ -1,17 +1,13 @@
 //! `check --bless`: a scene's `[expect]` and its claims' verdicts rewritten to what was derived,
-//! in place, with the file's comments and layout kept (toml_edit). `check` writes the file with
-//! `site::replace_file`, in one rename, so it is never half-written.
+//! in place, with the file's comments, layout, line endings and byte-order mark kept
+//! (toml_edit). The file is edited, not replaced: through a symbolic link, keeping its hard
+//! links, mode and owner, never when it is read-only or changed since it was read.
 
-use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, quantity};
+use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, recorded_by_default};
 use crate::pipeline::SceneReport;
-use std::path::PathBuf;
+use std::os::unix::fs::{MetadataExt, OpenOptionsExt};
+use std::path::{Path, PathBuf};
 use toml_edit::{DocumentMut, Item, TableLike, Value};
-
-/// What `[expect]` records in a scene that has none: every derived result, but the
-/// intermediate integrands and positions.
-fn recorded_by_default(name: &str) -> bool {
-    name != quantity::INTEGRAND && name != quantity::POSITION
-}
 
 const EXPECT_COMMENT: &str = "\n# The results as derived when this scene was last reviewed: \
                               `check` fails if a derivation changes.\n";
@@ -26,6 +22,135 @@ pub enum BlessError {
     },
     #[error("{}: `{field}` is not a table or a list of tables, so it cannot be blessed", path.display())]
     Shape { path: PathBuf, field: &'static str },
+    #[error(
+        "{}: the file is read-only, so nothing was recorded in it: make it writable \
+         (chmod u+w) and run `mechbook check --bless` again, or leave it out of the paths",
+        .0.display()
+    )]
+    ReadOnly(PathBuf),
+    #[error(
+        "{}: the file changed while it was being checked, so nothing was recorded in it (the \
+         verdicts would be those of its old text): run `mechbook check --bless` again",
+        .0.display()
+    )]
+    Changed(PathBuf),
+    #[error("{}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> BlessError + '_ {
+    move |source| BlessError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// The file's bytes with `[expect]` and the verdicts set to what `r` derived, and the changes.
+/// The text is edited with LF line ends and no byte-order mark, and given back both as the
+/// file had them.
+pub fn blessed_bytes(
+    original: &[u8],
+    r: &SceneReport,
+) -> Result<(Vec<u8>, Vec<Blessed>), BlessError> {
+    // The scene was read from these bytes, so they are UTF-8; a file that changed since is
+    // refused by `write_in_place` before anything is written.
+    let text = String::from_utf8_lossy(original);
+    let (bom, body) = match text.strip_prefix('\u{feff}') {
+        Some(rest) => ("\u{feff}", rest),
+        None => ("", &text[..]),
+    };
+    let crlf = body.contains("\r\n") && !body.replace("\r\n", "").contains('\n');
+    let (new, changes) = if crlf {
+        let (new, changes) = blessed_text(&body.replace("\r\n", "\n"), r)?;
+        (new.replace('\n', "\r\n"), changes)
+    } else {
+        blessed_text(body, r)?
+    };
+    Ok((format!("{bom}{new}").into_bytes(), changes))
+}
+
+/// Writes `new` over the file at `path`, which held `original` when the scene was read.
+///
+/// A link is written through to its target. A file with other hard links is overwritten in
+/// place (a new file would leave the others behind), and restored if that fails; any other file
+/// is replaced in one rename from a temporary file beside it with the same mode and owner, so it
+/// is never half-written. Refused, with nothing written: a read-only file, and a file whose
+/// bytes are no longer `original`.
+pub fn write_in_place(path: &Path, original: &[u8], new: &[u8]) -> Result<(), BlessError> {
+    let real = std::fs::canonicalize(path).map_err(io_error(path))?;
+    let meta = std::fs::metadata(&real).map_err(io_error(path))?;
+    if meta.permissions().readonly() {
+        return Err(BlessError::ReadOnly(path.to_path_buf()));
+    }
+    let unchanged = || std::fs::read(&real).is_ok_and(|now| now == original);
+    if !unchanged() {
+        return Err(BlessError::Changed(path.to_path_buf()));
+    }
+    if meta.nlink() > 1 {
+        return overwrite(&real, original, new).map_err(io_error(path));
+    }
+    let name = real
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let temp = real.with_file_name(format!(".{name}.bless-{}", std::process::id()));
+    let written = (|| {
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .mode(meta.mode() & 0o7777)
+            .open(&temp)?;
+        std::io::Write::write_all(&mut f, new)?;
+        f.sync_all()?;
+        // The mode as it was, whatever the umask; the owner and group as they were.
+        std::fs::set_permissions(&temp, meta.permissions())?;
+        let owner = std::fs::metadata(&temp)?;
+        if owner.uid() != meta.uid() || owner.gid() != meta.gid() {
+            std::os::unix::fs::chown(&temp, Some(meta.uid()), Some(meta.gid()))?;
+        }
+        Ok(())
+    })();
+    let replaced = written.and_then(|()| {
+        if unchanged() {
+            std::fs::rename(&temp, &real)
+        } else {
+            Err(std::io::ErrorKind::Interrupted.into())
+        }
+    });
+    match replaced {
+        Ok(()) => Ok(()),
+        Err(e) => {
+            let _ = std::fs::remove_file(&temp);
+            if e.kind() == std::io::ErrorKind::Interrupted {
+                Err(BlessError::Changed(path.to_path_buf()))
+            } else if e.kind() == std::io::ErrorKind::PermissionDenied {
+                // Not ours to give away (another owner): edit the file itself.
+                overwrite(&real, original, new).map_err(io_error(path))
+            } else {
+                Err(io_error(path)(e))
+            }
+        }
+    }
+}
+
+/// Overwrites a file's bytes where they are, keeping the file itself (its links, mode and
+/// owner); puts `original` back when writing `new` fails part way.
+fn overwrite(path: &Path, original: &[u8], new: &[u8]) -> std::io::Result<()> {
+    use std::io::{Seek, Write};
+    let mut f = std::fs::OpenOptions::new().write(true).open(path)?;
+    let write = |f: &mut std::fs::File, bytes: &[u8]| -> std::io::Result<()> {
+        f.seek(std::io::SeekFrom::Start(0))?;
+        f.write_all(bytes)?;
+        f.set_len(bytes.len() as u64)?;
+        f.sync_all()
+    };
+    write(&mut f, new).inspect_err(|_| {
+        let _ = write(&mut f, original);
+    })
 }
 
 /// One change `--bless` made, located: `file:line: claim (eq 36): agrees -> disagrees`.
@@ -80,17 +205,22 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
                         let text = v.to_text();
                         set_keeping_decor(table, &g.quantity, &text);
                         changes.push(Blessed {
-                            line: 0,
-                            what: format!("[expect] {}: {} -> {text}", g.quantity, g.recorded),
+                            line: g.line,
+                            what: format!(
+                                "[expect] {}: {} -> {text}",
+                                g.quantity,
+                                g.recorded.as_deref().unwrap_or("(none)")
+                            ),
                         });
                     }
                     None => {
                         table.remove(&g.quantity);
                         changes.push(Blessed {
-                            line: 0,
+                            line: g.line,
                             what: format!(
                                 "[expect] {}: removed (no longer derived; was {})",
-                                g.quantity, g.recorded
+                                g.quantity,
+                                g.recorded.as_deref().unwrap_or("(none)")
                             ),
                         });
                     }
@@ -133,11 +263,98 @@ fn claim_tables(doc: &mut DocumentMut) -> Option<Vec<&mut dyn TableLike>> {
     }
 }
 
-/// Sets `key` to the string `text`, keeping the old value's surrounding spaces and comment.
+/// Sets `key` to the string `text`, keeping the key's comment above it and the old value's
+/// surrounding spaces and comment (`insert` would reformat the key).
 fn set_keeping_decor(table: &mut dyn TableLike, key: &str, text: &str) {
     let mut value = Value::from(text);
-    if let Some(old) = table.get(key).and_then(Item::as_value) {
-        *value.decor_mut() = old.decor().clone();
+    match table.get_mut(key).and_then(Item::as_value_mut) {
+        Some(old) => {
+            *value.decor_mut() = old.decor().clone();
+            *old = value;
+        }
+        None => {
+            table.insert(key, Item::Value(value));
+        }
     }
-    table.insert(key, Item::Value(value));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("mechbook-bless-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn a_value_set_keeps_the_comment_above_its_key() {
+        let text = "[expect]\n# reviewed by hand\nI = \"1\" # old\n[[claim]]\n# eq 4\nexpect = \"agrees\"\n";
+        let mut doc: DocumentMut = text.parse().unwrap();
+        let t = doc.get_mut("expect").unwrap().as_table_like_mut().unwrap();
+        set_keeping_decor(t, "I", "2");
+        set_keeping_decor(t, "J", "3");
+        let claims = claim_tables(&mut doc).unwrap();
+        let mut claims = claims;
+        set_keeping_decor(claims[0], "expect", "disagrees");
+        assert_eq!(
+            doc.to_string(),
+            "[expect]\n# reviewed by hand\nI = \"2\" # old\nJ = \"3\"\n[[claim]]\n# eq 4\nexpect = \"disagrees\"\n"
+        );
+    }
+
+    #[test]
+    fn a_changed_or_read_only_file_is_refused_and_nothing_is_left_behind() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = scratch("refused");
+        let f = dir.join("a.toml");
+        std::fs::write(&f, "x = 1\n").unwrap();
+        let err = write_in_place(&f, b"x = 0\n", b"x = 2\n").unwrap_err();
+        assert!(matches!(err, BlessError::Changed(_)), "{err}");
+        assert_eq!(std::fs::read(&f).unwrap(), b"x = 1\n");
+        std::fs::set_permissions(&f, std::fs::Permissions::from_mode(0o444)).unwrap();
+        let err = write_in_place(&f, b"x = 1\n", b"x = 2\n").unwrap_err();
+        assert!(matches!(err, BlessError::ReadOnly(_)), "{err}");
+        assert!(err.to_string().contains("chmod u+w"), "{err}");
+        assert_eq!(std::fs::read(&f).unwrap(), b"x = 1\n");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn links_hard_links_and_the_mode_are_kept() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = scratch("links");
+        let real = dir.join("real.toml");
+        std::fs::write(&real, "x = 1\n").unwrap();
+        std::fs::set_permissions(&real, std::fs::Permissions::from_mode(0o640)).unwrap();
+        let link = dir.join("link.toml");
+        std::os::unix::fs::symlink(&real, &link).unwrap();
+        write_in_place(&link, b"x = 1\n", b"x = 2\n").unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read(&real).unwrap(), b"x = 2\n");
+        let mode = std::fs::metadata(&real).unwrap().permissions().mode() & 0o7777;
+        assert_eq!(mode, 0o640);
+        let hard = dir.join("hard.toml");
+        std::fs::hard_link(&real, &hard).unwrap();
+        write_in_place(&hard, b"x = 2\n", b"x = 33\n").unwrap();
+        assert_eq!(std::fs::read(&real).unwrap(), b"x = 33\n");
+        write_in_place(&real, b"x = 33\n", b"x = 4\n").unwrap();
+        assert_eq!(std::fs::read(&hard).unwrap(), b"x = 4\n");
+        assert_eq!(std::fs::metadata(&hard).unwrap().nlink(), 2);
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            3,
+            "a temporary file was left"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -1,7 +1,13 @@
-//! The build cache: each scene's computed results, stored by a key that hashes the scene file's
-//! bytes, the fidelity and the program itself, so an unchanged scene is not derived again and a
-//! rebuilt mechbook never reads an older one's results. Entries are written whole (a temporary
-//! file renamed into place), so a crash mid-write leaves no half-written entry.
+//! The build cache: each scene's computed results, stored by a key that hashes the scene's id,
+//! the scene file's bytes, the fidelity and the program itself, so an unchanged scene is not
+//! derived again and a rebuilt mechbook never reads an older one's results. Entries are written
+//! whole (a temporary file renamed into place), so a crash mid-write leaves no half-written
+//! entry.
+//!
+//! An entry is checked, not trusted: its first line names the key it was stored under and a
+//! checksum of what follows, and only a regular file of bounded size is read. An entry moved
+//! to another's name, edited, truncated, or replaced by a link, a FIFO or a device is
+//! recomputed, and the build says so.
 
 use super::SiteError;
 use crate::model::fidelity::Fidelity;
@@ -9,8 +15,48 @@ use crate::pipeline::{self, FromCache, RunError, SceneReport};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 
-/// Bumped when the entry format changes (2: rationals of any size, stored as text).
-const FORMAT: u64 = 2;
+/// Bumped when the entry format changes (2: rationals of any size, stored as text; 3: a first
+/// line with the entry's key and checksum).
+const FORMAT: u64 = 3;
+
+/// The largest entry read: the shipped scenes' largest report is about 200 KB.
+pub const MAX_ENTRY_BYTES: u64 = 64 << 20;
+
+/// Why a cache entry was not used.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Damage {
+    #[error("not a regular file")]
+    NotAFile,
+    #[error("{0} bytes, more than an entry may have ({MAX_ENTRY_BYTES})")]
+    TooLarge(u64),
+    #[error("unreadable: {0}")]
+    Unreadable(String),
+    #[error("no mechbook header")]
+    NoHeader,
+    #[error("it was stored for another scene or other inputs")]
+    OtherKey,
+    #[error("its checksum does not match its contents")]
+    Checksum,
+    #[error("its contents are not a result mechbook stored")]
+    Contents,
+}
+
+/// What the build should hear about the cache: neither stops it.
+#[derive(Debug, thiserror::Error)]
+pub enum CacheWarning {
+    #[error("the cache is not updated: {0}")]
+    NotStored(SiteError),
+    #[error("the cache entry {} is damaged ({why}): the scene was derived again", path.display())]
+    Damaged { path: PathBuf, why: Damage },
+}
+
+/// A look-up's answer.
+#[derive(Debug, PartialEq)]
+pub enum Lookup {
+    Hit(Vec<u8>),
+    Miss,
+    Damaged(PathBuf, Damage),
+}
 
 pub struct Cache {
     dir: PathBuf,
@@ -42,9 +88,9 @@ impl Cache {
         &self.dir
     }
 
-    /// The entry's file for a scene (`id`, `content_hash`): its symbolic results (no fidelity),
-    /// or its whole report at a fidelity.
-    fn entry(&self, id: &str, content_hash: u64, fidelity: Option<&Fidelity>) -> PathBuf {
+    /// The entry's file for a scene (`id`, `content_hash`), its symbolic results (no fidelity)
+    /// or its whole report at a fidelity, and the key its first line must name.
+    fn entry(&self, id: &str, content_hash: u64, fidelity: Option<&Fidelity>) -> (PathBuf, u64) {
         let (kind, key) = match fidelity {
             None => ("symbolic", format!("{}:{content_hash:016x}", self.program)),
             Some(f) => (
@@ -58,7 +104,8 @@ impl Cache {
             ),
         };
         let hash = crate::base::hash::content_hash(key.as_bytes());
-        self.dir.join(format!("{id}.{kind}.{hash:016x}.json"))
+        let key = crate::base::hash::content_hash(format!("{id}\n{kind}\n{key}").as_bytes());
+        (self.dir.join(format!("{id}.{kind}.{hash:016x}.json")), key)
     }
 
     /// Runs one scene, or takes it from the cache: the whole report when the cache holds it
@@ -69,18 +116,28 @@ impl Cache {
         &self,
         scene: Scene,
         fidelity: Option<Fidelity>,
-    ) -> Result<(SceneReport, Option<SiteError>), RunError> {
+    ) -> Result<(SceneReport, Vec<CacheWarning>), RunError> {
         let (id, hash) = (scene.id.clone(), scene.content_hash);
         let fid = fidelity.or(scene.fidelity).unwrap_or_default();
-        let whole = self
-            .load(&id, hash, Some(&fid))
-            .and_then(|bytes| pipeline::from_cache(scene.clone(), &bytes));
-        if let Some(r) = whole {
-            return Ok((r, None));
+        let mut warnings = Vec::new();
+        let mut damaged = |path: PathBuf, why: Damage| {
+            warnings.push(CacheWarning::Damaged { path, why });
+        };
+        if let Some(bytes) = self.hit(&id, hash, Some(&fid), &mut damaged) {
+            match pipeline::from_cache(scene.clone(), &bytes) {
+                Some(r) => return Ok((r, warnings)),
+                None => damaged(self.entry(&id, hash, Some(&fid)).0, Damage::Contents),
+            }
         }
-        let symbolic = self
-            .load(&id, hash, None)
-            .and_then(|bytes| serde_json::from_slice(&bytes).ok());
+        let symbolic =
+            self.hit(&id, hash, None, &mut damaged)
+                .and_then(|bytes| match serde_json::from_slice(&bytes) {
+                    Ok(s) => Some(s),
+                    Err(_) => {
+                        damaged(self.entry(&id, hash, None).0, Damage::Contents);
+                        None
+                    }
+                });
         let r = pipeline::run_scene_with(scene, Some(fid), symbolic)?;
         let mut stored = self.store(&id, hash, Some(&fid), &pipeline::to_cache(&r));
         if r.from_cache == FromCache::Nothing && stored.is_ok() {
@@ -88,17 +145,57 @@ impl Cache {
                 serde_json::to_vec(&pipeline::symbolic_part(&r)).expect("a report serializes");
             stored = self.store(&id, hash, None, &symbolic);
         }
-        Ok((r, stored.err()))
+        if let Err(e) = stored {
+            warnings.push(CacheWarning::NotStored(e));
+        }
+        Ok((r, warnings))
     }
 
-    /// The stored bytes, or `None` on a miss (including an unreadable entry).
-    pub fn load(
+    /// The stored bytes on a hit; a damaged entry is told to `damaged` and is a miss.
+    fn hit(
         &self,
         id: &str,
         content_hash: u64,
         fidelity: Option<&Fidelity>,
+        damaged: &mut impl FnMut(PathBuf, Damage),
     ) -> Option<Vec<u8>> {
-        std::fs::read(self.entry(id, content_hash, fidelity)).ok()
+        match self.load(id, content_hash, fidelity) {
+            Lookup::Hit(bytes) => Some(bytes),
+            Lookup::Miss => None,
+            Lookup::Damaged(path, why) => {
+                damaged(path, why);
+                None
+            }
+        }
+    }
+
+    /// The stored bytes, checked against the key and checksum of their first line.
+    pub fn load(&self, id: &str, content_hash: u64, fidelity: Option<&Fidelity>) -> Lookup {
+        use std::io::Read;
+        let (path, key) = self.entry(id, content_hash, fidelity);
+        let damaged = |why| Lookup::Damaged(path.clone(), why);
+        let meta = match std::fs::symlink_metadata(&path) {
+            Ok(m) => m,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Lookup::Miss,
+            Err(e) => return damaged(Damage::Unreadable(e.to_string())),
+        };
+        if !meta.file_type().is_file() {
+            return damaged(Damage::NotAFile);
+        }
+        if meta.len() > MAX_ENTRY_BYTES {
+            return damaged(Damage::TooLarge(meta.len()));
+        }
+        let mut bytes = Vec::new();
+        let read = std::fs::File::open(&path)
+            .and_then(|f| f.take(MAX_ENTRY_BYTES + 1).read_to_end(&mut bytes));
+        match read {
+            Err(e) => damaged(Damage::Unreadable(e.to_string())),
+            Ok(n) if n as u64 > MAX_ENTRY_BYTES => damaged(Damage::TooLarge(n as u64)),
+            Ok(_) => match unwrap_entry(&bytes, key) {
+                Ok(payload) => Lookup::Hit(payload.to_vec()),
+                Err(why) => damaged(why),
+            },
+        }
     }
 
     /// Stores an entry and removes the scene's older ones of the same kind: the folder holds at
@@ -110,13 +207,13 @@ impl Cache {
         fidelity: Option<&Fidelity>,
         bytes: &[u8],
     ) -> Result<(), SiteError> {
-        let path = self.entry(id, content_hash, fidelity);
+        let (path, key) = self.entry(id, content_hash, fidelity);
         let io = |p: &Path| {
             let p = p.to_path_buf();
             move |source| SiteError::Io { path: p, source }
         };
         std::fs::create_dir_all(&self.dir).map_err(io(&self.dir))?;
-        super::replace_file(&path, bytes)?;
+        super::replace_file(&path, &wrap_entry(key, bytes))?;
         let name = path.file_name().map(|n| n.to_os_string());
         let kind = if fidelity.is_some() {
             "report"
@@ -142,6 +239,39 @@ impl Cache {
     }
 }
 
+/// An entry's bytes: a first line naming the format, the key and the payload's checksum.
+fn wrap_entry(key: u64, payload: &[u8]) -> Vec<u8> {
+    let sum = crate::base::hash::content_hash(payload);
+    let mut out = format!("mechbook-cache {FORMAT} {key:016x} {sum:016x}\n").into_bytes();
+    out.extend_from_slice(payload);
+    out
+}
+
+/// The payload of an entry stored under `key`, if its first line says so and its checksum holds.
+fn unwrap_entry(bytes: &[u8], key: u64) -> Result<&[u8], Damage> {
+    let end = bytes
+        .iter()
+        .take(80)
+        .position(|&b| b == b'\n')
+        .ok_or(Damage::NoHeader)?;
+    let head = std::str::from_utf8(&bytes[..end]).map_err(|_| Damage::NoHeader)?;
+    let words: Vec<&str> = head.split(' ').collect();
+    let [magic, format, stored_key, sum] = words[..] else {
+        return Err(Damage::NoHeader);
+    };
+    if magic != "mechbook-cache" || format != FORMAT.to_string() {
+        return Err(Damage::NoHeader);
+    }
+    if stored_key != format!("{key:016x}") {
+        return Err(Damage::OtherKey);
+    }
+    let payload = &bytes[end + 1..];
+    if sum != format!("{:016x}", crate::base::hash::content_hash(payload)) {
+        return Err(Damage::Checksum);
+    }
+    Ok(payload)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -152,28 +282,80 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
         let c = Cache::new(&dir);
         let std = Some(&Fidelity::STANDARD);
-        assert_eq!(c.load("a", 1, std), None);
+        assert_eq!(c.load("a", 1, std), Lookup::Miss);
         c.store("a", 1, std, b"one").unwrap();
-        assert_eq!(c.load("a", 1, std).as_deref(), Some(&b"one"[..]));
-        assert_eq!(c.load("a", 2, std), None, "another content hash hit");
+        assert_eq!(c.load("a", 1, std), Lookup::Hit(b"one".to_vec()));
+        assert_eq!(
+            c.load("a", 2, std),
+            Lookup::Miss,
+            "another content hash hit"
+        );
         assert_eq!(
             c.load("a", 1, Some(&Fidelity::DRAFT)),
-            None,
+            Lookup::Miss,
             "another fidelity hit"
         );
         assert_eq!(
             c.load("a", 1, None),
-            None,
+            Lookup::Miss,
             "a report read as symbolic results"
         );
         c.store("a", 1, None, b"symbolic").unwrap();
         c.store("ab", 1, std, b"other scene").unwrap();
         c.store("a", 2, std, b"two").unwrap();
-        assert_eq!(c.load("a", 1, std), None, "the stale entry stayed");
-        assert_eq!(c.load("a", 2, std).as_deref(), Some(&b"two"[..]));
-        assert_eq!(c.load("a", 1, None).as_deref(), Some(&b"symbolic"[..]));
-        assert_eq!(c.load("ab", 1, std).as_deref(), Some(&b"other scene"[..]));
+        assert_eq!(c.load("a", 1, std), Lookup::Miss, "the stale entry stayed");
+        assert_eq!(c.load("a", 2, std), Lookup::Hit(b"two".to_vec()));
+        assert_eq!(c.load("a", 1, None), Lookup::Hit(b"symbolic".to_vec()));
+        assert_eq!(c.load("ab", 1, std), Lookup::Hit(b"other scene".to_vec()));
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 3);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_swapped_edited_linked_or_special_entry_is_damaged_never_a_hit() {
+        let dir = std::env::temp_dir().join(format!("mechbook-cache-bad-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let c = Cache::new(&dir);
+        let std = Some(&Fidelity::STANDARD);
+        c.store("cube", 1, std, b"{\"cube\": 1}").unwrap();
+        c.store("hoop", 2, std, b"{\"hoop\": 2}").unwrap();
+        let (cube, _) = c.entry("cube", 1, std);
+        let (hoop, _) = c.entry("hoop", 2, std);
+        let damage = |l: Lookup| match l {
+            Lookup::Damaged(_, why) => why,
+            other => panic!("not damaged: {other:?}"),
+        };
+        // Swapped: each file names the other's key.
+        let (a, b) = (std::fs::read(&cube).unwrap(), std::fs::read(&hoop).unwrap());
+        std::fs::write(&cube, &b).unwrap();
+        std::fs::write(&hoop, &a).unwrap();
+        assert_eq!(damage(c.load("cube", 1, std)), Damage::OtherKey);
+        assert_eq!(damage(c.load("hoop", 2, std)), Damage::OtherKey);
+        // A value edited inside.
+        let text = String::from_utf8(a.clone()).unwrap();
+        std::fs::write(&cube, text.replace("\"cube\": 1", "\"cube\": 7")).unwrap();
+        assert_eq!(damage(c.load("cube", 1, std)), Damage::Checksum);
+        std::fs::write(&cube, &a[..a.len() - 1]).unwrap();
+        assert_eq!(damage(c.load("cube", 1, std)), Damage::Checksum);
+        std::fs::write(&cube, b"{\"cube\": 1}").unwrap();
+        assert_eq!(damage(c.load("cube", 1, std)), Damage::NoHeader);
+        // A link (to a device that never ends) and a FIFO are not read.
+        std::fs::remove_file(&cube).unwrap();
+        std::os::unix::fs::symlink("/dev/zero", &cube).unwrap();
+        assert_eq!(damage(c.load("cube", 1, std)), Damage::NotAFile);
+        std::fs::remove_file(&cube).unwrap();
+        let made = std::process::Command::new("mkfifo")
+            .arg(&cube)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        assert_eq!(damage(c.load("cube", 1, std)), Damage::NotAFile);
+        // Storing again mends it.
+        c.store("cube", 1, std, b"{\"cube\": 1}").unwrap();
+        assert_eq!(
+            c.load("cube", 1, std),
+            Lookup::Hit(b"{\"cube\": 1}".to_vec())
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -37,17 +37,27 @@ pub enum InitError {
 }
 
 /// Writes the starter course into `dir`, which must be new or empty, and returns the files
-/// written. On any failure, what was written is removed and `dir` is as it was.
+/// written. On any failure, what was written is removed and `dir` is as it was. A folder that
+/// holds only what a killed `init` left (starter files, whole or cut short) counts as empty:
+/// those are removed and written again.
 pub fn init_course(dir: &Path) -> Result<Vec<PathBuf>, InitError> {
     match std::fs::metadata(dir) {
         Ok(m) if !m.is_dir() => return Err(InitError::NotAFolder(dir.to_path_buf())),
         Ok(_) => {
-            let mut entries = std::fs::read_dir(dir).map_err(|source| InitError::Io {
+            let io = |source| InitError::Io {
                 path: dir.to_path_buf(),
                 source,
-            })?;
+            };
+            let mut entries = std::fs::read_dir(dir).map_err(io)?;
             if entries.next().is_some() {
-                return Err(InitError::NotEmpty(dir.to_path_buf()));
+                let left = leftovers(dir).ok_or_else(|| InitError::NotEmpty(dir.to_path_buf()))?;
+                for (path, is_dir) in left.iter().rev() {
+                    if *is_dir {
+                        std::fs::remove_dir(path).map_err(io)?;
+                    } else {
+                        std::fs::remove_file(path).map_err(io)?;
+                    }
+                }
             }
         }
         Err(_) => {}
@@ -83,6 +93,45 @@ pub fn init_course(dir: &Path) -> Result<Vec<PathBuf>, InitError> {
         }
     }
     result
+}
+
+/// Everything under `dir`, folders before what they hold, when all of it is what an interrupted
+/// `init` writes: starter files whose bytes begin the starter's, and their folders, with one
+/// at least missing or cut short. `None` when anything else is there, or the course is whole.
+fn leftovers(dir: &Path) -> Option<Vec<(PathBuf, bool)>> {
+    fn walk(d: &Path, dir: &Path, out: &mut Vec<(PathBuf, bool)>) -> Option<()> {
+        let mut entries: Vec<PathBuf> = std::fs::read_dir(d)
+            .ok()?
+            .map(|e| e.map(|e| e.path()))
+            .collect::<Result<_, _>>()
+            .ok()?;
+        entries.sort();
+        for p in entries {
+            let rel = p.strip_prefix(dir).ok()?.to_string_lossy().into_owned();
+            let meta = std::fs::symlink_metadata(&p).ok()?;
+            if meta.is_dir() {
+                let prefix = format!("{rel}/");
+                STARTER
+                    .iter()
+                    .any(|(f, _)| f.starts_with(&prefix))
+                    .then_some(())?;
+                out.push((p.clone(), true));
+                walk(&p, dir, out)?;
+            } else {
+                let (_, text) = STARTER.iter().find(|(f, _)| *f == rel)?;
+                let bytes = std::fs::read(&p).ok()?;
+                (meta.is_file() && text.as_bytes().starts_with(&bytes)).then_some(())?;
+                out.push((p, false));
+            }
+        }
+        Some(())
+    }
+    let mut out = Vec::new();
+    walk(dir, dir, &mut out)?;
+    let whole = STARTER
+        .iter()
+        .all(|(f, text)| std::fs::read(dir.join(f)).is_ok_and(|b| b == text.as_bytes()));
+    (!whole).then_some(out)
 }
 
 /// Creates `dir` and whichever of its parents are missing, recording each in `made`.

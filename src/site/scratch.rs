@@ -1,5 +1,5 @@
-//! Scratch folders for `mechbook bench`: a copy of the lectures to edit, and a cache to empty
-//! between runs. Everything here lives under a temporary folder that the caller removes.
+//! Scratch folders for `mechbook bench` (a copy of the lectures to edit, and a cache to empty
+//! between runs) and for `serve` (its child builds' reports). Everything here lives under a temporary folder that the caller removes.
 
 use std::path::{Path, PathBuf};
 
@@ -42,6 +42,11 @@ pub fn drop_reports(cache: &Path) -> std::io::Result<()> {
         }
     }
     Ok(())
+}
+
+/// Removes a file if it is there.
+pub fn remove_file(path: &Path) {
+    let _ = std::fs::remove_file(path);
 }
 
 pub fn remove(dir: &Path) {

@@ -159,7 +159,7 @@ require = ["a < b"]
         let report = run_scene(scene.clone(), None).unwrap();
         let checks = &report.verification.variants;
         assert_eq!(checks.len(), 6);
-        assert!(report.passed());
+        assert!(report.verification.verified());
         for v in checks {
             for a in &v.answers {
                 assert!(

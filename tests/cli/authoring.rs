@@ -92,6 +92,35 @@ fn init_refuses_a_file_and_fills_an_empty_folder() {
     let out = mechbook_in(&empty, &["init"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert!(empty.join("lectures/lecture-1/01-book.toml").is_file());
+
+    // What a killed init leaves (some starter files, the last cut short) is finished by the
+    // next init; a folder with anything else in it is still refused.
+    let killed = dir.join("killed");
+    let whole = read_tree(&empty);
+    for (rel, bytes) in whole.iter().take(3) {
+        let p = killed.join(rel);
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(&p, bytes).unwrap();
+    }
+    let (last, bytes) = whole.iter().nth(3).unwrap();
+    let p = killed.join(last);
+    std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+    std::fs::write(&p, &bytes[..bytes.len() / 2]).unwrap();
+    let out = mechbook(&["init", killed.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(read_tree(&killed), whole);
+    std::fs::write(killed.join("README.md"), "my own notes").unwrap();
+    std::fs::remove_file(killed.join("mechbook.toml")).unwrap();
+    let out = mechbook(&["init", killed.to_str().unwrap()]);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "an edited file was taken for a leftover"
+    );
+    assert_eq!(
+        std::fs::read_to_string(killed.join("README.md")).unwrap(),
+        "my own notes"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -125,6 +154,15 @@ fn bless_records_expect_in_a_scene_without_it_and_check_then_passes() {
     let original = hoop_without_expect();
     assert!(!original.contains("[expect]"));
     std::fs::write(&scene, &original).unwrap();
+    // Unrecorded results fail, as an unrecorded claim does, each at the scene's id line.
+    let out = mechbook(&["check", scene.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stdout(&out).contains(":2: `inertia_tensor` not yet recorded (derived"),
+        "{}",
+        stdout(&out)
+    );
+    assert!(stdout(&out).contains("FAILED"), "{}", stdout(&out));
     let out = mechbook(&["check", "--bless", scene.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let printed = stdout(&out);
@@ -245,9 +283,18 @@ fn bless_updates_a_verdict_and_a_result_and_keeps_comments() {
             "principal_moments = \"[M*R^2, M*R^2, M*R^2]\"  # old",
         );
     std::fs::write(&scene, &edited).unwrap();
-    assert_eq!(
-        mechbook(&["check", scene.to_str().unwrap()]).status.code(),
-        Some(1)
+    let check = mechbook(&["check", scene.to_str().unwrap()]);
+    assert_eq!(check.status.code(), Some(1));
+    // A changed result names its line in [expect].
+    let line = edited
+        .lines()
+        .position(|l| l.starts_with("principal_moments"))
+        .unwrap()
+        + 1;
+    assert!(
+        stdout(&check).contains(&format!("hoop.toml:{line}: `principal_moments` changed")),
+        "{}",
+        stdout(&check)
     );
     let out = mechbook(&["check", "--bless", scene.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
@@ -318,4 +365,78 @@ fn completions_are_printed_for_each_shell() {
         }
     }
     assert_eq!(mechbook(&["completions", "tcsh"]).status.code(), Some(2));
+}
+
+#[test]
+fn bless_edits_a_crlf_file_with_a_bom_and_comments_through_a_link_keeping_every_other_byte() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = scratch("bless-bytes");
+    let shipped = std::fs::read_to_string(lecture("06-hoop.toml")).unwrap();
+    // A comment above each key bless will change, a verdict and a result now wrong, CRLF line
+    // ends and a byte-order mark.
+    let file = |verdict: &str, moments: &str| {
+        let text = shipped
+            .replacen(
+                "expect = \"disagrees\"",
+                &format!("# reviewed in week 3\nexpect = \"{verdict}\""),
+                1,
+            )
+            .replace(
+                "principal_moments = \"[1/2*M*R^2, 1/2*M*R^2, M*R^2]\"",
+                &format!("# the eigenvalues, ascending\nprincipal_moments = \"{moments}\""),
+            );
+        assert_ne!(text, shipped);
+        format!("\u{feff}{}", text.replace('\n', "\r\n")).into_bytes()
+    };
+    let edited = file("agrees", "[M*R^2, M*R^2, M*R^2]");
+    let expected = file("disagrees", "[1/2*M*R^2, 1/2*M*R^2, M*R^2]");
+    // The scene lives elsewhere, shared through a link, with mode 0640.
+    let real = dir.join("shared").join("hoop.toml");
+    std::fs::create_dir_all(real.parent().unwrap()).unwrap();
+    std::fs::write(&real, &edited).unwrap();
+    std::fs::set_permissions(&real, std::fs::Permissions::from_mode(0o640)).unwrap();
+    let course = dir.join("lectures");
+    std::fs::create_dir_all(&course).unwrap();
+    let link = course.join("hoop.toml");
+    std::os::unix::fs::symlink(&real, &link).unwrap();
+
+    let out = mechbook(&["check", "--bless", course.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stdout(&out).contains("blessed: 2 change(s)"),
+        "{}",
+        stdout(&out)
+    );
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink(),
+        "the link was replaced by a copy"
+    );
+    assert_eq!(
+        std::fs::read(&real).unwrap(),
+        expected,
+        "other bytes changed"
+    );
+    let mode = std::fs::metadata(&real).unwrap().permissions().mode() & 0o7777;
+    assert_eq!(mode, 0o640);
+    let left: Vec<_> = std::fs::read_dir(real.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left.len(), 1, "{left:?}");
+    assert_eq!(
+        mechbook(&["check", course.to_str().unwrap()]).status.code(),
+        Some(0)
+    );
+
+    // A read-only scene is refused, and left as it was.
+    std::fs::write(&real, &edited).unwrap();
+    std::fs::set_permissions(&real, std::fs::Permissions::from_mode(0o440)).unwrap();
+    let out = mechbook(&["check", "--bless", course.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("is read-only"), "{}", stderr(&out));
+    assert_eq!(std::fs::read(&real).unwrap(), edited);
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -284,6 +284,52 @@ fn the_cache_rebuilds_only_what_changed() {
     );
     assert_eq!(a, c);
 
+    // Two entries swapped, and a value edited inside a third: each is seen, reported and
+    // derived again, and the pages are still the derived ones.
+    let entry = |id: &str| {
+        std::fs::read_dir(&cache)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .find(|p| {
+                let n = p.file_name().unwrap().to_string_lossy().into_owned();
+                n.starts_with(&format!("{id}.report."))
+            })
+            .unwrap_or_else(|| panic!("no report entry for {id}"))
+    };
+    let (cube, hoop, earth_entry) = (
+        entry("cube-corner"),
+        entry("hoop"),
+        entry("earth-precession"),
+    );
+    let (x, y) = (std::fs::read(&cube).unwrap(), std::fs::read(&hoop).unwrap());
+    std::fs::write(&cube, &y).unwrap();
+    std::fs::write(&hoop, &x).unwrap();
+    // One digit of the stored results changed (past the entry's first line).
+    let mut e = std::fs::read(&earth_entry).unwrap();
+    let body = e.iter().position(|&b| b == b'\n').unwrap() + 1;
+    let at = body + e[body..].iter().position(u8::is_ascii_digit).unwrap();
+    e[at] = if e[at] == b'7' { b'8' } else { b'7' };
+    std::fs::write(&earth_entry, e).unwrap();
+    let (mended, m) = build("m", &[]);
+    assert_eq!(a, m, "a damaged entry reached the site");
+    for id in ["cube-corner", "hoop", "earth-precession"] {
+        assert!(
+            mended.contains(&format!("{id}.report.")) && mended.contains("is damaged"),
+            "{id}: {mended}"
+        );
+    }
+    assert!(mended.contains("stored for another scene"), "{mended}");
+    assert!(mended.contains("checksum"), "{mended}");
+    assert!(
+        mended.contains("(15 from the cache, 3 re-run numerically"),
+        "{mended}"
+    );
+    let (again, _) = build("n", &[]);
+    assert!(
+        again.contains("(18 from the cache") && !again.contains("damaged"),
+        "the damaged entries were not mended: {again}"
+    );
+
     // Another fidelity: the symbolic results come from the cache, the numerics run again.
     let (draft, d) = build("d", &["--fidelity", "draft"]);
     assert!(

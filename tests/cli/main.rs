@@ -7,6 +7,7 @@ mod authoring;
 mod bad_input;
 mod build;
 mod check;
+mod contract;
 mod course;
 mod hostile;
 mod lock;

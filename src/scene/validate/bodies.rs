@@ -260,7 +260,10 @@ impl Validator<'_> {
             None => [Expr::int(0), Expr::int(0), Expr::int(0)],
         };
         Ok(Body {
-            label: rb.label.clone().unwrap_or_else(|| shape.kind().to_string()),
+            label: rb
+                .label
+                .as_ref()
+                .map_or_else(|| shape.kind().to_string(), |l| l.get_ref().clone()),
             shape,
             mass,
             subtract,
@@ -269,95 +272,126 @@ impl Validator<'_> {
         })
     }
 
-    /// Sizes and masses must be positive and finite at the scene's numeric values.
-    pub(super) fn check_positive(
-        &self,
-        rb: &RawBody,
-        field: &str,
-        values: &BTreeMap<String, f64>,
-    ) -> Result<(), SceneError> {
-        let env = |s: &str| values.get(s).copied();
-        let mut checks: Vec<(&Text, String)> = Vec::new();
-        if let Some(m) = &rb.mass {
-            checks.push((m, format!("{field}.mass")));
-        }
-        for (name, t) in [
-            ("radius", &rb.radius),
-            ("inner_radius", &rb.inner_radius),
-            ("length", &rb.length),
-            ("height", &rb.height),
-        ] {
-            if let Some(t) = t {
-                checks.push((t, format!("{field}.{name}")));
-            }
-        }
-        if let Some(size) = &rb.size {
-            for (i, t) in size.get_ref().iter().enumerate() {
-                checks.push((t, format!("{field}.size[{i}]")));
-            }
-        }
-        for (j, p) in rb.points.iter().enumerate() {
-            checks.push((&p.get_ref().mass, format!("{field}.points[{j}].mass")));
-        }
-        for (t, f) in checks {
-            let e = parse_expr(t.get_ref()).expect("validated").expr;
-            let v = e
-                .eval(&env)
-                .map_err(|m| self.err(content_start(t), &f, m.to_string()))?;
-            if !(v.is_finite() && v > 0.0) {
-                return Err(self.err(
-                    content_start(t),
-                    &f,
-                    format!("must be positive and finite, but is {v} at the scene's values"),
-                ));
-            }
-        }
-        if let (Some(inner), Some(outer)) = (&rb.inner_radius, &rb.radius) {
-            let at = |t: &Text| parse_expr(t.get_ref()).expect("validated").expr.eval(&env);
-            if let (Ok(i), Ok(o)) = (at(inner), at(outer))
-                && i >= o
-            {
-                return Err(self.err(
-                    content_start(inner),
-                    &format!("{field}.inner_radius"),
-                    format!(
-                        "must be less than `radius`, but is {i} against {o} at the scene's values"
-                    ),
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// Holes may not remove more than there is: the bodies' total mass must stay positive.
-    pub(super) fn check_total_mass(
+    /// The first rule of the bodies that `values` break, if any: sizes and masses positive
+    /// and finite, inner radii below radii, holes lighter than what they are cut from. The same
+    /// rules hold at the scene's values and in every variant.
+    pub(super) fn broken_rule(
         &self,
         raw: &RawScene,
         bodies: &[Body],
         values: &BTreeMap<String, f64>,
-    ) -> Result<(), SceneError> {
-        if !bodies.iter().any(|b| b.subtract) {
-            return Ok(());
-        }
-        let env = |s: &str| values.get(s).copied();
-        let mut total = 0.0;
-        for b in bodies {
-            total += b.mass.eval(&env).unwrap_or(f64::NAN);
-        }
-        if total.is_finite() && total > 0.0 {
-            return Ok(());
-        }
-        let at = raw
-            .bodies
+    ) -> Option<Broken> {
+        raw.bodies
             .iter()
-            .rposition(|b| b.get_ref().subtract == Some(true));
-        let start = at.map_or(0, |i| raw.bodies[i].span().start);
-        Err(self.err(
-            start,
-            &format!("body[{}].mass", at.unwrap_or(0)),
-            format!("the holes remove more than the bodies hold: the total mass is {total} at the scene's values; it must stay positive"),
-        ))
+            .enumerate()
+            .find_map(|(i, rb)| positive(rb.get_ref(), &format!("body[{i}]"), values))
+            .or_else(|| total_mass(raw, bodies, values))
     }
+}
+
+/// A rule the values break: at which field (its offset in the file), what, and the symbols the
+/// field uses. Its message reads `{before} {where}{after}`, where `where` says which values.
+pub(super) struct Broken {
+    pub at: usize,
+    pub field: String,
+    pub symbols: BTreeSet<String>,
+    before: String,
+    after: String,
+}
+
+impl Broken {
+    pub fn message(&self, at_which_values: &str) -> String {
+        format!("{} {at_which_values}{}", self.before, self.after)
+    }
+}
+
+/// Sizes and masses must be positive and finite; an inner radius less than the radius.
+fn positive(rb: &RawBody, field: &str, values: &BTreeMap<String, f64>) -> Option<Broken> {
+    let env = |s: &str| values.get(s).copied();
+    let parsed = |t: &Text| parse_expr(t.get_ref()).expect("validated").expr;
+    let mut checks: Vec<(&Text, String)> = Vec::new();
+    if let Some(m) = &rb.mass {
+        checks.push((m, format!("{field}.mass")));
+    }
+    for (name, t) in [
+        ("radius", &rb.radius),
+        ("inner_radius", &rb.inner_radius),
+        ("length", &rb.length),
+        ("height", &rb.height),
+    ] {
+        if let Some(t) = t {
+            checks.push((t, format!("{field}.{name}")));
+        }
+    }
+    if let Some(size) = &rb.size {
+        for (i, t) in size.get_ref().iter().enumerate() {
+            checks.push((t, format!("{field}.size[{i}]")));
+        }
+    }
+    for (j, p) in rb.points.iter().enumerate() {
+        checks.push((&p.get_ref().mass, format!("{field}.points[{j}].mass")));
+    }
+    let broken = |t: &Text, field: String, before: String, after: &str| Broken {
+        at: content_start(t),
+        field,
+        symbols: parsed(t).symbols().into_iter().collect(),
+        before,
+        after: after.to_string(),
+    };
+    for (t, f) in checks {
+        match parsed(t).eval(&env) {
+            Err(m) => return Some(broken(t, f, m.to_string(), "")),
+            Ok(v) if !(v.is_finite() && v > 0.0) => {
+                return Some(broken(
+                    t,
+                    f,
+                    format!("must be positive and finite, but is {v}"),
+                    "",
+                ));
+            }
+            Ok(_) => {}
+        }
+    }
+    if let (Some(inner), Some(outer)) = (&rb.inner_radius, &rb.radius)
+        && let (Ok(i), Ok(o)) = (parsed(inner).eval(&env), parsed(outer).eval(&env))
+        && i >= o
+    {
+        let mut b = broken(
+            inner,
+            format!("{field}.inner_radius"),
+            format!("must be less than `radius`, but is {i} against {o}"),
+            "",
+        );
+        b.symbols.extend(parsed(outer).symbols());
+        return Some(b);
+    }
+    None
+}
+
+/// Holes may not remove more than there is: the bodies' total mass must stay positive.
+fn total_mass(raw: &RawScene, bodies: &[Body], values: &BTreeMap<String, f64>) -> Option<Broken> {
+    if !bodies.iter().any(|b| b.subtract) {
+        return None;
+    }
+    let env = |s: &str| values.get(s).copied();
+    let total: f64 = bodies
+        .iter()
+        .map(|b| b.mass.eval(&env).unwrap_or(f64::NAN))
+        .sum();
+    if total.is_finite() && total > 0.0 {
+        return None;
+    }
+    let at = raw
+        .bodies
+        .iter()
+        .rposition(|b| b.get_ref().subtract == Some(true));
+    Some(Broken {
+        at: at.map_or(0, |i| raw.bodies[i].span().start),
+        field: format!("body[{}].mass", at.unwrap_or(0)),
+        symbols: bodies.iter().flat_map(|b| b.mass.symbols()).collect(),
+        before: format!("the holes remove more than the bodies hold: the total mass is {total}"),
+        after: "; it must stay positive".to_string(),
+    })
 }
 
 pub(super) fn body_symbols(b: &Body) -> BTreeSet<String> {

@@ -9,6 +9,9 @@ use crate::scene::types::{Claim, ClaimRole, Verdict};
 use crate::scene::validate::CLAIM_FUNCTIONS;
 use std::collections::{BTreeMap, BTreeSet};
 
+/// `[expect]`: each quantity's recorded value, and the line of its key.
+type Recorded = (BTreeMap<String, Expr>, BTreeMap<String, usize>);
+
 impl Validator<'_> {
     /// Every claim, its names checked against what the scene defines and derives.
     pub(super) fn claims(
@@ -34,8 +37,9 @@ impl Validator<'_> {
         raw: &RawScene,
         allowed: &BTreeSet<String>,
         variables: &BTreeSet<String>,
-    ) -> Result<BTreeMap<String, Expr>, SceneError> {
+    ) -> Result<Recorded, SceneError> {
         let mut expect = BTreeMap::new();
+        let mut lines = BTreeMap::new();
         for (name, value) in &raw.expect {
             let n = name.get_ref();
             if !is_quantity(n) {
@@ -59,8 +63,9 @@ impl Validator<'_> {
                 n.clone(),
                 self.claim_expr(value, &format!("expect.{n}"), &scope)?,
             );
+            lines.insert(n.clone(), self.loc.line_col(name.span().start).0);
         }
-        Ok(expect)
+        Ok((expect, lines))
     }
 
     fn claim(
@@ -145,7 +150,7 @@ impl Validator<'_> {
         };
         Ok(Claim {
             eq: eq.clone(),
-            statement: c.statement.clone(),
+            statement: c.statement.get_ref().clone(),
             quantity,
             value,
             figures,

@@ -6,6 +6,9 @@ mod claims;
 mod plots;
 mod problem;
 mod symbols;
+mod text;
+
+pub use text::control_character;
 
 use super::error::{Locator, SceneError};
 use super::raw::{RawScene, Text};
@@ -81,6 +84,7 @@ impl Validator<'_> {
     /// error reported is the first in the file's logic.
     pub(super) fn scene(&self, raw: RawScene) -> Result<Scene, SceneError> {
         self.names(&raw)?;
+        self.prose_fields(&raw)?;
         let symbols = self.symbols(&raw)?;
         let mut allowed: BTreeSet<String> = symbols.keys().cloned().collect();
         allowed.insert("pi".into());
@@ -132,14 +136,14 @@ impl Validator<'_> {
             ),
             None => None,
         };
-        let expect = self.expect(&raw, &allowed, &variables)?;
+        let (expect, expect_lines) = self.expect(&raw, &allowed, &variables)?;
         let cite = self.cites(&raw)?;
-        let problem = self.problem(&raw, &symbols, &values, &wants)?;
+        let problem = self.problem(&raw, &symbols, &values, &wants, &bodies)?;
         Ok(Scene {
             id_at: self.loc.line_col(content_start(&raw.id)),
             lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
             id: raw.id.into_inner(),
-            title: raw.title,
+            title: raw.title.into_inner(),
             source: self.loc.path.to_path_buf(),
             content_hash: crate::base::hash::content_hash(self.loc.text.as_bytes()),
             notes: NotesRef {
@@ -156,6 +160,12 @@ impl Validator<'_> {
             claims,
             wants,
             plots,
+            expect_lines,
+            plot_at: raw
+                .plots
+                .iter()
+                .map(|p| self.loc.line_col(p.span().start))
+                .collect(),
             values,
             seed: raw.numeric.seed.unwrap_or(1),
             fidelity,

@@ -6,9 +6,9 @@ use crate::cas::{Expr, Rational};
 use crate::model::catalogue::{ANSWERS, Output};
 use crate::scene::error::SceneError;
 use crate::scene::raw::RawScene;
-use crate::scene::types::{Problem, Variant};
+use crate::scene::types::{Body, Problem, Variant};
 use crate::scene::variants::{
-    Comparison, MAX_COMBINATIONS, MAX_VARIANTS, Requirement, draw, range,
+    Comparison, DrawError, MAX_COMBINATIONS, MAX_VARIANTS, Requirement, draw, range,
 };
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
@@ -20,6 +20,39 @@ pub const MAX_STATEMENT: usize = 4000;
 
 type Entry = (Spanned<String>, Spanned<toml::Value>);
 
+/// The most digits in a variant's value, numerator or denominator: longer ones are beyond what
+/// the numeric check can follow, and slow every exact step.
+pub const MAX_VALUE_DIGITS: usize = 30;
+
+/// Why a value cannot be a variant's, if it cannot: it has more than [`MAX_VALUE_DIGITS`]
+/// digits, or its size is beyond double precision, where the numeric check would see infinity
+/// or zero instead of it (never clamped).
+fn beyond_double(e: &Expr) -> Option<String> {
+    let mut shown = e.to_text();
+    if shown.len() > 40 {
+        shown = format!("{}… ({} characters)", &shown[..30], shown.len());
+    }
+    if let Some(r) = e.eval_rational(&|_| None) {
+        let (n, d) = r.abs_parts();
+        let digits = n.to_string().len().max(d.to_string().len());
+        if digits > MAX_VALUE_DIGITS {
+            return Some(format!(
+                "{shown} has {digits} digits; a value has at most {MAX_VALUE_DIGITS}: give the \
+                 quantity in units where it has fewer"
+            ));
+        }
+    }
+    let x = e.eval(&|_| None).ok()?;
+    let zero = e.eval_rational(&|_| None).is_some_and(|r| r.is_zero());
+    if !x.is_finite() || (!x.is_normal() && !zero) {
+        return Some(format!(
+            "{shown} is beyond double precision (sizes from about 2.2e-308 to 1.8e308), which \
+             the numeric check needs: give the quantity in units where it is nearer 1"
+        ));
+    }
+    None
+}
+
 impl Validator<'_> {
     pub(super) fn problem(
         &self,
@@ -27,6 +60,7 @@ impl Validator<'_> {
         symbols: &BTreeMap<String, String>,
         values: &BTreeMap<String, f64>,
         wants: &[Output],
+        bodies: &[Body],
     ) -> Result<Option<Problem>, SceneError> {
         let Some(p) = &raw.problem else {
             if let Some(v) = &raw.variants {
@@ -96,7 +130,7 @@ impl Validator<'_> {
             Some(t) => *t.get_ref(),
             None => DEFAULT_TOLERANCE,
         };
-        let variants = self.variants(raw, symbols, values)?;
+        let variants = self.variants(raw, symbols, values, bodies)?;
         if let Some((name, at)) = placeholders
             .iter()
             .find(|(name, _)| !variants[0].values.contains_key(name))
@@ -164,12 +198,15 @@ impl Validator<'_> {
         Ok(found)
     }
 
-    /// The variants: one, at the scene's values, without `[variants]`.
+    /// The variants: one, at the scene's values, without `[variants]`. Each obeys the bodies'
+    /// rules as the scene's own values do; a range or list that breaks one is refused at its
+    /// line, with the value and the variant.
     fn variants(
         &self,
         raw: &RawScene,
         symbols: &BTreeMap<String, String>,
         values: &BTreeMap<String, f64>,
+        bodies: &[Body],
     ) -> Result<Vec<Variant>, SceneError> {
         // A symbol without a range keeps its [numeric] value, exactly as written in decimal.
         let fixed: BTreeMap<String, Expr> = values
@@ -190,7 +227,9 @@ impl Validator<'_> {
         let mut count_at = table_at;
         let mut seed = 1u64;
         let mut require = Vec::new();
+        let mut require_at = table_at;
         let mut options: Vec<(String, Vec<Expr>)> = Vec::new();
+        let mut option_at: BTreeMap<String, usize> = BTreeMap::new();
         let entries: Vec<Entry> = table.get_ref().clone().into_iter().collect();
         for (key, value) in &entries {
             let name = key.get_ref().as_str();
@@ -210,8 +249,12 @@ impl Validator<'_> {
                             self.err(at, &field, "the seed is a non-negative integer, such as 7")
                         })?
                 }
-                "require" => require = self.requirements(value, &field, symbols)?,
+                "require" => {
+                    require_at = at;
+                    require = self.requirements(value, &field, symbols)?;
+                }
                 _ if symbols.contains_key(name) => {
+                    option_at.insert(name.to_string(), at);
                     options.push((name.to_string(), self.options(value, &field)?))
                 }
                 _ => {
@@ -247,7 +290,26 @@ impl Validator<'_> {
                 ),
             ));
         };
-        draw(&options, &fixed, &require, count, seed).map_err(|short| {
+        let variants = draw(&options, &fixed, &require, count, seed).map_err(|e| {
+            let short = match e {
+                DrawError::Short(short) => short,
+                DrawError::Undecided { index, values, why } => {
+                    let at_values: Vec<String> = options
+                        .iter()
+                        .filter_map(|(n, _)| values.get(n).map(|v| format!("{n} = {}", v.to_text())))
+                        .collect();
+                    return self.err(
+                        require_at,
+                        &format!("variants.require[{index}]"),
+                        format!(
+                            "`{}` cannot be decided at {}: {why}; write it so that it can be \
+                             decided, for example with both sides rational",
+                            require[index].text,
+                            at_values.join(", ")
+                        ),
+                    );
+                }
+            };
             let mut why = if require.is_empty() {
                 String::new()
             } else {
@@ -273,7 +335,38 @@ impl Validator<'_> {
                     }
                 ),
             )
-        })
+        })?;
+        for v in &variants {
+            let numbers = v.numbers();
+            let Some(b) = self.broken_rule(raw, bodies, &numbers) else {
+                continue;
+            };
+            // At the range of a varying symbol the broken field uses.
+            let (name, at) = options
+                .iter()
+                .find(|(n, _)| b.symbols.contains(n))
+                .or(options.first())
+                .map(|(n, _)| (n.clone(), option_at[n]))
+                .unwrap_or_else(|| (String::new(), table_at));
+            let field = if name.is_empty() {
+                "variants".to_string()
+            } else {
+                format!("variants.{name}")
+            };
+            let value = v.values.get(&name).map(Expr::to_text).unwrap_or_default();
+            return Err(self.err(
+                at,
+                &field,
+                format!(
+                    "{name} = {value} (variant {}) breaks `{}`: {}; keep the range or list \
+                     within the bodies' rules (or add a `require`)",
+                    v.number,
+                    b.field,
+                    b.message("in that variant")
+                ),
+            ));
+        }
+        Ok(variants)
     }
 
     fn count(&self, value: &Spanned<toml::Value>, field: &str) -> Result<usize, SceneError> {
@@ -388,6 +481,9 @@ impl Validator<'_> {
         };
         if out.is_empty() {
             return Err(self.err(at, field, "this range or list has no values"));
+        }
+        if let Some(why) = out.iter().find_map(beyond_double) {
+            return Err(self.err(at, field, why));
         }
         Ok(out)
     }

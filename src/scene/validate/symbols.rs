@@ -38,7 +38,7 @@ impl Validator<'_> {
                     format!("`{n}` cannot be a symbol name"),
                 ));
             }
-            symbols.insert(n.clone(), meaning.clone());
+            symbols.insert(n.clone(), meaning.get_ref().clone());
         }
         Ok(symbols)
     }
@@ -136,10 +136,9 @@ impl Validator<'_> {
                 ));
             }
         }
-        for (i, rb) in raw.bodies.iter().enumerate() {
-            self.check_positive(rb.get_ref(), &format!("body[{i}]"), &values)?;
+        if let Some(b) = self.broken_rule(raw, bodies, &values) {
+            return Err(self.err(b.at, &b.field, b.message("at the scene's values")));
         }
-        self.check_total_mass(raw, bodies, &values)?;
         Ok(values)
     }
 }

@@ -1,0 +1,202 @@
+//! The JSON reports: `check --json` and `derive --json`, built from the results. No I/O here.
+
+use super::failures;
+use crate::derive::ExactBasis;
+use crate::model::value::{Value, eval_at};
+use crate::numeric::eigen::Space;
+use crate::pipeline::SceneReport;
+use crate::scene::Verdict;
+use serde_json::{Value as Json, json};
+/// Numbers as JSON; a non-finite value becomes null rather than invalid JSON.
+fn num(x: f64) -> Json {
+    serde_json::Number::from_f64(x)
+        .map(Json::Number)
+        .unwrap_or(Json::Null)
+}
+
+fn numeric_entries(v: &Value, r: &SceneReport) -> Json {
+    let vals: Vec<Json> = v
+        .entries()
+        .iter()
+        .map(|e| eval_at(e, &r.scene.values).map(num).unwrap_or(Json::Null))
+        .collect();
+    match v {
+        Value::Scalar(_) => vals.into_iter().next().unwrap_or(Json::Null),
+        Value::Vector(_) => Json::Array(vals),
+        Value::Matrix(_) => Json::Array(vals.chunks(3).map(|c| Json::Array(c.to_vec())).collect()),
+    }
+}
+
+fn vec_text(v: &[crate::cas::Expr; 3]) -> String {
+    Value::Vector(v.clone()).to_text()
+}
+
+/// One scene as JSON, in the shape documented in the README.
+/// `check --json`: whether everything passed, the counts a CI summary needs, every failure on
+/// one located line, and each scene. `not_derived` are the scenes that could not be derived.
+pub fn check_json(reports: &[SceneReport], not_derived: &[String]) -> Json {
+    let failures: Vec<String> = reports
+        .iter()
+        .flat_map(failures)
+        .map(|f| f.text)
+        .chain(not_derived.iter().cloned())
+        .collect();
+    let claims = reports.iter().flat_map(|r| &r.verification.claims);
+    let count = |v: Verdict| claims.clone().filter(|c| c.verdict == v).count();
+    json!({
+        "passed": failures.is_empty(),
+        "counts": {
+            "scenes": reports.len() + not_derived.len(),
+            "scenes_passed": reports.iter().filter(|r| r.passed()).count(),
+            "scenes_failed": reports.iter().filter(|r| !r.passed()).count(),
+            "scenes_not_derived": not_derived.len(),
+            "claims": claims.clone().count(),
+            "agree": count(Verdict::Agrees),
+            "disagree": count(Verdict::Disagrees),
+            "failures": failures.len(),
+        },
+        "failures": failures,
+        "scenes": reports.iter().map(scene_json).collect::<Vec<_>>(),
+    })
+}
+
+pub fn scene_json(r: &SceneReport) -> Json {
+    let s = &r.scene;
+    let mut quantities = serde_json::Map::new();
+    for (name, v) in &r.derivation.quantities {
+        quantities.insert(
+            name.clone(),
+            json!({ "exact": v.to_text(), "latex": v.to_latex(), "numeric": numeric_entries(v, r) }),
+        );
+    }
+    let claims: Vec<Json> = r
+        .verification
+        .claims
+        .iter()
+        .map(|c| {
+            json!({
+                "eq": c.eq,
+                "statement": c.statement,
+                "notes": c.notes,
+                "derived": c.derived,
+                "verdict": c.verdict.as_str(),
+                "expected": c.expected.map(|v| v.as_str()),
+                "passed": c.passed(),
+                "differences": c.differences.iter().map(|d| d.to_text()).collect::<Vec<_>>(),
+                "problem": c.problem,
+                "precision": c.precision,
+            })
+        })
+        .collect();
+    let numeric_checks: Vec<Json> = match &r.numeric {
+        Some(n) => n
+            .runs
+            .iter()
+            .zip(&r.verification.within_law)
+            .map(|(q, ok)| {
+                json!({
+                    "body": q.body,
+                    "method": q.method.name(),
+                    "points": q.points,
+                    "error": num(q.error),
+                    "predicted_error": num(q.predicted_error),
+                    "seconds": num(q.seconds),
+                    "within_law": ok,
+                    "stop": q.stop.describe(),
+                })
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    let principal: Vec<Json> = r
+        .derivation
+        .eigen
+        .iter()
+        .flat_map(|e| e.spaces.iter())
+        .map(|sp| {
+            let (kind, dir) = match &sp.basis {
+                ExactBasis::Axis(a) => ("axis", Some(vec_text(a))),
+                ExactBasis::PlaneNormalTo(n) => ("plane-normal-to", Some(vec_text(n))),
+                ExactBasis::All => ("all", None),
+            };
+            json!({
+                "value": sp.value.to_text(),
+                "numeric": eval_at(&sp.value, &s.values).map(num).unwrap_or(Json::Null),
+                "multiplicity": sp.multiplicity,
+                "eigenspace": kind,
+                "direction": dir,
+            })
+        })
+        .collect();
+    let stages: Vec<Json> = r
+        .plan
+        .explain()
+        .into_iter()
+        .map(|(st, why)| json!({ "stage": st.name(), "ran": why.is_some(), "because": why.unwrap_or_default() }))
+        .collect();
+    json!({
+        "id": s.id,
+        "title": s.title,
+        "source": s.source.to_string_lossy(),
+        "notes": { "lecture": s.notes.lecture, "section": s.notes.section, "equations": s.notes.equations },
+        "passed": r.passed(),
+        "quantities": quantities,
+        "principal_axes": principal,
+        "principal_moments": r.verification.principal.as_ref().map(|p| json!({
+            "values": p.exact.iter().map(|v| num(*v)).collect::<Vec<_>>(),
+            "closed_form": p.closed_form,
+            "numeric": p.numeric.iter().flat_map(|e| std::iter::repeat_n(num(e.value), e.multiplicity)).collect::<Vec<_>>(),
+            "axes": p.numeric.iter().map(|e| match &e.space {
+                Space::Axis(v) => json!({ "axis": ([v.x, v.y, v.z].map(num)) }),
+                Space::PlaneNormalTo(v) => json!({ "plane_normal_to": ([v.x, v.y, v.z].map(num)) }),
+                Space::All => json!("all"),
+            }).collect::<Vec<_>>(),
+            "error": num(p.error),
+        })),
+        "claims": claims,
+        "numeric_checks": numeric_checks,
+        "exact_vs_numeric": r.verification.quantities.iter().map(|q| json!({
+            "quantity": q.name, "error": num(q.error), "passed": q.passed })).collect::<Vec<_>>(),
+        "eigen_check": r.verification.eigen.as_ref().map(|e| json!({
+            "value_error": num(e.value_error), "axis_error": num(e.axis_error), "passed": e.passed })),
+        "regressions": r.verification.regressions.iter().map(|g| json!({
+            "quantity": g.quantity, "recorded": g.recorded, "derived": g.derived, "unchanged": g.unchanged })).collect::<Vec<_>>(),
+        "variants": r.verification.variants.iter().map(|v| json!({
+            "number": v.number,
+            "values": v.values.iter().map(|(name, text, latex)| (name.clone(), json!({
+                "exact": text,
+                "latex": latex,
+                "numeric": s.problem.as_ref()
+                    .and_then(|p| p.variants.get(v.number - 1))
+                    .and_then(|x| x.values.get(name))
+                    .and_then(|e| e.eval(&|_| None).ok())
+                    .map(num),
+            }))).collect::<serde_json::Map<_, _>>(),
+            "passed": v.passed(),
+            "answers": v.answers.iter().map(|a| json!({
+                "quantity": a.quantity,
+                "exact": a.exact.to_text(),
+                "latex": a.exact.to_latex(),
+                "entries": a.exact.entries().iter().map(|e| e.to_latex()).collect::<Vec<_>>(),
+                "numeric": a.exact_numbers.iter().map(|x| num(*x)).collect::<Vec<_>>(),
+                "independent": a.numeric.iter().map(|x| num(*x)).collect::<Vec<_>>(),
+                "error": num(a.error),
+                "tolerance": num(a.tolerance),
+                "passed": a.passed(),
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "steps": r.derivation.steps,
+        "stages": stages,
+        "symbolic_seconds": num(r.symbolic_seconds),
+        "engine_calls": r.engine_calls,
+        "numeric_work": r.numeric_work,
+        "fidelity": { "name": r.fidelity.name(), "tolerance": r.fidelity.tolerance, "max_points": r.fidelity.max_points() },
+        "figures": r.figures.iter().map(|f| json!({
+            "slug": f.slug,
+            "accuracy": f.accuracy.iter().map(|a| json!({
+                "result": a.result, "method": a.method, "true_error": a.true_error.map(num),
+                "estimated_error": a.estimated_error.map(num), "cost": a.cost, "unit": a.unit,
+                "seconds": num(a.seconds) })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+    })
+}

@@ -1,0 +1,430 @@
+//! Reports for the terminal and as JSON. Pure functions from results to strings: no I/O here.
+
+use crate::base::format::sci;
+use crate::numeric::eigen::Space;
+use crate::pipeline::SceneReport;
+use crate::scene::Verdict;
+use crate::verify::ClaimResult;
+use std::fmt::Write;
+
+mod json;
+pub use json::{check_json, scene_json};
+
+/// The relative difference of every variant's every answer from its numeric route.
+fn variant_errors(r: &SceneReport) -> impl Iterator<Item = f64> + '_ {
+    r.verification
+        .variants
+        .iter()
+        .flat_map(|v| v.answers.iter().map(|a| a.error))
+}
+
+/// A heading with the count, then each claim with its scene and the lines that explain it.
+fn list_claims(out: &mut String, heading: &str, claims: &[(&SceneReport, &ClaimResult)]) {
+    if claims.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "\n{heading} ({}):", claims.len());
+    for (r, c) in claims {
+        let _ = writeln!(out, "  eq ({}) [{}] {}", c.eq, r.scene.id, c.statement);
+        for d in &c.differences {
+            let _ = writeln!(out, "      {d}");
+        }
+    }
+}
+
+/// One reason a scene fails, on one located line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    pub text: String,
+    /// A verdict or a recorded result that differs from the derivation: `check --bless`
+    /// records the new one. Any other failure is not settled by a record.
+    pub recordable: bool,
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+/// What failed in one scene: the reasons `check` and `derive` exit with 1.
+pub fn failures(r: &SceneReport) -> Vec<Failure> {
+    let mut failures = Vec::new();
+    let src = r.scene.source.display();
+    for c in r.verification.claims.iter().filter(|c| !c.passed()) {
+        let recordable = c.problem.is_none();
+        let why = c.problem.clone().unwrap_or_else(|| match c.expected {
+            Some(expected) => format!(
+                "verdict {} but the scene records {}",
+                c.verdict.as_str(),
+                expected.as_str()
+            ),
+            None => format!(
+                "verdict {}, not yet recorded: review it, then add expect = \"{}\" or run \
+                 `mechbook check --bless`",
+                c.verdict.as_str(),
+                c.verdict.as_str()
+            ),
+        });
+        failures.push(Failure {
+            text: format!("{src}:{}: claim ({}): {why}", c.line, c.eq),
+            recordable,
+        });
+    }
+    for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
+        let text = match &g.recorded {
+            Some(recorded) => format!(
+                "{src}:{}: `{}` changed: recorded {recorded}, derived {}",
+                g.line, g.quantity, g.derived
+            ),
+            None => format!(
+                "{src}:{}: `{}` not yet recorded (derived {}): review it, then run `mechbook \
+                 check --bless`, which writes the scene's [expect]",
+                g.line, g.quantity, g.derived
+            ),
+        };
+        failures.push(Failure {
+            text,
+            recordable: true,
+        });
+    }
+    for q in r.verification.quantities.iter().filter(|q| !q.passed) {
+        failures.push(unrecordable(format!(
+            "{src}: `{}`: exact and numeric differ by {} (relative)",
+            q.name,
+            sci(q.error)
+        )));
+    }
+    if let Some(e) = r.verification.eigen.as_ref().filter(|e| !e.passed) {
+        failures.push(unrecordable(format!(
+            "{src}: principal axes: exact and numeric differ (values {}, axes {})",
+            sci(e.value_error),
+            sci(e.axis_error)
+        )));
+    }
+    for v in &r.verification.variants {
+        for a in v.answers.iter().filter(|a| !a.passed()) {
+            failures.push(unrecordable(format!(
+                "{src}: variant {}: `{}`: exact and numeric differ by {} (relative), beyond {}",
+                v.number,
+                a.quantity,
+                sci(a.error),
+                sci(a.tolerance)
+            )));
+        }
+    }
+    if let Some(n) = &r.numeric {
+        for (q, ok) in n.runs.iter().zip(&r.verification.within_law) {
+            if !ok {
+                failures.push(unrecordable(format!(
+                    "{src}: {} {} ({} points): error {} beyond its law {}",
+                    q.body,
+                    q.method.name(),
+                    q.points,
+                    sci(q.error),
+                    sci(q.predicted_error)
+                )));
+            }
+        }
+    }
+    failures
+}
+
+fn unrecordable(text: String) -> Failure {
+    Failure {
+        text,
+        recordable: false,
+    }
+}
+
+/// The summary table printed by `check`, with the notes' errata and every failure below it.
+pub fn check_table(reports: &[SceneReport]) -> String {
+    let mut out = String::new();
+    // Columns as wide as their longest entry: a course may name its lectures in words.
+    let id_width = reports
+        .iter()
+        .map(|r| r.scene.id.len())
+        .fold(28, usize::max);
+    let lecture_width = reports
+        .iter()
+        .map(|r| r.scene.notes.lecture.chars().count())
+        .fold(4, usize::max);
+    let _ = writeln!(
+        out,
+        "{:<id_width$} {:>lecture_width$} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9} {:>6}",
+        "scene", "lect", "results", "agree", "disagree", "n/c", "exact~num", "symb ms", "status"
+    );
+    for r in reports {
+        let worst = r
+            .verification
+            .quantities
+            .iter()
+            .map(|q| q.error)
+            .chain(variant_errors(r))
+            .fold(None, |m: Option<f64>, e| Some(m.map_or(e, |m| m.max(e))));
+        let _ = writeln!(
+            out,
+            "{:<id_width$} {:>lecture_width$} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9.2} {:>6}",
+            r.scene.id,
+            r.scene.notes.lecture,
+            r.derivation.quantities.len(),
+            r.verification.count(Verdict::Agrees),
+            r.verification.count(Verdict::Disagrees),
+            r.verification.count(Verdict::NotCheckable),
+            worst.map(sci).unwrap_or_else(|| "-".into()),
+            r.symbolic_seconds * 1e3,
+            if r.passed() { "ok" } else { "FAILED" }
+        );
+    }
+    let errata: Vec<_> = reports
+        .iter()
+        .flat_map(|r| r.verification.errata().map(move |c| (r, c)))
+        .collect();
+    list_claims(
+        &mut out,
+        "Where the notes disagree with the derivation",
+        &errata,
+    );
+    let undecided: Vec<_> = reports
+        .iter()
+        .flat_map(|r| {
+            r.verification
+                .claims
+                .iter()
+                .filter(|c| c.verdict == Verdict::Undecided)
+                .map(move |c| (r, c))
+        })
+        .collect();
+    list_claims(
+        &mut out,
+        "Undecided: the symbolic and random-point tests disagree",
+        &undecided,
+    );
+    let failures: Vec<Failure> = reports.iter().flat_map(failures).collect();
+    if !failures.is_empty() {
+        let _ = writeln!(out, "\nFailures ({}):", failures.len());
+        for f in failures {
+            let _ = writeln!(out, "  {f}");
+        }
+        let _ = writeln!(
+            out,
+            "Once you have reviewed them, `mechbook check --bless` records the derived results \
+             and verdicts in the scenes."
+        );
+    }
+    let problems = reports.iter().filter(|r| r.scene.problem.is_some()).count();
+    if problems > 0 {
+        let variants: usize = reports.iter().map(|r| r.verification.variants.len()).sum();
+        let answers = reports
+            .iter()
+            .flat_map(|r| &r.verification.variants)
+            .flat_map(|v| &v.answers);
+        let failed = answers.clone().filter(|a| !a.passed()).count();
+        // The worst of those that passed: a failed one is listed above with its own difference
+        // (which may be infinite).
+        let worst = answers
+            .clone()
+            .filter(|a| a.passed())
+            .map(|a| a.error)
+            .fold(0.0f64, f64::max);
+        let _ = if failed == 0 {
+            writeln!(
+                out,
+                "\n{problems} problem(s), {variants} variant(s): every answer exact and \
+                 cross-checked numerically, worst relative difference {}",
+                sci(worst)
+            )
+        } else {
+            writeln!(
+                out,
+                "\n{problems} problem(s), {variants} variant(s): {failed} of {} answers FAILED \
+                 their numeric cross-check (listed above); the others agree to {}",
+                answers.count(),
+                sci(worst)
+            )
+        };
+    }
+    let claims: usize = reports.iter().map(|r| r.verification.claims.len()).sum();
+    let symbolic: f64 = reports.iter().map(|r| r.symbolic_seconds).sum();
+    let calls: u64 = reports.iter().map(|r| r.engine_calls).sum();
+    let count = |v: Verdict| -> usize { reports.iter().map(|r| r.verification.count(v)).sum() };
+    let undecided = match count(Verdict::Undecided) {
+        0 => String::new(),
+        n => format!(", {n} undecided"),
+    };
+    let _ = writeln!(
+        out,
+        "\n{} scene(s), {} claim(s): {} agree, {} disagree, {} not checkable{undecided}; symbolic stage {:.1} ms in {} engine calls; {}",
+        reports.len(),
+        claims,
+        reports
+            .iter()
+            .map(|r| r.verification.count(Verdict::Agrees))
+            .sum::<usize>(),
+        reports
+            .iter()
+            .map(|r| r.verification.count(Verdict::Disagrees))
+            .sum::<usize>(),
+        reports
+            .iter()
+            .map(|r| r.verification.count(Verdict::NotCheckable))
+            .sum::<usize>(),
+        symbolic * 1e3,
+        calls,
+        if reports.iter().all(SceneReport::passed) {
+            "all as recorded"
+        } else {
+            "FAILED"
+        }
+    );
+    out
+}
+
+/// `derive` without --json: the steps, the results and the checks of one scene.
+pub fn derivation_text(r: &SceneReport) -> String {
+    let mut out = String::new();
+    let s = &r.scene;
+    let _ = writeln!(
+        out,
+        "{} ({}; lecture {}, section {})",
+        s.title, s.id, s.notes.lecture, s.notes.section
+    );
+    for (i, step) in r.derivation.steps.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "\n{:>2}. {}\n    {}\n    because: {}",
+            i + 1,
+            step.title,
+            step.text,
+            step.why_in(&s.cite)
+        );
+    }
+    if let Some(n) = &r.numeric {
+        let _ = writeln!(
+            out,
+            "\nNumeric cross-check (relative errors against the exact tensor):"
+        );
+        let _ = writeln!(
+            out,
+            "  {:<10} {:<20} {:>8} {:>10} {:>10} {:>10}",
+            "body", "method", "points", "error", "predicted", "seconds"
+        );
+        for q in &n.runs {
+            let _ = writeln!(
+                out,
+                "  {:<10} {:<20} {:>8} {:>10} {:>10} {:>10.2e}",
+                q.body,
+                q.method.name(),
+                q.points,
+                sci(q.error),
+                sci(q.predicted_error),
+                q.seconds
+            );
+        }
+    }
+    if let Some(e) = &r.verification.eigen {
+        let _ = writeln!(out, "\nPrincipal axes, numeric (SymmetricEigen):");
+        for sp in &e.numeric {
+            let what = match &sp.space {
+                Space::Axis(v) => format!("axis ({:.6}, {:.6}, {:.6})", v.x, v.y, v.z),
+                Space::PlaneNormalTo(v) => {
+                    format!("plane normal to ({:.6}, {:.6}, {:.6})", v.x, v.y, v.z)
+                }
+                Space::All => "every axis".into(),
+            };
+            let _ = writeln!(out, "  {:.15} ×{}  {what}", sp.value, sp.multiplicity);
+        }
+        let _ = writeln!(
+            out,
+            "  against exact: values {}, axes {}",
+            sci(e.value_error),
+            sci(e.axis_error)
+        );
+    }
+    if !r.verification.claims.is_empty() {
+        let _ = writeln!(out, "\nClaims of the notes:");
+        for c in &r.verification.claims {
+            let _ = writeln!(
+                out,
+                "  ({}) {:<13} {}",
+                c.eq,
+                c.verdict.as_str(),
+                c.statement
+            );
+            for d in &c.differences {
+                let _ = writeln!(out, "        {d}");
+            }
+            if let Some(p) = c.precision.as_ref().filter(|_| c.differences.is_empty()) {
+                let _ = writeln!(out, "        {p}");
+            }
+            if let Some(p) = &c.problem {
+                let _ = writeln!(out, "        problem: {p}");
+            }
+        }
+    }
+    if !r.verification.variants.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nVariants of the problem (each answer exact, then against its numeric route):"
+        );
+        for v in &r.verification.variants {
+            let values: Vec<String> = v
+                .values
+                .iter()
+                .map(|(n, t, _)| format!("{n} = {t}"))
+                .collect();
+            let _ = writeln!(out, "  {:>3}. {}", v.number, values.join(", "));
+            for a in &v.answers {
+                let _ = writeln!(
+                    out,
+                    "       {} = {}  ({} {})",
+                    a.quantity,
+                    a.exact.to_text(),
+                    if a.passed() {
+                        "agrees to"
+                    } else {
+                        "FAILS: differs by"
+                    },
+                    sci(a.error)
+                );
+            }
+        }
+    }
+    out
+}
+
+/// `derive --explain`: which stages ran, and why; which were skipped.
+pub fn explain_text(r: &SceneReport) -> String {
+    let mut out = String::from("Stages:\n");
+    for (stage, why) in r.plan.explain() {
+        match why {
+            Some(reasons) => {
+                let _ = writeln!(
+                    out,
+                    "  ran      {:<18} because {}",
+                    stage.name(),
+                    reasons.join("; ")
+                );
+            }
+            None => {
+                let _ = writeln!(out, "  skipped  {:<18} nothing asked for it", stage.name());
+            }
+        }
+    }
+    let _ = writeln!(
+        out,
+        "Symbolic engine: {} call(s), {:.2} ms; whole scene {:.2} ms",
+        r.engine_calls,
+        r.symbolic_seconds * 1e3,
+        r.seconds * 1e3
+    );
+    let _ = writeln!(out, "Numeric fidelity: {}", r.fidelity);
+    let w = &r.numeric_work;
+    let _ = writeln!(
+        out,
+        "Numeric work: {} ODE integration(s), {} right-hand-side evaluation(s); {} quadrature \
+         run(s), {} point(s)",
+        w.ode_integrations, w.rhs_evaluations, w.quadrature_runs, w.quadrature_points
+    );
+    out
+}

@@ -1,0 +1,216 @@
+//! The error contract for a course's own files and its CI: the JSON report in a file, the
+//! course file found above the scenes, its lectures and `base_url` checked, names that differ
+//! only in case, and a plot's error at the plot.
+
+use super::{mechbook, read_tree, scratch, stderr, stdout};
+use std::path::{Path, PathBuf};
+
+/// A course made by `init` in a scratch folder: (the folder, the course).
+fn course(name: &str) -> (PathBuf, PathBuf) {
+    let dir = scratch(name);
+    let course = dir.join("course");
+    let out = mechbook(&["init", course.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    (dir, course)
+}
+
+fn arg(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn check_writes_its_json_report_to_a_file_with_a_verdict_and_counts() {
+    let (dir, course) = course("json-file");
+    let lectures = course.join("lectures");
+    let report = dir.join("report.json");
+    let out = mechbook(&["check", arg(&lectures), "--json-file", arg(&report)]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    // The table still goes to standard output; the file holds the JSON alone.
+    assert!(stdout(&out).contains("all as recorded"), "{}", stdout(&out));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&report).unwrap()).expect("the file is JSON");
+    assert_eq!(json["passed"], true);
+    assert_eq!(json["counts"]["scenes"], 2);
+    assert_eq!(json["counts"]["scenes_passed"], 2);
+    assert_eq!(json["counts"]["claims"], 2);
+    assert_eq!(json["counts"]["disagree"], 1);
+    assert_eq!(json["failures"].as_array().unwrap().len(), 0);
+    assert_eq!(json["scenes"].as_array().unwrap().len(), 2);
+
+    // A recorded verdict spoiled: the file says so, with the located failure.
+    let scene = lectures.join("lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    std::fs::write(
+        &scene,
+        text.replacen("expect = \"agrees\"", "expect = \"disagrees\"", 1),
+    )
+    .unwrap();
+    let out = mechbook(&["check", arg(&lectures), "--json-file", arg(&report)]);
+    assert_eq!(out.status.code(), Some(1));
+    let json: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+    assert_eq!(json["passed"], false);
+    assert_eq!(json["counts"]["scenes_failed"], 1);
+    let failure = json["failures"][0].as_str().unwrap();
+    assert!(
+        failure.contains("01-book.toml:")
+            && failure.contains("verdict agrees but the scene records disagrees"),
+        "{failure}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_course_file_is_found_above_the_scenes_and_its_lectures_are_checked() {
+    let (dir, course) = course("course-file");
+    // Built from outside the course: the course's own title, not another's.
+    let out_dir = dir.join("site");
+    let out = mechbook(&[
+        "build",
+        arg(&course.join("lectures")),
+        "--out",
+        arg(&out_dir),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let index = String::from_utf8(read_tree(&out_dir)["index.html"].clone()).unwrap();
+    assert!(index.contains("My rigid-body course"), "{index}");
+
+    let file = course.join("mechbook.toml");
+    let text = std::fs::read_to_string(&file).unwrap();
+    let build_course = || {
+        let out = mechbook(&["build", arg(&course), "--out", arg(&out_dir)]);
+        (out.status.code(), stderr(&out))
+    };
+    // A lecture titled twice.
+    std::fs::write(
+        &file,
+        format!("{text}\n[[lecture]]\nid = \"1\"\ntitle = \"Again\"\n"),
+    )
+    .unwrap();
+    let (code, err) = build_course();
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("mechbook.toml:11:7: field `lecture[1].id`: lecture `1` is titled twice"),
+        "{err}"
+    );
+    // A lecture no scene has.
+    std::fs::write(
+        &file,
+        format!("{text}\n[[lecture]]\nid = \"2\"\ntitle = \"Week 2\"\n"),
+    )
+    .unwrap();
+    let (code, err) = build_course();
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("mechbook.toml:11:7: field `lecture[1].id`: no scene is in lecture `2`"),
+        "{err}"
+    );
+    // TeX in a title that TOML read as an escape.
+    std::fs::write(
+        &file,
+        text.replace("My rigid-body course", "Tops and \\beta decay"),
+    )
+    .unwrap();
+    let (code, err) = build_course();
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("field `title`: `\\beta` was read as a backspace"),
+        "{err}"
+    );
+    // base_url must be a web address; given, every Moodle question links its worked solution.
+    std::fs::write(&file, format!("base_url = \"course.example\"\n{text}")).unwrap();
+    let (code, err) = build_course();
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("mechbook.toml:1:13: field `base_url`: `course.example` is not a web address"),
+        "{err}"
+    );
+    std::fs::write(
+        &file,
+        format!("base_url = \"https://course.example/mech/\"\n{text}"),
+    )
+    .unwrap();
+    let (code, err) = build_course();
+    assert_eq!(code, Some(0), "{err}");
+    let quiz =
+        String::from_utf8(read_tree(&out_dir)["export/moodle/problem-box.xml"].clone()).unwrap();
+    roxmltree::Document::parse(&quiz).expect("the quiz is XML");
+    assert_eq!(
+        quiz.matches(
+            "<a href=\"https://course.example/mech/problem-box.html\">The worked solution</a>"
+        )
+        .count(),
+        6,
+        "one link per variant"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn ids_and_lectures_that_differ_only_in_case_are_refused() {
+    let (dir, course) = course("case");
+    let lecture = course.join("lectures/lecture-1");
+    let text = std::fs::read_to_string(lecture.join("01-book.toml")).unwrap();
+    std::fs::write(
+        lecture.join("03-book.toml"),
+        text.replace("id = \"book\"", "id = \"Book\""),
+    )
+    .unwrap();
+    let out = mechbook(&["check", arg(&course.join("lectures"))]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("03-book.toml:3:6: field `id`: scene ids `book` and `Book`")
+            || stderr(&out).contains("scene ids `Book` and `book`"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(
+        stderr(&out).contains("differ only in case"),
+        "{}",
+        stderr(&out)
+    );
+    std::fs::write(
+        lecture.join("03-book.toml"),
+        text.replace("id = \"book\"", "id = \"book-a\"")
+            .replace("lecture = \"1\"", "lecture = \"A\""),
+    )
+    .unwrap();
+    std::fs::write(
+        lecture.join("04-book.toml"),
+        text.replace("id = \"book\"", "id = \"book-b\"")
+            .replace("lecture = \"1\"", "lecture = \"a\""),
+    )
+    .unwrap();
+    let out = mechbook(&["check", arg(&course.join("lectures"))]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("would share the handout file name"),
+        "{}",
+        stderr(&out)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_plot_that_cannot_be_drawn_is_located_at_the_plot() {
+    let dir = scratch("plot-at");
+    let scene = dir.join("cube.toml");
+    // A cube about its centre has three equal moments: no flip to draw.
+    std::fs::write(
+        &scene,
+        "id = \"cube\"\ntitle = \"A cube\"\nnotes = { lecture = \"1\" }\n\
+         symbols = { m = \"mass\", a = \"side\" }\n\n[[body]]\nkind = \"box\"\n\
+         size = [\"a\", \"a\", \"a\"]\nmass = \"m\"\norigin = \"centre\"\n\n\
+         [outputs]\nwant = [\"inertia_tensor\"]\n\n[numeric]\nvalues = { m = 1.0, a = 1.0 }\n\n\
+         [[plot]]\nkind = \"polar-motion\"\ninertia = [1.0, 1.0, 2.0]\nomega = [0.1, 0.0, 1.0]\nt = 10.0\n\n\
+         [[plot]]\nkind = \"flip\"\ninertia = \"principal\"\nomega = [0.05, 10.0, 0.05]\nt = 8.0\n",
+    )
+    .unwrap();
+    let out = mechbook(&["derive", arg(&scene)]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("cube.toml:24:1: plot[1] of scene `cube` could not be drawn: the flip needs three different moments"),
+        "{}",
+        stderr(&out)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
