@@ -2,7 +2,8 @@
 //! the parallel-axis theorem proved both ways (eqs 20–22).
 
 use super::algebra::{
-    Mat3, Value, Vec3, add_vec, inertia_kernel, mat_add, mat_scale, scale_vec, sub_vec, zero3,
+    Mat3, Value, Vec3, inertia_kernel, mat_add, mat_scale, scale_vec, sub_vec, sum_mats, sum_vecs,
+    zero3,
 };
 use super::bodies::{MassModel, mass_model, place};
 use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
@@ -123,11 +124,7 @@ fn body_part(
                 .iter()
                 .map(|(m, r)| (m.clone(), place(body, r)))
                 .collect();
-            let tensor = placed
-                .iter()
-                .map(|(m, r)| mat_scale(m, &inertia_kernel(r)))
-                .reduce(|a, b| mat_add(&a, &b))
-                .unwrap();
+            let tensor = sum_mats(placed.iter().map(|(m, r)| mat_scale(m, &inertia_kernel(r))));
             let tensor = simplify_value(&Value::Matrix(tensor))?;
             d.steps.push(Step::equation(
                 &format!("{label}: sum over the point masses"),
@@ -146,13 +143,8 @@ fn body_part(
             let Value::Matrix(tensor) = tensor else {
                 unreachable!()
             };
-            let moment = first_moment.then(|| {
-                placed
-                    .iter()
-                    .map(|(m, r)| scale_vec(m, r))
-                    .reduce(|a, b| add_vec(&a, &b))
-                    .unwrap()
-            });
+            let moment =
+                first_moment.then(|| sum_vecs(placed.iter().map(|(m, r)| scale_vec(m, r))));
             Ok(Part {
                 mass: body.mass.clone(),
                 tensor,
@@ -262,11 +254,7 @@ pub fn derive_tensor(
         .iter()
         .map(|p| Value::Matrix(p.tensor.clone()))
         .collect();
-    let tensor = parts
-        .iter()
-        .map(|p| p.tensor.clone())
-        .reduce(|a, b| mat_add(&a, &b))
-        .unwrap();
+    let tensor = sum_mats(parts.iter().map(|p| p.tensor.clone()));
     let tensor = simplify_value(&Value::Matrix(tensor))?;
     let mass = cas::simplify(&Expr::add(parts.iter().map(|p| p.mass.clone()).collect()))?;
     d.steps.push(Step::equation(
@@ -282,11 +270,11 @@ pub fn derive_tensor(
     d.set(quantity::INERTIA_TENSOR, tensor);
     d.set(quantity::MASS, Value::Scalar(mass.clone()));
     if first_moment {
-        let sum = parts
-            .iter()
-            .map(|p| p.first_moment.clone().expect("asked for"))
-            .reduce(|a, b| add_vec(&a, &b))
-            .unwrap();
+        let sum = sum_vecs(
+            parts
+                .iter()
+                .map(|p| p.first_moment.clone().expect("asked for")),
+        );
         let centre = simplify_value(&Value::Vector(std::array::from_fn(|i| {
             Expr::over(sum[i].clone(), mass.clone())
         })))?;

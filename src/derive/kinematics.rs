@@ -2,7 +2,7 @@
 //! the tensor; and for point masses also from their definitions, proved equal (eqs 3–8, 16–20,
 //! 23–25, 53–59).
 
-use super::algebra::{Value, Vec3, add_vec, cross, dot, mat_vec, scale_vec};
+use super::algebra::{Value, Vec3, cross, dot, mat_vec, scale_vec, sum_vecs};
 use super::bodies::place;
 use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
 use crate::cas::{self, Expr};
@@ -69,11 +69,10 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         ),
     ));
     let direct = point_masses(scene).map(|pts| {
-        let sum = pts
-            .iter()
-            .map(|(m, r)| scale_vec(m, &cross(r, &cross(&omega, r))))
-            .reduce(|a, b| add_vec(&a, &b))
-            .unwrap();
+        let sum = sum_vecs(
+            pts.iter()
+                .map(|(m, r)| scale_vec(m, &cross(r, &cross(&omega, r)))),
+        );
         (
             Value::Vector(sum),
             "L",

@@ -55,6 +55,11 @@ pub enum FigureError {
          precision; check the plot's inertia, omega and t"
     )]
     NotFinite { slug: String },
+    #[error(
+        "plot `{slug}`: nothing to draw: every value is zero or not a number on its axes (the \
+         scene's values underflow double precision?); give the quantities in units nearer 1"
+    )]
+    Empty { slug: String },
     #[error("no integrator settings")]
     NoSettings,
     #[error("the principal-axes plot needs the exact eigenspaces")]
@@ -105,6 +110,12 @@ pub fn figures(
                 || !f.labels.iter().all(|(_, p)| finite(p))
             {
                 let source = FigureError::NotFinite {
+                    slug: f.slug.clone(),
+                };
+                return Err(PlotFailure { index, source });
+            }
+            if f.bounds().is_none() {
+                let source = FigureError::Empty {
                     slug: f.slug.clone(),
                 };
                 return Err(PlotFailure { index, source });

@@ -544,20 +544,42 @@ pub fn run(
     }
 }
 
-/// The largest estimated standard error over the tensor entries of a Monte Carlo sum.
+/// The largest estimated standard error over the tensor entries of a Monte Carlo sum. The
+/// deviations are squared in units of the mean's largest entry: squared as they are, those of a
+/// body of mass 1e-160 underflow, and the law would promise an error of 0.
 fn monte_carlo_sigma(placed: &[(f64, Vector3<f64>)], mass: f64, mean: &Matrix3<f64>) -> f64 {
     let n = placed.len() as f64;
+    let unit = mean.amax().max(f64::MIN_POSITIVE);
     let mut var = Matrix3::<f64>::zeros();
     for (_, r) in placed {
         let k = mass * (Matrix3::identity() * r.norm_squared() - r * r.transpose());
-        var += (k - mean).component_mul(&(k - mean));
+        let d = (k - mean) / unit;
+        var += d.component_mul(&d);
     }
-    (var / (n - 1.0) / n).map(f64::sqrt).amax()
+    (var / (n - 1.0) / n).map(f64::sqrt).amax() * unit
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_monte_carlo_law_holds_for_a_tiny_mass() {
+        // The same sample, mass 1 and mass 1e-160: the relative law is the same, never 0.
+        let mut tiny = cube(true);
+        tiny.mass = 1e-160;
+        let centre = Matrix3::identity() / 6.0;
+        let one = run(&cube(true), Method::MonteCarlo, 10_000, &centre, 7);
+        let small = run(&tiny, Method::MonteCarlo, 10_000, &(centre * 1e-160), 7);
+        assert!(small.predicted_error > 0.0);
+        assert!(
+            (small.predicted_error / one.predicted_error - 1.0).abs() < 1e-9,
+            "{} against {}",
+            small.predicted_error,
+            one.predicted_error
+        );
+        assert!(small.error < 5.0 * small.predicted_error);
+    }
 
     fn cube(centred: bool) -> NumBody {
         NumBody {

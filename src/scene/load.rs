@@ -249,9 +249,49 @@ pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
             }
         }
     }
+    errors.extend(sheet_over_budget(&scenes));
     if errors.is_empty() {
         Ok(scenes)
     } else {
         Err(errors)
     }
+}
+
+/// The most pages a lecture's problem sheet may have: a variant of the sheet per variant of its
+/// largest problem, a page per problem in each. 200 students with 50 problems each fit; one
+/// problem of 10,000 variants beside 20 small ones (210,000 pages, a 520 MB key) does not.
+pub const MAX_SHEET_PAGES: usize = 10_000;
+
+/// Each lecture whose problem sheet would pass [`MAX_SHEET_PAGES`], located at its largest
+/// problem.
+fn sheet_over_budget(scenes: &[Scene]) -> Vec<SceneError> {
+    let mut by_lecture: std::collections::BTreeMap<&str, Vec<&Scene>> = Default::default();
+    for s in scenes.iter().filter(|s| s.problem.is_some()) {
+        by_lecture.entry(&s.notes.lecture).or_default().push(s);
+    }
+    let mut errors = Vec::new();
+    for (lecture, problems) in by_lecture {
+        let count = |s: &Scene| s.problem.as_ref().map_or(0, |p| p.variants.len());
+        let Some(largest) = problems.iter().copied().max_by_key(|s| count(s)) else {
+            continue;
+        };
+        let pages = count(largest) * problems.len();
+        if pages > MAX_SHEET_PAGES {
+            let (line, column) = largest.problem.as_ref().map_or((1, 1), |p| p.at);
+            errors.push(SceneError {
+                path: largest.source.clone(),
+                line,
+                column,
+                field: "variants.count".into(),
+                message: format!(
+                    "lecture `{lecture}`'s problem sheet would have {} variants (this problem's \
+                     count) of {} problems, {pages} pages; at most {MAX_SHEET_PAGES}: lower this \
+                     count, or move problems to another lecture",
+                    count(largest),
+                    problems.len()
+                ),
+            });
+        }
+    }
+    errors
 }

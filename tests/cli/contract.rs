@@ -214,3 +214,43 @@ fn a_plot_that_cannot_be_drawn_is_located_at_the_plot() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_problem_sheet_beyond_its_page_budget_is_refused_at_the_largest_problem() {
+    let (dir, course) = course("sheet-budget");
+    let lecture = course.join("lectures/lecture-1");
+    let problem = lecture.join("02-problem-box.toml");
+    let text = std::fs::read_to_string(&problem).unwrap();
+    // 5,001 variants beside a second problem: 10,002 pages, over 10,000.
+    let big = text.replace("count = 6", "count = 5001").replace(
+        "m = { from = \"1\", to = \"10\", step = \"1\" }",
+        "m = { from = \"1\", to = \"1000\", step = \"1\" }",
+    );
+    assert_ne!(big, text);
+    std::fs::write(&problem, &big).unwrap();
+    std::fs::write(
+        lecture.join("03-problem-box.toml"),
+        text.replace("id = \"problem-box\"", "id = \"problem-box-2\""),
+    )
+    .unwrap();
+    let out = mechbook(&["check", arg(&course.join("lectures"))]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(
+        err.contains("02-problem-box.toml:")
+            && err.contains(
+                "lecture `1`'s problem sheet would have 5001 variants (this problem's count) of 2 \
+                 problems, 10002 pages; at most 10000"
+            ),
+        "{err}"
+    );
+    // One problem fewer fits.
+    std::fs::remove_file(lecture.join("03-problem-box.toml")).unwrap();
+    let out = mechbook(&["check", arg(&course.join("lectures"))]);
+    assert!(
+        !stderr(&out).contains("problem sheet would have"),
+        "{}",
+        stderr(&out)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

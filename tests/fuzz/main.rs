@@ -9,6 +9,9 @@
 //! It is its own test binary: it runs Symbolica in-process, so it holds the per-user lock while
 //! it lives, and the CLI tests' child processes must not wait for it.
 //!
+//! Besides byte-level mutations, a problem's `[variants]` is mutated a third of the time: its
+//! count, a symbol's range or list, its `require` (`mutate_variants`).
+//!
 //! Quick run (part of `cargo test --release`): 40 mutants per scene. Longer run:
 //! `MECHBOOK_FUZZ_MUTANTS=300 MECHBOOK_FUZZ_SEED=7 cargo test --release --test fuzz -- --ignored --nocapture`.
 
@@ -113,10 +116,100 @@ const BYTES: &[&[u8]] = &[
     b"\norigin = \"apex\"\n",
 ];
 
+const COUNTS: &[&str] = &[
+    "0",
+    "1",
+    "-3",
+    "10000",
+    "10001",
+    "999999999999",
+    "1.5",
+    "\"12\"",
+    "[1]",
+];
+
+/// A varying symbol's range or list: empty, reversed, zero steps, negative and zero masses,
+/// values beyond double precision, angles far from zero, division by zero.
+const OPTIONS: &[&str] = &[
+    "{ from = \"-1\", to = \"3\", step = \"1/2\" }",
+    "{ from = \"0\", to = \"0\", step = \"1\" }",
+    "{ from = \"1\", to = \"1e30\", step = \"1\" }",
+    "{ from = \"1\", to = \"2\", step = \"0\" }",
+    "{ from = \"3\", to = \"1\", step = \"1\" }",
+    "{ from = \"1\", to = \"2\" }",
+    "{ from = \"1e-400\", to = \"1\", step = \"1/7\" }",
+    "[\"1e1000\", \"2\"]",
+    "[\"0\"]",
+    "[\"1/0\"]",
+    "[\"-2\", \"-1\"]",
+    "[\"pi/6\", \"1e20*pi + pi/6\", \"1000000*pi\"]",
+    "[\"1e-160\", \"1\"]",
+    "[]",
+    "[\"1\", \"1\"]",
+    "\"3\"",
+    "[0.5, 1.5]",
+];
+
+const REQUIRES: &[&str] = &[
+    "[\"1/(a-a) > 0\"]",
+    "[\"sqrt(2)*sqrt(2) == 2\"]",
+    "[\"a <\"]",
+    "[\"a < b < c\"]",
+    "[\"x > 1\"]",
+    "[\"sin(1/0) > 0\"]",
+    "[\"2 > 1\", \"1 > 2\"]",
+    "[\"\"]",
+    "\"a < b\"",
+    "[\"pi*1e400 > 1\"]",
+];
+
+/// A mutation of a scene's `[variants]`: its count, a varying symbol's range or list, or its
+/// `require`; `None` for a scene without one.
+fn mutate_variants(text: &[u8], rng: &mut Rng) -> Option<Vec<u8>> {
+    let text = String::from_utf8(text.to_vec()).ok()?;
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let start = lines.iter().position(|l| l.trim() == "[variants]")?;
+    let end = lines[start + 1..]
+        .iter()
+        .position(|l| l.trim_start().starts_with('['))
+        .map_or(lines.len(), |k| start + 1 + k);
+    let key_of = |l: &str| l.split_once('=').map(|(k, _)| k.trim().to_owned());
+    let find = |lines: &[String], pred: &dyn Fn(&str) -> bool| {
+        (start + 1..end).find(|&i| key_of(&lines[i]).is_some_and(|k| pred(&k)))
+    };
+    let (key, value) = match rng.below(3) {
+        0 => ("count".to_owned(), rng.pick(COUNTS).to_owned()),
+        1 => {
+            let symbols: Vec<String> = (start + 1..end)
+                .filter_map(|i| key_of(&lines[i]))
+                .filter(|k| !["count", "seed", "require"].contains(&k.as_str()))
+                .collect();
+            let name = match symbols.len() {
+                0 => "m".to_owned(),
+                n => symbols[rng.below(n)].clone(),
+            };
+            (name, rng.pick(OPTIONS).to_owned())
+        }
+        _ => ("require".to_owned(), rng.pick(REQUIRES).to_owned()),
+    };
+    let line = format!("{key} = {value}");
+    match find(&lines, &|k| k == key) {
+        Some(i) => lines[i] = line,
+        None => lines.insert(end, line),
+    }
+    Some((lines.join("\n") + "\n").into_bytes())
+}
+
 /// One mutation of `text`.
 fn mutate(text: &[u8], rng: &mut Rng) -> Vec<u8> {
     let mut t = text.to_vec();
     let at = |rng: &mut Rng, t: &[u8]| rng.below(t.len() + 1);
+    // A problem's variants, a third of the time when it has them.
+    if rng.below(3) == 0
+        && let Some(v) = mutate_variants(&t, rng)
+    {
+        return v;
+    }
     match rng.below(9) {
         // Replace a quoted string's content with a hostile expression.
         0 | 1 => {
@@ -207,6 +300,8 @@ fn located(message: &str, path: &Path) -> bool {
 
 fn kind_of(message: &str) -> &'static str {
     let kinds = [
+        ("field `variants", "variants"),
+        ("field `problem", "problem"),
         ("invalid UTF-8", "not UTF-8"),
         ("control character", "control character"),
         ("malformed expression", "malformed expression"),

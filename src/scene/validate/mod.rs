@@ -50,6 +50,9 @@ pub const MAX_INPUT_TERMS: f64 = 100.0;
 /// The longest free-body plot: its end time, and the radians ω turns through by then. The
 /// shipped lectures reach t = 400 and 2.5e3 radians (Earth's polar motion).
 pub const MAX_PLOT_TIME: f64 = 1e4;
+/// The most plots a scene draws: each may integrate up to [`MAX_PLOT_TIME`], and a scene of
+/// 7,000 plots once ran for a day.
+pub const MAX_PLOTS: usize = 24;
 pub const MAX_PLOT_RADIANS: f64 = 1e4;
 
 /// Ids that would collide with the site's own files and folders (compared without case, as

@@ -1,6 +1,6 @@
 //! `[[plot]]`: the plots a scene asks for, with their ranges and free-body settings.
 
-use super::{MAX_PLOT_RADIANS, MAX_PLOT_TIME, Validator, content_start};
+use super::{MAX_PLOT_RADIANS, MAX_PLOT_TIME, MAX_PLOTS, Validator, content_start};
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawPlot, RawScene};
 use crate::scene::types::{FreeBodyPlot, FreeInertia, PlotRequest};
@@ -15,6 +15,17 @@ impl Validator<'_> {
         symbols: &BTreeMap<String, String>,
         values: &BTreeMap<String, f64>,
     ) -> Result<Vec<PlotRequest>, SceneError> {
+        if let Some(p) = raw.plots.get(MAX_PLOTS) {
+            return Err(self.err(
+                p.span().start,
+                &format!("plot[{MAX_PLOTS}]"),
+                format!(
+                    "a scene draws at most {MAX_PLOTS} plots, and this one has {}: split them \
+                     across scenes",
+                    raw.plots.len()
+                ),
+            ));
+        }
         let mut plots = Vec::new();
         for (i, p) in raw.plots.iter().enumerate() {
             plots.push(self.plot(p, &format!("plot[{i}]"), symbols, values)?);

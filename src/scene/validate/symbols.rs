@@ -116,6 +116,17 @@ impl Validator<'_> {
             if !v.get_ref().is_finite() {
                 return Err(self.err(v.span().start, &field, "the value must be a finite number"));
             }
+            if *v.get_ref() != 0.0 && !v.get_ref().is_normal() {
+                return Err(self.err(
+                    v.span().start,
+                    &field,
+                    format!(
+                        "{:e} is below double precision's normal range (about 2.2e-308), where \
+                         it has lost its digits: give the quantity in units nearer 1",
+                        v.get_ref()
+                    ),
+                ));
+            }
             values.insert(n.clone(), *v.get_ref());
         }
         let mut used: BTreeSet<String> = BTreeSet::new();
