@@ -42,7 +42,10 @@ pub enum EngineError {
          rest)"
     )]
     OverBudget { degree: f64, terms: f64 },
-    #[error("the engine produced `{text}`, which is not an exact real number or expression")]
+    #[error(
+        "the engine produced `{}`, which is not an exact real number or expression",
+        if text.len() > 200 { format!("{}… ({} characters)", text.chars().take(120).collect::<String>(), text.len()) } else { text.clone() }
+    )]
     Unreadable { text: String },
     #[error("unexpected name `{name}` in the engine's output `{text}`")]
     UnexpectedNameIn { name: String, text: String },

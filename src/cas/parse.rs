@@ -45,20 +45,25 @@ pub fn parse_input(text: &str) -> Result<Parsed, ParseError> {
             ),
         });
     }
-    parse_with(text, MAX_NESTING)
+    parse_with(text, MAX_NESTING, super::rational::MAX_DIGITS)
 }
 
 /// Parses text that mechbook made itself: no length limit, and a generous nesting limit.
 pub fn parse(text: &str) -> Result<Parsed, ParseError> {
-    parse_with(text, MAX_INTERNAL_NESTING)
+    parse_with(
+        text,
+        MAX_INTERNAL_NESTING,
+        super::rational::MAX_ENGINE_DIGITS,
+    )
 }
 
-fn parse_with(text: &str, max_depth: usize) -> Result<Parsed, ParseError> {
+fn parse_with(text: &str, max_depth: usize, max_digits: usize) -> Result<Parsed, ParseError> {
     let mut p = Parser {
         src: text.as_bytes(),
         pos: 0,
         depth: 0,
         max_depth,
+        max_digits,
         symbols: Vec::new(),
     };
     p.skip_ws();
@@ -128,12 +133,22 @@ fn hint(src: &[u8], pos: usize) -> String {
     format!("; a product needs `*`: write `{before}*{after}`")
 }
 
+/// A long text cut to its start, for a message.
+fn short(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        Some((at, _)) => format!("{}… ({} characters)", &text[..at], text.len()),
+        None => text.to_string(),
+    }
+}
+
 struct Parser<'a> {
     src: &'a [u8],
     pos: usize,
     /// How deep the recursion is: every nesting passes through `unary`.
     depth: usize,
     max_depth: usize,
+    /// A scene's numbers are short; the engine's products of them may be long.
+    max_digits: usize,
     symbols: Vec<(String, usize)>,
 }
 
@@ -299,13 +314,14 @@ impl Parser<'_> {
                     }
                 }
                 let text = std::str::from_utf8(&self.src[s..self.pos]).unwrap_or("?");
-                Rational::parse_decimal(text)
+                Rational::parse_decimal_within(text, self.max_digits)
                     .map(Expr::Num)
                     .ok_or(ParseError {
                         offset: s,
                         message: format!(
-                            "malformed number `{text}` (at most {} digits, exponents within ±{})",
-                            super::rational::MAX_DIGITS,
+                            "malformed number `{}` (at most {} digits, exponents within ±{})",
+                            short(text),
+                            self.max_digits,
                             super::rational::MAX_EXPONENT
                         ),
                     })
