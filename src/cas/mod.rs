@@ -22,7 +22,7 @@ pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use radical::pull_squares;
 pub use rational::Rational;
 pub use size::ExpansionSize;
-pub use trig::special_angles;
+pub use trig::{pi_multiple, special_angles};
 
 use std::cell::RefCell;
 use std::fs::File;

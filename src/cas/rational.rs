@@ -67,6 +67,13 @@ impl Rational {
         i64::try_from(&self.0).ok()
     }
 
+    /// x mod m for a positive m, in [0, m), exactly: whole turns taken off an angle of any size.
+    pub fn rem_euclid(&self, m: &Rational) -> Rational {
+        use malachite_base::num::arithmetic::traits::Floor;
+        let turns = (&self.0 / &m.0).floor();
+        Rational(&self.0 - malachite_q::Rational::from(turns) * &m.0)
+    }
+
     /// ⌊x⌋ as a `u64` when it is non-negative and fits.
     pub fn floor_to_u64(&self) -> Option<u64> {
         use malachite_base::num::arithmetic::traits::Floor;

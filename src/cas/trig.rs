@@ -50,11 +50,13 @@ pub fn expand_multiple_angles(e: &Expr) -> Expr {
 }
 
 /// sin and cos of a multiple of π/6 or π/4 replaced by their exact values (cos π/6 = √3/2), so
-/// that a variant's angle such as `pi/6` gives an exact answer; other calls are kept.
+/// that a variant's angle such as `pi/6` gives an exact answer; other calls are kept. A rational
+/// multiple of π loses its whole turns first, exactly, so that no float ever sees 1e20·π + π/6
+/// (where f64 has no digit of the π/6 left).
 pub fn special_angles(e: &Expr) -> Expr {
     match e {
         Expr::Call(name, args) if (name == "sin" || name == "cos") && args.len() == 1 => {
-            let arg = special_angles(&args[0]);
+            let arg = without_whole_turns(&special_angles(&args[0]));
             let twelfths = match &arg {
                 Expr::Sym(p) if p == "pi" => Some(12),
                 Expr::Mul(v) if v.len() == 2 && v[1] == Expr::sym("pi") => match &v[0] {
@@ -78,6 +80,52 @@ pub fn special_angles(e: &Expr) -> Expr {
         Expr::Mul(v) => Expr::mul(v.iter().map(special_angles).collect()),
         Expr::Pow(a, b) => Expr::pow(special_angles(a), special_angles(b)),
         other => other.clone(),
+    }
+}
+
+/// q when `e` is exactly qπ with q rational (`1e20*pi + pi/6` as written, or folded).
+pub fn pi_multiple(e: &Expr) -> Option<Rational> {
+    let at = |x: i128| e.eval_rational(&|s| (s == "pi").then(|| Rational::int(x)));
+    let (zero, q, two) = (at(0)?, at(1)?, at(2)?);
+    (zero.is_zero() && two == q.mul(&Rational::int(2))).then_some(q)
+}
+
+/// qπ as (q mod 2)π: the same sine and cosine. Other arguments are kept.
+fn without_whole_turns(arg: &Expr) -> Expr {
+    let Some(q) = pi_multiple(arg) else {
+        return arg.clone();
+    };
+    let pi = Expr::sym("pi");
+    let two = Rational::int(2);
+    if q.compare(&Rational::ZERO).is_ge() && q.compare(&two).is_lt() {
+        return arg.clone();
+    }
+    Expr::mul(vec![Expr::Num(q.rem_euclid(&two)), pi])
+}
+
+#[cfg(test)]
+mod turns {
+    use super::*;
+    use crate::cas::parse;
+
+    #[test]
+    fn whole_turns_come_off_exactly_before_the_special_angles() {
+        let e = |s: &str| parse(s).unwrap().expr;
+        // cos(1e20 π + π/6) = cos(π/6); in f64 the argument has no digit of π/6 left.
+        let folded = special_angles(&e("cos(100000000000000000000*pi + pi/6)"));
+        assert_eq!(folded, special_angles(&e("cos(pi/6)")));
+        assert_eq!(folded.to_text(), "1/2*sqrt(3)");
+        let kept = special_angles(&e("sin(14000001/7*pi)"));
+        assert_eq!(kept, e("sin(1/7*pi)"), "{}", kept.to_text());
+        assert_eq!(
+            pi_multiple(&e("100000000000000000000*pi + pi/6")).unwrap(),
+            {
+                let r = parse("600000000000000000001/6").unwrap().expr;
+                r.eval_rational(&|_| None).unwrap()
+            }
+        );
+        assert_eq!(pi_multiple(&e("pi + 1")), None);
+        assert_eq!(pi_multiple(&e("pi^2")), None);
     }
 }
 

@@ -112,13 +112,9 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
             .collect::<Vec<_>>()
             .join(", ");
         eprintln!("mechbook: changed: {changed}");
-        let outcome = builder.run();
-        if !outcome.written {
-            eprintln!("mechbook: still serving the last good site, with the error on every page");
-        }
-        server.built(outcome.written, outcome.problems);
         // A folder that was deleted and made again (a `git checkout`) lost its watch: watch
-        // it anew. Its parent's watch saw it come back.
+        // it anew before the build reads it, so that no later edit goes unseen. Its parent's
+        // watch saw it come back.
         for (target, mode) in relevant.watches() {
             let _ = watcher.unwatch(&target);
             if let Err(e) = watcher.watch(&target, mode)
@@ -127,6 +123,11 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
                 eprintln!("mechbook: warning: cannot watch {}: {e}", target.display());
             }
         }
+        let outcome = builder.run();
+        if !outcome.written {
+            eprintln!("mechbook: still serving the last good site, with the error on every page");
+        }
+        server.built(outcome.written, outcome.problems);
         eprintln!(
             "mechbook: {} ms from the change to telling {} open page(s) to reload",
             seen.elapsed().as_millis(),

@@ -3,7 +3,7 @@
 use crate::cas::Expr;
 use crate::model::catalogue::Output;
 use crate::model::fidelity::Fidelity;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 
 #[derive(Debug, Clone)]
@@ -73,6 +73,24 @@ impl Variant {
             .iter()
             .map(|(k, e)| (k.clone(), e.eval(&|_| None).unwrap_or(f64::NAN)))
             .collect()
+    }
+
+    /// [`Variant::numbers`], with the whole turns taken off, exactly, the value qπ of each of
+    /// `angles` (the scene's [`Scene::whole_turn_symbols`]): f64 has no digit of the π/6 in
+    /// 1e20·π + π/6 left.
+    pub fn numbers_within_a_turn(&self, angles: &BTreeSet<String>) -> BTreeMap<String, f64> {
+        let mut out = self.numbers();
+        for name in angles {
+            let turn = self
+                .values
+                .get(name)
+                .and_then(crate::cas::pi_multiple)
+                .map(|q| q.rem_euclid(&crate::cas::Rational::int(2)));
+            if let Some(q) = turn {
+                out.insert(name.clone(), q.to_f64() * std::f64::consts::PI);
+            }
+        }
+        out
     }
 }
 
@@ -168,6 +186,55 @@ pub enum Shape {
         radius: Expr,
     },
     Points(Vec<(Expr, [Expr; 3])>),
+}
+
+impl Scene {
+    /// The symbols that the bodies use only as whole-number multiples in their rotation
+    /// angles: their values matter only up to whole turns.
+    pub fn whole_turn_symbols(&self) -> BTreeSet<String> {
+        let mut angles = BTreeSet::new();
+        let mut elsewhere: BTreeSet<String> = BTreeSet::new();
+        for b in &self.bodies {
+            for (_, a) in &b.rotations {
+                match a {
+                    Expr::Sym(s) => {
+                        angles.insert(s.clone());
+                    }
+                    Expr::Mul(v)
+                        if v.len() == 2
+                            && matches!(&v[0], Expr::Num(k) if k.is_integer())
+                            && matches!(&v[1], Expr::Sym(_)) =>
+                    {
+                        if let Expr::Sym(s) = &v[1] {
+                            angles.insert(s.clone());
+                        }
+                    }
+                    other => elsewhere.extend(other.symbols()),
+                }
+            }
+            for e in b.dimensions().into_iter().chain(&b.shift) {
+                elsewhere.extend(e.symbols());
+            }
+            if let Shape::Points(pts) = &b.shape {
+                for (_, at) in pts {
+                    at.iter().for_each(|e| elsewhere.extend(e.symbols()));
+                }
+            }
+        }
+        for v in self
+            .omega
+            .iter()
+            .chain(&self.axis)
+            .chain(self.vectors.values())
+        {
+            v.iter().for_each(|e| elsewhere.extend(e.symbols()));
+        }
+        for e in self.definitions.values() {
+            elsewhere.extend(e.symbols());
+        }
+        angles.retain(|s| !elsewhere.contains(s));
+        angles
+    }
 }
 
 impl Body {

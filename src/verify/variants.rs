@@ -79,13 +79,14 @@ pub fn check_variants(
     problem: &Problem,
 ) -> Result<Vec<VariantCheck>, VariantError> {
     let mut out = Vec::new();
+    let angles = scene.whole_turn_symbols();
     for v in &problem.variants {
         let fail = |source: VariantFailure| VariantError {
             number: v.number,
             source,
         };
         let exact = exact_answers(d, problem, v).map_err(|e| fail(e.into()))?;
-        let numbers = v.numbers();
+        let numbers = v.numbers_within_a_turn(&angles);
         let mut routes = Routes::new(scene, &numbers);
         let mut answers = Vec::new();
         for a in exact {

@@ -254,3 +254,50 @@ fn a_problem_sheet_beyond_its_page_budget_is_refused_at_the_largest_problem() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn angles_lose_their_whole_turns_exactly_before_any_float_sees_them() {
+    let dir = scratch("turns");
+    let scene = dir.join("hoop.toml");
+    let shipped = std::fs::read_to_string(super::lecture("11-problem-tilted-hoop.toml")).unwrap();
+    let turned = shipped.replace(
+        "alpha = [\"pi/6\", \"pi/4\", \"pi/3\"]",
+        "alpha = [\"pi/6\", \"100000000000000000000*pi + pi/6\", \"1000000*pi + pi/3\"]",
+    );
+    assert_ne!(turned, shipped);
+    std::fs::write(&scene, &turned).unwrap();
+    let out = mechbook(&["derive", "--json", arg(&scene)]);
+    // 1e6·π + π/3 used to fail a right answer by 2.3e-10; 1e20·π + π/6 passed a wrong one.
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let tensor = |values: &str| {
+        json["variants"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|v| v["values"]["alpha"]["exact"] == values)
+            .map(|v| {
+                let scale = v["values"]["M"]["numeric"].as_f64().unwrap()
+                    * v["values"]["R"]["numeric"].as_f64().unwrap().powi(2);
+                let a = &v["answers"][0];
+                assert_eq!(a["passed"], true, "{a}");
+                a["numeric"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|x| x.as_f64().unwrap() / scale)
+                    .collect::<Vec<f64>>()
+            })
+            .collect::<Vec<_>>()
+    };
+    // The tensor per unit M R²: the same at π/6 and at π/6 plus 5e19 turns, exactly.
+    let at_sixth = tensor("1/6*pi");
+    let far = tensor("100000000000000000000*pi + 1/6*pi");
+    assert!(!far.is_empty() && !at_sixth.is_empty());
+    for t in &far {
+        for (x, y) in t.iter().zip(&at_sixth[0]) {
+            assert!((x - y).abs() < 1e-15, "{t:?} against {:?}", at_sixth[0]);
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
