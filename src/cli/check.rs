@@ -48,17 +48,18 @@ pub fn run(args: CheckArgs) -> Result<ExitCode> {
         return bless_all(&reports, errors.len());
     }
     let passed = errors.is_empty() && reports.iter().all(SceneReport::passed);
-    let document = || -> Result<String> {
-        Ok(serde_json::to_string_pretty(&report::check_json(&reports, &errors))? + "\n")
-    };
-    if let Some(path) = &json_file {
-        crate::site::replace_file(path, document()?.as_bytes())?;
+    // Made once, for standard output, the file, or both.
+    let document = (json || json_file.is_some())
+        .then(|| serde_json::to_string_pretty(&report::check_json(&reports, &errors)))
+        .transpose()?
+        .map(|d| d + "\n");
+    if let (Some(path), Some(doc)) = (&json_file, &document) {
+        crate::site::replace_file(path, doc.as_bytes())?;
     }
     let errors = errors.len();
-    let text = if json {
-        document()?
-    } else {
-        report::check_table(&reports)
+    let text = match document {
+        Some(doc) if json => doc,
+        _ => report::check_table(&reports),
     };
     std::io::stdout().write_all(text.as_bytes())?;
     if errors > 0 {
