@@ -196,20 +196,20 @@ impl Scene {
         let mut elsewhere: BTreeSet<String> = BTreeSet::new();
         for b in &self.bodies {
             for (_, a) in &b.rotations {
-                match a {
-                    Expr::Sym(s) => {
+                // `alpha` or `2*alpha`: a whole multiple of one symbol.
+                let turned = match a {
+                    Expr::Sym(s) => Some(s),
+                    Expr::Mul(v) => match v.as_slice() {
+                        [Expr::Num(k), Expr::Sym(s)] if k.is_integer() => Some(s),
+                        _ => None,
+                    },
+                    _ => None,
+                };
+                match turned {
+                    Some(s) => {
                         angles.insert(s.clone());
                     }
-                    Expr::Mul(v)
-                        if v.len() == 2
-                            && matches!(&v[0], Expr::Num(k) if k.is_integer())
-                            && matches!(&v[1], Expr::Sym(_)) =>
-                    {
-                        if let Expr::Sym(s) = &v[1] {
-                            angles.insert(s.clone());
-                        }
-                    }
-                    other => elsewhere.extend(other.symbols()),
+                    None => elsewhere.extend(a.symbols()),
                 }
             }
             for e in b.dimensions().into_iter().chain(&b.shift) {

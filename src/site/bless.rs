@@ -297,8 +297,7 @@ mod tests {
         let t = doc.get_mut("expect").unwrap().as_table_like_mut().unwrap();
         set_keeping_decor(t, "I", "2");
         set_keeping_decor(t, "J", "3");
-        let claims = claim_tables(&mut doc).unwrap();
-        let mut claims = claims;
+        let mut claims = claim_tables(&mut doc).unwrap();
         set_keeping_decor(claims[0], "expect", "disagrees");
         assert_eq!(
             doc.to_string(),

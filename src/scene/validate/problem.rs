@@ -32,7 +32,8 @@ fn beyond_double(e: &Expr) -> Option<String> {
     if shown.len() > 40 {
         shown = format!("{}… ({} characters)", &shown[..30], shown.len());
     }
-    if let Some(r) = e.eval_rational(&|_| None) {
+    let exact = e.eval_rational(&|_| None);
+    if let Some(r) = &exact {
         let (n, d) = r.abs_parts();
         let digits = n.to_string().len().max(d.to_string().len());
         if digits > MAX_VALUE_DIGITS {
@@ -43,7 +44,7 @@ fn beyond_double(e: &Expr) -> Option<String> {
         }
     }
     let x = e.eval(&|_| None).ok()?;
-    let zero = e.eval_rational(&|_| None).is_some_and(|r| r.is_zero());
+    let zero = exact.is_some_and(|r| r.is_zero());
     if !x.is_finite() || (!x.is_normal() && !zero) {
         return Some(format!(
             "{shown} is beyond double precision (sizes from about 2.2e-308 to 1.8e308), which \
