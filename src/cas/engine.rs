@@ -31,8 +31,8 @@ pub const MAX_ROOT_DIGITS: usize = 30;
 pub enum EngineError {
     #[error(
         "a root of a number with {digits} digits, which the engine would have to factor (more \
-         than {MAX_ROOT_DIGITS} digits can take longer than any budget): give the quantities in \
-         units where their values have fewer digits"
+         than {MAX_ROOT_DIGITS} digits can take longer than any budget): give the values (and a \
+         problem's variants) fewer digits, for example in other units"
     )]
     LargeRoot { digits: usize },
     #[error(
@@ -74,12 +74,22 @@ fn large_number_under_a_root(e: &Expr, under_root: bool) -> Option<usize> {
         v.iter()
             .find_map(|x| large_number_under_a_root(x, under_root))
     };
+    let too_large = |r: &Rational| {
+        let (n, d) = r.abs_parts();
+        let digits = n.to_string().len().max(d.to_string().len());
+        (digits > MAX_ROOT_DIGITS).then_some(digits)
+    };
+    // The engine folds the numbers of a numeric sum or product before it takes the root: 1 +
+    // 10^-13 under a root is a 14-digit number, and a variant's sides of 14 digits gave one of
+    // 53 digits, which took the engine over 10 minutes to factor.
+    if under_root
+        && !matches!(e, Expr::Num(_) | Expr::Sym(_))
+        && let Some(r) = e.eval_rational(&|_| None)
+    {
+        return too_large(&r);
+    }
     match e {
-        Expr::Num(r) if under_root => {
-            let (n, d) = r.abs_parts();
-            let digits = n.to_string().len().max(d.to_string().len());
-            (digits > MAX_ROOT_DIGITS).then_some(digits)
-        }
+        Expr::Num(r) if under_root => too_large(r),
         Expr::Num(_) | Expr::Sym(_) => None,
         Expr::Pow(b, x) => {
             let root = matches!(x.as_ref(), Expr::Num(k) if !k.is_integer());
@@ -581,6 +591,29 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    #[test]
+    fn a_root_is_measured_by_the_number_the_engine_would_fold() {
+        // Two 17-digit sides: each number under the root is small, the sum of their squares
+        // (32 digits) is not. The engine factored such sums for over ten minutes before they
+        // were measured whole.
+        let parse = |t: &str| crate::cas::parse(t).unwrap().expr;
+        let e = parse(
+            "sqrt((10000000000000001/10000000000000000)^2 + (10000000000000003/10000000000000000)^2)",
+        );
+        assert_eq!(large_number_under_a_root(&e, false), Some(32));
+        let big = parse("sqrt(10000000000001^4/10000000000000^4 + 1)");
+        assert!(large_number_under_a_root(&big, false).is_some_and(|d| d > MAX_ROOT_DIGITS));
+        assert!(matches!(expand(&big), Err(EngineError::LargeRoot { .. })));
+        // Small sums, and numbers outside any root, pass.
+        for ok in [
+            "sqrt(1/3 + 2/7)",
+            "(1/3 + 2/7)*x^(1/2)",
+            "10000000000001^4 + sqrt(2)*x",
+        ] {
+            assert_eq!(large_number_under_a_root(&parse(ok), false), None, "{ok}");
         }
     }
 }

@@ -133,6 +133,15 @@ pub enum DeriveError {
     /// A stage read a quantity that an earlier stage should have set: a bug in the plan.
     #[error("internal inconsistency: quantity `{0}` was not derived")]
     Missing(&'static str),
+    /// A problem asks for the principal moments of a tensor whose characteristic cubic does
+    /// not factor: they have no exact form to grade.
+    #[error(
+        "the principal moments have no exact form here: the characteristic cubic does not \
+         factor over the rationals, so there is nothing exact to grade; take \
+         `principal_moments` out of the problem's answers (the worked solution gives the moments \
+         in Viète's form), or ask for `inertia_tensor`"
+    )]
+    NoExactMoments,
     /// A problem's answer still has a symbol once a variant's values are in.
     #[error(
         "the answer `{quantity}` depends on `{symbol}`, which has no value: give it a range \

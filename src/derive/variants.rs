@@ -24,10 +24,7 @@ pub fn exact_answers(
     let mut entries: Vec<Vec<Expr>> = Vec::new();
     let mut for_engine: Vec<(usize, usize, Expr)> = Vec::new();
     for (i, name) in problem.answers.iter().enumerate() {
-        let general = d
-            .quantities
-            .get(name)
-            .ok_or(DeriveError::Missing(answer_name(name)))?;
+        let general = d.quantities.get(name).ok_or_else(|| missing(d, name))?;
         let mut row = Vec::new();
         for (k, e) in general.entries().iter().enumerate() {
             let e = special_angles(&e.substitute(&|s| variant.values.get(s).cloned()));
@@ -70,6 +67,17 @@ pub fn exact_answers(
         });
     }
     Ok(out)
+}
+
+/// Why answer `name` was not derived: the principal moments of an irreducible cubic have no
+/// exact form; anything else is a bug in the plan.
+fn missing(d: &Derivation, name: &str) -> DeriveError {
+    let unsolved = d.eigen.as_ref().is_some_and(|e| !e.unsolved.is_empty());
+    if unsolved && name == quantity::PRINCIPAL_MOMENTS {
+        DeriveError::NoExactMoments
+    } else {
+        DeriveError::Missing(answer_name(name))
+    }
 }
 
 /// The catalogue's own name for a quantity, for `DeriveError::Missing`.

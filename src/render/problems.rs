@@ -1,6 +1,7 @@
 //! A lecture's problem sheets: the student's (statements with each variant's values, space to
 //! work, and no answer) and the key (each variant's answers, exact and to four figures). Sheet
-//! variant k gives every problem its own variant k, cycling through a problem's fewer ones.
+//! variant k gives every problem its own variant k, cycling through a problem's fewer ones; the
+//! key answers each problem's variant once.
 
 use super::{RenderError, math, page_file};
 use crate::base::format::figures;
@@ -42,6 +43,9 @@ pub struct KeyProblem {
     pub page: String,
     /// The largest relative difference of an answer from its numeric route.
     pub checked: String,
+    /// The sheet variants that use this answer when it is shared (none when it is answered in
+    /// its sheet variant): picked at one of them, the key shows it alone of its problem.
+    pub serves: Vec<usize>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -142,8 +146,54 @@ pub fn student_sheet(
     })
 }
 
-pub fn answer_key(reports: &[&SceneReport]) -> Result<Vec<SheetVariant<KeyProblem>>, RenderError> {
-    sheet(reports, key_problem)
+/// The answer key: each variant of each problem answered once. A problem with as many variants
+/// as the sheet is answered in its sheet variant; one with fewer is answered once per variant
+/// of its own in `shared`, which prints with every sheet variant, and the sheet variants name
+/// which of them they use. (Repeating them cost 20 small problems beside one of 10,000
+/// variants a 520 MB key.)
+#[derive(Debug, Clone, Serialize)]
+pub struct AnswerKey {
+    pub shared: Vec<KeyProblem>,
+    pub variants: Vec<SheetVariant<KeyEntry>>,
+}
+
+/// A problem in a sheet variant of the key: its answers, or which of its shared variants.
+#[derive(Debug, Clone, Serialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum KeyEntry {
+    Answers(KeyProblem),
+    Shared {
+        number: usize,
+        title: String,
+        variant: usize,
+    },
+}
+
+pub fn answer_key(reports: &[&SceneReport]) -> Result<AnswerKey, RenderError> {
+    let count = sheet_variants(reports);
+    let mut shared = Vec::new();
+    for (i, r) in with_problems(reports).iter().enumerate() {
+        if r.verification.variants.len() < count {
+            let n = r.verification.variants.len();
+            for (j, v) in r.verification.variants.iter().enumerate() {
+                let mut answered = key_problem(r, i + 1, v).map_err(|e| e.in_scene(r))?;
+                answered.serves = (1..=count).filter(|k| (k - 1) % n == j).collect();
+                shared.push(answered);
+            }
+        }
+    }
+    let variants = sheet(reports, |r, number, v| {
+        Ok(if r.verification.variants.len() < count {
+            KeyEntry::Shared {
+                number,
+                title: r.scene.title.clone(),
+                variant: v.number,
+            }
+        } else {
+            KeyEntry::Answers(key_problem(r, number, v)?)
+        })
+    })?;
+    Ok(AnswerKey { shared, variants })
 }
 
 fn key_problem(
@@ -179,6 +229,7 @@ fn key_problem(
         answers,
         page: page_file(r),
         checked: crate::base::format::sci(worst),
+        serves: Vec::new(),
     })
 }
 
@@ -227,6 +278,18 @@ pub fn css_string(s: &str) -> String {
     }
     out.push('"');
     out
+}
+
+/// The key's rules for its shared answers: picked at sheet variant k, it shows of each shared
+/// problem the one variant that k uses.
+pub fn shared_css(variants: usize) -> String {
+    (1..=variants)
+        .map(|k| {
+            format!(
+                "#variant-{k}:target ~ main .shared .key-problem:not(.s-{k}) {{ display: none; }}\n"
+            )
+        })
+        .collect()
 }
 
 /// The sheet's print rules: the course and sheet title at the top of every page, and the

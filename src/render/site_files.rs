@@ -340,7 +340,13 @@ fn problem_sheets(
         if kind == "student" {
             ctx.insert("variants", &problems::student_sheet(reports)?);
         } else {
-            ctx.insert("variants", &problems::answer_key(reports)?);
+            let key = problems::answer_key(reports)?;
+            if !key.shared.is_empty() {
+                let css = problems::print_css(&course.title, &format!("{heading}: {title}"), count);
+                ctx.insert("print_css", &(css + problems::shared_css(count).as_str()));
+            }
+            ctx.insert("shared", &key.shared);
+            ctx.insert("variants", &key.variants);
         }
         let path = format!("handouts/{slug}-problems-{kind}.html");
         files.insert(

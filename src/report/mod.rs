@@ -245,7 +245,8 @@ pub fn check_table(reports: &[SceneReport]) -> String {
         };
     }
     let claims: usize = reports.iter().map(|r| r.verification.claims.len()).sum();
-    let symbolic: f64 = reports.iter().map(|r| r.symbolic_seconds).sum();
+    // A fold from +0: an empty f64 sum is −0, printed "-0.0 ms".
+    let symbolic = reports.iter().fold(0.0, |acc, r| acc + r.symbolic_seconds);
     let calls: u64 = reports.iter().map(|r| r.engine_calls).sum();
     let count = |v: Verdict| -> usize { reports.iter().map(|r| r.verification.count(v)).sum() };
     let undecided = match count(Verdict::Undecided) {

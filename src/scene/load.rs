@@ -250,6 +250,7 @@ pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
         }
     }
     errors.extend(sheet_over_budget(&scenes));
+    errors.extend(course_over_budget(&scenes));
     if errors.is_empty() {
         Ok(scenes)
     } else {
@@ -294,4 +295,50 @@ fn sheet_over_budget(scenes: &[Scene]) -> Vec<SceneError> {
         }
     }
     errors
+}
+
+/// The most variants a course's problems may have together: each is derived exactly and checked
+/// numerically (1 to 15 ms each here, up to seconds where a root's number must be factored).
+pub const MAX_COURSE_VARIANTS: usize = 20_000;
+
+/// The most pages all of a course's problem sheets may have together, each lecture's within
+/// [`MAX_SHEET_PAGES`].
+pub const MAX_COURSE_PAGES: usize = 50_000;
+
+/// The course's problems over [`MAX_COURSE_VARIANTS`] or [`MAX_COURSE_PAGES`], located at its
+/// problem with the most variants.
+fn course_over_budget(scenes: &[Scene]) -> Vec<SceneError> {
+    let count = |s: &Scene| s.problem.as_ref().map_or(0, |p| p.variants.len());
+    let problems: Vec<&Scene> = scenes.iter().filter(|s| s.problem.is_some()).collect();
+    let variants: usize = problems.iter().map(|s| count(s)).sum();
+    let mut by_lecture: std::collections::BTreeMap<&str, (usize, usize)> = Default::default();
+    for s in &problems {
+        let (largest, n) = by_lecture.entry(&s.notes.lecture).or_default();
+        *largest = (*largest).max(count(s));
+        *n += 1;
+    }
+    let pages: usize = by_lecture.values().map(|(largest, n)| largest * n).sum();
+    let Some(largest) = problems.iter().copied().max_by_key(|s| count(s)) else {
+        return Vec::new();
+    };
+    let over = if variants > MAX_COURSE_VARIANTS {
+        format!("{variants} variants in all; at most {MAX_COURSE_VARIANTS}")
+    } else if pages > MAX_COURSE_PAGES {
+        format!("problem sheets of {pages} pages in all; at most {MAX_COURSE_PAGES}")
+    } else {
+        return Vec::new();
+    };
+    let (line, column) = largest.problem.as_ref().map_or((1, 1), |p| p.at);
+    vec![SceneError {
+        path: largest.source.clone(),
+        line,
+        column,
+        field: "variants.count".into(),
+        message: format!(
+            "the course's {} problems would have {over}: lower the counts, starting with this \
+             problem's {}",
+            problems.len(),
+            count(largest)
+        ),
+    }]
 }

@@ -1,7 +1,7 @@
 //! Every variant of a problem, checked: its exact answers (the derivation with the variant's
 //! values substituted) against the independent numeric routes at the variant's numbers.
 
-use super::EXACT_VS_NUMERIC;
+use super::exact_vs_numeric;
 use super::principal::PRINCIPAL_AGREEMENT;
 use crate::base::float::max_relative_error;
 use crate::derive::variants::exact_answers;
@@ -65,11 +65,11 @@ pub enum VariantFailure {
 
 /// How closely a route must agree: the quadrature rules are exact for these integrands, so
 /// only rounding separates them; the eigen-solver and the integrator have their own errors.
-pub fn agreement(name: &str) -> f64 {
+pub fn agreement(scene: &Scene, name: &str) -> f64 {
     match name {
-        quantity::PRINCIPAL_MOMENTS => PRINCIPAL_AGREEMENT,
+        quantity::PRINCIPAL_MOMENTS => PRINCIPAL_AGREEMENT.max(exact_vs_numeric(scene)),
         quantity::PRECESSION_RATE => PRECESSION_AGREEMENT,
-        _ => EXACT_VS_NUMERIC,
+        _ => exact_vs_numeric(scene),
     }
 }
 
@@ -99,7 +99,7 @@ pub fn check_variants(
                 .collect();
             let error = max_relative_error(&numeric, &exact_numbers);
             answers.push(AnswerCheck {
-                tolerance: agreement(&a.quantity),
+                tolerance: agreement(scene, &a.quantity),
                 quantity: a.quantity,
                 exact: a.value,
                 exact_numbers,

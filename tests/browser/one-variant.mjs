@@ -16,7 +16,7 @@ if (!sheets.length) { console.log("one variant: no student sheet found"); proces
 const browser = await launch();
 const page = await browser.newPage();
 const pages = pdf => (pdf.toString("latin1").match(/\/Type\s*\/Page[^s]/g) || []).length;
-let failing = 0, printed = 0;
+let failing = 0, printed = 0, sharedChecked = 0;
 const fail = (...m) => { console.log("FAIL", ...m); failing++; };
 for (const f of sheets) {
   const url = pathToFileURL(f).href;
@@ -45,11 +45,16 @@ for (const f of sheets) {
   await page.goto(`${key}#variant-2`);
   const keyShown = await page.evaluate(() => [...document.querySelectorAll("section.variant")].filter(s => getComputedStyle(s).display !== "none").map(s => s.classList[1]));
   if (variants >= 2 && keyShown.join() !== "variant-2") fail(key, `#variant-2 shows ${keyShown.join(", ")}`);
+  // A problem with fewer variants is answered once, in the shared section: picked at variant 2,
+  // the key shows of each such problem just the variant that sheet variant 2 uses.
+  const shared = await page.evaluate(() => [...document.querySelectorAll("section.shared .key-problem")].map(a => [a.classList.contains("s-2"), getComputedStyle(a).display !== "none"]));
+  if (variants >= 2 && shared.some(([uses, shown]) => uses !== shown)) fail(key, `#variant-2 shows shared answers it does not use, or hides one it uses`);
+  sharedChecked += shared.length;
   // Back to every variant ("Show all variants" is a link to #sheet).
   await page.goto(`${url}#sheet`);
   const back = await page.evaluate(() => [...document.querySelectorAll("section.variant")].filter(s => getComputedStyle(s).display !== "none").length);
   if (back !== variants) fail(f, `#sheet shows ${back} of ${variants} variants`);
 }
 await browser.close();
-console.log(`one variant: ${sheets.length} student sheets, ${printed} PDFs printed (A4 and Letter), ${failing} failing`);
+console.log(`one variant: ${sheets.length} student sheets, ${printed} PDFs printed (A4 and Letter), ${sharedChecked} shared answers checked, ${failing} failing`);
 process.exit(failing ? 1 : 0);

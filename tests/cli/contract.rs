@@ -301,3 +301,231 @@ fn angles_lose_their_whole_turns_exactly_before_any_float_sees_them() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The starter's problem box, made another problem: its id, lecture and variant count changed.
+fn another_problem(text: &str, id: &str, lecture: &str, count: usize) -> String {
+    let out = text
+        .replace("id = \"problem-box\"", &format!("id = \"{id}\""))
+        .replace("lecture = \"1\"", &format!("lecture = \"{lecture}\""))
+        .replace("count = 6", &format!("count = {count}"))
+        .replace(
+            "m = { from = \"1\", to = \"10\", step = \"1\" }",
+            "m = { from = \"1\", to = \"1000\", step = \"1\" }",
+        );
+    assert!(out.contains(&format!("count = {count}")) && out.contains("to = \"1000\""));
+    out
+}
+
+#[test]
+fn the_variants_of_a_whole_course_have_a_budget() {
+    let (dir, course) = course("course-budget");
+    let lectures = course.join("lectures");
+    let text = std::fs::read_to_string(lectures.join("lecture-1/02-problem-box.toml")).unwrap();
+    // Three lectures of 7,000 variants each: every sheet is within its 10,000 pages, but the
+    // course has 21,000 variants to derive, over 20,000.
+    let mut file = std::fs::read_to_string(course.join("mechbook.toml")).unwrap();
+    for n in 1..=3 {
+        let folder = lectures.join(format!("lecture-{n}"));
+        std::fs::create_dir_all(&folder).unwrap();
+        let problem = another_problem(&text, &format!("problem-{n}"), &n.to_string(), 7000);
+        std::fs::write(folder.join("02-problem-box.toml"), problem).unwrap();
+        if n > 1 {
+            file.push_str(&format!(
+                "\n[[lecture]]\nid = \"{n}\"\ntitle = \"Lecture {n}\"\n"
+            ));
+        }
+    }
+    std::fs::write(course.join("mechbook.toml"), file).unwrap();
+    let out = mechbook(&["check", arg(&lectures)]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(
+        err.contains("02-problem-box.toml:")
+            && err.contains(
+                "the course's 3 problems would have 21000 variants in all; at most 20000: lower \
+                 the counts"
+            ),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_problem_with_fewer_variants_than_the_sheet_is_answered_once_in_the_key() {
+    let (dir, course) = course("key-once");
+    let lecture = course.join("lectures/lecture-1");
+    let text = std::fs::read_to_string(lecture.join("02-problem-box.toml")).unwrap();
+    std::fs::write(
+        lecture.join("03-problem-once.toml"),
+        another_problem(&text, "problem-once", "1", 1),
+    )
+    .unwrap();
+    let site = dir.join("site");
+    let out = mechbook(&["build", arg(&course.join("lectures")), "--out", arg(&site)]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let key = std::fs::read_to_string(site.join("handouts/lecture-1-problems-key.html")).unwrap();
+    let student =
+        std::fs::read_to_string(site.join("handouts/lecture-1-problems-student.html")).unwrap();
+    // Every student's copy has both problems; the key answers problem 2's one variant once,
+    // and each of the 6 sheet variants says it uses it.
+    assert_eq!(student.matches("<h2>Problem 2: ").count(), 6);
+    assert_eq!(key.matches("<h3>Problem 2, its variant 1: ").count(), 1);
+    assert_eq!(key.matches("Its variant 1: answered under").count(), 6);
+    assert_eq!(key.matches("<h3>Problem 1: ").count(), 6);
+    assert_eq!(key.matches("<table class=\"key\">").count(), 6 + 1);
+    // Picked at any sheet variant, the key shows that one answer (the print rules hide the
+    // shared answers a variant does not use).
+    assert!(key.contains("<article class=\"key-problem s-1 s-2 s-3 s-4 s-5 s-6\">"));
+    assert!(key.contains("#variant-6:target ~ main .shared .key-problem:not(.s-6)"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_problem_that_cannot_be_answered_exactly_says_why_at_once() {
+    let dir = scratch("no-exact");
+    let corner = r#"
+id = "corner-box"
+title = "A box about its corner"
+notes = { lecture = "1" }
+symbols = { m = "mass", a = "side x", b = "side y", c = "side z" }
+[[body]]
+kind = "box"
+size = ["a", "b", "c"]
+mass = "m"
+origin = "corner"
+[outputs]
+want = ["inertia_tensor", "principal_axes"]
+[numeric]
+values = { m = 6.0, a = 0.75, b = 2.0, c = 3.0 }
+[problem]
+statement = "A box of mass {m} and sides {a}, {b}, {c}."
+answers = ["principal_moments"]
+[variants]
+count = 4
+m = ["1", "2"]
+a = ["1", "2"]
+b = ["3", "4"]
+c = ["5", "6"]
+"#;
+    std::fs::write(dir.join("corner.toml"), corner).unwrap();
+    // Its cubic does not factor: once "internal inconsistency" at every variant.
+    let out = mechbook(&["check", arg(&dir)]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(
+        err.contains("corner.toml:")
+            && err.contains("the principal moments have no exact form here")
+            && err.contains("take `principal_moments` out of the problem's answers")
+            && !err.contains("internal inconsistency"),
+        "{err}"
+    );
+    // A plate about its corner has roots; sides of 17 digits put a 32-digit number under
+    // one, which the engine took over ten minutes to factor: refused at once.
+    let plate = r#"
+id = "near-plate"
+title = "A plate about its corner"
+notes = { lecture = "1" }
+symbols = { m = "mass", a = "side x", b = "side y" }
+[[body]]
+kind = "plate"
+size = ["a", "b"]
+mass = "m"
+[outputs]
+want = ["inertia_tensor", "principal_axes"]
+[numeric]
+values = { m = 6.0, a = 0.75, b = 2.0 }
+[problem]
+statement = "A plate of mass {m} and sides {a} and {b}."
+answers = ["principal_moments"]
+[variants]
+count = 3
+m = ["1", "2"]
+a = ["1.0000000000000001", "1.0000000000000002"]
+b = ["1.0000000000000003", "1.0000000000000004"]
+"#;
+    std::fs::remove_file(dir.join("corner.toml")).unwrap();
+    std::fs::write(dir.join("plate.toml"), plate).unwrap();
+    let out = mechbook(&["check", arg(&dir)]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(
+        err.contains("plate.toml:")
+            && err.contains("variant 1: computer algebra failed: a root of a number with")
+            && err.contains("give the values (and a problem's variants) fewer digits"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_exact_and_numeric_agreement_grows_with_the_point_masses_summed() {
+    let dir = scratch("many-points");
+    // A unit mass, then 10,000 masses of 0.6 of an f64 step at 1: each addition rounds up by
+    // 0.4 of a step, so the f64 sum is off by 9.2e-13 however it is computed in order. The
+    // exact sum is right; 1e-14 failed it, 4nε (8.9e-12) does not.
+    let light = "{ mass = \"0.00000000000000013\", at = [\"1\", \"0\", \"0\"] }";
+    let mut points = vec!["{ mass = \"1\", at = [\"1\", \"0\", \"0\"] }"];
+    points.extend(std::iter::repeat_n(light, 10_000));
+    let scene = format!(
+        "id = \"many-points\"\ntitle = \"Many point masses\"\nnotes = {{ lecture = \"1\" }}\n\
+         [[body]]\nkind = \"points\"\npoints = [{}]\n[outputs]\nwant = [\"inertia_tensor\", \
+         \"numeric\"]\n",
+        points.join(", ")
+    );
+    std::fs::write(dir.join("points.toml"), scene).unwrap();
+    let report = dir.join("report.json");
+    let out = mechbook(&["check", arg(&dir), "--json-file", arg(&report)]);
+    let json: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+    let failures: Vec<&str> = json["failures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect();
+    // Only the unrecorded results fail: the numeric check passes.
+    assert!(
+        !failures.is_empty() && failures.iter().all(|f| f.contains("not yet recorded")),
+        "{failures:?}\n{}",
+        stderr(&out)
+    );
+    let check = &json["scenes"][0]["exact_vs_numeric"][0];
+    assert_eq!(check["quantity"], "inertia_tensor");
+    assert_eq!(check["passed"], true, "{check}");
+    let error = check["error"].as_f64().unwrap();
+    assert!(
+        error > 1e-14 && error < 4.0 * 10_001.0 * f64::EPSILON,
+        "{error}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn bless_on_a_full_disk_leaves_the_scene_as_it_was_and_nothing_beside_it() {
+    let (dir, course) = course("bless-full");
+    let lecture = course.join("lectures/lecture-1");
+    let scene = lecture.join("02-problem-box.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let unrecorded = &text[..text.find("[expect]").unwrap()];
+    std::fs::write(&scene, unrecorded).unwrap();
+    // No byte may be written (as on a full disk): writes fail with EFBIG, not a signal.
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg("trap '' XFSZ; ulimit -f 0; exec \"$0\" check --bless \"$1\"")
+        .arg(env!("CARGO_BIN_EXE_mechbook"))
+        .arg(course.join("lectures"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(
+        err.contains("02-problem-box.toml: File too large (os error 27)"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), unrecorded);
+    let names: Vec<String> = std::fs::read_dir(&lecture)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
