@@ -189,23 +189,15 @@ pub enum Shape {
 }
 
 impl Scene {
-    /// The symbols that the bodies use only as whole-number multiples in their rotation
-    /// angles: their values matter only up to whole turns.
+    /// The symbols that the scene uses only as whole-number multiples in angles (the bodies'
+    /// rotations, and sines and cosines in `omega`, `axis`, vectors and definitions): their
+    /// values matter only up to whole turns.
     pub fn whole_turn_symbols(&self) -> BTreeSet<String> {
         let mut angles = BTreeSet::new();
         let mut elsewhere: BTreeSet<String> = BTreeSet::new();
         for b in &self.bodies {
             for (_, a) in &b.rotations {
-                // `alpha` or `2*alpha`: a whole multiple of one symbol.
-                let turned = match a {
-                    Expr::Sym(s) => Some(s),
-                    Expr::Mul(v) => match v.as_slice() {
-                        [Expr::Num(k), Expr::Sym(s)] if k.is_integer() => Some(s),
-                        _ => None,
-                    },
-                    _ => None,
-                };
-                match turned {
+                match whole_multiple(a) {
                     Some(s) => {
                         angles.insert(s.clone());
                     }
@@ -227,13 +219,52 @@ impl Scene {
             .chain(&self.axis)
             .chain(self.vectors.values())
         {
-            v.iter().for_each(|e| elsewhere.extend(e.symbols()));
+            v.iter()
+                .for_each(|e| angle_uses(e, &mut angles, &mut elsewhere));
         }
         for e in self.definitions.values() {
-            elsewhere.extend(e.symbols());
+            angle_uses(e, &mut angles, &mut elsewhere);
         }
         angles.retain(|s| !elsewhere.contains(s));
         angles
+    }
+}
+
+/// `alpha` or `2*alpha`: a whole multiple of one symbol.
+fn whole_multiple(e: &Expr) -> Option<&String> {
+    match e {
+        Expr::Sym(s) => Some(s),
+        Expr::Mul(v) => match v.as_slice() {
+            [Expr::Num(k), Expr::Sym(s)] if k.is_integer() => Some(s),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// Sorts the symbols of `e`: those inside `sin` or `cos` as a whole multiple into `angles`,
+/// every other use into `elsewhere`.
+fn angle_uses(e: &Expr, angles: &mut BTreeSet<String>, elsewhere: &mut BTreeSet<String>) {
+    match e {
+        Expr::Call(f, args) if (f == "sin" || f == "cos") && args.len() == 1 => {
+            match whole_multiple(&args[0]) {
+                Some(s) => {
+                    angles.insert(s.clone());
+                }
+                None => angle_uses(&args[0], angles, elsewhere),
+            }
+        }
+        Expr::Sym(s) => {
+            elsewhere.insert(s.clone());
+        }
+        Expr::Num(_) => {}
+        Expr::Add(v) | Expr::Mul(v) | Expr::List(v) | Expr::Call(_, v) => {
+            v.iter().for_each(|x| angle_uses(x, angles, elsewhere))
+        }
+        Expr::Pow(a, b) | Expr::Index(a, b) => {
+            angle_uses(a, angles, elsewhere);
+            angle_uses(b, angles, elsewhere);
+        }
     }
 }
 

@@ -529,3 +529,49 @@ fn bless_on_a_full_disk_leaves_the_scene_as_it_was_and_nothing_beside_it() {
     assert_eq!(names.len(), 2, "{names:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn an_angle_inside_the_axis_loses_its_whole_turns_in_the_numeric_route_too() {
+    let dir = scratch("axis-turns");
+    let scene = r#"
+id = "axis-turns"
+title = "A box about a tilted axis"
+notes = { lecture = "1" }
+symbols = { m = "mass", a = "side", alpha = "tilt of the axis" }
+axis = ["cos(alpha)", "0", "sin(alpha)"]
+[[body]]
+kind = "box"
+size = ["a", "2*a", "3*a"]
+mass = "m"
+origin = "centre"
+[outputs]
+want = ["inertia_tensor", "moment_about_axis"]
+[numeric]
+values = { m = 1.0, a = 1.0, alpha = 0.5 }
+[problem]
+statement = "A box of mass {m} and side {a} turns about an axis tilted by {alpha}."
+answers = ["moment_about_axis"]
+[variants]
+count = 2
+m = ["1", "2"]
+a = ["1"]
+alpha = ["100000000000000000000*pi + pi/6", "1000000*pi + pi/3"]
+[expect]
+mass = "m"
+inertia_tensor = "[[13/12*m*a^2, 0, 0], [0, 5/6*m*a^2, 0], [0, 0, 5/12*m*a^2]]"
+moment_about_axis = "5/12*m*a^2 + 2/3*m*a^2*cos(alpha)^2"
+"#;
+    std::fs::write(dir.join("axis.toml"), scene).unwrap();
+    let out = mechbook(&["derive", "--json", arg(&dir.join("axis.toml"))]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    // In f64 the first angle had no digit of π/6 left (6.9e-2 apart), the second 4.1e-10.
+    let variants = json["variants"].as_array().unwrap();
+    assert_eq!(variants.len(), 2);
+    for v in variants {
+        let a = &v["answers"][0];
+        assert_eq!(a["passed"], true, "{a}");
+        assert!(a["error"].as_f64().unwrap() < 1e-15, "{a}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
