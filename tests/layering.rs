@@ -1,7 +1,8 @@
 //! The layering rule, held as a test: the modules of `src/` are the pipeline, and every
 //! `crate::` path in library code points to a module above its own in this list. Siblings on
 //! one rank (derive and numeric; report and render) do not import each other either, so the
-//! graph has no circle. Test code (`tests.rs`, `*_tests.rs`, `#[cfg(test)] mod` blocks) may
+//! graph has no circle; nor do the children of one module (`figures/drift.rs` and
+//! `figures/frame.rs`) import each other in a circle. Test code (`tests.rs`, `*_tests.rs`, `#[cfg(test)] mod` blocks) may
 //! reach anywhere.
 
 use std::collections::BTreeMap;
@@ -163,6 +164,171 @@ fn read_tree(root: &Path, dir: &Path, files: &mut BTreeMap<String, String>) {
             files.insert(relative, std::fs::read_to_string(&path).unwrap());
         }
     }
+}
+
+/// The second-level module of a file inside a top-level module: `figures/drift.rs` and
+/// `scene/validate/text.rs` belong to `drift` and `validate`; `mod.rs` and top-level files to none
+/// (a module's `mod.rs` dispatches to its children, which may use its types).
+fn second_module(relative: &str) -> Option<String> {
+    let mut parts = relative.split('/');
+    let (_, second, deeper) = (parts.next()?, parts.next()?, parts.next().is_some());
+    let name = second.strip_suffix(".rs").unwrap_or(second);
+    (name != "mod" && (deeper || second.ends_with(".rs"))).then(|| name.to_string())
+}
+
+/// (top, from, to, file) for every import between two children of one top-level module:
+/// `super::x` in `top/y.rs`, or `crate::top::x` anywhere in `top/y`.
+fn inner_edges(files: &BTreeMap<String, String>) -> Vec<(String, String, String, String)> {
+    let mut out = Vec::new();
+    for (relative, text) in files {
+        let Some(from) = second_module(relative) else {
+            continue;
+        };
+        if is_test_file(relative) {
+            continue;
+        }
+        let top = top_module(relative);
+        let text = without_test_modules(text);
+        let direct_child = relative.matches('/').count() == 1;
+        let mut targets = Vec::new();
+        for prefix in [format!("crate::{top}::"), "super::".to_string()] {
+            if prefix == "super::" && !direct_child {
+                continue;
+            }
+            for (at, _) in text.match_indices(&prefix) {
+                let before = text[..at].chars().next_back();
+                if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+                    continue;
+                }
+                let rest = &text[at + prefix.len()..];
+                let names: Vec<&str> = match rest.strip_prefix('{') {
+                    Some(group) => group[..group.find('}').unwrap_or(group.len())]
+                        .split(',')
+                        .collect(),
+                    None => vec![rest],
+                };
+                for name in names {
+                    let name: String = name
+                        .trim()
+                        .chars()
+                        .take_while(|c| c.is_alphanumeric() || *c == '_')
+                        .collect();
+                    let is_child = files.contains_key(&format!("{top}/{name}.rs"))
+                        || files
+                            .keys()
+                            .any(|k| k.starts_with(&format!("{top}/{name}/")));
+                    if is_child && name != from {
+                        targets.push(name);
+                    }
+                }
+            }
+        }
+        for to in targets {
+            out.push((top.clone(), from.clone(), to, relative.clone()));
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// Each circle among the children of a top-level module, as `top: a -> b -> a`.
+fn inner_circles(files: &BTreeMap<String, String>) -> Vec<String> {
+    let edges = inner_edges(files);
+    let mut graph: BTreeMap<(String, String), Vec<String>> = BTreeMap::new();
+    for (top, from, to, _) in &edges {
+        graph
+            .entry((top.clone(), from.clone()))
+            .or_default()
+            .push(to.clone());
+    }
+    let mut out = Vec::new();
+    for (top, start) in graph.keys() {
+        // A path from `start` back to itself, found depth-first; reported once, from its
+        // smallest member.
+        let mut stack = vec![(start.clone(), vec![start.clone()])];
+        let mut seen = std::collections::BTreeSet::new();
+        while let Some((node, path)) = stack.pop() {
+            for next in graph
+                .get(&(top.clone(), node.clone()))
+                .into_iter()
+                .flatten()
+            {
+                if next == start {
+                    if path.iter().all(|p| p >= start) {
+                        out.push(format!("{top}: {} -> {start}", path.join(" -> ")));
+                    }
+                } else if seen.insert(next.clone()) {
+                    let mut longer = path.clone();
+                    longer.push(next.clone());
+                    stack.push((next.clone(), longer));
+                }
+            }
+        }
+    }
+    out.sort();
+    out.dedup();
+    out
+}
+
+#[test]
+fn no_circle_between_the_children_of_a_module() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = BTreeMap::new();
+    read_tree(&root, &root, &mut files);
+    let circles = inner_circles(&files);
+    assert!(circles.is_empty(), "{}", circles.join("\n"));
+    // The walk sees the real inner graph: the figures use their shared frame.
+    let edges = inner_edges(&files);
+    assert!(
+        edges
+            .iter()
+            .any(|(top, from, to, _)| top == "figures" && from == "drift" && to == "frame"),
+        "{edges:?}"
+    );
+}
+
+#[test]
+fn the_checker_finds_a_circle_between_the_children_of_a_module() {
+    // As `figures/` was: a dispatcher among the children, whose figures import its helpers.
+    let files = BTreeMap::from([
+        (
+            "figures/mod.rs".to_string(),
+            "mod free_body;\nmod drift;\nuse crate::figures::drift::go;\n".to_string(),
+        ),
+        (
+            "figures/free_body.rs".to_string(),
+            "pub fn figure() { super::drift::drift() }\npub fn fig() {}\n".to_string(),
+        ),
+        (
+            "figures/drift.rs".to_string(),
+            "use super::free_body::{body_text, fig};\nuse super::FigureError;\n".to_string(),
+        ),
+        // Deeper files reach their siblings through the crate path.
+        (
+            "scene/validate/text.rs".to_string(),
+            "use crate::scene::load::read;\n".to_string(),
+        ),
+        (
+            "scene/load.rs".to_string(),
+            "fn f() { crate::scene::validate::text::check() }\n".to_string(),
+        ),
+        // Not a circle: a child using its parent's types, and test code.
+        (
+            "figures/flip.rs".to_string(),
+            "use super::FigureError;\n#[cfg(test)]\nmod tests {\n    use super::super::drift;\n}\n"
+                .to_string(),
+        ),
+    ]);
+    let circles = inner_circles(&files);
+    assert_eq!(
+        circles,
+        [
+            "figures: drift -> free_body -> drift",
+            "scene: load -> validate -> load"
+        ],
+        "{circles:#?}"
+    );
 }
 
 #[test]

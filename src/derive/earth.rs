@@ -45,7 +45,7 @@ fn number_step(
         ),
         why,
     ));
-    d.set(name, Value::Scalar(value));
+    d.set(name, Value::Scalar(value))?;
     Ok(())
 }
 

@@ -112,10 +112,10 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
          only if a product ω_j ω_k does, so two components of ω are zero: ω lies along a \
          principal axis",
     ));
-    d.set(quantity::PRINCIPAL_MOMENTUM, l.clone());
-    d.set(quantity::GYROSCOPIC_TERM, gyroscopic.clone());
-    d.set(quantity::EULER_EQUATIONS, lhs);
-    d.set(quantity::BODY_RATE_OF_MOMENTUM, body_rate_of_momentum);
+    d.set(quantity::PRINCIPAL_MOMENTUM, l.clone())?;
+    d.set(quantity::GYROSCOPIC_TERM, gyroscopic.clone())?;
+    d.set(quantity::EULER_EQUATIONS, lhs)?;
+    d.set(quantity::BODY_RATE_OF_MOMENTUM, body_rate_of_momentum)?;
     let rates = simplify_value(&Value::Vector(torque_free_rates(&moments(), &w)))?;
     d.steps.push(Step::equation(
         "Torque-free rates",
@@ -126,6 +126,6 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
             "Euler's equations with N = 0, each divided by its moment",
         ),
     ));
-    d.set(quantity::TORQUE_FREE_RATES, rates);
+    d.set(quantity::TORQUE_FREE_RATES, rates)?;
     Ok(())
 }

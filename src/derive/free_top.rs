@@ -85,7 +85,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
                 .text(", a harmonic oscillator of angular frequency βω3"),
         ),
     ));
-    d.set(quantity::W1_SECOND_DERIVATIVE, Value::Scalar(second));
+    d.set(quantity::W1_SECOND_DERIVATIVE, Value::Scalar(second))?;
 
     // The closed form, substituted back into all three of Euler's equations.
     let phase = Expr::add(vec![
@@ -129,8 +129,8 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     d.set(
         quantity::SYMMETRIC_SOLUTION,
         Value::Vector(solution.clone()),
-    );
-    d.set(quantity::SYMMETRIC_RESIDUAL, residual);
+    )?;
+    d.set(quantity::SYMMETRIC_RESIDUAL, residual)?;
 
     let omega_squared = scalar(dot(&solution, &solution))?;
     d.steps.push(Step::equation(
@@ -147,7 +147,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     d.set(
         quantity::OMEGA_SQUARED,
         Value::Scalar(omega_squared.clone()),
-    );
+    )?;
 
     // The angle of (ω1, ω2) advances at (ω1 ω̇2 − ω2 ω̇1)/(ω1² + ω2²).
     let turning = Expr::over(
@@ -167,7 +167,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(precession.clone()),
         "the angle of (ω1, ω2) in the body advances at βω3: the body cone",
     ));
-    d.set(quantity::PRECESSION_RATE, Value::Scalar(precession));
+    d.set(quantity::PRECESSION_RATE, Value::Scalar(precession))?;
 
     let two_t = scalar(dot(&solution, &l))?;
     let l_squared = scalar(dot(&l, &l))?;
@@ -193,8 +193,11 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
             )
             .text(" along the solution: constant, as it must be without torque"),
     ));
-    d.set(quantity::TWICE_ENERGY, Value::Scalar(two_t.clone()));
-    d.set(quantity::MOMENTUM_SQUARED, Value::Scalar(l_squared.clone()));
+    d.set(quantity::TOP_TWICE_ENERGY, Value::Scalar(two_t.clone()))?;
+    d.set(
+        quantity::TOP_MOMENTUM_SQUARED,
+        Value::Scalar(l_squared.clone()),
+    )?;
 
     let body_tan2 = scalar(tan_squared_from_axis(&solution))?;
     d.steps.push(Step::equation(
@@ -233,12 +236,12 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "(I1/I3)² tan² α_b: L leans further from the axis than ω when I3 < I1, less when I3 > I1; \
          ω, L and the axis lie in one plane",
     ));
-    d.set(quantity::BODY_CONE_TAN_SQUARED, Value::Scalar(body_tan2));
-    d.set(quantity::SPACE_CONE_COS_SQUARED, Value::Scalar(space_cos2));
+    d.set(quantity::BODY_CONE_TAN_SQUARED, Value::Scalar(body_tan2))?;
+    d.set(quantity::SPACE_CONE_COS_SQUARED, Value::Scalar(space_cos2))?;
     d.set(
         quantity::MOMENTUM_TILT_TAN_SQUARED,
         Value::Scalar(tilt_tan2),
-    );
+    )?;
 
     // α_b > α_s ⟺ cos α_s > cos α_b = ω3/ω ⟺ 2T > ω3 L ⟺ (2T)² − ω3² L² > 0 (both sides positive).
     let cone_order = scalar(Expr::minus(
@@ -279,6 +282,6 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
          I3 > I1, always has α_b > α_s; a cigar-shaped (prolate) one, I3 < I1, has α_b < α_s \
          only when 2 I3 < I1 (1 − tan² α_b)",
     ));
-    d.set(quantity::CONE_ORDER, Value::Scalar(cone_order));
+    d.set(quantity::CONE_ORDER, Value::Scalar(cone_order))?;
     Ok(())
 }

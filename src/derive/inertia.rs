@@ -228,8 +228,8 @@ fn body_part(
             }
             if index == 0 {
                 // The first body's integrand and position, for claims about the notes' integrals.
-                d.set(quantity::INTEGRAND, Value::Matrix(symmetric(&integrands)));
-                d.set(quantity::POSITION, position);
+                d.set(quantity::INTEGRAND, Value::Matrix(symmetric(&integrands)))?;
+                d.set(quantity::POSITION, position)?;
             }
             let moment = first_moment.then(|| std::array::from_fn(|i| results[7 + i].clone()));
             Ok(Part {
@@ -267,8 +267,8 @@ pub fn derive_tensor(
             "the integrals above, assembled; I is symmetric"
         },
     ));
-    d.set(quantity::INERTIA_TENSOR, tensor);
-    d.set(quantity::MASS, Value::Scalar(mass.clone()));
+    d.set(quantity::INERTIA_TENSOR, tensor)?;
+    d.set(quantity::MASS, Value::Scalar(mass.clone()))?;
     if first_moment {
         let sum = sum_vecs(
             parts
@@ -286,7 +286,7 @@ pub fn derive_tensor(
                 .math("R = (1/M) ∫ r dm", r"\vec{R} = \frac{1}{M}\int \vec{r}\,dm")
                 .text(", from the same integrals"),
         ));
-        d.set(quantity::CENTRE_OF_MASS, centre);
+        d.set(quantity::CENTRE_OF_MASS, centre)?;
     }
     Ok(())
 }
@@ -362,6 +362,6 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R\\vec R^{T}\\right) - \\overleftrightarrow{I} = 0".into(),
         "every entry of the difference simplifies to zero",
     ));
-    d.set(quantity::INERTIA_CM, about_cm);
+    d.set(quantity::INERTIA_CM, about_cm)?;
     Ok(())
 }

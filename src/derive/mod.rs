@@ -20,8 +20,8 @@ pub mod variants;
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA, eigenvalue_letter};
 
 use crate::cas::{self, CasError, DiffError, EvalError, Expr};
-use crate::model::catalogue::Stage;
 use crate::model::catalogue::quantity;
+use crate::model::catalogue::{self, Stage};
 use crate::model::prose::Prose;
 use crate::plan::Plan;
 use crate::scene::Scene;
@@ -162,8 +162,26 @@ pub struct Derivation {
 }
 
 impl Derivation {
-    fn set(&mut self, name: &str, value: Value) {
+    /// Records a derived quantity: one in the catalogue, of its kind, and written once (two
+    /// stages that wrote one name used to keep the last silently).
+    fn set(&mut self, name: &str, value: Value) -> Result<(), DeriveError> {
+        let entry = catalogue::find(name).ok_or_else(|| {
+            DeriveError::Inconsistent(format!("quantity `{name}` is not in the catalogue"))
+        })?;
+        if entry.kind != value.kind_of() {
+            return Err(DeriveError::Inconsistent(format!(
+                "quantity `{name}` is {}, but the catalogue says {:?}",
+                value.kind(),
+                entry.kind
+            )));
+        }
+        if self.quantities.contains_key(name) {
+            return Err(DeriveError::Inconsistent(format!(
+                "quantity `{name}` is derived twice"
+            )));
+        }
         self.quantities.insert(name.to_string(), value);
+        Ok(())
     }
 
     /// A derived quantity by name; missing means a stage ran before the one that sets it.

@@ -12,7 +12,7 @@ use crate::model::prose::Prose;
 
 fn scalar(d: &mut Derivation, name: &str, e: Expr) -> Result<Expr, DeriveError> {
     let e = cas::simplify(&e)?;
-    d.set(name, Value::Scalar(e.clone()));
+    d.set(name, Value::Scalar(e.clone()))?;
     Ok(e)
 }
 
@@ -172,7 +172,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     d.set(
         quantity::MOMENTUM_GAP,
         Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
-    );
+    )?;
     d.steps.push(Step::equation(
         "How far L² is from 2T I_k",
         ("L^2 - 2T I_k", "L^{2} - 2T I_{k}"),
@@ -228,7 +228,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     d.set(
         quantity::POLHODE_CONIC_PRODUCT,
         Value::Vector(product.clone()),
-    );
+    )?;
 
     let (closure, _) = classify(&product, "the polhode conic")?;
     d.steps.push(Step::equation(
@@ -239,7 +239,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
          1 closed curves around it, −1 none. Curves close around the largest and the smallest \
          axis (eqs 86, 87) and cross at the intermediate one: the separatrix",
     ));
-    d.set(quantity::POLHODE_CLOSURE, Value::Matrix(closure));
+    d.set(quantity::POLHODE_CLOSURE, Value::Matrix(closure))?;
 
     // The separatrix L² = 2T I2: c1 L1² + c3 L3² = 0, two planes through axis 2.
     let slope = cas::simplify(&Expr::negate(Expr::over(
@@ -268,6 +268,6 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
             )
             .text(": two planes through axis 2, real when I2 lies between I1 and I3"),
     ));
-    d.set(quantity::SEPARATRIX_SLOPE_SQUARED, Value::Scalar(slope));
+    d.set(quantity::SEPARATRIX_SLOPE_SQUARED, Value::Scalar(slope))?;
     Ok(())
 }

@@ -323,7 +323,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
             d.set(
                 quantity::PRINCIPAL_MOMENTS,
                 Value::Vector([moments[0].clone(), moments[1].clone(), moments[2].clone()]),
-            );
+            )?;
         }
     }
     d.eigen = Some(ExactEigen {

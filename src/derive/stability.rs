@@ -182,8 +182,8 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
     d.set(
         quantity::OSCILLATION_FREQUENCY_SQUARED,
         Value::Vector(omega_sq.clone()),
-    );
-    d.set(quantity::AMPLITUDE_RATIO_SQUARED, Value::Vector(ratio));
+    )?;
+    d.set(quantity::AMPLITUDE_RATIO_SQUARED, Value::Vector(ratio))?;
 
     let (stability, by_order) = classify(&omega_sq, "Ω²")?;
     for (order, signs) in by_order {
@@ -217,7 +217,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         "row k: axis k; columns: its moment is the largest, the smallest, the intermediate; \
          1 stable, −1 unstable. The same for every axis: only the intermediate axis is unstable",
     ));
-    d.set(quantity::STABILITY, Value::Matrix(stability));
+    d.set(quantity::STABILITY, Value::Matrix(stability))?;
     let growth = cas::simplify(&Expr::negate(omega_sq[1].clone()))?;
     d.steps.push(Step::equation(
         "Growth rate about the intermediate axis 2",
@@ -233,6 +233,6 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
             .text(" with ")
             .math("σ² = −Ω2²", r"\sigma^{2} = -\Omega_{2}^{2}"),
     ));
-    d.set(quantity::GROWTH_RATE_SQUARED, Value::Scalar(growth));
+    d.set(quantity::GROWTH_RATE_SQUARED, Value::Scalar(growth))?;
     Ok(())
 }

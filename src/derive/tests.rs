@@ -274,3 +274,25 @@ fn principal_moments_come_in_ascending_order_and_match_the_eigen_solver() {
         }
     }
 }
+
+#[test]
+fn a_quantity_is_set_once_by_its_kind_and_only_if_catalogued() {
+    use super::{Derivation, DeriveError};
+    use crate::cas::Expr;
+    use crate::model::catalogue::quantity;
+    let mut d = Derivation::default();
+    let energy = Value::Scalar(Expr::sym("E"));
+    d.set(quantity::TWICE_ENERGY, energy.clone()).unwrap();
+    // A second writer used to replace the first silently.
+    let again = d.set(quantity::TWICE_ENERGY, Value::Scalar(Expr::int(2)));
+    assert!(matches!(again, Err(DeriveError::Inconsistent(m)) if m.contains("derived twice")));
+    assert_eq!(d.quantities[quantity::TWICE_ENERGY], energy);
+    let scalar_as_matrix = d.set(quantity::INERTIA_TENSOR, energy.clone());
+    assert!(
+        matches!(scalar_as_matrix, Err(DeriveError::Inconsistent(m)) if m.contains("catalogue says Matrix"))
+    );
+    let unknown = d.set("energy", energy);
+    assert!(
+        matches!(unknown, Err(DeriveError::Inconsistent(m)) if m.contains("not in the catalogue"))
+    );
+}

@@ -2,7 +2,7 @@
 
 use super::FigureError;
 use super::accuracy::{exact_accuracy, merged};
-use super::free_body::{fig, sorted_axes, times};
+use super::frame::{fig, sorted_axes, times};
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::{Figure, Mark, Series};
 use crate::model::moments::Moments;

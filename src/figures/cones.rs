@@ -1,8 +1,8 @@
 //! The symmetric top's body and space cones, with their measured half-angles.
 
 use super::accuracy::run_accuracy;
-use super::free_body::dopri_trace;
-use super::free_body::fig;
+use super::frame::dopri_trace;
+use super::frame::fig;
 use super::projection::project;
 use super::{FigureError, colour};
 use crate::base::format::short;

@@ -1,7 +1,7 @@
 //! The drift of the invariants 2T and |L| against time for each integrator.
 
 use super::accuracy::run_accuracy;
-use super::free_body::{body_text, fig};
+use super::frame::{body_text, fig};
 use super::{ERROR_FLOOR, FigureError};
 use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;

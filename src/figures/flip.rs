@@ -2,7 +2,7 @@
 //! prediction.
 
 use super::accuracy::{exact_accuracy, run_accuracy};
-use super::free_body::{dopri_trace, fig, sorted_axes, times};
+use super::frame::{dopri_trace, fig, sorted_axes, times};
 use super::{FigureError, colour};
 use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;

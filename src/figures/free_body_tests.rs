@@ -1,4 +1,4 @@
-use super::free_body::figure;
+use super::free_body_figure as figure;
 use crate::model::fidelity::Fidelity;
 use crate::scene::FreeBodyPlot;
 

@@ -1,7 +1,7 @@
 //! The herpolhode: ω's tip traced on the invariable plane in space.
 
 use super::accuracy::run_accuracy;
-use super::free_body::{body_text, dopri_trace, fig};
+use super::frame::{body_text, dopri_trace, fig};
 use super::projection::plane_basis;
 use super::{FigureError, colour};
 use crate::base::format::{sci, short};

@@ -1,7 +1,7 @@
 //! The integrator Pareto figure: error at the end time against right-hand-side evaluations
 //! for every integrator and step, with the Pareto front.
 
-use super::free_body::{body_text, fig};
+use super::frame::{body_text, fig};
 use super::{ERROR_FLOOR, FigureError, colour};
 use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;

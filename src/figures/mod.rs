@@ -8,7 +8,7 @@ mod cones;
 pub mod convergence;
 mod drift;
 mod flip;
-mod free_body;
+mod frame;
 mod herpolhode;
 pub mod integrator_pareto;
 mod omega_vs_time;
@@ -22,10 +22,11 @@ use crate::cas::EvalError;
 use crate::derive::{Derivation, DeriveError};
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::Figure;
-use crate::model::moments::MomentsError;
+use crate::model::moments::{Moments, MomentsError};
 use crate::numeric::body::NumBody;
 use crate::numeric::integrators::IntegrationError;
-use crate::scene::{FreeInertia, PlotRequest, Scene};
+use crate::scene::{FreeBodyPlot, FreeInertia, PlotRequest, Scene};
+use nalgebra::Vector3;
 
 /// Why a figure could not be drawn.
 #[derive(Debug, thiserror::Error)]
@@ -176,7 +177,7 @@ fn plot(
                     FreeInertia::Given(i) => *i,
                     FreeInertia::Principal => own_principal_moments(scene, d)?,
                 };
-                out.push(free_body::figure(*kind, inertia, *omega, *t, fidelity)?)
+                out.push(free_body_figure(*kind, inertia, *omega, *t, fidelity)?)
             }
         }
         // Two plots of one kind in a scene get distinct file names.
@@ -189,6 +190,30 @@ fn plot(
         }
     }
     Ok(())
+}
+
+/// A free-body figure: each kind is drawn by its own file.
+fn free_body_figure(
+    kind: FreeBodyPlot,
+    inertia: [f64; 3],
+    omega: [f64; 3],
+    t: f64,
+    fidelity: &Fidelity,
+) -> Result<Figure, FigureError> {
+    let i = Moments::new(inertia)?;
+    let w0 = Vector3::from(omega);
+    let f = fidelity;
+    match kind {
+        FreeBodyPlot::OmegaVsTime => omega_vs_time::omega_vs_time(&i, w0, t, f),
+        FreeBodyPlot::Polhodes => polhodes::polhodes(&i, w0, f),
+        FreeBodyPlot::Drift => drift::drift(&i, w0, t, f),
+        FreeBodyPlot::Flip => flip::flip(&i, w0, t, f),
+        FreeBodyPlot::AxisSpins => axis_spins::axis_spins(&i, w0, t, f),
+        FreeBodyPlot::Herpolhode => herpolhode::herpolhode(&i, w0, t, f),
+        FreeBodyPlot::PolarMotion => polar_motion::polar_motion(&i, w0, f),
+        FreeBodyPlot::Cones => cones::cones(&i, w0, t, f),
+        FreeBodyPlot::IntegratorPareto => integrator_pareto::integrator_pareto(&i, w0, t, f),
+    }
 }
 
 /// The principal moments of the scene's bodies about their centre of mass, at the scene's

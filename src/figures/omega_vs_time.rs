@@ -2,7 +2,7 @@
 
 use super::FigureError;
 use super::accuracy::{exact_accuracy, run_accuracy};
-use super::free_body::{body_text, fig, motion_text, times};
+use super::frame::{body_text, fig, motion_text, times};
 use crate::base::format::{sci, short};
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::{Figure, Legend, Mark, Series};

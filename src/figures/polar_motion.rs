@@ -1,7 +1,7 @@
 //! Earth's polar motion over one Euler period, with the Chandler period beside it.
 
 use super::accuracy::exact_accuracy;
-use super::free_body::{fig, times};
+use super::frame::{fig, times};
 use super::{FigureError, colour};
 use crate::derive::earth;
 use crate::model::fidelity::Fidelity;

@@ -1,7 +1,7 @@
 //! Polhodes on the energy ellipsoid in L-space, with the separatrix.
 
 use super::accuracy::{exact_accuracy, merged};
-use super::free_body::{fig, sorted_axes, times};
+use super::frame::{fig, sorted_axes, times};
 use super::projection::project;
 use super::{FigureError, colour, legend_entry};
 use crate::model::fidelity::Fidelity;

@@ -112,52 +112,9 @@ impl Stage {
     }
 }
 
-/// Which derived quantity needs which stage.
+/// Which stage derives a quantity.
 pub fn stage_for_quantity(name: &str) -> Option<Stage> {
-    use quantity::*;
-    Some(match name {
-        MASS | INERTIA_TENSOR | INTEGRAND | POSITION => Stage::Tensor,
-        CENTRE_OF_MASS => Stage::CentreOfMass,
-        INERTIA_CM => Stage::ParallelAxis,
-        PRINCIPAL_MOMENTS => Stage::Principal,
-        ANGULAR_MOMENTUM | ANGULAR_MOMENTUM_DIRECT => Stage::AngularMomentum,
-        KINETIC_ENERGY | KINETIC_ENERGY_DIRECT => Stage::KineticEnergy,
-        MOMENT_ABOUT_AXIS | MOMENT_ABOUT_AXIS_DIRECT => Stage::MomentAboutAxis,
-        RADIUS_OF_GYRATION => Stage::Gyration,
-        PRINCIPAL_MOMENTUM
-        | GYROSCOPIC_TERM
-        | EULER_EQUATIONS
-        | BODY_RATE_OF_MOMENTUM
-        | TORQUE_FREE_RATES => Stage::EulerEquations,
-        W1_SECOND_DERIVATIVE
-        | SYMMETRIC_SOLUTION
-        | SYMMETRIC_RESIDUAL
-        | OMEGA_SQUARED
-        | PRECESSION_RATE
-        | BODY_CONE_TAN_SQUARED
-        | SPACE_CONE_COS_SQUARED
-        | MOMENTUM_TILT_TAN_SQUARED
-        | CONE_ORDER => Stage::SymmetricTop,
-        OSCILLATION_FREQUENCY_SQUARED
-        | AMPLITUDE_RATIO_SQUARED
-        | STABILITY
-        | GROWTH_RATE_SQUARED => Stage::AxisStability,
-        ELLIPSOID_VALUE
-        | GRADIENT_FACTOR_SQUARED
-        | PLANE_DISTANCE_SQUARED
-        | ENERGY_FROM_MOMENTUM
-        | MOMENTUM_GAP
-        | POLHODE_CONIC_PRODUCT
-        | POLHODE_CLOSURE
-        | SEPARATRIX_SLOPE_SQUARED => Stage::Poinsot,
-        EARTH_BETA
-        | EULER_PERIOD_SIDEREAL_DAYS
-        | EULER_PERIOD_SOLAR_DAYS
-        | CHANDLER_RATIO
-        | BULGE_KM
-        | BULGE_FRACTION => Stage::EarthPrecession,
-        _ => return None,
-    })
+    find(name).map(|q| q.stage)
 }
 
 /// What a scene asks for. Each one pulls in the stages it needs (see `plan`).
@@ -239,6 +196,8 @@ pub mod quantity {
     pub const SYMMETRIC_RESIDUAL: &str = "symmetric_residual";
     pub const OMEGA_SQUARED: &str = "omega_squared";
     pub const PRECESSION_RATE: &str = "precession_rate";
+    pub const TOP_TWICE_ENERGY: &str = "top_twice_energy";
+    pub const TOP_MOMENTUM_SQUARED: &str = "top_momentum_squared";
     pub const TWICE_ENERGY: &str = "twice_energy";
     pub const MOMENTUM_SQUARED: &str = "momentum_squared";
     pub const BODY_CONE_TAN_SQUARED: &str = "body_cone_tan_squared";
@@ -281,21 +240,9 @@ pub const ANSWERS: &[(&str, Output)] = &[
 /// clashes with no scene symbol: a claim's `inertia_tensor[0][1]` reads I_{xy}. Other names
 /// print as upright words.
 pub fn quantity_symbol(name: &str) -> Option<&'static str> {
-    Some(match name {
-        quantity::INERTIA_TENSOR => "I",
-        quantity::INERTIA_CM => "I^{\\mathrm{cm}}",
-        quantity::ANGULAR_MOMENTUM | quantity::ANGULAR_MOMENTUM_DIRECT => "L",
-        quantity::KINETIC_ENERGY | quantity::KINETIC_ENERGY_DIRECT => "T",
-        quantity::MOMENT_ABOUT_AXIS | quantity::MOMENT_ABOUT_AXIS_DIRECT => "I_{n}",
-        quantity::CENTRE_OF_MASS => "R^{\\mathrm{cm}}",
-        quantity::POSITION => "\\vec{r}",
-        // The integrand of I_xx is the I_xx per unit of the integration variable.
-        quantity::INTEGRAND => "dI",
-        _ => return None,
-    })
+    find(name).and_then(|q| q.symbol)
 }
 
-/// Names a claim may use for derived quantities, and the functions of the claim language.
 /// What `[expect]` records of a scene: every derived result, but the intermediate integrands
 /// and positions. A scene without `[expect]` has these not yet recorded, which `check` fails on
 /// until `check --bless` writes them in.
@@ -303,64 +250,167 @@ pub fn recorded_by_default(name: &str) -> bool {
     name != quantity::INTEGRAND && name != quantity::POSITION
 }
 
-pub const QUANTITIES: &[&str] = &[
-    quantity::MASS,
-    quantity::CENTRE_OF_MASS,
-    quantity::INERTIA_TENSOR,
-    quantity::INERTIA_CM,
-    quantity::PRINCIPAL_MOMENTS,
-    quantity::ANGULAR_MOMENTUM,
-    quantity::ANGULAR_MOMENTUM_DIRECT,
-    quantity::KINETIC_ENERGY,
-    quantity::KINETIC_ENERGY_DIRECT,
-    quantity::MOMENT_ABOUT_AXIS,
-    quantity::MOMENT_ABOUT_AXIS_DIRECT,
-    quantity::RADIUS_OF_GYRATION,
-    quantity::INTEGRAND,
-    quantity::POSITION,
-];
-/// Quantities of the free-body derivations (Lecture 3/9), which need no body.
-pub const DYNAMICS_QUANTITIES: &[&str] = &[
-    quantity::PRINCIPAL_MOMENTUM,
-    quantity::GYROSCOPIC_TERM,
-    quantity::EULER_EQUATIONS,
-    quantity::BODY_RATE_OF_MOMENTUM,
-    quantity::TORQUE_FREE_RATES,
-    quantity::W1_SECOND_DERIVATIVE,
-    quantity::SYMMETRIC_SOLUTION,
-    quantity::SYMMETRIC_RESIDUAL,
-    quantity::OMEGA_SQUARED,
-    quantity::PRECESSION_RATE,
-    quantity::TWICE_ENERGY,
-    quantity::MOMENTUM_SQUARED,
-    quantity::BODY_CONE_TAN_SQUARED,
-    quantity::SPACE_CONE_COS_SQUARED,
-    quantity::MOMENTUM_TILT_TAN_SQUARED,
-    quantity::CONE_ORDER,
-    quantity::OSCILLATION_FREQUENCY_SQUARED,
-    quantity::AMPLITUDE_RATIO_SQUARED,
-    quantity::STABILITY,
-    quantity::GROWTH_RATE_SQUARED,
-    quantity::ELLIPSOID_VALUE,
-    quantity::GRADIENT_FACTOR_SQUARED,
-    quantity::PLANE_DISTANCE_SQUARED,
-    quantity::ENERGY_FROM_MOMENTUM,
-    quantity::MOMENTUM_GAP,
-    quantity::POLHODE_CONIC_PRODUCT,
-    quantity::POLHODE_CLOSURE,
-    quantity::SEPARATRIX_SLOPE_SQUARED,
-    quantity::EARTH_BETA,
-    quantity::EULER_PERIOD_SIDEREAL_DAYS,
-    quantity::EULER_PERIOD_SOLAR_DAYS,
-    quantity::CHANDLER_RATIO,
-    quantity::BULGE_KM,
-    quantity::BULGE_FRACTION,
-];
+/// The names `[expect]` records by default, in the catalogue's order.
+pub fn recorded_names() -> impl Iterator<Item = &'static str> {
+    CATALOGUE
+        .iter()
+        .map(|q| q.name)
+        .filter(|name| recorded_by_default(name))
+}
+
+/// What a derived quantity's value is: one expression, three, or three by three.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Scalar,
+    Vector,
+    Matrix,
+}
+
+/// A derived quantity: its name (as claims, `[expect]` and reports write it), its kind, the one
+/// stage that derives it, and the symbol a page prints for it where one is standard.
+#[derive(Debug)]
+pub struct Quantity {
+    pub name: &'static str,
+    pub kind: Kind,
+    pub stage: Stage,
+    pub symbol: Option<&'static str>,
+}
+
+const fn q(name: &'static str, kind: Kind, stage: Stage) -> Quantity {
+    Quantity {
+        name,
+        kind,
+        stage,
+        symbol: None,
+    }
+}
+
+const fn with_symbol(
+    name: &'static str,
+    kind: Kind,
+    stage: Stage,
+    symbol: &'static str,
+) -> Quantity {
+    Quantity {
+        name,
+        kind,
+        stage,
+        symbol: Some(symbol),
+    }
+}
+
+/// Every derived quantity, once: the lists of names, the stage a claim pulls in, the symbols
+/// and the check on what a stage writes all read it here. Bodies' quantities first, then the
+/// free-body derivations'.
+pub const CATALOGUE: &[Quantity] = {
+    use Kind::*;
+    use quantity::*;
+    &[
+        q(MASS, Scalar, Stage::Tensor),
+        with_symbol(
+            CENTRE_OF_MASS,
+            Vector,
+            Stage::CentreOfMass,
+            "R^{\\mathrm{cm}}",
+        ),
+        with_symbol(INERTIA_TENSOR, Matrix, Stage::Tensor, "I"),
+        with_symbol(INERTIA_CM, Matrix, Stage::ParallelAxis, "I^{\\mathrm{cm}}"),
+        q(PRINCIPAL_MOMENTS, Vector, Stage::Principal),
+        with_symbol(ANGULAR_MOMENTUM, Vector, Stage::AngularMomentum, "L"),
+        with_symbol(ANGULAR_MOMENTUM_DIRECT, Vector, Stage::AngularMomentum, "L"),
+        with_symbol(KINETIC_ENERGY, Scalar, Stage::KineticEnergy, "T"),
+        with_symbol(KINETIC_ENERGY_DIRECT, Scalar, Stage::KineticEnergy, "T"),
+        with_symbol(MOMENT_ABOUT_AXIS, Scalar, Stage::MomentAboutAxis, "I_{n}"),
+        with_symbol(
+            MOMENT_ABOUT_AXIS_DIRECT,
+            Scalar,
+            Stage::MomentAboutAxis,
+            "I_{n}",
+        ),
+        q(RADIUS_OF_GYRATION, Scalar, Stage::Gyration),
+        // The integrand of I_xx is the I_xx per unit of the integration variable.
+        with_symbol(INTEGRAND, Matrix, Stage::Tensor, "dI"),
+        with_symbol(POSITION, Vector, Stage::Tensor, "\\vec{r}"),
+        q(PRINCIPAL_MOMENTUM, Vector, Stage::EulerEquations),
+        q(GYROSCOPIC_TERM, Vector, Stage::EulerEquations),
+        q(EULER_EQUATIONS, Vector, Stage::EulerEquations),
+        q(BODY_RATE_OF_MOMENTUM, Vector, Stage::EulerEquations),
+        q(TORQUE_FREE_RATES, Vector, Stage::EulerEquations),
+        q(W1_SECOND_DERIVATIVE, Scalar, Stage::SymmetricTop),
+        q(SYMMETRIC_SOLUTION, Vector, Stage::SymmetricTop),
+        q(SYMMETRIC_RESIDUAL, Vector, Stage::SymmetricTop),
+        q(OMEGA_SQUARED, Scalar, Stage::SymmetricTop),
+        q(PRECESSION_RATE, Scalar, Stage::SymmetricTop),
+        q(TOP_TWICE_ENERGY, Scalar, Stage::SymmetricTop),
+        q(TOP_MOMENTUM_SQUARED, Scalar, Stage::SymmetricTop),
+        q(BODY_CONE_TAN_SQUARED, Scalar, Stage::SymmetricTop),
+        q(SPACE_CONE_COS_SQUARED, Scalar, Stage::SymmetricTop),
+        q(MOMENTUM_TILT_TAN_SQUARED, Scalar, Stage::SymmetricTop),
+        q(CONE_ORDER, Scalar, Stage::SymmetricTop),
+        q(OSCILLATION_FREQUENCY_SQUARED, Vector, Stage::AxisStability),
+        q(AMPLITUDE_RATIO_SQUARED, Vector, Stage::AxisStability),
+        q(STABILITY, Matrix, Stage::AxisStability),
+        q(GROWTH_RATE_SQUARED, Scalar, Stage::AxisStability),
+        q(TWICE_ENERGY, Scalar, Stage::Poinsot),
+        q(MOMENTUM_SQUARED, Scalar, Stage::Poinsot),
+        q(ELLIPSOID_VALUE, Scalar, Stage::Poinsot),
+        q(GRADIENT_FACTOR_SQUARED, Scalar, Stage::Poinsot),
+        q(PLANE_DISTANCE_SQUARED, Scalar, Stage::Poinsot),
+        q(ENERGY_FROM_MOMENTUM, Scalar, Stage::Poinsot),
+        q(MOMENTUM_GAP, Vector, Stage::Poinsot),
+        q(POLHODE_CONIC_PRODUCT, Vector, Stage::Poinsot),
+        q(POLHODE_CLOSURE, Matrix, Stage::Poinsot),
+        q(SEPARATRIX_SLOPE_SQUARED, Scalar, Stage::Poinsot),
+        q(EARTH_BETA, Scalar, Stage::EarthPrecession),
+        q(EULER_PERIOD_SIDEREAL_DAYS, Scalar, Stage::EarthPrecession),
+        q(EULER_PERIOD_SOLAR_DAYS, Scalar, Stage::EarthPrecession),
+        q(CHANDLER_RATIO, Scalar, Stage::EarthPrecession),
+        q(BULGE_KM, Scalar, Stage::EarthPrecession),
+        q(BULGE_FRACTION, Scalar, Stage::EarthPrecession),
+    ]
+};
+
+/// The catalogue's entry for a name.
+pub fn find(name: &str) -> Option<&'static Quantity> {
+    CATALOGUE.iter().find(|q| q.name == name)
+}
+
+impl Stage {
+    /// Whether the stage derives from the scene's bodies (the others are free-body
+    /// derivations, which need none).
+    pub fn needs_body(self) -> bool {
+        !matches!(
+            self,
+            Stage::EulerEquations
+                | Stage::SymmetricTop
+                | Stage::AxisStability
+                | Stage::Poinsot
+                | Stage::EarthPrecession
+        )
+    }
+}
+
+/// The names of the quantities derived from bodies, in the catalogue's order.
+pub fn body_quantities() -> impl Iterator<Item = &'static str> {
+    CATALOGUE
+        .iter()
+        .filter(|q| q.stage.needs_body())
+        .map(|q| q.name)
+}
+
+/// The names of the free-body derivations' quantities (Lecture 3/9), which need no body.
+pub fn free_body_quantities() -> impl Iterator<Item = &'static str> {
+    CATALOGUE
+        .iter()
+        .filter(|q| !q.stage.needs_body())
+        .map(|q| q.name)
+}
 
 /// A name of a derived quantity, from a body or from a free-body derivation.
 pub fn is_quantity(name: &str) -> bool {
-    QUANTITIES.contains(&name) || DYNAMICS_QUANTITIES.contains(&name)
+    find(name).is_some()
 }
+
 /// The symbols each free-body derivation writes its results in; a scene that asks for one
 /// declares them.
 pub const EULER_SYMBOLS: &[&str] = &[
@@ -402,3 +452,44 @@ pub const CITABLE_STEPS: &[&str] = &[
     "torque-free-rates",
     "twice-energy",
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_quantity_name_is_in_the_catalogue_once() {
+        // The names of `mod quantity`, read from this file's source: a name added there
+        // without a catalogue entry (its kind and stage) fails here.
+        let source = include_str!("catalogue.rs");
+        let block = &source[source.find("pub mod quantity {").unwrap()..];
+        let block = &block[..block.find("\n}").unwrap()];
+        let names: Vec<&str> = block
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix("pub const "))
+            .map(|l| l.split('"').nth(1).unwrap())
+            .collect();
+        assert_eq!(names.len(), CATALOGUE.len());
+        for name in &names {
+            assert_eq!(
+                CATALOGUE.iter().filter(|q| q.name == *name).count(),
+                1,
+                "{name}"
+            );
+        }
+        // Each free-body quantity pulls in a stage that needs no body, and back.
+        assert!(free_body_quantities().all(|n| !stage_for_quantity(n).unwrap().needs_body()));
+        assert_eq!(
+            body_quantities().count() + free_body_quantities().count(),
+            names.len()
+        );
+        assert_eq!(
+            stage_for_quantity(quantity::TWICE_ENERGY),
+            Some(Stage::Poinsot)
+        );
+        assert_eq!(
+            stage_for_quantity(quantity::TOP_TWICE_ENERGY),
+            Some(Stage::SymmetricTop)
+        );
+    }
+}

@@ -26,6 +26,16 @@ pub enum Value {
 }
 
 impl Value {
+    /// Its kind, as the catalogue names it.
+    pub fn kind_of(&self) -> crate::model::catalogue::Kind {
+        use crate::model::catalogue::Kind;
+        match self {
+            Value::Scalar(_) => Kind::Scalar,
+            Value::Vector(_) => Kind::Vector,
+            Value::Matrix(_) => Kind::Matrix,
+        }
+    }
+
     pub fn kind(&self) -> &'static str {
         match self {
             Value::Scalar(_) => "a scalar",

@@ -3,7 +3,7 @@
 //! (toml_edit). The file is edited, not replaced: through a symbolic link, keeping its hard
 //! links, mode and owner, never when it is read-only or changed since it was read.
 
-use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, recorded_by_default};
+use crate::model::catalogue::recorded_names;
 use crate::pipeline::SceneReport;
 use std::os::unix::fs::{MetadataExt, OpenOptionsExt};
 use std::path::{Path, PathBuf};
@@ -229,8 +229,8 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
         }
         None => {
             let mut table = toml_edit::Table::new();
-            for name in QUANTITIES.iter().chain(DYNAMICS_QUANTITIES) {
-                if let Some(v) = quantities.get(*name).filter(|_| recorded_by_default(name)) {
+            for name in recorded_names() {
+                if let Some(v) = quantities.get(name) {
                     let text = v.to_text();
                     changes.push(Blessed {
                         line: 0,

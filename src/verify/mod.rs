@@ -11,7 +11,7 @@ use crate::cas::{self, Expr};
 use crate::derive::algebra::{Env, Value, evaluate};
 use crate::derive::{Derivation, simplify_value};
 use crate::model::catalogue::quantity;
-use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, Stage, recorded_by_default};
+use crate::model::catalogue::{Stage, recorded_names};
 use crate::model::prose::Prose;
 use crate::model::value::vector_at;
 use crate::numeric::NumericReport;
@@ -427,12 +427,8 @@ pub fn check_regressions(
     if scene.expect.is_empty() {
         // Nothing recorded yet: each result fails until it is reviewed, as an unrecorded
         // claim does.
-        for name in QUANTITIES.iter().chain(DYNAMICS_QUANTITIES) {
-            if let Some(v) = d
-                .quantities
-                .get(*name)
-                .filter(|_| recorded_by_default(name))
-            {
+        for name in recorded_names() {
+            if let Some(v) = d.quantities.get(name) {
                 out.push(RegressionResult {
                     quantity: name.to_string(),
                     recorded: None,

@@ -6,6 +6,7 @@
 mod authoring;
 mod bad_input;
 mod build;
+mod catalogue;
 mod check;
 mod contract;
 mod course;

@@ -2,7 +2,7 @@
 
 use super::{Validator, content_start};
 use crate::cas::Expr;
-use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, is_quantity};
+use crate::model::catalogue::{body_quantities, free_body_quantities, is_quantity};
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawClaim, RawScene, Text};
 use crate::scene::types::{Claim, ClaimRole, Verdict};
@@ -50,10 +50,10 @@ impl Validator<'_> {
                         "`{n}` is not a derived quantity{}; the quantities are {}, {}",
                         crate::base::suggest::did_you_mean(
                             n,
-                            QUANTITIES.iter().chain(DYNAMICS_QUANTITIES).copied()
+                            body_quantities().chain(free_body_quantities())
                         ),
-                        QUANTITIES.join(", "),
-                        DYNAMICS_QUANTITIES.join(", ")
+                        body_quantities().collect::<Vec<_>>().join(", "),
+                        free_body_quantities().collect::<Vec<_>>().join(", ")
                     ),
                 ));
             }

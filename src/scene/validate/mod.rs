@@ -14,7 +14,7 @@ use super::error::{Locator, SceneError};
 use super::raw::{RawScene, Text};
 use super::types::{Claim, NotesRef, Scene};
 use crate::cas::{Expr, parse_input as parse_expr};
-use crate::model::catalogue::{Output, QUANTITIES};
+use crate::model::catalogue::{Output, find};
 use claims::check_calls;
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
@@ -365,10 +365,11 @@ impl Validator<'_> {
                 ));
             }
             let uses_body = |c: &&Claim| {
-                c.quantity
-                    .iter()
-                    .chain(c.value.iter())
-                    .any(|e| e.symbols().iter().any(|s| QUANTITIES.contains(&s.as_str())))
+                c.quantity.iter().chain(c.value.iter()).any(|e| {
+                    e.symbols()
+                        .iter()
+                        .any(|s| find(s).is_some_and(|q| q.stage.needs_body()))
+                })
             };
             if let Some(c) = claims.iter().find(uses_body) {
                 return Err(self.err(

@@ -4,7 +4,7 @@
 use super::bodies::body_symbols;
 use super::{RESERVED, Validator, is_identifier};
 use crate::cas::Expr;
-use crate::model::catalogue::{DYNAMICS_QUANTITIES, QUANTITIES, is_quantity};
+use crate::model::catalogue::{CATALOGUE, is_quantity};
 use crate::scene::error::SceneError;
 use crate::scene::raw::RawScene;
 use crate::scene::types::Body;
@@ -84,12 +84,7 @@ impl Validator<'_> {
         }
         claim_names.extend(vectors.keys().cloned());
         claim_names.extend(variables.iter().cloned());
-        claim_names.extend(
-            QUANTITIES
-                .iter()
-                .chain(DYNAMICS_QUANTITIES)
-                .map(|s| s.to_string()),
-        );
+        claim_names.extend(CATALOGUE.iter().map(|q| q.name.to_string()));
         Ok((definitions, vectors, claim_names))
     }
 

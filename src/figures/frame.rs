@@ -1,38 +1,13 @@
-//! The free-body figures' dispatch and the helpers they share: sample times, the figure
-//! frame, and the text that names the body and its motion.
+//! What the free-body figures share: sample times, the figure frame, the text that names the
+//! body and its motion, and the Dormand–Prince run several of them draw.
 
-use super::FigureError;
 use crate::base::format::sci;
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::{Figure, Legend, Scale, Series};
 use crate::model::moments::Moments;
 use crate::numeric::free_body::ExactSolution;
 use crate::numeric::integrators::{IntegrationError, Method, Resolution, Run, integrate};
-use crate::scene::FreeBodyPlot;
 use nalgebra::Vector3;
-
-pub fn figure(
-    kind: FreeBodyPlot,
-    inertia: [f64; 3],
-    omega: [f64; 3],
-    t: f64,
-    fidelity: &Fidelity,
-) -> Result<Figure, FigureError> {
-    let i = Moments::new(inertia)?;
-    let w0 = Vector3::from(omega);
-    let f = fidelity;
-    match kind {
-        FreeBodyPlot::OmegaVsTime => super::omega_vs_time::omega_vs_time(&i, w0, t, f),
-        FreeBodyPlot::Polhodes => super::polhodes::polhodes(&i, w0, f),
-        FreeBodyPlot::Drift => super::drift::drift(&i, w0, t, f),
-        FreeBodyPlot::Flip => super::flip::flip(&i, w0, t, f),
-        FreeBodyPlot::AxisSpins => super::axis_spins::axis_spins(&i, w0, t, f),
-        FreeBodyPlot::Herpolhode => super::herpolhode::herpolhode(&i, w0, t, f),
-        FreeBodyPlot::PolarMotion => super::polar_motion::polar_motion(&i, w0, f),
-        FreeBodyPlot::Cones => super::cones::cones(&i, w0, t, f),
-        FreeBodyPlot::IntegratorPareto => super::integrator_pareto::integrator_pareto(&i, w0, t, f),
-    }
-}
 
 pub(super) fn times(t_end: f64, n: usize) -> Vec<f64> {
     (0..=n).map(|j| t_end * j as f64 / n as f64).collect()
