@@ -3,7 +3,7 @@
 //! symmetric top, the stability analysis and Poinsot's construction start from.
 
 use super::algebra::{Value, Vec3, add_vec, cross, diag, mat_vec, sub_vec};
-use super::{Derivation, DeriveError, Step, cited, factored, simplify_value};
+use super::{Derivation, DeriveError, Step, cited, factored, simplify_value, simplify_vec};
 use crate::cas::Expr;
 use crate::model::catalogue::quantity;
 
@@ -16,9 +16,12 @@ pub fn moments() -> [Expr; 3] {
     vector(["I1", "I2", "I3"])
 }
 
+/// The names of ω's body-frame components.
+const OMEGA: [&str; 3] = ["w1", "w2", "w3"];
+
 /// ω in the body frame.
 pub fn omega() -> Vec3 {
-    vector(["w1", "w2", "w3"])
+    vector(OMEGA)
 }
 
 /// The torque-free rates ω̇ = −I⁻¹(ω × Iω) for principal moments `i`, before simplification.
@@ -27,13 +30,11 @@ pub fn torque_free_rates(i: &[Expr; 3], w: &Vec3) -> Vec3 {
     std::array::from_fn(|a| Expr::negate(Expr::over(gyroscopic[a].clone(), i[a].clone())))
 }
 
-/// The time derivative of `f(ω)` along the motion ω̇ = `rates`, by the chain rule.
-pub fn rate_along(f: &Expr, w: &Vec3, rates: &Vec3) -> Result<Expr, DeriveError> {
+/// The time derivative of `f(ω)` along the motion ω̇ = `rates`, by the chain rule over the
+/// components of [`omega`].
+pub fn rate_along(f: &Expr, rates: &Vec3) -> Result<Expr, DeriveError> {
     let mut terms = Vec::new();
-    for (wi, ri) in w.iter().zip(rates) {
-        let Expr::Sym(name) = wi else {
-            unreachable!("ω is a vector of symbols")
-        };
+    for (name, ri) in OMEGA.iter().zip(rates) {
         let partial = f.diff(name).map_err(DeriveError::from)?;
         terms.push(Expr::mul(vec![partial, ri.clone()]));
     }
@@ -47,7 +48,8 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         vector(["wd1", "wd2", "wd3"]),
         vector(["N1", "N2", "N3"]),
     );
-    let l = simplify_value(&Value::Vector(mat_vec(&inertia, &w)))?;
+    let lv = simplify_vec(&mat_vec(&inertia, &w))?;
+    let l = Value::Vector(lv.clone());
     d.steps.push(Step::equation(
         "Angular momentum in the principal frame",
         ("L", "\\vec L"),
@@ -57,10 +59,8 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
             "the tensor is diagonal in the principal frame, so L_j = I_j ω_j (no sum)",
         ),
     ));
-    let Value::Vector(lv) = &l else {
-        unreachable!()
-    };
-    let body_rate = simplify_value(&Value::Vector(mat_vec(&inertia, &wd)))?;
+    let br = simplify_vec(&mat_vec(&inertia, &wd))?;
+    let body_rate = Value::Vector(br.clone());
     d.steps.push(Step::equation(
         "Rate of L relative to the body",
         (
@@ -70,17 +70,15 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         &body_rate,
         "the principal moments are constant in the body frame, so only ω changes",
     ));
-    let gyroscopic = simplify_value(&Value::Vector(cross(&w, lv)))?;
+    let g = simplify_vec(&cross(&w, &lv))?;
+    let gyroscopic = Value::Vector(g.clone());
     d.steps.push(Step::equation(
         "Turning of the body frame",
         ("w x L", "\\vec\\omega\\times\\vec L"),
         &gyroscopic,
         "(ω × L)_i = ε_ijk ω_j L_k",
     ));
-    let (Value::Vector(br), Value::Vector(g)) = (&body_rate, &gyroscopic) else {
-        unreachable!()
-    };
-    let lhs = simplify_value(&Value::Vector(add_vec(br, g)))?;
+    let lhs = simplify_value(&Value::Vector(add_vec(&br, &g)))?;
     d.steps.push(Step::equation(
         "Euler's equations",
         (
@@ -94,7 +92,7 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
          component by component these are Euler's equations",
         ),
     ));
-    let body_rate_of_momentum = simplify_value(&Value::Vector(sub_vec(&n, g)))?;
+    let body_rate_of_momentum = simplify_value(&Value::Vector(sub_vec(&n, &g)))?;
     d.steps.push(Step::equation(
         "The body-frame rate, solved from (60)",
         (

@@ -5,7 +5,9 @@
 use super::algebra::{Value, Vec3, cross, diag, dot, mat_vec};
 use super::euler::{omega, rate_along, torque_free_rates};
 use super::sign::{Sign, sign_over_positive};
-use super::{Derivation, DeriveError, Step, cited, factored, simplify_value, values_equal};
+use super::{
+    Derivation, DeriveError, Step, cited, factored, simplify_value, simplify_vec, values_equal,
+};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
@@ -36,7 +38,8 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let i = [s("I1"), s("I1"), s("I3")];
     let inertia = diag(i.clone());
     let w = omega();
-    let rates = simplify_value(&Value::Vector(torque_free_rates(&i, &w)))?;
+    let r = simplify_vec(&torque_free_rates(&i, &w))?;
+    let rates = Value::Vector(r.clone());
     d.steps.push(Step::equation(
         "Euler's equations with I2 = I1 and N = 0",
         ("dw/dt", "\\dot{\\vec\\omega}"),
@@ -46,9 +49,6 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
             "Euler's equations solved for the rates; the third vanishes, so ω3 is constant",
         ),
     ));
-    let Value::Vector(r) = &rates else {
-        unreachable!()
-    };
     // β = (I3 − I1)/I1 turns the rates into −βω3ω2 and βω3ω1, eqs (67)–(68).
     let beta = Expr::over(Expr::minus(s("I3"), s("I1")), s("I1"));
     let with_beta = Value::Vector([
@@ -72,7 +72,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
             "equal to the rates above term by term",
         ),
     ));
-    let second = scalar(rate_along(&r[0], &w, r)?)?;
+    let second = scalar(rate_along(&r[0], &r)?)?;
     d.steps.push(Step::equation(
         "Second derivative of ω1",
         ("d2w1/dt2", "\\ddot\\omega_{1}"),

@@ -6,7 +6,9 @@ use super::algebra::{
     zero3,
 };
 use super::bodies::{MassModel, mass_model, place};
-use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
+use super::{
+    Derivation, DeriveError, Step, cited, simplify_mat, simplify_value, simplify_vec, values_equal,
+};
 use crate::cas::{self, AngleSpan, Expr, Integral};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
@@ -125,11 +127,11 @@ fn body_part(
                 .map(|(m, r)| (m.clone(), place(body, r)))
                 .collect();
             let tensor = sum_mats(placed.iter().map(|(m, r)| mat_scale(m, &inertia_kernel(r))));
-            let tensor = simplify_value(&Value::Matrix(tensor))?;
+            let tensor = simplify_mat(&tensor)?;
             d.steps.push(Step::equation(
                 &format!("{label}: sum over the point masses"),
                 ("I", "I"),
-                &tensor,
+                &Value::Matrix(tensor.clone()),
                 cited(
                     "point-tensor",
                     Prose::default()
@@ -140,9 +142,6 @@ fn body_part(
                         ),
                 ),
             ));
-            let Value::Matrix(tensor) = tensor else {
-                unreachable!()
-            };
             let moment =
                 first_moment.then(|| sum_vecs(placed.iter().map(|(m, r)| scale_vec(m, r))));
             Ok(Part {
@@ -152,7 +151,8 @@ fn body_part(
             })
         }
         MassModel::Continuum(c) => {
-            let position = simplify_value(&Value::Vector(place(body, &c.local)))?;
+            let r = simplify_vec(&place(body, &c.local))?;
+            let position = Value::Vector(r.clone());
             d.steps.push(Step::equation(
                 &format!("{label}: position of a mass element"),
                 ("r", "\\vec r"),
@@ -177,9 +177,6 @@ fn body_part(
                 ),
                 "uniform density: the mass divided by the length, area or volume; times the Jacobian",
             ));
-            let Value::Vector(r) = position.clone() else {
-                unreachable!()
-            };
             let kernel = inertia_kernel(&r);
             let integrands: Vec<Expr> = UNIQUE
                 .iter()
@@ -322,7 +319,8 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
             Some(t) => mat_add(&t, &part.tensor),
         });
     }
-    let about_cm = simplify_value(&Value::Matrix(about_cm.unwrap()))?;
+    let cm = simplify_mat(&about_cm.unwrap())?;
+    let about_cm = Value::Matrix(cm.clone());
     d.steps.push(Step::equation(
         "Tensor about the centre of mass, by direct integration",
         ("I_cm", "I_{\\mathrm{cm}}"),
@@ -330,11 +328,8 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         "the same integrals with r measured from R",
     ));
     // Route 2: the theorem, I_cm + M(d²𝟙 − ddᵀ) with d = R.
-    let Value::Matrix(cm) = &about_cm else {
-        unreachable!()
-    };
     let shift_term = mat_scale(&mass, &inertia_kernel(&centre));
-    let theorem = simplify_value(&Value::Matrix(mat_add(cm, &shift_term)))?;
+    let theorem = simplify_value(&Value::Matrix(mat_add(&cm, &shift_term)))?;
     d.steps.push(Step::equation(
         "Parallel-axis theorem",
         (

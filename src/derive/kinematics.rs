@@ -23,10 +23,7 @@ fn point_masses(scene: &Scene) -> Option<Vec<(Expr, Vec3)>> {
 }
 
 fn tensor(d: &Derivation) -> Result<super::algebra::Mat3, DeriveError> {
-    match d.get(quantity::INERTIA_TENSOR)? {
-        Value::Matrix(m) => Ok(m.clone()),
-        _ => unreachable!("the tensor is a matrix"),
-    }
+    Ok(d.matrix(quantity::INERTIA_TENSOR)?.clone())
 }
 
 /// Records `name` from the tensor route and, for point masses, `name_direct` from the
@@ -189,12 +186,8 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
 }
 
 pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
-    let Value::Scalar(moment) = d.get(quantity::MOMENT_ABOUT_AXIS)?.clone() else {
-        unreachable!()
-    };
-    let Value::Scalar(mass) = d.get(quantity::MASS)?.clone() else {
-        unreachable!()
-    };
+    let moment = d.scalar(quantity::MOMENT_ABOUT_AXIS)?.clone();
+    let mass = d.scalar(quantity::MASS)?.clone();
     let r0 = Expr::pow(cas::simplify(&Expr::over(moment, mass))?, Expr::rat(1, 2));
     d.steps.push(Step::equation(
         "Radius of gyration about n",

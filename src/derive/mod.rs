@@ -188,6 +188,50 @@ impl Derivation {
     pub fn get(&self, name: &'static str) -> Result<&Value, DeriveError> {
         self.quantities.get(name).ok_or(DeriveError::Missing(name))
     }
+
+    /// A derived scalar: [`Derivation::set`] keeps each quantity of its catalogued kind, so
+    /// another kind is an internal inconsistency, never a panic.
+    pub fn scalar(&self, name: &'static str) -> Result<&Expr, DeriveError> {
+        match self.get(name)? {
+            Value::Scalar(e) => Ok(e),
+            other => Err(wrong_kind(name, other)),
+        }
+    }
+
+    /// A derived vector.
+    pub fn vector(&self, name: &'static str) -> Result<&algebra::Vec3, DeriveError> {
+        match self.get(name)? {
+            Value::Vector(v) => Ok(v),
+            other => Err(wrong_kind(name, other)),
+        }
+    }
+
+    /// A derived matrix.
+    pub fn matrix(&self, name: &'static str) -> Result<&algebra::Mat3, DeriveError> {
+        match self.get(name)? {
+            Value::Matrix(m) => Ok(m),
+            other => Err(wrong_kind(name, other)),
+        }
+    }
+}
+
+/// A vector simplified entry by entry, with one engine call.
+pub fn simplify_vec(v: &algebra::Vec3) -> Result<algebra::Vec3, CasError> {
+    // One simplified entry per entry given.
+    let s = cas::simplify_all(v.to_vec())?;
+    Ok(std::array::from_fn(|i| s[i].clone()))
+}
+
+fn wrong_kind(name: &str, v: &Value) -> DeriveError {
+    DeriveError::Inconsistent(format!("quantity `{name}` is {}", v.kind()))
+}
+
+/// A matrix simplified entry by entry, with one engine call.
+pub fn simplify_mat(m: &algebra::Mat3) -> Result<algebra::Mat3, CasError> {
+    let s = cas::simplify_all(m.iter().flatten().cloned().collect())?;
+    Ok(std::array::from_fn(|i| {
+        std::array::from_fn(|j| s[3 * i + j].clone())
+    }))
 }
 
 /// Simplifies every entry of a value with one engine call.

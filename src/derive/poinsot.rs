@@ -44,8 +44,8 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     ));
     let rates = torque_free_rates(&i, &w);
     let invariant_rates = cas::simplify_all(vec![
-        rate_along(&two_t, &w, &rates)?,
-        rate_along(&l_squared, &w, &rates)?,
+        rate_along(&two_t, &rates)?,
+        rate_along(&l_squared, &rates)?,
     ])?;
     if !invariant_rates.iter().all(Expr::is_zero) {
         return Err(DeriveError::Inconsistent(

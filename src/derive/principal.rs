@@ -170,9 +170,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     let positive_set = positive_symbols(scene);
     let positive = |s: &str| positive_set.contains(s);
     let (ev, ev_name) = eigenvalue_letter(scene);
-    let Value::Matrix(tensor) = d.get(quantity::INERTIA_TENSOR)?.clone() else {
-        unreachable!()
-    };
+    let tensor = d.matrix(quantity::INERTIA_TENSOR)?.clone();
     let lambda = Expr::sym(LAMBDA);
     let characteristic = cas::simplify(&det(&shifted(&tensor, &lambda)))?;
     let shown = |e: &Expr| e.substitute(&|s| (s == LAMBDA).then(|| Expr::sym(ev_name)));

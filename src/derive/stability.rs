@@ -5,7 +5,7 @@
 use super::algebra::{Mat3, Value};
 use super::euler::{moments, omega, torque_free_rates};
 use super::sign::{Sign, signs_over_positive};
-use super::{Derivation, DeriveError, Step, cited, factored, simplify_value};
+use super::{Derivation, DeriveError, Step, cited, factored, simplify_vec};
 use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::moments::ORDERINGS;
@@ -86,7 +86,8 @@ pub fn classify(
 pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
     let i = moments();
     let w = omega();
-    let rates = simplify_value(&Value::Vector(torque_free_rates(&i, &w)))?;
+    let r = simplify_vec(&torque_free_rates(&i, &w))?;
+    let rates = Value::Vector(r.clone());
     d.steps.push(Step::equation(
         "Torque-free Euler equations",
         ("dw/dt", "\\dot{\\vec\\omega}"),
@@ -96,9 +97,6 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
             "Euler's equations with N = 0, solved for the rates",
         ),
     ));
-    let Value::Vector(r) = rates else {
-        unreachable!()
-    };
     let name = |k: usize| format!("w{}", k + 1);
     let mut omega_sq: [Expr; 3] = std::array::from_fn(|_| Expr::int(0));
     let mut ratio: [Expr; 3] = std::array::from_fn(|_| Expr::int(0));
