@@ -1,5 +1,6 @@
-//! A plot as plain data: the numeric stage fills it, `render::plot` draws it as SVG. Keeping the
-//! numbers here (not in the renderer) lets tests check a plot's content without parsing SVG.
+//! A plot as plain data: `figures` fills it from the numeric results, `render::plot` draws it
+//! as SVG. Keeping the numbers here (not in the renderer) lets tests check a plot's content
+//! without parsing SVG.
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Mark {

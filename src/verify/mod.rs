@@ -172,6 +172,18 @@ pub fn claim_env(scene: &Scene, d: &Derivation) -> Env {
 }
 
 /// Is each entry numerically zero at a few random points? (`true` per entry only if at all.)
+/// Where the random points of [`numerically_zero`] lie: every symbol in [0.4, 1.4), positive
+/// and away from 0, where a mass or a moment in a denominator vanishes, and within a factor
+/// 3.5 of the others, so that no term of a degree-30 expression over- or underflows.
+const SAMPLE_FROM: f64 = 0.4;
+
+/// A difference below this, relative to its scale (at least 1), counts as zero at a random
+/// point. The expressions are sums of at most the engine's 20,000 terms of size about 1 there,
+/// so rounding leaves at most about 20,000 · 2.2e-16 ≈ 4.4e-12; a nonzero difference of
+/// rationals and roots of small numbers is far above 1e-9 at a random point. The margin of
+/// 200 covers cancellation among the terms.
+const NUMERICALLY_ZERO: f64 = 1e-9;
+
 fn numerically_zero(diffs: &[Expr], scale: &[Expr], seed: u64) -> Result<Vec<bool>, EvalError> {
     let mut rng = Rng::new(seed);
     let mut zero = vec![true; diffs.len()];
@@ -185,13 +197,13 @@ fn numerically_zero(diffs: &[Expr], scale: &[Expr], seed: u64) -> Result<Vec<boo
     for _ in 0..CONFIRMATION_POINTS {
         let point: BTreeMap<String, f64> = names
             .iter()
-            .map(|n| (n.clone(), 0.4 + rng.uniform()))
+            .map(|n| (n.clone(), SAMPLE_FROM + rng.uniform()))
             .collect();
         let env = |s: &str| point.get(s).copied().filter(|_| s != "pi");
         for (k, d) in diffs.iter().enumerate() {
             let v = d.eval(&env)?;
             let s = scale[k].eval(&env)?.abs().max(1.0);
-            if v.abs() > 1e-9 * s {
+            if v.abs() > NUMERICALLY_ZERO * s {
                 zero[k] = false;
             }
         }
@@ -410,7 +422,12 @@ fn rounded_agreement(
     };
     let (d, n) = (number(derived, "derived")?, number(notes, "notes'")?);
     let (rd, rn) = (round_to_figures(d, figures), round_to_figures(n, figures));
-    let agrees = (rd - rn).abs() <= 1e-12 * rd.abs().max(rn.abs());
+    // Both rounded the same way (a scaling by 10^k and back): equal decimals differ by a few
+    // ulps at most, unequal ones by at least a unit in the last figure kept, 10^-figures of
+    // the value or more. A tenth of that unit, and never more than 1e-12, tells them apart up
+    // to the 15 figures a claim may state.
+    let within = 1e-12_f64.min(0.1 * 10f64.powi(-(figures as i32)));
+    let agrees = (rd - rn).abs() <= within * rd.abs().max(rn.abs());
     let unit = if figures == 1 { "figure" } else { "figures" };
     Ok((
         agrees,
@@ -524,7 +541,6 @@ pub fn check_quantities(
     Ok(out)
 }
 
-/// Runs every check the plan's stages made possible.
 /// The symbolic checks: the notes' claims and the recorded results. They depend on the scene
 /// and its derivation only, never on the fidelity.
 pub fn verify_symbolic(

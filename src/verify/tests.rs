@@ -113,3 +113,24 @@ fn rough_numbers_agree_only_at_the_precision_given() {
     assert_eq!(verdict(2), Verdict::Agrees);
     assert_eq!(verdict(3), Verdict::Disagrees);
 }
+
+#[test]
+fn rounded_claims_tell_apart_every_figure_they_state() {
+    use super::rounded_agreement;
+    use crate::cas::parse;
+    use crate::model::value::Value;
+    let value = |t: &str| Value::Scalar(parse(t).unwrap().expr);
+    // 14 figures that differ in the last: 1e-13 apart, which a fixed 1e-12 called equal.
+    let derived = value("12345678901234/10000000000000");
+    let (agrees, _) = rounded_agreement(&derived, &value("1.2345678901235"), 14).unwrap();
+    assert!(!agrees);
+    let (agrees, _) = rounded_agreement(&derived, &value("1.2345678901234"), 14).unwrap();
+    assert!(agrees);
+    // At 3 figures the same two agree, and so does a value that rounds the same way.
+    let (agrees, why) = rounded_agreement(&derived, &value("1.23"), 3).unwrap();
+    assert!(agrees, "{why}");
+    let (agrees, _) = rounded_agreement(&value("2/3"), &value("0.6667"), 4).unwrap();
+    assert!(agrees);
+    let (agrees, _) = rounded_agreement(&value("2/3"), &value("0.6666"), 4).unwrap();
+    assert!(!agrees);
+}
