@@ -131,7 +131,7 @@ pub fn run_scene_with(
     fidelity: Option<Fidelity>,
     symbolic: Option<Symbolic>,
 ) -> Result<SceneReport, RunError> {
-    let fidelity = fidelity.or(scene.fidelity).unwrap_or_default();
+    let fidelity = scene.fidelity_given(fidelity);
     let start = Instant::now();
     let work_before = numeric::Work::so_far();
     let plan = Plan::for_scene(&scene);

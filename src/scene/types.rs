@@ -189,6 +189,12 @@ pub enum Shape {
 }
 
 impl Scene {
+    /// The fidelity a run uses: the command line's (`--fidelity`), else the scene's own, else
+    /// standard. The one place this rule is written.
+    pub fn fidelity_given(&self, command_line: Option<Fidelity>) -> Fidelity {
+        command_line.or(self.fidelity).unwrap_or_default()
+    }
+
     /// The symbols that the scene uses only as whole-number multiples in angles (the bodies'
     /// rotations, and sines and cosines in `omega`, `axis`, vectors and definitions): their
     /// values matter only up to whole turns.

@@ -118,7 +118,7 @@ impl Cache {
         fidelity: Option<Fidelity>,
     ) -> Result<(SceneReport, Vec<CacheWarning>), RunError> {
         let (id, hash) = (scene.id.clone(), scene.content_hash);
-        let fid = fidelity.or(scene.fidelity).unwrap_or_default();
+        let fid = scene.fidelity_given(fidelity);
         let mut warnings = Vec::new();
         let mut damaged = |path: PathBuf, why: Damage| {
             warnings.push(CacheWarning::Damaged { path, why });
