@@ -17,7 +17,7 @@ pub mod sign;
 pub mod stability;
 pub mod variants;
 
-pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA, eigenvalue_letter};
+pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
 use crate::cas::{self, CasError, DiffError, EvalError, Expr};
 use crate::model::catalogue::quantity;

@@ -24,6 +24,10 @@ pub struct ExactEigen {
     /// When the whole cubic is irreducible: its three real roots in trigonometric form.
     #[serde(default)]
     pub closed_form: Option<CubicRoots>,
+    /// The TeX name of the eigenvalue's letter, `lambda` or `mu` ([`eigenvalue_letter`]), so
+    /// that the pages print the letter the steps use without asking the scene again.
+    #[serde(default)]
+    pub letter: String,
 }
 
 /// The three real roots of λ³ − e₁λ² + e₂λ − e₃ (a symmetric tensor's characteristic cubic) by
@@ -329,6 +333,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         spaces,
         unsolved: roots.unsolved,
         closed_form,
+        letter: ev_name.to_string(),
     });
     Ok(())
 }

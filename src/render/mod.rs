@@ -317,7 +317,8 @@ pub fn page_view(
         }
     }
     if let Some(p) = &r.verification.principal {
-        results.push(principal_values_view(s, p)?);
+        let letter = r.derivation.eigen.as_ref().map_or("lambda", |e| &e.letter);
+        results.push(principal_values_view(s, p, letter)?);
     }
     let numeric = r
         .numeric
@@ -437,12 +438,12 @@ pub fn page_view(
 fn principal_values_view(
     s: &crate::scene::Scene,
     p: &crate::verify::PrincipalValues,
+    letter: &str,
 ) -> Result<StepView, RenderError> {
     use crate::base::format::significant;
     use crate::numeric::eigen::Space;
     let values: Vec<String> = p.exact.iter().map(|v| significant(*v, 6)).collect();
     let symbols: Vec<String> = s.values.keys().cloned().collect();
-    let (_, letter) = crate::derive::eigenvalue_letter(s);
     let mut latex = format!("\\{letter} = {}", values.join(",\\; "));
     if p.closed_form {
         let axes: Vec<String> = p
