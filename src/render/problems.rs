@@ -148,8 +148,8 @@ pub fn student_sheet(
 
 /// The answer key: each variant of each problem answered once. A problem with as many variants
 /// as the sheet is answered in its sheet variant; one with fewer is answered once per variant
-/// of its own in `shared`, which prints with every sheet variant, and the sheet variants name
-/// which of them they use. (Repeating them cost 20 small problems beside one of 10,000
+/// of its own in `shared`, and the sheet variants name which of them they use (picked at a
+/// sheet variant, the key shows just those). (Repeating them cost 20 small problems beside one of 10,000
 /// variants a 520 MB key.)
 #[derive(Debug, Clone, Serialize)]
 pub struct AnswerKey {

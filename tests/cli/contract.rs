@@ -317,7 +317,7 @@ fn another_problem(text: &str, id: &str, lecture: &str, count: usize) -> String 
 }
 
 #[test]
-fn the_variants_of_a_whole_course_have_a_budget() {
+fn the_variants_and_pages_of_a_whole_course_have_a_budget() {
     let (dir, course) = course("course-budget");
     let lectures = course.join("lectures");
     let text = std::fs::read_to_string(lectures.join("lecture-1/02-problem-box.toml")).unwrap();
@@ -345,6 +345,37 @@ fn the_variants_of_a_whole_course_have_a_budget() {
                 "the course's 3 problems would have 21000 variants in all; at most 20000: lower \
                  the counts"
             ),
+        "{err}"
+    );
+    // Six lectures of one problem of 1,666 variants beside five of one: each sheet has 9,996
+    // pages, within 10,000, and the course 10,026 variants, but 59,976 pages, over 50,000.
+    for n in 1..=3 {
+        std::fs::remove_dir_all(lectures.join(format!("lecture-{n}"))).unwrap();
+    }
+    let mut file = std::fs::read_to_string(course.join("mechbook.toml")).unwrap();
+    for n in 1..=6 {
+        let folder = lectures.join(format!("lecture-{n}"));
+        std::fs::create_dir_all(&folder).unwrap();
+        for k in 0..6 {
+            let count = if k == 0 { 1666 } else { 1 };
+            let problem = another_problem(&text, &format!("p-{n}-{k}"), &n.to_string(), count);
+            std::fs::write(folder.join(format!("p{k}.toml")), problem).unwrap();
+        }
+        if n > 3 {
+            file.push_str(&format!(
+                "\n[[lecture]]\nid = \"{n}\"\ntitle = \"Lecture {n}\"\n"
+            ));
+        }
+    }
+    std::fs::write(course.join("mechbook.toml"), file).unwrap();
+    let out = mechbook(&["check", arg(&lectures)]);
+    assert_eq!(out.status.code(), Some(1));
+    let err = stderr(&out);
+    assert!(
+        err.contains(
+            "the course's 36 problems would have problem sheets of 59976 pages in all; \
+                       at most 50000"
+        ) && !err.contains("problem sheet would have"),
         "{err}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
