@@ -332,22 +332,19 @@ fn problem_sheets(
             "problems",
             &reports.iter().filter(|r| r.scene.problem.is_some()).count(),
         );
-        ctx.insert(
-            "print_css",
-            &problems::print_css(&course.title, &format!("{heading}: {title}"), count),
-        );
+        let mut css = problems::print_css(&course.title, &format!("{heading}: {title}"), count);
         // The student's sheet is built from statements and values alone: no answer reaches it.
         if kind == "student" {
             ctx.insert("variants", &problems::student_sheet(reports)?);
         } else {
             let key = problems::answer_key(reports)?;
             if !key.shared.is_empty() {
-                let css = problems::print_css(&course.title, &format!("{heading}: {title}"), count);
-                ctx.insert("print_css", &(css + problems::shared_css(count).as_str()));
+                css.push_str(&problems::shared_css(count));
             }
             ctx.insert("shared", &key.shared);
             ctx.insert("variants", &key.variants);
         }
+        ctx.insert("print_css", &css);
         let path = format!("handouts/{slug}-problems-{kind}.html");
         files.insert(
             PathBuf::from(&path),

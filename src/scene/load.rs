@@ -263,35 +263,62 @@ pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
 /// problem of 10,000 variants beside 20 small ones (210,000 pages, a 520 MB key) does not.
 pub const MAX_SHEET_PAGES: usize = 10_000;
 
-/// Each lecture whose problem sheet would pass [`MAX_SHEET_PAGES`], located at its largest
-/// problem.
-fn sheet_over_budget(scenes: &[Scene]) -> Vec<SceneError> {
+/// A problem's variant count (0 for a scene that is no problem).
+fn variant_count(s: &Scene) -> usize {
+    s.problem.as_ref().map_or(0, |p| p.variants.len())
+}
+
+/// The problems of each lecture: its problem sheet.
+fn sheets(scenes: &[Scene]) -> std::collections::BTreeMap<&str, Vec<&Scene>> {
     let mut by_lecture: std::collections::BTreeMap<&str, Vec<&Scene>> = Default::default();
     for s in scenes.iter().filter(|s| s.problem.is_some()) {
         by_lecture.entry(&s.notes.lecture).or_default().push(s);
     }
+    by_lecture
+}
+
+/// Of a list of problems, the one with the most variants (the last of equals).
+fn largest<'a>(problems: &[&'a Scene]) -> Option<&'a Scene> {
+    problems.iter().copied().max_by_key(|s| variant_count(s))
+}
+
+/// A sheet's pages: a variant of the sheet per variant of its largest problem, a page per
+/// problem in each.
+fn sheet_pages(problems: &[&Scene]) -> usize {
+    largest(problems).map_or(0, variant_count) * problems.len()
+}
+
+/// An over-budget error at a problem's `[variants]` count.
+fn at_count(problem: &Scene, message: String) -> SceneError {
+    let (line, column) = problem.problem.as_ref().map_or((1, 1), |p| p.at);
+    SceneError {
+        path: problem.source.clone(),
+        line,
+        column,
+        field: "variants.count".into(),
+        message,
+    }
+}
+
+/// Each lecture whose problem sheet would pass [`MAX_SHEET_PAGES`], located at its largest
+/// problem.
+fn sheet_over_budget(scenes: &[Scene]) -> Vec<SceneError> {
     let mut errors = Vec::new();
-    for (lecture, problems) in by_lecture {
-        let count = |s: &Scene| s.problem.as_ref().map_or(0, |p| p.variants.len());
-        let Some(largest) = problems.iter().copied().max_by_key(|s| count(s)) else {
+    for (lecture, problems) in sheets(scenes) {
+        let (Some(largest), pages) = (largest(&problems), sheet_pages(&problems)) else {
             continue;
         };
-        let pages = count(largest) * problems.len();
         if pages > MAX_SHEET_PAGES {
-            let (line, column) = largest.problem.as_ref().map_or((1, 1), |p| p.at);
-            errors.push(SceneError {
-                path: largest.source.clone(),
-                line,
-                column,
-                field: "variants.count".into(),
-                message: format!(
+            errors.push(at_count(
+                largest,
+                format!(
                     "lecture `{lecture}`'s problem sheet would have {} variants (this problem's \
                      count) of {} problems, {pages} pages; at most {MAX_SHEET_PAGES}: lower this \
                      count, or move problems to another lecture",
-                    count(largest),
+                    variant_count(largest),
                     problems.len()
                 ),
-            });
+            ));
         }
     }
     errors
@@ -308,17 +335,10 @@ pub const MAX_COURSE_PAGES: usize = 50_000;
 /// The course's problems over [`MAX_COURSE_VARIANTS`] or [`MAX_COURSE_PAGES`], located at its
 /// problem with the most variants.
 fn course_over_budget(scenes: &[Scene]) -> Vec<SceneError> {
-    let count = |s: &Scene| s.problem.as_ref().map_or(0, |p| p.variants.len());
     let problems: Vec<&Scene> = scenes.iter().filter(|s| s.problem.is_some()).collect();
-    let variants: usize = problems.iter().map(|s| count(s)).sum();
-    let mut by_lecture: std::collections::BTreeMap<&str, (usize, usize)> = Default::default();
-    for s in &problems {
-        let (largest, n) = by_lecture.entry(&s.notes.lecture).or_default();
-        *largest = (*largest).max(count(s));
-        *n += 1;
-    }
-    let pages: usize = by_lecture.values().map(|(largest, n)| largest * n).sum();
-    let Some(largest) = problems.iter().copied().max_by_key(|s| count(s)) else {
+    let variants: usize = problems.iter().map(|s| variant_count(s)).sum();
+    let pages: usize = sheets(scenes).values().map(|p| sheet_pages(p)).sum();
+    let Some(largest) = largest(&problems) else {
         return Vec::new();
     };
     let over = if variants > MAX_COURSE_VARIANTS {
@@ -328,17 +348,13 @@ fn course_over_budget(scenes: &[Scene]) -> Vec<SceneError> {
     } else {
         return Vec::new();
     };
-    let (line, column) = largest.problem.as_ref().map_or((1, 1), |p| p.at);
-    vec![SceneError {
-        path: largest.source.clone(),
-        line,
-        column,
-        field: "variants.count".into(),
-        message: format!(
+    vec![at_count(
+        largest,
+        format!(
             "the course's {} problems would have {over}: lower the counts, starting with this \
              problem's {}",
             problems.len(),
-            count(largest)
+            variant_count(largest)
         ),
-    }]
+    )]
 }
