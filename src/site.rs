@@ -45,6 +45,29 @@ pub enum SiteError {
         out.display(), input.display()
     )]
     ContainsInput { out: PathBuf, input: PathBuf },
+    #[error("cannot read {}: {error}", path.display())]
+    Read {
+        path: PathBuf,
+        error: std::io::Error,
+    },
+}
+
+/// A user's template folder: the text of each template it replaces, by name (`render` knows
+/// the names and the defaults). No folder, no replacements.
+pub fn read_templates(dir: Option<&Path>) -> Result<crate::render::TemplateTexts, SiteError> {
+    let mut found = crate::render::TemplateTexts::new();
+    let Some(dir) = dir else {
+        return Ok(found);
+    };
+    for name in crate::render::template_names() {
+        let path = dir.join(name);
+        if path.exists() {
+            let text =
+                std::fs::read_to_string(&path).map_err(|error| SiteError::Read { path, error })?;
+            found.insert(name.to_string(), text);
+        }
+    }
+    Ok(found)
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> SiteError + '_ {

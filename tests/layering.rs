@@ -446,3 +446,39 @@ fn every_cited_step_is_in_the_catalogue_and_back() {
     assert!(used.len() >= 28, "{used:?}");
     assert_eq!(used, listed);
 }
+
+/// Lines of `files` under `folder/` (or the file `folder.rs`), outside test modules, that
+/// contain any of `needles`.
+fn uses_in(files: &BTreeMap<String, String>, folder: &str, needles: &[&str]) -> Vec<String> {
+    files
+        .iter()
+        .filter(|(f, _)| {
+            (f.starts_with(&format!("{folder}/")) || *f == &format!("{folder}.rs"))
+                && !is_test_file(f)
+        })
+        .flat_map(|(f, text)| {
+            without_test_modules(text)
+                .lines()
+                .filter(|l| needles.iter().any(|n| l.contains(n)))
+                .map(|l| format!("{f}: {}", l.trim()))
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+#[test]
+fn render_and_report_read_no_file_and_parse_no_expression() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = BTreeMap::new();
+    read_tree(&root, &root, &mut files);
+    let io = ["std::fs", "File::", "read_to_string", "read_dir"];
+    let parsing = ["cas::parse", "parse_input", ", parse}", "{parse,", "Parsed"];
+    let mut found = uses_in(&files, "render", &io);
+    for folder in ["render", "report"] {
+        found.extend(uses_in(&files, folder, &parsing));
+    }
+    assert!(found.is_empty(), "{}", found.join("\n"));
+    // The search sees the code: the site reads the template folder, the claims parse text.
+    assert!(!uses_in(&files, "site", &io).is_empty());
+    assert!(!uses_in(&files, "scene", &parsing).is_empty());
+}

@@ -9,6 +9,8 @@
 mod engine;
 mod expr;
 mod factor;
+mod formula;
+mod formula_print;
 mod parse;
 mod print;
 mod radical;
@@ -18,6 +20,7 @@ mod trig;
 
 pub use engine::EngineError;
 pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
+pub use formula::{Accent, Formula, Name, Op};
 pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use radical::pull_squares;
 pub use rational::Rational;

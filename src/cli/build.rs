@@ -147,7 +147,7 @@ impl Build {
         let paths = default_paths(paths)?;
         let (course_file, named) = course_file(&paths);
         let whole_course = named || defaulted;
-        let course = crate::render::Course::load(&course_file)?;
+        let course = crate::scene::Course::load(&course_file)?;
         let out = out
             .or(course.output.clone())
             .unwrap_or_else(|| PathBuf::from("site"));
@@ -168,7 +168,7 @@ impl Build {
     pub fn run(&self) -> Result<Built, NotBuilt> {
         let start = std::time::Instant::now();
         let fail = NotBuilt::Other;
-        let course = crate::render::Course::load(&self.course_file).map_err(|e| fail(e.into()))?;
+        let course = crate::scene::Course::load(&self.course_file).map_err(|e| fail(e.into()))?;
         // Refused before anything is derived, so a refused build touches nothing. The
         // inputs are the scene files themselves, and the folders named.
         let files = self.check_output().map_err(fail)?;
@@ -193,9 +193,10 @@ impl Build {
             .iter()
             .filter(|r| r.from_cache == pipeline::FromCache::Symbolic)
             .count();
-        let site =
-            crate::render::site_files(&reports, &course, self.templates.as_deref(), self.timings)
-                .map_err(|e| fail(e.into()))?;
+        let templates =
+            crate::site::read_templates(self.templates.as_deref()).map_err(|e| fail(e.into()))?;
+        let site = crate::render::site_files(&reports, &course, &templates, self.timings)
+            .map_err(|e| fail(e.into()))?;
         crate::site::write_site(&self.out, &site).map_err(|e| fail(e.into()))?;
         let handouts = site.keys().filter(|p| p.starts_with("handouts")).count();
         let plots = site.keys().filter(|p| p.starts_with("plots")).count();

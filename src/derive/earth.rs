@@ -97,11 +97,11 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         cited(
             "earth-beta",
             Prose::default()
-                .math("β = (I3 − I1)/I1", r"\beta = \frac{I_{3} - I_{1}}{I_{1}}")
+                .math("beta = (I_3 - I_1)/I_1")
                 .text(" with ")
-                .math("I1 = I2 = A", "I_{1} = I_{2} = A")
+                .math("I_1 = I_2 = A")
                 .text(" and ")
-                .math("I3 = C", "I_{3} = C"),
+                .math("I_3 = C"),
         ),
     ));
     let at_h = |e: &Expr| {

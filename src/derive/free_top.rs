@@ -81,7 +81,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
             "symmetric-oscillator",
             Prose::default()
                 .text("differentiate dω1/dt along the motion and use dω2/dt; this is ")
-                .math("−β²ω3²ω1", r"-\beta^{2}\omega_{3}^{2}\,\omega_{1}")
+                .math("-beta^2 omega_3^2 ~ omega_1")
                 .text(", a harmonic oscillator of angular frequency βω3"),
         ),
     ));
@@ -140,7 +140,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         cited(
             "symmetric-omega-constant",
             Prose::default()
-                .math("sin² + cos² = 1", r"\sin^{2} + \cos^{2} = 1")
+                .math("sin^2 + cos^2 = 1")
                 .text(", so ω is constant"),
         ),
     ));
@@ -176,10 +176,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         ("2T", "2T = \\vec\\omega\\cdot\\vec L"),
         &Value::Scalar(two_t.clone()),
         Prose::default()
-            .math(
-                "ωᵀIω",
-                r"\vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}",
-            )
+            .math("vec(omega)^T ten(I) ~ vec(omega)")
             .text(" along the solution: constant"),
     ));
     d.steps.push(Step::equation(
@@ -187,10 +184,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         ("L^2", "L^{2}"),
         &Value::Scalar(l_squared.clone()),
         Prose::default()
-            .math(
-                "|Iω|²",
-                r"\left|\overleftrightarrow{I}\,\vec{\omega}\right|^{2}",
-            )
+            .math("|ten(I) ~ vec(omega)|^2")
             .text(" along the solution: constant, as it must be without torque"),
     ));
     d.set(quantity::TOP_TWICE_ENERGY, Value::Scalar(two_t.clone()))?;
@@ -205,9 +199,9 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         ("tan^2 alpha_b", "\\tan^{2}\\alpha_{b}"),
         &Value::Scalar(body_tan2.clone()),
         Prose::default()
-            .math("α_b", r"\alpha_{b}")
+            .math("alpha_b")
             .text(" is the angle between ω and the symmetry axis: ")
-            .math("tan α_b = A/ω3", r"\tan\alpha_{b} = \frac{A}{\omega_{3}}"),
+            .math("tan alpha_b = A/omega_3"),
     ));
     let space_cos2 = scalar(Expr::over(
         Expr::pow(two_t.clone(), Expr::int(2)),
@@ -220,12 +214,9 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         cited(
             "space-cone",
             Prose::default()
-                .math("α_s", r"\alpha_{s}")
+                .math("alpha_s")
                 .text(" is the angle between ω and the fixed L, ")
-                .math(
-                    "cos α_s = ω·L/(ωL) = 2T/(ωL)",
-                    r"\cos\alpha_{s} = \frac{\vec{\omega}\cdot\vec{L}}{\omega L} = \frac{2T}{\omega L}",
-                ),
+                .math("cos alpha_s = (vec(omega) · vec(L))/(omega L) = (2T)/(omega L)"),
         ),
     ));
     let tilt_tan2 = scalar(tan_squared_from_axis(&l))?;

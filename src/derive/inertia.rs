@@ -35,29 +35,21 @@ fn describe(mut prose: Prose, domain: &[Integral]) -> Prose {
         }
         prose = match i {
             Integral::Poly { var, lo, hi } => prose
-                .math(var.to_string(), Expr::sym(var).to_latex())
+                .expr(&Expr::sym(var))
                 .text(" from ")
-                .math(lo.to_text(), lo.to_latex())
+                .expr(lo)
                 .text(" to ")
-                .math(hi.to_text(), hi.to_latex()),
-            Integral::Trig { var, span } => prose
-                .math(var.to_string(), Expr::sym(var).to_latex())
-                .text(" over ")
-                .math(
-                    format!("[0, {}]", span_text(*span)),
-                    format!("\\left[0, {}\\right]", span_latex(*span)),
-                ),
+                .expr(hi),
+            Integral::Trig { var, span } => {
+                prose.expr(&Expr::sym(var)).text(" over ").math(match span {
+                    AngleSpan::Full => "[0, 2pi]",
+                    AngleSpan::Half => "[0, pi]",
+                    AngleSpan::Quarter => "[0, pi/2]",
+                })
+            }
         };
     }
     prose
-}
-
-fn span_text(span: AngleSpan) -> &'static str {
-    match span {
-        AngleSpan::Full => "2π",
-        AngleSpan::Half => "π",
-        AngleSpan::Quarter => "π/2",
-    }
 }
 
 fn span_latex(span: AngleSpan) -> &'static str {
@@ -136,10 +128,7 @@ fn body_part(
                     "point-tensor",
                     Prose::default()
                         .text("the tensor's integral replaced by ")
-                        .math(
-                            "Σ mᵢ(rᵢ²𝟙 − rᵢrᵢᵀ)",
-                            r"\sum_{i} m_{i}\left(r_{i}^{2}\mathbb{1} - \vec{r}_{i}\vec{r}_{i}^{T}\right)",
-                        ),
+                        .math("sum_i m_i (r_i^2 one - vec(r_i) vec(r_i)^T)"),
                 ),
             ));
             let moment =
@@ -280,7 +269,7 @@ pub fn derive_tensor(
             ("R", "\\vec R"),
             &centre,
             Prose::default()
-                .math("R = (1/M) ∫ r dm", r"\vec{R} = \frac{1}{M}\int \vec{r}\,dm")
+                .math("vec(R) = 1/M int vec(r) ~ dm")
                 .text(", from the same integrals"),
         ));
         d.set(quantity::CENTRE_OF_MASS, centre)?;
@@ -341,7 +330,7 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
             "parallel-axis",
             Prose::default()
                 .text("in tensor form; the cross term vanishes because ")
-                .math("Σ m r' = 0", r"\sum m\,\vec{r}\,' = 0")
+                .math("sum m ~ vec(r)' = 0")
                 .text(" about the centre of mass"),
         ),
     ));

@@ -62,7 +62,7 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         &l,
         cited(
             "angular-momentum",
-            Prose::default().math("L = I ω", r"\vec{L} = \overleftrightarrow{I}\,\vec{\omega}"),
+            Prose::default().math("vec(L) = ten(I) ~ vec(omega)"),
         ),
     ));
     let direct = point_masses(scene).map(|pts| {
@@ -76,12 +76,9 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
             cited(
                 "angular-momentum-direct",
                 Prose::default()
-                    .math(
-                        "L = Σ m r × (ω × r)",
-                        r"\vec{L} = \sum m\,\vec{r}\times(\vec{\omega}\times\vec{r})",
-                    )
+                    .math("vec(L) = sum m ~ vec(r) × (vec(omega) × vec(r))")
                     .text(", expanded; equal to ")
-                    .math("I ω", r"\overleftrightarrow{I}\,\vec{\omega}")
+                    .math("ten(I) ~ vec(omega)")
                     .text(" entry by entry"),
             ),
         )
@@ -102,10 +99,7 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
         &Value::Scalar(t.clone()),
         cited(
             "kinetic-energy",
-            Prose::default().math(
-                "T = ½ ωᵀ I ω",
-                r"T = \frac{1}{2}\vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}",
-            ),
+            Prose::default().math("T = 1/2 vec(omega)^T ten(I) ~ vec(omega)"),
         ),
     ));
     let direct = point_masses(scene).map(|pts| {
@@ -123,15 +117,9 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
             cited(
                 "kinetic-energy-direct",
                 Prose::default()
-                    .math(
-                        "T = ½ Σ m |ω × r|²",
-                        r"T = \frac{1}{2}\sum m\,\left|\vec{\omega}\times\vec{r}\right|^{2}",
-                    )
+                    .math("T = 1/2 sum m ~ |vec(omega) × vec(r)|^2")
                     .text("; equal to ")
-                    .math(
-                        "½ ωᵀ I ω",
-                        r"\frac{1}{2}\vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}",
-                    ),
+                    .math("1/2 vec(omega)^T ten(I) ~ vec(omega)"),
             ),
         )
     });
@@ -147,10 +135,7 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
         &Value::Scalar(moment.clone()),
         cited(
             "moment-about-axis",
-            Prose::default().math(
-                "I_n = nᵀ I n",
-                r"I_{n} = \vec{n}^{T}\overleftrightarrow{I}\,\vec{n}",
-            ),
+            Prose::default().math("I_n = vec(n)^T ten(I) ~ vec(n)"),
         ),
     ));
     let direct = point_masses(scene).map(|pts| {
@@ -168,12 +153,9 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
             cited(
                 "moment-about-axis-direct",
                 Prose::default()
-                    .math(
-                        "I_n = Σ m |r × n|²",
-                        r"I_{n} = \sum m\,\left|\vec{r}\times\vec{n}\right|^{2}",
-                    )
+                    .math("I_n = sum m ~ |vec(r) × vec(n)|^2")
                     .text(", the squared distance from the axis; equal to ")
-                    .math("nᵀ I n", r"\vec{n}^{T}\overleftrightarrow{I}\,\vec{n}"),
+                    .math("vec(n)^T ten(I) ~ vec(n)"),
             ),
         )
     });
@@ -193,10 +175,7 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
         "Radius of gyration about n",
         ("R_0", "R_{0}"),
         &Value::Scalar(r0.clone()),
-        cited(
-            "gyration",
-            Prose::default().math("R₀² = I_n / M", r"R_{0}^{2} = \frac{I_{n}}{M}"),
-        ),
+        cited("gyration", Prose::default().math("R_0^2 = I_n/M")),
     ));
     d.quantities
         .insert(quantity::RADIUS_OF_GYRATION.into(), Value::Scalar(r0));
@@ -219,9 +198,9 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
             ),
             cited("inertia-ellipsoid", Prose::default()
                     .text("with ")
-                    .math("ρ = n/√I_n", r"\vec{\rho} = \frac{\vec{n}}{\sqrt{I_{n}}}")
+                    .math("vec(rho) = vec(n)/sqrt(I_n)")
                     .text(", the ellipsoid's semi-axis along principal axis i is ")
-                    .math("1/√Iᵢ", r"\frac{1}{\sqrt{I_{i}}}")),
+                    .math("1/sqrt(I_i)")),
         ));
     }
     Ok(())

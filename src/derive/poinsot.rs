@@ -31,7 +31,10 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "Twice the kinetic energy",
         ("2T", "2T"),
         &Value::Scalar(two_t.clone()),
-        cited("twice-energy", Prose::default().math("2T = ω·L = ωᵀIω", r"2T = \vec{\omega}\cdot\vec{L} = \vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}")),
+        cited(
+            "twice-energy",
+            Prose::default().math("2T = vec(omega) · vec(L) = vec(omega)^T ten(I) ~ vec(omega)"),
+        ),
     ));
     d.steps.push(Step::equation(
         "Angular momentum squared",
@@ -39,7 +42,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(l_squared.clone()),
         cited(
             "momentum-squared",
-            Prose::default().math("L_i = I_i ω_i", r"L_{i} = I_{i}\,\omega_{i}"),
+            Prose::default().math("L_i = I_i ~ omega_i"),
         ),
     ));
     let rates = torque_free_rates(&i, &w);
@@ -71,7 +74,11 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "The point ρ = ω/√(2T) lies on the inertia ellipsoid",
         ("F(rho)", "F(\\vec\\rho) = \\vec\\rho^{T} I \\vec\\rho"),
         &Value::Scalar(f),
-        cited("ellipsoid-point", Prose::default().math("ρᵀIρ = ωᵀIω/(2T)", r"\vec{\rho}^{T}\overleftrightarrow{I}\,\vec{\rho} = \frac{\vec{\omega}^{T}\overleftrightarrow{I}\,\vec{\omega}}{2T}")),
+        cited(
+            "ellipsoid-point",
+            Prose::default()
+                .math("vec(rho)^T ten(I) ~ vec(rho) = (vec(omega)^T ten(I) ~ vec(omega))/(2T)"),
+        ),
     ));
     // ∇F = 2Iρ = 2c L: the factor squared is 4c² = 2/T.
     let rho_names = ["r1", "r2", "r3"].map(Expr::sym);
@@ -105,14 +112,11 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         cited(
             "ellipsoid-gradient",
             Prose::default()
-                .math(
-                    "∇F = 2Iρ = 2L/√(2T)",
-                    r"\nabla F = 2\overleftrightarrow{I}\,\vec{\rho} = \frac{2\vec{L}}{\sqrt{2T}}",
-                )
+                .math("nabla F = 2 ten(I) ~ vec(rho) = (2 vec(L))/sqrt(2T)")
                 .text(", the same factor for all three components, so ")
-                .math("∇F ∥ L", r"\nabla F \parallel \vec{L}")
+                .math("nabla F || vec(L)")
                 .text("; the factor is ")
-                .math("√(2/T)", r"\sqrt{\frac{2}{T}}"),
+                .math("sqrt(2/T)"),
         ),
     ));
     // The distance ρ·L/L = c ω·L/L = c 2T/L, squared.
@@ -131,7 +135,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         cited(
             "invariable-plane",
             Prose::default()
-                .math("ρ·L/L = ω·L/(L√(2T)) = √(2T)/L", r"\frac{\vec{\rho}\cdot\vec{L}}{L} = \frac{\vec{\omega}\cdot\vec{L}}{L\sqrt{2T}} = \frac{\sqrt{2T}}{L}")
+                .math("(vec(rho) · vec(L))/L = (vec(omega) · vec(L))/(L sqrt(2T)) = sqrt(2T)/L")
                 .text(", constant because T and L are"),
         ),
     ));
@@ -157,9 +161,9 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         cited(
             "energy-ellipsoid",
             Prose::default()
-                .math("T = Σ L_i²/(2I_i)", r"T = \sum_{i}\frac{L_{i}^{2}}{2I_{i}}")
+                .math("T = sum_i L_i^2/(2I_i)")
                 .text("; with 2T fixed this is the energy ellipsoid, semi-axes ")
-                .math("√(2T I_i)", r"\sqrt{2T\,I_{i}}"),
+                .math("sqrt(2T ~ I_i)"),
         ),
     ));
     let gap: Vec3 = std::array::from_fn(|k| {
@@ -179,9 +183,9 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
         Prose::default()
             .text("entry k is ")
-            .math("Σ_i I_i (I_i − I_k) ω_i²", r"\sum_{i} I_{i}\left(I_{i} - I_{k}\right)\omega_{i}^{2}")
+            .math("sum_i I_i (I_i - I_k) omega_i^2")
             .text(": non-negative when I_k is the smallest moment and non-positive when it is the largest, so ")
-            .math("2T I_min ≤ L² ≤ 2T I_max", r"2T\,I_{\min} \le L^{2} \le 2T\,I_{\max}")
+            .math("2T ~ I_min <= L^2 <= 2T ~ I_max")
             .text(" (eq 85)"),
     ));
 
@@ -218,11 +222,11 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         &factored(&Value::Vector(product.clone()))?,
         Prose::default()
             .text("near axis k the sphere and the ellipsoid meet where ")
-            .math("c_a L_a² + c_b L_b² = L² − 2T I_k", r"c_{a}L_{a}^{2} + c_{b}L_{b}^{2} = L^{2} - 2T\,I_{k}")
+            .math("c_a L_a^2 + c_b L_b^2 = L^2 - 2T ~ I_k")
             .text(" with ")
-            .math("c_i = 1 − I_k/I_i", r"c_{i} = 1 - \frac{I_{k}}{I_{i}}")
+            .math("c_i = 1 - I_k/I_i")
             .text(": entry k is ")
-            .math("c_a c_b", r"c_{a}c_{b}")
+            .math("c_a c_b")
             .text(", positive for an ellipse (the polhode closes around axis k) and negative for a hyperbola (it does not)"),
     ));
     d.set(
@@ -258,14 +262,11 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         &factored(&Value::Scalar(slope.clone()))?,
         Prose::default()
             .text("on ")
-            .math("L² = 2T I2", r"L^{2} = 2T\,I_{2}")
+            .math("L^2 = 2T ~ I_2")
             .text(" the ")
-            .math("L2²", r"L_{2}^{2}")
+            .math("L_2^2")
             .text(" terms cancel and ")
-            .math(
-                "c1 L1² + c3 L3² = 0",
-                r"c_{1}L_{1}^{2} + c_{3}L_{3}^{2} = 0",
-            )
+            .math("c_1 L_1^2 + c_3 L_3^2 = 0")
             .text(": two planes through axis 2, real when I2 lies between I1 and I3"),
     ));
     d.set(quantity::SEPARATRIX_SLOPE_SQUARED, Value::Scalar(slope))?;

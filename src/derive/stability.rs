@@ -6,7 +6,7 @@ use super::algebra::{Mat3, Value};
 use super::euler::{moments, omega, torque_free_rates};
 use super::sign::{Sign, signs_over_positive};
 use super::{Derivation, DeriveError, Step, cited, factored, simplify_vec};
-use crate::cas::{self, Expr};
+use crate::cas::{self, Expr, Formula};
 use crate::model::catalogue::quantity;
 use crate::model::moments::ORDERINGS;
 use crate::model::prose::Prose;
@@ -167,13 +167,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
                         "ω{ta} = a cos(Ωt + θ), ω{tb} = b sin(Ωt + θ) solve the pair when Ω² = \
                          −(product of the two coefficients); then "
                     ))
-                    .math(
-                        format!("(a/b)² = {}", ratio.to_text()),
-                        format!(
-                            "\\left(\\frac{{a}}{{b}}\\right)^{{2}} = {}",
-                            ratio.to_latex()
-                        ),
-                    )
+                    .formula(Formula::parse("(a/b)^2 = $0", &[ratio.to_expr()]))
             },
         ));
     }
@@ -223,13 +217,13 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         &factored(&Value::Scalar(growth.clone()))?,
         Prose::default()
             .text("for ")
-            .math("I1 < I2 < I3", r"I_{1} < I_{2} < I_{3}")
+            .math("I_1 < I_2 < I_3")
             .text(", ")
-            .math("Ω2² < 0", r"\Omega_{2}^{2} < 0")
+            .math("Omega_2^2 < 0")
             .text(" and a small deviation grows as ")
-            .math("exp(σt)", r"e^{\sigma t}")
+            .math("e^(sigma t)")
             .text(" with ")
-            .math("σ² = −Ω2²", r"\sigma^{2} = -\Omega_{2}^{2}"),
+            .math("sigma^2 = -Omega_2^2"),
     ));
     d.set(quantity::GROWTH_RATE_SQUARED, Value::Scalar(growth))?;
     Ok(())

@@ -1,5 +1,7 @@
-//! A sentence with formulas in it: each formula as text, for the terminal and JSON, and as
-//! LaTeX, for the pages' MathML.
+//! A sentence with formulas in it. Each formula stays a tree ([`Formula`]) until an output
+//! prints it: as text for the terminal and JSON, as LaTeX (then MathML) for the pages.
+
+use crate::cas::{Expr, Formula};
 
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Prose(pub Vec<Piece>);
@@ -7,7 +9,7 @@ pub struct Prose(pub Vec<Piece>);
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Piece {
     Text(String),
-    Math { text: String, latex: String },
+    Math(Formula),
 }
 
 impl Prose {
@@ -20,11 +22,18 @@ impl Prose {
         self
     }
 
-    pub fn math(mut self, text: impl Into<String>, latex: impl Into<String>) -> Prose {
-        self.0.push(Piece::Math {
-            text: text.into(),
-            latex: latex.into(),
-        });
+    /// A formula in the notation of [`Formula::parse`].
+    pub fn math(self, notation: &str) -> Prose {
+        self.formula(Formula::parse(notation, &[]))
+    }
+
+    /// An exact expression, as the expression printers print it.
+    pub fn expr(self, e: &Expr) -> Prose {
+        self.formula(Formula::Expr(e.clone()))
+    }
+
+    pub fn formula(mut self, f: Formula) -> Prose {
+        self.0.push(Piece::Math(f));
         self
     }
 
@@ -33,8 +42,8 @@ impl Prose {
         self.0
             .iter()
             .map(|p| match p {
-                Piece::Text(s) => s.as_str(),
-                Piece::Math { text, .. } => text.as_str(),
+                Piece::Text(s) => s.clone(),
+                Piece::Math(f) => f.to_text(),
             })
             .collect()
     }

@@ -10,7 +10,7 @@ pub mod plot;
 pub mod problems;
 mod site_files;
 
-pub use site_files::{Course, SiteFiles, site_files};
+pub use site_files::{SiteFiles, TemplateTexts, site_files, template_names};
 
 use crate::base::format::sci;
 use crate::cas::Expr;
@@ -123,18 +123,6 @@ pub fn figure_file(r: &SceneReport, fig: &crate::model::figure::Figure) -> Strin
 /// Why a page, a plot or the course settings could not be rendered.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
-    #[error("{}:{line}:{column}: {message}", path.display())]
-    Course {
-        path: PathBuf,
-        line: usize,
-        column: usize,
-        message: String,
-    },
-    #[error("cannot read {}: {error}", path.display())]
-    Read {
-        path: PathBuf,
-        error: std::io::Error,
-    },
     #[error("template {name}: {message}")]
     Template { name: String, message: String },
     #[error("cannot render `{latex}`: {message}")]
@@ -172,7 +160,7 @@ fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError>
     for piece in &prose.0 {
         match piece {
             Piece::Text(t) => out.push_str(&tera::escape_html(t)),
-            Piece::Math { latex, .. } => out.push_str(&math::inline(latex)?),
+            Piece::Math(f) => out.push_str(&math::inline(&f.to_latex())?),
         }
     }
     Ok(out)
@@ -336,34 +324,31 @@ pub fn page_view(
         })
         .collect();
     let mut claims = Vec::new();
-    for (c, claim) in r.verification.claims.iter().zip(&s.claims) {
+    for c in &r.verification.claims {
         let render = |e: Option<&crate::cas::Expr>| {
             e.map(|e| math::inline(&e.to_latex_named(&quantity_symbol)))
                 .transpose()
                 .map(Option::unwrap_or_default)
         };
-        let derived = if c.derived.is_empty() {
-            String::new()
-        } else {
-            let parsed = crate::cas::parse(&c.derived).map_err(|e| RenderError::Math {
-                latex: c.derived.clone(),
-                message: e.message,
-            })?;
-            let latex = parsed.expr.to_latex();
-            // Beside a claim that agrees, the derived form is a courtesy: left out when it
-            // would fill more than three lines (it is in `check --json`).
-            if c.verdict == Verdict::Agrees && !math::fits_lines(&latex, 3) {
-                String::new()
-            } else {
-                math::inline(&latex)?
+        let derived = match &c.derived {
+            None => String::new(),
+            Some(v) => {
+                let latex = v.to_latex();
+                // Beside a claim that agrees, the derived form is a courtesy: left out when it
+                // would fill more than three lines (it is in `check --json`).
+                if c.verdict == Verdict::Agrees && !math::fits_lines(&latex, 3) {
+                    String::new()
+                } else {
+                    math::inline(&latex)?
+                }
             }
         };
         claims.push(ClaimView {
             eq: c.eq.clone(),
             statement: c.statement.clone(),
             verdict: c.verdict.as_str().into(),
-            quantity: render(claim.quantity.as_ref())?,
-            notes: render(claim.value.as_ref())?,
+            quantity: render(c.quantity.as_ref())?,
+            notes: render(c.notes.as_ref())?,
             derived,
             differences: c
                 .differences

@@ -1,7 +1,9 @@
 //! The JSON reports: `check --json` and `derive --json`, built from the results. No I/O here.
 
 use super::failures;
+use crate::cas::Expr;
 use crate::derive::ExactBasis;
+use crate::model::prose::{Piece, Prose};
 use crate::model::value::{Value, eval_at};
 use crate::numeric::eigen::Space;
 use crate::pipeline::SceneReport;
@@ -60,6 +62,35 @@ pub fn check_json(reports: &[SceneReport], not_derived: &[String]) -> Json {
     })
 }
 
+/// A step: its statement and reason, each formula printed as text and as LaTeX.
+fn step_json(st: &crate::derive::Step) -> Json {
+    let mut j = json!({ "title": st.title, "text": st.text, "latex": st.latex, "why": st.why });
+    if !st.cite.is_empty() {
+        j["cite"] = json!(st.cite);
+    }
+    if !st.why_math.is_empty() {
+        j["why_math"] = prose_json(&st.why_math);
+    }
+    j
+}
+
+/// A sentence: its words, and its formulas as text and LaTeX.
+fn prose_json(p: &Prose) -> Json {
+    p.0.iter()
+        .map(|piece| match piece {
+            Piece::Text(t) => json!({ "Text": t }),
+            Piece::Math(f) => json!({ "Math": { "text": f.to_text(), "latex": f.to_latex() } }),
+        })
+        .collect()
+}
+
+/// A recorded result's derived side as the reports print it.
+pub(super) fn derived_text(g: &crate::verify::RegressionResult) -> String {
+    g.derived
+        .as_ref()
+        .map_or_else(|| "(not derived)".into(), Value::to_text)
+}
+
 pub fn scene_json(r: &SceneReport) -> Json {
     let s = &r.scene;
     let mut quantities = serde_json::Map::new();
@@ -77,8 +108,8 @@ pub fn scene_json(r: &SceneReport) -> Json {
             json!({
                 "eq": c.eq,
                 "statement": c.statement,
-                "notes": c.notes,
-                "derived": c.derived,
+                "notes": c.notes.as_ref().map(Expr::to_text).unwrap_or_default(),
+                "derived": c.derived.as_ref().map(Value::to_text).unwrap_or_default(),
                 "verdict": c.verdict.as_str(),
                 "expected": c.expected.map(|v| v.as_str()),
                 "passed": c.passed(),
@@ -160,7 +191,7 @@ pub fn scene_json(r: &SceneReport) -> Json {
         "eigen_check": r.verification.eigen.as_ref().map(|e| json!({
             "value_error": num(e.value_error), "axis_error": num(e.axis_error), "passed": e.passed })),
         "regressions": r.verification.regressions.iter().map(|g| json!({
-            "quantity": g.quantity, "recorded": g.recorded, "derived": g.derived, "unchanged": g.unchanged })).collect::<Vec<_>>(),
+            "quantity": g.quantity, "recorded": g.recorded.as_ref().map(Expr::to_text), "derived": derived_text(g),  "unchanged": g.unchanged })).collect::<Vec<_>>(),
         "variants": r.verification.variants.iter().map(|v| json!({
             "number": v.number,
             "values": v.values.iter().map(|(name, text, latex)| (name.clone(), json!({
@@ -185,7 +216,7 @@ pub fn scene_json(r: &SceneReport) -> Json {
                 "passed": a.passed(),
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
-        "steps": r.derivation.steps,
+        "steps": r.derivation.steps.iter().map(step_json).collect::<Vec<_>>(),
         "stages": stages,
         "symbolic_seconds": num(r.symbolic_seconds),
         "engine_calls": r.engine_calls,

@@ -74,13 +74,18 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
     for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
         let text = match &g.recorded {
             Some(recorded) => format!(
-                "{src}:{}: `{}` changed: recorded {recorded}, derived {}",
-                g.line, g.quantity, g.derived
+                "{src}:{}: `{}` changed: recorded {}, derived {}",
+                g.line,
+                g.quantity,
+                recorded.to_text(),
+                json::derived_text(g)
             ),
             None => format!(
                 "{src}:{}: `{}` not yet recorded (derived {}): review it, then run `mechbook \
                  check --bless`, which writes the scene's [expect]",
-                g.line, g.quantity, g.derived
+                g.line,
+                g.quantity,
+                json::derived_text(g)
             ),
         };
         failures.push(Failure {

@@ -4,6 +4,7 @@
 //! Every error names the file, line, column and field. `types` holds what a scene is, `load`
 //! finds and reads the files, `validate` checks them part by part.
 
+mod course;
 mod error;
 mod load;
 mod raw;
@@ -11,6 +12,7 @@ mod types;
 mod validate;
 pub mod variants;
 
+pub use course::{Course, CourseError, LectureTitle};
 pub use error::{Locator, SceneError};
 pub use load::{MAX_DEPTH, MAX_SCENE_BYTES, find_scenes, load_all};
 pub use types::{

@@ -209,7 +209,9 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
                             what: format!(
                                 "[expect] {}: {} -> {text}",
                                 g.quantity,
-                                g.recorded.as_deref().unwrap_or("(none)")
+                                g.recorded
+                                    .as_ref()
+                                    .map_or_else(|| "(none)".into(), |e| e.to_text())
                             ),
                         });
                     }
@@ -220,7 +222,9 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
                             what: format!(
                                 "[expect] {}: removed (no longer derived; was {})",
                                 g.quantity,
-                                g.recorded.as_deref().unwrap_or("(none)")
+                                g.recorded
+                                    .as_ref()
+                                    .map_or_else(|| "(none)".into(), |e| e.to_text())
                             ),
                         });
                     }

@@ -47,9 +47,11 @@ const CONFIRMATION_POINTS: usize = 3;
 pub struct ClaimResult {
     pub eq: String,
     pub statement: String,
-    /// The notes' formula as restated in the scene, and the derived one.
-    pub notes: String,
-    pub derived: String,
+    /// The claim's two sides as the scene writes them (its `quantity` and the notes' `value`),
+    /// and the derived value of its `quantity`: trees, printed only by an output's printer.
+    pub quantity: Option<Expr>,
+    pub notes: Option<Expr>,
+    pub derived: Option<Value>,
     pub verdict: Verdict,
     /// The scene's reviewed verdict; `None` when none is recorded yet.
     pub expected: Option<Verdict>,
@@ -74,10 +76,11 @@ impl ClaimResult {
 pub struct RegressionResult {
     pub quantity: String,
     /// The scene's `[expect]` value; `None` when the scene records no results yet.
-    pub recorded: Option<String>,
+    pub recorded: Option<Expr>,
     /// The line of its `[expect]` key, or of the scene's id when there is none.
     pub line: usize,
-    pub derived: String,
+    /// `None` when the scene's plan did not derive it.
+    pub derived: Option<Value>,
     pub unchanged: bool,
 }
 
@@ -234,12 +237,9 @@ fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
     ClaimResult {
         eq: claim.eq.clone(),
         statement: claim.statement.clone(),
-        notes: claim
-            .value
-            .as_ref()
-            .map(|v| v.to_text())
-            .unwrap_or_default(),
-        derived: String::new(),
+        quantity: claim.quantity.clone(),
+        notes: claim.value.clone(),
+        derived: None,
         verdict: Verdict::NotCheckable,
         expected: claim.expect,
         differences: Vec::new(),
@@ -267,7 +267,7 @@ fn check_claim(
             return Ok(r);
         }
     };
-    r.derived = derived.to_text();
+    r.derived = Some(derived.clone());
     let notes = match evaluate(v, env) {
         Ok(x) => x,
         Err(e) => {
@@ -358,20 +358,14 @@ fn check_claim(
             } else {
                 format!(" {label}")
             };
-            let formula = |e: &Expr| (e.to_text(), e.to_latex());
-            let ((dt, dl), (nt, nl), (ft, fl)) = (
-                formula(&de[k]),
-                formula(&notes_simple[k]),
-                formula(&simplified[k]),
-            );
             r.differences.push(
                 Prose::default()
                     .text(&format!("entry{label}: derived "))
-                    .math(dt, dl)
+                    .expr(&de[k])
                     .text(", notes ")
-                    .math(nt, nl)
+                    .expr(&notes_simple[k])
                     .text(", difference ")
-                    .math(ft, fl),
+                    .expr(&simplified[k]),
             );
         }
     }
@@ -450,7 +444,7 @@ pub fn check_regressions(
                     quantity: name.to_string(),
                     recorded: None,
                     line: scene.id_at.0,
-                    derived: v.to_text(),
+                    derived: Some(v.clone()),
                     unchanged: false,
                 });
             }
@@ -468,15 +462,13 @@ pub fn check_regressions(
         };
         out.push(RegressionResult {
             quantity: name.clone(),
-            recorded: Some(recorded.to_text()),
+            recorded: Some(recorded.clone()),
             line: scene
                 .expect_lines
                 .get(name)
                 .copied()
                 .unwrap_or(scene.id_at.0),
-            derived: derived
-                .map(|v| v.to_text())
-                .unwrap_or_else(|| "(not derived)".into()),
+            derived: derived.cloned(),
             unchanged,
         });
     }

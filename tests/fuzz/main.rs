@@ -348,8 +348,13 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
     };
     match pipeline::run_scene(scene, Some(Fidelity::DRAFT)) {
         Ok(report) => {
-            mechbook::render::site_files(&[report], &Default::default(), None, false)
-                .map_err(|e| format!("rendering failed: {e}"))?;
+            mechbook::render::site_files(
+                &[report],
+                &Default::default(),
+                &Default::default(),
+                false,
+            )
+            .map_err(|e| format!("rendering failed: {e}"))?;
             Ok(Outcome::Ran)
         }
         Err(e) => {

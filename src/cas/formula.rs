@@ -1,0 +1,335 @@
+//! A formula as the pages show it: the notation of a step's statement or reason (ω × L,
+//! ½ ωᵀIω, ∑ᵢ Lᵢ²/(2Iᵢ)), as a tree that each output format prints with its own printer
+//! (`formula_print.rs`), never translated from another format's text.
+//!
+//! An exact [`Expr`] is a leaf: a derived value inside a formula is printed by the expression
+//! printers. The rest is written in a small notation, read once where the formula is made:
+//!
+//! - names: `I_n`, `omega_3`, `alpha_b`, `I_min` (Greek by name, one subscript after `_`);
+//! - accents: `vec(L)`, `ten(I)` (a tensor), `dot(omega_2)`, `ddot(omega_1)`; a prime `r'`;
+//! - `a/b` is a fraction (its operands lose one pair of parentheses); `sqrt(x)`; `x^2`, `x^T`,
+//!   `e^(sigma t)`; `|x|`; `[a, b]`; `sin`, `cos`, `tan`, `sum_i`, `int`, `nabla`, `one` (𝟙);
+//! - operators `= < <= + - · × ||`, `,`; `~` is a thin space; `"text"`; `quad`; `$0`, `$1`… are
+//!   the exact expressions handed in.
+
+use super::expr::Expr;
+
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum Formula {
+    /// An exact expression, printed by the expression printers.
+    Expr(Expr),
+    Name(Name),
+    Number(String),
+    /// Upright words inside a formula.
+    Text(String),
+    /// Items side by side.
+    Row(Vec<Formula>),
+    Op(Op),
+    Frac(Box<Formula>, Box<Formula>),
+    Sqrt(Box<Formula>),
+    /// A base and its superscript.
+    Sup(Box<Formula>, Box<Formula>),
+    Paren(Box<Formula>),
+    /// A closed interval's brackets, `[0, 2π]`.
+    Bracket(Box<Formula>),
+    Abs(Box<Formula>),
+    /// The identity tensor 𝟙.
+    Identity,
+    /// An operator name: `sin`, `cos`, `tan`.
+    Function(String),
+    /// `∑`, with its index if any.
+    Sum(Option<String>),
+    Integral,
+    Nabla,
+}
+
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Name {
+    /// A Latin letter (or letters) or a Greek letter's name.
+    pub base: String,
+    pub sub: Option<String>,
+    pub accent: Accent,
+    pub prime: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Accent {
+    None,
+    Vector,
+    Tensor,
+    Dot,
+    DoubleDot,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Op {
+    Equals,
+    Less,
+    LessEqual,
+    Plus,
+    Minus,
+    Dot,
+    Cross,
+    Parallel,
+    Comma,
+    /// A thin space between factors.
+    Thin,
+    /// A wide space between two statements.
+    Quad,
+}
+
+/// Greek letters by name, with their characters.
+pub(super) const GREEK: &[(&str, &str)] = &[
+    ("alpha", "α"),
+    ("beta", "β"),
+    ("gamma", "γ"),
+    ("delta", "δ"),
+    ("epsilon", "ε"),
+    ("theta", "θ"),
+    ("lambda", "λ"),
+    ("mu", "μ"),
+    ("pi", "π"),
+    ("rho", "ρ"),
+    ("sigma", "σ"),
+    ("tau", "τ"),
+    ("phi", "φ"),
+    ("psi", "ψ"),
+    ("omega", "ω"),
+    ("Omega", "Ω"),
+];
+
+impl Formula {
+    /// A formula in the notation above, with `$k` standing for `exprs[k]`. The notation is
+    /// mechbook's own source, so a mistake in it is a bug: it panics, naming the formula.
+    pub fn parse(src: &str, exprs: &[Expr]) -> Formula {
+        let mut p = Reader {
+            src: src.as_bytes(),
+            pos: 0,
+            exprs,
+        };
+        let f = p.row(&[]);
+        assert!(
+            p.pos == p.src.len(),
+            "formula `{src}`: unexpected text at byte {}",
+            p.pos
+        );
+        f
+    }
+
+    /// `lhs = value`: a statement whose right side is an exact expression.
+    pub fn equation(lhs: Formula, value: Expr) -> Formula {
+        Formula::Row(vec![lhs, Formula::Op(Op::Equals), Formula::Expr(value)])
+    }
+}
+
+struct Reader<'a> {
+    src: &'a [u8],
+    pos: usize,
+    exprs: &'a [Expr],
+}
+
+impl Reader<'_> {
+    fn rest(&self) -> &str {
+        std::str::from_utf8(&self.src[self.pos..]).expect("formulas are UTF-8")
+    }
+
+    fn skip_ws(&mut self) {
+        while self.pos < self.src.len() && self.src[self.pos] == b' ' {
+            self.pos += 1;
+        }
+    }
+
+    fn eat(&mut self, s: &str) -> bool {
+        if self.rest().starts_with(s) {
+            self.pos += s.len();
+            true
+        } else {
+            false
+        }
+    }
+
+    /// Items up to one of `stops` (not consumed) or the end, with `/` and `^` binding tightest.
+    fn row(&mut self, stops: &[&str]) -> Formula {
+        let mut items = Vec::new();
+        loop {
+            self.skip_ws();
+            if self.pos >= self.src.len() || stops.iter().any(|s| self.rest().starts_with(s)) {
+                break;
+            }
+            if let Some(op) = self.op() {
+                items.push(Formula::Op(op));
+                continue;
+            }
+            let mut item = self.postfix();
+            loop {
+                self.skip_ws();
+                if self.eat("/") {
+                    let den = self.postfix();
+                    item = Formula::Frac(Box::new(unwrap_paren(item)), Box::new(unwrap_paren(den)));
+                } else {
+                    break;
+                }
+            }
+            items.push(item);
+        }
+        if items.len() == 1 {
+            items.pop().expect("one item")
+        } else {
+            Formula::Row(items)
+        }
+    }
+
+    fn op(&mut self) -> Option<Op> {
+        const OPS: &[(&str, Op)] = &[
+            ("<=", Op::LessEqual),
+            ("||", Op::Parallel),
+            ("=", Op::Equals),
+            ("<", Op::Less),
+            ("+", Op::Plus),
+            ("-", Op::Minus),
+            ("·", Op::Dot),
+            ("×", Op::Cross),
+            (",", Op::Comma),
+            ("~", Op::Thin),
+        ];
+        for (s, op) in OPS {
+            if self.eat(s) {
+                return Some(*op);
+            }
+        }
+        None
+    }
+
+    /// An atom with its superscripts and primes.
+    fn postfix(&mut self) -> Formula {
+        let mut f = self.atom();
+        loop {
+            if self.eat("^") {
+                let sup = if self.eat("(") {
+                    let inner = self.row(&[")"]);
+                    assert!(self.eat(")"), "formula: `^(` is not closed");
+                    inner
+                } else {
+                    self.atom()
+                };
+                f = Formula::Sup(Box::new(f), Box::new(sup));
+            } else if let Formula::Name(n) = &mut f
+                && self.src.get(self.pos) == Some(&b'\'')
+            {
+                self.pos += 1;
+                n.prime = true;
+            } else {
+                return f;
+            }
+        }
+    }
+
+    fn atom(&mut self) -> Formula {
+        self.skip_ws();
+        let rest = self.rest();
+        let c = rest
+            .chars()
+            .next()
+            .expect("formula: an item is missing at the end");
+        if c == '(' {
+            self.pos += 1;
+            let inner = self.row(&[")"]);
+            assert!(self.eat(")"), "formula: `(` is not closed");
+            return Formula::Paren(Box::new(inner));
+        }
+        if c == '[' {
+            self.pos += 1;
+            let inner = self.row(&["]"]);
+            assert!(self.eat("]"), "formula: `[` is not closed");
+            return Formula::Bracket(Box::new(inner));
+        }
+        if c == '|' {
+            self.pos += 1;
+            let inner = self.row(&["|"]);
+            assert!(self.eat("|"), "formula: `|` is not closed");
+            return Formula::Abs(Box::new(inner));
+        }
+        if c == '"' {
+            let end = rest[1..].find('"').expect("formula: a text is not closed");
+            let text = rest[1..1 + end].to_string();
+            self.pos += end + 2;
+            return Formula::Text(text);
+        }
+        if c == '$' {
+            self.pos += 1;
+            let digits = self.take(|c| c.is_ascii_digit());
+            let k: usize = digits.parse().expect("formula: `$` takes an index");
+            return Formula::Expr(self.exprs[k].clone());
+        }
+        if c.is_ascii_digit() {
+            return Formula::Number(self.take(|c| c.is_ascii_digit()));
+        }
+        assert!(c.is_ascii_alphabetic(), "formula: unexpected `{c}`");
+        let word = self.take(|c| c.is_ascii_alphabetic());
+        let accent = match word.as_str() {
+            "vec" => Some(Accent::Vector),
+            "ten" => Some(Accent::Tensor),
+            "dot" => Some(Accent::Dot),
+            "ddot" => Some(Accent::DoubleDot),
+            _ => None,
+        };
+        if let Some(accent) = accent
+            && self.eat("(")
+        {
+            let mut inner = self.postfix();
+            assert!(self.eat(")"), "formula: `{word}(` is not closed");
+            // The accent sits on the name, under its superscript.
+            if let Formula::Name(n) = &mut inner {
+                n.accent = accent;
+            } else {
+                panic!("formula: `{word}` takes a name");
+            }
+            return inner;
+        }
+        match word.as_str() {
+            "sqrt" => {
+                assert!(self.eat("("), "formula: `sqrt` takes (…)");
+                let inner = self.row(&[")"]);
+                assert!(self.eat(")"), "formula: `sqrt(` is not closed");
+                return Formula::Sqrt(Box::new(inner));
+            }
+            "sin" | "cos" | "tan" => return Formula::Function(word),
+            "sum" => {
+                let index = self
+                    .eat("_")
+                    .then(|| self.take(|c| c.is_ascii_alphanumeric()));
+                return Formula::Sum(index);
+            }
+            "int" => return Formula::Integral,
+            "nabla" => return Formula::Nabla,
+            "one" => return Formula::Identity,
+            "quad" => return Formula::Op(Op::Quad),
+            _ => {}
+        }
+        let sub = self
+            .eat("_")
+            .then(|| self.take(|c| c.is_ascii_alphanumeric()));
+        Formula::Name(Name {
+            base: word,
+            sub,
+            accent: Accent::None,
+            prime: false,
+        })
+    }
+
+    fn take(&mut self, keep: impl Fn(char) -> bool) -> String {
+        let rest = self.rest();
+        let n = rest.find(|c| !keep(c)).unwrap_or(rest.len());
+        let taken = rest[..n].to_string();
+        self.pos += n;
+        taken
+    }
+}
+
+/// A fraction's operand needs no parentheses of its own.
+fn unwrap_paren(f: Formula) -> Formula {
+    match f {
+        Formula::Paren(inner) => *inner,
+        other => other,
+    }
+}

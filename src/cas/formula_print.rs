@@ -1,0 +1,371 @@
+//! The printers of a [`Formula`]: plain text for the terminal and JSON, LaTeX for the pages
+//! (which turn it into MathML). Each prints the tree; neither reads the other's output.
+
+use super::formula::{Accent, Formula, GREEK, Name, Op};
+
+impl Formula {
+    pub fn to_latex(&self) -> String {
+        let mut out = String::new();
+        latex(self, &mut out);
+        out
+    }
+
+    pub fn to_text(&self) -> String {
+        let mut out = String::new();
+        text(self, &mut out);
+        out
+    }
+}
+
+/// Appends a piece of LaTeX, with a space where a control word would run into a letter.
+fn join(out: &mut String, piece: &str) {
+    let control_word = out.rfind('\\').is_some_and(|i| {
+        out.len() > i + 1 && out[i + 1..].chars().all(|c| c.is_ascii_alphabetic())
+    });
+    if control_word && piece.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        out.push(' ');
+    }
+    out.push_str(piece);
+}
+
+fn latex(f: &Formula, out: &mut String) {
+    let piece = match f {
+        Formula::Expr(e) => e.to_latex(),
+        Formula::Name(n) => latex_name(n),
+        Formula::Number(s) => s.clone(),
+        Formula::Text(s) => format!("\\text{{{s}}}"),
+        Formula::Row(items) => {
+            for (i, item) in items.iter().enumerate() {
+                match item {
+                    Formula::Op(Op::Minus) if unary(items, i) => join(out, "-"),
+                    Formula::Op(op) => join(out, latex_op(*op)),
+                    other => latex(other, out),
+                }
+            }
+            return;
+        }
+        Formula::Op(op) => latex_op(*op).to_string(),
+        Formula::Frac(a, b) => format!("\\frac{{{}}}{{{}}}", a.to_latex(), b.to_latex()),
+        Formula::Sqrt(a) => format!("\\sqrt{{{}}}", a.to_latex()),
+        Formula::Sup(a, b) => format!("{}^{{{}}}", a.to_latex(), b.to_latex()),
+        Formula::Paren(a) if sized(a) => format!("\\left({}\\right)", a.to_latex()),
+        Formula::Paren(a) => format!("({})", a.to_latex()),
+        Formula::Bracket(a) => format!("\\left[{}\\right]", a.to_latex()),
+        Formula::Abs(a) => format!("\\left|{}\\right|", a.to_latex()),
+        Formula::Identity => "\\mathbb{1}".into(),
+        Formula::Function(name) => format!("\\{name}"),
+        Formula::Sum(Some(i)) => format!("\\sum_{{{i}}}"),
+        Formula::Sum(None) => "\\sum".into(),
+        Formula::Integral => "\\int".into(),
+        Formula::Nabla => "\\nabla".into(),
+    };
+    join(out, &piece);
+}
+
+/// A minus sign that begins a row or follows another operator negates what follows.
+fn unary(items: &[Formula], i: usize) -> bool {
+    i == 0 || matches!(items[i - 1], Formula::Op(_))
+}
+
+fn is_number(f: &Formula, digits: &str) -> bool {
+    matches!(f, Formula::Number(s) if s == digits)
+}
+
+/// Parentheses grow around a fraction or a sum.
+fn sized(f: &Formula) -> bool {
+    match f {
+        Formula::Frac(..) => true,
+        Formula::Row(items) => items
+            .iter()
+            .any(|i| matches!(i, Formula::Frac(..) | Formula::Op(Op::Plus | Op::Minus))),
+        _ => false,
+    }
+}
+
+fn latex_op(op: Op) -> &'static str {
+    match op {
+        Op::Equals => " = ",
+        Op::Less => " < ",
+        Op::LessEqual => " \\le ",
+        Op::Plus => " + ",
+        Op::Minus => " - ",
+        Op::Dot => "\\cdot",
+        Op::Cross => "\\times",
+        Op::Parallel => " \\parallel ",
+        Op::Comma => ", ",
+        Op::Thin => "\\,",
+        Op::Quad => " \\quad ",
+    }
+}
+
+fn latex_name(n: &Name) -> String {
+    let base = if GREEK.iter().any(|(name, _)| *name == n.base) {
+        format!("\\{}", n.base)
+    } else {
+        n.base.clone()
+    };
+    let base = match n.accent {
+        Accent::None => base,
+        Accent::Vector => format!("\\vec{{{base}}}"),
+        Accent::Tensor => format!("\\overleftrightarrow{{{base}}}"),
+        Accent::Dot => format!("\\dot{{{base}}}"),
+        Accent::DoubleDot => format!("\\ddot{{{base}}}"),
+    };
+    let sub = match n.sub.as_deref() {
+        None => String::new(),
+        Some("min") => "_{\\min}".into(),
+        Some("max") => "_{\\max}".into(),
+        Some(s) if s.len() > 1 && !s.chars().all(|c| c.is_ascii_digit()) => {
+            format!("_{{\\mathrm{{{s}}}}}")
+        }
+        Some(s) => format!("_{{{s}}}"),
+    };
+    let prime = if n.prime { "\\,'" } else { "" };
+    format!("{base}{sub}{prime}")
+}
+
+fn text(f: &Formula, out: &mut String) {
+    match f {
+        Formula::Expr(e) => out.push_str(&e.to_text()),
+        Formula::Name(n) => out.push_str(&text_name(n)),
+        Formula::Number(s) | Formula::Text(s) => out.push_str(s),
+        Formula::Row(items) => {
+            for (i, item) in items.iter().enumerate() {
+                match item {
+                    Formula::Op(Op::Minus) if unary(items, i) => out.push('−'),
+                    Formula::Op(op) => out.push_str(text_op(*op)),
+                    other => {
+                        // Side by side, factors are set apart by a space, but a number
+                        // runs into what it multiplies: 2T.
+                        let after_factor = i > 0
+                            && !matches!(
+                                items[i - 1],
+                                Formula::Op(_) | Formula::Number(_) | Formula::Nabla
+                            );
+                        if after_factor {
+                            out.push(' ');
+                        }
+                        text(other, out);
+                    }
+                }
+            }
+        }
+        Formula::Op(op) => out.push_str(text_op(*op)),
+        Formula::Frac(a, b) if is_number(a, "1") && is_number(b, "2") => out.push('½'),
+        Formula::Frac(a, b) => {
+            text_operand(a, out);
+            out.push('/');
+            text_operand(b, out);
+        }
+        Formula::Sqrt(a) => {
+            out.push('√');
+            text_operand(a, out);
+        }
+        Formula::Sup(a, b) => {
+            text_operand(a, out);
+            match b.as_ref() {
+                Formula::Number(s) => out.extend(s.chars().map(superscript_digit)),
+                Formula::Name(n) if n.base == "T" && n.sub.is_none() => out.push('ᵀ'),
+                other => {
+                    out.push('^');
+                    text_operand(other, out);
+                }
+            }
+        }
+        Formula::Paren(a) => {
+            out.push('(');
+            text(a, out);
+            out.push(')');
+        }
+        Formula::Bracket(a) => {
+            out.push('[');
+            text(a, out);
+            out.push(']');
+        }
+        Formula::Identity => out.push('𝟙'),
+        Formula::Abs(a) => {
+            out.push('|');
+            text(a, out);
+            out.push('|');
+        }
+        Formula::Function(name) => out.push_str(name),
+        Formula::Sum(Some(i)) => {
+            out.push_str("Σ_");
+            out.push_str(i);
+        }
+        Formula::Sum(None) => out.push('Σ'),
+        Formula::Integral => out.push('∫'),
+        Formula::Nabla => out.push('∇'),
+    }
+}
+
+/// An operand of `/`, `√` or `^`: in parentheses unless it is one item.
+fn text_operand(f: &Formula, out: &mut String) {
+    let single = matches!(
+        f,
+        Formula::Name(_)
+            | Formula::Number(_)
+            | Formula::Sup(..)
+            | Formula::Paren(_)
+            | Formula::Abs(_)
+            | Formula::Bracket(_)
+            | Formula::Identity
+            | Formula::Sqrt(_)
+            | Formula::Function(_)
+    );
+    if single {
+        text(f, out);
+    } else {
+        out.push('(');
+        text(f, out);
+        out.push(')');
+    }
+}
+
+fn text_op(op: Op) -> &'static str {
+    match op {
+        Op::Equals => " = ",
+        Op::Less => " < ",
+        Op::LessEqual => " ≤ ",
+        Op::Plus => " + ",
+        Op::Minus => " − ",
+        Op::Dot => "·",
+        Op::Cross => " × ",
+        Op::Parallel => " ∥ ",
+        Op::Comma => ", ",
+        Op::Thin => " ",
+        Op::Quad => "; ",
+    }
+}
+
+fn text_name(n: &Name) -> String {
+    let mut s = GREEK
+        .iter()
+        .find(|(name, _)| *name == n.base)
+        .map_or_else(|| n.base.clone(), |(_, c)| c.to_string());
+    match n.accent {
+        Accent::Dot => s.push('\u{307}'),
+        Accent::DoubleDot => s.push('\u{308}'),
+        _ => {}
+    }
+    match n.sub.as_deref() {
+        Some(d) if d.chars().all(|c| c.is_ascii_digit()) => s.push_str(d),
+        Some(sub) => {
+            s.push('_');
+            s.push_str(sub);
+        }
+        None => {}
+    }
+    if n.prime {
+        s.push('\'');
+    }
+    s
+}
+
+fn superscript_digit(c: char) -> char {
+    match c {
+        '0' => '⁰',
+        '1' => '¹',
+        '2' => '²',
+        '3' => '³',
+        '4' => '⁴',
+        '5' => '⁵',
+        '6' => '⁶',
+        '7' => '⁷',
+        '8' => '⁸',
+        '9' => '⁹',
+        other => other,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::expr::Expr;
+    use super::Formula;
+
+    fn both(notation: &str) -> (String, String) {
+        let f = Formula::parse(notation, &[]);
+        (f.to_text(), f.to_latex())
+    }
+
+    #[test]
+    fn names_accents_and_subscripts_print_in_each_notation() {
+        assert_eq!(
+            both("vec(L) = ten(I) ~ vec(omega)"),
+            (
+                "L = I ω".into(),
+                r"\vec{L} = \overleftrightarrow{I}\,\vec{\omega}".into()
+            )
+        );
+        assert_eq!(
+            both("2T ~ I_min <= L^2 <= 2T ~ I_max"),
+            (
+                "2T I_min ≤ L² ≤ 2T I_max".into(),
+                r"2T\,I_{\min} \le L^{2} \le 2T\,I_{\max}".into()
+            )
+        );
+        assert_eq!(both("dot(omega_2)").1, r"\dot{\omega}_{2}");
+        assert_eq!(both("I_cm").1, r"I_{\mathrm{cm}}");
+        assert_eq!(both("sum m ~ vec(r)' = 0").1, r"\sum m\,\vec{r}\,' = 0");
+    }
+
+    #[test]
+    fn fractions_drop_their_parentheses_and_sums_get_tall_ones() {
+        assert_eq!(
+            both("beta = (I_3 - I_1)/I_1"),
+            (
+                "β = (I3 − I1)/I1".into(),
+                r"\beta = \frac{I_{3} - I_{1}}{I_{1}}".into()
+            )
+        );
+        assert_eq!(
+            both("sum_i I_i (I_i - I_k) omega_i^2").1,
+            r"\sum_{i}I_{i}\left(I_{i} - I_{k}\right)\omega_{i}^{2}"
+        );
+        assert_eq!(
+            both("vec(L) = sum m ~ vec(r) × (vec(omega) × vec(r))").1,
+            r"\vec{L} = \sum m\,\vec{r}\times(\vec{\omega}\times\vec{r})"
+        );
+        assert_eq!(
+            both("T = 1/2 vec(omega)^T ten(I) ~ vec(omega)").0,
+            "T = ½ ωᵀ I ω"
+        );
+        assert_eq!(
+            both("sqrt(2/T)"),
+            ("√(2/T)".into(), r"\sqrt{\frac{2}{T}}".into())
+        );
+    }
+
+    #[test]
+    fn a_minus_after_an_operator_negates() {
+        assert_eq!(
+            both("sigma^2 = -Omega_2^2"),
+            ("σ² = −Ω2²".into(), r"\sigma^{2} = -\Omega_{2}^{2}".into())
+        );
+        assert_eq!(both("c_i = 1 - I_k/I_i").0, "c_i = 1 − I_k/I_i");
+    }
+
+    #[test]
+    fn a_control_word_is_kept_apart_from_a_following_letter() {
+        assert_eq!(both("nabla F || vec(L)").1, r"\nabla F \parallel \vec{L}");
+        assert_eq!(both("tan alpha_b").1, r"\tan\alpha_{b}");
+        assert_eq!(both("sin^2 + cos^2 = 1").1, r"\sin^{2} + \cos^{2} = 1");
+    }
+
+    #[test]
+    fn exact_expressions_are_printed_by_the_expression_printers() {
+        let e = Expr::over(Expr::sym("a"), Expr::int(2));
+        let f = Formula::parse("(a/b)^2 = $0", std::slice::from_ref(&e));
+        assert_eq!(
+            f.to_latex(),
+            format!(r"\left(\frac{{a}}{{b}}\right)^{{2}} = {}", e.to_latex())
+        );
+        assert_eq!(f.to_text(), format!("(a/b)² = {}", e.to_text()));
+    }
+
+    #[test]
+    #[should_panic(expected = "is not closed")]
+    fn a_malformed_formula_is_a_bug_that_names_itself() {
+        Formula::parse("sqrt(2", &[]);
+    }
+}
