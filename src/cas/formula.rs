@@ -7,10 +7,12 @@
 //!
 //! - names: `I_n`, `omega_3`, `alpha_b`, `I_min` (Greek by name, one subscript after `_`);
 //! - accents: `vec(L)`, `ten(I)` (a tensor), `dot(omega_2)`, `ddot(omega_1)`; a prime `r'`;
-//! - `a/b` is a fraction (its operands lose one pair of parentheses); `sqrt(x)`; `x^2`, `x^T`,
+//! - `a/b` is a fraction (its operands lose one pair of parentheses); `(x)` grows around a
+//!   fraction, `big(x)` always; `sqrt(x)`; `x^2`, `x^T`,
 //!   `e^(sigma t)`; `|x|`; `[a, b]`; `sin`, `cos`, `tan`, `sum_i`, `int`, `nabla`, `one` (𝟙);
-//! - operators `= < <= + - · × ||`, `,`; `~` is a thin space; `"text"`; `quad`; `$0`, `$1`… are
-//!   the exact expressions handed in.
+//! - operators `= ~= < <= > + - · × || , : ; //` (`//` divides on the line); `~` is a thin space,
+//!   `~~` a medium one; `"text"`; `rm(day)` an upright name; `quad`; `perp`; `det`; `nabla_rho`;
+//!   `int_(a)^(b)`; `(x)|_body` a value in a frame; `$0`, `$1`… the exact expressions handed in.
 
 use super::expr::Expr;
 
@@ -22,6 +24,8 @@ pub enum Formula {
     Number(String),
     /// Upright words inside a formula.
     Text(String),
+    /// An upright name, such as a unit: `\mathrm{day}`.
+    Upright(String),
     /// Items side by side.
     Row(Vec<Formula>),
     Op(Op),
@@ -29,7 +33,8 @@ pub enum Formula {
     Sqrt(Box<Formula>),
     /// A base and its superscript.
     Sup(Box<Formula>, Box<Formula>),
-    Paren(Box<Formula>),
+    /// Parentheses; `true` when they grow with their content (`\\left( … \\right)`).
+    Paren(Box<Formula>, bool),
     /// A closed interval's brackets, `[0, 2π]`.
     Bracket(Box<Formula>),
     Abs(Box<Formula>),
@@ -39,8 +44,12 @@ pub enum Formula {
     Function(String),
     /// `∑`, with its index if any.
     Sum(Option<String>),
-    Integral,
-    Nabla,
+    /// `∫`, with its limits if any.
+    Integral(Option<Box<(Formula, Formula)>>),
+    /// `∇`, with the variable it differentiates by, if named.
+    Nabla(Option<String>),
+    /// A value taken in a frame: `(dL/dt)|_body`.
+    At(Box<Formula>, String),
 }
 
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -59,21 +68,32 @@ pub enum Accent {
     Tensor,
     Dot,
     DoubleDot,
+    /// The rate of a vector: a dot over its arrow.
+    VectorDot,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Op {
     Equals,
+    Approx,
     Less,
     LessEqual,
+    Greater,
     Plus,
     Minus,
     Dot,
     Cross,
     Parallel,
+    Perp,
     Comma,
+    Colon,
+    Semicolon,
+    /// Division written on the line: `P / day`.
+    Slash,
     /// A thin space between factors.
     Thin,
+    /// A medium space, after a colon.
+    Medium,
     /// A wide space between two statements.
     Quad,
 }
@@ -93,6 +113,7 @@ pub(super) const GREEK: &[(&str, &str)] = &[
     ("sigma", "σ"),
     ("tau", "τ"),
     ("phi", "φ"),
+    ("varphi", "φ"),
     ("psi", "ψ"),
     ("omega", "ω"),
     ("Omega", "Ω"),
@@ -163,7 +184,7 @@ impl Reader<'_> {
             let mut item = self.postfix();
             loop {
                 self.skip_ws();
-                if self.eat("/") {
+                if !self.rest().starts_with("//") && self.eat("/") {
                     let den = self.postfix();
                     item = Formula::Frac(Box::new(unwrap_paren(item)), Box::new(unwrap_paren(den)));
                 } else {
@@ -183,8 +204,14 @@ impl Reader<'_> {
         const OPS: &[(&str, Op)] = &[
             ("<=", Op::LessEqual),
             ("||", Op::Parallel),
+            ("//", Op::Slash),
+            ("~=", Op::Approx),
+            ("~~", Op::Medium),
             ("=", Op::Equals),
             ("<", Op::Less),
+            (">", Op::Greater),
+            (":", Op::Colon),
+            (";", Op::Semicolon),
             ("+", Op::Plus),
             ("-", Op::Minus),
             ("·", Op::Dot),
@@ -204,14 +231,11 @@ impl Reader<'_> {
     fn postfix(&mut self) -> Formula {
         let mut f = self.atom();
         loop {
-            if self.eat("^") {
-                let sup = if self.eat("(") {
-                    let inner = self.row(&[")"]);
-                    assert!(self.eat(")"), "formula: `^(` is not closed");
-                    inner
-                } else {
-                    self.atom()
-                };
+            if self.eat("|_") {
+                let frame = self.take(|c| c.is_ascii_alphanumeric());
+                f = Formula::At(Box::new(unwrap_paren(f)), frame);
+            } else if self.eat("^") {
+                let sup = self.group();
                 f = Formula::Sup(Box::new(f), Box::new(sup));
             } else if let Formula::Name(n) = &mut f
                 && self.src.get(self.pos) == Some(&b'\'')
@@ -221,6 +245,17 @@ impl Reader<'_> {
             } else {
                 return f;
             }
+        }
+    }
+
+    /// `(…)` as its content, or one atom.
+    fn group(&mut self) -> Formula {
+        if self.eat("(") {
+            let inner = self.row(&[")"]);
+            assert!(self.eat(")"), "formula: `(` is not closed");
+            inner
+        } else {
+            self.atom()
         }
     }
 
@@ -235,7 +270,8 @@ impl Reader<'_> {
             self.pos += 1;
             let inner = self.row(&[")"]);
             assert!(self.eat(")"), "formula: `(` is not closed");
-            return Formula::Paren(Box::new(inner));
+            let tall = contains_fraction(&inner);
+            return Formula::Paren(Box::new(inner), tall);
         }
         if c == '[' {
             self.pos += 1;
@@ -262,7 +298,7 @@ impl Reader<'_> {
             return Formula::Expr(self.exprs[k].clone());
         }
         if c.is_ascii_digit() {
-            return Formula::Number(self.take(|c| c.is_ascii_digit()));
+            return Formula::Number(self.take(|c| c.is_ascii_digit() || c == '.'));
         }
         assert!(c.is_ascii_alphabetic(), "formula: unexpected `{c}`");
         let word = self.take(|c| c.is_ascii_alphabetic());
@@ -280,30 +316,58 @@ impl Reader<'_> {
             assert!(self.eat(")"), "formula: `{word}(` is not closed");
             // The accent sits on the name, under its superscript.
             if let Formula::Name(n) = &mut inner {
-                n.accent = accent;
+                n.accent = match (accent, n.accent) {
+                    (Accent::Dot, Accent::Vector) => Accent::VectorDot,
+                    _ => accent,
+                };
             } else {
                 panic!("formula: `{word}` takes a name");
             }
             return inner;
         }
         match word.as_str() {
+            "big" => {
+                assert!(self.eat("("), "formula: `big` takes (…)");
+                let inner = self.row(&[")"]);
+                assert!(self.eat(")"), "formula: `big(` is not closed");
+                return Formula::Paren(Box::new(inner), true);
+            }
             "sqrt" => {
                 assert!(self.eat("("), "formula: `sqrt` takes (…)");
                 let inner = self.row(&[")"]);
                 assert!(self.eat(")"), "formula: `sqrt(` is not closed");
                 return Formula::Sqrt(Box::new(inner));
             }
-            "sin" | "cos" | "tan" => return Formula::Function(word),
+            "sin" | "cos" | "tan" | "det" => return Formula::Function(word),
+            "rm" => {
+                assert!(self.eat("("), "formula: `rm` takes (…)");
+                let name = self.take(|c| c != ')');
+                assert!(self.eat(")"), "formula: `rm(` is not closed");
+                return Formula::Upright(name);
+            }
             "sum" => {
                 let index = self
                     .eat("_")
                     .then(|| self.take(|c| c.is_ascii_alphanumeric()));
                 return Formula::Sum(index);
             }
-            "int" => return Formula::Integral,
-            "nabla" => return Formula::Nabla,
+            "int" => {
+                let limits = self.eat("_").then(|| {
+                    let lo = self.group();
+                    assert!(self.eat("^"), "formula: `int_` takes both limits");
+                    Box::new((lo, self.group()))
+                });
+                return Formula::Integral(limits);
+            }
+            "nabla" => {
+                let by = self
+                    .eat("_")
+                    .then(|| self.take(|c| c.is_ascii_alphanumeric()));
+                return Formula::Nabla(by);
+            }
             "one" => return Formula::Identity,
             "quad" => return Formula::Op(Op::Quad),
+            "perp" => return Formula::Op(Op::Perp),
             _ => {}
         }
         let sub = self
@@ -326,10 +390,19 @@ impl Reader<'_> {
     }
 }
 
+/// Parentheses grow around a fraction.
+fn contains_fraction(f: &Formula) -> bool {
+    match f {
+        Formula::Frac(..) => true,
+        Formula::Row(items) => items.iter().any(|i| matches!(i, Formula::Frac(..))),
+        _ => false,
+    }
+}
+
 /// A fraction's operand needs no parentheses of its own.
 fn unwrap_paren(f: Formula) -> Formula {
     match f {
-        Formula::Paren(inner) => *inner,
+        Formula::Paren(inner, _) => *inner,
         other => other,
     }
 }

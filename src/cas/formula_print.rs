@@ -34,6 +34,7 @@ fn latex(f: &Formula, out: &mut String) {
         Formula::Name(n) => latex_name(n),
         Formula::Number(s) => s.clone(),
         Formula::Text(s) => format!("\\text{{{s}}}"),
+        Formula::Upright(s) => format!("\\mathrm{{{s}}}"),
         Formula::Row(items) => {
             for (i, item) in items.iter().enumerate() {
                 match item {
@@ -48,16 +49,25 @@ fn latex(f: &Formula, out: &mut String) {
         Formula::Frac(a, b) => format!("\\frac{{{}}}{{{}}}", a.to_latex(), b.to_latex()),
         Formula::Sqrt(a) => format!("\\sqrt{{{}}}", a.to_latex()),
         Formula::Sup(a, b) => format!("{}^{{{}}}", a.to_latex(), b.to_latex()),
-        Formula::Paren(a) if sized(a) => format!("\\left({}\\right)", a.to_latex()),
-        Formula::Paren(a) => format!("({})", a.to_latex()),
+        Formula::Paren(a, true) => format!("\\left({}\\right)", a.to_latex()),
+        Formula::Paren(a, false) => format!("({})", a.to_latex()),
         Formula::Bracket(a) => format!("\\left[{}\\right]", a.to_latex()),
         Formula::Abs(a) => format!("\\left|{}\\right|", a.to_latex()),
         Formula::Identity => "\\mathbb{1}".into(),
         Formula::Function(name) => format!("\\{name}"),
         Formula::Sum(Some(i)) => format!("\\sum_{{{i}}}"),
         Formula::Sum(None) => "\\sum".into(),
-        Formula::Integral => "\\int".into(),
-        Formula::Nabla => "\\nabla".into(),
+        Formula::Integral(None) => "\\int".into(),
+        Formula::Integral(Some(limits)) => {
+            format!(
+                "\\int_{{{}}}^{{{}}}",
+                limits.0.to_latex(),
+                limits.1.to_latex()
+            )
+        }
+        Formula::Nabla(None) => "\\nabla".into(),
+        Formula::Nabla(Some(by)) => format!("\\nabla_{{{}}}", latex_base(by)),
+        Formula::At(a, frame) => format!("\\left.{}\\right|_{{\\mathrm{{{frame}}}}}", a.to_latex()),
     };
     join(out, &piece);
 }
@@ -71,51 +81,54 @@ fn is_number(f: &Formula, digits: &str) -> bool {
     matches!(f, Formula::Number(s) if s == digits)
 }
 
-/// Parentheses grow around a fraction or a sum.
-fn sized(f: &Formula) -> bool {
-    match f {
-        Formula::Frac(..) => true,
-        Formula::Row(items) => items
-            .iter()
-            .any(|i| matches!(i, Formula::Frac(..) | Formula::Op(Op::Plus | Op::Minus))),
-        _ => false,
-    }
-}
-
 fn latex_op(op: Op) -> &'static str {
     match op {
         Op::Equals => " = ",
+        Op::Approx => " \\approx ",
         Op::Less => " < ",
         Op::LessEqual => " \\le ",
+        Op::Greater => " > ",
         Op::Plus => " + ",
         Op::Minus => " - ",
         Op::Dot => "\\cdot",
         Op::Cross => "\\times",
         Op::Parallel => " \\parallel ",
+        Op::Perp => " \\perp ",
         Op::Comma => ", ",
+        Op::Colon => ":",
+        Op::Semicolon => ";",
+        Op::Slash => " / ",
         Op::Thin => "\\,",
+        Op::Medium => "\\;",
         Op::Quad => " \\quad ",
     }
 }
 
-fn latex_name(n: &Name) -> String {
-    let base = if GREEK.iter().any(|(name, _)| *name == n.base) {
-        format!("\\{}", n.base)
+/// A letter: `\\alpha` for a Greek one's name, else as written.
+fn latex_base(base: &str) -> String {
+    if GREEK.iter().any(|(name, _)| *name == base) {
+        format!("\\{base}")
     } else {
-        n.base.clone()
-    };
+        base.to_string()
+    }
+}
+
+fn latex_name(n: &Name) -> String {
+    let base = latex_base(&n.base);
     let base = match n.accent {
         Accent::None => base,
         Accent::Vector => format!("\\vec{{{base}}}"),
         Accent::Tensor => format!("\\overleftrightarrow{{{base}}}"),
         Accent::Dot => format!("\\dot{{{base}}}"),
         Accent::DoubleDot => format!("\\ddot{{{base}}}"),
+        Accent::VectorDot => format!("\\dot{{\\vec{{{base}}}}}"),
     };
     let sub = match n.sub.as_deref() {
         None => String::new(),
         Some("min") => "_{\\min}".into(),
         Some("max") => "_{\\max}".into(),
-        Some(s) if s.len() > 1 && !s.chars().all(|c| c.is_ascii_digit()) => {
+        // A word is upright (I_cm); a pair of axes (I_xy) or a number is not.
+        Some(s) if s.len() > 1 && !s.chars().all(|c| c.is_ascii_digit() || "xyz".contains(c)) => {
             format!("_{{\\mathrm{{{s}}}}}")
         }
         Some(s) => format!("_{{{s}}}"),
@@ -128,21 +141,27 @@ fn text(f: &Formula, out: &mut String) {
     match f {
         Formula::Expr(e) => out.push_str(&e.to_text()),
         Formula::Name(n) => out.push_str(&text_name(n)),
-        Formula::Number(s) | Formula::Text(s) => out.push_str(s),
+        Formula::Number(s) | Formula::Text(s) | Formula::Upright(s) => out.push_str(s),
         Formula::Row(items) => {
             for (i, item) in items.iter().enumerate() {
                 match item {
                     Formula::Op(Op::Minus) if unary(items, i) => out.push('−'),
-                    Formula::Op(op) => out.push_str(text_op(*op)),
+                    Formula::Op(op) => push_spaced(out, text_op(*op)),
                     other => {
                         // Side by side, factors are set apart by a space, but a number
-                        // runs into what it multiplies: 2T.
-                        let after_factor = i > 0
-                            && !matches!(
+                        // runs into what it multiplies (2T), and a function or ∇ into its
+                        // argument: det(A), ∇F.
+                        let joined = i == 0
+                            || out.ends_with(' ')
+                            || matches!(
                                 items[i - 1],
-                                Formula::Op(_) | Formula::Number(_) | Formula::Nabla
+                                Formula::Op(_) | Formula::Number(_) | Formula::Nabla(_)
+                            )
+                            || matches!(
+                                (&items[i - 1], other),
+                                (Formula::Function(_), Formula::Paren(..))
                             );
-                        if after_factor {
+                        if !joined {
                             out.push(' ');
                         }
                         text(other, out);
@@ -172,7 +191,7 @@ fn text(f: &Formula, out: &mut String) {
                 }
             }
         }
-        Formula::Paren(a) => {
+        Formula::Paren(a, _) => {
             out.push('(');
             text(a, out);
             out.push(')');
@@ -194,8 +213,35 @@ fn text(f: &Formula, out: &mut String) {
             out.push_str(i);
         }
         Formula::Sum(None) => out.push('Σ'),
-        Formula::Integral => out.push('∫'),
-        Formula::Nabla => out.push('∇'),
+        Formula::Integral(None) => out.push('∫'),
+        Formula::Integral(Some(limits)) => {
+            out.push_str("∫[");
+            text(&limits.0, out);
+            out.push_str(", ");
+            text(&limits.1, out);
+            out.push(']');
+        }
+        Formula::Nabla(by) => {
+            out.push('∇');
+            if let Some(by) = by {
+                out.push('_');
+                out.push_str(&text_base(by));
+            }
+        }
+        Formula::At(a, frame) => {
+            text_operand(a, out);
+            out.push('|');
+            out.push_str(frame);
+        }
+    }
+}
+
+/// Appends an operator's text, with one space where two would meet.
+fn push_spaced(out: &mut String, piece: &str) {
+    if out.ends_with(' ') {
+        out.push_str(piece.trim_start());
+    } else {
+        out.push_str(piece);
     }
 }
 
@@ -206,7 +252,7 @@ fn text_operand(f: &Formula, out: &mut String) {
         Formula::Name(_)
             | Formula::Number(_)
             | Formula::Sup(..)
-            | Formula::Paren(_)
+            | Formula::Paren(..)
             | Formula::Abs(_)
             | Formula::Bracket(_)
             | Formula::Identity
@@ -225,26 +271,38 @@ fn text_operand(f: &Formula, out: &mut String) {
 fn text_op(op: Op) -> &'static str {
     match op {
         Op::Equals => " = ",
+        Op::Approx => " ≈ ",
         Op::Less => " < ",
         Op::LessEqual => " ≤ ",
+        Op::Greater => " > ",
         Op::Plus => " + ",
         Op::Minus => " − ",
         Op::Dot => "·",
         Op::Cross => " × ",
         Op::Parallel => " ∥ ",
+        Op::Perp => " ⊥ ",
         Op::Comma => ", ",
+        Op::Colon => ":",
+        Op::Semicolon => ";",
+        Op::Slash => "/",
         Op::Thin => " ",
-        Op::Quad => "; ",
+        Op::Medium => " ",
+        Op::Quad => "  ",
     }
 }
 
-fn text_name(n: &Name) -> String {
-    let mut s = GREEK
+/// A letter: `α` for a Greek one's name, else as written.
+fn text_base(base: &str) -> String {
+    GREEK
         .iter()
-        .find(|(name, _)| *name == n.base)
-        .map_or_else(|| n.base.clone(), |(_, c)| c.to_string());
+        .find(|(name, _)| *name == base)
+        .map_or_else(|| base.to_string(), |(_, c)| c.to_string())
+}
+
+fn text_name(n: &Name) -> String {
+    let mut s = text_base(&n.base);
     match n.accent {
-        Accent::Dot => s.push('\u{307}'),
+        Accent::Dot | Accent::VectorDot => s.push('\u{307}'),
         Accent::DoubleDot => s.push('\u{308}'),
         _ => {}
     }
@@ -310,7 +368,7 @@ mod tests {
     }
 
     #[test]
-    fn fractions_drop_their_parentheses_and_sums_get_tall_ones() {
+    fn fractions_drop_their_parentheses_and_parentheses_grow_around_fractions() {
         assert_eq!(
             both("beta = (I_3 - I_1)/I_1"),
             (
@@ -319,7 +377,7 @@ mod tests {
             )
         );
         assert_eq!(
-            both("sum_i I_i (I_i - I_k) omega_i^2").1,
+            both("sum_i I_i big(I_i - I_k) omega_i^2").1,
             r"\sum_{i}I_{i}\left(I_{i} - I_{k}\right)\omega_{i}^{2}"
         );
         assert_eq!(
@@ -361,6 +419,31 @@ mod tests {
             format!(r"\left(\frac{{a}}{{b}}\right)^{{2}} = {}", e.to_latex())
         );
         assert_eq!(f.to_text(), format!("(a/b)² = {}", e.to_text()));
+    }
+
+    #[test]
+    fn frames_units_limits_and_rates_print_as_the_notes_write_them() {
+        assert_eq!(
+            both("((d vec(L))/(dt))|_body").1,
+            r"\left.\frac{d\vec{L}}{dt}\right|_{\mathrm{body}}"
+        );
+        assert_eq!(
+            both("P // rm(sidereal) ~ rm(day)"),
+            (
+                "P/sidereal day".into(),
+                r"P / \mathrm{sidereal}\,\mathrm{day}".into()
+            )
+        );
+        assert_eq!(both("dot(vec(omega))"), ("ω̇".into(), r"\dot{\vec{\omega}}".into()));
+        assert_eq!(
+            both("int_(0)^(2pi) f ~ d theta"),
+            ("∫[0, 2π] f d θ".into(), r"\int_{0}^{2\pi}f\,d\theta".into())
+        );
+        assert_eq!(
+            both("\"every axis\" perp v; quad I_xy ~= 1.5 × 10^(-3)").1,
+            r"\text{every axis} \perp v; \quad I_{xy} \approx 1.5\times10^{-3}"
+        );
+        assert_eq!(both("nabla_rho F").1, r"\nabla_{\rho}F");
     }
 
     #[test]

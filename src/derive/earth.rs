@@ -4,7 +4,7 @@
 
 use super::algebra::Value;
 use super::{Derivation, DeriveError, Step, cited};
-use crate::cas::{self, Expr};
+use crate::cas::{self, Expr, Formula};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
 
@@ -29,31 +29,26 @@ fn number_step(
     d: &mut Derivation,
     name: &str,
     title: &str,
-    lhs: (&str, &str),
+    lhs: &str,
     value: Expr,
     why: &str,
 ) -> Result<(), DeriveError> {
     let v = value.eval(&|_| None)?;
+    let statement = format!("{lhs} = $0 ~= {}", decimal_notation(v));
     d.steps.push(Step::note(
         title,
-        format!("{} = {} = {}", lhs.0, value.to_text(), fmt_decimal(v)),
-        format!(
-            "{} = {} \\approx {}",
-            lhs.1,
-            value.to_latex(),
-            latex_decimal(v)
-        ),
+        Formula::parse(&statement, std::slice::from_ref(&value)),
         why,
     ));
     d.set(name, Value::Scalar(value))?;
     Ok(())
 }
 
-/// The same in LaTeX: 3.284548 × 10⁻³ rather than 3.284548e-3.
-fn latex_decimal(v: f64) -> String {
+/// The decimal as a formula: 3.284548 × 10⁻³ rather than 3.284548e-3.
+fn decimal_notation(v: f64) -> String {
     let text = fmt_decimal(v);
     match text.split_once('e') {
-        Some((mantissa, exponent)) => format!("{mantissa} \\times 10^{{{exponent}}}"),
+        Some((mantissa, exponent)) => format!("{mantissa} × 10^({exponent})"),
         None => text,
     }
 }
@@ -85,14 +80,14 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     };
     d.steps.push(Step::equation(
         "The polar moment from the dynamical ellipticity",
-        ("C", "C"),
+        "C",
         &Value::Scalar(c_of_h.clone()),
         "H = (C − A)/C solved for C",
     ));
     let beta = cas::simplify(&Expr::over(Expr::minus(c_of_h.clone(), a.clone()), a))?;
     d.steps.push(Step::equation(
         "β for an oblate Earth",
-        ("beta", "\\beta = \\frac{C - A}{A}"),
+        "beta = (C - A)/A",
         &Value::Scalar(beta.clone()),
         cited(
             "earth-beta",
@@ -112,7 +107,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         d,
         quantity::EARTH_BETA,
         "β from the measured H",
-        ("beta", "\\beta"),
+        "beta",
         beta_value.clone(),
         "H = 3.2737949e-3 (IERS Conventions 2010, Table 1.1, via REFERENCE.md)",
     )?;
@@ -123,7 +118,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         d,
         quantity::EULER_PERIOD_SIDEREAL_DAYS,
         "Euler period in sidereal days",
-        ("P", "P / \\mathrm{sidereal}\\,\\mathrm{day}"),
+        "P // rm(sidereal) ~ rm(day)",
         sidereal.clone(),
         "P = 2π/(βω3) with ω3 = 2π per sidereal day",
     )?;
@@ -134,7 +129,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         d,
         quantity::EULER_PERIOD_SOLAR_DAYS,
         "Euler period in mean solar days",
-        ("P", "P / \\mathrm{day}"),
+        "P // rm(day)",
         solar.clone(),
         "a tropical year of 365.2422 mean solar days holds 366.2422 sidereal days",
     )?;
@@ -143,7 +138,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         d,
         quantity::CHANDLER_RATIO,
         "Observed Chandler period over the Euler period",
-        ("ratio", "433\\,\\mathrm{d} / P"),
+        "433 ~ rm(d) // P",
         ratio,
         "the observed wobble (about 433 days, Malkin & Miller 2010) is slower: Earth is not rigid \
          (elastic mantle, oceans, fluid core)",
@@ -157,7 +152,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         d,
         quantity::BULGE_KM,
         "Equatorial bulge a − c in km",
-        ("a - c", "a - c"),
+        "a - c",
         bulge,
         "a − c = a f with WGS84 a = 6378.137 km, 1/f = 298.257",
     )?;
@@ -165,7 +160,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         d,
         quantity::BULGE_FRACTION,
         "Bulge as a fraction of the radius",
-        ("(a - c)/a", "(a - c)/a"),
+        "(a - c) // a",
         cas::simplify(&flattening)?,
         "(a − c)/a is the flattening f",
     )?;

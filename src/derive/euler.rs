@@ -52,7 +52,7 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
     let l = Value::Vector(lv.clone());
     d.steps.push(Step::equation(
         "Angular momentum in the principal frame",
-        ("L", "\\vec L"),
+        "vec(L)",
         &l,
         cited(
             "principal-frame-momentum",
@@ -63,10 +63,7 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
     let body_rate = Value::Vector(br.clone());
     d.steps.push(Step::equation(
         "Rate of L relative to the body",
-        (
-            "dL/dt|body",
-            "\\left.\\frac{d\\vec L}{dt}\\right|_{\\mathrm{body}}",
-        ),
+        "((d vec(L))/(dt))|_body",
         &body_rate,
         "the principal moments are constant in the body frame, so only ω changes",
     ));
@@ -74,17 +71,14 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
     let gyroscopic = Value::Vector(g.clone());
     d.steps.push(Step::equation(
         "Turning of the body frame",
-        ("w x L", "\\vec\\omega\\times\\vec L"),
+        "vec(omega) × vec(L)",
         &gyroscopic,
         "(ω × L)_i = ε_ijk ω_j L_k",
     ));
     let lhs = simplify_value(&Value::Vector(add_vec(&br, &g)))?;
     d.steps.push(Step::equation(
         "Euler's equations",
-        (
-            "dL/dt|body + w x L",
-            "\\left.\\frac{d\\vec L}{dt}\\right|_{\\mathrm{body}} + \\vec\\omega\\times\\vec L",
-        ),
+        "((d vec(L))/(dt))|_body + vec(omega) × vec(L)",
         &lhs,
         cited(
             "euler-equations",
@@ -95,16 +89,13 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
     let body_rate_of_momentum = simplify_value(&Value::Vector(sub_vec(&n, &g)))?;
     d.steps.push(Step::equation(
         "The body-frame rate, solved from (60)",
-        (
-            "dL/dt|body",
-            "\\left.\\frac{d\\vec L}{dt}\\right|_{\\mathrm{body}}",
-        ),
+        "((d vec(L))/(dt))|_body",
         &body_rate_of_momentum,
         "N − ω × L: the torque minus the turning of the frame, not ε_ijk ω_j L_k alone",
     ));
     d.steps.push(Step::equation(
         "Steady rotation without torque",
-        ("w x L", "\\vec\\omega\\times\\vec L"),
+        "vec(omega) × vec(L)",
         &factored(&gyroscopic)?,
         "with N = 0 a constant ω needs ω × L = 0; with distinct moments each component vanishes \
          only if a product ω_j ω_k does, so two components of ω are zero: ω lies along a \
@@ -117,7 +108,7 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
     let rates = simplify_value(&Value::Vector(torque_free_rates(&moments(), &w)))?;
     d.steps.push(Step::equation(
         "Torque-free rates",
-        ("dw/dt", "\\dot{\\vec\\omega}"),
+        "dot(vec(omega))",
         &factored(&rates)?,
         cited(
             "torque-free-rates",

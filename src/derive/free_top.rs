@@ -8,7 +8,7 @@ use super::sign::{Sign, sign_over_positive};
 use super::{
     Derivation, DeriveError, Step, cited, factored, simplify_value, simplify_vec, values_equal,
 };
-use crate::cas::{self, Expr};
+use crate::cas::{self, Expr, Formula};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
 
@@ -42,7 +42,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let rates = Value::Vector(r.clone());
     d.steps.push(Step::equation(
         "Euler's equations with I2 = I1 and N = 0",
-        ("dw/dt", "\\dot{\\vec\\omega}"),
+        "dot(vec(omega))",
         &factored(&rates)?,
         cited(
             "symmetric-rates",
@@ -63,10 +63,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     }
     d.steps.push(Step::note(
         "With β = (I3 − I1)/I1",
-        "dw1/dt = -beta*w3*w2, dw2/dt = beta*w3*w1".into(),
-        "\\dot\\omega_{1} = -\\beta\\,\\omega_{3}\\,\\omega_{2},\\quad \
-         \\dot\\omega_{2} = \\beta\\,\\omega_{3}\\,\\omega_{1}"
-            .into(),
+        Formula::parse(
+            "dot(omega_1) = -beta ~ omega_3 ~ omega_2, quad dot(omega_2) = beta ~ omega_3 ~ omega_1",
+            &[],
+        ),
         cited(
             "symmetric-beta-rates",
             "equal to the rates above term by term",
@@ -75,7 +75,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let second = scalar(rate_along(&r[0], &r)?)?;
     d.steps.push(Step::equation(
         "Second derivative of ω1",
-        ("d2w1/dt2", "\\ddot\\omega_{1}"),
+        "ddot(omega_1)",
         &factored(&Value::Scalar(second.clone()))?,
         cited(
             "symmetric-oscillator",
@@ -118,10 +118,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     ]))?;
     d.steps.push(Step::equation(
         "The solution, substituted",
-        (
-            "I dw/dt + w x I w",
-            "I\\dot{\\vec\\omega} + \\vec\\omega\\times I\\vec\\omega",
-        ),
+        "I dot(vec(omega)) + vec(omega) × I vec(omega)",
         &residual,
         "ω1 = A cos(βω3 t + θ), ω2 = A sin(βω3 t + θ), ω3 constant: the residual of Euler's \
          equations reduces to zero",
@@ -135,7 +132,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let omega_squared = scalar(dot(&solution, &solution))?;
     d.steps.push(Step::equation(
         "Magnitude of ω",
-        ("|w|^2", "\\omega^{2}"),
+        "omega^2",
         &Value::Scalar(omega_squared.clone()),
         cited(
             "symmetric-omega-constant",
@@ -163,7 +160,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let precession = scalar(turning)?;
     d.steps.push(Step::equation(
         "Precession of ω about the symmetry axis",
-        ("rate", "\\frac{\\omega_{1}\\dot\\omega_{2} - \\omega_{2}\\dot\\omega_{1}}{\\omega_{1}^{2} + \\omega_{2}^{2}}"),
+        "(omega_1 dot(omega_2) - omega_2 dot(omega_1))/(omega_1^2 + omega_2^2)",
         &Value::Scalar(precession.clone()),
         "the angle of (ω1, ω2) in the body advances at βω3: the body cone",
     ));
@@ -173,7 +170,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let l_squared = scalar(dot(&l, &l))?;
     d.steps.push(Step::equation(
         "Twice the kinetic energy",
-        ("2T", "2T = \\vec\\omega\\cdot\\vec L"),
+        "2T = vec(omega) · vec(L)",
         &Value::Scalar(two_t.clone()),
         Prose::default()
             .math("vec(omega)^T ten(I) ~ vec(omega)")
@@ -181,7 +178,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     ));
     d.steps.push(Step::equation(
         "Angular momentum squared",
-        ("L^2", "L^{2}"),
+        "L^2",
         &Value::Scalar(l_squared.clone()),
         Prose::default()
             .math("|ten(I) ~ vec(omega)|^2")
@@ -196,7 +193,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let body_tan2 = scalar(tan_squared_from_axis(&solution))?;
     d.steps.push(Step::equation(
         "Body cone",
-        ("tan^2 alpha_b", "\\tan^{2}\\alpha_{b}"),
+        "tan^2 alpha_b",
         &Value::Scalar(body_tan2.clone()),
         Prose::default()
             .math("alpha_b")
@@ -209,7 +206,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     ))?;
     d.steps.push(Step::equation(
         "Space cone",
-        ("cos^2 alpha_s", "\\cos^{2}\\alpha_{s}"),
+        "cos^2 alpha_s",
         &Value::Scalar(space_cos2.clone()),
         cited(
             "space-cone",
@@ -222,7 +219,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let tilt_tan2 = scalar(tan_squared_from_axis(&l))?;
     d.steps.push(Step::equation(
         "Tilt of L from the symmetry axis",
-        ("tan^2 theta_L", "\\tan^{2}\\theta_{L}"),
+        "tan^2 theta_L",
         &Value::Scalar(tilt_tan2.clone()),
         "(I1/I3)² tan² α_b: L leans further from the axis than ω when I3 < I1, less when I3 > I1; \
          ω, L and the axis lie in one plane",
@@ -246,7 +243,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         .remove(0);
     d.steps.push(Step::equation(
         "Which cone is wider",
-        ("(2T)^2 - w3^2 L^2", "(2T)^{2} - \\omega_{3}^{2}L^{2}"),
+        "(2T)^2 - omega_3^2 L^2",
         &Value::Scalar(in_tan),
         "with A = τω3, τ = tan α_b: α_b > α_s exactly when this is positive, since \
          cos α_s = 2T/(ωL) and cos α_b = ω3/ω",
@@ -259,15 +256,13 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     )?;
     d.steps.push(Step::note(
         "Oblate and prolate",
-        format!(
-            "I3 = I1 + p: {}; I1 = I3 + p: {}",
-            sign_words(oblate),
-            sign_words(prolate)
-        ),
-        format!(
-            "I_{{3}} > I_{{1}}:\\;\\text{{{}}};\\quad I_{{3}} < I_{{1}}:\\;\\text{{{}}}",
-            sign_words(oblate),
-            sign_words(prolate)
+        Formula::parse(
+            &format!(
+                "I_3 > I_1: ~~ \"{}\"; quad I_3 < I_1: ~~ \"{}\"",
+                sign_words(oblate),
+                sign_words(prolate)
+            ),
+            &[],
         ),
         "the sign of (2T)² − ω3²L² over all positive I1, p, A, ω3: a disc-shaped (oblate) top, \
          I3 > I1, always has α_b > α_s; a cigar-shaped (prolate) one, I3 < I1, has α_b < α_s \

@@ -9,7 +9,7 @@ use super::bodies::{MassModel, mass_model, place};
 use super::{
     Derivation, DeriveError, Step, cited, simplify_mat, simplify_value, simplify_vec, values_equal,
 };
-use crate::cas::{self, AngleSpan, Expr, Integral};
+use crate::cas::{self, AngleSpan, Expr, Formula, Integral};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
 use crate::scene::{Body, Scene};
@@ -52,32 +52,39 @@ fn describe(mut prose: Prose, domain: &[Integral]) -> Prose {
     prose
 }
 
-fn span_latex(span: AngleSpan) -> &'static str {
+fn span_notation(span: AngleSpan) -> &'static str {
     match span {
-        AngleSpan::Full => "2\\pi",
-        AngleSpan::Half => "\\pi",
-        AngleSpan::Quarter => "\\frac{\\pi}{2}",
+        AngleSpan::Full => "2pi",
+        AngleSpan::Half => "pi",
+        AngleSpan::Quarter => "pi/2",
     }
 }
 
-/// ∫_{lo}^{hi} … f dx dy: the limits outermost first, the differentials innermost first.
-fn integral_latex(integrand: &Expr, domain: &[Integral]) -> String {
-    let mut prefix = String::new();
-    let mut differentials = String::new();
+/// `I_xy = ∫_{lo}^{hi} … f dx dy = result`: the limits outermost first, the differentials
+/// innermost first.
+fn integral_formula(name: &str, integrand: &Expr, domain: &[Integral], result: &Expr) -> Formula {
+    let mut exprs = vec![integrand.clone(), result.clone()];
+    let mut put = |e: &Expr| {
+        exprs.push(e.clone());
+        format!("${}", exprs.len() - 1)
+    };
+    let mut notation = format!("{}_{} = ", &name[..1], &name[1..]);
     for i in domain.iter().rev() {
         let (lo, hi) = match i {
-            Integral::Poly { lo, hi, .. } => (lo.to_latex(), hi.to_latex()),
-            Integral::Trig { span, .. } => ("0".into(), span_latex(*span).into()),
+            Integral::Poly { lo, hi, .. } => (put(lo), put(hi)),
+            Integral::Trig { span, .. } => ("0".into(), span_notation(*span).into()),
         };
-        prefix.push_str(&format!("\\int_{{{lo}}}^{{{hi}}} "));
+        notation.push_str(&format!("int_({lo})^({hi}) "));
     }
+    notation.push_str("$0");
     for i in domain {
         let var = match i {
             Integral::Poly { var, .. } | Integral::Trig { var, .. } => var,
         };
-        differentials.push_str(&format!(" \\, d{}", Expr::sym(var).to_latex()));
+        notation.push_str(&format!(" ~ d {}", put(&Expr::sym(var))));
     }
-    format!("{prefix}{}{differentials}", integrand.to_latex())
+    notation.push_str(" = $1");
+    Formula::parse(&notation, &exprs)
 }
 
 fn why_integrate(domain: &[Integral]) -> Prose {
@@ -122,13 +129,13 @@ fn body_part(
             let tensor = simplify_mat(&tensor)?;
             d.steps.push(Step::equation(
                 &format!("{label}: sum over the point masses"),
-                ("I", "I"),
+                "I",
                 &Value::Matrix(tensor.clone()),
                 cited(
                     "point-tensor",
                     Prose::default()
                         .text("the tensor's integral replaced by ")
-                        .math("sum_i m_i (r_i^2 one - vec(r_i) vec(r_i)^T)"),
+                        .math("sum_i m_i big(r_i^2 one - vec(r_i) vec(r_i)^T)"),
                 ),
             ));
             let moment =
@@ -144,7 +151,7 @@ fn body_part(
             let position = Value::Vector(r.clone());
             d.steps.push(Step::equation(
                 &format!("{label}: position of a mass element"),
-                ("r", "\\vec r"),
+                "vec(r)",
                 &position,
                 &if body.rotations.is_empty() {
                     "the body's own parametrisation".to_string()
@@ -157,12 +164,9 @@ fn body_part(
             let (density, jacobian) = (&shown[0], &shown[1]);
             d.steps.push(Step::note(
                 &format!("{label}: mass element"),
-                format!("dm = {density} * {jacobian} d({}), with {} = {density}", describe(Prose::default(), &c.domain).to_text(), c.density_name),
-                format!(
-                    "dm = {rho} \\cdot {} , \\quad {rho} = {}",
-                    jacobian.to_latex(),
-                    density.to_latex(),
-                    rho = Expr::sym(c.density_name).to_latex(),
+                Formula::parse(
+                    "dm = $0 · $1, quad $0 = $2",
+                    &[Expr::sym(c.density_name), jacobian.clone(), density.clone()],
                 ),
                 "uniform density: the mass divided by the length, area or volume; times the Jacobian",
             ));
@@ -191,26 +195,17 @@ fn body_part(
             }
             d.steps.push(Step::equation(
                 &format!("{label}: total mass"),
-                ("∫dm", "\\int dm"),
+                "int dm",
                 &Value::Scalar(results[0].clone()),
                 why_integrate(&c.domain),
             ));
             for (k, (i, j)) in UNIQUE.iter().enumerate() {
                 let name = format!("I{}{}", AXES[*i], AXES[*j]);
-                d.steps.push(Step {
-                    title: format!("{label}: {name}"),
-                    text: format!("{name} = ∫ {} = {}", integrands[k], results[k + 1]),
-                    latex: format!(
-                        "I_{{{}{}}} = {} = {}",
-                        AXES[*i],
-                        AXES[*j],
-                        integral_latex(&integrands[k], &c.domain),
-                        results[k + 1].to_latex()
-                    ),
-                    why: why_integrate(&c.domain).to_text(),
-                    cite: String::new(),
-                    why_math: why_integrate(&c.domain),
-                });
+                d.steps.push(Step::note(
+                    &format!("{label}: {name}"),
+                    integral_formula(&name, &integrands[k], &c.domain, &results[k + 1]),
+                    why_integrate(&c.domain),
+                ));
             }
             if index == 0 {
                 // The first body's integrand and position, for claims about the notes' integrals.
@@ -245,7 +240,7 @@ pub fn derive_tensor(
     let mass = cas::simplify(&Expr::add(parts.iter().map(|p| p.mass.clone()).collect()))?;
     d.steps.push(Step::equation(
         "The inertia tensor",
-        ("I", "\\overleftrightarrow{I}"),
+        "ten(I)",
         &tensor,
         if parts.len() > 1 {
             "the sum of the parts' tensors about the same origin"
@@ -266,7 +261,7 @@ pub fn derive_tensor(
         })))?;
         d.steps.push(Step::equation(
             "Centre of mass",
-            ("R", "\\vec R"),
+            "vec(R)",
             &centre,
             Prose::default()
                 .math("vec(R) = 1/M int vec(r) ~ dm")
@@ -312,7 +307,7 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
     let about_cm = Value::Matrix(cm.clone());
     d.steps.push(Step::equation(
         "Tensor about the centre of mass, by direct integration",
-        ("I_cm", "I_{\\mathrm{cm}}"),
+        "I_cm",
         &about_cm,
         "the same integrals with r measured from R",
     ));
@@ -321,10 +316,7 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
     let theorem = simplify_value(&Value::Matrix(mat_add(&cm, &shift_term)))?;
     d.steps.push(Step::equation(
         "Parallel-axis theorem",
-        (
-            "I_cm + M(R²𝟙 − RRᵀ)",
-            "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R \\vec R^{T}\\right)",
-        ),
+        "I_cm + M big(R^2 one - vec(R) vec(R)^T)",
         &theorem,
         cited(
             "parallel-axis",
@@ -342,8 +334,7 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
     }
     d.steps.push(Step::note(
         "Both routes agree",
-        "I_cm + M(R²𝟙 − RRᵀ) − I = 0".into(),
-        "I_{\\mathrm{cm}} + M\\left(R^{2}\\mathbb{1} - \\vec R\\vec R^{T}\\right) - \\overleftrightarrow{I} = 0".into(),
+        Formula::parse("I_cm + M big(R^2 one - vec(R) vec(R)^T) - ten(I) = 0", &[]),
         "every entry of the difference simplifies to zero",
     ));
     d.set(quantity::INERTIA_CM, about_cm)?;

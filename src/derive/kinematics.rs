@@ -5,7 +5,7 @@
 use super::algebra::{Value, Vec3, cross, dot, mat_vec, scale_vec, sum_vecs};
 use super::bodies::place;
 use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
-use crate::cas::{self, Expr};
+use crate::cas::{self, Expr, Formula};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
 use crate::scene::{Scene, Shape};
@@ -38,7 +38,7 @@ fn two_routes(
         let direct = simplify_value(&direct)?;
         d.steps.push(Step::equation(
             &format!("{what}, from the definition"),
-            (what, what),
+            what,
             &direct,
             why,
         ));
@@ -58,7 +58,7 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     let l = simplify_value(&Value::Vector(mat_vec(&tensor(d)?, &omega)))?;
     d.steps.push(Step::equation(
         "Angular momentum from the tensor",
-        ("L", "\\vec L"),
+        "vec(L)",
         &l,
         cited(
             "angular-momentum",
@@ -95,7 +95,7 @@ pub fn kinetic_energy(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveErr
     ]))?;
     d.steps.push(Step::equation(
         "Kinetic energy from the tensor",
-        ("T", "T"),
+        "T",
         &Value::Scalar(t.clone()),
         cited(
             "kinetic-energy",
@@ -131,7 +131,7 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
     let moment = cas::simplify(&dot(&n, &mat_vec(&tensor(d)?, &n)))?;
     d.steps.push(Step::equation(
         "Moment of inertia about the axis n",
-        ("I_n", "I_{n}"),
+        "I_n",
         &Value::Scalar(moment.clone()),
         cited(
             "moment-about-axis",
@@ -173,7 +173,7 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
     let r0 = Expr::pow(cas::simplify(&Expr::over(moment, mass))?, Expr::rat(1, 2));
     d.steps.push(Step::equation(
         "Radius of gyration about n",
-        ("R_0", "R_{0}"),
+        "R_0",
         &Value::Scalar(r0.clone()),
         cited("gyration", Prose::default().math("R_0^2 = I_n/M")),
     ));
@@ -186,21 +186,18 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
             .collect();
         d.steps.push(Step::note(
             "Inertia ellipsoid",
-            format!(
-                "I1 ρ1² + I2 ρ2² + I3 ρ3² = 1 in principal axes; semi-axes {}, {}, {}",
-                semi[0], semi[1], semi[2]
+            Formula::parse(
+                "I_1 rho_1^2 + I_2 rho_2^2 + I_3 rho_3^2 = 1, quad \"semi-axes \" $0, $1, $2",
+                &semi,
             ),
-            format!(
-                "I_{{1}}\\rho_{{1}}^{{2}} + I_{{2}}\\rho_{{2}}^{{2}} + I_{{3}}\\rho_{{3}}^{{2}} = 1, \\quad \\text{{semi-axes }} {}, {}, {}",
-                semi[0].to_latex(),
-                semi[1].to_latex(),
-                semi[2].to_latex()
-            ),
-            cited("inertia-ellipsoid", Prose::default()
+            cited(
+                "inertia-ellipsoid",
+                Prose::default()
                     .text("with ")
                     .math("vec(rho) = vec(n)/sqrt(I_n)")
                     .text(", the ellipsoid's semi-axis along principal axis i is ")
-                    .math("1/sqrt(I_i)")),
+                    .math("1/sqrt(I_i)"),
+            ),
         ));
     }
     Ok(())

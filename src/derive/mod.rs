@@ -19,6 +19,7 @@ pub mod variants;
 
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
+use crate::cas::Formula;
 use crate::cas::{self, CasError, DiffError, EvalError, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::catalogue::{self, Stage};
@@ -31,24 +32,19 @@ use std::collections::BTreeMap;
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Step {
     pub title: String,
-    /// The statement as plain text and as LaTeX.
-    pub text: String,
-    pub latex: String,
+    /// What the step finds, as a formula each output prints with its own printer.
+    pub statement: Formula,
     /// Why it follows, in one line, in general terms: no course's equation numbers.
-    pub why: String,
+    pub why: Prose,
     /// The key by which a scene's `[cite]` table names its own notes' equations for this step.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub cite: String,
-    /// The reason with its formulas as LaTeX, where it has any (`why` is its text).
-    #[serde(default, skip_serializing_if = "Prose::is_empty")]
-    pub why_math: Prose,
 }
 
 /// A step's reason, with the citation key a scene may map to its notes' equations.
 pub struct Why {
     pub key: &'static str,
-    pub text: String,
-    pub math: Prose,
+    pub prose: Prose,
 }
 
 /// A reason that a scene may cite: `[cite] key = "eq (51)"` prints "eq (51): text".
@@ -58,21 +54,13 @@ pub fn cited(key: &'static str, why: impl Into<Why>) -> Why {
 
 impl From<Prose> for Why {
     fn from(prose: Prose) -> Why {
-        Why {
-            key: "",
-            text: prose.to_text(),
-            math: prose,
-        }
+        Why { key: "", prose }
     }
 }
 
 impl From<&str> for Why {
     fn from(text: &str) -> Why {
-        Why {
-            key: "",
-            text: text.to_string(),
-            math: Prose::default(),
-        }
+        Why::from(Prose::default().text(text))
     }
 }
 
@@ -82,37 +70,42 @@ impl From<&String> for Why {
     }
 }
 
+impl From<String> for Why {
+    fn from(text: String) -> Why {
+        Why::from(text.as_str())
+    }
+}
+
 impl Step {
-    /// `lhs = value`, with `lhs` given as (text, LaTeX).
-    pub fn equation(title: &str, lhs: (&str, &str), value: &Value, why: impl Into<Why>) -> Step {
+    /// `lhs = value`, with `lhs` in the notation of [`Formula::parse`].
+    pub fn equation(title: &str, lhs: &str, value: &Value, why: impl Into<Why>) -> Step {
+        let statement = Formula::equation(Formula::parse(lhs, &[]), value.to_expr());
+        Step::note(title, statement, why)
+    }
+
+    pub fn note(title: &str, statement: Formula, why: impl Into<Why>) -> Step {
         let why = why.into();
         Step {
             title: title.to_string(),
-            text: format!("{} = {}", lhs.0, value.to_text()),
-            latex: format!("{} = {}", lhs.1, value.to_latex()),
-            why: why.text,
+            statement,
+            why: why.prose,
             cite: why.key.to_string(),
-            why_math: why.math,
         }
     }
 
-    pub fn note(title: &str, text: String, latex: String, why: impl Into<Why>) -> Step {
-        let why = why.into();
-        Step {
-            title: title.to_string(),
-            text,
-            latex,
-            why: why.text,
-            cite: why.key.to_string(),
-            why_math: why.math,
-        }
+    /// The scene's citation for this step, if it has one: "eq (51)".
+    pub fn citation<'a>(&self, cites: &'a BTreeMap<String, String>) -> Option<&'a str> {
+        cites
+            .get(&self.cite)
+            .filter(|_| !self.cite.is_empty())
+            .map(String::as_str)
     }
 
     /// The reason as a course prints it: prefixed by the scene's citation for this step, if any.
-    pub fn why_in(&self, cites: &std::collections::BTreeMap<String, String>) -> String {
-        match cites.get(&self.cite) {
-            Some(c) if !self.cite.is_empty() => format!("{c}: {}", self.why),
-            _ => self.why.clone(),
+    pub fn why_in(&self, cites: &BTreeMap<String, String>) -> String {
+        match self.citation(cites) {
+            Some(c) => format!("{c}: {}", self.why),
+            None => self.why.to_text(),
         }
     }
 }

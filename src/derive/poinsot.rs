@@ -6,7 +6,7 @@ use super::algebra::{Value, Vec3, diag, dot, mat_vec};
 use super::euler::{moments, omega, rate_along, torque_free_rates};
 use super::stability::classify;
 use super::{Derivation, DeriveError, Step, cited, factored};
-use crate::cas::{self, Expr};
+use crate::cas::{self, Expr, Formula};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
 
@@ -29,7 +29,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let l_squared = scalar(d, quantity::MOMENTUM_SQUARED, dot(&l, &l))?;
     d.steps.push(Step::equation(
         "Twice the kinetic energy",
-        ("2T", "2T"),
+        "2T",
         &Value::Scalar(two_t.clone()),
         cited(
             "twice-energy",
@@ -38,7 +38,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     ));
     d.steps.push(Step::equation(
         "Angular momentum squared",
-        ("L^2", "L^{2}"),
+        "L^2",
         &Value::Scalar(l_squared.clone()),
         cited(
             "momentum-squared",
@@ -57,8 +57,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     }
     d.steps.push(Step::note(
         "Both are constant",
-        "d(2T)/dt = 0, d(L^2)/dt = 0".into(),
-        "\\frac{d(2T)}{dt} = 0,\\quad \\frac{d(L^{2})}{dt} = 0".into(),
+        Formula::parse("(d(2T))/(dt) = 0, quad (d(L^2))/(dt) = 0", &[]),
         "differentiated along the torque-free Euler equations by the chain rule: both vanish \
          identically",
     ));
@@ -72,7 +71,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     )?;
     d.steps.push(Step::equation(
         "The point ρ = ω/√(2T) lies on the inertia ellipsoid",
-        ("F(rho)", "F(\\vec\\rho) = \\vec\\rho^{T} I \\vec\\rho"),
+        "F(vec(rho)) = vec(rho)^T I vec(rho)",
         &Value::Scalar(f),
         cited(
             "ellipsoid-point",
@@ -104,10 +103,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let gradient = scalar(d, quantity::GRADIENT_FACTOR_SQUARED, factors[0].clone())?;
     d.steps.push(Step::equation(
         "The normal to the ellipsoid is along L",
-        (
-            "(grad F / L)^2",
-            "\\left(\\frac{\\nabla_{\\rho}F}{\\vec L}\\right)^{2}",
-        ),
+        "((nabla_rho F)/vec(L))^2",
         &Value::Scalar(gradient),
         cited(
             "ellipsoid-gradient",
@@ -127,10 +123,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     )?;
     d.steps.push(Step::equation(
         "Distance to the invariable plane",
-        (
-            "(rho . L / L)^2",
-            "\\left(\\frac{\\vec\\rho\\cdot\\vec L}{L}\\right)^{2}",
-        ),
+        "((vec(rho) · vec(L))/L)^2",
         &Value::Scalar(distance),
         cited(
             "invariable-plane",
@@ -156,7 +149,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     )?;
     d.steps.push(Step::equation(
         "Energy in terms of L",
-        ("T", "T"),
+        "T",
         &Value::Scalar(energy),
         cited(
             "energy-ellipsoid",
@@ -179,11 +172,11 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     )?;
     d.steps.push(Step::equation(
         "How far L² is from 2T I_k",
-        ("L^2 - 2T I_k", "L^{2} - 2T I_{k}"),
+        "L^2 - 2T I_k",
         &Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
         Prose::default()
             .text("entry k is ")
-            .math("sum_i I_i (I_i - I_k) omega_i^2")
+            .math("sum_i I_i big(I_i - I_k) omega_i^2")
             .text(": non-negative when I_k is the smallest moment and non-positive when it is the largest, so ")
             .math("2T ~ I_min <= L^2 <= 2T ~ I_max")
             .text(" (eq 85)"),
@@ -218,7 +211,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     }
     d.steps.push(Step::equation(
         "The polhode near each axis",
-        ("c_a c_b", "c_{a}\\,c_{b}"),
+        "c_a ~ c_b",
         &factored(&Value::Vector(product.clone()))?,
         Prose::default()
             .text("near axis k the sphere and the ellipsoid meet where ")
@@ -237,7 +230,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let (closure, _) = classify(&product, "the polhode conic")?;
     d.steps.push(Step::equation(
         "Which polhodes close",
-        (quantity::POLHODE_CLOSURE, "\\mathrm{closure}"),
+        "rm(closure)",
         &Value::Matrix(closure.clone()),
         "row k: axis k; columns: its moment is the largest, the smallest, the intermediate; \
          1 closed curves around it, −1 none. Curves close around the largest and the smallest \
@@ -258,7 +251,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     )))?;
     d.steps.push(Step::equation(
         "The separatrix",
-        ("(L3/L1)^2", "\\left(\\frac{L_{3}}{L_{1}}\\right)^{2}"),
+        "(L_3/L_1)^2",
         &factored(&Value::Scalar(slope.clone()))?,
         Prose::default()
             .text("on ")

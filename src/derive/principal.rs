@@ -5,8 +5,7 @@
 
 use super::algebra::{Mat3, Value, Vec3, cross, det};
 use super::{Derivation, DeriveError, Step, cited};
-use crate::base::format::significant;
-use crate::cas::{self, Expr, pull_squares};
+use crate::cas::{self, Expr, Formula, pull_squares};
 use crate::model::catalogue::quantity;
 use crate::model::value::{Values, eval_at};
 use crate::scene::{Scene, Shape};
@@ -180,10 +179,9 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     let shown = |e: &Expr| e.substitute(&|s| (s == LAMBDA).then(|| Expr::sym(ev_name)));
     d.steps.push(Step::note(
         "Characteristic polynomial",
-        format!("det(I − {ev}𝟙) = {}", shown(&characteristic)),
-        format!(
-            "\\det\\left(\\overleftrightarrow{{I}} - \\{ev_name} \\mathbb{{1}}\\right) = {}",
-            shown(&characteristic).to_latex()
+        Formula::parse(
+            &format!("det big(ten(I) - {ev_name} one) = $0"),
+            &[shown(&characteristic)],
         ),
         cited(
             "characteristic-polynomial",
@@ -234,32 +232,23 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
             },
             _ => ExactBasis::All,
         };
-        let (text, latex, why) = match &basis {
+        let (space, vector, why) = match &basis {
             ExactBasis::Axis(a) => (
-                format!("axis along {}", Value::Vector(a.clone()).to_text()),
-                format!(
-                    "\\text{{axis along }} {}",
-                    Value::Vector(a.clone()).to_latex()
-                ),
+                "\"axis along \" $1",
+                Some(Value::Vector(a.clone()).to_expr()),
                 cited(
                     "principal-axis",
-                    &format!("the cross product of two independent rows of I − {ev}𝟙 spans its null space"),
+                    format!("the cross product of two independent rows of I − {ev}𝟙 spans its null space"),
                 ),
             ),
             ExactBasis::PlaneNormalTo(n) => (
-                format!(
-                    "every axis perpendicular to {}",
-                    Value::Vector(n.clone()).to_text()
-                ),
-                format!(
-                    "\\text{{every axis}} \\perp {}",
-                    Value::Vector(n.clone()).to_latex()
-                ),
+                "\"every axis\" perp $1",
+                Some(Value::Vector(n.clone()).to_expr()),
                 format!("a double root: I − {ev}𝟙 has rank 1, so its null space is the plane normal to its one independent row").as_str().into(),
             ),
             ExactBasis::All => (
-                "every axis".into(),
-                "\\text{every axis}".into(),
+                "\"every axis\"",
+                None,
                 "a triple root: I is a multiple of the identity".into(),
             ),
         };
@@ -268,8 +257,13 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
                 "Principal moment {} (multiplicity {multiplicity})",
                 spaces.len() + 1
             ),
-            format!("{ev} = {value}: {text}"),
-            format!("\\{ev_name} = {}: \\; {latex}", value.to_latex()),
+            Formula::parse(
+                &format!("{ev_name} = $0: ~~ {space}"),
+                &[value.clone()]
+                    .into_iter()
+                    .chain(vector)
+                    .collect::<Vec<_>>(),
+            ),
             why,
         ));
         spaces.push(ExactSpace {
@@ -281,8 +275,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     for (factor, mult) in &roots.unsolved {
         d.steps.push(Step::note(
             "Irreducible factor",
-            format!("({})^{mult}", shown(factor)),
-            format!("\\left({}\\right)^{{{mult}}}", shown(factor).to_latex()),
+            Formula::parse(&format!("big($0)^{mult}"), &[shown(factor)]),
             "no factorisation over the rationals: no root is rational in the symbols",
         ));
     }
@@ -291,24 +284,14 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     let closed_form = if roots.roots.is_empty() && roots.unsolved.len() == 1 {
         let c = cubic_roots(&tensor, &positive)?;
         let two_rho = Expr::mul(vec![Expr::int(2), c.rho.clone()]);
-        let values = match c.at(&scene.values) {
-            Ok(v) => format!(
-                "; at the scene's values {ev} = {}",
-                v.map(|x| significant(x, 6)).join(", ")
-            ),
-            Err(_) => String::new(),
-        };
         d.steps.push(Step::note(
             "Principal moments in closed form",
-            format!(
-                "{ev}_k = {} + ({})·cos(φ/3 − 2πk/3), k = 0, 1, 2, where cos φ = {}{values}",
-                c.centre, two_rho, c.cos_phi
-            ),
-            format!(
-                "\\{ev_name}_k = {} + \\left({}\\right) \\cos\\left(\\frac{{\\varphi}}{{3}} - \\frac{{2\\pi k}}{{3}}\\right),\\; k = 0, 1, 2,\\quad \\cos\\varphi = {}",
-                c.centre.to_latex(),
-                two_rho.to_latex(),
-                c.cos_phi.to_latex()
+            Formula::parse(
+                &format!(
+                    "{ev_name}_k = $0 + big($1) cos big(varphi/3 - (2pi k)/3), ~~ k = 0, 1, 2, \
+                     quad cos varphi = $2"
+                ),
+                &[c.centre.clone(), two_rho, c.cos_phi.clone()],
             ),
             format!("three real roots (I is symmetric): depress the cubic by {ev} = t + tr I/3 to t³ + pt + q, then t = 2ρ cos θ with ρ = √(−p/3) turns it into cos 3θ = −q/(2ρ³) (Viète)").as_str(),
         ));

@@ -90,7 +90,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
     let rates = Value::Vector(r.clone());
     d.steps.push(Step::equation(
         "Torque-free Euler equations",
-        ("dw/dt", "\\dot{\\vec\\omega}"),
+        "dot(vec(omega))",
         &factored(&rates)?,
         cited(
             "stability-rates",
@@ -128,17 +128,13 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         let (ta, tb) = (a + 1, b + 1);
         d.steps.push(Step::note(
             &format!("Linearised about axis {}", k + 1),
-            format!(
-                "dw{ta}/dt = ({}) w{tb}, dw{tb}/dt = ({}) w{ta}",
-                shown[0].to_text(),
-                shown[1].to_text()
+            Formula::parse(
+                &format!(
+                    "dot(omega_{ta}) = $0 ~ omega_{tb}, quad dot(omega_{tb}) = $1 ~ omega_{ta}"
+                ),
+                &shown,
             ),
             format!(
-                "\\dot\\omega_{{{ta}}} = {}\\,\\omega_{{{tb}}},\\quad \\dot\\omega_{{{tb}}} = {}\\,\\omega_{{{ta}}}",
-                shown[0].to_latex(),
-                shown[1].to_latex()
-            ),
-            &format!(
                 "ω = ω{} e{} plus small ω{ta}, ω{tb}: keep first-order terms; dω{}/dt ∝ ω{ta}ω{tb} \
                  is second order and dropped",
                 k + 1,
@@ -155,10 +151,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         ratio[k] = both[1].clone();
         d.steps.push(Step::equation(
             &format!("Frequency about axis {}", k + 1),
-            (
-                &format!("Omega{}^2", k + 1),
-                &format!("\\Omega_{{{}}}^{{2}}", k + 1),
-            ),
+            &format!("Omega_{}^2", k + 1),
             &factored(&Value::Scalar(omega_sq[k].clone()))?,
             {
                 let ratio = factored(&Value::Scalar(ratio[k].clone()))?;
@@ -185,15 +178,17 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
             .collect();
         d.steps.push(Step::note(
             &format!("{} < {} < {}", label(0), label(1), label(2)),
-            verdicts.join(", "),
-            format!(
-                "{} < {} < {}:\\;\\text{{{}}}",
-                label(0).replace('I', "I_"),
-                label(1).replace('I', "I_"),
-                label(2).replace('I', "I_"),
-                verdicts.join(", ")
+            Formula::parse(
+                &format!(
+                    "{} < {} < {}: ~~ \"{}\"",
+                    label(0).replace('I', "I_"),
+                    label(1).replace('I', "I_"),
+                    label(2).replace('I', "I_"),
+                    verdicts.join(", ")
+                ),
+                &[],
             ),
-            &format!(
+            format!(
                 "{} = s, {} = s + p, {} = s + p + q with s, p, q > 0: each Ω_k² then has terms of \
                  one sign (Ω² > 0: oscillation, stable; Ω² < 0: exponential growth, unstable)",
                 label(0),
@@ -204,7 +199,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
     }
     d.steps.push(Step::equation(
         "Stability of each axis",
-        (quantity::STABILITY, "\\mathrm{stability}"),
+        "rm(stability)",
         &Value::Matrix(stability.clone()),
         "row k: axis k; columns: its moment is the largest, the smallest, the intermediate; \
          1 stable, −1 unstable. The same for every axis: only the intermediate axis is unstable",
@@ -213,7 +208,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
     let growth = cas::simplify(&Expr::negate(omega_sq[1].clone()))?;
     d.steps.push(Step::equation(
         "Growth rate about the intermediate axis 2",
-        ("sigma^2", "\\sigma^{2}"),
+        "sigma^2",
         &factored(&Value::Scalar(growth.clone()))?,
         Prose::default()
             .text("for ")

@@ -200,7 +200,12 @@ fn only_requested_stages_run() {
 fn the_eigenvalue_takes_another_letter_where_lambda_is_a_line_density() {
     let letters = |body: &str| {
         let r = run(body, "M = \"m\", R = \"r\"", "M = 2.0, R = 1.0", ALL);
-        let latex: String = r.derivation.steps.iter().map(|s| s.latex.clone()).collect();
+        let latex: String = r
+            .derivation
+            .steps
+            .iter()
+            .map(|s| s.statement.to_latex())
+            .collect();
         (latex.contains("\\lambda"), latex.contains("\\mu"))
     };
     // A hoop's mass element is λ R dθ: the characteristic polynomial is in μ.
@@ -212,17 +217,11 @@ fn the_eigenvalue_takes_another_letter_where_lambda_is_a_line_density() {
         .steps
         .iter()
         .find(|s| s.title == "Characteristic polynomial")
-        .unwrap();
-    assert!(
-        polynomial.latex.contains("- \\mu \\mathbb{1}"),
-        "{}",
-        polynomial.latex
-    );
-    assert!(
-        !polynomial.latex.contains("\\lambda"),
-        "{}",
-        polynomial.latex
-    );
+        .unwrap()
+        .statement
+        .to_latex();
+    assert!(polynomial.contains("- \\mu\\mathbb{1}"), "{polynomial}");
+    assert!(!polynomial.contains("\\lambda"), "{polynomial}");
     // A sphere has no line density: λ as usual.
     let sphere = "[[body]]\nkind = \"sphere\"\nradius = \"R\"\nmass = \"M\"\n";
     assert_eq!(letters(sphere), (true, false));

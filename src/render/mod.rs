@@ -166,19 +166,17 @@ fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError>
     Ok(out)
 }
 
-/// A step's reason as HTML: its text escaped, its formulas as MathML.
+/// A step's reason as HTML: its text escaped, its formulas as MathML, after the scene's
+/// citation for the step if it has one.
 fn why_html(
     st: &crate::derive::Step,
     cites: &std::collections::BTreeMap<String, String>,
 ) -> Result<String, RenderError> {
-    if st.why_math.is_empty() {
-        return Ok(tera::escape_html(&st.why_in(cites)));
-    }
-    let cite = match cites.get(&st.cite) {
-        Some(c) if !st.cite.is_empty() => tera::escape_html(&format!("{c}: ")),
-        _ => String::new(),
-    };
-    Ok(format!("{cite}{}", prose_html(&st.why_math)?))
+    let cite = st
+        .citation(cites)
+        .map(|c| tera::escape_html(&format!("{c}: ")))
+        .unwrap_or_default();
+    Ok(format!("{cite}{}", prose_html(&st.why)?))
 }
 
 fn value_math(v: &Value) -> Result<String, RenderError> {
@@ -266,7 +264,7 @@ pub fn page_view(
         .map(|st| {
             Ok(StepView {
                 title: st.title.clone(),
-                math: math::block(&st.latex)?,
+                math: math::block(&st.statement.to_latex())?,
                 why: why_html(st, &s.cite)?,
                 at: String::new(),
             })

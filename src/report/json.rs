@@ -64,12 +64,17 @@ pub fn check_json(reports: &[SceneReport], not_derived: &[String]) -> Json {
 
 /// A step: its statement and reason, each formula printed as text and as LaTeX.
 fn step_json(st: &crate::derive::Step) -> Json {
-    let mut j = json!({ "title": st.title, "text": st.text, "latex": st.latex, "why": st.why });
+    let mut j = json!({
+        "title": st.title,
+        "text": st.statement.to_text(),
+        "latex": st.statement.to_latex(),
+        "why": st.why.to_text(),
+    });
     if !st.cite.is_empty() {
         j["cite"] = json!(st.cite);
     }
-    if !st.why_math.is_empty() {
-        j["why_math"] = prose_json(&st.why_math);
+    if st.why.0.iter().any(|p| matches!(p, Piece::Math(_))) {
+        j["why_math"] = prose_json(&st.why);
     }
     j
 }

@@ -301,7 +301,7 @@ pub fn derivation_text(r: &SceneReport) -> String {
             "\n{:>2}. {}\n    {}\n    because: {}",
             i + 1,
             step.title,
-            step.text,
+            step.statement.to_text(),
             step.why_in(&s.cite)
         );
     }
