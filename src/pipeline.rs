@@ -1,5 +1,6 @@
 //! The thin orchestrator: scene -> plan -> derive -> numeric -> verify. Each stage takes a value
-//! and returns a value; nothing here writes files.
+//! and returns a value; nothing here writes files. Results kept between runs come and go
+//! through a [`ResultStore`], which the build cache (`site::cache`) implements.
 
 use crate::cas::EvalError;
 use crate::derive::{self, Derivation, DeriveError};
@@ -118,6 +119,129 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
         seconds: engine_after - engine_before,
         engine_calls: calls_after - calls_before,
     })
+}
+
+/// Where finished results wait between runs. The build cache (`site::cache::Cache`) is one;
+/// [`NoStore`] keeps nothing.
+pub trait ResultStore {
+    /// Why a stored result could not be used or kept: told to the user, never fatal.
+    type Warning: std::fmt::Display;
+    /// What is stored for `scene`: its whole report at `fidelity`, or with `None` its symbolic
+    /// results. A damaged entry is a warning and a miss.
+    fn get(
+        &self,
+        scene: &Scene,
+        fidelity: Option<&Fidelity>,
+        warnings: &mut Vec<Self::Warning>,
+    ) -> Option<Vec<u8>>;
+    /// What to say when bytes that `get` gave back do not decode (the scene runs again).
+    fn unreadable(&self, scene: &Scene, fidelity: Option<&Fidelity>) -> Self::Warning;
+    fn put(
+        &self,
+        scene: &Scene,
+        fidelity: Option<&Fidelity>,
+        bytes: &[u8],
+    ) -> Result<(), Self::Warning>;
+}
+
+/// A store that keeps nothing: every scene runs in full (`check`, `--no-cache`).
+pub struct NoStore;
+
+impl ResultStore for NoStore {
+    type Warning = std::convert::Infallible;
+    fn get(&self, _: &Scene, _: Option<&Fidelity>, _: &mut Vec<Self::Warning>) -> Option<Vec<u8>> {
+        None
+    }
+    fn unreadable(&self, _: &Scene, _: Option<&Fidelity>) -> Self::Warning {
+        unreachable!("NoStore gives back no bytes to decode")
+    }
+    fn put(&self, _: &Scene, _: Option<&Fidelity>, _: &[u8]) -> Result<(), Self::Warning> {
+        Ok(())
+    }
+}
+
+/// One scene through `store`: its whole report when stored for this fidelity, else its stored
+/// symbolic results with only the numeric stage run again, else everything; what is new is
+/// stored. Comes back with the report and what the store had to say.
+pub fn run_scene_stored<S: ResultStore>(
+    store: &S,
+    scene: Scene,
+    fidelity: Option<Fidelity>,
+) -> Result<(SceneReport, Vec<S::Warning>), RunError> {
+    let fid = scene.fidelity_given(fidelity);
+    let mut warnings = Vec::new();
+    if let Some(bytes) = store.get(&scene, Some(&fid), &mut warnings) {
+        match from_cache(scene.clone(), &bytes) {
+            Some(r) => return Ok((r, warnings)),
+            None => warnings.push(store.unreadable(&scene, Some(&fid))),
+        }
+    }
+    let symbolic = match store.get(&scene, None, &mut warnings) {
+        Some(bytes) => match serde_json::from_slice(&bytes) {
+            Ok(s) => Some(s),
+            Err(_) => {
+                warnings.push(store.unreadable(&scene, None));
+                None
+            }
+        },
+        None => None,
+    };
+    let r = run_scene_with(scene, Some(fid), symbolic)?;
+    let mut stored = store.put(&r.scene, Some(&fid), &to_cache(&r));
+    if r.from_cache == FromCache::Nothing && stored.is_ok() {
+        let symbolic = serde_json::to_vec(&symbolic_part(&r)).expect("a report serializes");
+        stored = store.put(&r.scene, None, &symbolic);
+    }
+    if let Err(w) = stored {
+        warnings.push(w);
+    }
+    Ok((r, warnings))
+}
+
+/// What a run of many scenes tells as it goes, for the command line to show.
+pub enum Progress<'a> {
+    /// `done` of `total` scenes are finished; `id` is next.
+    Starting {
+        done: usize,
+        total: usize,
+        id: &'a str,
+    },
+    Warning(String),
+    /// A scene could not be run: the whole error, located.
+    Failed(String),
+    Finished,
+}
+
+/// Every scene through `store`, in order: the reports, and the errors of those that failed.
+pub fn run_all<S: ResultStore>(
+    scenes: Vec<Scene>,
+    fidelity: Option<Fidelity>,
+    store: &S,
+    tell: &mut dyn FnMut(Progress),
+) -> (Vec<SceneReport>, Vec<String>) {
+    let total = scenes.len();
+    let (mut reports, mut failed) = (Vec::new(), Vec::new());
+    for (done, scene) in scenes.into_iter().enumerate() {
+        tell(Progress::Starting {
+            done,
+            total,
+            id: &scene.id,
+        });
+        match run_scene_stored(store, scene, fidelity) {
+            Ok((r, warnings)) => {
+                for w in warnings {
+                    tell(Progress::Warning(w.to_string()));
+                }
+                reports.push(r);
+            }
+            Err(e) => {
+                tell(Progress::Failed(e.to_string()));
+                failed.push(e.to_string());
+            }
+        }
+    }
+    tell(Progress::Finished);
+    (reports, failed)
 }
 
 /// Runs one scene. `fidelity` (from the command line) overrides the scene's own setting.
@@ -273,4 +397,75 @@ pub fn from_cache(scene: Scene, bytes: &[u8]) -> Option<SceneReport> {
         seconds,
         from_cache: FromCache::Everything,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{FromCache, ResultStore, run_scene_stored};
+    use crate::model::fidelity::Fidelity;
+    use crate::scene::Scene;
+    use std::cell::RefCell;
+    use std::collections::BTreeMap;
+
+    /// A store in memory, keyed by scene and fidelity name ("" for the symbolic results).
+    #[derive(Default)]
+    struct Memory(RefCell<BTreeMap<(String, String), Vec<u8>>>);
+
+    fn key(scene: &Scene, fidelity: Option<&Fidelity>) -> (String, String) {
+        (
+            scene.id.clone(),
+            fidelity.map(|f| f.name()).unwrap_or_default(),
+        )
+    }
+
+    impl ResultStore for Memory {
+        type Warning = String;
+        fn get(&self, s: &Scene, f: Option<&Fidelity>, _: &mut Vec<String>) -> Option<Vec<u8>> {
+            self.0.borrow().get(&key(s, f)).cloned()
+        }
+        fn unreadable(&self, s: &Scene, f: Option<&Fidelity>) -> String {
+            format!("unreadable {:?}", key(s, f))
+        }
+        fn put(&self, s: &Scene, f: Option<&Fidelity>, bytes: &[u8]) -> Result<(), String> {
+            self.0.borrow_mut().insert(key(s, f), bytes.to_vec());
+            Ok(())
+        }
+    }
+
+    fn hoop() -> Scene {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/lectures/lecture-3-4/06-hoop.toml"
+        );
+        let text = std::fs::read_to_string(path).unwrap();
+        Scene::parse(&text, std::path::Path::new(path)).unwrap()
+    }
+
+    #[test]
+    fn the_store_gives_back_whole_reports_then_symbolic_parts_and_survives_damage() {
+        let store = Memory::default();
+        let draft = Some(Fidelity::DRAFT);
+        let (first, w) = run_scene_stored(&store, hoop(), draft).unwrap();
+        assert!(w.is_empty());
+        assert_eq!(first.from_cache, FromCache::Nothing);
+        // The report at this fidelity and the symbolic results, nothing else.
+        assert_eq!(store.0.borrow().len(), 2);
+        let (again, _) = run_scene_stored(&store, hoop(), draft).unwrap();
+        assert_eq!(again.from_cache, FromCache::Everything);
+        assert_eq!(
+            super::to_cache(&again),
+            super::to_cache(&first),
+            "a stored report comes back as it was"
+        );
+        // Another fidelity reruns only the numeric stage, on the same exact results.
+        let (other, _) = run_scene_stored(&store, hoop(), Some(Fidelity::STANDARD)).unwrap();
+        assert_eq!(other.from_cache, FromCache::Symbolic);
+        assert_eq!(other.derivation.quantities, first.derivation.quantities);
+        // A damaged report is said and run again, from the stored symbolic results.
+        let k = key(&hoop(), Some(&Fidelity::DRAFT));
+        store.0.borrow_mut().insert(k, b"not json".to_vec());
+        let (rerun, w) = run_scene_stored(&store, hoop(), draft).unwrap();
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(rerun.from_cache, FromCache::Symbolic);
+    }
 }

@@ -434,7 +434,10 @@ mod tests {
                 r"P / \mathrm{sidereal}\,\mathrm{day}".into()
             )
         );
-        assert_eq!(both("dot(vec(omega))"), ("ω̇".into(), r"\dot{\vec{\omega}}".into()));
+        assert_eq!(
+            both("dot(vec(omega))"),
+            ("ω̇".into(), r"\dot{\vec{\omega}}".into())
+        );
         assert_eq!(
             both("int_(0)^(2pi) f ~ d theta"),
             ("∫[0, 2π] f d θ".into(), r"\int_{0}^{2\pi}f\,d\theta".into())

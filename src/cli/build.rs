@@ -180,8 +180,10 @@ impl Build {
                 return Err(NotBuilt::Scenes(vec![e.to_string()]));
             }
         }
-        let (reports, errors) =
-            run_all(scenes, self.fidelity, self.cache.as_ref()).map_err(fail)?;
+        let (reports, errors) = match &self.cache {
+            Some(cache) => run_all(scenes, self.fidelity, cache),
+            None => run_all(scenes, self.fidelity, &pipeline::NoStore),
+        };
         if !errors.is_empty() {
             return Err(NotBuilt::Derive(errors));
         }

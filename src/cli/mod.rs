@@ -11,8 +11,7 @@ mod serve;
 mod spin;
 
 use crate::model::fidelity::{Fidelity, FidelityError};
-use crate::pipeline::{self, SceneReport};
-use crate::site::cache::Cache;
+use crate::pipeline::{self, Progress, SceneReport};
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
@@ -181,49 +180,36 @@ fn progress_bar(done: usize, total: usize, label: &str) -> String {
     )
 }
 
-/// Runs every scene, or takes it from the cache, with a progress bar on stderr when it is a
+/// Every scene through the pipeline (and `store`), with a progress bar on stderr when it is a
 /// terminal. A scene that fails is reported on stderr, one located line, and the others still
 /// run; the failed scenes' messages come back with the reports.
-fn run_all(
+fn run_all<S: pipeline::ResultStore>(
     scenes: Vec<crate::scene::Scene>,
     fidelity: Option<Fidelity>,
-    cache: Option<&Cache>,
-) -> Result<(Vec<SceneReport>, Vec<String>)> {
+    store: &S,
+) -> (Vec<SceneReport>, Vec<String>) {
     let progress = std::io::stderr().is_terminal();
-    let total = scenes.len();
-    let mut reports = Vec::new();
-    let mut failed = Vec::new();
-    for (i, scene) in scenes.into_iter().enumerate() {
+    let clear = || {
         if progress {
-            eprint!("\r\x1b[2K{}", progress_bar(i, total, &scene.id));
+            eprint!("\r\x1b[2K");
         }
-        let run = match cache {
-            Some(cache) => cache.run_scene(scene, fidelity).map(|(report, warnings)| {
-                for w in warnings {
-                    if progress {
-                        eprint!("\r\x1b[2K");
-                    }
-                    eprintln!("mechbook: warning: {w}");
-                }
-                report
-            }),
-            None => pipeline::run_scene(scene, fidelity),
-        };
-        match run {
-            Ok(r) => reports.push(r),
-            Err(e) => {
-                if progress {
-                    eprint!("\r\x1b[2K");
-                }
-                eprintln!("mechbook: error: {e}");
-                failed.push(e.to_string());
+    };
+    pipeline::run_all(scenes, fidelity, store, &mut |event| match event {
+        Progress::Starting { done, total, id } => {
+            if progress {
+                eprint!("\r\x1b[2K{}", progress_bar(done, total, id));
             }
         }
-    }
-    if progress {
-        eprint!("\r\x1b[2K");
-    }
-    Ok((reports, failed))
+        Progress::Warning(w) => {
+            clear();
+            eprintln!("mechbook: warning: {w}");
+        }
+        Progress::Failed(e) => {
+            clear();
+            eprintln!("mechbook: error: {e}");
+        }
+        Progress::Finished => clear(),
+    })
 }
 
 /// The paths given, or `lectures/` when none: a course's scenes live there.

@@ -11,7 +11,7 @@
 
 use super::SiteError;
 use crate::model::fidelity::Fidelity;
-use crate::pipeline::{self, FromCache, RunError, SceneReport};
+use crate::pipeline::ResultStore;
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 
@@ -48,6 +48,40 @@ pub enum CacheWarning {
     NotStored(SiteError),
     #[error("the cache entry {} is damaged ({why}): the scene was derived again", path.display())]
     Damaged { path: PathBuf, why: Damage },
+}
+
+/// The build cache is where a run keeps its results (`pipeline` decides what to keep).
+impl ResultStore for Cache {
+    type Warning = CacheWarning;
+
+    fn get(
+        &self,
+        scene: &Scene,
+        fidelity: Option<&Fidelity>,
+        warnings: &mut Vec<CacheWarning>,
+    ) -> Option<Vec<u8>> {
+        self.hit(&scene.id, scene.content_hash, fidelity, &mut |path, why| {
+            warnings.push(CacheWarning::Damaged { path, why });
+        })
+    }
+
+    fn unreadable(&self, scene: &Scene, fidelity: Option<&Fidelity>) -> CacheWarning {
+        let (path, _) = self.entry(&scene.id, scene.content_hash, fidelity);
+        CacheWarning::Damaged {
+            path,
+            why: Damage::Contents,
+        }
+    }
+
+    fn put(
+        &self,
+        scene: &Scene,
+        fidelity: Option<&Fidelity>,
+        bytes: &[u8],
+    ) -> Result<(), CacheWarning> {
+        self.store(&scene.id, scene.content_hash, fidelity, bytes)
+            .map_err(CacheWarning::NotStored)
+    }
 }
 
 /// A look-up's answer.
@@ -106,49 +140,6 @@ impl Cache {
         let hash = crate::base::hash::content_hash(key.as_bytes());
         let key = crate::base::hash::content_hash(format!("{id}\n{kind}\n{key}").as_bytes());
         (self.dir.join(format!("{id}.{kind}.{hash:016x}.json")), key)
-    }
-
-    /// Runs one scene, or takes it from the cache: the whole report when the cache holds it
-    /// for this fidelity, else the symbolic results when it holds those, with only the numeric
-    /// stage run again. Comes back with the report and, when the new results could not be
-    /// stored, why (the build goes on without them).
-    pub fn run_scene(
-        &self,
-        scene: Scene,
-        fidelity: Option<Fidelity>,
-    ) -> Result<(SceneReport, Vec<CacheWarning>), RunError> {
-        let (id, hash) = (scene.id.clone(), scene.content_hash);
-        let fid = scene.fidelity_given(fidelity);
-        let mut warnings = Vec::new();
-        let mut damaged = |path: PathBuf, why: Damage| {
-            warnings.push(CacheWarning::Damaged { path, why });
-        };
-        if let Some(bytes) = self.hit(&id, hash, Some(&fid), &mut damaged) {
-            match pipeline::from_cache(scene.clone(), &bytes) {
-                Some(r) => return Ok((r, warnings)),
-                None => damaged(self.entry(&id, hash, Some(&fid)).0, Damage::Contents),
-            }
-        }
-        let symbolic =
-            self.hit(&id, hash, None, &mut damaged)
-                .and_then(|bytes| match serde_json::from_slice(&bytes) {
-                    Ok(s) => Some(s),
-                    Err(_) => {
-                        damaged(self.entry(&id, hash, None).0, Damage::Contents);
-                        None
-                    }
-                });
-        let r = pipeline::run_scene_with(scene, Some(fid), symbolic)?;
-        let mut stored = self.store(&id, hash, Some(&fid), &pipeline::to_cache(&r));
-        if r.from_cache == FromCache::Nothing && stored.is_ok() {
-            let symbolic =
-                serde_json::to_vec(&pipeline::symbolic_part(&r)).expect("a report serializes");
-            stored = self.store(&id, hash, None, &symbolic);
-        }
-        if let Err(e) = stored {
-            warnings.push(CacheWarning::NotStored(e));
-        }
-        Ok((r, warnings))
     }
 
     /// The stored bytes on a hit; a damaged entry is told to `damaged` and is a miss.
