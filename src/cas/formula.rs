@@ -251,44 +251,52 @@ impl Reader<'_> {
     /// `(…)` as its content, or one atom.
     fn group(&mut self) -> Formula {
         if self.eat("(") {
-            let inner = self.row(&[")"]);
-            assert!(self.eat(")"), "formula: `(` is not closed");
-            inner
+            self.closed_by(")", "(")
         } else {
             self.atom()
         }
     }
 
+    /// The items up to `close`, which must follow (`open` began them).
+    fn closed_by(&mut self, close: &str, open: &str) -> Formula {
+        let inner = self.row(&[close]);
+        assert!(self.eat(close), "formula: `{open}` is not closed");
+        inner
+    }
+
+    /// The `(…)` after a function's name.
+    fn argument(&mut self, name: &str) -> Formula {
+        assert!(self.eat("("), "formula: `{name}` takes (…)");
+        self.closed_by(")", &format!("{name}("))
+    }
+
+    /// `_i` after a name: its subscript, if any.
+    fn subscript(&mut self) -> Option<String> {
+        self.eat("_")
+            .then(|| self.take(|c| c.is_ascii_alphanumeric()))
+    }
+
     fn atom(&mut self) -> Formula {
         self.skip_ws();
-        let rest = self.rest();
-        let c = rest
-            .chars()
-            .next()
-            .expect("formula: an item is missing at the end");
-        if c == '(' {
-            self.pos += 1;
-            let inner = self.row(&[")"]);
-            assert!(self.eat(")"), "formula: `(` is not closed");
+        if self.eat("(") {
+            let inner = self.closed_by(")", "(");
             let tall = contains_fraction(&inner);
             return Formula::Paren(Box::new(inner), tall);
         }
-        if c == '[' {
-            self.pos += 1;
-            let inner = self.row(&["]"]);
-            assert!(self.eat("]"), "formula: `[` is not closed");
-            return Formula::Bracket(Box::new(inner));
+        if self.eat("[") {
+            return Formula::Bracket(Box::new(self.closed_by("]", "[")));
         }
-        if c == '|' {
-            self.pos += 1;
-            let inner = self.row(&["|"]);
-            assert!(self.eat("|"), "formula: `|` is not closed");
-            return Formula::Abs(Box::new(inner));
+        if self.eat("|") {
+            return Formula::Abs(Box::new(self.closed_by("|", "|")));
         }
-        if c == '"' {
-            let end = rest[1..].find('"').expect("formula: a text is not closed");
-            let text = rest[1..1 + end].to_string();
-            self.pos += end + 2;
+        let c = self
+            .rest()
+            .chars()
+            .next()
+            .expect("formula: an item is missing at the end");
+        if self.eat("\"") {
+            let text = self.take(|c| c != '"');
+            assert!(self.eat("\""), "formula: a text is not closed");
             return Formula::Text(text);
         }
         if c == '$' {
@@ -326,18 +334,8 @@ impl Reader<'_> {
             return inner;
         }
         match word.as_str() {
-            "big" => {
-                assert!(self.eat("("), "formula: `big` takes (…)");
-                let inner = self.row(&[")"]);
-                assert!(self.eat(")"), "formula: `big(` is not closed");
-                return Formula::Paren(Box::new(inner), true);
-            }
-            "sqrt" => {
-                assert!(self.eat("("), "formula: `sqrt` takes (…)");
-                let inner = self.row(&[")"]);
-                assert!(self.eat(")"), "formula: `sqrt(` is not closed");
-                return Formula::Sqrt(Box::new(inner));
-            }
+            "big" => return Formula::Paren(Box::new(self.argument(&word)), true),
+            "sqrt" => return Formula::Sqrt(Box::new(self.argument(&word))),
             "sin" | "cos" | "tan" | "det" => return Formula::Function(word),
             "rm" => {
                 assert!(self.eat("("), "formula: `rm` takes (…)");
@@ -345,12 +343,7 @@ impl Reader<'_> {
                 assert!(self.eat(")"), "formula: `rm(` is not closed");
                 return Formula::Upright(name);
             }
-            "sum" => {
-                let index = self
-                    .eat("_")
-                    .then(|| self.take(|c| c.is_ascii_alphanumeric()));
-                return Formula::Sum(index);
-            }
+            "sum" => return Formula::Sum(self.subscript()),
             "int" => {
                 let limits = self.eat("_").then(|| {
                     let lo = self.group();
@@ -359,20 +352,13 @@ impl Reader<'_> {
                 });
                 return Formula::Integral(limits);
             }
-            "nabla" => {
-                let by = self
-                    .eat("_")
-                    .then(|| self.take(|c| c.is_ascii_alphanumeric()));
-                return Formula::Nabla(by);
-            }
+            "nabla" => return Formula::Nabla(self.subscript()),
             "one" => return Formula::Identity,
             "quad" => return Formula::Op(Op::Quad),
             "perp" => return Formula::Op(Op::Perp),
             _ => {}
         }
-        let sub = self
-            .eat("_")
-            .then(|| self.take(|c| c.is_ascii_alphanumeric()));
+        let sub = self.subscript();
         Formula::Name(Name {
             base: word,
             sub,
