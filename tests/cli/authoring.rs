@@ -127,7 +127,7 @@ fn init_refuses_a_file_and_fills_an_empty_folder() {
 #[test]
 fn outside_a_course_the_error_says_what_to_do() {
     let dir = scratch("outside");
-    for command in ["build", "check"] {
+    for command in ["build", "check", "serve"] {
         let out = mechbook_in(&dir, &[command]);
         assert_eq!(out.status.code(), Some(1), "{command}");
         let err = stderr(&out);
