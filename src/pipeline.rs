@@ -235,8 +235,9 @@ pub fn run_all<S: ResultStore>(
                 reports.push(r);
             }
             Err(e) => {
-                tell(Progress::Failed(e.to_string()));
-                failed.push(e.to_string());
+                let message = e.to_string();
+                tell(Progress::Failed(message.clone()));
+                failed.push(message);
             }
         }
     }

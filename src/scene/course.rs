@@ -124,54 +124,50 @@ impl Course {
 
     /// The course file's `text`; `path` is where errors say it is.
     pub fn parse(text: &str, path: &Path) -> Result<Course, CourseError> {
-        {
-            {
-                let at = |offset: usize, message: String| {
-                    let (line, column) = super::Locator { path, text }.line_col(offset);
-                    CourseError::At {
-                        path: path.to_path_buf(),
-                        line,
-                        column,
-                        message,
-                    }
-                };
-                let mut course: Course = toml::from_str(text).map_err(|e| {
-                    at(
-                        e.span().map_or(0, |s| s.start),
-                        e.message().trim().to_string(),
-                    )
-                })?;
-                if let Some((offset, why)) = prose_problem(text) {
-                    return Err(at(offset, why));
-                }
-                if !course.base_url.is_empty() {
-                    course.base_url = web_address(&course.base_url).map_err(|why| {
-                        let offset = toml_edit::ImDocument::parse(text)
-                            .ok()
-                            .and_then(|d| d.get("base_url").and_then(toml_edit::Item::span))
-                            .map_or(0, |s| s.start + 1);
-                        at(offset, format!("field `base_url`: {why}"))
-                    })?;
-                }
-                let id_offsets = lecture_id_offsets(text);
-                for (i, l) in course.lectures.iter().enumerate() {
-                    if let Some(first) = course.lectures[..i].iter().position(|f| f.id == l.id) {
-                        return Err(at(
-                            id_offsets.get(i).copied().unwrap_or(0),
-                            format!(
-                                "field `lecture[{i}].id`: lecture `{}` is titled twice (first as \
-                                 lecture[{first}]): keep one",
-                                l.id
-                            ),
-                        ));
-                    }
-                }
-                let loc = super::Locator { path, text };
-                let lines = id_offsets.iter().map(|o| loc.line_col(*o)).collect();
-                course.source = Some((path.to_path_buf(), lines));
-                Ok(course)
+        let loc = super::Locator { path, text };
+        let at = |offset: usize, message: String| {
+            let (line, column) = loc.line_col(offset);
+            CourseError::At {
+                path: path.to_path_buf(),
+                line,
+                column,
+                message,
+            }
+        };
+        let mut course: Course = toml::from_str(text).map_err(|e| {
+            at(
+                e.span().map_or(0, |s| s.start),
+                e.message().trim().to_string(),
+            )
+        })?;
+        if let Some((offset, why)) = prose_problem(text) {
+            return Err(at(offset, why));
+        }
+        if !course.base_url.is_empty() {
+            course.base_url = web_address(&course.base_url).map_err(|why| {
+                let offset = toml_edit::ImDocument::parse(text)
+                    .ok()
+                    .and_then(|d| d.get("base_url").and_then(toml_edit::Item::span))
+                    .map_or(0, |s| s.start + 1);
+                at(offset, format!("field `base_url`: {why}"))
+            })?;
+        }
+        let id_offsets = lecture_id_offsets(text);
+        for (i, l) in course.lectures.iter().enumerate() {
+            if let Some(first) = course.lectures[..i].iter().position(|f| f.id == l.id) {
+                return Err(at(
+                    id_offsets.get(i).copied().unwrap_or(0),
+                    format!(
+                        "field `lecture[{i}].id`: lecture `{}` is titled twice (first as \
+                         lecture[{first}]): keep one",
+                        l.id
+                    ),
+                ));
             }
         }
+        let lines = id_offsets.iter().map(|o| loc.line_col(*o)).collect();
+        course.source = Some((path.to_path_buf(), lines));
+        Ok(course)
     }
 }
 

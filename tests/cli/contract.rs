@@ -298,6 +298,27 @@ fn angles_lose_their_whole_turns_exactly_before_any_float_sees_them() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Writes lecture `n`'s folder with `problems` (file name, text), and titles the lecture in
+/// the course file's text `file` when `untitled` (not titled there yet).
+fn add_lecture(
+    lectures: &Path,
+    file: &mut String,
+    n: usize,
+    untitled: bool,
+    problems: &[(String, String)],
+) {
+    let folder = lectures.join(format!("lecture-{n}"));
+    std::fs::create_dir_all(&folder).unwrap();
+    for (name, text) in problems {
+        std::fs::write(folder.join(name), text).unwrap();
+    }
+    if untitled {
+        file.push_str(&format!(
+            "\n[[lecture]]\nid = \"{n}\"\ntitle = \"Lecture {n}\"\n"
+        ));
+    }
+}
+
 /// The starter's problem box, made another problem: its id, lecture and variant count changed.
 fn another_problem(text: &str, id: &str, lecture: &str, count: usize) -> String {
     let out = text
@@ -321,15 +342,14 @@ fn the_variants_and_pages_of_a_whole_course_have_a_budget() {
     // course has 21,000 variants to derive, over 20,000.
     let mut file = std::fs::read_to_string(course.join("mechbook.toml")).unwrap();
     for n in 1..=3 {
-        let folder = lectures.join(format!("lecture-{n}"));
-        std::fs::create_dir_all(&folder).unwrap();
         let problem = another_problem(&text, &format!("problem-{n}"), &n.to_string(), 7000);
-        std::fs::write(folder.join("02-problem-box.toml"), problem).unwrap();
-        if n > 1 {
-            file.push_str(&format!(
-                "\n[[lecture]]\nid = \"{n}\"\ntitle = \"Lecture {n}\"\n"
-            ));
-        }
+        add_lecture(
+            &lectures,
+            &mut file,
+            n,
+            n > 1,
+            &[("02-problem-box.toml".into(), problem)],
+        );
     }
     std::fs::write(course.join("mechbook.toml"), file).unwrap();
     let out = mechbook(&["check", arg(&lectures)]);
@@ -350,18 +370,17 @@ fn the_variants_and_pages_of_a_whole_course_have_a_budget() {
     }
     let mut file = std::fs::read_to_string(course.join("mechbook.toml")).unwrap();
     for n in 1..=6 {
-        let folder = lectures.join(format!("lecture-{n}"));
-        std::fs::create_dir_all(&folder).unwrap();
-        for k in 0..6 {
-            let count = if k == 0 { 1666 } else { 1 };
-            let problem = another_problem(&text, &format!("p-{n}-{k}"), &n.to_string(), count);
-            std::fs::write(folder.join(format!("p{k}.toml")), problem).unwrap();
-        }
-        if n > 3 {
-            file.push_str(&format!(
-                "\n[[lecture]]\nid = \"{n}\"\ntitle = \"Lecture {n}\"\n"
-            ));
-        }
+        let problems: Vec<(String, String)> = (0..6)
+            .map(|k| {
+                let count = if k == 0 { 1666 } else { 1 };
+                let id = format!("p-{n}-{k}");
+                (
+                    format!("p{k}.toml"),
+                    another_problem(&text, &id, &n.to_string(), count),
+                )
+            })
+            .collect();
+        add_lecture(&lectures, &mut file, n, n > 3, &problems);
     }
     std::fs::write(course.join("mechbook.toml"), file).unwrap();
     let out = mechbook(&["check", arg(&lectures)]);
