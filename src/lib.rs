@@ -13,7 +13,8 @@
 //! - `figures`: one file per plot kind, data -> `Figure` with captions written from the data.
 //! - `verify`: symbolic vs numeric vs the notes' claims -> verdicts.
 //! - `pipeline`: runs the stages for one scene, and the build cache's orchestration.
-//! - `report` (terminal, JSON) and `render` (HTML, MathML, SVG in memory).
+//! - `document`: the format-neutral view of a scene's page that every printer reads.
+//! - `report` (terminal, JSON) and `render` (HTML, MathML, SVG in memory): its printers.
 //! - `site`: the only code that writes files (the site, a new course, a blessed scene).
 //! - `serve`: the HTTP server of `mechbook serve`; it reads the written site.
 //! - `cli`: one file per command.
@@ -36,6 +37,8 @@ pub mod figures;
 pub mod verify;
 
 pub mod pipeline;
+
+pub mod document;
 
 pub mod render;
 pub mod report;

@@ -19,6 +19,7 @@ const LAYERS: &[&[&str]] = &[
     &["figures"],
     &["verify"],
     &["pipeline"],
+    &["document"],
     &["report", "render"],
     &["site"],
     &["serve"],

@@ -4,7 +4,7 @@ use super::{FidelityArg, default_paths, find, load, run_all};
 use crate::pipeline::SceneReport;
 use crate::report;
 use crate::site::bless;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -84,25 +84,17 @@ fn bless_all(reports: &[SceneReport], errors: usize) -> Result<ExitCode> {
     let mut changes = 0;
     let mut refused = Vec::new();
     for r in reports {
-        let path = &r.scene.source;
-        let original =
-            std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-        // Bless only what was checked: a file edited since it was read would get the verdicts of
-        // its old text.
-        if crate::base::hash::content_hash(&original) != r.scene.content_hash {
-            refused.push(bless::BlessError::Changed(path.clone()));
-            continue;
-        }
-        let (new_bytes, blessed) = bless::blessed_bytes(&original, r)?;
-        if blessed.is_empty() {
-            continue;
-        }
-        if let Err(e) = bless::write_in_place(path, &original, &new_bytes) {
-            refused.push(e);
-            continue;
-        }
+        let blessed = match bless::bless_scene(r) {
+            Ok(b) if b.is_empty() => continue,
+            Ok(b) => b,
+            Err(e) => {
+                refused.push(e);
+                continue;
+            }
+        };
         files += 1;
         changes += blessed.len();
+        let path = &r.scene.source;
         for b in blessed {
             let at = if b.line > 0 {
                 format!("{}:{}", path.display(), b.line)

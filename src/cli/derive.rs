@@ -39,13 +39,14 @@ pub fn run(args: DeriveArgs) -> Result<ExitCode> {
             return Ok(ExitCode::from(1));
         }
     };
+    let page = crate::document::page(&r, None, None);
     let text = if json {
-        serde_json::to_string_pretty(&report::scene_json(&r))? + "\n"
+        serde_json::to_string_pretty(&report::scene_json(&page))? + "\n"
     } else {
-        let mut t = report::derivation_text(&r);
+        let mut t = report::derivation_text(&page);
         if explain {
             t.push('\n');
-            t.push_str(&report::explain_text(&r));
+            t.push_str(&report::explain_text(&page));
         }
         t
     };

@@ -100,14 +100,6 @@ impl Step {
             .filter(|_| !self.cite.is_empty())
             .map(String::as_str)
     }
-
-    /// The reason as a course prints it: prefixed by the scene's citation for this step, if any.
-    pub fn why_in(&self, cites: &BTreeMap<String, String>) -> String {
-        match self.citation(cites) {
-            Some(c) => format!("{c}: {}", self.why),
-            None => self.why.to_text(),
-        }
-    }
 }
 
 #[derive(Debug, thiserror::Error)]

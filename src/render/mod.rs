@@ -1,5 +1,6 @@
-//! Page views for the templates: plain data built from the reports, with the math already
-//! converted to MathML. No file I/O here.
+//! The HTML printer of the documents: page views for the templates, built from a
+//! [`Page`] with the math already converted to MathML, then the site's files in memory. No file
+//! I/O here.
 
 mod linebreak;
 #[cfg(test)]
@@ -15,18 +16,12 @@ pub use site_files::{SiteFiles, TemplateTexts, site_files, template_names};
 use crate::base::format::sci;
 use crate::cas::Expr;
 use crate::derive::ExactBasis;
-use crate::model::catalogue::{quantity, quantity_symbol};
+use crate::document::{At, Link, Page, PrincipalValues};
+use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::pipeline::SceneReport;
 use crate::scene::Verdict;
 use serde::Serialize;
 use std::path::PathBuf;
-
-#[derive(Debug, Clone, Serialize)]
-pub struct Link {
-    pub href: String,
-    pub title: String,
-}
 
 #[derive(Debug, Clone, Serialize)]
 pub struct StepView {
@@ -115,11 +110,6 @@ pub struct PageView {
     pub next: Option<Link>,
 }
 
-/// The file a scene's plot is written to, relative to the site root.
-pub fn figure_file(r: &SceneReport, fig: &crate::model::figure::Figure) -> String {
-    format!("plots/{}-{}.svg", r.scene.id, fig.slug)
-}
-
 /// Why a page, a plot or the course settings could not be rendered.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
@@ -140,17 +130,12 @@ pub enum RenderError {
 }
 
 impl RenderError {
-    fn in_scene(self, r: &SceneReport) -> RenderError {
+    fn in_scene(self, source: &std::path::Path) -> RenderError {
         RenderError::InScene {
-            path: r.scene.source.clone(),
+            path: source.to_path_buf(),
             error: Box::new(self),
         }
     }
-}
-
-/// The file a scene's page is written to.
-pub fn page_file(r: &SceneReport) -> String {
-    format!("{}.html", r.scene.id)
 }
 
 /// A sentence as HTML: its text escaped, its formulas as MathML.
@@ -166,64 +151,24 @@ fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError>
     Ok(out)
 }
 
-/// A step's reason as HTML: its text escaped, its formulas as MathML, after the scene's
-/// citation for the step if it has one.
-fn why_html(
-    st: &crate::derive::Step,
-    cites: &std::collections::BTreeMap<String, String>,
-) -> Result<String, RenderError> {
-    let cite = st
-        .citation(cites)
-        .map(|c| tera::escape_html(&format!("{c}: ")))
-        .unwrap_or_default();
-    Ok(format!("{cite}{}", prose_html(&st.why)?))
-}
-
 fn value_math(v: &Value) -> Result<String, RenderError> {
     math::block(&v.to_latex())
 }
 
 /// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
-/// of the symbols it contains) and the number, vector or matrix as MathML. Empty when the result
-/// is a number already or a symbol in it has no value.
-fn value_at_numbers(
-    v: &Value,
-    values: &crate::model::value::Values,
-) -> Result<String, RenderError> {
+/// of the symbols it contains) and the number, vector or matrix as MathML.
+fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
     use crate::base::format::significant;
-    // π is a number, not one of the scene's symbols.
-    let symbols: std::collections::BTreeSet<String> = v
-        .entries()
-        .iter()
-        .flat_map(|e| e.symbols())
-        .filter(|s| values.contains_key(s))
-        .collect();
-    let Ok(numbers) = v.numbers_at(values) else {
-        return Ok(String::new());
-    };
-    // A number or a bare symbol (a mass M) says nothing new at the numbers.
-    let plain = v
-        .entries()
-        .iter()
-        .all(|e| matches!(e, Expr::Num(_) | Expr::Sym(_)));
-    if symbols.is_empty() || plain {
-        return Ok(String::new());
-    }
-    let n: Vec<String> = numbers.iter().map(|x| significant(*x, 6)).collect();
+    let n: Vec<String> = at.numbers.iter().map(|x| significant(*x, 6)).collect();
     let latex = numbers_latex(v, &n);
-    let at: Vec<String> = symbols
+    let symbols: Vec<String> = at
+        .symbols
         .iter()
-        .map(|k| {
-            format!(
-                "{} = {}",
-                Expr::sym(k).to_latex(),
-                significant(values[k], 6)
-            )
-        })
+        .map(|(k, x)| format!("{} = {}", Expr::sym(k).to_latex(), significant(*x, 6)))
         .collect();
     Ok(format!(
         "at {}: {}",
-        math::inline(&at.join(",\\; "))?,
+        math::inline(&symbols.join(",\\; "))?,
         math::inline(&latex)?
     ))
 }
@@ -243,86 +188,69 @@ pub(crate) fn numbers_latex(v: &Value, n: &[String]) -> String {
     }
 }
 
-/// Builds the view of one page. `timings` adds measured seconds to the numeric table.
-pub fn page_view(
-    r: &SceneReport,
-    prev: Option<&SceneReport>,
-    next: Option<&SceneReport>,
-    timings: bool,
-) -> Result<PageView, RenderError> {
-    let s = &r.scene;
-    let link = |o: Option<&SceneReport>| {
-        o.map(|o| Link {
-            href: page_file(o),
-            title: o.scene.title.clone(),
-        })
-    };
-    let steps = r
-        .derivation
+/// The HTML view of one page. `timings` adds measured seconds to the numeric table.
+pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
+    let steps = page
         .steps
         .iter()
         .map(|st| {
             Ok(StepView {
                 title: st.title.clone(),
                 math: math::block(&st.statement.to_latex())?,
-                why: why_html(st, &s.cite)?,
+                why: prose_html(&st.why_cited())?,
                 at: String::new(),
             })
         })
         .collect::<Result<Vec<_>, RenderError>>()?;
     let mut results = Vec::new();
-    for (name, v) in &r.derivation.quantities {
-        if name == quantity::INTEGRAND || name == quantity::POSITION {
-            continue;
-        }
+    for q in page.quantities.iter().filter(|q| q.is_result) {
         results.push(StepView {
-            title: name.replace('_', " "),
-            math: value_math(v)?,
+            title: q.name.replace('_', " "),
+            math: value_math(&q.value)?,
             why: String::new(),
-            at: value_at_numbers(v, &s.values)?,
+            at: match &q.at {
+                Some(at) => at_numbers_html(&q.value, at)?,
+                None => String::new(),
+            },
         });
     }
-    if let Some(e) = &r.derivation.eigen {
-        for sp in &e.spaces {
-            let dir = match &sp.basis {
-                ExactBasis::Axis(a) => {
-                    format!("\\text{{ along }} {}", Value::Vector(a.clone()).to_latex())
-                }
-                ExactBasis::PlaneNormalTo(n) => format!(
-                    "\\text{{, every axis }} \\perp {}",
-                    Value::Vector(n.clone()).to_latex()
-                ),
-                ExactBasis::All => "\\text{, every axis}".into(),
-            };
-            results.push(StepView {
-                title: format!("principal moment (multiplicity {})", sp.multiplicity),
-                math: math::block(&format!("{}{dir}", sp.value.to_latex()))?,
-                why: String::new(),
-                at: String::new(),
-            });
-        }
+    for sp in &page.principal_axes {
+        let dir = match &sp.basis {
+            ExactBasis::Axis(a) => {
+                format!("\\text{{ along }} {}", Value::Vector(a.clone()).to_latex())
+            }
+            ExactBasis::PlaneNormalTo(n) => format!(
+                "\\text{{, every axis }} \\perp {}",
+                Value::Vector(n.clone()).to_latex()
+            ),
+            ExactBasis::All => "\\text{, every axis}".into(),
+        };
+        results.push(StepView {
+            title: format!("principal moment (multiplicity {})", sp.multiplicity),
+            math: math::block(&format!("{}{dir}", sp.value.to_latex()))?,
+            why: String::new(),
+            at: String::new(),
+        });
     }
-    if let Some(p) = &r.verification.principal {
-        let letter = r.derivation.eigen.as_ref().map_or("lambda", |e| &e.letter);
-        results.push(principal_values_view(s, p, letter)?);
+    if let Some(p) = &page.principal_values {
+        results.push(principal_values_view(p)?);
     }
-    let numeric = r
+    let numeric = page
         .numeric
         .iter()
-        .flat_map(|n| n.runs.iter().zip(&r.verification.within_law))
-        .map(|(q, ok)| NumericRow {
+        .map(|q| NumericRow {
             body: q.body.clone(),
-            method: q.method.name().into(),
+            method: q.method.into(),
             points: q.points,
             error: sci(q.error),
             predicted: sci(q.predicted_error),
-            within_law: *ok,
-            stop: q.stop.describe().into(),
+            within_law: q.within_law,
+            stop: q.stop.into(),
             seconds: timings.then(|| format!("{:.1e}", q.seconds)),
         })
         .collect();
     let mut claims = Vec::new();
-    for c in &r.verification.claims {
+    for c in &page.claims {
         let render = |e: Option<&crate::cas::Expr>| {
             e.map(|e| math::inline(&e.to_latex_named(&quantity_symbol)))
                 .transpose()
@@ -361,39 +289,34 @@ pub fn page_view(
         });
     }
     Ok(PageView {
-        id: s.id.clone(),
-        title: s.title.clone(),
-        lecture: s.notes.lecture.clone(),
-        section: s.notes.section.clone(),
-        equations: s.notes.equations.join(", "),
-        source: s
+        id: page.id.clone(),
+        title: page.title.clone(),
+        lecture: page.lecture.clone(),
+        section: page.section.clone(),
+        equations: page.equations.join(", "),
+        source: page
             .source
             .file_name()
             .map(|f| f.to_string_lossy().into_owned())
             .unwrap_or_default(),
-        fidelity: r.fidelity.to_string(),
-        fidelity_name: r.fidelity.name(),
-        symbols: s
+        fidelity: page.fidelity.to_string(),
+        fidelity_name: page.fidelity.name(),
+        symbols: page
             .symbols
             .iter()
-            .map(|(k, v)| {
-                Ok((
-                    math::mathml(&crate::cas::Expr::sym(k).to_latex(), false)?,
-                    v.clone(),
-                ))
-            })
+            .map(|(k, v)| Ok((math::mathml(&Expr::sym(k).to_latex(), false)?, v.clone())))
             .collect::<Result<_, RenderError>>()?,
-        bodies: s.bodies.iter().map(describe_body).collect(),
+        bodies: page.bodies.clone(),
         steps,
         results,
         numeric,
-        errata: r.verification.errata().count(),
+        errata: page.errata,
         claims,
-        figures: r
+        figures: page
             .figures
             .iter()
             .map(|f| FigureView {
-                file: figure_file(r, f),
+                file: f.file.clone(),
                 title: f.title.clone(),
                 desc: f.desc.clone(),
                 accuracy: f
@@ -410,24 +333,19 @@ pub fn page_view(
                     .collect(),
             })
             .collect(),
-        passed: r.passed(),
-        prev: link(prev),
-        next: link(next),
+        passed: page.passed,
+        prev: page.prev.clone(),
+        next: page.next.clone(),
     })
 }
 
 /// The principal moments as numbers, with the axes when only the numerics give them, and how
 /// well the two routes agree.
-fn principal_values_view(
-    s: &crate::scene::Scene,
-    p: &crate::verify::PrincipalValues,
-    letter: &str,
-) -> Result<StepView, RenderError> {
+fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
     use crate::base::format::significant;
     use crate::numeric::eigen::Space;
     let values: Vec<String> = p.exact.iter().map(|v| significant(*v, 6)).collect();
-    let symbols: Vec<String> = s.values.keys().cloned().collect();
-    let mut latex = format!("\\{letter} = {}", values.join(",\\; "));
+    let mut latex = format!("\\{} = {}", p.letter, values.join(",\\; "));
     if p.closed_form {
         let axes: Vec<String> = p
             .numeric
@@ -457,9 +375,9 @@ fn principal_values_view(
         math: math::block(&latex)?,
         why: tera::escape_html(&format!(
             "at {}: {route} evaluated, and the eigen-solver on the exact tensor agrees to {} (relative)",
-            symbols
+            p.values
                 .iter()
-                .map(|k| format!("{k} = {}", s.values[k]))
+                .map(|(k, x)| format!("{k} = {x}"))
                 .collect::<Vec<_>>()
                 .join(", "),
             sci(p.error)
@@ -467,49 +385,24 @@ fn principal_values_view(
     })
 }
 
-fn describe_body(b: &crate::scene::Body) -> String {
-    let mass = if b.subtract {
-        format!("a hole removing mass {}", Expr::negate(b.mass.clone()))
-    } else {
-        format!("mass {}", b.mass)
-    };
-    let mut d = if b.label == b.shape.kind() {
-        format!("{}, {mass}", b.label)
-    } else {
-        format!("{} ({}), {mass}", b.label, b.shape.kind())
-    };
-    for (axis, angle) in &b.rotations {
-        d.push_str(&format!(", rotated by {angle} about {}", axis.name()));
-    }
-    if b.shift.iter().any(|e| !e.is_zero()) {
-        d.push_str(&format!(
-            ", shifted by {}",
-            Value::Vector(b.shift.clone()).to_text()
-        ));
-    }
-    d
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn a_result_at_the_numbers_names_its_symbols_but_not_pi() {
-        let values = [("R".to_string(), 2.0), ("M".to_string(), 3.0)].into();
-        let two_pi_r = Expr::mul(vec![Expr::int(2), Expr::sym("pi"), Expr::sym("R")]);
-        let at = value_at_numbers(&Value::Scalar(two_pi_r), &values).unwrap();
-        assert!(at.starts_with("at <math"), "{at}");
-        assert!(at.contains("<mn>12.5664</mn>"), "{at}");
-        assert!(!at.contains("<mi>M</mi>") && !at.contains("π"), "{at}");
-        // A bare symbol or a number has nothing to add.
-        assert_eq!(
-            value_at_numbers(&Value::Scalar(Expr::sym("M")), &values).unwrap(),
-            ""
-        );
-        assert_eq!(
-            value_at_numbers(&Value::Scalar(Expr::int(4)), &values).unwrap(),
-            ""
-        );
+    fn a_result_at_the_numbers_prints_six_figures_and_names_its_symbols() {
+        let v = Value::Scalar(Expr::mul(vec![
+            Expr::int(2),
+            Expr::sym("pi"),
+            Expr::sym("R"),
+        ]));
+        let at = At {
+            symbols: vec![("R".into(), 2.0)],
+            numbers: vec![4.0 * std::f64::consts::PI],
+        };
+        let html = at_numbers_html(&v, &at).unwrap();
+        assert!(html.starts_with("at <math"), "{html}");
+        assert!(html.contains("<mi>R</mi>"), "{html}");
+        assert!(html.contains("<mn>12.5664</mn>"), "{html}");
     }
 }

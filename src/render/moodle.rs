@@ -4,41 +4,33 @@
 //! typesets. Each blank's tolerance is absolute: the problem's relative tolerance times the
 //! largest entry of its answer, so that a zero entry is not asked for exactly.
 
+use crate::document::{Problem, Variant};
+use crate::model::prose::{Piece, Prose};
 use crate::model::value::Value;
-use crate::pipeline::SceneReport;
-use crate::scene::Problem;
-use crate::verify::variants::VariantCheck;
 use std::fmt::Write;
 
 /// Significant figures of an answer and its tolerance in the file.
 const DIGITS: usize = 12;
 
-/// The quiz of a scene with a problem; `None` for a scene without one. `solution` is the
-/// published address of the scene's worked solution (the course's `base_url`), which the
-/// feedback links to.
-pub fn quiz(r: &SceneReport, solution: Option<&str>) -> Option<String> {
-    let problem = r.scene.problem.as_ref()?;
+/// The quiz of a scene's problem. `solution` is the published address of the scene's worked
+/// solution (the course's `base_url`), which the feedback links to.
+pub fn quiz(problem: &Problem, solution: Option<&str>) -> String {
     let mut out = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<quiz>\n");
     let _ = writeln!(
         out,
         "  <question type=\"category\">\n    <category><text>$course$/top/mechbook/{}</text></category>\n  </question>",
-        xml_text(&r.scene.id)
+        xml_text(&problem.id)
     );
-    for v in &r.verification.variants {
-        out.push_str(&question(r, problem, v, solution));
+    for v in &problem.variants {
+        out.push_str(&question(problem, v, solution));
     }
     out.push_str("</quiz>\n");
-    Some(out)
+    out
 }
 
-fn question(
-    r: &SceneReport,
-    problem: &Problem,
-    v: &VariantCheck,
-    solution: Option<&str>,
-) -> String {
-    let name = format!("{} — variant {}", r.scene.title, v.number);
-    let statement = statement_tex(&problem.statement, v);
+fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
+    let name = format!("{} — variant {}", problem.title, v.number);
+    let statement = statement_tex(&v.statement);
     let scalars: usize = v.answers.iter().map(|a| a.exact_numbers.len()).sum();
     let mut out = String::new();
     if let [a] = v.answers.as_slice()
@@ -102,7 +94,7 @@ fn question(
 
 /// The exact answers, shown after the attempt, and a link to the worked solution when the site's
 /// address is known.
-fn feedback(v: &VariantCheck, solution: Option<&str>) -> String {
+fn feedback(v: &Variant, solution: Option<&str>) -> String {
     let parts: Vec<String> = v
         .answers
         .iter()
@@ -137,10 +129,16 @@ fn label(name: &str) -> String {
     words
 }
 
-/// The statement with each `{name}` as TeX, the rest escaped for HTML.
-fn statement_tex(statement: &str, v: &VariantCheck) -> String {
-    let tex = |latex: &str| Ok(format!("\\({latex}\\)"));
-    super::problems::fill_statement(statement, v, tex, html_escape).expect("TeX never fails")
+/// The statement with each value as TeX, the rest escaped for HTML.
+fn statement_tex(statement: &Prose) -> String {
+    statement
+        .0
+        .iter()
+        .map(|piece| match piece {
+            Piece::Text(t) => html_escape(t),
+            Piece::Math(f) => format!("\\({}\\)", f.to_latex()),
+        })
+        .collect()
 }
 
 /// A number as Moodle reads it: plain decimal or `1.5e-7`, never `inf` or `NaN` (those answers

@@ -1,14 +1,14 @@
-//! A lecture's problem sheets: the student's (statements with each variant's values, space to
-//! work, and no answer) and the key (each variant's answers, exact and to four figures). Sheet
-//! variant k gives every problem its own variant k, cycling through a problem's fewer ones; the
-//! key answers each problem's variant once.
+//! A lecture's problem sheet ([`Sheet`]) in HTML: the student's (statements with each variant's
+//! values, space to work, and no answer) and the key (each variant's answers, exact and to four
+//! figures).
 
-use super::{RenderError, math, page_file};
+use super::{RenderError, math};
 use crate::base::format::figures;
+use crate::cas::Expr;
+use crate::document::{Problem, Sheet, Variant};
 use crate::model::catalogue::{quantity, quantity_symbol};
+use crate::model::prose::Prose;
 use crate::model::value::Value;
-use crate::pipeline::SceneReport;
-use crate::verify::variants::VariantCheck;
 use serde::Serialize;
 
 /// Significant figures of the key's decimals.
@@ -55,76 +55,31 @@ pub struct KeyAnswer {
     pub decimal: String,
 }
 
-/// The reports with a problem, in the order given.
-fn with_problems<'a>(reports: &[&'a SceneReport]) -> Vec<&'a SceneReport> {
-    reports
-        .iter()
-        .copied()
-        .filter(|r| r.scene.problem.is_some() && !r.verification.variants.is_empty())
-        .collect()
-}
-
-/// How many variants the sheet has: as many as its problem with the most.
-pub fn sheet_variants(reports: &[&SceneReport]) -> usize {
-    with_problems(reports)
-        .iter()
-        .map(|r| r.verification.variants.len())
-        .max()
-        .unwrap_or(0)
-}
-
-/// Problem `r`'s variant on sheet variant `k` (1-based).
-fn variant_on_sheet(r: &SceneReport, k: usize) -> &VariantCheck {
-    let v = &r.verification.variants;
-    &v[(k - 1) % v.len()]
-}
-
-/// The statement with each `{name}` given by `value` (from the variant's LaTeX) and the text
-/// between by `text`: for a page, MathML and escaped HTML; for Moodle, TeX and escaped HTML.
-pub fn fill_statement(
-    statement: &str,
-    v: &VariantCheck,
-    value: impl Fn(&str) -> Result<String, RenderError>,
-    text: impl Fn(&str) -> String,
-) -> Result<String, RenderError> {
-    let mut out = String::new();
-    let mut rest = statement;
-    while let Some(open) = rest.find('{') {
-        let close = open + rest[open..].find('}').unwrap_or(rest.len() - open);
-        out.push_str(&text(&rest[..open]));
-        let name = rest.get(open + 1..close).unwrap_or("");
-        match v.values.iter().find(|(n, _, _)| n == name) {
-            Some((_, _, latex)) => out.push_str(&value(latex)?),
-            // Validation allows only declared symbols, and every symbol in a statement has a
-            // value in each variant; a template's own text is shown as written.
-            None => out.push_str(&text(&format!("{{{name}}}"))),
-        }
-        rest = rest.get(close + 1..).unwrap_or("");
-    }
-    out.push_str(&text(rest));
-    Ok(out)
-}
-
-/// The statement with `{name}` replaced by the variant's value, typeset.
-pub fn statement_html(statement: &str, v: &VariantCheck) -> Result<String, RenderError> {
-    fill_statement(statement, v, math::inline, tera::escape_html)
+/// A statement as HTML: the text escaped, each value as MathML.
+pub fn statement_html(statement: &Prose) -> Result<String, RenderError> {
+    super::prose_html(statement)
 }
 
 /// The sheet's variants, each with every problem's `make` at its variant on that sheet.
-fn sheet<P>(
-    reports: &[&SceneReport],
-    make: impl Fn(&SceneReport, usize, &VariantCheck) -> Result<P, RenderError>,
+fn sheet_views<P>(
+    sheet: &Sheet,
+    make: impl Fn(usize, &Problem, &Variant, bool) -> Result<P, RenderError>,
 ) -> Result<Vec<SheetVariant<P>>, RenderError> {
-    let problems = with_problems(reports);
-    (1..=sheet_variants(reports))
-        .map(|k| {
-            let problems = problems
+    sheet
+        .variants
+        .iter()
+        .map(|sv| {
+            let problems = sv
+                .problems
                 .iter()
-                .enumerate()
-                .map(|(i, r)| make(r, i + 1, variant_on_sheet(r, k)).map_err(|e| e.in_scene(r)))
+                .map(|sp| {
+                    let (number, p) = sheet.problem(sp.problem);
+                    make(number, p, &p.variants[sp.variant], sp.shared)
+                        .map_err(|e| e.in_scene(&p.source))
+                })
                 .collect::<Result<_, RenderError>>()?;
             Ok(SheetVariant {
-                number: k,
+                number: sv.number,
                 problems,
             })
         })
@@ -132,16 +87,13 @@ fn sheet<P>(
 }
 
 /// The student's sheet: built from the statements and values alone, so no answer reaches it.
-pub fn student_sheet(
-    reports: &[&SceneReport],
-) -> Result<Vec<SheetVariant<StudentProblem>>, RenderError> {
-    sheet(reports, |r, number, v| {
-        let statement = &r.scene.problem.as_ref().expect("filtered").statement;
+pub fn student_sheet(sheet: &Sheet) -> Result<Vec<SheetVariant<StudentProblem>>, RenderError> {
+    sheet_views(sheet, |number, p, v, _| {
         Ok(StudentProblem {
             number,
-            title: r.scene.title.clone(),
+            title: p.title.clone(),
             variant: v.number,
-            statement: statement_html(statement, v)?,
+            statement: statement_html(&v.statement)?,
         })
     })
 }
@@ -149,8 +101,7 @@ pub fn student_sheet(
 /// The answer key: each variant of each problem answered once. A problem with as many variants
 /// as the sheet is answered in its sheet variant; one with fewer is answered once per variant
 /// of its own in `shared`, and the sheet variants name which of them they use (picked at a
-/// sheet variant, the key shows just those). (Repeating them cost 20 small problems beside one of 10,000
-/// variants a 520 MB key.)
+/// sheet variant, the key shows just those).
 #[derive(Debug, Clone, Serialize)]
 pub struct AnswerKey {
     pub shared: Vec<KeyProblem>,
@@ -169,48 +120,37 @@ pub enum KeyEntry {
     },
 }
 
-pub fn answer_key(reports: &[&SceneReport]) -> Result<AnswerKey, RenderError> {
-    let count = sheet_variants(reports);
-    let mut shared = Vec::new();
-    for (i, r) in with_problems(reports).iter().enumerate() {
-        if r.verification.variants.len() < count {
-            let n = r.verification.variants.len();
-            for (j, v) in r.verification.variants.iter().enumerate() {
-                let mut answered = key_problem(r, i + 1, v).map_err(|e| e.in_scene(r))?;
-                answered.serves = (1..=count).filter(|k| (k - 1) % n == j).collect();
-                shared.push(answered);
-            }
-        }
-    }
-    let variants = sheet(reports, |r, number, v| {
-        Ok(if r.verification.variants.len() < count {
+pub fn answer_key(sheet: &Sheet) -> Result<AnswerKey, RenderError> {
+    let shared = sheet
+        .shared
+        .iter()
+        .map(|a| {
+            let (number, p) = sheet.problem(a.problem);
+            let mut answered = key_problem(number, p, &p.variants[a.variant])
+                .map_err(|e| e.in_scene(&p.source))?;
+            answered.serves = a.serves.clone();
+            Ok(answered)
+        })
+        .collect::<Result<_, RenderError>>()?;
+    let variants = sheet_views(sheet, |number, p, v, shared| {
+        Ok(if shared {
             KeyEntry::Shared {
                 number,
-                title: r.scene.title.clone(),
+                title: p.title.clone(),
                 variant: v.number,
             }
         } else {
-            KeyEntry::Answers(key_problem(r, number, v)?)
+            KeyEntry::Answers(key_problem(number, p, v)?)
         })
     })?;
     Ok(AnswerKey { shared, variants })
 }
 
-fn key_problem(
-    r: &SceneReport,
-    number: usize,
-    v: &VariantCheck,
-) -> Result<KeyProblem, RenderError> {
+fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, RenderError> {
     let values: Vec<String> = v
-        .values
+        .given
         .iter()
-        .filter(|(name, _, _)| {
-            r.scene
-                .problem
-                .as_ref()
-                .is_some_and(|p| p.statement.contains(&format!("{{{name}}}")))
-        })
-        .map(|(name, _, latex)| format!("{} = {latex}", crate::cas::Expr::sym(name).to_latex()))
+        .map(|(name, e)| format!("{} = {}", Expr::sym(name).to_latex(), e.to_latex()))
         .collect();
     let mut answers = Vec::new();
     for a in &v.answers {
@@ -220,15 +160,14 @@ fn key_problem(
             decimal: math::inline(&decimals(&a.exact, &a.exact_numbers))?,
         });
     }
-    let worst = v.answers.iter().map(|a| a.error).fold(0.0f64, f64::max);
     Ok(KeyProblem {
         number,
-        title: r.scene.title.clone(),
+        title: p.title.clone(),
         variant: v.number,
         values: math::inline(&values.join(",\\; "))?,
         answers,
-        page: page_file(r),
-        checked: crate::base::format::sci(worst),
+        page: p.page.clone(),
+        checked: crate::base::format::sci(v.worst_error()),
         serves: Vec::new(),
     })
 }

@@ -2,7 +2,8 @@
 //! Writing them is `site`'s job.
 
 use super::RenderError;
-use super::{PageView, figure_file, page_file, page_view, plot, problems};
+use super::{PageView, page_view, plot, problems};
+use crate::document::{figure_file, page_file};
 use crate::pipeline::SceneReport;
 use crate::scene::Course;
 use serde::Serialize;
@@ -96,10 +97,15 @@ fn problem_sheets(
     reports: &[&SceneReport],
     files: &mut SiteFiles,
 ) -> Result<Option<(String, String)>, RenderError> {
-    let count = problems::sheet_variants(reports);
-    if count == 0 {
+    let Some(sheet) = crate::document::sheet(
+        reports
+            .iter()
+            .filter_map(|r| crate::document::problem(r))
+            .collect(),
+    ) else {
         return Ok(None);
-    }
+    };
+    let count = sheet.variants.len();
     let slug = crate::scene::lecture_slug(lecture);
     let heading = course.lecture_heading(lecture);
     let mut paths = Vec::new();
@@ -117,9 +123,9 @@ fn problem_sheets(
         let mut css = problems::print_css(&course.title, &format!("{heading}: {title}"), count);
         // The student's sheet is built from statements and values alone: no answer reaches it.
         if kind == "student" {
-            ctx.insert("variants", &problems::student_sheet(reports)?);
+            ctx.insert("variants", &problems::student_sheet(&sheet)?);
         } else {
-            let key = problems::answer_key(reports)?;
+            let key = problems::answer_key(&sheet)?;
             if !key.shared.is_empty() {
                 css.push_str(&problems::shared_css(count));
             }
@@ -149,11 +155,10 @@ pub fn site_files(
     let mut files = SiteFiles::new();
     files.insert(PathBuf::from("style.css"), css.into_bytes());
     let mut pages: Vec<PageView> = Vec::new();
-    for (i, r) in reports.iter().enumerate() {
-        let prev = i.checked_sub(1).map(|j| &reports[j]);
-        let view = page_view(r, prev, reports.get(i + 1), timings).map_err(|e| e.in_scene(r))?;
+    for (r, page) in reports.iter().zip(crate::document::pages(reports)) {
+        let view = page_view(&page, timings).map_err(|e| e.in_scene(&page.source))?;
         for fig in &r.figures {
-            let svg = plot::svg(fig).map_err(|e| e.in_scene(r))?;
+            let svg = plot::svg(fig).map_err(|e| e.in_scene(&page.source))?;
             files.insert(PathBuf::from(figure_file(r, fig)), svg.into_bytes());
         }
         let mut ctx = tera::Context::new();
@@ -217,7 +222,9 @@ pub fn site_files(
     for r in reports {
         let solution =
             (!course.base_url.is_empty()).then(|| format!("{}/{}", course.base_url, page_file(r)));
-        if let Some(xml) = super::moodle::quiz(r, solution.as_deref()) {
+        if let Some(xml) =
+            crate::document::problem(r).map(|p| super::moodle::quiz(&p, solution.as_deref()))
+        {
             files.insert(
                 PathBuf::from(format!("export/moodle/{}.xml", r.scene.id)),
                 xml.into_bytes(),

@@ -3,8 +3,9 @@
 use super::failures;
 use crate::cas::Expr;
 use crate::derive::ExactBasis;
+use crate::document::{Page, Quantity, Step};
 use crate::model::prose::{Piece, Prose};
-use crate::model::value::{Value, eval_at};
+use crate::model::value::Value;
 use crate::numeric::eigen::Space;
 use crate::pipeline::SceneReport;
 use crate::scene::Verdict;
@@ -16,13 +17,14 @@ fn num(x: f64) -> Json {
         .unwrap_or(Json::Null)
 }
 
-fn numeric_entries(v: &Value, r: &SceneReport) -> Json {
-    let vals: Vec<Json> = v
-        .entries()
+/// A quantity's entries at the scene's values, in its shape.
+fn numeric_entries(q: &Quantity) -> Json {
+    let vals: Vec<Json> = q
+        .numbers
         .iter()
-        .map(|e| eval_at(e, &r.scene.values).map(num).unwrap_or(Json::Null))
+        .map(|x| x.map(num).unwrap_or(Json::Null))
         .collect();
-    match v {
+    match q.value {
         Value::Scalar(_) => vals.into_iter().next().unwrap_or(Json::Null),
         Value::Vector(_) => Json::Array(vals),
         Value::Matrix(_) => Json::Array(vals.chunks(3).map(|c| Json::Array(c.to_vec())).collect()),
@@ -33,7 +35,6 @@ fn vec_text(v: &[crate::cas::Expr; 3]) -> String {
     Value::Vector(v.clone()).to_text()
 }
 
-/// One scene as JSON, in the shape documented in the README.
 /// `check --json`: whether everything passed, the counts a CI summary needs, every failure on
 /// one located line, and each scene. `not_derived` are the scenes that could not be derived.
 pub fn check_json(reports: &[SceneReport], not_derived: &[String]) -> Json {
@@ -58,20 +59,23 @@ pub fn check_json(reports: &[SceneReport], not_derived: &[String]) -> Json {
             "failures": failures.len(),
         },
         "failures": failures,
-        "scenes": reports.iter().map(scene_json).collect::<Vec<_>>(),
+        "scenes": reports
+            .iter()
+            .map(|r| scene_json(&crate::document::page(r, None, None)))
+            .collect::<Vec<_>>(),
     })
 }
 
 /// A step: its statement and reason, each formula printed as text and as LaTeX.
-fn step_json(st: &crate::derive::Step) -> Json {
+fn step_json(st: &Step) -> Json {
     let mut j = json!({
         "title": st.title,
         "text": st.statement.to_text(),
         "latex": st.statement.to_latex(),
         "why": st.why.to_text(),
     });
-    if !st.cite.is_empty() {
-        j["cite"] = json!(st.cite);
+    if !st.key.is_empty() {
+        j["cite"] = json!(st.key);
     }
     if st.why.0.iter().any(|p| matches!(p, Piece::Math(_))) {
         j["why_math"] = prose_json(&st.why);
@@ -96,17 +100,16 @@ pub(super) fn derived_text(g: &crate::verify::RegressionResult) -> String {
         .map_or_else(|| "(not derived)".into(), Value::to_text)
 }
 
-pub fn scene_json(r: &SceneReport) -> Json {
-    let s = &r.scene;
+/// One scene's page as JSON, in the shape documented in the README.
+pub fn scene_json(page: &Page) -> Json {
     let mut quantities = serde_json::Map::new();
-    for (name, v) in &r.derivation.quantities {
+    for q in &page.quantities {
         quantities.insert(
-            name.clone(),
-            json!({ "exact": v.to_text(), "latex": v.to_latex(), "numeric": numeric_entries(v, r) }),
+            q.name.clone(),
+            json!({ "exact": q.value.to_text(), "latex": q.value.to_latex(), "numeric": numeric_entries(q) }),
         );
     }
-    let claims: Vec<Json> = r
-        .verification
+    let claims: Vec<Json> = page
         .claims
         .iter()
         .map(|c| {
@@ -124,31 +127,25 @@ pub fn scene_json(r: &SceneReport) -> Json {
             })
         })
         .collect();
-    let numeric_checks: Vec<Json> = match &r.numeric {
-        Some(n) => n
-            .runs
-            .iter()
-            .zip(&r.verification.within_law)
-            .map(|(q, ok)| {
-                json!({
-                    "body": q.body,
-                    "method": q.method.name(),
-                    "points": q.points,
-                    "error": num(q.error),
-                    "predicted_error": num(q.predicted_error),
-                    "seconds": num(q.seconds),
-                    "within_law": ok,
-                    "stop": q.stop.describe(),
-                })
-            })
-            .collect(),
-        None => Vec::new(),
-    };
-    let principal: Vec<Json> = r
-        .derivation
-        .eigen
+    let numeric_checks: Vec<Json> = page
+        .numeric
         .iter()
-        .flat_map(|e| e.spaces.iter())
+        .map(|q| {
+            json!({
+                "body": q.body,
+                "method": q.method,
+                "points": q.points,
+                "error": num(q.error),
+                "predicted_error": num(q.predicted_error),
+                "seconds": num(q.seconds),
+                "within_law": q.within_law,
+                "stop": q.stop,
+            })
+        })
+        .collect();
+    let principal: Vec<Json> = page
+        .principal_axes
+        .iter()
         .map(|sp| {
             let (kind, dir) = match &sp.basis {
                 ExactBasis::Axis(a) => ("axis", Some(vec_text(a))),
@@ -157,28 +154,28 @@ pub fn scene_json(r: &SceneReport) -> Json {
             };
             json!({
                 "value": sp.value.to_text(),
-                "numeric": eval_at(&sp.value, &s.values).map(num).unwrap_or(Json::Null),
+                "numeric": sp.number.map(num).unwrap_or(Json::Null),
                 "multiplicity": sp.multiplicity,
                 "eigenspace": kind,
                 "direction": dir,
             })
         })
         .collect();
-    let stages: Vec<Json> = r
-        .plan
-        .explain()
-        .into_iter()
-        .map(|(st, why)| json!({ "stage": st.name(), "ran": why.is_some(), "because": why.unwrap_or_default() }))
+    let stages: Vec<Json> = page
+        .stages
+        .iter()
+        .map(|(st, why)| json!({ "stage": st, "ran": why.is_some(), "because": why.clone().unwrap_or_default() }))
         .collect();
+    let cost = &page.cost;
     json!({
-        "id": s.id,
-        "title": s.title,
-        "source": s.source.to_string_lossy(),
-        "notes": { "lecture": s.notes.lecture, "section": s.notes.section, "equations": s.notes.equations },
-        "passed": r.passed(),
+        "id": page.id,
+        "title": page.title,
+        "source": page.source.to_string_lossy(),
+        "notes": { "lecture": page.lecture, "section": page.section, "equations": page.equations },
+        "passed": page.passed,
         "quantities": quantities,
         "principal_axes": principal,
-        "principal_moments": r.verification.principal.as_ref().map(|p| json!({
+        "principal_moments": page.principal_values.as_ref().map(|p| json!({
             "values": p.exact.iter().map(|v| num(*v)).collect::<Vec<_>>(),
             "closed_form": p.closed_form,
             "numeric": p.numeric.iter().flat_map(|e| std::iter::repeat_n(num(e.value), e.multiplicity)).collect::<Vec<_>>(),
@@ -191,22 +188,18 @@ pub fn scene_json(r: &SceneReport) -> Json {
         })),
         "claims": claims,
         "numeric_checks": numeric_checks,
-        "exact_vs_numeric": r.verification.quantities.iter().map(|q| json!({
+        "exact_vs_numeric": page.exact_vs_numeric.iter().map(|q| json!({
             "quantity": q.name, "error": num(q.error), "passed": q.passed })).collect::<Vec<_>>(),
-        "eigen_check": r.verification.eigen.as_ref().map(|e| json!({
+        "eigen_check": page.eigen.as_ref().map(|e| json!({
             "value_error": num(e.value_error), "axis_error": num(e.axis_error), "passed": e.passed })),
-        "regressions": r.verification.regressions.iter().map(|g| json!({
+        "regressions": page.regressions.iter().map(|g| json!({
             "quantity": g.quantity, "recorded": g.recorded.as_ref().map(Expr::to_text), "derived": derived_text(g),  "unchanged": g.unchanged })).collect::<Vec<_>>(),
-        "variants": r.verification.variants.iter().map(|v| json!({
+        "variants": page.variants.iter().map(|v| json!({
             "number": v.number,
-            "values": v.values.iter().map(|(name, text, latex)| (name.clone(), json!({
-                "exact": text,
-                "latex": latex,
-                "numeric": s.problem.as_ref()
-                    .and_then(|p| p.variants.get(v.number - 1))
-                    .and_then(|x| x.values.get(name))
-                    .and_then(|e| e.eval(&|_| None).ok())
-                    .map(num),
+            "values": v.values.iter().map(|(name, e)| (name.clone(), json!({
+                "exact": e.to_text(),
+                "latex": e.to_latex(),
+                "numeric": e.eval(&|_| None).ok().map(num),
             }))).collect::<serde_json::Map<_, _>>(),
             "passed": v.passed(),
             "answers": v.answers.iter().map(|a| json!({
@@ -221,13 +214,13 @@ pub fn scene_json(r: &SceneReport) -> Json {
                 "passed": a.passed(),
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
-        "steps": r.derivation.steps.iter().map(step_json).collect::<Vec<_>>(),
+        "steps": page.steps.iter().map(step_json).collect::<Vec<_>>(),
         "stages": stages,
-        "symbolic_seconds": num(r.symbolic_seconds),
-        "engine_calls": r.engine_calls,
-        "numeric_work": r.numeric_work,
-        "fidelity": { "name": r.fidelity.name(), "tolerance": r.fidelity.tolerance, "max_points": r.fidelity.max_points() },
-        "figures": r.figures.iter().map(|f| json!({
+        "symbolic_seconds": num(cost.symbolic_seconds),
+        "engine_calls": cost.engine_calls,
+        "numeric_work": cost.numeric_work,
+        "fidelity": { "name": page.fidelity.name(), "tolerance": page.fidelity.tolerance, "max_points": page.fidelity.max_points() },
+        "figures": page.figures.iter().map(|f| json!({
             "slug": f.slug,
             "accuracy": f.accuracy.iter().map(|a| json!({
                 "result": a.result, "method": a.method, "true_error": a.true_error.map(num),

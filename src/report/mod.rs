@@ -1,6 +1,8 @@
-//! Reports for the terminal and as JSON. Pure functions from results to strings: no I/O here.
+//! The terminal and JSON printers: `check`'s summary of the reports, and a scene's [`Page`] for
+//! `derive`. Pure functions to strings: no I/O here.
 
 use crate::base::format::sci;
+use crate::document::Page;
 use crate::numeric::eigen::Space;
 use crate::pipeline::SceneReport;
 use crate::scene::Verdict;
@@ -287,25 +289,24 @@ pub fn check_table(reports: &[SceneReport]) -> String {
 }
 
 /// `derive` without --json: the steps, the results and the checks of one scene.
-pub fn derivation_text(r: &SceneReport) -> String {
+pub fn derivation_text(page: &Page) -> String {
     let mut out = String::new();
-    let s = &r.scene;
     let _ = writeln!(
         out,
         "{} ({}; lecture {}, section {})",
-        s.title, s.id, s.notes.lecture, s.notes.section
+        page.title, page.id, page.lecture, page.section
     );
-    for (i, step) in r.derivation.steps.iter().enumerate() {
+    for (i, step) in page.steps.iter().enumerate() {
         let _ = writeln!(
             out,
             "\n{:>2}. {}\n    {}\n    because: {}",
             i + 1,
             step.title,
             step.statement.to_text(),
-            step.why_in(&s.cite)
+            step.why_cited()
         );
     }
-    if let Some(n) = &r.numeric {
+    if !page.numeric.is_empty() {
         let _ = writeln!(
             out,
             "\nNumeric cross-check (relative errors against the exact tensor):"
@@ -315,12 +316,12 @@ pub fn derivation_text(r: &SceneReport) -> String {
             "  {:<10} {:<20} {:>8} {:>10} {:>10} {:>10}",
             "body", "method", "points", "error", "predicted", "seconds"
         );
-        for q in &n.runs {
+        for q in &page.numeric {
             let _ = writeln!(
                 out,
                 "  {:<10} {:<20} {:>8} {:>10} {:>10} {:>10.2e}",
                 q.body,
-                q.method.name(),
+                q.method,
                 q.points,
                 sci(q.error),
                 sci(q.predicted_error),
@@ -328,7 +329,7 @@ pub fn derivation_text(r: &SceneReport) -> String {
             );
         }
     }
-    if let Some(e) = &r.verification.eigen {
+    if let Some(e) = &page.eigen {
         let _ = writeln!(out, "\nPrincipal axes, numeric (SymmetricEigen):");
         for sp in &e.numeric {
             let what = match &sp.space {
@@ -347,9 +348,9 @@ pub fn derivation_text(r: &SceneReport) -> String {
             sci(e.axis_error)
         );
     }
-    if !r.verification.claims.is_empty() {
+    if !page.claims.is_empty() {
         let _ = writeln!(out, "\nClaims of the notes:");
-        for c in &r.verification.claims {
+        for c in &page.claims {
             let _ = writeln!(
                 out,
                 "  ({}) {:<13} {}",
@@ -368,16 +369,16 @@ pub fn derivation_text(r: &SceneReport) -> String {
             }
         }
     }
-    if !r.verification.variants.is_empty() {
+    if !page.variants.is_empty() {
         let _ = writeln!(
             out,
             "\nVariants of the problem (each answer exact, then against its numeric route):"
         );
-        for v in &r.verification.variants {
+        for v in &page.variants {
             let values: Vec<String> = v
                 .values
                 .iter()
-                .map(|(n, t, _)| format!("{n} = {t}"))
+                .map(|(n, e)| format!("{n} = {}", e.to_text()))
                 .collect();
             let _ = writeln!(out, "  {:>3}. {}", v.number, values.join(", "));
             for a in &v.answers {
@@ -400,32 +401,33 @@ pub fn derivation_text(r: &SceneReport) -> String {
 }
 
 /// `derive --explain`: which stages ran, and why; which were skipped.
-pub fn explain_text(r: &SceneReport) -> String {
+pub fn explain_text(page: &Page) -> String {
     let mut out = String::from("Stages:\n");
-    for (stage, why) in r.plan.explain() {
+    for (stage, why) in &page.stages {
         match why {
             Some(reasons) => {
                 let _ = writeln!(
                     out,
                     "  ran      {:<18} because {}",
-                    stage.name(),
+                    stage,
                     reasons.join("; ")
                 );
             }
             None => {
-                let _ = writeln!(out, "  skipped  {:<18} nothing asked for it", stage.name());
+                let _ = writeln!(out, "  skipped  {:<18} nothing asked for it", stage);
             }
         }
     }
+    let c = &page.cost;
     let _ = writeln!(
         out,
         "Symbolic engine: {} call(s), {:.2} ms; whole scene {:.2} ms",
-        r.engine_calls,
-        r.symbolic_seconds * 1e3,
-        r.seconds * 1e3
+        c.engine_calls,
+        c.symbolic_seconds * 1e3,
+        c.seconds * 1e3
     );
-    let _ = writeln!(out, "Numeric fidelity: {}", r.fidelity);
-    let w = &r.numeric_work;
+    let _ = writeln!(out, "Numeric fidelity: {}", page.fidelity);
+    let w = &c.numeric_work;
     let _ = writeln!(
         out,
         "Numeric work: {} ODE integration(s), {} right-hand-side evaluation(s); {} quadrature \

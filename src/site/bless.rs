@@ -49,13 +49,26 @@ fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> BlessError + '_ {
     }
 }
 
+/// Records what `r` derived in its scene file and gives back the changes (none: the file is
+/// left as it was). Refused, with nothing written: a file edited since it was checked (it would
+/// get the verdicts of its old text), and a read-only one.
+pub fn bless_scene(r: &SceneReport) -> Result<Vec<Blessed>, BlessError> {
+    let path = &r.scene.source;
+    let original = std::fs::read(path).map_err(io_error(path))?;
+    if crate::base::hash::content_hash(&original) != r.scene.content_hash {
+        return Err(BlessError::Changed(path.clone()));
+    }
+    let (new, blessed) = blessed_bytes(&original, r)?;
+    if !blessed.is_empty() {
+        write_in_place(path, &original, &new)?;
+    }
+    Ok(blessed)
+}
+
 /// The file's bytes with `[expect]` and the verdicts set to what `r` derived, and the changes.
 /// The text is edited with LF line ends and no byte-order mark, and given back both as the
 /// file had them.
-pub fn blessed_bytes(
-    original: &[u8],
-    r: &SceneReport,
-) -> Result<(Vec<u8>, Vec<Blessed>), BlessError> {
+fn blessed_bytes(original: &[u8], r: &SceneReport) -> Result<(Vec<u8>, Vec<Blessed>), BlessError> {
     // The scene was read from these bytes, so they are UTF-8; a file that changed since is
     // refused by `write_in_place` before anything is written.
     let text = String::from_utf8_lossy(original);
@@ -80,7 +93,7 @@ pub fn blessed_bytes(
 /// is replaced in one rename from a temporary file beside it with the same mode and owner, so it
 /// is never half-written. Refused, with nothing written: a read-only file, and a file whose
 /// bytes are no longer `original`.
-pub fn write_in_place(path: &Path, original: &[u8], new: &[u8]) -> Result<(), BlessError> {
+fn write_in_place(path: &Path, original: &[u8], new: &[u8]) -> Result<(), BlessError> {
     let real = std::fs::canonicalize(path).map_err(io_error(path))?;
     let meta = std::fs::metadata(&real).map_err(io_error(path))?;
     if meta.permissions().readonly() {

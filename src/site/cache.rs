@@ -16,8 +16,9 @@ use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 
 /// Bumped when the entry format changes (2: rationals of any size, stored as text; 3: a first
-/// line with the entry's key and checksum; 4: a claim's sides and derived value as trees).
-const FORMAT: u64 = 4;
+/// line with the entry's key and checksum; 4: a claim's sides and derived value as trees; 5: a
+/// variant's values as trees).
+const FORMAT: u64 = 5;
 
 /// The largest entry read: the shipped scenes' largest report is about 200 KB.
 pub const MAX_ENTRY_BYTES: u64 = 64 << 20;

@@ -4,6 +4,7 @@
 use super::exact_vs_numeric;
 use super::principal::PRINCIPAL_AGREEMENT;
 use crate::base::float::max_relative_error;
+use crate::cas::Expr;
 use crate::derive::variants::exact_answers;
 use crate::derive::{Derivation, DeriveError};
 use crate::model::catalogue::quantity;
@@ -19,8 +20,8 @@ pub const PRECESSION_AGREEMENT: f64 = 1e-10;
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct VariantCheck {
     pub number: usize,
-    /// Each symbol's exact value: (name, text, LaTeX), the varying ones and the fixed ones.
-    pub values: Vec<(String, String, String)>,
+    /// Each symbol's exact value, the varying ones and the fixed ones.
+    pub values: Vec<(String, Expr)>,
     pub answers: Vec<AnswerCheck>,
 }
 
@@ -113,7 +114,7 @@ pub fn check_variants(
             values: v
                 .values
                 .iter()
-                .map(|(k, e)| (k.clone(), e.to_text(), e.to_latex()))
+                .map(|(k, e)| (k.clone(), e.clone()))
                 .collect(),
             answers,
         });

@@ -1,0 +1,266 @@
+//! The format-neutral document: one view of a scene's page that every printer reads. The HTML
+//! page and the handouts (`render`), `derive` and `derive --json` (`report`) print a [`Page`];
+//! it decides what a page holds and in what order, and each printer decides only how it looks.
+//! Formulas stay trees ([`Formula`], [`Value`], [`Prose`]) and numbers stay numbers: nothing
+//! here is printed, and there is no file I/O.
+
+mod problems;
+mod results;
+
+pub use problems::{
+    Problem, SharedAnswer, Sheet, SheetProblem, SheetVariant, Variant, problem, sheet,
+};
+pub use results::{At, PrincipalAxis, PrincipalValues, Quantity};
+
+use crate::cas::{Expr, Formula};
+use crate::model::fidelity::Fidelity;
+use crate::model::figure::Accuracy;
+use crate::model::prose::Prose;
+use crate::model::value::Value;
+use crate::numeric::Work;
+use crate::pipeline::SceneReport;
+use crate::verify::variants::VariantCheck;
+use crate::verify::{ClaimResult, EigenCheck, QuantityCheck, RegressionResult};
+use std::path::PathBuf;
+
+/// One scene's page: heading, derivation, results, checks, claims and figures.
+#[derive(Debug, Clone)]
+pub struct Page {
+    pub id: String,
+    pub title: String,
+    pub lecture: String,
+    pub section: String,
+    /// The notes' equation numbers the scene reproduces.
+    pub equations: Vec<String>,
+    /// The scene file.
+    pub source: PathBuf,
+    pub fidelity: Fidelity,
+    /// Each symbol and what it stands for.
+    pub symbols: Vec<(String, String)>,
+    /// Each body in words: its shape, mass, rotations and shift.
+    pub bodies: Vec<String>,
+    pub steps: Vec<Step>,
+    /// Every derived quantity, in the catalogue's order.
+    pub quantities: Vec<Quantity>,
+    /// The exact principal moments with their axes.
+    pub principal_axes: Vec<PrincipalAxis>,
+    /// The principal moments at the scene's values, by both routes.
+    pub principal_values: Option<PrincipalValues>,
+    /// The quadrature runs that check the exact tensor.
+    pub numeric: Vec<NumericRow>,
+    /// The eigen-solver against the exact principal axes.
+    pub eigen: Option<EigenCheck>,
+    pub claims: Vec<ClaimResult>,
+    /// Each exact quantity against its numeric route.
+    pub exact_vs_numeric: Vec<QuantityCheck>,
+    pub regressions: Vec<RegressionResult>,
+    pub variants: Vec<VariantCheck>,
+    pub figures: Vec<FigureBlock>,
+    /// Each stage, and why it ran (`None`: nothing asked for it).
+    pub stages: Vec<(&'static str, Option<Vec<String>>)>,
+    pub cost: Cost,
+    /// The claims where the notes disagree with the derivation.
+    pub errata: usize,
+    pub passed: bool,
+    pub prev: Option<Link>,
+    pub next: Option<Link>,
+}
+
+/// A derivation step: its statement, and its reason after the scene's citation for it.
+#[derive(Debug, Clone)]
+pub struct Step {
+    pub title: String,
+    pub statement: Formula,
+    pub why: Prose,
+    /// The step's citation key, and the scene's citation for it ("eq (51)") if it has one.
+    pub key: String,
+    pub citation: Option<String>,
+}
+
+impl Step {
+    /// The reason as one sentence: the citation first, if any.
+    pub fn why_cited(&self) -> Prose {
+        match &self.citation {
+            Some(c) => {
+                let mut p = Prose::from(format!("{c}: "));
+                p.0.extend(self.why.0.iter().cloned());
+                p
+            }
+            None => self.why.clone(),
+        }
+    }
+}
+
+/// One quadrature run against the exact tensor, and whether its error kept to its law.
+#[derive(Debug, Clone)]
+pub struct NumericRow {
+    pub body: String,
+    pub method: &'static str,
+    pub points: usize,
+    pub error: f64,
+    pub predicted_error: f64,
+    pub within_law: bool,
+    /// Where the method left its ladder at this fidelity.
+    pub stop: &'static str,
+    pub seconds: f64,
+}
+
+#[derive(Debug, Clone)]
+pub struct FigureBlock {
+    pub slug: String,
+    /// Relative to the site root: `plots/<scene>-<slug>.svg`.
+    pub file: String,
+    pub title: String,
+    pub desc: String,
+    pub accuracy: Vec<Accuracy>,
+}
+
+/// What the scene cost: the symbolic engine's time and calls, the numeric work, the whole.
+#[derive(Debug, Clone)]
+pub struct Cost {
+    pub symbolic_seconds: f64,
+    pub engine_calls: u64,
+    pub numeric_work: Work,
+    pub seconds: f64,
+}
+
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Link {
+    pub href: String,
+    pub title: String,
+}
+
+/// The file a scene's page is written to, relative to the site root.
+pub fn page_file(r: &SceneReport) -> String {
+    format!("{}.html", r.scene.id)
+}
+
+/// The file a scene's plot is written to, relative to the site root.
+pub fn figure_file(r: &SceneReport, fig: &crate::model::figure::Figure) -> String {
+    format!("plots/{}-{}.svg", r.scene.id, fig.slug)
+}
+
+/// The page of one scene, linked to the scenes before and after it.
+pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneReport>) -> Page {
+    let s = &r.scene;
+    let link = |o: Option<&SceneReport>| {
+        o.map(|o| Link {
+            href: page_file(o),
+            title: o.scene.title.clone(),
+        })
+    };
+    let within_law = &r.verification.within_law;
+    Page {
+        id: s.id.clone(),
+        title: s.title.clone(),
+        lecture: s.notes.lecture.clone(),
+        section: s.notes.section.clone(),
+        equations: s.notes.equations.clone(),
+        source: s.source.clone(),
+        fidelity: r.fidelity,
+        symbols: s
+            .symbols
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect(),
+        bodies: s.bodies.iter().map(describe_body).collect(),
+        steps: r
+            .derivation
+            .steps
+            .iter()
+            .map(|st| Step {
+                title: st.title.clone(),
+                statement: st.statement.clone(),
+                why: st.why.clone(),
+                key: st.cite.clone(),
+                citation: st.citation(&s.cite).map(str::to_string),
+            })
+            .collect(),
+        quantities: results::quantities(r),
+        principal_axes: results::principal_axes(r),
+        principal_values: results::principal_values(r),
+        numeric: r
+            .numeric
+            .iter()
+            .flat_map(|n| n.runs.iter().zip(within_law))
+            .map(|(q, ok)| NumericRow {
+                body: q.body.clone(),
+                method: q.method.name(),
+                points: q.points,
+                error: q.error,
+                predicted_error: q.predicted_error,
+                within_law: *ok,
+                stop: q.stop.describe(),
+                seconds: q.seconds,
+            })
+            .collect(),
+        eigen: r.verification.eigen.clone(),
+        claims: r.verification.claims.clone(),
+        exact_vs_numeric: r.verification.quantities.clone(),
+        regressions: r.verification.regressions.clone(),
+        variants: r.verification.variants.clone(),
+        figures: r
+            .figures
+            .iter()
+            .map(|f| FigureBlock {
+                slug: f.slug.clone(),
+                file: figure_file(r, f),
+                title: f.title.clone(),
+                desc: f.desc.clone(),
+                accuracy: f.accuracy.clone(),
+            })
+            .collect(),
+        stages: r
+            .plan
+            .explain()
+            .into_iter()
+            .map(|(stage, why)| (stage.name(), why))
+            .collect(),
+        cost: Cost {
+            symbolic_seconds: r.symbolic_seconds,
+            engine_calls: r.engine_calls,
+            numeric_work: r.numeric_work,
+            seconds: r.seconds,
+        },
+        errata: r.verification.errata().count(),
+        passed: r.passed(),
+        prev: link(prev),
+        next: link(next),
+    }
+}
+
+/// Every scene's page, each linked to its neighbours in the order given.
+pub fn pages(reports: &[SceneReport]) -> Vec<Page> {
+    (0..reports.len())
+        .map(|i| {
+            let prev = i.checked_sub(1).map(|j| &reports[j]);
+            page(&reports[i], prev, reports.get(i + 1))
+        })
+        .collect()
+}
+
+fn describe_body(b: &crate::scene::Body) -> String {
+    let mass = if b.subtract {
+        format!("a hole removing mass {}", Expr::negate(b.mass.clone()))
+    } else {
+        format!("mass {}", b.mass)
+    };
+    let mut d = if b.label == b.shape.kind() {
+        format!("{}, {mass}", b.label)
+    } else {
+        format!("{} ({}), {mass}", b.label, b.shape.kind())
+    };
+    for (axis, angle) in &b.rotations {
+        d.push_str(&format!(", rotated by {angle} about {}", axis.name()));
+    }
+    if b.shift.iter().any(|e| !e.is_zero()) {
+        d.push_str(&format!(
+            ", shifted by {}",
+            Value::Vector(b.shift.clone()).to_text()
+        ));
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests;

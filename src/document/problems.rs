@@ -1,0 +1,172 @@
+//! A scene's problem and a lecture's problem sheet, format-neutral: the student's sheet, the
+//! answer key and the Moodle quiz all print these. Sheet variant k gives every problem its own
+//! variant k, cycling through a problem's fewer ones; the key answers each problem's variant
+//! once.
+
+use super::page_file;
+use crate::cas::{Expr, Formula};
+use crate::model::prose::Prose;
+use crate::pipeline::SceneReport;
+use crate::verify::variants::{AnswerCheck, VariantCheck};
+
+/// A scene's problem: its variants, each with its statement and checked answers.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    pub id: String,
+    /// The scene file, for errors.
+    pub source: std::path::PathBuf,
+    pub title: String,
+    /// The worked solution (with symbols), relative to the site's root.
+    pub page: String,
+    /// A quiz answer's tolerance, relative to the answer.
+    pub tolerance: f64,
+    pub variants: Vec<Variant>,
+}
+
+#[derive(Debug, Clone)]
+pub struct Variant {
+    pub number: usize,
+    /// The statement with each `{name}` given by this variant's value.
+    pub statement: Prose,
+    /// The values the statement names, for the key.
+    pub given: Vec<(String, Expr)>,
+    pub answers: Vec<AnswerCheck>,
+}
+
+impl Variant {
+    /// The largest relative difference of an answer from its numeric route.
+    pub fn worst_error(&self) -> f64 {
+        self.answers.iter().map(|a| a.error).fold(0.0f64, f64::max)
+    }
+}
+
+/// The problem of a scene that has one.
+pub fn problem(r: &SceneReport) -> Option<Problem> {
+    let p = r.scene.problem.as_ref()?;
+    Some(Problem {
+        id: r.scene.id.clone(),
+        source: r.scene.source.clone(),
+        title: r.scene.title.clone(),
+        page: page_file(r),
+        tolerance: p.tolerance,
+        variants: r
+            .verification
+            .variants
+            .iter()
+            .map(|v| Variant {
+                number: v.number,
+                statement: fill_statement(&p.statement, v),
+                given: v
+                    .values
+                    .iter()
+                    .filter(|(name, _)| p.statement.contains(&format!("{{{name}}}")))
+                    .cloned()
+                    .collect(),
+                answers: v.answers.clone(),
+            })
+            .collect(),
+    })
+}
+
+/// The statement with each `{name}` replaced by the variant's value.
+pub(super) fn fill_statement(statement: &str, v: &VariantCheck) -> Prose {
+    let mut out = Prose::default();
+    let mut rest = statement;
+    while let Some(open) = rest.find('{') {
+        let close = open + rest[open..].find('}').unwrap_or(rest.len() - open);
+        out = out.text(&rest[..open]);
+        let name = rest.get(open + 1..close).unwrap_or("");
+        out = match v.values.iter().find(|(n, _)| n == name) {
+            Some((_, e)) => out.formula(Formula::Expr(e.clone())),
+            // Validation allows only declared symbols, and every symbol in a statement has a
+            // value in each variant; a template's own text is shown as written.
+            None => out.text(&format!("{{{name}}}")),
+        };
+        rest = rest.get(close + 1..).unwrap_or("");
+    }
+    out.text(rest)
+}
+
+/// A lecture's problem sheet: as many variants as its problem with the most.
+#[derive(Debug, Clone)]
+pub struct Sheet {
+    /// The problems with a variant, in order: problem `i` is number `i + 1` on the sheet.
+    pub problems: Vec<Problem>,
+    pub variants: Vec<SheetVariant>,
+    /// The variants of the problems with fewer variants than the sheet, each answered once in
+    /// the key. (Repeating them cost 20 small problems beside one of 10,000 variants a 520 MB
+    /// key.)
+    pub shared: Vec<SharedAnswer>,
+}
+
+/// Sheet variant `number`: each problem at one of its variants.
+#[derive(Debug, Clone)]
+pub struct SheetVariant {
+    pub number: usize,
+    pub problems: Vec<SheetProblem>,
+}
+
+/// A problem on one sheet variant: indices into [`Sheet::problems`] and its variants.
+#[derive(Debug, Clone, Copy)]
+pub struct SheetProblem {
+    pub problem: usize,
+    pub variant: usize,
+    /// Whether the key answers it among the shared answers, not in this sheet variant.
+    pub shared: bool,
+}
+
+/// A shared variant, and the sheet variants that use it.
+#[derive(Debug, Clone)]
+pub struct SharedAnswer {
+    pub problem: usize,
+    pub variant: usize,
+    pub serves: Vec<usize>,
+}
+
+impl Sheet {
+    /// A problem's number on the sheet, and the problem.
+    pub fn problem(&self, i: usize) -> (usize, &Problem) {
+        (i + 1, &self.problems[i])
+    }
+}
+
+/// The sheet of a lecture's problems, in the order given; `None` when none has a variant.
+pub fn sheet(problems: Vec<Problem>) -> Option<Sheet> {
+    let problems: Vec<Problem> = problems
+        .into_iter()
+        .filter(|p| !p.variants.is_empty())
+        .collect();
+    let count = problems.iter().map(|p| p.variants.len()).max()?;
+    let variants = (1..=count)
+        .map(|k| SheetVariant {
+            number: k,
+            problems: problems
+                .iter()
+                .enumerate()
+                .map(|(i, p)| SheetProblem {
+                    problem: i,
+                    variant: (k - 1) % p.variants.len(),
+                    shared: p.variants.len() < count,
+                })
+                .collect(),
+        })
+        .collect();
+    let mut shared = Vec::new();
+    for (i, p) in problems.iter().enumerate() {
+        let n = p.variants.len();
+        if n < count {
+            for j in 0..n {
+                shared.push(SharedAnswer {
+                    problem: i,
+                    variant: j,
+                    serves: (1..=count).filter(|k| (k - 1) % n == j).collect(),
+                });
+            }
+        }
+    }
+    Some(Sheet {
+        problems,
+        variants,
+        shared,
+    })
+}

@@ -1,0 +1,156 @@
+//! A page's results: each derived quantity (with its value at the scene's numbers), the exact
+//! principal axes, and the principal moments at the scene's values by both routes.
+
+use crate::cas::Expr;
+use crate::derive::ExactBasis;
+use crate::model::catalogue::quantity;
+use crate::model::value::{Value, eval_at};
+use crate::numeric::eigen::Eigenspace;
+use crate::pipeline::SceneReport;
+
+#[derive(Debug, Clone)]
+pub struct Quantity {
+    pub name: String,
+    pub value: Value,
+    /// Each entry at the scene's values, row-major (`None` where a symbol has no value).
+    pub numbers: Vec<Option<f64>>,
+    /// The value at the scene's numbers, when that says something the exact form does not.
+    pub at: Option<At>,
+    /// Whether a page lists it: the integrand and the position are working, not results.
+    pub is_result: bool,
+}
+
+/// A result at the scene's numbers: the values of the symbols it contains, and its entries.
+#[derive(Debug, Clone)]
+pub struct At {
+    pub symbols: Vec<(String, f64)>,
+    pub numbers: Vec<f64>,
+}
+
+/// An exact principal moment, its multiplicity and its axis or plane.
+#[derive(Debug, Clone)]
+pub struct PrincipalAxis {
+    pub value: Expr,
+    /// At the scene's values.
+    pub number: Option<f64>,
+    pub multiplicity: u32,
+    pub basis: ExactBasis,
+}
+
+/// The principal moments at the scene's values: exact (or from the closed form), and from the
+/// eigen-solver on the exact tensor, with how far apart they are.
+#[derive(Debug, Clone)]
+pub struct PrincipalValues {
+    /// The eigenvalue's letter, by its TeX name (`lambda`).
+    pub letter: String,
+    /// Ascending, each repeated by its multiplicity.
+    pub exact: Vec<f64>,
+    pub numeric: Vec<Eigenspace>,
+    /// The largest difference, relative to the largest moment.
+    pub error: f64,
+    /// Whether `exact` comes from the trigonometric closed form (then the axes are numeric).
+    pub closed_form: bool,
+    /// The scene's values they are taken at.
+    pub values: Vec<(String, f64)>,
+}
+
+pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
+    let values = &r.scene.values;
+    r.derivation
+        .quantities
+        .iter()
+        .map(|(name, v)| Quantity {
+            name: name.clone(),
+            value: v.clone(),
+            numbers: v
+                .entries()
+                .iter()
+                .map(|e| eval_at(e, values).ok())
+                .collect(),
+            at: at_numbers(v, values),
+            is_result: name != quantity::INTEGRAND && name != quantity::POSITION,
+        })
+        .collect()
+}
+
+/// The value at the scene's numbers: none when it is a number or a bare symbol already, or a
+/// symbol in it has no value.
+fn at_numbers(v: &Value, values: &crate::model::value::Values) -> Option<At> {
+    // π is a number, not one of the scene's symbols.
+    let symbols: std::collections::BTreeSet<String> = v
+        .entries()
+        .iter()
+        .flat_map(|e| e.symbols())
+        .filter(|s| values.contains_key(s))
+        .collect();
+    let numbers = v.numbers_at(values).ok()?;
+    let plain = v
+        .entries()
+        .iter()
+        .all(|e| matches!(e, Expr::Num(_) | Expr::Sym(_)));
+    if symbols.is_empty() || plain {
+        return None;
+    }
+    Some(At {
+        symbols: symbols
+            .into_iter()
+            .map(|k| (k.clone(), values[&k]))
+            .collect(),
+        numbers,
+    })
+}
+
+pub(super) fn principal_axes(r: &SceneReport) -> Vec<PrincipalAxis> {
+    r.derivation
+        .eigen
+        .iter()
+        .flat_map(|e| e.spaces.iter())
+        .map(|sp| PrincipalAxis {
+            value: sp.value.clone(),
+            number: eval_at(&sp.value, &r.scene.values).ok(),
+            multiplicity: sp.multiplicity,
+            basis: sp.basis.clone(),
+        })
+        .collect()
+}
+
+pub(super) fn principal_values(r: &SceneReport) -> Option<PrincipalValues> {
+    let p = r.verification.principal.as_ref()?;
+    Some(PrincipalValues {
+        letter: r
+            .derivation
+            .eigen
+            .as_ref()
+            .map_or("lambda", |e| &e.letter)
+            .to_string(),
+        exact: p.exact.clone(),
+        numeric: p.numeric.clone(),
+        error: p.error,
+        closed_form: p.closed_form,
+        values: r
+            .scene
+            .values
+            .iter()
+            .map(|(k, v)| (k.clone(), *v))
+            .collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_result_at_the_numbers_names_its_symbols_but_not_pi() {
+        let values = [("R".to_string(), 2.0), ("M".to_string(), 3.0)].into();
+        let two_pi_r = Expr::mul(vec![Expr::int(2), Expr::sym("pi"), Expr::sym("R")]);
+        let at = at_numbers(&Value::Scalar(two_pi_r), &values).unwrap();
+        assert_eq!(at.symbols, vec![("R".to_string(), 2.0)]);
+        assert_eq!(at.numbers, vec![4.0 * std::f64::consts::PI]);
+        // A bare symbol or a number has nothing to add, nor has a symbol without a value.
+        assert!(at_numbers(&Value::Scalar(Expr::sym("M")), &values).is_none());
+        assert!(at_numbers(&Value::Scalar(Expr::int(4)), &values).is_none());
+        let unknown = Expr::mul(vec![Expr::sym("R"), Expr::sym("h")]);
+        assert!(at_numbers(&Value::Scalar(unknown), &values).is_none());
+    }
+}

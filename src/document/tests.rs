@@ -1,0 +1,128 @@
+use super::*;
+use crate::model::prose::Piece;
+use std::path::Path;
+
+fn hoop() -> SceneReport {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("lectures/lecture-3-4/06-hoop.toml");
+    let scene = crate::scene::load_all(&[path]).unwrap().remove(0);
+    crate::pipeline::run_scene(scene, None).unwrap()
+}
+
+/// The page, `derive`, `derive --json` and the HTML view all print the one `Page`: a change made
+/// to it (and not to the report) reaches each of them.
+#[test]
+fn every_printer_reads_the_page_not_the_report() {
+    let r = hoop();
+    let mut page = page(&r, None, None);
+    assert!(
+        !page.steps.is_empty() && !page.claims.is_empty(),
+        "{page:?}"
+    );
+    page.steps[0].title = "STEP-MARK".into();
+    page.steps[0].why = Prose::from("WHY-MARK".to_string());
+    page.claims[0].statement = "CLAIM-MARK".into();
+    page.title = "TITLE-MARK".into();
+    let text = crate::report::derivation_text(&page);
+    let json = crate::report::scene_json(&page).to_string();
+    let view = crate::render::page_view(&page, false).unwrap();
+    let html = serde_json::to_string(&view).unwrap();
+    for mark in ["STEP-MARK", "WHY-MARK", "CLAIM-MARK", "TITLE-MARK"] {
+        assert!(text.contains(mark), "derive text lacks {mark}");
+        assert!(json.contains(mark), "derive --json lacks {mark}");
+        assert!(html.contains(mark), "the page view lacks {mark}");
+    }
+}
+
+#[test]
+fn a_cited_step_gives_its_reason_after_the_citation() {
+    let step = Step {
+        title: "t".into(),
+        statement: Formula::parse("x = 1", &[]),
+        why: Prose::from("expand".to_string()),
+        key: "k".into(),
+        citation: Some("eq (51)".into()),
+    };
+    assert_eq!(step.why_cited().to_text(), "eq (51): expand");
+    let uncited = Step {
+        citation: None,
+        ..step
+    };
+    assert_eq!(uncited.why_cited().to_text(), "expand");
+}
+
+fn problem_of(id: &str, variants: usize) -> Problem {
+    Problem {
+        id: id.into(),
+        source: format!("{id}.toml").into(),
+        title: id.into(),
+        page: format!("{id}.html"),
+        tolerance: 0.01,
+        variants: (1..=variants)
+            .map(|number| Variant {
+                number,
+                statement: Prose::default(),
+                given: Vec::new(),
+                answers: Vec::new(),
+            })
+            .collect(),
+    }
+}
+
+/// Sheet variant k gives each problem its variant k, cycling through a problem's fewer; the key
+/// answers such a problem's variants once each, naming the sheet variants that use them.
+#[test]
+fn a_sheet_cycles_a_short_problem_and_shares_its_answers() {
+    let sheet = sheet(vec![
+        problem_of("a", 3),
+        problem_of("none", 0),
+        problem_of("b", 2),
+    ])
+    .unwrap();
+    // The problem without variants is left out: "b" is number 2.
+    assert_eq!(sheet.problems.len(), 2);
+    assert_eq!(sheet.problem(1).0, 2);
+    let on_sheet: Vec<Vec<(usize, usize, bool)>> = sheet
+        .variants
+        .iter()
+        .map(|v| {
+            v.problems
+                .iter()
+                .map(|p| (p.problem, p.variant, p.shared))
+                .collect()
+        })
+        .collect();
+    assert_eq!(
+        on_sheet,
+        vec![
+            vec![(0, 0, false), (1, 0, true)],
+            vec![(0, 1, false), (1, 1, true)],
+            vec![(0, 2, false), (1, 0, true)],
+        ]
+    );
+    let shared: Vec<(usize, usize, Vec<usize>)> = sheet
+        .shared
+        .iter()
+        .map(|a| (a.problem, a.variant, a.serves.clone()))
+        .collect();
+    assert_eq!(shared, vec![(1, 0, vec![1, 3]), (1, 1, vec![2])]);
+    assert!(super::sheet(vec![problem_of("none", 0)]).is_none());
+}
+
+/// A statement's `{name}` becomes the variant's exact value; text around it, and a name with no
+/// value, stay as written.
+#[test]
+fn a_statement_takes_each_value_as_a_formula() {
+    let v = VariantCheck {
+        number: 1,
+        values: vec![("m".into(), Expr::int(3))],
+        answers: Vec::new(),
+    };
+    let filled = problems::fill_statement("A mass {m} kg on {q}.", &v);
+    assert_eq!(filled.to_text(), "A mass 3 kg on {q}.");
+    let formulas: Vec<&Piece> = filled
+        .0
+        .iter()
+        .filter(|p| matches!(p, Piece::Math(_)))
+        .collect();
+    assert_eq!(formulas, vec![&Piece::Math(Formula::Expr(Expr::int(3)))]);
+}
