@@ -108,7 +108,17 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
         plot: None,
         source: Box::new(source),
     };
-    let derivation = derive::derive(scene, plan).map_err(|e| fail(e.into()))?;
+    let derivation = derive::derive(scene, plan).map_err(|e| {
+        // An author's step is located at its own line.
+        let at = match &e {
+            derive::DeriveError::Step(s) => (s.line(), 1),
+            _ => scene.id_at,
+        };
+        RunError {
+            at,
+            ..fail(e.into())
+        }
+    })?;
     let (claims, regressions) =
         verify::verify_symbolic(scene, &derivation, plan).map_err(|e| fail(e.into()))?;
     let (engine_after, calls_after) = crate::cas::stats();

@@ -71,6 +71,25 @@ impl Plan {
                 }
             }
         }
+        for s in &scene.steps {
+            let exprs = match &s.op {
+                crate::scene::Operation::Be(e) => vec![e],
+                crate::scene::Operation::Differentiate { of, .. } => vec![of],
+                crate::scene::Operation::Linearise { about, .. } => about.values().collect(),
+                crate::scene::Operation::Lagrange { .. }
+                | crate::scene::Operation::Frequency { .. } => vec![],
+            };
+            for e in exprs.into_iter().chain(s.gives.iter()) {
+                for name in referenced_quantities(e) {
+                    if let Some(st) = stage_for_quantity(&name) {
+                        wanted.push((st, format!("step `{}` uses `{name}`", s.name)));
+                    }
+                }
+            }
+        }
+        if !scene.steps.is_empty() {
+            wanted.push((Stage::Steps, format!("{} step(s)", scene.steps.len())));
+        }
         if !scene.claims.is_empty() {
             wanted.push((Stage::Claims, format!("{} claim(s)", scene.claims.len())));
         }

@@ -162,7 +162,7 @@ fn from_text(text: &str) -> Result<Expr, EngineError> {
     }
     Ok(parsed
         .expr
-        .substitute(&|s| s.strip_prefix(PREFIX).map(Expr::sym)))
+        .substitute(&|s| s.strip_prefix(PREFIX).map(our_name)))
 }
 
 /// Text without terminal colour codes (ESC [ ... m), which the engine's printer may add.
@@ -202,7 +202,7 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, EngineError> {
         AtomView::Var(x) => {
             let name = x.get_symbol().get_stripped_name().to_string();
             match name.strip_prefix(PREFIX) {
-                Some(n) => Expr::sym(n),
+                Some(n) => our_name(n),
                 None => return Err(EngineError::UnexpectedName { name }),
             }
         }
@@ -235,8 +235,17 @@ fn from_atom(a: &Atom) -> Result<Expr, EngineError> {
     from_view(a.as_view())
 }
 
+/// A name as the engine holds it: prefixed, and a coordinate's rate `phi'` as `phi__d` (a
+/// scene's own names never hold `__`).
 fn var_atom(name: &str) -> Atom {
-    Atom::var(symbol!(format!("{PREFIX}{name}").as_str()))
+    Atom::var(symbol!(
+        format!("{PREFIX}{}", name.replace('\'', "__d")).as_str()
+    ))
+}
+
+/// Our name for the engine's (without the prefix).
+fn our_name(engine: &str) -> Expr {
+    Expr::sym(&engine.replace("__d", "'"))
 }
 
 /// Expanded, with rational functions brought to one reduced fraction.

@@ -333,8 +333,14 @@ impl Parser<'_> {
                 {
                     self.pos += 1;
                 }
+                // A coordinate's rates: `phi'` and `phi''` (d/dt and d²/dt²).
+                let mut primes = 0;
+                while primes < 2 && self.src.get(self.pos) == Some(&b'\'') {
+                    self.pos += 1;
+                    primes += 1;
+                }
                 let name = String::from_utf8_lossy(&self.src[s..self.pos]).into_owned();
-                if self.peek() == Some(b'(') {
+                if primes == 0 && self.peek() == Some(b'(') {
                     self.pos += 1;
                     if self.peek() == Some(b')') {
                         self.pos += 1;

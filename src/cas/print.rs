@@ -283,6 +283,13 @@ const GREEK: &[&str] = &[
 /// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
 /// `inertia_tensor` -> upright text.
 fn latex_symbol(s: &str) -> String {
+    // A coordinate's rates: `phi'` is φ̇, `phi''` φ̈.
+    if let Some(base) = s.strip_suffix("''") {
+        return format!("\\ddot{{{}}}", latex_symbol(base));
+    }
+    if let Some(base) = s.strip_suffix('\'') {
+        return format!("\\dot{{{}}}", latex_symbol(base));
+    }
     if let Some((_, tail)) = s.split_once('_')
         && !tail.chars().all(|c| c.is_ascii_digit())
     {

@@ -215,3 +215,21 @@ fn claim_functions_print_in_their_usual_notation() {
         "\\mathrm{inertia\\_tensor}_{0 1}"
     );
 }
+
+/// A coordinate's rates `phi'` and `phi''` are names of their own: they pass through the engine
+/// and back, differentiate as independent variables, and print as φ̇ and φ̈.
+#[test]
+fn a_coordinates_rates_survive_the_engine_and_print_with_dots() {
+    let e = p("I*phi''*phi' + phi'^2*phi - phi'*phi'*phi");
+    assert_eq!(
+        e.symbols(),
+        vec!["I".to_string(), "phi".into(), "phi'".into(), "phi''".into()]
+    );
+    let s = simplify(&e).unwrap();
+    assert_eq!(s.to_text(), "I*phi'*phi''");
+    assert_eq!(s.diff("phi'").unwrap().symbols(), vec!["I", "phi''"]);
+    assert_eq!(p("phi''").to_latex(), "\\ddot{\\phi}");
+    assert_eq!(p("x'").to_latex(), "\\dot{x}");
+    // A call is never primed: `f'(x)` is not a name.
+    assert!(parse("sin'(x)").is_err());
+}

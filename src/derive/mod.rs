@@ -15,6 +15,7 @@ pub mod poinsot;
 mod principal;
 pub mod sign;
 pub mod stability;
+pub mod steps;
 pub mod variants;
 
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
@@ -39,6 +40,9 @@ pub struct Step {
     /// The key by which a scene's `[cite]` table names its own notes' equations for this step.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub cite: String,
+    /// The author's `[[step]]` this shows, by name; `None` for a built-in step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub author: Option<String>,
 }
 
 /// A step's reason, with the citation key a scene may map to its notes' equations.
@@ -90,6 +94,7 @@ impl Step {
             statement,
             why: why.prose,
             cite: why.key.to_string(),
+            author: None,
         }
     }
 
@@ -115,6 +120,13 @@ pub enum DeriveError {
     Eval(#[from] EvalError),
     #[error(transparent)]
     Diff(#[from] DiffError),
+    /// Why an author's step cannot be derived, in words (wrapped in [`steps::StepError`] with
+    /// the step's name and line).
+    #[error("{0}")]
+    NotDerivable(String),
+    /// An author's step that could not be derived, at its line.
+    #[error(transparent)]
+    Step(#[from] steps::StepError),
     /// A stage read a quantity that an earlier stage should have set: a bug in the plan.
     #[error("internal inconsistency: quantity `{0}` was not derived")]
     Missing(&'static str),
@@ -144,6 +156,9 @@ pub struct Derivation {
     /// Each body's own tensor about the frame origin, for the per-body numeric checks.
     pub part_tensors: Vec<Value>,
     pub eigen: Option<ExactEigen>,
+    /// The results of the author's own steps, by the step's name.
+    #[serde(default)]
+    pub named: BTreeMap<String, steps::StepResult>,
 }
 
 impl Derivation {
@@ -281,6 +296,9 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     }
     if plan.runs(Stage::EarthPrecession) {
         earth::earth_precession(&mut d)?;
+    }
+    if plan.runs(Stage::Steps) {
+        steps::derive_steps(scene, &mut d)?;
     }
     Ok(d)
 }

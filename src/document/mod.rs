@@ -20,7 +20,7 @@ use crate::model::value::Value;
 use crate::numeric::Work;
 use crate::pipeline::SceneReport;
 use crate::verify::variants::VariantCheck;
-use crate::verify::{ClaimResult, EigenCheck, QuantityCheck, RegressionResult};
+use crate::verify::{ClaimResult, EigenCheck, QuantityCheck, RegressionResult, StepCheck};
 use std::path::PathBuf;
 
 /// One scene's page: heading, derivation, results, checks, claims and figures.
@@ -55,6 +55,8 @@ pub struct Page {
     pub exact_vs_numeric: Vec<QuantityCheck>,
     pub regressions: Vec<RegressionResult>,
     pub variants: Vec<VariantCheck>,
+    /// Each of the author's steps against its numeric route.
+    pub step_checks: Vec<StepCheck>,
     pub figures: Vec<FigureBlock>,
     /// Each stage, and why it ran (`None`: nothing asked for it).
     pub stages: Vec<(&'static str, Option<Vec<String>>)>,
@@ -75,6 +77,8 @@ pub struct Step {
     /// The step's citation key, and the scene's citation for it ("eq (51)") if it has one.
     pub key: String,
     pub citation: Option<String>,
+    /// For an author's step: its numeric check.
+    pub check: Option<StepCheck>,
 }
 
 impl Step {
@@ -174,6 +178,13 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
                 why: st.why.clone(),
                 key: st.cite.clone(),
                 citation: st.citation(&s.cite).map(str::to_string),
+                check: st.author.as_ref().and_then(|name| {
+                    r.verification
+                        .steps
+                        .iter()
+                        .find(|c| &c.step == name)
+                        .cloned()
+                }),
             })
             .collect(),
         quantities: results::quantities(r),
@@ -199,6 +210,7 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
         exact_vs_numeric: r.verification.quantities.clone(),
         regressions: r.verification.regressions.clone(),
         variants: r.verification.variants.clone(),
+        step_checks: r.verification.steps.clone(),
         figures: r
             .figures
             .iter()

@@ -54,20 +54,29 @@ pub struct PrincipalValues {
     pub values: Vec<(String, f64)>,
 }
 
+/// The derived quantities, then the expressions of the author's steps (their equations of
+/// motion are steps, not values).
 pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
+    use crate::derive::steps::StepResult;
     let values = &r.scene.values;
+    let named = r.derivation.named.iter().filter_map(|(name, s)| match s {
+        StepResult::Expr(e) => Some((name, Value::Scalar(e.clone()))),
+        StepResult::Equations(_) => None,
+    });
     r.derivation
         .quantities
         .iter()
+        .map(|(name, v)| (name, v.clone()))
+        .chain(named)
         .map(|(name, v)| Quantity {
             name: name.clone(),
-            value: v.clone(),
             numbers: v
                 .entries()
                 .iter()
                 .map(|e| eval_at(e, values).ok())
                 .collect(),
-            at: at_numbers(v, values),
+            at: at_numbers(&v, values),
+            value: v,
             is_result: name != quantity::INTEGRAND && name != quantity::POSITION,
         })
         .collect()

@@ -41,6 +41,7 @@ fn a_cited_step_gives_its_reason_after_the_citation() {
         why: Prose::from("expand".to_string()),
         key: "k".into(),
         citation: Some("eq (51)".into()),
+        check: None,
     };
     assert_eq!(step.why_cited().to_text(), "eq (51): expand");
     let uncited = Step {

@@ -30,6 +30,8 @@ pub enum Stage {
     Poinsot,
     /// Symbolic: Earth's Euler period from cited constants (after eq 89).
     EarthPrecession,
+    /// Symbolic: the author's own `[[step]]`s, each with its numeric check.
+    Steps,
     /// Numeric: quadrature of every body, with error laws and cost.
     Quadrature,
     /// Numeric: SymmetricEigen against the exact principal moments.
@@ -57,6 +59,7 @@ impl Stage {
         Stage::AxisStability,
         Stage::Poinsot,
         Stage::EarthPrecession,
+        Stage::Steps,
         Stage::Quadrature,
         Stage::NumericEigen,
         Stage::Plots,
@@ -79,6 +82,7 @@ impl Stage {
             Stage::AxisStability => "axis-stability",
             Stage::Poinsot => "poinsot",
             Stage::EarthPrecession => "earth-precession",
+            Stage::Steps => "steps",
             Stage::Quadrature => "numeric-quadrature",
             Stage::NumericEigen => "numeric-eigen",
             Stage::Plots => "plots",
@@ -97,7 +101,8 @@ impl Stage {
             | Stage::SymmetricTop
             | Stage::AxisStability
             | Stage::Poinsot
-            | Stage::EarthPrecession => &[],
+            | Stage::EarthPrecession
+            | Stage::Steps => &[],
             Stage::CentreOfMass => &[Stage::Tensor],
             Stage::ParallelAxis => &[Stage::CentreOfMass],
             Stage::Principal

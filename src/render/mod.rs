@@ -31,6 +31,8 @@ pub struct StepView {
     /// A result at the scene's numbers: "at m = 1, a = 2:" and its MathML (empty for a step,
     /// for a number, or where a symbol has no value).
     pub at: String,
+    /// An author's step's numeric check, as HTML (empty for a built-in step).
+    pub check: String,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -188,6 +190,25 @@ pub(crate) fn numbers_latex(v: &Value, n: &[String]) -> String {
     }
 }
 
+/// An author's step's numeric check in one sentence (escaped for HTML).
+fn check_text(c: &crate::verify::StepCheck) -> String {
+    tera::escape_html(&match &c.problem {
+        Some(p) => format!("Not checked numerically: {p}"),
+        None => format!(
+            "Checked numerically, by {}: {} {} (within {}), {} evaluations.",
+            c.method,
+            if c.passed() {
+                "agrees to"
+            } else {
+                "FAILS, differs by"
+            },
+            sci(c.error),
+            sci(c.tolerance),
+            c.evaluations
+        ),
+    })
+}
+
 /// The HTML view of one page. `timings` adds measured seconds to the numeric table.
 pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
     let steps = page
@@ -199,6 +220,7 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
                 math: math::block(&st.statement.to_latex())?,
                 why: prose_html(&st.why_cited())?,
                 at: String::new(),
+                check: st.check.as_ref().map(check_text).unwrap_or_default(),
             })
         })
         .collect::<Result<Vec<_>, RenderError>>()?;
@@ -212,6 +234,7 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
                 Some(at) => at_numbers_html(&q.value, at)?,
                 None => String::new(),
             },
+            check: String::new(),
         });
     }
     for sp in &page.principal_axes {
@@ -230,6 +253,7 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
             math: math::block(&format!("{}{dir}", sp.value.to_latex()))?,
             why: String::new(),
             at: String::new(),
+            check: String::new(),
         });
     }
     if let Some(p) = &page.principal_values {
@@ -371,6 +395,7 @@ fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
     };
     Ok(StepView {
         at: String::new(),
+        check: String::new(),
         title: "principal moments at the scene's values".into(),
         math: math::block(&latex)?,
         why: tera::escape_html(&format!(

@@ -215,6 +215,9 @@ pub fn scene_json(page: &Page) -> Json {
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
         "steps": page.steps.iter().map(step_json).collect::<Vec<_>>(),
+        "step_checks": page.step_checks.iter().map(|c| json!({
+            "step": c.step, "method": c.method, "error": num(c.error), "tolerance": num(c.tolerance),
+            "evaluations": c.evaluations, "problem": c.problem, "passed": c.passed() })).collect::<Vec<_>>(),
         "stages": stages,
         "symbolic_seconds": num(cost.symbolic_seconds),
         "engine_calls": cost.engine_calls,

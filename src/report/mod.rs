@@ -120,6 +120,22 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
             )));
         }
     }
+    for c in r.verification.steps.iter().filter(|c| !c.passed()) {
+        failures.push(unrecordable(match &c.problem {
+            Some(p) => format!(
+                "{src}:{}: step `{}`: its numeric check failed: {p}",
+                c.line, c.step
+            ),
+            None => format!(
+                "{src}:{}: step `{}`: exact and numeric differ by {} (relative), beyond {} ({})",
+                c.line,
+                c.step,
+                sci(c.error),
+                sci(c.tolerance),
+                c.method
+            ),
+        }));
+    }
     if let Some(n) = &r.numeric {
         for (q, ok) in n.runs.iter().zip(&r.verification.within_law) {
             if !ok {
@@ -174,7 +190,7 @@ pub fn check_table(reports: &[SceneReport]) -> String {
             "{:<id_width$} {:>lecture_width$} {:>7} {:>6} {:>9} {:>5} {:>11} {:>9.2} {:>6}",
             r.scene.id,
             r.scene.notes.lecture,
-            r.derivation.quantities.len(),
+            r.derivation.quantities.len() + r.derivation.named.len(),
             r.verification.count(Verdict::Agrees),
             r.verification.count(Verdict::Disagrees),
             r.verification.count(Verdict::NotCheckable),
@@ -327,6 +343,28 @@ pub fn derivation_text(page: &Page) -> String {
                 sci(q.predicted_error),
                 q.seconds
             );
+        }
+    }
+    if !page.step_checks.is_empty() {
+        let _ = writeln!(out, "\nSteps against their numeric routes:");
+        for c in &page.step_checks {
+            let _ = match &c.problem {
+                Some(p) => writeln!(out, "  {:<12} FAILED: {p}", c.step),
+                None => writeln!(
+                    out,
+                    "  {:<12} {} {} (within {}; {} evaluations): {}",
+                    c.step,
+                    if c.passed() {
+                        "agrees to"
+                    } else {
+                        "FAILS: differs by"
+                    },
+                    sci(c.error),
+                    sci(c.tolerance),
+                    c.evaluations,
+                    c.method
+                ),
+            };
         }
     }
     if let Some(e) = &page.eigen {

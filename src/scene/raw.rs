@@ -27,6 +27,12 @@ pub struct RawScene {
     pub bodies: Vec<Spanned<RawBody>>,
     #[serde(default, rename = "claim")]
     pub claims: Vec<Spanned<RawClaim>>,
+    /// Generalised coordinates: functions of the time `t`, with their rates `q'` and `q''`.
+    #[serde(default)]
+    pub coordinates: BTreeMap<Spanned<String>, Text>,
+    /// The author's own derivation, a named step at a time.
+    #[serde(default, rename = "step")]
+    pub steps: Vec<Spanned<RawStep>>,
     #[serde(default, rename = "plot")]
     pub plots: Vec<Spanned<RawPlot>>,
     pub outputs: RawOutputs,
@@ -128,6 +134,43 @@ pub struct RawClaim {
     #[serde(default)]
     pub expect: Option<Text>,
     /// `notes` (default): the notes' own statement; `mistake`: a common mistake for students.
+    #[serde(default)]
+    pub role: Option<Text>,
+}
+
+/// One step of an author's derivation: a name, one operation, and optionally the notes' form
+/// of its result (`gives`), checked like a claim.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStep {
+    pub name: Text,
+    #[serde(default)]
+    pub be: Option<Text>,
+    #[serde(default)]
+    pub differentiate: Option<Text>,
+    #[serde(default)]
+    pub by: Option<Text>,
+    #[serde(default)]
+    pub lagrange: Option<Text>,
+    #[serde(default)]
+    pub linearise: Option<Text>,
+    /// For `linearise`: the state about which, by coordinate (unnamed ones about 0).
+    #[serde(default)]
+    pub about: BTreeMap<Spanned<String>, Text>,
+    #[serde(default)]
+    pub frequency: Option<Text>,
+    /// For `lagrange`: the initial state its numeric check integrates from (coordinates and
+    /// their rates, `"phi'" = 0.1`).
+    #[serde(default)]
+    pub start: BTreeMap<Spanned<String>, Spanned<f64>>,
+    #[serde(default)]
+    pub gives: Option<Text>,
+    #[serde(default)]
+    pub why: Option<Text>,
+    #[serde(default)]
+    pub eq: Option<Text>,
+    #[serde(default)]
+    pub expect: Option<Text>,
     #[serde(default)]
     pub role: Option<Text>,
 }

@@ -183,21 +183,43 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
     })?;
     let mut changes = Vec::new();
 
-    let mut tables = claim_tables(&mut doc).ok_or_else(|| BlessError::Shape {
-        path: path.clone(),
-        field: "claim",
-    })?;
-    for (i, c) in r.verification.claims.iter().enumerate() {
-        if c.problem.is_some() || c.expected == Some(c.verdict) {
-            continue;
-        }
-        if let Some(table) = tables.get_mut(i) {
+    // A `[[claim]]`'s verdict goes in its table, a step's `gives` verdict in its `[[step]]`.
+    for key in ["claim", "step"] {
+        let mut tables = array_tables(&mut doc, key).ok_or_else(|| BlessError::Shape {
+            path: path.clone(),
+            field: key,
+        })?;
+        let results = r
+            .verification
+            .claims
+            .iter()
+            .filter(|c| c.step.is_none())
+            .enumerate()
+            .filter(|_| key == "claim")
+            .chain(
+                r.verification
+                    .claims
+                    .iter()
+                    .filter_map(|c| c.step.map(|k| (k, c)))
+                    .filter(|_| key == "step"),
+            );
+        for (i, c) in results {
+            if c.problem.is_some() || c.expected == Some(c.verdict) {
+                continue;
+            }
+            let Some(table) = tables.get_mut(i) else {
+                continue;
+            };
             set_keeping_decor(*table, "expect", c.verdict.as_str());
             changes.push(Blessed {
                 line: c.line,
                 what: format!(
-                    "claim (eq {}): verdict {} -> {}",
-                    c.eq,
+                    "{}: verdict {} -> {}",
+                    if key == "claim" {
+                        format!("claim (eq {})", c.eq)
+                    } else {
+                        c.statement.clone()
+                    },
                     c.expected.map_or("(none)", |v| v.as_str()),
                     c.verdict.as_str()
                 ),
@@ -265,9 +287,10 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
     Ok((doc.to_string(), changes))
 }
 
-/// The claims' tables, `[[claim]]` or an inline `claim = [{…}]`, in order; none when absent.
-fn claim_tables(doc: &mut DocumentMut) -> Option<Vec<&mut dyn TableLike>> {
-    match doc.get_mut("claim") {
+/// The tables of `[[key]]` (claims, steps) or an inline `key = [{…}]`, in order; none when
+/// absent.
+fn array_tables<'a>(doc: &'a mut DocumentMut, key: &str) -> Option<Vec<&'a mut dyn TableLike>> {
+    match doc.get_mut(key) {
         None => Some(Vec::new()),
         Some(Item::ArrayOfTables(a)) => {
             Some(a.iter_mut().map(|t| t as &mut dyn TableLike).collect())
@@ -314,7 +337,7 @@ mod tests {
         let t = doc.get_mut("expect").unwrap().as_table_like_mut().unwrap();
         set_keeping_decor(t, "I", "2");
         set_keeping_decor(t, "J", "3");
-        let mut claims = claim_tables(&mut doc).unwrap();
+        let mut claims = array_tables(&mut doc, "claim").unwrap();
         set_keeping_decor(claims[0], "expect", "disagrees");
         assert_eq!(
             doc.to_string(),

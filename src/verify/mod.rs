@@ -64,6 +64,9 @@ pub struct ClaimResult {
     #[serde(default)]
     pub role: ClaimRole,
     pub line: usize,
+    /// The author's step whose `gives` this is (its index), or `None` for a `[[claim]]`.
+    #[serde(default)]
+    pub step: Option<usize>,
 }
 
 impl ClaimResult {
@@ -118,6 +121,9 @@ pub struct Verification {
     /// A problem's variants, each answer exact against its numeric route.
     #[serde(default)]
     pub variants: Vec<variants::VariantCheck>,
+    /// Each of the author's steps against its numeric route.
+    #[serde(default)]
+    pub steps: Vec<StepCheck>,
 }
 
 impl Verification {
@@ -150,6 +156,7 @@ impl Verification {
                 .is_none_or(|p| p.error <= PRINCIPAL_AGREEMENT)
             && self.within_law.iter().all(|w| *w)
             && self.variants.iter().all(variants::VariantCheck::passed)
+            && self.steps.iter().all(StepCheck::passed)
     }
 }
 
@@ -170,6 +177,11 @@ pub fn claim_env(scene: &Scene, d: &Derivation) -> Env {
     }
     for (name, v) in &d.quantities {
         env.insert(name.clone(), v.clone());
+    }
+    for (name, r) in &d.named {
+        if let crate::derive::steps::StepResult::Expr(e) = r {
+            env.insert(name.clone(), Value::Scalar(e.clone()));
+        }
     }
     env
 }
@@ -247,6 +259,7 @@ fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
         precision: None,
         role: claim.role,
         line: claim.line,
+        step: None,
     }
 }
 
@@ -372,63 +385,6 @@ fn check_claim(
     Ok(r)
 }
 
-/// `x` rounded to `figures` significant figures.
-pub fn round_to_figures(x: f64, figures: u32) -> f64 {
-    if x == 0.0 || !x.is_finite() {
-        return x;
-    }
-    let exponent = x.abs().log10().floor() as i32;
-    let scale = 10f64.powi(figures as i32 - 1 - exponent);
-    (x * scale).round() / scale
-}
-
-/// A side of a claim given to significant figures that is not a number.
-#[derive(Debug, thiserror::Error)]
-enum NotANumber {
-    #[error("the {side} side is not a number: {error}")]
-    Eval {
-        side: &'static str,
-        error: EvalError,
-    },
-    #[error("the {side} side is {kind}, not a number")]
-    Kind {
-        side: &'static str,
-        kind: &'static str,
-    },
-}
-
-/// Do two numbers agree at the precision the notes give? Both sides must be numbers.
-fn rounded_agreement(
-    derived: &Value,
-    notes: &Value,
-    figures: u32,
-) -> Result<(bool, String), NotANumber> {
-    let number = |v: &Value, side: &'static str| -> Result<f64, NotANumber> {
-        match v {
-            Value::Scalar(e) => e
-                .eval(&|_| None)
-                .map_err(|error| NotANumber::Eval { side, error }),
-            other => Err(NotANumber::Kind {
-                side,
-                kind: other.kind(),
-            }),
-        }
-    };
-    let (d, n) = (number(derived, "derived")?, number(notes, "notes'")?);
-    let (rd, rn) = (round_to_figures(d, figures), round_to_figures(n, figures));
-    // Both rounded the same way (a scaling by 10^k and back): equal decimals differ by a few
-    // ulps at most, unequal ones by at least a unit in the last figure kept, 10^-figures of
-    // the value or more. A tenth of that unit, and never more than 1e-12, tells them apart up
-    // to the 15 figures a claim may state.
-    let within = 1e-12_f64.min(0.1 * 10f64.powi(-(figures as i32)));
-    let agrees = (rd - rn).abs() <= within * rd.abs().max(rn.abs());
-    let unit = if figures == 1 { "figure" } else { "figures" };
-    Ok((
-        agrees,
-        format!("{d:.6e} rounds to {rd} at {figures} significant {unit}; the notes give {n}"),
-    ))
-}
-
 pub fn check_regressions(
     scene: &Scene,
     d: &Derivation,
@@ -540,11 +496,14 @@ pub fn verify_symbolic(
     d: &Derivation,
     plan: &crate::plan::Plan,
 ) -> Result<(Vec<ClaimResult>, Vec<RegressionResult>), crate::derive::DeriveError> {
-    let claims = if plan.runs(Stage::Claims) {
+    let mut claims = if plan.runs(Stage::Claims) {
         check_claims(scene, d)?
     } else {
         Vec::new()
     };
+    if plan.runs(Stage::Steps) {
+        claims.extend(steps::check_gives(scene, d)?);
+    }
     let regressions = if plan.runs(Stage::Regression) {
         check_regressions(scene, d)?
     } else {
@@ -565,6 +524,9 @@ pub fn verify_numeric(
     if plan.runs(Stage::Principal) {
         v.principal = principal_values(scene, d)?;
     }
+    if plan.runs(Stage::Steps) {
+        v.steps = steps::check_steps(scene, d);
+    }
     if let Some(n) = numeric {
         v.within_law = n.runs.iter().map(within_law).collect();
         v.quantities = check_quantities(scene, d, n)?;
@@ -576,8 +538,15 @@ pub fn verify_numeric(
 }
 
 mod principal;
+mod rounding;
+pub mod steps;
 pub mod variants;
 pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
+pub use rounding::round_to_figures;
+use rounding::rounded_agreement;
+pub use steps::StepCheck;
 
+#[cfg(test)]
+mod steps_tests;
 #[cfg(test)]
 mod tests;

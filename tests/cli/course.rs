@@ -203,3 +203,73 @@ fn a_flip_plot_takes_the_books_own_moments() {
     assert!(svg.contains("flips"), "no flips measured");
     let _ = std::fs::remove_dir_all(build);
 }
+
+/// The physical pendulum, written as the instructor's own steps: each derived and checked by a
+/// numeric route, the notes' forms agreeing at their lines, and Ω equal to √(3g/2L) computed
+/// here at the scene's values; the page shows φ̇ and φ̈ and each step's numeric check.
+#[test]
+fn the_pendulum_is_derived_step_by_step_and_each_step_is_checked() {
+    let scene = "tests/course/dynamics/01-physical-pendulum.toml";
+    let out = mechbook(&["derive", "--json", scene]);
+    assert_eq!(out.status.code(), Some(0), "{}", crate::stderr(&out));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let (g, l) = (9.81f64, 1.5f64);
+    let omega = json["quantities"]["Omega"]["numeric"].as_f64().unwrap();
+    assert!(
+        (omega - (3.0 * g / (2.0 * l)).sqrt()).abs() < 1e-12,
+        "{omega}"
+    );
+    let checks = json["step_checks"].as_array().unwrap();
+    let names: Vec<&str> = checks.iter().map(|c| c["step"].as_str().unwrap()).collect();
+    assert_eq!(
+        names,
+        ["Ip", "Lag", "eom", "p_phi", "small", "Omega", "period"]
+    );
+    for c in checks {
+        assert_eq!(c["passed"], true, "{c}");
+        assert!(
+            c["error"].as_f64().unwrap() <= c["tolerance"].as_f64().unwrap(),
+            "{c}"
+        );
+    }
+    let claims = json["claims"].as_array().unwrap();
+    assert_eq!(claims.len(), 3);
+    assert!(
+        claims.iter().all(|c| c["verdict"] == "agrees"),
+        "{claims:?}"
+    );
+
+    let build = scratch("course-pendulum");
+    let site = build.join("site");
+    let built = mechbook(&["build", "tests/course", "--out", site.to_str().unwrap()]);
+    assert_eq!(built.status.code(), Some(0), "{}", crate::stderr(&built));
+    let page = std::fs::read_to_string(site.join("physical-pendulum.html")).unwrap();
+    assert!(
+        page.contains("<mi>ϕ</mi></mrow><mi>˙</mi>"),
+        "no φ̇ on the page"
+    );
+    assert!(
+        page.contains("<mi>ϕ</mi></mrow><mi>¨</mi>"),
+        "no φ̈ on the page"
+    );
+    assert_eq!(page.matches("<summary>numeric check</summary>").count(), 7);
+    let _ = std::fs::remove_dir_all(build);
+}
+
+/// A step that cannot be derived (a linearisation about a state that is not at rest) stops its
+/// scene with one message at the step's own line, naming what is left over.
+#[test]
+fn a_step_that_cannot_be_derived_is_reported_at_its_line() {
+    let out = mechbook(&["check", "tests/fixtures/step-not-at-rest.toml"]);
+    let err = crate::stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "tests/fixtures/step-not-at-rest.toml:26:1: scene `bead` could not be derived: step \
+             `small`: the state given by `about` is not at rest: the equation of `x` leaves k \
+             there, not 0; give an equilibrium"
+        ),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}

@@ -75,51 +75,9 @@ impl Validator<'_> {
         field: &str,
         names: &BTreeSet<String>,
     ) -> Result<Claim, SceneError> {
-        let eq = c.eq.get_ref();
-        // Digits in dot-separated groups, then at most one letter: 31, 22a, 5.1, 5.1a, 3.2.4.
-        let digits = eq.trim_end_matches(|ch: char| ch.is_ascii_lowercase());
-        if digits.is_empty()
-            || eq.len() > 16
-            || !digits
-                .split('.')
-                .all(|g| !g.is_empty() && g.chars().all(|ch| ch.is_ascii_digit()))
-            || eq.len() - digits.len() > 1
-        {
-            return Err(self.err(content_start(&c.eq), &format!("{field}.eq"), "an equation number is digits, in groups separated by dots, with at most one letter after them, as \"31\", \"22a\" or \"5.1a\""));
-        }
-        let role = match c.role.as_ref().map(|r| r.get_ref().as_str()) {
-            None | Some("notes") => ClaimRole::Notes,
-            Some("mistake") => ClaimRole::Mistake,
-            Some(other) => {
-                return Err(self.err(
-                    content_start(c.role.as_ref().expect("present")),
-                    &format!("{field}.role"),
-                    format!("unknown role `{other}`{}; expected `notes` (the notes' statement, the default) or `mistake` (a common mistake for students to spot)", crate::base::suggest::did_you_mean(other, ["notes", "mistake"])),
-                ));
-            }
-        };
-        let expect = c
-            .expect
-            .as_ref()
-            .map(|e| match e.get_ref().as_str() {
-                "agrees" => Ok(Verdict::Agrees),
-                "disagrees" => Ok(Verdict::Disagrees),
-                "not-checkable" => Ok(Verdict::NotCheckable),
-                "undecided" => Ok(Verdict::Undecided),
-                other => Err(self.err(
-                    content_start(e),
-                    &format!("{field}.expect"),
-                    format!(
-                        "unknown verdict `{other}`{}; the verdicts are agrees, disagrees, \
-                         not-checkable and undecided",
-                        crate::base::suggest::did_you_mean(
-                            other,
-                            ["agrees", "disagrees", "not-checkable", "undecided"]
-                        )
-                    ),
-                )),
-            })
-            .transpose()?;
+        let eq = self.equation_number(&c.eq, field)?;
+        let role = self.role(c.role.as_ref(), field)?;
+        let expect = self.verdict(c.expect.as_ref(), field)?;
         let quantity = c
             .quantity
             .as_ref()
@@ -149,7 +107,7 @@ impl Validator<'_> {
             }
         };
         Ok(Claim {
-            eq: eq.clone(),
+            eq,
             statement: c.statement.get_ref().clone(),
             quantity,
             value,
@@ -158,6 +116,64 @@ impl Validator<'_> {
             role,
             line: self.loc.line_col(offset).0,
         })
+    }
+
+    /// A claim's or a step's `eq`: the notes' equation number.
+    pub(super) fn equation_number(&self, eq: &Text, field: &str) -> Result<String, SceneError> {
+        let text = eq.get_ref();
+        // Digits in dot-separated groups, then at most one letter: 31, 22a, 5.1, 5.1a, 3.2.4.
+        let digits = text.trim_end_matches(|ch: char| ch.is_ascii_lowercase());
+        if digits.is_empty()
+            || text.len() > 16
+            || !digits
+                .split('.')
+                .all(|g| !g.is_empty() && g.chars().all(|ch| ch.is_ascii_digit()))
+            || text.len() - digits.len() > 1
+        {
+            return Err(self.err(content_start(eq), &format!("{field}.eq"), "an equation number is digits, in groups separated by dots, with at most one letter after them, as \"31\", \"22a\" or \"5.1a\""));
+        }
+        Ok(text.clone())
+    }
+
+    /// A claim's or a step's `role`: the notes' own statement (the default) or a mistake.
+    pub(super) fn role(&self, role: Option<&Text>, field: &str) -> Result<ClaimRole, SceneError> {
+        match role.map(|r| r.get_ref().as_str()) {
+            None | Some("notes") => Ok(ClaimRole::Notes),
+            Some("mistake") => Ok(ClaimRole::Mistake),
+            Some(other) => Err(self.err(
+                content_start(role.expect("present")),
+                &format!("{field}.role"),
+                format!("unknown role `{other}`{}; expected `notes` (the notes' statement, the default) or `mistake` (a common mistake for students to spot)", crate::base::suggest::did_you_mean(other, ["notes", "mistake"])),
+            )),
+        }
+    }
+
+    /// A claim's or a step's recorded `expect` verdict.
+    pub(super) fn verdict(
+        &self,
+        expect: Option<&Text>,
+        field: &str,
+    ) -> Result<Option<Verdict>, SceneError> {
+        expect
+            .map(|e| match e.get_ref().as_str() {
+                "agrees" => Ok(Verdict::Agrees),
+                "disagrees" => Ok(Verdict::Disagrees),
+                "not-checkable" => Ok(Verdict::NotCheckable),
+                "undecided" => Ok(Verdict::Undecided),
+                other => Err(self.err(
+                    content_start(e),
+                    &format!("{field}.expect"),
+                    format!(
+                        "unknown verdict `{other}`{}; the verdicts are agrees, disagrees, \
+                         not-checkable and undecided",
+                        crate::base::suggest::did_you_mean(
+                            other,
+                            ["agrees", "disagrees", "not-checkable", "undecided"]
+                        )
+                    ),
+                )),
+            })
+            .transpose()
     }
 
     pub(super) fn claim_expr(

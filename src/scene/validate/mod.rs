@@ -5,6 +5,7 @@ mod bodies;
 mod claims;
 mod plots;
 mod problem;
+mod steps;
 mod symbols;
 mod text;
 
@@ -115,6 +116,10 @@ impl Validator<'_> {
         if axis.is_some() {
             claim_names.insert("axis".into());
         }
+        let coordinates = self.coordinates(&raw, &claim_names)?;
+        let steps = self.steps(&raw, &claim_names, &coordinates)?;
+        // A claim may name a step's result.
+        claim_names.extend(steps.iter().map(|s| s.name.clone()));
         let claims = self.claims(&raw, &claim_names)?;
         let wants = self.wants(&raw)?;
         // Values before plots: a free-body plot's inertia and omega may be expressions.
@@ -161,6 +166,8 @@ impl Validator<'_> {
             axis,
             bodies,
             claims,
+            coordinates,
+            steps,
             wants,
             plots,
             expect_lines,
@@ -333,11 +340,11 @@ impl Validator<'_> {
             };
             return Err(self.err(raw.plots[k].span().start, &format!("plot[{k}]"), message));
         }
-        if wants.is_empty() && claims.is_empty() && plots.is_empty() {
+        if wants.is_empty() && claims.is_empty() && plots.is_empty() && raw.steps.is_empty() {
             return Err(self.err(
                 raw.outputs_span(),
                 "outputs.want",
-                "the scene asks for nothing: list at least one output or claim",
+                "the scene asks for nothing: list at least one output, claim or step",
             ));
         }
         for w in wants {
