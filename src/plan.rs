@@ -76,8 +76,16 @@ impl Plan {
                 crate::scene::Operation::Be(e) => vec![e],
                 crate::scene::Operation::Differentiate { of, .. } => vec![of],
                 crate::scene::Operation::Linearise { about, .. } => about.values().collect(),
+                crate::scene::Operation::Substitute { of, set } => {
+                    std::iter::once(of).chain(set.values()).collect()
+                }
                 crate::scene::Operation::Lagrange { .. }
-                | crate::scene::Operation::Frequency { .. } => vec![],
+                | crate::scene::Operation::Frequency { .. }
+                | crate::scene::Operation::Solve { .. }
+                | crate::scene::Operation::Momentum { .. }
+                | crate::scene::Operation::Energy { .. }
+                | crate::scene::Operation::Equilibria { .. }
+                | crate::scene::Operation::Stability { .. } => vec![],
             };
             for e in exprs.into_iter().chain(s.gives.iter()) {
                 for name in referenced_quantities(e) {

@@ -262,7 +262,9 @@ fn normal_form(e: &Expr) -> Result<Expr, EngineError> {
 }
 
 /// A rational function in the engine's form; an expression with a fractional power is not one.
-fn rational_function(e: &Expr) -> Result<RationalPolynomial<IntegerRing, u16>, EngineError> {
+pub(super) fn rational_function(
+    e: &Expr,
+) -> Result<RationalPolynomial<IntegerRing, u16>, EngineError> {
     if trig::has_fractional_power(e) {
         return Err(EngineError::NotRational { expr: e.to_text() });
     }
@@ -276,6 +278,19 @@ pub fn fraction(e: &Expr) -> Result<(Expr, Expr), EngineError> {
         from_atom(&rat.numerator.to_expression().expand())?,
         from_atom(&rat.denominator.to_expression().expand())?,
     ))
+}
+
+/// The distinct irreducible factors of a rational function's numerator over the rationals,
+/// and its denominator: where it vanishes, and where it has poles.
+pub fn numerator_factors(e: &Expr) -> Result<(Vec<Expr>, Expr), EngineError> {
+    let rat = rational_function(e)?;
+    let factors = rat
+        .numerator
+        .factor()
+        .into_iter()
+        .map(|(f, _)| from_atom(&f.to_expression()))
+        .collect::<Result<_, _>>()?;
+    Ok((factors, from_atom(&rat.denominator.to_expression())?))
 }
 
 /// A rational function as a product of irreducible factors over the rationals, numerator over
@@ -372,7 +387,7 @@ fn key_exponent(key: &Atom, var: &str) -> Result<u32, EngineError> {
 }
 
 /// (power of `var`, coefficient) pairs of an expanded polynomial in `var`.
-fn coefficients(e: &Expr, var: &str) -> Result<Vec<(u32, Expr)>, EngineError> {
+pub(super) fn coefficients(e: &Expr, var: &str) -> Result<Vec<(u32, Expr)>, EngineError> {
     let atom = expand(e)?;
     let x = var_atom(var);
     let mut out = Vec::new();

@@ -298,6 +298,9 @@ impl Expr {
                     "sin" => x.sin(),
                     "cos" => x.cos(),
                     "sqrt" => x.sqrt(),
+                    // Only an equilibrium's angle holds these (see cas::zeros).
+                    "acos" => x.acos(),
+                    "asin" => x.asin(),
                     _ => return Err(EvalError::NotScalarFunction(name.clone())),
                 }
             }

@@ -6,18 +6,21 @@
 //! lock, held while the worker lives, makes a second `mechbook` process wait with a message
 //! instead of aborting. Another engine could replace `engine.rs` without touching the derivations.
 
+mod angles;
 mod engine;
 mod expr;
 mod factor;
 mod formula;
 mod formula_print;
 mod parse;
+mod positive;
 mod print;
 mod radical;
 mod rational;
 mod size;
 mod trig;
 
+pub use angles::{Zero, Zeros};
 pub use engine::EngineError;
 pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
 pub use formula::{Accent, Formula, Name, Op};
@@ -330,6 +333,12 @@ pub fn is_zero_all(exprs: Vec<Expr>) -> Result<Vec<bool>, CasError> {
     run(move || exprs.iter().map(engine::is_zero).collect())
 }
 
+/// As [`is_zero_all`], with every symbol taken to be positive, so that √(g²) = g and
+/// √(X/(4 I1²)) = √X/(2 I1): a scene's symbols are masses, lengths, rates.
+pub fn is_zero_over_positive(exprs: Vec<Expr>) -> Result<Vec<bool>, CasError> {
+    run(move || exprs.iter().map(positive::is_zero).collect())
+}
+
 /// The expanded numerator and denominator of each rational function.
 pub fn fraction_all(exprs: Vec<Expr>) -> Result<Vec<(Expr, Expr)>, CasError> {
     run(move || exprs.iter().map(engine::fraction).collect())
@@ -344,6 +353,13 @@ pub fn factor_all(exprs: Vec<Expr>) -> Result<Vec<Expr>, CasError> {
 pub fn roots(poly: &Expr, var: &str) -> Result<Roots, CasError> {
     let (poly, var) = (poly.clone(), var.to_string());
     run(move || engine::roots(&poly, &var))
+}
+
+/// Where an expression in the coordinate `q` vanishes: its roots, or for an expression in sin q
+/// and cos q its angles with their cosines and sines.
+pub fn zeros(e: &Expr, q: &str) -> Result<Zeros, CasError> {
+    let (e, q) = (e.clone(), q.to_string());
+    run(move || angles::zeros(&e, &q))
 }
 
 /// The entries divided by their common factor (with a deterministic sign): a direction in its

@@ -521,6 +521,8 @@ impl Style for Latex<'_> {
         }
         if n == "sin" || n == "cos" {
             out.push_str(&format!("\\{n}\\left("));
+        } else if n == "acos" || n == "asin" {
+            out.push_str(&format!("\\arc{}\\left(", &n[1..]));
         } else {
             out.push_str(&format!("\\operatorname{{{n}}}\\left("));
         }

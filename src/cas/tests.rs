@@ -233,3 +233,77 @@ fn a_coordinates_rates_survive_the_engine_and_print_with_dots() {
     // A call is never primed: `f'(x)` is not a name.
     assert!(parse("sin'(x)").is_err());
 }
+
+/// The zeros of an expression in one angle: each found angle makes it vanish, its cosine and
+/// sine are the angle's, and a scan of one turn finds no other sign change.
+#[test]
+fn angle_zeros_are_zeros_with_their_cosines_and_sines() {
+    let vars = [("g", 9.81), ("R", 0.5), ("w", 6.0)];
+    for text in [
+        "sin(q)*(g - R*w^2*cos(q))",
+        "2*sin(q)*cos(q) - sin(q)",
+        "cos(q)^2 - 1/4",
+        "sin(q) - 1/2",
+    ] {
+        let e = p(text);
+        let z = zeros(&e, "q").unwrap();
+        assert!(z.unsolved.is_empty(), "{text}: {:?}", z.unsolved);
+        let value = |x: f64| {
+            let mut v = vars.to_vec();
+            v.push(("q", x));
+            at(&e, &v)
+        };
+        let mut angles = Vec::new();
+        for zero in &z.zeros {
+            let x = at(&zero.value, &vars);
+            assert!(value(x).abs() < 1e-12, "{text} at {}", zero.value.to_text());
+            let (c, s) = zero.trig.as_ref().unwrap();
+            assert!((at(c, &vars) - x.cos()).abs() < 1e-12, "{text}: cos");
+            assert!((at(s, &vars) - x.sin()).abs() < 1e-12, "{text}: sin");
+            angles.push(x);
+        }
+        // Sign changes over one turn, away from the zeros found: none left over.
+        let n = 7200;
+        let mut changes = 0;
+        for i in 0..n {
+            let a =
+                -std::f64::consts::PI + 2.0 * std::f64::consts::PI * (i as f64 + 0.3) / n as f64;
+            let b = a + 2.0 * std::f64::consts::PI / n as f64;
+            if value(a) * value(b) < 0.0 {
+                changes += 1;
+            }
+        }
+        assert_eq!(changes, angles.len(), "{text}: {angles:?}");
+    }
+    // The sleeping top's effective potential, written regular at 0: θ = π is a pole, not a
+    // zero, and is left out; 0 and the pair where (1 + cos θ)² = a²/b remain.
+    let e = p("a^2*sin(q)/(1 + cos(q))^2 - b*sin(q)");
+    let z = zeros(&e, "q").unwrap();
+    let vars = [("a", 1.0), ("b", 0.5)];
+    // The other root of the quadratic, cos θ = −1 − √2, is no angle: NaN at these values.
+    let mut found: Vec<f64> = z
+        .zeros
+        .iter()
+        .map(|r| at(&r.value, &vars))
+        .filter(|x| x.is_finite())
+        .collect();
+    found.sort_by(f64::total_cmp);
+    let pair = (2f64.sqrt() - 1.0).acos();
+    let want = [-pair, 0.0, pair];
+    assert_eq!(found.len(), 3, "{found:?}");
+    for (f, w) in found.iter().zip(want) {
+        assert!((f - w).abs() < 1e-12, "{found:?}");
+    }
+    // q outside sin and cos as well: no closed form, said so.
+    let z = zeros(&p("sin(q) - q/2"), "q").unwrap();
+    assert!(z.zeros.is_empty() && z.unsolved.len() == 1);
+    // A polynomial coordinate: its roots.
+    let z = zeros(&p("x^2 - 4*a^2"), "x").unwrap();
+    let mut roots: Vec<f64> = z
+        .zeros
+        .iter()
+        .map(|r| at(&r.value, &[("a", 1.5)]))
+        .collect();
+    roots.sort_by(f64::total_cmp);
+    assert_eq!(roots, vec![-3.0, 3.0]);
+}

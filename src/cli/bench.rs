@@ -41,6 +41,10 @@ pub struct BenchArgs {
     /// derived once, then each substituted and cross-checked (a few seconds at 1000).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=10_000))]
     pub variants_only: Option<u64>,
+    /// Measure only the author's steps of the scenes in this folder (such as
+    /// tests/course/dynamics): each scene derived, then each step checked on its numeric route.
+    #[arg(long)]
+    pub steps_only: Option<PathBuf>,
 }
 
 /// The box problem of the variant benchmark; `{count}` is replaced by the number of variants.
@@ -119,6 +123,63 @@ pub fn variants_bench(count: usize) -> Result<String> {
     ))
 }
 
+/// Each scene with `[[step]]`s in `folder`: the time to derive it (its bodies and steps, in
+/// this process), and then for each step its numeric route's time, evaluations and error.
+pub fn steps_bench(folder: &Path) -> Result<String> {
+    let files = crate::scene::find_scenes(&[folder.to_path_buf()])?;
+    let mut md = String::from(
+        "\n## Author's steps\n\n| scene | step | operation | numeric route: error (tolerance) | \
+         evaluations | ms |\n|---|---|---|---|---|---|\n",
+    );
+    let mut totals = (0.0, 0.0, 0u64);
+    for file in files {
+        let scene = crate::scene::Scene::from_file(&file)?;
+        if scene.steps.is_empty() {
+            continue;
+        }
+        let plan = crate::plan::Plan::for_scene(&scene);
+        let start = Instant::now();
+        let symbolic = crate::pipeline::symbolic_stage(&scene, &plan)?;
+        let derive = start.elapsed().as_secs_f64();
+        let _ = writeln!(
+            md,
+            "| {} | (derived, with its claims) | | | | {:.1} |",
+            scene.id,
+            derive * 1e3
+        );
+        totals.0 += derive;
+        for (i, step) in scene.steps.iter().enumerate() {
+            let start = Instant::now();
+            let check = crate::verify::steps::check_step(&scene, &symbolic.derivation, i);
+            let seconds = start.elapsed().as_secs_f64();
+            totals.1 += seconds;
+            totals.2 += check.evaluations;
+            let result = match &check.problem {
+                Some(p) => format!("failed: {p}"),
+                None => format!("{} ({})", sci(check.error), sci(check.tolerance)),
+            };
+            let _ = writeln!(
+                md,
+                "| | {} | {} | {result} | {} | {:.1} |",
+                step.name,
+                step.op.name(),
+                check.evaluations,
+                seconds * 1e3
+            );
+        }
+    }
+    let _ = writeln!(
+        md,
+        "\nIn all: derived in {:.1} ms, checked in {:.1} ms ({} evaluations); peak memory of this \
+         process {}.",
+        totals.0 * 1e3,
+        totals.1 * 1e3,
+        totals.2,
+        super::peak_memory_mib().map_or("—".into(), |m| format!("{m:.0} MiB"))
+    );
+    Ok(md)
+}
+
 /// Measures, prints the report, and with `--out` writes it and its figures.
 pub fn run(args: BenchArgs) -> Result<ExitCode> {
     let BenchArgs {
@@ -126,9 +187,14 @@ pub fn run(args: BenchArgs) -> Result<ExitCode> {
         lectures,
         repeats,
         variants_only,
+        steps_only,
     } = args;
     if let Some(n) = variants_only {
         std::io::stdout().write_all(variants_bench(n as usize)?.as_bytes())?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    if let Some(folder) = steps_only {
+        std::io::stdout().write_all(steps_bench(&folder)?.as_bytes())?;
         return Ok(ExitCode::SUCCESS);
     }
     if let Some(out) = &out {

@@ -11,6 +11,7 @@ pub mod euler;
 pub mod free_top;
 mod inertia;
 mod kinematics;
+pub mod lagrangian;
 pub mod poinsot;
 mod principal;
 pub mod sign;

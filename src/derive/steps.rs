@@ -1,16 +1,17 @@
 //! The author's own derivation: each `[[step]]` names the exact result of one operation
-//! (`be`, `differentiate`, `lagrange`) on the scene's names and the steps before it. The
-//! numeric check of each step is in `verify/steps.rs`.
-//!
-//! A coordinate q is a function of the time t; its rates are the names `q'` and `q''`, so an
-//! expression in them is an ordinary expression and the time derivative is the chain rule
-//! d/dt f = ∂f/∂t + Σ_q (∂f/∂q · q' + ∂f/∂q' · q'').
+//! (`be`, `differentiate`, `lagrange`, ...) on the scene's names and the steps before it. The
+//! mechanics is in `lagrangian.rs`; the numeric check of each step in `verify/steps.rs`.
 
 use super::algebra::{Env, Value, evaluate};
+use super::lagrangian::{
+    energy, equilibria, euler_lagrange, frequency, linearise, momentum, normal_modes, stability,
+    time_derivative,
+};
+use super::sign::{Sign, signs_over_positive};
 use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr, Formula};
 use crate::model::prose::Prose;
-use crate::scene::{AuthorStep, Operation, Scene};
+use crate::scene::{AuthorStep, Operation, Scene, mode_name};
 use std::collections::BTreeMap;
 
 /// What a step found: an expression, or equations of motion (each coordinate's residual, which
@@ -18,7 +19,75 @@ use std::collections::BTreeMap;
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum StepResult {
     Expr(Expr),
+    /// A generalised momentum or the energy function, and whether the motion conserves it.
+    Conserved {
+        value: Expr,
+        conserved: bool,
+    },
     Equations(Vec<(String, Expr)>),
+    /// The normal-mode angular frequencies of n ≥ 2 coordinates, slowest first at the scene's
+    /// values.
+    Modes(Vec<Expr>),
+    /// The states of rest of one coordinate.
+    Equilibria {
+        coordinate: String,
+        zeros: Vec<cas::Zero>,
+    },
+    /// About each equilibrium, the squared frequency of small oscillations and its sign.
+    Stability {
+        coordinate: String,
+        cases: Vec<Stability>,
+    },
+}
+
+/// One equilibrium's stability: Ω² = k/m there, stable where it is positive.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Stability {
+    pub at: cas::Zero,
+    /// None where its exact form would expand beyond the engine's budget.
+    pub omega_squared: Option<Expr>,
+    pub verdict: Stable,
+}
+
+/// Whether an equilibrium is stable, for positive values of every symbol.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Stable {
+    Always,
+    Never,
+    /// Where Ω² > 0: the condition is the page's.
+    Where,
+    /// Ω² not derived (beyond the engine's budget): its value at the scene's values is the
+    /// numeric check's.
+    Unknown,
+}
+
+impl StepResult {
+    /// The one expression a later step may use by this step's name.
+    pub fn scalar(&self) -> Option<&Expr> {
+        match self {
+            StepResult::Expr(e) | StepResult::Conserved { value: e, .. } => Some(e),
+            StepResult::Equations(_)
+            | StepResult::Modes(_)
+            | StepResult::Equilibria { .. }
+            | StepResult::Stability { .. } => None,
+        }
+    }
+
+    /// The names later steps and claims use: the step's own name for an expression, and
+    /// `Omega_1`, `Omega_2`, ... for the modes of a step `Omega`.
+    pub fn values(&self, name: &str) -> Vec<(String, Expr)> {
+        match self {
+            StepResult::Modes(modes) => modes
+                .iter()
+                .enumerate()
+                .map(|(k, w)| (mode_name(name, k), w.clone()))
+                .collect(),
+            _ => self
+                .scalar()
+                .map(|e| vec![(name.to_string(), e.clone())])
+                .unwrap_or_default(),
+        }
+    }
 }
 
 /// Why a step could not be derived, at its line.
@@ -61,8 +130,8 @@ fn env(scene: &Scene, d: &Derivation) -> Env {
         env.insert(name.clone(), v.clone());
     }
     for (name, r) in &d.named {
-        if let StepResult::Expr(e) = r {
-            env.insert(name.clone(), Value::Scalar(e.clone()));
+        for (name, e) in r.values(name) {
+            env.insert(name, Value::Scalar(e));
         }
     }
     env
@@ -91,39 +160,70 @@ pub fn expand_names(
     }
 }
 
-/// d/dt of `f` through the coordinates: ∂f/∂t + Σ_q (∂f/∂q · q' + ∂f/∂q' · q''). A second
-/// rate in `f` would need a third, which the language does not have.
-pub fn time_derivative(
-    f: &Expr,
-    coordinates: &BTreeMap<String, String>,
-) -> Result<Expr, DeriveError> {
-    let mut terms = vec![f.diff("t")?];
-    for q in coordinates.keys() {
-        let (rate, accel) = (format!("{q}'"), format!("{q}''"));
-        if f.symbols().contains(&accel) {
-            return Err(DeriveError::NotDerivable(format!(
-                "the time derivative of an expression in `{accel}` needs a third derivative"
-            )));
-        }
-        terms.push(Expr::mul(vec![f.diff(q)?, Expr::sym(&rate)]));
-        terms.push(Expr::mul(vec![f.diff(&rate)?, Expr::sym(&accel)]));
+/// `of` with each name of `set` replaced by its expression (names of earlier steps put in
+/// first), unsimplified.
+pub fn substituted(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    of: &Expr,
+    set: &BTreeMap<String, Expr>,
+) -> Result<Expr, StepError> {
+    let f = expand_names(scene, d, step, of)?;
+    let mut values = BTreeMap::new();
+    for (name, e) in set {
+        values.insert(name.clone(), expand_names(scene, d, step, e)?);
     }
-    Ok(Expr::add(terms))
+    Ok(f.substitute(&|s| values.get(s).cloned()))
 }
 
-/// The Euler–Lagrange residual of each coordinate: d/dt(∂L/∂q') − ∂L/∂q, unsimplified.
-pub fn euler_lagrange(
-    lagrangian: &Expr,
-    coordinates: &BTreeMap<String, String>,
-) -> Result<Vec<(String, Expr)>, DeriveError> {
-    coordinates
-        .keys()
-        .map(|q| {
-            let momentum = lagrangian.diff(&format!("{q}'"))?;
-            let rate = time_derivative(&momentum, coordinates)?;
-            Ok((q.clone(), Expr::minus(rate, lagrangian.diff(q)?)))
-        })
-        .collect()
+/// The one equation R = 0 solved for `unknown`, in which it must be linear: −R(0)/(∂R/∂u).
+fn solve_linear(eqs: &[(String, Expr)], unknown: &str) -> Result<Expr, DeriveError> {
+    let [(_, r)] = eqs else {
+        return Err(DeriveError::NotDerivable(format!(
+            "`solve` takes one equation; this step names {}",
+            eqs.len()
+        )));
+    };
+    let slope = r.diff(unknown)?;
+    if !cas::simplify(&slope.diff(unknown)?)?.is_zero() {
+        return Err(DeriveError::NotDerivable(format!(
+            "`{unknown}` enters the equation non-linearly: `solve` takes equations linear in \
+             their unknown for now"
+        )));
+    }
+    let slope = cas::simplify(&slope)?;
+    if slope.is_zero() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the equation does not contain `{unknown}`"
+        )));
+    }
+    let rest = r.substitute(&|s| (s == unknown).then(|| Expr::int(0)));
+    Ok(cas::simplify(&Expr::negate(Expr::over(rest, slope)))?)
+}
+
+/// A momentum or energy, conserved when the force on it (∂L/∂q, or ∂L/∂t) is identically 0.
+fn conserved(value: Expr, force: Expr) -> Result<StepResult, DeriveError> {
+    let mut both = cas::simplify_all(vec![value, force])?.into_iter();
+    let (value, force) = (both.next(), both.next());
+    let (Some(value), Some(force)) = (value, force) else {
+        return Err(DeriveError::Inconsistent(
+            "two expressions simplified, not two back".into(),
+        ));
+    };
+    Ok(StepResult::Conserved {
+        value,
+        conserved: force.is_zero(),
+    })
+}
+
+/// The expression a validated earlier step holds.
+fn scalar<'a>(d: &'a Derivation, of: &str) -> Result<&'a Expr, DeriveError> {
+    d.named.get(of).and_then(StepResult::scalar).ok_or_else(|| {
+        DeriveError::Inconsistent(format!(
+            "step `{of}` was validated as an earlier scalar step"
+        ))
+    })
 }
 
 /// The equations a validated earlier step holds.
@@ -134,75 +234,6 @@ fn equations<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)], De
             "step `{of}` was validated as earlier equations of motion"
         ))),
     }
-}
-
-/// Each coordinate's value at the state of rest `about` (0 where not named); rates are 0.
-fn rest_value(
-    q: &str,
-    about: &BTreeMap<String, Expr>,
-    coordinates: &BTreeMap<String, String>,
-) -> Option<Expr> {
-    if coordinates.contains_key(q) {
-        return Some(about.get(q).cloned().unwrap_or_else(|| Expr::int(0)));
-    }
-    let base = q.trim_end_matches('\'');
-    (base != q && coordinates.contains_key(base)).then(|| Expr::int(0))
-}
-
-/// Each equation to first order about the state of rest: R(rest) (which must vanish) and
-/// Σ_q ∂R/∂q·(q − q₀) + ∂R/∂q'·q' + ∂R/∂q''·q'', the derivatives taken at rest. Unsimplified.
-#[allow(clippy::type_complexity)]
-pub fn linearise(
-    eqs: &[(String, Expr)],
-    about: &BTreeMap<String, Expr>,
-    coordinates: &BTreeMap<String, String>,
-) -> Result<(Vec<Expr>, Vec<(String, Expr)>), DeriveError> {
-    let at_rest = |e: &Expr| e.substitute(&|s| rest_value(s, about, coordinates));
-    let mut rest = Vec::new();
-    let mut linear = Vec::new();
-    for (q, r) in eqs {
-        rest.push(at_rest(r));
-        let mut terms = Vec::new();
-        for c in coordinates.keys() {
-            let q0 = about.get(c).cloned().unwrap_or_else(|| Expr::int(0));
-            terms.push(Expr::mul(vec![
-                at_rest(&r.diff(c)?),
-                Expr::minus(Expr::sym(c), q0),
-            ]));
-            for rate in [format!("{c}'"), format!("{c}''")] {
-                terms.push(Expr::mul(vec![at_rest(&r.diff(&rate)?), Expr::sym(&rate)]));
-            }
-        }
-        linear.push((q.clone(), Expr::add(terms)));
-    }
-    Ok((rest, linear))
-}
-
-/// The angular frequency Ω = √(k/m) of one linear equation m q'' + k (q − q₀) = 0.
-fn frequency(eqs: &[(String, Expr)]) -> Result<Expr, DeriveError> {
-    let [(q, r)] = eqs else {
-        return Err(DeriveError::NotDerivable(format!(
-            "`frequency` of {} coordinates (normal modes) is not supported yet: one coordinate",
-            eqs.len()
-        )));
-    };
-    let m = cas::simplify(&r.diff(&format!("{q}''"))?)?;
-    let c = cas::simplify(&r.diff(&format!("{q}'"))?)?;
-    let k = cas::simplify(&r.diff(q)?)?;
-    if !c.is_zero() {
-        return Err(DeriveError::NotDerivable(format!(
-            "the equation has a term in `{q}'` ({}): a damped or driven motion has no single \
-             frequency",
-            c.to_text()
-        )));
-    }
-    if m.is_zero() {
-        return Err(DeriveError::NotDerivable(format!(
-            "the equation has no term in `{q}''`: it is not an equation of motion"
-        )));
-    }
-    let omega = Expr::pow(Expr::over(k, m), Expr::rat(1, 2));
-    Ok(cas::simplify(&omega)?)
 }
 
 /// Derives every step in order, each simplified by the engine, and writes its page steps.
@@ -230,11 +261,7 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
                 StepResult::Expr(cas::simplify(&raw)?)
             }
             Operation::Lagrange { of } => {
-                let Some(StepResult::Expr(l)) = d.named.get(of) else {
-                    return Err(DeriveError::Inconsistent(format!(
-                        "step `{of}` was validated as an earlier scalar step"
-                    )));
-                };
+                let l = scalar(d, of)?;
                 let residuals = euler_lagrange(l, &scene.coordinates).map_err(located)?;
                 let exprs: Vec<Expr> = residuals.iter().map(|(_, e)| e.clone()).collect();
                 let simplified = cas::simplify_all(exprs)?;
@@ -269,9 +296,65 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
                         .collect(),
                 )
             }
-            Operation::Frequency { of } => {
+            Operation::Frequency { of } => match equations(d, of)? {
+                [_] => StepResult::Expr(frequency(equations(d, of)?).map_err(located)?),
+                eqs => StepResult::Modes(normal_modes(eqs, &scene.values).map_err(located)?),
+            },
+            Operation::Equilibria { of } => {
+                let (coordinate, zeros) = equilibria(equations(d, of)?).map_err(located)?;
+                StepResult::Equilibria { coordinate, zeros }
+            }
+            Operation::Stability { of } => {
+                let Some(StepResult::Equilibria { coordinate, zeros }) = d.named.get(of) else {
+                    return Err(DeriveError::Inconsistent(format!(
+                        "step `{of}` was validated as earlier equilibria"
+                    )));
+                };
+                let motion = scene.steps.iter().find_map(|s| match &s.op {
+                    Operation::Equilibria { of: m } if &s.name == of => Some(m),
+                    _ => None,
+                });
+                let eqs = equations(d, motion.map_or("", String::as_str))?;
+                let squares = stability(eqs, zeros).map_err(located)?;
+                // A sign the rational test cannot decide (a root in Ω²) leaves the condition.
+                let verdicts = squares.iter().map(|w2| match w2 {
+                    None => Stable::Unknown,
+                    Some(w2) => match signs_over_positive(std::slice::from_ref(w2)) {
+                        Ok(s) if s[0] == Sign::Positive => Stable::Always,
+                        Ok(s) if s[0] == Sign::Negative => Stable::Never,
+                        _ => Stable::Where,
+                    },
+                });
+                let cases = zeros
+                    .iter()
+                    .zip(squares.clone())
+                    .zip(verdicts)
+                    .map(|((z, w2), verdict)| Stability {
+                        at: z.clone(),
+                        omega_squared: w2,
+                        verdict,
+                    })
+                    .collect();
+                StepResult::Stability {
+                    coordinate: coordinate.clone(),
+                    cases,
+                }
+            }
+            Operation::Momentum { of, coordinate } => {
+                let (p, force) = momentum(scalar(d, of)?, coordinate).map_err(located)?;
+                conserved(p, force)?
+            }
+            Operation::Energy { of } => {
+                let (e, rate) = energy(scalar(d, of)?, &scene.coordinates).map_err(located)?;
+                conserved(e, rate)?
+            }
+            Operation::Substitute { of, set } => {
+                let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
+                StepResult::Expr(cas::simplify(&raw)?)
+            }
+            Operation::Solve { of, unknown } => {
                 let eqs = equations(d, of)?;
-                StepResult::Expr(frequency(eqs).map_err(located)?)
+                StepResult::Expr(solve_linear(eqs, unknown).map_err(located)?)
             }
         };
         d.steps.extend(page_steps(step, &result));
@@ -295,12 +378,89 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
         Some(eq) => format!("{} (eq {eq})", step.name),
         None => step.name.clone(),
     };
+    let named = |e: &Expr| Formula::equation(Formula::Expr(Expr::sym(&step.name)), e.clone());
     match result {
-        StepResult::Expr(e) => vec![Step::note(
-            &title,
-            Formula::equation(Formula::Expr(Expr::sym(&step.name)), e.clone()),
-            why,
-        )],
+        StepResult::Expr(e) => vec![Step::note(&title, named(e), why)],
+        StepResult::Conserved { value, conserved } => {
+            let of = match &step.op {
+                Operation::Momentum { coordinate, .. } => coordinate.as_str(),
+                _ => "t",
+            };
+            let verdict = if *conserved {
+                format!("conserved: the Lagrangian does not depend on {of} (∂L/∂{of} = 0)")
+            } else {
+                format!("not conserved: ∂L/∂{of} is not 0")
+            };
+            let why = if step.why.is_empty() {
+                Prose::default().text(&verdict)
+            } else {
+                why.text(&format!("; {verdict}"))
+            };
+            vec![Step::note(&title, named(value), why)]
+        }
+        StepResult::Equilibria { coordinate, zeros } => zeros
+            .iter()
+            .enumerate()
+            .map(|(k, z)| {
+                Step::note(
+                    &format!("{title}: equilibrium {}", k + 1),
+                    Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
+                    why.clone(),
+                )
+            })
+            .collect(),
+        StepResult::Stability { coordinate, cases } => {
+            let omega2 = Formula::Expr(Expr::pow(Expr::sym("Omega"), Expr::int(2)));
+            cases
+                .iter()
+                .map(|c| {
+                    let verdict = match c.verdict {
+                        Stable::Always => "stable for all values",
+                        Stable::Never => "unstable for all values",
+                        Stable::Where => "stable where the right-hand side is positive",
+                        Stable::Unknown => {
+                            "its exact Ω² would expand beyond the engine's budget; where this \
+                         state of rest exists at the scene's values, the numeric check gives Ω²"
+                        }
+                    };
+                    let at = Prose::default()
+                        .text(&format!("about {coordinate} = "))
+                        .expr(&c.at.value)
+                        .text(&format!(": {verdict}"));
+                    let why = if step.why.is_empty() {
+                        at
+                    } else {
+                        let mut w = why.clone().text("; ");
+                        w.0.extend(at.0);
+                        w
+                    };
+                    Step::note(
+                        &format!("{title}: stability"),
+                        match &c.omega_squared {
+                            Some(w2) => Formula::equation(omega2.clone(), w2.clone()),
+                            None => Formula::Row(vec![
+                                omega2.clone(),
+                                Formula::Op(crate::cas::Op::Equals),
+                                Formula::Text("?".into()),
+                            ]),
+                        },
+                        why,
+                    )
+                })
+                .collect()
+        }
+        StepResult::Modes(modes) => modes
+            .iter()
+            .enumerate()
+            .map(|(k, w)| {
+                let sub = Expr::sym(&mode_name(&step.name, k));
+                Step::note(
+                    &format!("{title}: normal mode {}", k + 1),
+                    Formula::equation(Formula::Expr(sub), w.clone()),
+                    why.clone(),
+                )
+            })
+            .collect(),
         StepResult::Equations(eqs) => eqs
             .iter()
             .map(|(q, e)| {

@@ -172,19 +172,32 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
             .derivation
             .steps
             .iter()
-            .map(|st| Step {
+            .enumerate()
+            .map(|(i, st)| Step {
                 title: st.title.clone(),
                 statement: st.statement.clone(),
                 why: st.why.clone(),
                 key: st.cite.clone(),
                 citation: st.citation(&s.cite).map(str::to_string),
-                check: st.author.as_ref().and_then(|name| {
-                    r.verification
-                        .steps
-                        .iter()
-                        .find(|c| &c.step == name)
-                        .cloned()
-                }),
+                // An author's step of several lines (equilibria, modes) shows its one check
+                // under its last line.
+                check: st
+                    .author
+                    .as_ref()
+                    .filter(|name| {
+                        r.derivation
+                            .steps
+                            .get(i + 1)
+                            .and_then(|n| n.author.as_ref())
+                            != Some(*name)
+                    })
+                    .and_then(|name| {
+                        r.verification
+                            .steps
+                            .iter()
+                            .find(|c| &c.step == name)
+                            .cloned()
+                    }),
             })
             .collect(),
         quantities: results::quantities(r),

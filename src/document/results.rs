@@ -57,16 +57,17 @@ pub struct PrincipalValues {
 /// The derived quantities, then the expressions of the author's steps (their equations of
 /// motion are steps, not values).
 pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
-    use crate::derive::steps::StepResult;
     let values = &r.scene.values;
-    let named = r.derivation.named.iter().filter_map(|(name, s)| match s {
-        StepResult::Expr(e) => Some((name, Value::Scalar(e.clone()))),
-        StepResult::Equations(_) => None,
+    // Each normal mode under its own name, `Omega_1`, `Omega_2`, as the page states them.
+    let named = r.derivation.named.iter().flat_map(|(name, s)| {
+        s.values(name)
+            .into_iter()
+            .map(|(name, e)| (name, Value::Scalar(e)))
     });
     r.derivation
         .quantities
         .iter()
-        .map(|(name, v)| (name, v.clone()))
+        .map(|(name, v)| (name.clone(), v.clone()))
         .chain(named)
         .map(|(name, v)| Quantity {
             name: name.clone(),

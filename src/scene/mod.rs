@@ -8,16 +8,19 @@ mod course;
 mod error;
 mod load;
 mod raw;
+mod step;
 mod types;
 mod validate;
 pub mod variants;
+mod verdict;
 
 pub use course::{Course, CourseError, LectureTitle};
 pub use error::{Locator, SceneError};
 pub use load::{MAX_DEPTH, MAX_SCENE_BYTES, find_scenes, load_all};
+pub use step::{AuthorStep, Operation, mode_name};
 pub use types::{
-    AuthorStep, Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia, NotesRef,
-    Operation, PlotRequest, Problem, Scene, Shape, Variant, Verdict, lecture_slug,
+    Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia, NotesRef, PlotRequest,
+    Problem, Scene, Shape, Variant, Verdict, lecture_slug,
 };
 pub use validate::{
     CLAIM_FUNCTIONS, MAX_INPUT_DEGREE, MAX_INPUT_TERMS, MAX_NAME, MAX_PLOT_RADIANS, MAX_PLOT_TIME,

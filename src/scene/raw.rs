@@ -35,7 +35,9 @@ pub struct RawScene {
     pub steps: Vec<Spanned<RawStep>>,
     #[serde(default, rename = "plot")]
     pub plots: Vec<Spanned<RawPlot>>,
-    pub outputs: RawOutputs,
+    /// Absent in a scene of steps or claims only.
+    #[serde(default)]
+    pub outputs: Option<RawOutputs>,
     #[serde(default)]
     pub numeric: RawNumeric,
     #[serde(default)]
@@ -52,9 +54,16 @@ pub struct RawScene {
 }
 
 impl RawScene {
-    /// Where `outputs.want` is, for errors about the scene as a whole.
+    /// Where `outputs.want` is (or the file's start), for errors about the scene as a whole.
     pub fn outputs_span(&self) -> usize {
-        self.outputs.want.span().start
+        self.outputs.as_ref().map_or(0, |o| o.want.span().start)
+    }
+
+    /// The outputs the scene lists, none when it has no [outputs].
+    pub fn wanted(&self) -> &[Text] {
+        self.outputs
+            .as_ref()
+            .map_or(&[], |o| o.want.get_ref().as_slice())
     }
 }
 
@@ -159,8 +168,32 @@ pub struct RawStep {
     pub about: BTreeMap<Spanned<String>, Text>,
     #[serde(default)]
     pub frequency: Option<Text>,
-    /// For `lagrange`: the initial state its numeric check integrates from (coordinates and
-    /// their rates, `"phi'" = 0.1`).
+    #[serde(default)]
+    pub substitute: Option<Text>,
+    /// For `substitute`: each name and what replaces it (`"theta'" = "x'/R"`).
+    #[serde(default)]
+    pub set: BTreeMap<Spanned<String>, Text>,
+    /// Solve the named equation of motion for one unknown (`for`).
+    #[serde(default)]
+    pub solve: Option<Text>,
+    #[serde(default, rename = "for")]
+    pub unknown: Option<Text>,
+    /// The generalised momentum of this coordinate, from the Lagrangian named by `of`.
+    #[serde(default)]
+    pub momentum: Option<Text>,
+    #[serde(default)]
+    pub of: Option<Text>,
+    /// The energy function of the named Lagrangian.
+    #[serde(default)]
+    pub energy: Option<Text>,
+    /// The states of rest of the named equation of motion.
+    #[serde(default)]
+    pub equilibria: Option<Text>,
+    /// Whether each of the named equilibria is stable.
+    #[serde(default)]
+    pub stability: Option<Text>,
+    /// For `lagrange`, `momentum` and `energy`: the initial state their numeric check
+    /// integrates from (coordinates and their rates, `"phi'" = 0.1`).
     #[serde(default)]
     pub start: BTreeMap<Spanned<String>, Spanned<f64>>,
     #[serde(default)]

@@ -3,6 +3,8 @@
 use crate::cas::Expr;
 use crate::model::catalogue::Output;
 use crate::model::fidelity::Fidelity;
+use crate::scene::step::AuthorStep;
+pub use crate::scene::verdict::{ClaimRole, Verdict};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 
@@ -354,28 +356,6 @@ pub enum ConeOrigin {
     Centre,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Verdict {
-    Agrees,
-    Disagrees,
-    NotCheckable,
-    /// The symbolic test and the random-point test contradict each other: neither an
-    /// agreement nor an erratum until someone looks.
-    Undecided,
-}
-
-impl Verdict {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Verdict::Agrees => "agrees",
-            Verdict::Disagrees => "disagrees",
-            Verdict::NotCheckable => "not-checkable",
-            Verdict::Undecided => "undecided",
-        }
-    }
-}
-
 #[derive(Debug, Clone)]
 pub struct Claim {
     pub eq: String,
@@ -392,66 +372,6 @@ pub struct Claim {
     pub expect: Option<Verdict>,
     pub role: ClaimRole,
     pub line: usize,
-}
-
-/// A step of the author's derivation: a new name for the result of one operation.
-#[derive(Debug, Clone, PartialEq)]
-pub struct AuthorStep {
-    pub name: String,
-    pub op: Operation,
-    /// The reason printed on the page.
-    pub why: String,
-    /// The notes' equation this step reproduces, if any.
-    pub eq: Option<String>,
-    /// The notes' form of the result: an expression, or for an equation its residual
-    /// (`lhs - rhs`); agrees when it is the same (an equation, up to a non-zero factor).
-    pub gives: Option<Expr>,
-    pub expect: Option<Verdict>,
-    pub role: ClaimRole,
-    /// For `lagrange`: the state its numeric check starts from, by coordinate and rate name.
-    pub start: BTreeMap<String, f64>,
-    pub line: usize,
-}
-
-/// What a step does.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Operation {
-    /// An expression of the scene's names and earlier steps.
-    Be(Expr),
-    /// A partial derivative; by `t`, the total time derivative through the coordinates.
-    Differentiate { of: Expr, by: String },
-    /// The Euler–Lagrange equation of each coordinate, from the named Lagrangian.
-    Lagrange { of: String },
-    /// The named equations of motion to first order about a state at rest (each coordinate's
-    /// value there; 0 when not named).
-    Linearise {
-        of: String,
-        about: BTreeMap<String, Expr>,
-    },
-    /// The angular frequency of small oscillations of the named linear equation.
-    Frequency { of: String },
-}
-
-impl Operation {
-    pub fn name(&self) -> &'static str {
-        match self {
-            Operation::Be(_) => "be",
-            Operation::Differentiate { .. } => "differentiate",
-            Operation::Lagrange { .. } => "lagrange",
-            Operation::Linearise { .. } => "linearise",
-            Operation::Frequency { .. } => "frequency",
-        }
-    }
-}
-
-/// What a claim is: the notes' statement, whose disagreement is an erratum, or a common mistake
-/// written down on purpose for students to spot, whose disagreement is the point.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ClaimRole {
-    #[default]
-    Notes,
-    Mistake,
 }
 
 /// A plot a scene asks for; `figures` draws it from the numbers `numeric` computes.

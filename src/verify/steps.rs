@@ -4,6 +4,12 @@
 //! energy function Σ q'·∂L/∂q' − L, itself found by differences. A step's `gives` is a claim of
 //! the notes, with a verdict.
 
+use super::motion::{
+    Conserved, conserved_check, energy_check, linear_check, modes_check, period_check,
+};
+use super::rest::{equilibria_check, stability_check};
+pub use super::step_check::{CheckError, StepCheck};
+use super::step_check::{H, at, random_point};
 use super::{
     CONFIRMATION_POINTS, ClaimResult, NUMERICALLY_ZERO, SAMPLE_FROM, check_claim, claim_env,
     numerically_zero, unchecked,
@@ -13,96 +19,39 @@ use crate::cas::{self, Expr};
 use crate::derive::Derivation;
 use crate::derive::steps::{StepResult, expand_names};
 use crate::model::prose::Prose;
-use crate::numeric::ode::dormand_prince;
 use crate::scene::{AuthorStep, Claim, Operation, Scene, Verdict};
 use std::collections::BTreeMap;
-
-/// Why a step's numeric route could not run.
-#[derive(Debug, thiserror::Error)]
-pub enum CheckError {
-    #[error(transparent)]
-    Eval(#[from] crate::cas::EvalError),
-    #[error(transparent)]
-    Step(#[from] crate::derive::steps::StepError),
-    #[error(transparent)]
-    Motion(#[from] crate::numeric::ode::OdeError),
-    #[error("the equations cannot be solved for the accelerations here (a singular mass matrix)")]
-    Singular,
-    #[error("the Lagrangian depends on t, so its energy is not conserved: no energy to watch")]
-    TimeDependent,
-    #[error(
-        "the motion started off rest did not cross rest twice in three periods: it does not oscillate there"
-    )]
-    NoOscillation,
-    /// The step or one it names has no result of its kind: a bug, the derivation ran first.
-    #[error("internal inconsistency: the step's result is missing or of another kind")]
-    NotDerived,
-}
-
-/// One step's numeric check: what it compared, how far apart, and what it cost.
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
-pub struct StepCheck {
-    pub step: String,
-    pub line: usize,
-    /// The route, in words: "central differences", "energy along an integrated motion".
-    pub method: String,
-    /// The largest relative difference found, and the most it may be.
-    pub error: f64,
-    pub tolerance: f64,
-    /// Evaluations of the step's expressions (or of the right-hand side).
-    pub evaluations: u64,
-    /// Why the check could not run, if it could not.
-    pub problem: Option<String>,
-}
-
-impl StepCheck {
-    pub fn passed(&self) -> bool {
-        self.problem.is_none() && self.error <= self.tolerance
-    }
-}
 
 /// Central differences with Richardson extrapolation err by O(h⁴) in truncation and about
 /// ε·|f|/h in rounding; with h = 1e-3 both stay far below this, relative to the derivative.
 const DIFFERENCE_AGREEMENT: f64 = 1e-7;
-/// The difference step of [`DIFFERENCE_AGREEMENT`].
-const H: f64 = 1e-3;
-/// The energy function may drift this much, relative to its size, over an integration at
-/// [`MOTION_TOLERANCE`]: Dormand–Prince keeps the local error to the tolerance, so the drift
-/// over a few hundred steps stays near 1e-8; a wrong equation of motion drifts by order one.
-const ENERGY_AGREEMENT: f64 = 1e-6;
-const MOTION_TOLERANCE: f64 = 1e-10;
-/// The integrated motion's length, in the scene's unit of time, and its step cap.
-const MOTION_TIME: f64 = 10.0;
-const MOTION_STEPS: u64 = 200_000;
-/// A coordinate's default start (at rest), when the step gives none.
-const DEFAULT_START: f64 = 0.5;
-
 /// Each step's numeric check, in order.
 pub fn check_steps(scene: &Scene, d: &Derivation) -> Vec<StepCheck> {
-    scene
-        .steps
-        .iter()
-        .enumerate()
-        .map(|(i, step)| {
-            let mut check = StepCheck {
-                step: step.name.clone(),
-                line: step.line,
-                method: String::new(),
-                error: 0.0,
-                tolerance: 0.0,
-                evaluations: 0,
-                problem: None,
-            };
-            let seed = scene.seed.wrapping_add(1000 + i as u64);
-            if let Err(problem) = check_step(scene, d, step, seed, &mut check) {
-                check.problem = Some(problem.to_string());
-            }
-            check
-        })
+    (0..scene.steps.len())
+        .map(|i| check_step(scene, d, i))
         .collect()
 }
 
-fn check_step(
+/// The numeric check of step `i` (each step draws its random points from its own seed).
+pub fn check_step(scene: &Scene, d: &Derivation, i: usize) -> StepCheck {
+    let step = &scene.steps[i];
+    let mut check = StepCheck {
+        step: step.name.clone(),
+        line: step.line,
+        method: String::new(),
+        error: 0.0,
+        tolerance: 0.0,
+        evaluations: 0,
+        problem: None,
+    };
+    let seed = scene.seed.wrapping_add(1000 + i as u64);
+    if let Err(problem) = route(scene, d, step, seed, &mut check) {
+        check.problem = Some(problem.to_string());
+    }
+    check
+}
+
+fn route(
     scene: &Scene,
     d: &Derivation,
     step: &AuthorStep,
@@ -177,10 +126,39 @@ fn check_step(
             }
         }
         (Operation::Lagrange { of }, StepResult::Equations(eqs)) => {
-            let Some(StepResult::Expr(lagrangian)) = d.named.get(of) else {
+            let lagrangian = d.named.get(of).and_then(StepResult::scalar);
+            let lagrangian = lagrangian.ok_or(CheckError::NotDerived)?;
+            energy_check(scene, step, lagrangian, eqs, check)?;
+        }
+        (
+            Operation::Momentum { of, .. } | Operation::Energy { of },
+            StepResult::Conserved { value, conserved },
+        ) => {
+            let lagrangian = d.named.get(of).and_then(StepResult::scalar);
+            let lagrangian = lagrangian.ok_or(CheckError::NotDerived)?;
+            let what = match &step.op {
+                Operation::Momentum { coordinate, .. } => Conserved::Momentum(coordinate),
+                _ => Conserved::Energy,
+            };
+            conserved_check(scene, step, lagrangian, value, *conserved, what, check)?;
+        }
+        (Operation::Equilibria { of }, StepResult::Equilibria { coordinate, zeros }) => {
+            let r = single_equation(d, of, coordinate)?;
+            equilibria_check(scene, r, coordinate, zeros, check)?;
+        }
+        (Operation::Stability { of }, StepResult::Stability { coordinate, cases }) => {
+            let motion = scene.steps.iter().find_map(|s| match &s.op {
+                Operation::Equilibria { of: m } if &s.name == of => Some(m),
+                _ => None,
+            });
+            let r = single_equation(d, motion.ok_or(CheckError::NotDerived)?, coordinate)?;
+            stability_check(scene, r, coordinate, cases, check)?;
+        }
+        (Operation::Frequency { of }, StepResult::Modes(modes)) => {
+            let Some(StepResult::Equations(linear)) = d.named.get(of) else {
                 return Err(CheckError::NotDerived);
             };
-            energy_check(scene, step, lagrangian, eqs, check)?;
+            modes_check(scene, linear, modes, check)?;
         }
         (Operation::Linearise { of, about }, StepResult::Equations(linear)) => {
             let Some(StepResult::Equations(full)) = d.named.get(of) else {
@@ -202,255 +180,75 @@ fn check_step(
             };
             period_check(scene, full, about, omega, check)?;
         }
+        (Operation::Substitute { of, set }, StepResult::Expr(r)) => {
+            let f = expand_names(scene, d, step, of)?;
+            let mut values = BTreeMap::new();
+            for (name, e) in set {
+                values.insert(name.clone(), expand_names(scene, d, step, e)?);
+            }
+            check.method = format!(
+                "the expression as written, each replaced name given its replacement's value, at \
+                 {CONFIRMATION_POINTS} random points"
+            );
+            check.tolerance = NUMERICALLY_ZERO;
+            let mut rng = Rng::new(seed);
+            for _ in 0..CONFIRMATION_POINTS {
+                let exprs: Vec<&Expr> = std::iter::once(&f)
+                    .chain(values.values())
+                    .chain([r])
+                    .collect();
+                let mut point = random_point(&exprs, &mut rng);
+                for (name, e) in &values {
+                    let x = at(e, &point)?;
+                    point.insert(name.clone(), x);
+                }
+                let (a, b) = (at(&f, &point)?, at(r, &point)?);
+                check.evaluations += 2 + values.len() as u64;
+                check.error = check
+                    .error
+                    .max((a - b).abs() / a.abs().max(b.abs()).max(1.0));
+            }
+        }
+        (Operation::Solve { of, unknown }, StepResult::Expr(solution)) => {
+            let Some(StepResult::Equations(eqs)) = d.named.get(of) else {
+                return Err(CheckError::NotDerived);
+            };
+            check.method = format!(
+                "the solution put back into the equation, at {CONFIRMATION_POINTS} random points"
+            );
+            check.tolerance = NUMERICALLY_ZERO;
+            let mut rng = Rng::new(seed);
+            for _ in 0..CONFIRMATION_POINTS {
+                let exprs: Vec<&Expr> = eqs.iter().map(|(_, e)| e).chain([solution]).collect();
+                let mut point = random_point(&exprs, &mut rng);
+                let u = at(solution, &point)?;
+                point.insert(unknown.clone(), 0.0);
+                let scale = eqs
+                    .iter()
+                    .map(|(_, e)| at(e, &point))
+                    .sum::<Result<f64, _>>()?;
+                point.insert(unknown.clone(), u);
+                for (_, e) in eqs {
+                    check.evaluations += 2;
+                    check.error = check.error.max(at(e, &point)?.abs() / scale.abs().max(1.0));
+                }
+            }
+        }
         _ => return Err(CheckError::NotDerived),
     }
     Ok(())
 }
 
-/// Integrates the equations of motion (each residual is linear in the accelerations: solved at
-/// every evaluation) from the step's start at the scene's values, and measures the drift of the
-/// energy function, whose momenta ∂L/∂q' are central differences of L itself.
-pub(super) fn energy_check(
-    scene: &Scene,
-    step: &AuthorStep,
-    lagrangian: &Expr,
-    eqs: &[(String, Expr)],
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    check.method = format!(
-        "the energy Σ q'·∂L/∂q' − L along the motion integrated from the start for t = \
-         {MOTION_TIME} (Dormand–Prince, tolerance {MOTION_TOLERANCE:e})"
-    );
-    check.tolerance = ENERGY_AGREEMENT;
-    if lagrangian.symbols().iter().any(|s| s == "t") {
-        return Err(CheckError::TimeDependent);
+/// The equation of motion of `q` in the named step.
+fn single_equation<'a>(d: &'a Derivation, of: &str, q: &str) -> Result<&'a Expr, CheckError> {
+    match d.named.get(of) {
+        Some(StepResult::Equations(eqs)) => eqs
+            .iter()
+            .find(|(c, _)| c == q)
+            .map(|(_, e)| e)
+            .ok_or(CheckError::NotDerived),
+        _ => Err(CheckError::NotDerived),
     }
-    let coords: Vec<&String> = scene.coordinates.keys().collect();
-    let n = coords.len();
-    let mut params: BTreeMap<String, f64> = scene.values.clone();
-    for (k, v) in &step.start {
-        params.insert(k.clone(), *v);
-    }
-    let start: Vec<f64> = coords
-        .iter()
-        .map(|q| params.get(*q).copied().unwrap_or(DEFAULT_START))
-        .chain(
-            coords
-                .iter()
-                .map(|q| params.get(&format!("{q}'")).copied().unwrap_or(0.0)),
-        )
-        .collect();
-    let state = |y: &[f64], a: &[f64]| state(&params, &coords, y, a);
-    let rhs = |_t: f64, y: &[f64]| motion(eqs, &params, &coords, y);
-    let run = dormand_prince(&rhs, &start, MOTION_TIME, MOTION_TOLERANCE, MOTION_STEPS)?;
-    let energy = |y: &[f64]| -> Result<f64, CheckError> {
-        let zero = vec![0.0; n];
-        let l = |y: &[f64]| at(lagrangian, &state(y, &zero));
-        let mut e = -l(y)?;
-        for k in 0..n {
-            let h = H * y[n + k].abs().max(1.0);
-            let mut up = y.to_vec();
-            let mut down = y.to_vec();
-            up[n + k] += h;
-            down[n + k] -= h;
-            e += y[n + k] * (l(&up)? - l(&down)?) / (2.0 * h);
-        }
-        Ok(e)
-    };
-    let e0 = energy(&start)?;
-    let mut scale = e0.abs();
-    let mut drift: f64 = 0.0;
-    for (_, y) in &run.states {
-        let e = energy(y)?;
-        scale = scale.max(at(lagrangian, &state(y, &vec![0.0; n]))?.abs());
-        drift = drift.max((e - e0).abs());
-    }
-    check.evaluations =
-        run.evaluations * (n as u64 + 1) + run.states.len() as u64 * (2 * n as u64 + 1);
-    check.error = drift / scale.max(f64::MIN_POSITIVE);
-    Ok(())
-}
-
-/// The amplitude at which a linearisation is compared with the full equations.
-const AMPLITUDE: f64 = 1e-3;
-/// At [`AMPLITUDE`] the full and linear equations differ by O(amplitude²), relative O(amplitude):
-/// about 1e-3 times a coefficient ratio; a wrong coefficient differs by order one.
-const LINEAR_AGREEMENT: f64 = 1e-1;
-/// The start's distance from rest for the measured period: its relative error from 2π/Ω is
-/// O(amplitude²) (1/16 of it for a pendulum), far below this.
-const PERIOD_AMPLITUDE: f64 = 1e-2;
-const PERIOD_AGREEMENT: f64 = 1e-3;
-
-/// The full and linear equations at random states near rest, at [`AMPLITUDE`].
-pub(super) fn linear_check(
-    scene: &Scene,
-    full: &[(String, Expr)],
-    linear: &[(String, Expr)],
-    about: &BTreeMap<String, Expr>,
-    seed: u64,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    check.method = format!(
-        "the full equations against the linear ones at {CONFIRMATION_POINTS} random states \
-         {AMPLITUDE:e} from rest (they differ by O(amplitude²))"
-    );
-    check.tolerance = LINEAR_AGREEMENT;
-    let mut rng = Rng::new(seed);
-    for _ in 0..CONFIRMATION_POINTS {
-        let exprs: Vec<&Expr> = full.iter().chain(linear).map(|(_, e)| e).collect();
-        let mut point = random_point(&exprs, &mut rng);
-        for q in scene.coordinates.keys() {
-            let q0 = match about.get(q) {
-                Some(e) => at(e, &point)?,
-                None => 0.0,
-            };
-            let mut step = || AMPLITUDE * (2.0 * rng.uniform() - 1.0);
-            point.insert(q.clone(), q0 + step());
-            point.insert(format!("{q}'"), step());
-            point.insert(format!("{q}''"), step());
-        }
-        for ((_, f), (_, l)) in full.iter().zip(linear) {
-            let (a, b) = (at(f, &point)?, at(l, &point)?);
-            check.evaluations += 2;
-            check.error = check
-                .error
-                .max((a - b).abs() / b.abs().max(f64::MIN_POSITIVE));
-        }
-    }
-    Ok(())
-}
-
-/// The period of the full motion started [`PERIOD_AMPLITUDE`] from rest, measured between
-/// upward crossings of rest (each found on the cubic through the two steps around it), against
-/// 2π/Ω at the scene's values.
-pub(super) fn period_check(
-    scene: &Scene,
-    full: &[(String, Expr)],
-    about: &BTreeMap<String, Expr>,
-    omega: &Expr,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    check.tolerance = PERIOD_AGREEMENT;
-    let params = scene.values.clone();
-    let coords: Vec<&String> = scene.coordinates.keys().collect();
-    let [q] = coords.as_slice() else {
-        return Err(CheckError::NotDerived);
-    };
-    let q0 = match about.get(*q) {
-        Some(e) => at(e, &params)?,
-        None => 0.0,
-    };
-    let w = at(omega, &params)?;
-    let period = 2.0 * std::f64::consts::PI / w;
-    check.method = format!(
-        "the period of the full motion from {PERIOD_AMPLITUDE} off rest, integrated for three \
-         periods (Dormand–Prince, tolerance {MOTION_TOLERANCE:e}), against 2π/Ω"
-    );
-    let rhs = |_t: f64, y: &[f64]| motion(full, &params, &coords, y);
-    let run = dormand_prince(
-        &rhs,
-        &[q0 + PERIOD_AMPLITUDE, 0.0],
-        3.0 * period,
-        MOTION_TOLERANCE,
-        MOTION_STEPS,
-    )?;
-    let mut crossings = Vec::new();
-    for pair in run.states.windows(2) {
-        let ((t0, a), (t1, b)) = (&pair[0], &pair[1]);
-        let (x0, x1) = (a[0] - q0, b[0] - q0);
-        if x0 < 0.0 && x1 >= 0.0 {
-            // Cubic Hermite on [t0, t1] through the positions and rates; bisection for its root.
-            let h = t1 - t0;
-            let p = |s: f64| {
-                let (s2, s3) = (s * s, s * s * s);
-                (2.0 * s3 - 3.0 * s2 + 1.0) * x0
-                    + (s3 - 2.0 * s2 + s) * h * a[1]
-                    + (-2.0 * s3 + 3.0 * s2) * x1
-                    + (s3 - s2) * h * b[1]
-            };
-            let (mut lo, mut hi) = (0.0, 1.0);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if p(mid) < 0.0 { lo = mid } else { hi = mid }
-            }
-            crossings.push(t0 + 0.5 * (lo + hi) * h);
-        }
-    }
-    check.evaluations = run.evaluations * 2;
-    let (Some(first), Some(last)) = (crossings.first(), crossings.last()) else {
-        return Err(CheckError::NoOscillation);
-    };
-    if crossings.len() < 2 {
-        return Err(CheckError::NoOscillation);
-    }
-    let measured = (last - first) / (crossings.len() - 1) as f64;
-    check.error = (measured - period).abs() / period;
-    Ok(())
-}
-
-/// The names at a state: the parameters, each coordinate and rate from `y` (coordinates, then
-/// rates), each acceleration from `a`.
-fn state(
-    params: &BTreeMap<String, f64>,
-    coords: &[&String],
-    y: &[f64],
-    a: &[f64],
-) -> BTreeMap<String, f64> {
-    let n = coords.len();
-    let mut p = params.clone();
-    for (k, q) in coords.iter().enumerate() {
-        p.insert((*q).clone(), y[k]);
-        p.insert(format!("{q}'"), y[n + k]);
-        p.insert(format!("{q}''"), a[k]);
-    }
-    p
-}
-
-/// y' for the equations of motion at state y: each residual is linear in the accelerations, so
-/// they solve M a = −R(a = 0), M's columns R(a = e_j) − R(0).
-fn motion(
-    eqs: &[(String, Expr)],
-    params: &BTreeMap<String, f64>,
-    coords: &[&String],
-    y: &[f64],
-) -> Result<Vec<f64>, CheckError> {
-    let n = coords.len();
-    let residuals = |a: &[f64]| -> Result<Vec<f64>, CheckError> {
-        let p = state(params, coords, y, a);
-        eqs.iter().map(|(_, e)| at(e, &p)).collect()
-    };
-    let zero = vec![0.0; n];
-    let f0 = residuals(&zero)?;
-    let mut m = nalgebra::DMatrix::zeros(n, n);
-    for j in 0..n {
-        let mut unit = zero.clone();
-        unit[j] = 1.0;
-        let fj = residuals(&unit)?;
-        for i in 0..n {
-            m[(i, j)] = fj[i] - f0[i];
-        }
-    }
-    let a = m
-        .lu()
-        .solve(&nalgebra::DVector::from_iterator(n, f0.iter().map(|x| -x)))
-        .ok_or(CheckError::Singular)?;
-    Ok(y[n..].iter().copied().chain(a.iter().copied()).collect())
-}
-
-/// Every symbol of the expressions at a random value in [0.4, 1.4) (π is π).
-fn random_point(exprs: &[&Expr], rng: &mut Rng) -> BTreeMap<String, f64> {
-    let mut names: Vec<String> = exprs.iter().flat_map(|e| e.symbols()).collect();
-    names.sort();
-    names.dedup();
-    names
-        .into_iter()
-        .filter(|s| s != "pi")
-        .map(|s| (s, SAMPLE_FROM + rng.uniform()))
-        .collect()
-}
-
-fn at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
-    Ok(e.eval(&|s| point.get(s).copied().filter(|_| s != "pi"))?)
 }
 
 /// Each step's `gives`, as a claim of the notes: the same expression, or for equations of
@@ -479,6 +277,18 @@ pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, ca
         };
         let mut r = match d.named.get(&step.name) {
             Some(StepResult::Equations(eqs)) => same_equation(scene, d, step, &claim, eqs, gives)?,
+            Some(StepResult::Modes(modes)) => {
+                let mut r = unchecked(&claim);
+                r.problem = Some(format!(
+                    "this step gives {} normal modes, named {}_1 to {}_{}: state each in a claim \
+                     on its name instead of `gives`",
+                    modes.len(),
+                    step.name,
+                    step.name,
+                    modes.len()
+                ));
+                r
+            }
             _ => check_claim(scene, &env, 10_000 + i, &claim)?,
         };
         r.step = Some(i);

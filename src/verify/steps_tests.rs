@@ -1,6 +1,7 @@
 //! The author's steps: each `gives` in an equivalent form agrees and in a wrong one disagrees at
 //! its own line; each numeric route passes a right result and fails a wrong one.
 
+use super::motion::*;
 use super::steps::*;
 use crate::cas::parse;
 use crate::pipeline::{SceneReport, run_scene};
@@ -218,4 +219,257 @@ fn blank() -> StepCheck {
         evaluations: 0,
         problem: None,
     }
+}
+
+/// The rolling cylinder of tests/course: the constraint substituted, the equation solved for
+/// the acceleration. The notes' a = g sin α/(1 + I/(M R²)) agrees; a sliding block's g sin α
+/// does not; each step passes its numeric route.
+#[test]
+fn a_constraint_substituted_and_an_equation_solved() {
+    let scene = |gives: &str| {
+        let text = std::fs::read_to_string("tests/course/dynamics/02-rolling-cylinder.toml")
+            .unwrap()
+            .replace(
+                "gives = \"g*sin(alpha)/(1 + I/(M*R^2))\"",
+                &format!("gives = \"{gives}\""),
+            );
+        run(&text)
+    };
+    let r = scene("g*sin(alpha)/(1 + I/(M*R^2))");
+    let a = verdicts(&r).into_iter().find(|v| v.0 == "a").unwrap();
+    assert_eq!(a.1, Verdict::Agrees);
+    assert!(
+        r.verification.steps.iter().all(|c| c.passed()),
+        "{:?}",
+        r.verification.steps
+    );
+    // The independent route: a at the scene's values from the textbook formula for a solid
+    // cylinder, (2/3) g sin α.
+    let named = &r.derivation.named["a"];
+    let crate::derive::steps::StepResult::Expr(e) = named else {
+        panic!("{named:?}")
+    };
+    let value = e.eval(&|s| r.scene.values.get(s).copied()).unwrap();
+    assert!(
+        (value - 2.0 / 3.0 * 9.81 * 0.5f64.sin()).abs() < 1e-12,
+        "{value}"
+    );
+    let r = scene("g*sin(alpha)");
+    let a = verdicts(&r).into_iter().find(|v| v.0 == "a").unwrap();
+    assert_eq!(a.1, Verdict::Disagrees);
+}
+
+/// A scene of tests/course with one text replaced (the test fails if it is not there).
+fn course_scene(file: &str, from: &str, to: &str) -> SceneReport {
+    let text = std::fs::read_to_string(format!("tests/course/dynamics/{file}")).unwrap();
+    assert!(text.contains(from), "{file} has no `{from}`");
+    run(&text.replace(from, to))
+}
+
+fn scalar_at(r: &SceneReport, name: &str, state: &[(&str, f64)]) -> f64 {
+    let e = r.derivation.named[name].scalar().unwrap();
+    e.eval(&|s| {
+        state
+            .iter()
+            .find(|(n, _)| *n == s)
+            .map(|(_, v)| *v)
+            .or_else(|| r.scene.values.get(s).copied())
+    })
+    .unwrap()
+}
+
+/// The heavy top of tests/course: p_ψ, p_φ and E conserved along the integrated motion, p_θ
+/// not; each against the textbook's formula at a state; a wrong `gives` disagrees at its line,
+/// and the numeric route fails a momentum that is not conserved but said to be.
+#[test]
+fn heavy_top_momenta_and_energy() {
+    let r = course_scene(
+        "04-heavy-top.toml",
+        "p_psi*cos(theta)\"",
+        "p_psi*cos(theta)\"",
+    );
+    assert!(
+        r.verification.steps.iter().all(|c| c.passed()),
+        "{:?}",
+        r.verification.steps
+    );
+    let conserved = |name: &str| match &r.derivation.named[name] {
+        crate::derive::steps::StepResult::Conserved { conserved, .. } => *conserved,
+        other => panic!("{other:?}"),
+    };
+    assert!(conserved("p_psi") && conserved("p_phi") && conserved("E"));
+    assert!(!conserved("p_theta"));
+    // Textbook forms at one state (Goldstein 5.7): p_φ = I1 φ' sin²θ + I3 (ψ' + φ' cos θ) cos θ.
+    let state = [
+        ("theta", 0.7),
+        ("phi'", 1.3),
+        ("psi'", 17.0),
+        ("theta'", 0.4),
+    ];
+    let (i1, i3, mgl) = (0.02, 0.01, 9.81 * 0.1);
+    let (th, dphi, dpsi, dth) = (0.7f64, 1.3, 17.0, 0.4);
+    let spin = dpsi + dphi * th.cos();
+    let p_phi = i1 * dphi * th.sin().powi(2) + i3 * spin * th.cos();
+    let energy = i1 / 2.0 * (dth * dth + (dphi * th.sin()).powi(2))
+        + i3 / 2.0 * spin * spin
+        + mgl * th.cos();
+    assert!((scalar_at(&r, "p_phi", &state) - p_phi).abs() < 1e-12 * p_phi.abs());
+    assert!((scalar_at(&r, "E", &state) - energy).abs() < 1e-12 * energy.abs());
+    assert!((scalar_at(&r, "p_psi", &state) - i3 * spin).abs() < 1e-12);
+    // The sleeping top (Goldstein 5.7): upright is stable while I3² w3² > 4 I1 M g l, its
+    // Ω² = (I3² w3² − 4 I1 M g l)/(4 I1²); the pair of tilted states is not real at w3 = 30.
+    let crate::derive::steps::StepResult::Stability { cases, .. } = &r.derivation.named["upright"]
+    else {
+        panic!()
+    };
+    let upright = &cases[0];
+    assert_eq!(upright.at.value, crate::cas::Expr::int(0));
+    assert_eq!(upright.verdict, crate::derive::steps::Stable::Where);
+    let w3 = 30.0;
+    let textbook = ((i3 * w3).powi(2) - 4.0 * i1 * mgl) / (4.0 * i1 * i1);
+    let exact = upright.omega_squared.as_ref().unwrap();
+    let exact = exact.eval(&|s| r.scene.values.get(s).copied()).unwrap();
+    assert!(
+        (exact - textbook).abs() < 1e-12 * textbook,
+        "{exact} {textbook}"
+    );
+
+    let r = course_scene(
+        "04-heavy-top.toml",
+        "gives = \"I1*phi'*sin(theta)^2 + p_psi*cos(theta)\"",
+        "gives = \"I1*phi'*sin(theta)^2\"",
+    );
+    let p = verdicts(&r).into_iter().find(|v| v.0 == "p_phi").unwrap();
+    assert_eq!(p.1, Verdict::Disagrees);
+    assert_eq!(
+        p.2,
+        r.scene
+            .steps
+            .iter()
+            .find(|s| s.name == "p_phi")
+            .unwrap()
+            .line
+    );
+
+    // The tilt's momentum said to be conserved: it drifts by order one along the motion.
+    let step = r.scene.steps.iter().find(|s| s.name == "p_theta").unwrap();
+    let Some(crate::derive::steps::StepResult::Expr(lag)) = r.derivation.named.get("Lag") else {
+        panic!()
+    };
+    let value = r.derivation.named["p_theta"].scalar().unwrap();
+    let mut check = blank();
+    conserved_check(
+        &r.scene,
+        step,
+        lag,
+        value,
+        true,
+        Conserved::Momentum("theta"),
+        &mut check,
+    )
+    .unwrap();
+    assert!(check.error > 1e-3, "{check:?}");
+}
+
+/// The double pendulum of tests/course: its two modes are √((2 ∓ √2) g/l) (the textbook's,
+/// computed here in floating point), the claims agree, and a wrong mode disagrees; the
+/// eigenvalue route fails modes that are swapped.
+#[test]
+fn double_pendulum_modes() {
+    let r = course_scene("03-double-pendulum.toml", "(2 + sqrt(2))", "(2 + sqrt(2))");
+    assert!(
+        r.verification.steps.iter().all(|c| c.passed()),
+        "{:?}",
+        r.verification.steps
+    );
+    let crate::derive::steps::StepResult::Modes(modes) = &r.derivation.named["Omega"] else {
+        panic!("{:?}", r.derivation.named["Omega"])
+    };
+    let (g, l) = (9.81f64, 1.0);
+    for (mode, sign) in modes.iter().zip([-1.0, 1.0]) {
+        let x = mode.eval(&|s| r.scene.values.get(s).copied()).unwrap();
+        let textbook = ((2.0 + sign * 2f64.sqrt()) * g / l).sqrt();
+        assert!((x - textbook).abs() < 1e-13 * textbook, "{x} {textbook}");
+    }
+    assert!(
+        r.verification
+            .claims
+            .iter()
+            .all(|c| c.verdict == Verdict::Agrees)
+    );
+    let wrong = course_scene("03-double-pendulum.toml", "(2 + sqrt(2))", "(2 + sqrt(3))");
+    let verdicts: Vec<Verdict> = wrong
+        .verification
+        .claims
+        .iter()
+        .map(|c| c.verdict)
+        .collect();
+    assert!(verdicts.contains(&Verdict::Disagrees), "{verdicts:?}");
+    let Some(crate::derive::steps::StepResult::Equations(linear)) = r.derivation.named.get("small")
+    else {
+        panic!()
+    };
+    let swapped = vec![modes[1].clone(), modes[0].clone()];
+    let mut check = blank();
+    modes_check(&r.scene, linear, &swapped, &mut check).unwrap();
+    assert!(check.error > 0.1, "{check:?}");
+}
+
+/// The bead on a rotating hoop of tests/course: θ = 0, π, ±acos(g/(R w²)); θ = π never
+/// stable, the others where Ω² > 0, with Ω² the textbook's g/R − w² and w² − g²/(R² w²). Below
+/// the critical speed the scan finds two zeros, as the exact equilibria real there; an exact
+/// set missing one fails.
+#[test]
+fn bead_on_hoop_equilibria_and_stability() {
+    use crate::derive::steps::{Stable, StepResult};
+    let r = course_scene("05-bead-on-hoop.toml", "w = 6.0", "w = 6.0");
+    assert!(
+        r.verification.steps.iter().all(|c| c.passed()),
+        "{:?}",
+        r.verification.steps
+    );
+    let StepResult::Stability { cases, .. } = &r.derivation.named["stable"] else {
+        panic!()
+    };
+    let verdicts: Vec<Stable> = cases.iter().map(|c| c.verdict).collect();
+    assert_eq!(
+        verdicts,
+        [Stable::Where, Stable::Never, Stable::Where, Stable::Where]
+    );
+    let (g, radius, w) = (9.81f64, 0.5, 6.0);
+    let textbook = [
+        g / radius - w * w,
+        -g / radius - w * w,
+        w * w - (g / (radius * w)).powi(2),
+        w * w - (g / (radius * w)).powi(2),
+    ];
+    for (c, t) in cases.iter().zip(textbook) {
+        let x = c
+            .omega_squared
+            .as_ref()
+            .unwrap()
+            .eval(&|s| r.scene.values.get(s).copied())
+            .unwrap();
+        assert!((x - t).abs() < 1e-12 * t.abs(), "{x} {t}");
+    }
+    // Below the critical speed √(g/R) ≈ 4.43 only the top and the bottom are at rest.
+    let slow = course_scene("05-bead-on-hoop.toml", "w = 6.0", "w = 3.0");
+    assert!(
+        slow.verification.steps.iter().all(|c| c.passed()),
+        "{:?}",
+        slow.verification.steps
+    );
+    let StepResult::Equilibria { zeros, .. } = &r.derivation.named["rest"] else {
+        panic!()
+    };
+    let Some(StepResult::Equations(eqs)) = r.derivation.named.get("eom") else {
+        panic!()
+    };
+    let mut check = blank();
+    let missing =
+        super::rest::equilibria_check(&r.scene, &eqs[0].1, "theta", &zeros[..2], &mut check);
+    assert!(
+        matches!(missing, Err(CheckError::MissedZero { .. })),
+        "{missing:?}"
+    );
 }

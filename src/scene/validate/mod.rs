@@ -3,6 +3,7 @@
 
 mod bodies;
 mod claims;
+mod operations;
 mod plots;
 mod problem;
 mod steps;
@@ -119,7 +120,7 @@ impl Validator<'_> {
         let coordinates = self.coordinates(&raw, &claim_names)?;
         let steps = self.steps(&raw, &claim_names, &coordinates)?;
         // A claim may name a step's result.
-        claim_names.extend(steps.iter().map(|s| s.name.clone()));
+        claim_names.extend(steps.iter().flat_map(|s| s.names_given(coordinates.len())));
         let claims = self.claims(&raw, &claim_names)?;
         let wants = self.wants(&raw)?;
         // Values before plots: a free-body plot's inertia and omega may be expressions.
@@ -295,7 +296,7 @@ impl Validator<'_> {
     /// The outputs asked for, by name.
     fn wants(&self, raw: &RawScene) -> Result<Vec<Output>, SceneError> {
         let mut wants = Vec::new();
-        for (i, w) in raw.outputs.want.get_ref().iter().enumerate() {
+        for (i, w) in raw.wanted().iter().enumerate() {
             let Some((_, o)) = Output::ALL.iter().find(|(n, _)| n == w.get_ref()) else {
                 let names: Vec<&str> = Output::ALL.iter().map(|(n, _)| *n).collect();
                 return Err(self.err(

@@ -2,25 +2,13 @@
 //! operation on the scene's names, its coordinates (with their rates `q'`, `q''` and the time
 //! `t`) and the steps before it, so a step can only use what comes earlier: no cycle.
 
+use super::operations::Holds;
 use super::{Validator, content_start, is_identifier};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawScene, RawStep, Text};
-use crate::scene::types::{AuthorStep, Operation};
+use crate::scene::step::{AuthorStep, Operation};
 use std::collections::{BTreeMap, BTreeSet};
-
-/// The operations a step may name, one per step.
-const OPERATIONS: [&str; 5] = ["be", "differentiate", "lagrange", "linearise", "frequency"];
-
-/// What an earlier step holds, for the operations that take a step by name.
-#[derive(Clone, Copy, PartialEq)]
-enum Holds {
-    Expression,
-    /// Equations of motion from `lagrange`.
-    Motion,
-    /// Linear equations of motion from `linearise`.
-    Linear,
-}
 
 /// Each coordinate and its meaning.
 type Coordinates = BTreeMap<String, String>;
@@ -52,8 +40,9 @@ impl Validator<'_> {
                     name.span().start,
                     &field,
                     format!(
-                        "`{n}` is already a symbol, definition or derived quantity of this \
-                         scene; a coordinate needs a name of its own"
+                        "`{n}` is already a name in this scene (a symbol, a definition, a \
+                         derived quantity, or a body's integration variable, such as a \
+                         cylinder's `theta`); a coordinate needs a name of its own"
                     ),
                 ));
             }
@@ -100,10 +89,11 @@ impl Validator<'_> {
             let holds = match step.op {
                 Operation::Lagrange { .. } => Holds::Motion,
                 Operation::Linearise { .. } => Holds::Linear,
+                Operation::Equilibria { .. } => Holds::Equilibria,
                 _ => Holds::Expression,
             };
             earlier.insert(step.name.clone(), holds);
-            scope.insert(step.name.clone());
+            scope.extend(step.names_given(coordinates.len()));
             steps.push(step);
         }
         Ok(steps)
@@ -130,124 +120,7 @@ impl Validator<'_> {
                 ),
             ));
         }
-        let given: Vec<&str> = [
-            s.be.as_ref().map(|_| "be"),
-            s.differentiate.as_ref().map(|_| "differentiate"),
-            s.lagrange.as_ref().map(|_| "lagrange"),
-            s.linearise.as_ref().map(|_| "linearise"),
-            s.frequency.as_ref().map(|_| "frequency"),
-        ]
-        .into_iter()
-        .flatten()
-        .collect();
-        if given.len() != 1 {
-            return Err(self.err(
-                offset,
-                field,
-                format!(
-                    "a step does one thing: give exactly one of {} (this one gives {})",
-                    OPERATIONS.join(", "),
-                    if given.is_empty() {
-                        "none".to_string()
-                    } else {
-                        given.join(" and ")
-                    }
-                ),
-            ));
-        }
-        let expr = |t: &Text, key: &str| {
-            self.rates_of_coordinates(t, &format!("{field}.{key}"), coordinates)?;
-            self.claim_expr(t, &format!("{field}.{key}"), scope)
-        };
-        let op = if let Some(be) = &s.be {
-            Operation::Be(expr(be, "be")?)
-        } else if let Some(of) = &s.differentiate {
-            let Some(by) = &s.by else {
-                return Err(self.err(
-                    offset,
-                    field,
-                    "`differentiate` needs `by`: a symbol, a coordinate or its rate, or `t` for \
-                     the time derivative",
-                ));
-            };
-            if !scope.contains(by.get_ref()) || earlier.contains_key(by.get_ref()) {
-                return Err(self.err(
-                    content_start(by),
-                    &format!("{field}.by"),
-                    format!(
-                        "cannot differentiate by `{}`: not a symbol, coordinate, rate or `t` \
-                         of this scene",
-                        by.get_ref()
-                    ),
-                ));
-            }
-            Operation::Differentiate {
-                of: expr(of, "differentiate")?,
-                by: by.get_ref().clone(),
-            }
-        } else if let Some(of) = &s.lagrange {
-            self.earlier(of, field, "lagrange", Holds::Expression, earlier)?;
-            if coordinates.is_empty() {
-                return Err(self.err(
-                    content_start(of),
-                    &format!("{field}.lagrange"),
-                    "`lagrange` needs generalised coordinates: name them under [coordinates]",
-                ));
-            }
-            Operation::Lagrange {
-                of: of.get_ref().clone(),
-            }
-        } else if let Some(of) = &s.linearise {
-            self.earlier(of, field, "linearise", Holds::Motion, earlier)?;
-            let mut about = BTreeMap::new();
-            for (q, value) in &s.about {
-                if !coordinates.contains_key(q.get_ref()) {
-                    return Err(self.err(
-                        q.span().start,
-                        &format!("{field}.about.{}", q.get_ref()),
-                        format!(
-                            "`{}` is not a coordinate; `about` gives each coordinate's value at \
-                             the state of rest (the coordinates are {})",
-                            q.get_ref(),
-                            coordinates.keys().cloned().collect::<Vec<_>>().join(", ")
-                        ),
-                    ));
-                }
-                about.insert(
-                    q.get_ref().clone(),
-                    self.claim_expr(
-                        value,
-                        &format!("{field}.about.{}", q.get_ref()),
-                        &names_only(scope, coordinates),
-                    )?,
-                );
-            }
-            Operation::Linearise {
-                of: of.get_ref().clone(),
-                about,
-            }
-        } else {
-            let of = s.frequency.as_ref().expect("one operation is given");
-            self.earlier(of, field, "frequency", Holds::Linear, earlier)?;
-            Operation::Frequency {
-                of: of.get_ref().clone(),
-            }
-        };
-        if !s.about.is_empty() && !matches!(op, Operation::Linearise { .. }) {
-            return Err(self.err(
-                offset,
-                &format!("{field}.about"),
-                "`about` is the state a `linearise` step expands about; this step has none",
-            ));
-        }
-        if !matches!(op, Operation::Lagrange { .. }) && !s.start.is_empty() {
-            return Err(self.err(
-                offset,
-                &format!("{field}.start"),
-                "`start` is the initial state of a `lagrange` step's numeric check; this step \
-                 has none",
-            ));
-        }
+        let op = self.operation(s, offset, field, scope, earlier, coordinates)?;
         let mut start = BTreeMap::new();
         for (k, v) in &s.start {
             if !scope.contains(k.get_ref()) || !v.get_ref().is_finite() {
@@ -286,7 +159,7 @@ impl Validator<'_> {
     }
 
     /// A rate `x'` names a coordinate `x`: said plainly, before "undefined name".
-    fn rates_of_coordinates(
+    pub(super) fn rates_of_coordinates(
         &self,
         t: &Text,
         field: &str,
@@ -312,7 +185,7 @@ impl Validator<'_> {
     }
 
     /// An earlier step that an operation takes by name, holding what the operation needs.
-    fn earlier(
+    pub(super) fn earlier(
         &self,
         of: &Text,
         field: &str,
@@ -324,6 +197,7 @@ impl Validator<'_> {
             Holds::Expression => "an expression (a Lagrangian L = T - V)",
             Holds::Motion => "equations of motion (from `lagrange`)",
             Holds::Linear => "linear equations of motion (from `linearise`)",
+            Holds::Equilibria => "states of rest (from `equilibria`)",
         };
         let name = of.get_ref();
         let message = match earlier.get(name) {
@@ -357,17 +231,4 @@ impl Validator<'_> {
         let r = side(rhs, start + lhs.len() + 1)?;
         Ok(Expr::minus(l, r))
     }
-}
-
-/// The scene's names without the coordinates, their rates and the time: a state of rest is
-/// given in them.
-fn names_only(
-    scope: &BTreeSet<String>,
-    coordinates: &BTreeMap<String, String>,
-) -> BTreeSet<String> {
-    scope
-        .iter()
-        .filter(|n| *n != "t" && !n.ends_with('\'') && !coordinates.contains_key(*n))
-        .cloned()
-        .collect()
 }

@@ -1,0 +1,309 @@
+//! Mechanics of a Lagrangian, exact and unsimplified: the time derivative through the
+//! coordinates, the Euler–Lagrange equations, a generalised momentum and the energy function,
+//! the equations to first order about rest, and the frequencies of linear equations.
+//!
+//! A coordinate q is a function of the time t; its rates are the names `q'` and `q''`, so an
+//! expression in them is an ordinary expression and the time derivative is the chain rule
+//! d/dt f = ∂f/∂t + Σ_q (∂f/∂q · q' + ∂f/∂q' · q'').
+
+use super::DeriveError;
+use crate::cas::{self, Expr};
+use std::collections::BTreeMap;
+
+/// d/dt of `f` through the coordinates: ∂f/∂t + Σ_q (∂f/∂q · q' + ∂f/∂q' · q''). A second
+/// rate in `f` would need a third, which the language does not have.
+pub fn time_derivative(
+    f: &Expr,
+    coordinates: &BTreeMap<String, String>,
+) -> Result<Expr, DeriveError> {
+    let mut terms = vec![f.diff("t")?];
+    for q in coordinates.keys() {
+        let (rate, accel) = (format!("{q}'"), format!("{q}''"));
+        if f.symbols().contains(&accel) {
+            return Err(DeriveError::NotDerivable(format!(
+                "the time derivative of an expression in `{accel}` needs a third derivative"
+            )));
+        }
+        terms.push(Expr::mul(vec![f.diff(q)?, Expr::sym(&rate)]));
+        terms.push(Expr::mul(vec![f.diff(&rate)?, Expr::sym(&accel)]));
+    }
+    Ok(Expr::add(terms))
+}
+
+/// The Euler–Lagrange residual d/dt(∂L/∂q') − ∂L/∂q of each coordinate L depends on (one a
+/// constraint has eliminated has no equation), unsimplified.
+pub fn euler_lagrange(
+    lagrangian: &Expr,
+    coordinates: &BTreeMap<String, String>,
+) -> Result<Vec<(String, Expr)>, DeriveError> {
+    let names = lagrangian.symbols();
+    let used: Vec<&String> = coordinates
+        .keys()
+        .filter(|q| names.contains(q) || names.contains(&format!("{q}'")))
+        .collect();
+    if used.is_empty() {
+        return Err(DeriveError::NotDerivable(
+            "the Lagrangian depends on no coordinate: there is no motion to describe".into(),
+        ));
+    }
+    used.into_iter()
+        .map(|q| {
+            let momentum = lagrangian.diff(&format!("{q}'"))?;
+            let rate = time_derivative(&momentum, coordinates)?;
+            Ok((q.clone(), Expr::minus(rate, lagrangian.diff(q)?)))
+        })
+        .collect()
+}
+
+/// Each coordinate's value at the state of rest `about` (0 where not named); rates are 0.
+fn rest_value(
+    q: &str,
+    about: &BTreeMap<String, Expr>,
+    coordinates: &BTreeMap<String, String>,
+) -> Option<Expr> {
+    if coordinates.contains_key(q) {
+        return Some(about.get(q).cloned().unwrap_or_else(|| Expr::int(0)));
+    }
+    let base = q.trim_end_matches('\'');
+    (base != q && coordinates.contains_key(base)).then(|| Expr::int(0))
+}
+
+/// Each equation to first order about the state of rest: R(rest) (which must vanish) and
+/// Σ_q ∂R/∂q·(q − q₀) + ∂R/∂q'·q' + ∂R/∂q''·q'', the derivatives taken at rest. Unsimplified.
+#[allow(clippy::type_complexity)]
+pub fn linearise(
+    eqs: &[(String, Expr)],
+    about: &BTreeMap<String, Expr>,
+    coordinates: &BTreeMap<String, String>,
+) -> Result<(Vec<Expr>, Vec<(String, Expr)>), DeriveError> {
+    let at_rest = |e: &Expr| e.substitute(&|s| rest_value(s, about, coordinates));
+    let mut rest = Vec::new();
+    let mut linear = Vec::new();
+    for (q, r) in eqs {
+        rest.push(at_rest(r));
+        let mut terms = Vec::new();
+        for c in coordinates.keys() {
+            let q0 = about.get(c).cloned().unwrap_or_else(|| Expr::int(0));
+            terms.push(Expr::mul(vec![
+                at_rest(&r.diff(c)?),
+                Expr::minus(Expr::sym(c), q0),
+            ]));
+            for rate in [format!("{c}'"), format!("{c}''")] {
+                terms.push(Expr::mul(vec![at_rest(&r.diff(&rate)?), Expr::sym(&rate)]));
+            }
+        }
+        linear.push((q.clone(), Expr::add(terms)));
+    }
+    Ok((rest, linear))
+}
+
+/// The angular frequency Ω = √(k/m) of one linear equation m q'' + k (q − q₀) = 0.
+pub fn frequency(eqs: &[(String, Expr)]) -> Result<Expr, DeriveError> {
+    let [(q, r)] = eqs else {
+        return Err(DeriveError::Inconsistent(format!(
+            "`frequency` of one coordinate was given {} equations",
+            eqs.len()
+        )));
+    };
+    let m = cas::simplify(&r.diff(&format!("{q}''"))?)?;
+    let c = cas::simplify(&r.diff(&format!("{q}'"))?)?;
+    let k = cas::simplify(&r.diff(q)?)?;
+    if !c.is_zero() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the equation has a term in `{q}'` ({}): a damped or driven motion has no single \
+             frequency",
+            c.to_text()
+        )));
+    }
+    if m.is_zero() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the equation has no term in `{q}''`: it is not an equation of motion"
+        )));
+    }
+    let omega = Expr::pow(Expr::over(k, m), Expr::rat(1, 2));
+    Ok(cas::simplify(&omega)?)
+}
+
+/// The most coordinates whose normal modes are found exactly: det(K − λM) has degree n, and
+/// the engine solves its factors up to degree two.
+pub const MAX_MODES: usize = 4;
+
+/// The normal-mode angular frequencies of n ≥ 2 linear equations M q'' + K (q − q₀) = 0: each
+/// √λ for the roots λ of det(K − λM) = 0, ordered by their value at `values`.
+pub fn normal_modes(
+    eqs: &[(String, Expr)],
+    values: &BTreeMap<String, f64>,
+) -> Result<Vec<Expr>, DeriveError> {
+    let n = eqs.len();
+    if n > MAX_MODES {
+        return Err(DeriveError::NotDerivable(format!(
+            "{n} coordinates: normal modes are found exactly for at most {MAX_MODES}"
+        )));
+    }
+    let coords: Vec<&String> = eqs.iter().map(|(q, _)| q).collect();
+    let lambda = Expr::sym(LAMBDA);
+    let mut entries = Vec::new();
+    for (_, r) in eqs {
+        for q in &coords {
+            let damping = cas::simplify(&r.diff(&format!("{q}'"))?)?;
+            if !damping.is_zero() {
+                return Err(DeriveError::NotDerivable(format!(
+                    "the equations have a term in `{q}'` ({}): a damped or driven motion has \
+                     no normal modes",
+                    damping.to_text()
+                )));
+            }
+            let (m, k) = (r.diff(&format!("{q}''"))?, r.diff(q)?);
+            entries.push(Expr::minus(k, Expr::mul(vec![lambda.clone(), m])));
+        }
+    }
+    let characteristic = cas::simplify(&determinant(&entries, n))?;
+    let roots = cas::roots(&characteristic, LAMBDA)?;
+    if let Some((factor, _)) = roots.unsolved.first() {
+        return Err(DeriveError::NotDerivable(format!(
+            "det(K - lambda M) has the factor {} of degree three or more: no closed form for \
+             its frequencies",
+            factor.to_text()
+        )));
+    }
+    let mut modes = Vec::new();
+    for (root, multiplicity) in roots.roots {
+        // Every symbol of a scene is positive: √(8 g² l²) = 2√2 g l.
+        let root = cas::pull_squares(&cas::simplify(&root)?, &|_| true);
+        let omega = cas::simplify(&Expr::pow(root, Expr::rat(1, 2)))?;
+        modes.extend(std::iter::repeat_n(omega, multiplicity as usize));
+    }
+    if modes.len() != n {
+        return Err(DeriveError::NotDerivable(format!(
+            "det(K - lambda M) has {} roots, not {n}: the equations are degenerate (a \
+             coordinate without inertia)",
+            modes.len()
+        )));
+    }
+    let at = |e: &Expr| e.eval(&|s| values.get(s).copied()).unwrap_or(f64::NAN);
+    modes.sort_by(|a, b| at(a).total_cmp(&at(b)));
+    Ok(modes)
+}
+
+/// The root variable of the characteristic polynomial: a name no scene can write.
+const LAMBDA: &str = "lambda__";
+
+/// The determinant of an n×n matrix (row-major), by expansion along the first row; n ≤ 4.
+fn determinant(m: &[Expr], n: usize) -> Expr {
+    if n == 1 {
+        return m[0].clone();
+    }
+    let mut terms = Vec::new();
+    for j in 0..n {
+        let minor: Vec<Expr> = (1..n)
+            .flat_map(|i| (0..n).filter(move |&c| c != j).map(move |c| (i, c)))
+            .map(|(i, c)| m[i * n + c].clone())
+            .collect();
+        let sign = if j % 2 == 0 { 1 } else { -1 };
+        terms.push(Expr::mul(vec![
+            Expr::int(sign),
+            m[j].clone(),
+            determinant(&minor, n - 1),
+        ]));
+    }
+    Expr::add(terms)
+}
+
+/// The generalised momentum ∂L/∂q' and the generalised force ∂L/∂q (the momentum is conserved
+/// when the force is identically zero), unsimplified.
+pub fn momentum(lagrangian: &Expr, q: &str) -> Result<(Expr, Expr), DeriveError> {
+    Ok((lagrangian.diff(&format!("{q}'"))?, lagrangian.diff(q)?))
+}
+
+/// The energy function Σ_q q'·∂L/∂q' − L over the coordinates L depends on, and ∂L/∂t (the
+/// energy is conserved when it is identically zero), unsimplified.
+pub fn energy(
+    lagrangian: &Expr,
+    coordinates: &BTreeMap<String, String>,
+) -> Result<(Expr, Expr), DeriveError> {
+    let mut terms = vec![Expr::negate(lagrangian.clone())];
+    for q in coordinates.keys() {
+        let rate = format!("{q}'");
+        terms.push(Expr::mul(vec![Expr::sym(&rate), lagrangian.diff(&rate)?]));
+    }
+    Ok((Expr::add(terms), lagrangian.diff("t")?))
+}
+
+/// The static equation of one coordinate (every rate and acceleration 0) and its zeros.
+pub fn equilibria(eqs: &[(String, Expr)]) -> Result<(String, Vec<cas::Zero>), DeriveError> {
+    let [(q, r)] = eqs else {
+        return Err(DeriveError::NotDerivable(format!(
+            "`equilibria` takes the equation of one coordinate for now; these are {}",
+            eqs.len()
+        )));
+    };
+    let at_rest =
+        r.substitute(&|s| (s == format!("{q}'") || s == format!("{q}''")).then(|| Expr::int(0)));
+    let found = cas::zeros(&cas::simplify(&at_rest)?, q)?;
+    if let Some(f) = found.unsolved.first() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the static equation has the factor {} = 0, whose solutions have no closed form here \
+             (a polynomial of degree at most 2 in `{q}`, in sin({q}) or in cos({q}))",
+            f.to_text()
+        )));
+    }
+    if found.zeros.is_empty() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the static equation {} = 0 has no solution: there is no equilibrium",
+            at_rest.to_text()
+        )));
+    }
+    // Every symbol of a scene is positive: √(4 b a²) = 2 a √b.
+    let positive = |e: &Expr| cas::pull_squares(e, &|_| true);
+    let zeros = found
+        .zeros
+        .into_iter()
+        .map(|z| cas::Zero {
+            value: positive(&z.value),
+            trig: z.trig.map(|(c, s)| (positive(&c), positive(&s))),
+        })
+        .collect();
+    Ok((q.clone(), zeros))
+}
+
+/// The squared frequency of small oscillations about each equilibrium, k/m with k = ∂R/∂q and
+/// m = ∂R/∂q'' at rest there: the equilibrium is stable where it is positive. `None` where the
+/// exact Ω² would expand beyond the engine's budget (an equilibrium with a root in it).
+pub fn stability(
+    eqs: &[(String, Expr)],
+    zeros: &[cas::Zero],
+) -> Result<Vec<Option<Expr>>, DeriveError> {
+    let [(q, r)] = eqs else {
+        return Err(DeriveError::Inconsistent(
+            "the equilibria were found for one coordinate".into(),
+        ));
+    };
+    let (rate, accel) = (format!("{q}'"), format!("{q}''"));
+    let at_rest = |e: &Expr| e.substitute(&|s| (s == rate || s == accel).then(|| Expr::int(0)));
+    // Simplified before an equilibrium goes in, which keeps the expansion small.
+    let mut km = cas::simplify_all(vec![at_rest(&r.diff(q)?), at_rest(&r.diff(&accel)?)])?;
+    let (m, k) = (km.pop(), km.pop());
+    let (Some(k), Some(m)) = (k, m) else {
+        return Err(DeriveError::Inconsistent(
+            "two simplified, not two back".into(),
+        ));
+    };
+    let mut out = Vec::new();
+    for z in zeros {
+        let ratio = Expr::over(z.put_into(&k, q), z.put_into(&m, q));
+        if ratio.symbols().contains(q) {
+            return Err(DeriveError::NotDerivable(format!(
+                "`{q}` enters the equation both inside and outside sin and cos: its stability \
+                 has no closed form here"
+            )));
+        }
+        match cas::simplify(&ratio) {
+            Ok(w2) => out.push(Some(w2)),
+            Err(cas::CasError {
+                reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { .. }),
+            }) => out.push(None),
+            Err(e) => return Err(e.into()),
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,96 @@
+//! A step of the author's own derivation, as validated: its name, its one operation and the
+//! notes' form of its result.
+
+use super::verdict::{ClaimRole, Verdict};
+use crate::cas::Expr;
+use std::collections::BTreeMap;
+
+/// A step of the author's derivation: a new name for the result of one operation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AuthorStep {
+    pub name: String,
+    pub op: Operation,
+    /// The reason printed on the page.
+    pub why: String,
+    /// The notes' equation this step reproduces, if any.
+    pub eq: Option<String>,
+    /// The notes' form of the result: an expression, or for an equation its residual
+    /// (`lhs - rhs`); agrees when it is the same (an equation, up to a non-zero factor).
+    pub gives: Option<Expr>,
+    pub expect: Option<Verdict>,
+    pub role: ClaimRole,
+    /// For `lagrange`, `momentum` and `energy`: the state their numeric check integrates from,
+    /// by coordinate and rate name.
+    pub start: BTreeMap<String, f64>,
+    pub line: usize,
+}
+
+impl AuthorStep {
+    /// The names this step gives later steps and claims: its own, and for a `frequency` of
+    /// n ≥ 2 coordinates its modes `Omega_1` ... `Omega_n`, one per coordinate.
+    pub fn names_given(&self, coordinates: usize) -> Vec<String> {
+        let mut names = vec![self.name.clone()];
+        if matches!(self.op, Operation::Frequency { .. }) && coordinates >= 2 {
+            names.extend((0..coordinates).map(|k| mode_name(&self.name, k)));
+        }
+        names
+    }
+}
+
+/// The name of a `frequency` step's k-th normal mode (from 0): `Omega_1` for the first of
+/// `Omega`.
+pub fn mode_name(step: &str, k: usize) -> String {
+    format!("{step}_{}", k + 1)
+}
+
+/// What a step does.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Operation {
+    /// An expression of the scene's names and earlier steps.
+    Be(Expr),
+    /// A partial derivative; by `t`, the total time derivative through the coordinates.
+    Differentiate { of: Expr, by: String },
+    /// The Euler–Lagrange equation of each coordinate, from the named Lagrangian.
+    Lagrange { of: String },
+    /// The named equations of motion to first order about a state at rest (each coordinate's
+    /// value there; 0 when not named).
+    Linearise {
+        of: String,
+        about: BTreeMap<String, Expr>,
+    },
+    /// The angular frequency of small oscillations of the named linear equation.
+    Frequency { of: String },
+    /// An expression with names replaced (a constraint such as θ' = x'/R).
+    Substitute {
+        of: Expr,
+        set: BTreeMap<String, Expr>,
+    },
+    /// The named equation of motion solved for one unknown it is linear in.
+    Solve { of: String, unknown: String },
+    /// The generalised momentum ∂L/∂q' of one coordinate, from the named Lagrangian.
+    Momentum { of: String, coordinate: String },
+    /// The energy function Σ q'·∂L/∂q' − L of the named Lagrangian.
+    Energy { of: String },
+    /// The states of rest of the named equation of motion (one coordinate).
+    Equilibria { of: String },
+    /// Whether each of the named equilibria is stable.
+    Stability { of: String },
+}
+
+impl Operation {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Operation::Be(_) => "be",
+            Operation::Differentiate { .. } => "differentiate",
+            Operation::Lagrange { .. } => "lagrange",
+            Operation::Linearise { .. } => "linearise",
+            Operation::Frequency { .. } => "frequency",
+            Operation::Substitute { .. } => "substitute",
+            Operation::Solve { .. } => "solve",
+            Operation::Momentum { .. } => "momentum",
+            Operation::Energy { .. } => "energy",
+            Operation::Equilibria { .. } => "equilibria",
+            Operation::Stability { .. } => "stability",
+        }
+    }
+}

@@ -1,0 +1,338 @@
+//! What a `[[step]]` does: exactly one operation, its operands checked against the scene's
+//! names, the coordinates and the earlier steps, and no field of another operation.
+
+use super::{Validator, content_start};
+use crate::scene::error::SceneError;
+use crate::scene::raw::{RawStep, Text};
+use crate::scene::step::Operation;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The operations a step may name, one per step.
+const OPERATIONS: [&str; 11] = [
+    "be",
+    "differentiate",
+    "substitute",
+    "lagrange",
+    "momentum",
+    "energy",
+    "linearise",
+    "frequency",
+    "solve",
+    "equilibria",
+    "stability",
+];
+
+/// What an earlier step holds, for the operations that take a step by name.
+#[derive(Clone, Copy, PartialEq)]
+pub(super) enum Holds {
+    Expression,
+    /// Equations of motion from `lagrange`.
+    Motion,
+    /// Linear equations of motion from `linearise`.
+    Linear,
+    /// States of rest from `equilibria`.
+    Equilibria,
+}
+
+impl Validator<'_> {
+    /// The one operation of a step.
+    pub(super) fn operation(
+        &self,
+        s: &RawStep,
+        offset: usize,
+        field: &str,
+        scope: &BTreeSet<String>,
+        earlier: &BTreeMap<String, Holds>,
+        coordinates: &BTreeMap<String, String>,
+    ) -> Result<Operation, SceneError> {
+        let given: Vec<&str> = [
+            s.be.as_ref().map(|_| "be"),
+            s.differentiate.as_ref().map(|_| "differentiate"),
+            s.lagrange.as_ref().map(|_| "lagrange"),
+            s.linearise.as_ref().map(|_| "linearise"),
+            s.frequency.as_ref().map(|_| "frequency"),
+            s.substitute.as_ref().map(|_| "substitute"),
+            s.solve.as_ref().map(|_| "solve"),
+            s.momentum.as_ref().map(|_| "momentum"),
+            s.energy.as_ref().map(|_| "energy"),
+            s.equilibria.as_ref().map(|_| "equilibria"),
+            s.stability.as_ref().map(|_| "stability"),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        if given.len() != 1 {
+            return Err(self.err(
+                offset,
+                field,
+                format!(
+                    "a step does one thing: give exactly one of {} (this one gives {})",
+                    OPERATIONS.join(", "),
+                    if given.is_empty() {
+                        "none".to_string()
+                    } else {
+                        given.join(" and ")
+                    }
+                ),
+            ));
+        }
+        let expr = |t: &Text, key: &str| {
+            self.rates_of_coordinates(t, &format!("{field}.{key}"), coordinates)?;
+            self.claim_expr(t, &format!("{field}.{key}"), scope)
+        };
+        let op = if let Some(be) = &s.be {
+            Operation::Be(expr(be, "be")?)
+        } else if let Some(of) = &s.differentiate {
+            let Some(by) = &s.by else {
+                return Err(self.err(
+                    offset,
+                    field,
+                    "`differentiate` needs `by`: a symbol, a coordinate or its rate, or `t` for \
+                     the time derivative",
+                ));
+            };
+            if !scope.contains(by.get_ref()) || earlier.contains_key(by.get_ref()) {
+                return Err(self.err(
+                    content_start(by),
+                    &format!("{field}.by"),
+                    format!(
+                        "cannot differentiate by `{}`: not a symbol, coordinate, rate or `t` \
+                         of this scene",
+                        by.get_ref()
+                    ),
+                ));
+            }
+            Operation::Differentiate {
+                of: expr(of, "differentiate")?,
+                by: by.get_ref().clone(),
+            }
+        } else if let Some(of) = &s.lagrange {
+            self.earlier(of, field, "lagrange", Holds::Expression, earlier)?;
+            if coordinates.is_empty() {
+                return Err(self.err(
+                    content_start(of),
+                    &format!("{field}.lagrange"),
+                    "`lagrange` needs generalised coordinates: name them under [coordinates]",
+                ));
+            }
+            Operation::Lagrange {
+                of: of.get_ref().clone(),
+            }
+        } else if let Some(of) = &s.linearise {
+            self.earlier(of, field, "linearise", Holds::Motion, earlier)?;
+            let mut about = BTreeMap::new();
+            for (q, value) in &s.about {
+                if !coordinates.contains_key(q.get_ref()) {
+                    return Err(self.err(
+                        q.span().start,
+                        &format!("{field}.about.{}", q.get_ref()),
+                        format!(
+                            "`{}` is not a coordinate; `about` gives each coordinate's value at \
+                             the state of rest (the coordinates are {})",
+                            q.get_ref(),
+                            coordinates.keys().cloned().collect::<Vec<_>>().join(", ")
+                        ),
+                    ));
+                }
+                about.insert(
+                    q.get_ref().clone(),
+                    self.claim_expr(
+                        value,
+                        &format!("{field}.about.{}", q.get_ref()),
+                        &names_only(scope, coordinates),
+                    )?,
+                );
+            }
+            Operation::Linearise {
+                of: of.get_ref().clone(),
+                about,
+            }
+        } else if let Some(of) = &s.frequency {
+            self.earlier(of, field, "frequency", Holds::Linear, earlier)?;
+            Operation::Frequency {
+                of: of.get_ref().clone(),
+            }
+        } else if let Some(of) = &s.substitute {
+            if s.set.is_empty() {
+                return Err(self.err(
+                    offset,
+                    field,
+                    "`substitute` needs `set`: each name and its replacement, as \
+                     set = { \"theta'\" = \"x'/R\" }",
+                ));
+            }
+            let mut set = BTreeMap::new();
+            for (name, value) in &s.set {
+                let key = format!("{field}.set.{}", name.get_ref());
+                if !scope.contains(name.get_ref()) || earlier.contains_key(name.get_ref()) {
+                    return Err(self.err(
+                        name.span().start,
+                        &key,
+                        format!(
+                            "cannot substitute for `{}`: not a symbol, coordinate or rate of this \
+                             scene",
+                            name.get_ref()
+                        ),
+                    ));
+                }
+                set.insert(
+                    name.get_ref().clone(),
+                    expr(value, &format!("set.{}", name.get_ref()))?,
+                );
+            }
+            Operation::Substitute {
+                of: expr(of, "substitute")?,
+                set,
+            }
+        } else if let Some(q) = &s.momentum {
+            if !coordinates.contains_key(q.get_ref()) {
+                return Err(self.err(
+                    content_start(q),
+                    &format!("{field}.momentum"),
+                    format!(
+                        "`{}` is not a coordinate{}: `momentum` names the coordinate whose \
+                         momentum it is (its Lagrangian under `of`)",
+                        q.get_ref(),
+                        crate::base::suggest::did_you_mean(
+                            q.get_ref(),
+                            coordinates.keys().map(String::as_str)
+                        )
+                    ),
+                ));
+            }
+            let Some(of) = &s.of else {
+                return Err(self.err(
+                    offset,
+                    field,
+                    "`momentum` needs `of`: the step that holds the Lagrangian, such as of = \
+                     \"Lag\"",
+                ));
+            };
+            self.earlier(of, field, "of", Holds::Expression, earlier)?;
+            Operation::Momentum {
+                of: of.get_ref().clone(),
+                coordinate: q.get_ref().clone(),
+            }
+        } else if let Some(of) = &s.energy {
+            self.earlier(of, field, "energy", Holds::Expression, earlier)?;
+            if coordinates.is_empty() {
+                return Err(self.err(
+                    content_start(of),
+                    &format!("{field}.energy"),
+                    "`energy` needs generalised coordinates: name them under [coordinates]",
+                ));
+            }
+            Operation::Energy {
+                of: of.get_ref().clone(),
+            }
+        } else if let Some(of) = &s.equilibria {
+            self.earlier(of, field, "equilibria", Holds::Motion, earlier)?;
+            Operation::Equilibria {
+                of: of.get_ref().clone(),
+            }
+        } else if let Some(of) = &s.stability {
+            self.earlier(of, field, "stability", Holds::Equilibria, earlier)?;
+            Operation::Stability {
+                of: of.get_ref().clone(),
+            }
+        } else {
+            let of = s.solve.as_ref().expect("one operation is given");
+            let motion = self.earlier(of, field, "solve", Holds::Motion, earlier);
+            if motion.is_err() {
+                self.earlier(of, field, "solve", Holds::Linear, earlier)?;
+            }
+            let Some(unknown) = &s.unknown else {
+                return Err(self.err(
+                    offset,
+                    field,
+                    "`solve` needs `for`: the unknown, such as for = \"x''\"",
+                ));
+            };
+            if !scope.contains(unknown.get_ref()) || earlier.contains_key(unknown.get_ref()) {
+                return Err(self.err(
+                    content_start(unknown),
+                    &format!("{field}.for"),
+                    format!(
+                        "cannot solve for `{}`: not a symbol, coordinate or rate of this scene",
+                        unknown.get_ref()
+                    ),
+                ));
+            }
+            Operation::Solve {
+                of: of.get_ref().clone(),
+                unknown: unknown.get_ref().clone(),
+            }
+        };
+        if !s.set.is_empty() && !matches!(op, Operation::Substitute { .. }) {
+            return Err(self.err(
+                offset,
+                &format!("{field}.set"),
+                "`set` gives the replacements of a `substitute` step; this step has none",
+            ));
+        }
+        if s.unknown.is_some() && !matches!(op, Operation::Solve { .. }) {
+            return Err(self.err(
+                offset,
+                &format!("{field}.for"),
+                "`for` names the unknown of a `solve` step; this step has none",
+            ));
+        }
+        if !s.about.is_empty() && !matches!(op, Operation::Linearise { .. }) {
+            return Err(self.err(
+                offset,
+                &format!("{field}.about"),
+                "`about` is the state a `linearise` step expands about; this step has none",
+            ));
+        }
+        // (A `frequency` of several coordinates is known only once derived: its `gives` is
+        // then a claim with a problem that says to use the modes' names.)
+        let several = matches!(
+            op,
+            Operation::Equilibria { .. } | Operation::Stability { .. }
+        );
+        if let (true, Some(g)) = (several, &s.gives) {
+            return Err(self.err(
+                content_start(g),
+                &format!("{field}.gives"),
+                format!(
+                    "`gives` states one result, and `{}` finds one per state of rest: leave \
+                     `gives` out and read them on the page",
+                    op.name(),
+                ),
+            ));
+        }
+        if s.of.is_some() && !matches!(op, Operation::Momentum { .. }) {
+            return Err(self.err(
+                offset,
+                &format!("{field}.of"),
+                "`of` names the Lagrangian of a `momentum` step; this step has none",
+            ));
+        }
+        let integrates = matches!(
+            op,
+            Operation::Lagrange { .. } | Operation::Momentum { .. } | Operation::Energy { .. }
+        );
+        if !integrates && !s.start.is_empty() {
+            return Err(self.err(
+                offset,
+                &format!("{field}.start"),
+                "`start` is the initial state of the motion a `lagrange`, `momentum` or \
+                 `energy` step's numeric check integrates; this step has none",
+            ));
+        }
+        Ok(op)
+    }
+}
+
+/// The scene's names without the coordinates, their rates and the time: a state of rest is
+/// given in them.
+fn names_only(
+    scope: &BTreeSet<String>,
+    coordinates: &BTreeMap<String, String>,
+) -> BTreeSet<String> {
+    scope
+        .iter()
+        .filter(|n| *n != "t" && !n.ends_with('\'') && !coordinates.contains_key(*n))
+        .cloned()
+        .collect()
+}

@@ -1,0 +1,423 @@
+//! The author's steps that describe a motion, checked along it: the equations of motion
+//! integrated (Dormand–Prince) with the energy function watched, the linear equations against
+//! the full ones near rest, and the measured period against 2π/Ω.
+
+use super::CONFIRMATION_POINTS;
+use super::step_check::{CheckError, H, StepCheck, at, random_point};
+use crate::base::rng::Rng;
+use crate::cas::Expr;
+use crate::numeric::ode::dormand_prince;
+use crate::scene::{AuthorStep, Scene};
+use std::collections::BTreeMap;
+
+/// The energy function may drift this much, relative to its size, over an integration at
+/// [`MOTION_TOLERANCE`]: Dormand–Prince keeps the local error to the tolerance, so the drift
+/// over a few hundred steps stays near 1e-8; a wrong equation of motion drifts by order one.
+const ENERGY_AGREEMENT: f64 = 1e-6;
+const MOTION_TOLERANCE: f64 = 1e-10;
+/// The integrated motion's length, in the scene's unit of time, and its step cap.
+const MOTION_TIME: f64 = 10.0;
+const MOTION_STEPS: u64 = 200_000;
+/// A coordinate's default start (at rest), when the step gives none.
+const DEFAULT_START: f64 = 0.5;
+
+/// The motion of a Lagrangian's equations, integrated from a step's start at the scene's values.
+struct Integrated<'a> {
+    /// The scene's values with the start's.
+    params: BTreeMap<String, f64>,
+    /// The coordinates that have an equation (a constraint may have eliminated others).
+    coords: Vec<&'a String>,
+    /// Each state: the coordinates, then their rates.
+    states: Vec<Vec<f64>>,
+    evaluations: u64,
+}
+
+impl Integrated<'_> {
+    /// The names at state `y`, accelerations 0 (a momentum or energy has none).
+    fn at_rest_accel(&self, y: &[f64]) -> BTreeMap<String, f64> {
+        state(&self.params, &self.coords, y, &vec![0.0; self.coords.len()])
+    }
+
+    /// ∂L/∂q'_k at state y by a central difference of L itself.
+    fn momentum(&self, lagrangian: &Expr, y: &[f64], k: usize) -> Result<f64, CheckError> {
+        let n = self.coords.len();
+        let h = H * y[n + k].abs().max(1.0);
+        let (mut up, mut down) = (y.to_vec(), y.to_vec());
+        up[n + k] += h;
+        down[n + k] -= h;
+        let l = |y: &[f64]| at(lagrangian, &self.at_rest_accel(y));
+        Ok((l(&up)? - l(&down)?) / (2.0 * h))
+    }
+
+    /// The energy function Σ q'·∂L/∂q' − L at state y, its momenta by differences.
+    fn energy(&self, lagrangian: &Expr, y: &[f64]) -> Result<f64, CheckError> {
+        let n = self.coords.len();
+        let mut e = -at(lagrangian, &self.at_rest_accel(y))?;
+        for k in 0..n {
+            e += y[n + k] * self.momentum(lagrangian, y, k)?;
+        }
+        Ok(e)
+    }
+}
+
+/// Integrates the equations of motion (each residual is linear in the accelerations: solved at
+/// every evaluation) from the step's start (each coordinate [`DEFAULT_START`] and at rest where
+/// it says nothing) for [`MOTION_TIME`].
+fn integrate<'a>(
+    scene: &Scene,
+    step: &AuthorStep,
+    lagrangian: &Expr,
+    eqs: &'a [(String, Expr)],
+) -> Result<Integrated<'a>, CheckError> {
+    if lagrangian.symbols().iter().any(|s| s == "t") {
+        return Err(CheckError::TimeDependent);
+    }
+    let coords: Vec<&String> = eqs.iter().map(|(q, _)| q).collect();
+    let mut params: BTreeMap<String, f64> = scene.values.clone();
+    for (k, v) in &step.start {
+        params.insert(k.clone(), *v);
+    }
+    let start: Vec<f64> = coords
+        .iter()
+        .map(|q| params.get(*q).copied().unwrap_or(DEFAULT_START))
+        .chain(
+            coords
+                .iter()
+                .map(|q| params.get(&format!("{q}'")).copied().unwrap_or(0.0)),
+        )
+        .collect();
+    let rhs = |_t: f64, y: &[f64]| motion(eqs, &params, &coords, y);
+    let run = dormand_prince(&rhs, &start, MOTION_TIME, MOTION_TOLERANCE, MOTION_STEPS)?;
+    let evaluations = run.evaluations * (coords.len() as u64 + 1);
+    Ok(Integrated {
+        states: run.states.into_iter().map(|(_, y)| y).collect(),
+        params,
+        coords,
+        evaluations,
+    })
+}
+
+/// The drift of the energy function along the integrated motion of a `lagrange` step's
+/// equations, relative to the size of the energy and the Lagrangian.
+pub(super) fn energy_check(
+    scene: &Scene,
+    step: &AuthorStep,
+    lagrangian: &Expr,
+    eqs: &[(String, Expr)],
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    check.method = format!(
+        "the energy Σ q'·∂L/∂q' − L along the motion integrated from the start for t = \
+         {MOTION_TIME} (Dormand–Prince, tolerance {MOTION_TOLERANCE:e})"
+    );
+    check.tolerance = ENERGY_AGREEMENT;
+    let m = integrate(scene, step, lagrangian, eqs)?;
+    let n = m.coords.len() as u64;
+    let e0 = m.energy(lagrangian, &m.states[0])?;
+    let mut scale = e0.abs();
+    let mut drift: f64 = 0.0;
+    for y in &m.states {
+        let e = m.energy(lagrangian, y)?;
+        scale = scale.max(at(lagrangian, &m.at_rest_accel(y))?.abs());
+        drift = drift.max((e - e0).abs());
+    }
+    check.evaluations = m.evaluations + m.states.len() as u64 * (2 * n + 1);
+    check.error = drift / scale.max(f64::MIN_POSITIVE);
+    Ok(())
+}
+
+/// Which conserved-or-not quantity a step states.
+pub(super) enum Conserved<'a> {
+    /// The momentum of this coordinate.
+    Momentum(&'a str),
+    Energy,
+}
+
+/// A `momentum` or `energy` step along the motion of its Lagrangian's equations: at every state
+/// its exact value against differences of L (the momentum ∂L/∂q', or Σ q'·∂L/∂q' − L), and, if
+/// the step says it is conserved, its drift from the start.
+pub(super) fn conserved_check(
+    scene: &Scene,
+    step: &AuthorStep,
+    lagrangian: &Expr,
+    value: &Expr,
+    conserved: bool,
+    what: Conserved,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    let eqs = crate::derive::lagrangian::euler_lagrange(lagrangian, &scene.coordinates)?;
+    check.tolerance = ENERGY_AGREEMENT;
+    let m = integrate(scene, step, lagrangian, &eqs)?;
+    let reference = |y: &[f64]| match what {
+        Conserved::Momentum(q) => match m.coords.iter().position(|c| *c == q) {
+            Some(k) => m.momentum(lagrangian, y, k),
+            // A coordinate the Lagrangian does not depend on has no momentum: 0.
+            None => Ok(0.0),
+        },
+        Conserved::Energy => m.energy(lagrangian, y),
+    };
+    let v0 = at(value, &m.at_rest_accel(&m.states[0]))?;
+    let (mut scale, mut mismatch, mut drift) = (v0.abs(), 0.0f64, 0.0f64);
+    for y in &m.states {
+        let v = at(value, &m.at_rest_accel(y))?;
+        let r = reference(y)?;
+        scale = scale
+            .max(r.abs())
+            .max(at(lagrangian, &m.at_rest_accel(y))?.abs());
+        mismatch = mismatch.max((v - r).abs());
+        drift = drift.max((v - v0).abs());
+    }
+    let scale = scale.max(f64::MIN_POSITIVE);
+    let route = match what {
+        Conserved::Momentum(_) => "the momentum ∂L/∂q' by differences of L",
+        Conserved::Energy => "the energy Σ q'·∂L/∂q' − L by differences of L",
+    };
+    check.method = format!(
+        "the exact value against {route} along the motion integrated from the start for t = \
+         {MOTION_TIME} (Dormand–Prince, tolerance {MOTION_TOLERANCE:e}){}",
+        if conserved {
+            ", and its drift from the start".to_string()
+        } else {
+            format!("; it changes by {:.1e} of its size along it", drift / scale)
+        }
+    );
+    check.evaluations = m.evaluations + m.states.len() as u64 * (2 * m.coords.len() as u64 + 3);
+    check.error = if conserved {
+        mismatch.max(drift) / scale
+    } else {
+        mismatch / scale
+    };
+    Ok(())
+}
+
+/// The amplitude at which a linearisation is compared with the full equations.
+const AMPLITUDE: f64 = 1e-3;
+/// At [`AMPLITUDE`] the full and linear equations differ by O(amplitude²), relative O(amplitude):
+/// about 1e-3 times a coefficient ratio; a wrong coefficient differs by order one.
+const LINEAR_AGREEMENT: f64 = 1e-1;
+/// The start's distance from rest for the measured period: its relative error from 2π/Ω is
+/// O(amplitude²) (1/16 of it for a pendulum), far below this.
+const PERIOD_AMPLITUDE: f64 = 1e-2;
+const PERIOD_AGREEMENT: f64 = 1e-3;
+
+/// The full and linear equations at random states near rest, at [`AMPLITUDE`].
+pub(super) fn linear_check(
+    scene: &Scene,
+    full: &[(String, Expr)],
+    linear: &[(String, Expr)],
+    about: &BTreeMap<String, Expr>,
+    seed: u64,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    check.method = format!(
+        "the full equations against the linear ones at {CONFIRMATION_POINTS} random states \
+         {AMPLITUDE:e} from rest (they differ by O(amplitude²))"
+    );
+    check.tolerance = LINEAR_AGREEMENT;
+    let mut rng = Rng::new(seed);
+    for _ in 0..CONFIRMATION_POINTS {
+        let exprs: Vec<&Expr> = full.iter().chain(linear).map(|(_, e)| e).collect();
+        let mut point = random_point(&exprs, &mut rng);
+        for q in scene.coordinates.keys() {
+            let q0 = match about.get(q) {
+                Some(e) => at(e, &point)?,
+                None => 0.0,
+            };
+            let mut step = || AMPLITUDE * (2.0 * rng.uniform() - 1.0);
+            point.insert(q.clone(), q0 + step());
+            point.insert(format!("{q}'"), step());
+            point.insert(format!("{q}''"), step());
+        }
+        for ((_, f), (_, l)) in full.iter().zip(linear) {
+            let (a, b) = (at(f, &point)?, at(l, &point)?);
+            check.evaluations += 2;
+            check.error = check
+                .error
+                .max((a - b).abs() / b.abs().max(f64::MIN_POSITIVE));
+        }
+    }
+    Ok(())
+}
+
+/// The period of the full motion started [`PERIOD_AMPLITUDE`] from rest, measured between
+/// upward crossings of rest (each found on the cubic through the two steps around it), against
+/// 2π/Ω at the scene's values.
+pub(super) fn period_check(
+    scene: &Scene,
+    full: &[(String, Expr)],
+    about: &BTreeMap<String, Expr>,
+    omega: &Expr,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    check.tolerance = PERIOD_AGREEMENT;
+    let params = scene.values.clone();
+    let coords: Vec<&String> = full.iter().map(|(q, _)| q).collect();
+    let [q] = coords.as_slice() else {
+        return Err(CheckError::NotDerived);
+    };
+    let q0 = match about.get(*q) {
+        Some(e) => at(e, &params)?,
+        None => 0.0,
+    };
+    let w = at(omega, &params)?;
+    let period = 2.0 * std::f64::consts::PI / w;
+    check.method = format!(
+        "the period of the full motion from {PERIOD_AMPLITUDE} off rest, integrated for three \
+         periods (Dormand–Prince, tolerance {MOTION_TOLERANCE:e}), against 2π/Ω"
+    );
+    let rhs = |_t: f64, y: &[f64]| motion(full, &params, &coords, y);
+    let run = dormand_prince(
+        &rhs,
+        &[q0 + PERIOD_AMPLITUDE, 0.0],
+        3.0 * period,
+        MOTION_TOLERANCE,
+        MOTION_STEPS,
+    )?;
+    let mut crossings = Vec::new();
+    for pair in run.states.windows(2) {
+        let ((t0, a), (t1, b)) = (&pair[0], &pair[1]);
+        let (x0, x1) = (a[0] - q0, b[0] - q0);
+        if x0 < 0.0 && x1 >= 0.0 {
+            // Cubic Hermite on [t0, t1] through the positions and rates; bisection for its root.
+            let h = t1 - t0;
+            let p = |s: f64| {
+                let (s2, s3) = (s * s, s * s * s);
+                (2.0 * s3 - 3.0 * s2 + 1.0) * x0
+                    + (s3 - 2.0 * s2 + s) * h * a[1]
+                    + (-2.0 * s3 + 3.0 * s2) * x1
+                    + (s3 - s2) * h * b[1]
+            };
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if p(mid) < 0.0 { lo = mid } else { hi = mid }
+            }
+            crossings.push(t0 + 0.5 * (lo + hi) * h);
+        }
+    }
+    check.evaluations = run.evaluations * 2;
+    let (Some(first), Some(last)) = (crossings.first(), crossings.last()) else {
+        return Err(CheckError::NoOscillation);
+    };
+    if crossings.len() < 2 {
+        return Err(CheckError::NoOscillation);
+    }
+    let measured = (last - first) / (crossings.len() - 1) as f64;
+    check.error = (measured - period).abs() / period;
+    Ok(())
+}
+
+/// The names at a state: the parameters, each coordinate and rate from `y` (coordinates, then
+/// rates), each acceleration from `a`.
+fn state(
+    params: &BTreeMap<String, f64>,
+    coords: &[&String],
+    y: &[f64],
+    a: &[f64],
+) -> BTreeMap<String, f64> {
+    let n = coords.len();
+    let mut p = params.clone();
+    for (k, q) in coords.iter().enumerate() {
+        p.insert((*q).clone(), y[k]);
+        p.insert(format!("{q}'"), y[n + k]);
+        p.insert(format!("{q}''"), a[k]);
+    }
+    p
+}
+
+/// y' for the equations of motion at state y: each residual is linear in the accelerations, so
+/// they solve M a = −R(a = 0), M's columns R(a = e_j) − R(0).
+fn motion(
+    eqs: &[(String, Expr)],
+    params: &BTreeMap<String, f64>,
+    coords: &[&String],
+    y: &[f64],
+) -> Result<Vec<f64>, CheckError> {
+    let n = coords.len();
+    let residuals = |a: &[f64]| -> Result<Vec<f64>, CheckError> {
+        let p = state(params, coords, y, a);
+        eqs.iter().map(|(_, e)| at(e, &p)).collect()
+    };
+    let zero = vec![0.0; n];
+    let f0 = residuals(&zero)?;
+    let mut m = nalgebra::DMatrix::zeros(n, n);
+    for j in 0..n {
+        let mut unit = zero.clone();
+        unit[j] = 1.0;
+        let fj = residuals(&unit)?;
+        for i in 0..n {
+            m[(i, j)] = fj[i] - f0[i];
+        }
+    }
+    let a = m
+        .lu()
+        .solve(&nalgebra::DVector::from_iterator(n, f0.iter().map(|x| -x)))
+        .ok_or(CheckError::Singular)?;
+    Ok(y[n..].iter().copied().chain(a.iter().copied()).collect())
+}
+
+/// The engine's normal-mode frequencies against the eigenvalues of M⁻¹K by nalgebra's Schur
+/// decomposition: backward stable, so for modes a few percent apart they agree to about 1e-13;
+/// a wrong root is off by order one.
+const MODES_AGREEMENT: f64 = 1e-9;
+
+/// A `frequency` step of n ≥ 2 coordinates: its modes at the scene's values against √λ for
+/// the eigenvalues λ of M⁻¹K, M and K read off the linear equations numerically.
+pub(super) fn modes_check(
+    scene: &Scene,
+    linear: &[(String, Expr)],
+    modes: &[Expr],
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    check.method = "each frequency against √λ for the eigenvalues λ of M⁻¹K at the scene's \
+                    values (M, K read off the linear equations; nalgebra's Schur decomposition)"
+        .into();
+    check.tolerance = MODES_AGREEMENT;
+    let coords: Vec<&String> = linear.iter().map(|(q, _)| q).collect();
+    let n = coords.len();
+    // The equations are affine in the state: a column is the change from one unit of one name.
+    let residuals = |name: Option<String>| -> Result<Vec<f64>, CheckError> {
+        let mut p = state(&scene.values, &coords, &vec![0.0; 2 * n], &vec![0.0; n]);
+        if let Some(name) = name {
+            p.insert(name, 1.0);
+        }
+        linear.iter().map(|(_, e)| at(e, &p)).collect()
+    };
+    let base = residuals(None)?;
+    let (mut m, mut k) = (
+        nalgebra::DMatrix::zeros(n, n),
+        nalgebra::DMatrix::zeros(n, n),
+    );
+    for (j, q) in coords.iter().enumerate() {
+        let (rm, rk) = (
+            residuals(Some(format!("{q}''")))?,
+            residuals(Some((*q).clone()))?,
+        );
+        for i in 0..n {
+            m[(i, j)] = rm[i] - base[i];
+            k[(i, j)] = rk[i] - base[i];
+        }
+    }
+    check.evaluations = (n * (2 * n + 1)) as u64;
+    let a = m.lu().solve(&k).ok_or(CheckError::Singular)?;
+    let mut numeric: Vec<f64> = a
+        .complex_eigenvalues()
+        .iter()
+        .map(|l| {
+            if l.im.abs() <= 1e-12 * l.norm() {
+                l.re.sqrt()
+            } else {
+                f64::NAN
+            }
+        })
+        .collect();
+    numeric.sort_by(f64::total_cmp);
+    for (w, exact) in numeric.iter().zip(modes) {
+        let x = at(exact, &scene.values)?;
+        let error = (x - w).abs() / w.abs();
+        check.error = check
+            .error
+            .max(if error.is_nan() { f64::INFINITY } else { error });
+    }
+    Ok(())
+}

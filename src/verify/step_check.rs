@@ -1,0 +1,86 @@
+//! One step's numeric check and what the routes share: its record, why it could not run, and
+//! the evaluation of an expression at a point without the engine.
+
+use super::SAMPLE_FROM;
+use crate::base::rng::Rng;
+use crate::cas::Expr;
+use std::collections::BTreeMap;
+
+/// Why a step's numeric route could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckError {
+    #[error(transparent)]
+    Eval(#[from] crate::cas::EvalError),
+    #[error(transparent)]
+    Step(#[from] crate::derive::steps::StepError),
+    #[error(transparent)]
+    Motion(#[from] crate::numeric::ode::OdeError),
+    #[error(transparent)]
+    Equations(#[from] crate::derive::DeriveError),
+    #[error(
+        "the static equation also vanishes at {at:.9} (at the scene's values), where no exact \
+         equilibrium is"
+    )]
+    MissedZero { at: f64 },
+    #[error(
+        "the exact equilibrium {at:.9} (at the scene's values) is not where the static equation \
+         changes sign"
+    )]
+    NotAZero { at: f64 },
+    #[error("about {at:.9}, Ω² is {square:e} at the scene's values, against the stated verdict")]
+    WrongVerdict { at: f64, square: f64 },
+    #[error("the equations cannot be solved for the accelerations here (a singular mass matrix)")]
+    Singular,
+    #[error(
+        "the Lagrangian depends on t: the numeric check integrates time-independent motions only"
+    )]
+    TimeDependent,
+    #[error(
+        "the motion started off rest did not cross rest twice in three periods: it does not oscillate there"
+    )]
+    NoOscillation,
+    /// The step or one it names has no result of its kind: a bug, the derivation ran first.
+    #[error("internal inconsistency: the step's result is missing or of another kind")]
+    NotDerived,
+}
+
+/// One step's numeric check: what it compared, how far apart, and what it cost.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct StepCheck {
+    pub step: String,
+    pub line: usize,
+    /// The route, in words: "central differences", "energy along an integrated motion".
+    pub method: String,
+    /// The largest relative difference found, and the most it may be.
+    pub error: f64,
+    pub tolerance: f64,
+    /// Evaluations of the step's expressions (or of the right-hand side).
+    pub evaluations: u64,
+    /// Why the check could not run, if it could not.
+    pub problem: Option<String>,
+}
+
+impl StepCheck {
+    pub fn passed(&self) -> bool {
+        self.problem.is_none() && self.error <= self.tolerance
+    }
+}
+
+/// The step of the central differences that check a derivative, a momentum or a curvature.
+pub(super) const H: f64 = 1e-3;
+
+/// Every symbol of the expressions at a random value in [0.4, 1.4) (π is π).
+pub(super) fn random_point(exprs: &[&Expr], rng: &mut Rng) -> BTreeMap<String, f64> {
+    let mut names: Vec<String> = exprs.iter().flat_map(|e| e.symbols()).collect();
+    names.sort();
+    names.dedup();
+    names
+        .into_iter()
+        .filter(|s| s != "pi")
+        .map(|s| (s, SAMPLE_FROM + rng.uniform()))
+        .collect()
+}
+
+pub(super) fn at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
+    Ok(e.eval(&|s| point.get(s).copied().filter(|_| s != "pi"))?)
+}
