@@ -76,6 +76,7 @@ impl Plan {
                 crate::scene::Operation::Be(e) => vec![e],
                 crate::scene::Operation::Differentiate { of, .. } => vec![of],
                 crate::scene::Operation::Linearise { about, .. } => about.values().collect(),
+                crate::scene::Operation::Series { of, about, .. } => vec![of, about],
                 crate::scene::Operation::Substitute { of, set } => {
                     std::iter::once(of).chain(set.values()).collect()
                 }

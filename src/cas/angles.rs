@@ -129,10 +129,7 @@ fn cos_zeros(f: &Expr) -> Result<Option<Vec<Zero>>, EngineError> {
             out.push(zero(half_pi.clone(), Expr::int(1)));
             out.push(zero(Expr::negate(half_pi), Expr::int(-1)));
         } else {
-            let s = engine::simplify(&Expr::pow(
-                Expr::minus(Expr::int(1), Expr::pow(c.clone(), Expr::int(2))),
-                Expr::rat(1, 2),
-            ))?;
+            let s = complement(&c)?;
             let acos = Expr::call("acos", c.clone());
             out.push(zero(acos.clone(), s.clone()));
             out.push(zero(Expr::negate(acos), Expr::negate(s)));
@@ -170,14 +167,19 @@ fn sin_zeros(f: &Expr) -> Result<Option<Vec<Zero>>, EngineError> {
     } else if s == Expr::int(-1) {
         vec![zero(Expr::negate(half_pi), Expr::int(0))]
     } else {
-        let c = engine::simplify(&Expr::pow(
-            Expr::minus(Expr::int(1), Expr::pow(s.clone(), Expr::int(2))),
-            Expr::rat(1, 2),
-        ))?;
+        let c = complement(&s)?;
         let asin = Expr::call("asin", s.clone());
         vec![
             zero(asin.clone(), c.clone()),
             zero(Expr::minus(Expr::sym("pi"), asin), Expr::negate(c)),
         ]
     }))
+}
+
+/// √(1 − x²), simplified: the sine of the angle whose cosine is x, or the other way round.
+fn complement(x: &Expr) -> Result<Expr, EngineError> {
+    engine::simplify(&Expr::pow(
+        Expr::minus(Expr::int(1), Expr::pow(x.clone(), Expr::int(2))),
+        Expr::rat(1, 2),
+    ))
 }

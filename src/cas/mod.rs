@@ -339,6 +339,13 @@ pub fn is_zero_over_positive(exprs: Vec<Expr>) -> Result<Vec<bool>, CasError> {
     run(move || exprs.iter().map(positive::is_zero).collect())
 }
 
+/// `e` with each square root's radicand factored and its square factors taken out, every
+/// symbol positive: √(I₃²/ε² − b) = √(I₃² − b ε²)/ε.
+pub fn roots_over_positive(e: &Expr) -> Result<Expr, CasError> {
+    let e = e.clone();
+    run(move || positive::roots_over_positive(&e))
+}
+
 /// The expanded numerator and denominator of each rational function.
 pub fn fraction_all(exprs: Vec<Expr>) -> Result<Vec<(Expr, Expr)>, CasError> {
     run(move || exprs.iter().map(engine::fraction).collect())

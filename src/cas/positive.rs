@@ -20,6 +20,11 @@ pub fn roots_over_positive(e: &Expr) -> Result<Expr, EngineError> {
                 Err(_) => Expr::pow(base, Expr::rat(1, 2)),
             }
         }
+        // X^(−1/2) = 1/√X.
+        Expr::Pow(base, exp) if **exp == Expr::rat(-1, 2) => Expr::pow(
+            roots_over_positive(&Expr::pow((**base).clone(), Expr::rat(1, 2)))?,
+            Expr::int(-1),
+        ),
         Expr::Pow(base, exp) => Expr::pow(roots_over_positive(base)?, roots_over_positive(exp)?),
         Expr::Add(v) => Expr::add(walk(v)?),
         Expr::Mul(v) => Expr::mul(walk(v)?),

@@ -8,6 +8,8 @@ use super::lagrangian::{
     time_derivative,
 };
 use super::sign::{Sign, signs_over_positive};
+pub use super::solve::equation_with;
+use super::solve::solve;
 use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr, Formula};
 use crate::model::prose::Prose;
@@ -28,6 +30,9 @@ pub enum StepResult {
     /// The normal-mode angular frequencies of n ≥ 2 coordinates, slowest first at the scene's
     /// values.
     Modes(Vec<Expr>),
+    /// Every root of a `solve` that has more than one, in order of their values at the
+    /// scene's values.
+    Roots(Vec<Expr>),
     /// The states of rest of one coordinate.
     Equilibria {
         coordinate: String,
@@ -68,6 +73,7 @@ impl StepResult {
             StepResult::Expr(e) | StepResult::Conserved { value: e, .. } => Some(e),
             StepResult::Equations(_)
             | StepResult::Modes(_)
+            | StepResult::Roots(_)
             | StepResult::Equilibria { .. }
             | StepResult::Stability { .. } => None,
         }
@@ -77,7 +83,7 @@ impl StepResult {
     /// `Omega_1`, `Omega_2`, ... for the modes of a step `Omega`.
     pub fn values(&self, name: &str) -> Vec<(String, Expr)> {
         match self {
-            StepResult::Modes(modes) => modes
+            StepResult::Modes(values) | StepResult::Roots(values) => values
                 .iter()
                 .enumerate()
                 .map(|(k, w)| (mode_name(name, k), w.clone()))
@@ -170,36 +176,31 @@ pub fn substituted(
     set: &BTreeMap<String, Expr>,
 ) -> Result<Expr, StepError> {
     let f = expand_names(scene, d, step, of)?;
-    let mut values = BTreeMap::new();
-    for (name, e) in set {
-        values.insert(name.clone(), expand_names(scene, d, step, e)?);
-    }
+    let values = replacements(scene, d, step, set)?;
     Ok(f.substitute(&|s| values.get(s).cloned()))
 }
 
-/// The one equation R = 0 solved for `unknown`, in which it must be linear: −R(0)/(∂R/∂u).
-fn solve_linear(eqs: &[(String, Expr)], unknown: &str) -> Result<Expr, DeriveError> {
-    let [(_, r)] = eqs else {
-        return Err(DeriveError::NotDerivable(format!(
-            "`solve` takes one equation; this step names {}",
-            eqs.len()
-        )));
-    };
-    let slope = r.diff(unknown)?;
-    if !cas::simplify(&slope.diff(unknown)?)?.is_zero() {
-        return Err(DeriveError::NotDerivable(format!(
-            "`{unknown}` enters the equation non-linearly: `solve` takes equations linear in \
-             their unknown for now"
-        )));
+/// Each name of a `substitute` step's `set` and its replacement, earlier steps put in.
+pub fn replacements(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    set: &BTreeMap<String, Expr>,
+) -> Result<BTreeMap<String, Expr>, StepError> {
+    set.iter()
+        .map(|(name, e)| Ok((name.clone(), expand_names(scene, d, step, e)?)))
+        .collect()
+}
+
+/// The equations a `substitute` step works on, when it names an earlier step of equations.
+pub fn substituted_equations<'a>(d: &'a Derivation, of: &Expr) -> Option<&'a [(String, Expr)]> {
+    match of {
+        Expr::Sym(name) => match d.named.get(name) {
+            Some(StepResult::Equations(eqs)) => Some(eqs),
+            _ => None,
+        },
+        _ => None,
     }
-    let slope = cas::simplify(&slope)?;
-    if slope.is_zero() {
-        return Err(DeriveError::NotDerivable(format!(
-            "the equation does not contain `{unknown}`"
-        )));
-    }
-    let rest = r.substitute(&|s| (s == unknown).then(|| Expr::int(0)));
-    Ok(cas::simplify(&Expr::negate(Expr::over(rest, slope)))?)
 }
 
 /// A momentum or energy, conserved when the force on it (∂L/∂q, or ∂L/∂t) is identically 0.
@@ -300,6 +301,16 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
                 [_] => StepResult::Expr(frequency(equations(d, of)?).map_err(located)?),
                 eqs => StepResult::Modes(normal_modes(eqs, &scene.values).map_err(located)?),
             },
+            Operation::Series {
+                of,
+                var,
+                about,
+                order,
+            } => {
+                let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
+                let x0 = expand_names(scene, d, step, about).map_err(DeriveError::Step)?;
+                StepResult::Expr(super::series::series(&f, var, &x0, *order).map_err(located)?)
+            }
             Operation::Equilibria { of } => {
                 let (coordinate, zeros) = equilibria(equations(d, of)?).map_err(located)?;
                 StepResult::Equilibria { coordinate, zeros }
@@ -348,13 +359,31 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
                 let (e, rate) = energy(scalar(d, of)?, &scene.coordinates).map_err(located)?;
                 conserved(e, rate)?
             }
-            Operation::Substitute { of, set } => {
-                let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
-                StepResult::Expr(cas::simplify(&raw)?)
-            }
+            Operation::Substitute { of, set } => match substituted_equations(d, of) {
+                // Equations of motion with names replaced: a steady state (θ'' = θ' = 0), a
+                // conserved rate put in.
+                Some(eqs) => {
+                    let values = replacements(scene, d, step, set).map_err(DeriveError::Step)?;
+                    let exprs = eqs
+                        .iter()
+                        .map(|(_, e)| e.substitute(&|s| values.get(s).cloned()))
+                        .collect();
+                    let simplified = cas::simplify_all(exprs)?;
+                    let names = eqs.iter().map(|(q, _)| q.clone());
+                    StepResult::Equations(names.zip(simplified).collect())
+                }
+                None => {
+                    let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
+                    StepResult::Expr(cas::simplify(&raw)?)
+                }
+            },
             Operation::Solve { of, unknown } => {
                 let eqs = equations(d, of)?;
-                StepResult::Expr(solve_linear(eqs, unknown).map_err(located)?)
+                let mut roots = solve(eqs, unknown, &scene.values).map_err(located)?;
+                match roots.len() {
+                    1 => StepResult::Expr(roots.remove(0)),
+                    _ => StepResult::Roots(roots),
+                }
             }
         };
         d.steps.extend(page_steps(step, &result));
@@ -449,13 +478,17 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                 })
                 .collect()
         }
-        StepResult::Modes(modes) => modes
+        StepResult::Modes(values) | StepResult::Roots(values) => values
             .iter()
             .enumerate()
             .map(|(k, w)| {
                 let sub = Expr::sym(&mode_name(&step.name, k));
+                let what = match result {
+                    StepResult::Modes(_) => "normal mode",
+                    _ => "root",
+                };
                 Step::note(
-                    &format!("{title}: normal mode {}", k + 1),
+                    &format!("{title}: {what} {}", k + 1),
                     Formula::equation(Formula::Expr(sub), w.clone()),
                     why.clone(),
                 )

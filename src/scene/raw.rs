@@ -186,6 +186,11 @@ pub struct RawStep {
     /// The energy function of the named Lagrangian.
     #[serde(default)]
     pub energy: Option<Text>,
+    /// The Taylor series of an expression, `about` one name's value, to `order`.
+    #[serde(default)]
+    pub series: Option<Text>,
+    #[serde(default)]
+    pub order: Option<Spanned<i64>>,
     /// The states of rest of the named equation of motion.
     #[serde(default)]
     pub equilibria: Option<Text>,

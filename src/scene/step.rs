@@ -26,19 +26,24 @@ pub struct AuthorStep {
 }
 
 impl AuthorStep {
-    /// The names this step gives later steps and claims: its own, and for a `frequency` of
-    /// n ≥ 2 coordinates its modes `Omega_1` ... `Omega_n`, one per coordinate.
+    /// The names this step gives later steps and claims: its own, for a `frequency` of n ≥ 2
+    /// coordinates its modes `Omega_1` ... `Omega_n`, one per coordinate, and for a `solve` its
+    /// roots when it has several.
     pub fn names_given(&self, coordinates: usize) -> Vec<String> {
         let mut names = vec![self.name.clone()];
         if matches!(self.op, Operation::Frequency { .. }) && coordinates >= 2 {
             names.extend((0..coordinates).map(|k| mode_name(&self.name, k)));
         }
+        // A `solve` with several roots names them `x_1`, `x_2`, ... (at most four).
+        if matches!(self.op, Operation::Solve { .. }) {
+            names.extend((0..4).map(|k| mode_name(&self.name, k)));
+        }
         names
     }
 }
 
-/// The name of a `frequency` step's k-th normal mode (from 0): `Omega_1` for the first of
-/// `Omega`.
+/// The name of a `frequency` step's k-th normal mode, or a `solve` step's k-th root (from 0):
+/// `Omega_1` for the first of `Omega`.
 pub fn mode_name(step: &str, k: usize) -> String {
     format!("{step}_{}", k + 1)
 }
@@ -71,6 +76,13 @@ pub enum Operation {
     Momentum { of: String, coordinate: String },
     /// The energy function Σ q'·∂L/∂q' − L of the named Lagrangian.
     Energy { of: String },
+    /// The Taylor series of an expression in one name about a value, to the given order.
+    Series {
+        of: Expr,
+        var: String,
+        about: Expr,
+        order: u32,
+    },
     /// The states of rest of the named equation of motion (one coordinate).
     Equilibria { of: String },
     /// Whether each of the named equilibria is stable.
@@ -89,6 +101,7 @@ impl Operation {
             Operation::Solve { .. } => "solve",
             Operation::Momentum { .. } => "momentum",
             Operation::Energy { .. } => "energy",
+            Operation::Series { .. } => "series",
             Operation::Equilibria { .. } => "equilibria",
             Operation::Stability { .. } => "stability",
         }

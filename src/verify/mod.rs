@@ -553,6 +553,7 @@ mod motion;
 mod principal;
 mod rest;
 mod rounding;
+mod series;
 mod step_check;
 pub mod steps;
 pub mod variants;

@@ -29,6 +29,14 @@ pub enum CheckError {
     NotAZero { at: f64 },
     #[error("about {at:.9}, Ω² is {square:e} at the scene's values, against the stated verdict")]
     WrongVerdict { at: f64, square: f64 },
+    #[error(
+        "no solution is real at the random points or at the scene's values: nothing to put back"
+    )]
+    NoRealRoot,
+    #[error(
+        "the expression or its series is not a finite number at {at:e} (at the scene's values)"
+    )]
+    NotFinite { at: f64 },
     #[error("the equations cannot be solved for the accelerations here (a singular mass matrix)")]
     Singular,
     #[error(

@@ -8,6 +8,7 @@ use super::motion::{
     Conserved, conserved_check, energy_check, linear_check, modes_check, period_check,
 };
 use super::rest::{equilibria_check, stability_check};
+use super::series::remainder_check;
 pub use super::step_check::{CheckError, StepCheck};
 use super::step_check::{H, at, random_point};
 use super::{
@@ -17,7 +18,9 @@ use super::{
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::Derivation;
-use crate::derive::steps::{StepResult, expand_names};
+use crate::derive::steps::{
+    StepResult, equation_with, expand_names, replacements, substituted_equations,
+};
 use crate::model::prose::Prose;
 use crate::scene::{AuthorStep, Claim, Operation, Scene, Verdict};
 use std::collections::BTreeMap;
@@ -142,6 +145,19 @@ fn route(
             };
             conserved_check(scene, step, lagrangian, value, *conserved, what, check)?;
         }
+        (
+            Operation::Series {
+                of,
+                var,
+                about,
+                order,
+            },
+            StepResult::Expr(s),
+        ) => {
+            let f = expand_names(scene, d, step, of)?;
+            let x0 = at(&expand_names(scene, d, step, about)?, &scene.values)?;
+            remainder_check(scene, &f, s, var, x0, *order, check)?;
+        }
         (Operation::Equilibria { of }, StepResult::Equilibria { coordinate, zeros }) => {
             let r = single_equation(d, of, coordinate)?;
             equilibria_check(scene, r, coordinate, zeros, check)?;
@@ -180,12 +196,18 @@ fn route(
             };
             period_check(scene, full, about, omega, check)?;
         }
-        (Operation::Substitute { of, set }, StepResult::Expr(r)) => {
-            let f = expand_names(scene, d, step, of)?;
-            let mut values = BTreeMap::new();
-            for (name, e) in set {
-                values.insert(name.clone(), expand_names(scene, d, step, e)?);
-            }
+        (Operation::Substitute { of, set }, result) => {
+            // Each expression as written beside its result: one, or one per equation.
+            let pairs: Vec<(Expr, &Expr)> = match (substituted_equations(d, of), result) {
+                (Some(before), StepResult::Equations(after)) => before
+                    .iter()
+                    .zip(after)
+                    .map(|((_, b), (_, a))| (b.clone(), a))
+                    .collect(),
+                (None, StepResult::Expr(r)) => vec![(expand_names(scene, d, step, of)?, r)],
+                _ => return Err(CheckError::NotDerived),
+            };
+            let values = replacements(scene, d, step, set)?;
             check.method = format!(
                 "the expression as written, each replaced name given its replacement's value, at \
                  {CONFIRMATION_POINTS} random points"
@@ -193,45 +215,74 @@ fn route(
             check.tolerance = NUMERICALLY_ZERO;
             let mut rng = Rng::new(seed);
             for _ in 0..CONFIRMATION_POINTS {
-                let exprs: Vec<&Expr> = std::iter::once(&f)
+                let exprs: Vec<&Expr> = pairs
+                    .iter()
+                    .flat_map(|(f, r)| [f, *r])
                     .chain(values.values())
-                    .chain([r])
                     .collect();
                 let mut point = random_point(&exprs, &mut rng);
                 for (name, e) in &values {
                     let x = at(e, &point)?;
                     point.insert(name.clone(), x);
                 }
-                let (a, b) = (at(&f, &point)?, at(r, &point)?);
-                check.evaluations += 2 + values.len() as u64;
-                check.error = check
-                    .error
-                    .max((a - b).abs() / a.abs().max(b.abs()).max(1.0));
+                for (f, r) in &pairs {
+                    let (a, b) = (at(f, &point)?, at(r, &point)?);
+                    check.evaluations += 2;
+                    check.error = check
+                        .error
+                        .max((a - b).abs() / a.abs().max(b.abs()).max(1.0));
+                }
+                check.evaluations += values.len() as u64;
             }
         }
-        (Operation::Solve { of, unknown }, StepResult::Expr(solution)) => {
-            let Some(StepResult::Equations(eqs)) = d.named.get(of) else {
+        (Operation::Solve { of, unknown }, StepResult::Expr(_) | StepResult::Roots(_)) => {
+            let Some(StepResult::Equations(all)) = d.named.get(of) else {
                 return Err(CheckError::NotDerived);
             };
+            let eqs = std::slice::from_ref(equation_with(all, unknown)?);
+            let roots: Vec<&Expr> = match result {
+                StepResult::Roots(roots) => roots.iter().collect(),
+                _ => result.scalar().into_iter().collect(),
+            };
             check.method = format!(
-                "the solution put back into the equation, at {CONFIRMATION_POINTS} random points"
+                "each solution put back into the equation, at {CONFIRMATION_POINTS} random points \
+                 and the scene's values (where it is real)"
             );
             check.tolerance = NUMERICALLY_ZERO;
             let mut rng = Rng::new(seed);
-            for _ in 0..CONFIRMATION_POINTS {
-                let exprs: Vec<&Expr> = eqs.iter().map(|(_, e)| e).chain([solution]).collect();
-                let mut point = random_point(&exprs, &mut rng);
-                let u = at(solution, &point)?;
-                point.insert(unknown.clone(), 0.0);
-                let scale = eqs
-                    .iter()
-                    .map(|(_, e)| at(e, &point))
-                    .sum::<Result<f64, _>>()?;
-                point.insert(unknown.clone(), u);
-                for (_, e) in eqs {
-                    check.evaluations += 2;
-                    check.error = check.error.max(at(e, &point)?.abs() / scale.abs().max(1.0));
+            let mut points: Vec<BTreeMap<String, f64>> = (0..CONFIRMATION_POINTS)
+                .map(|_| {
+                    let exprs: Vec<&Expr> = eqs
+                        .iter()
+                        .map(|(_, e)| e)
+                        .chain(roots.iter().copied())
+                        .collect();
+                    random_point(&exprs, &mut rng)
+                })
+                .collect();
+            points.push(scene.values.clone());
+            let mut real = 0;
+            for mut point in points {
+                for root in &roots {
+                    let Ok(u) = at(root, &point) else { continue };
+                    if !u.is_finite() {
+                        continue;
+                    }
+                    point.insert(unknown.clone(), 0.0);
+                    let scale = eqs
+                        .iter()
+                        .map(|(_, e)| at(e, &point))
+                        .sum::<Result<f64, _>>()?;
+                    point.insert(unknown.clone(), u);
+                    for (_, e) in eqs {
+                        check.evaluations += 2;
+                        check.error = check.error.max(at(e, &point)?.abs() / scale.abs().max(1.0));
+                    }
+                    real += 1;
                 }
+            }
+            if real == 0 {
+                return Err(CheckError::NoRealRoot);
             }
         }
         _ => return Err(CheckError::NotDerived),
@@ -277,11 +328,11 @@ pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, ca
         };
         let mut r = match d.named.get(&step.name) {
             Some(StepResult::Equations(eqs)) => same_equation(scene, d, step, &claim, eqs, gives)?,
-            Some(StepResult::Modes(modes)) => {
+            Some(StepResult::Modes(modes) | StepResult::Roots(modes)) => {
                 let mut r = unchecked(&claim);
                 r.problem = Some(format!(
-                    "this step gives {} normal modes, named {}_1 to {}_{}: state each in a claim \
-                     on its name instead of `gives`",
+                    "this step gives {} values, named {}_1 to {}_{}: state each in a claim on its \
+                     name instead of `gives`",
                     modes.len(),
                     step.name,
                     step.name,

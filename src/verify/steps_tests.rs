@@ -473,3 +473,70 @@ fn bead_on_hoop_equilibria_and_stability() {
         "{missing:?}"
     );
 }
+
+/// The gyroscope of tests/course: the steady-precession equation solved for both rates (each
+/// put back), the slow one's series in ε = 1/ω₃ and the textbook's M g l/(I₃ ω₃) agree; a wrong
+/// leading term disagrees at its line; the remainder check fails a series missing a term.
+#[test]
+fn gyroscope_series_and_roots() {
+    use crate::derive::steps::StepResult;
+    let r = course_scene("06-gyroscope.toml", "order = 1", "order = 1");
+    assert!(
+        r.verification.steps.iter().all(|c| c.passed()),
+        "{:?}",
+        r.verification.steps
+    );
+    let StepResult::Roots(roots) = &r.derivation.named["rate"] else {
+        panic!("{:?}", r.derivation.named["rate"])
+    };
+    assert_eq!(roots.len(), 2);
+    // Both roots of I1 cos θ φ'² − I3 w3 φ' + M g l = 0 at the scene's values, in floating point.
+    let (i1, i3, mgl, w3, c) = (0.02f64, 0.01f64, 9.81 * 0.1, 100.0f64, 0.8f64.cos());
+    let disc = ((i3 * w3).powi(2) - 4.0 * i1 * c * mgl).sqrt();
+    let want = [
+        (i3 * w3 - disc) / (2.0 * i1 * c),
+        (i3 * w3 + disc) / (2.0 * i1 * c),
+    ];
+    for (root, w) in roots.iter().zip(want) {
+        let x = root.eval(&|s| r.scene.values.get(s).copied()).unwrap();
+        assert!((x - w).abs() < 1e-12 * w, "{x} {w}");
+    }
+    for (name, verdict, _) in verdicts(&r) {
+        assert_eq!(verdict, Verdict::Agrees, "{name}");
+    }
+    let wrong = course_scene("06-gyroscope.toml", "M*g*l*eps/I3\"", "M*g*l*eps/I1\"");
+    let slow = verdicts(&wrong)
+        .into_iter()
+        .find(|v| v.0 == "slow")
+        .unwrap();
+    assert_eq!(slow.1, Verdict::Disagrees);
+    assert_eq!(
+        slow.2,
+        wrong
+            .scene
+            .steps
+            .iter()
+            .find(|s| s.name == "slow")
+            .unwrap()
+            .line
+    );
+    // The slow rate against 0 (its series with the leading term dropped): the remainder is
+    // then of order 1, not 2.
+    let step = r.scene.steps.iter().find(|s| s.name == "slow").unwrap();
+    let crate::scene::Operation::Series { of, .. } = &step.op else {
+        panic!()
+    };
+    let f = crate::derive::steps::expand_names(&r.scene, &r.derivation, step, of).unwrap();
+    let mut check = blank();
+    super::series::remainder_check(
+        &r.scene,
+        &f,
+        &crate::cas::Expr::int(0),
+        "eps",
+        0.0,
+        1,
+        &mut check,
+    )
+    .unwrap();
+    assert!(!check.passed(), "{check:?}");
+}

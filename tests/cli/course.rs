@@ -273,3 +273,19 @@ fn a_step_that_cannot_be_derived_is_reported_at_its_line() {
     );
     assert!(!err.contains("panicked"), "{err}");
 }
+
+/// `solve` of an irreducible quintic stops the scene at the step's line, naming the factor and
+/// its degree (closed forms go to degree two).
+#[test]
+fn solve_of_degree_five_is_reported_at_its_line() {
+    let out = mechbook(&["check", "tests/fixtures/step-solve-degree-5.toml"]);
+    let err = crate::stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "tests/fixtures/step-solve-degree-5.toml:24:1: scene `quintic` could not be derived: \
+             step `x0`: the equation has the factor -a*x - b + k*x^5 of degree 5 in `x`"
+        ),
+        "{err}"
+    );
+}

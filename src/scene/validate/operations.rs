@@ -8,7 +8,7 @@ use crate::scene::step::Operation;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The operations a step may name, one per step.
-const OPERATIONS: [&str; 11] = [
+const OPERATIONS: [&str; 12] = [
     "be",
     "differentiate",
     "substitute",
@@ -18,9 +18,13 @@ const OPERATIONS: [&str; 11] = [
     "linearise",
     "frequency",
     "solve",
+    "series",
     "equilibria",
     "stability",
 ];
+
+/// The highest order of a `series`: each order is one more derivative of the expression.
+const MAX_ORDER: i64 = 6;
 
 /// What an earlier step holds, for the operations that take a step by name.
 #[derive(Clone, Copy, PartialEq)]
@@ -56,6 +60,7 @@ impl Validator<'_> {
             s.momentum.as_ref().map(|_| "momentum"),
             s.energy.as_ref().map(|_| "energy"),
             s.equilibria.as_ref().map(|_| "equilibria"),
+            s.series.as_ref().map(|_| "series"),
             s.stability.as_ref().map(|_| "stability"),
         ]
         .into_iter()
@@ -107,16 +112,8 @@ impl Validator<'_> {
                 by: by.get_ref().clone(),
             }
         } else if let Some(of) = &s.lagrange {
-            self.earlier(of, field, "lagrange", Holds::Expression, earlier)?;
-            if coordinates.is_empty() {
-                return Err(self.err(
-                    content_start(of),
-                    &format!("{field}.lagrange"),
-                    "`lagrange` needs generalised coordinates: name them under [coordinates]",
-                ));
-            }
             Operation::Lagrange {
-                of: of.get_ref().clone(),
+                of: self.lagrangian(of, field, "lagrange", earlier, coordinates)?,
             }
         } else if let Some(of) = &s.linearise {
             self.earlier(of, field, "linearise", Holds::Motion, earlier)?;
@@ -214,16 +211,45 @@ impl Validator<'_> {
                 coordinate: q.get_ref().clone(),
             }
         } else if let Some(of) = &s.energy {
-            self.earlier(of, field, "energy", Holds::Expression, earlier)?;
-            if coordinates.is_empty() {
+            Operation::Energy {
+                of: self.lagrangian(of, field, "energy", earlier, coordinates)?,
+            }
+        } else if let Some(of) = &s.series {
+            let [(var, value)] = s.about.iter().collect::<Vec<_>>()[..] else {
                 return Err(self.err(
-                    content_start(of),
-                    &format!("{field}.energy"),
-                    "`energy` needs generalised coordinates: name them under [coordinates]",
+                    offset,
+                    &format!("{field}.about"),
+                    "`series` needs `about` with one name and its value, such as about = { eps \
+                     = \"0\" }",
+                ));
+            };
+            let key = format!("{field}.about.{}", var.get_ref());
+            if !scope.contains(var.get_ref()) || earlier.contains_key(var.get_ref()) {
+                return Err(self.err(
+                    var.span().start,
+                    &key,
+                    format!(
+                        "cannot expand in `{}`: not a symbol, coordinate, rate or `t` of this scene",
+                        var.get_ref()
+                    ),
                 ));
             }
-            Operation::Energy {
-                of: of.get_ref().clone(),
+            let order = match &s.order {
+                None => 1,
+                Some(o) if (0..=MAX_ORDER).contains(o.get_ref()) => *o.get_ref() as u32,
+                Some(o) => {
+                    return Err(self.err(
+                        o.span().start,
+                        &format!("{field}.order"),
+                        format!("`order` is a whole number from 0 to {MAX_ORDER}"),
+                    ));
+                }
+            };
+            Operation::Series {
+                of: expr(of, "series")?,
+                var: var.get_ref().clone(),
+                about: self.claim_expr(value, &key, &names_only(scope, coordinates))?,
+                order,
             }
         } else if let Some(of) = &s.equilibria {
             self.earlier(of, field, "equilibria", Holds::Motion, earlier)?;
@@ -277,11 +303,21 @@ impl Validator<'_> {
                 "`for` names the unknown of a `solve` step; this step has none",
             ));
         }
-        if !s.about.is_empty() && !matches!(op, Operation::Linearise { .. }) {
+        if !s.about.is_empty()
+            && !matches!(op, Operation::Linearise { .. } | Operation::Series { .. })
+        {
             return Err(self.err(
                 offset,
                 &format!("{field}.about"),
-                "`about` is the state a `linearise` step expands about; this step has none",
+                "`about` is the state a `linearise` or `series` step expands about; this step \
+                 has none",
+            ));
+        }
+        if s.order.is_some() && !matches!(op, Operation::Series { .. }) {
+            return Err(self.err(
+                offset,
+                &format!("{field}.order"),
+                "`order` is the last power of a `series` step; this step has none",
             ));
         }
         // (A `frequency` of several coordinates is known only once derived: its `gives` is
@@ -321,6 +357,28 @@ impl Validator<'_> {
             ));
         }
         Ok(op)
+    }
+}
+
+impl Validator<'_> {
+    /// The earlier step holding the Lagrangian that `op` takes, in a scene with coordinates.
+    fn lagrangian(
+        &self,
+        of: &Text,
+        field: &str,
+        op: &str,
+        earlier: &BTreeMap<String, Holds>,
+        coordinates: &BTreeMap<String, String>,
+    ) -> Result<String, SceneError> {
+        self.earlier(of, field, op, Holds::Expression, earlier)?;
+        if coordinates.is_empty() {
+            return Err(self.err(
+                content_start(of),
+                &format!("{field}.{op}"),
+                format!("`{op}` needs generalised coordinates: name them under [coordinates]"),
+            ));
+        }
+        Ok(of.get_ref().clone())
     }
 }
 

@@ -86,8 +86,13 @@ impl Validator<'_> {
                 &earlier,
                 coordinates,
             )?;
-            let holds = match step.op {
+            let holds = match &step.op {
                 Operation::Lagrange { .. } => Holds::Motion,
+                // Equations with names replaced are still equations of their kind.
+                Operation::Substitute {
+                    of: crate::cas::Expr::Sym(n),
+                    ..
+                } if matches!(earlier.get(n), Some(Holds::Motion | Holds::Linear)) => earlier[n],
                 Operation::Linearise { .. } => Holds::Linear,
                 Operation::Equilibria { .. } => Holds::Equilibria,
                 _ => Holds::Expression,

@@ -88,7 +88,8 @@ impl Validator<'_> {
         Ok((definitions, vectors, claim_names))
     }
 
-    /// `[numeric] values`: finite, one per symbol the bodies, `omega` and `axis` use.
+    /// `[numeric] values`: finite, one per symbol the bodies, `omega` and `axis` use, and any
+    /// coordinate's.
     pub(super) fn values<'e>(
         &self,
         raw: &RawScene,
@@ -101,11 +102,14 @@ impl Validator<'_> {
         for (name, v) in &raw.numeric.values {
             let n = name.get_ref();
             let field = format!("numeric.values.{n}");
-            if !symbols.contains_key(n) {
+            // A coordinate may have a value too: the state at which a step's results are
+            // evaluated (and a `lagrange` step's motion starts).
+            let coordinate = raw.coordinates.keys().any(|k| k.get_ref() == n);
+            if !symbols.contains_key(n) && !coordinate {
                 return Err(self.err(
                     name.span().start,
                     &field,
-                    format!("`{n}` is not a declared symbol"),
+                    format!("`{n}` is not a declared symbol or coordinate"),
                 ));
             }
             if !v.get_ref().is_finite() {
