@@ -77,6 +77,9 @@ impl Plan {
                 crate::scene::Operation::Differentiate { of, .. } => vec![of],
                 crate::scene::Operation::Linearise { about, .. } => about.values().collect(),
                 crate::scene::Operation::Series { of, about, .. } => vec![of, about],
+                crate::scene::Operation::Integrate { of, over } => std::iter::once(of)
+                    .chain(over.iter().flat_map(|(_, lo, hi)| [lo, hi]))
+                    .collect(),
                 crate::scene::Operation::Substitute { of, set } => {
                     std::iter::once(of).chain(set.values()).collect()
                 }

@@ -61,14 +61,19 @@ fn span_notation(span: AngleSpan) -> &'static str {
 }
 
 /// `I_xy = ∫_{lo}^{hi} … f dx dy = result`: the limits outermost first, the differentials
-/// innermost first.
-fn integral_formula(name: &str, integrand: &Expr, domain: &[Integral], result: &Expr) -> Formula {
+/// innermost first; `lhs` in the notation of [`Formula::parse`].
+pub(super) fn integral_formula(
+    lhs: &str,
+    integrand: &Expr,
+    domain: &[Integral],
+    result: &Expr,
+) -> Formula {
     let mut exprs = vec![integrand.clone(), result.clone()];
     let mut put = |e: &Expr| {
         exprs.push(e.clone());
         format!("${}", exprs.len() - 1)
     };
-    let mut notation = format!("{}_{} = ", &name[..1], &name[1..]);
+    let mut notation = format!("{lhs} = ");
     for i in domain.iter().rev() {
         let (lo, hi) = match i {
             Integral::Poly { lo, hi, .. } => (put(lo), put(hi)),
@@ -203,7 +208,12 @@ fn body_part(
                 let name = format!("I{}{}", AXES[*i], AXES[*j]);
                 d.steps.push(Step::note(
                     &format!("{label}: {name}"),
-                    integral_formula(&name, &integrands[k], &c.domain, &results[k + 1]),
+                    integral_formula(
+                        &format!("{}_{}", &name[..1], &name[1..]),
+                        &integrands[k],
+                        &c.domain,
+                        &results[k + 1],
+                    ),
                     why_integrate(&c.domain),
                 ));
             }

@@ -10,6 +10,7 @@ pub mod earth;
 pub mod euler;
 pub mod free_top;
 mod inertia;
+mod integral;
 mod kinematics;
 pub mod lagrangian;
 pub mod poinsot;

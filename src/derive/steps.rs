@@ -247,6 +247,8 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
                 message: e.to_string(),
             })
         };
+        // A statement other than `name = result`: an integral shown with its limits.
+        let mut shown: Option<Formula> = None;
         let result = match &step.op {
             Operation::Be(e) => {
                 let x = expand_names(scene, d, step, e).map_err(DeriveError::Step)?;
@@ -301,6 +303,19 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
                 [_] => StepResult::Expr(frequency(equations(d, of)?).map_err(located)?),
                 eqs => StepResult::Modes(normal_modes(eqs, &scene.values).map_err(located)?),
             },
+            Operation::Integrate { of, over } => {
+                let expand = |e: &Expr| expand_names(scene, d, step, e).map_err(DeriveError::Step);
+                let f = expand(of)?;
+                let over = over
+                    .iter()
+                    .map(|(v, lo, hi)| Ok((v.clone(), expand(lo)?, expand(hi)?)))
+                    .collect::<Result<Vec<_>, DeriveError>>()?;
+                let (value, domain) = super::integral::integral(&f, &over).map_err(located)?;
+                shown = Some(super::inertia::integral_formula(
+                    &step.name, &f, &domain, &value,
+                ));
+                StepResult::Expr(value)
+            }
             Operation::Series {
                 of,
                 var,
@@ -386,7 +401,11 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
                 }
             }
         };
-        d.steps.extend(page_steps(step, &result));
+        let mut steps = page_steps(step, &result);
+        if let (Some(formula), [only]) = (shown, &mut steps[..]) {
+            only.statement = formula;
+        }
+        d.steps.extend(steps);
         d.named.insert(step.name.clone(), result);
     }
     Ok(())

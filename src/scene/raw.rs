@@ -186,6 +186,11 @@ pub struct RawStep {
     /// The energy function of the named Lagrangian.
     #[serde(default)]
     pub energy: Option<Text>,
+    /// A definite integral `over` [variable, from, to] ranges, innermost first.
+    #[serde(default)]
+    pub integrate: Option<Text>,
+    #[serde(default)]
+    pub over: Vec<Spanned<Vec<Text>>>,
     /// The Taylor series of an expression, `about` one name's value, to `order`.
     #[serde(default)]
     pub series: Option<Text>,

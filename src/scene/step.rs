@@ -76,6 +76,12 @@ pub enum Operation {
     Momentum { of: String, coordinate: String },
     /// The energy function Σ q'·∂L/∂q' − L of the named Lagrangian.
     Energy { of: String },
+    /// A definite integral, innermost variable first: each (variable, from, to), whose limits
+    /// may use the variables after it.
+    Integrate {
+        of: Expr,
+        over: Vec<(String, Expr, Expr)>,
+    },
     /// The Taylor series of an expression in one name about a value, to the given order.
     Series {
         of: Expr,
@@ -102,6 +108,7 @@ impl Operation {
             Operation::Momentum { .. } => "momentum",
             Operation::Energy { .. } => "energy",
             Operation::Series { .. } => "series",
+            Operation::Integrate { .. } => "integrate",
             Operation::Equilibria { .. } => "equilibria",
             Operation::Stability { .. } => "stability",
         }

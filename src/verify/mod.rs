@@ -549,6 +549,7 @@ pub fn verify_numeric(
     Ok(())
 }
 
+mod integral;
 mod motion;
 mod principal;
 mod rest;

@@ -4,6 +4,7 @@
 //! energy function Σ q'·∂L/∂q' − L, itself found by differences. A step's `gives` is a claim of
 //! the notes, with a verdict.
 
+use super::integral::quadrature_check;
 use super::motion::{
     Conserved, conserved_check, energy_check, linear_check, modes_check, period_check,
 };
@@ -144,6 +145,20 @@ fn route(
                 _ => Conserved::Energy,
             };
             conserved_check(scene, step, lagrangian, value, *conserved, what, check)?;
+        }
+        (Operation::Integrate { of, over }, StepResult::Expr(exact)) => {
+            let f = expand_names(scene, d, step, of)?;
+            let over = over
+                .iter()
+                .map(|(v, lo, hi)| {
+                    Ok((
+                        v.clone(),
+                        expand_names(scene, d, step, lo)?,
+                        expand_names(scene, d, step, hi)?,
+                    ))
+                })
+                .collect::<Result<Vec<_>, CheckError>>()?;
+            quadrature_check(&scene.values, &f, &over, exact, check)?;
         }
         (
             Operation::Series {

@@ -540,3 +540,82 @@ fn gyroscope_series_and_roots() {
     .unwrap();
     assert!(!check.passed(), "{check:?}");
 }
+
+/// The paraboloid of tests/course: its volume and moments by `integrate` are the textbook's
+/// (π R² h/2, M R²/3, M R²/6 + M h²/2 about the vertex); a wrong moment disagrees at its line;
+/// the quadrature route fails a wrong exact result; sin θ over half a turn is refused.
+#[test]
+fn paraboloid_by_integration() {
+    let r = course_scene(
+        "07-paraboloid.toml",
+        "gives = \"M*R^2/3\"",
+        "gives = \"M*R^2/3\"",
+    );
+    assert!(
+        r.verification.steps.iter().all(|c| c.passed()),
+        "{:?}",
+        r.verification.steps
+    );
+    let (m, radius, h) = (2.0f64, 0.5f64, 1.2f64);
+    for (name, textbook) in [
+        ("V", std::f64::consts::PI * radius * radius * h / 2.0),
+        ("Iz", m * radius * radius / 3.0),
+        ("Ix", m * radius * radius / 6.0 + m * h * h / 2.0),
+    ] {
+        let x = scalar_at(&r, name, &[]);
+        assert!(
+            (x - textbook).abs() < 1e-14 * textbook,
+            "{name}: {x} {textbook}"
+        );
+    }
+    for (name, verdict, _) in verdicts(&r) {
+        assert_eq!(verdict, Verdict::Agrees, "{name}");
+    }
+    let wrong = course_scene(
+        "07-paraboloid.toml",
+        "gives = \"M*R^2/3\"",
+        "gives = \"M*R^2/2\"",
+    );
+    let iz = verdicts(&wrong).into_iter().find(|v| v.0 == "Iz").unwrap();
+    assert_eq!(iz.1, Verdict::Disagrees);
+    assert_eq!(
+        iz.2,
+        wrong
+            .scene
+            .steps
+            .iter()
+            .find(|s| s.name == "Iz")
+            .unwrap()
+            .line
+    );
+    let step = r.scene.steps.iter().find(|s| s.name == "Iz").unwrap();
+    let crate::scene::Operation::Integrate { of, over } = &step.op else {
+        panic!()
+    };
+    let f = crate::derive::steps::expand_names(&r.scene, &r.derivation, step, of).unwrap();
+    let mut check = blank();
+    super::integral::quadrature_check(
+        &r.scene.values,
+        &f,
+        over,
+        &parse("M*R^2/2").unwrap().expr,
+        &mut check,
+    )
+    .unwrap();
+    assert!(!check.passed(), "{check:?}");
+    let half = crate::scene::Scene::parse(
+        &std::fs::read_to_string("tests/course/dynamics/07-paraboloid.toml")
+            .unwrap()
+            .replace(
+                "[\"theta\", \"0\", \"2*pi\"]]\nwhy = \"about",
+                "[\"theta\", \"0\", \"pi/3\"]]\nwhy = \"about",
+            ),
+        Path::new("p.toml"),
+    )
+    .unwrap();
+    let err = run_scene(half, None).unwrap_err().to_string();
+    assert!(
+        err.contains("integrate it from 0 to 2*pi, pi or pi/2"),
+        "{err}"
+    );
+}

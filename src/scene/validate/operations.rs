@@ -2,13 +2,14 @@
 //! names, the coordinates and the earlier steps, and no field of another operation.
 
 use super::{Validator, content_start};
+use crate::cas::Expr;
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawStep, Text};
 use crate::scene::step::Operation;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The operations a step may name, one per step.
-const OPERATIONS: [&str; 12] = [
+const OPERATIONS: [&str; 13] = [
     "be",
     "differentiate",
     "substitute",
@@ -19,6 +20,7 @@ const OPERATIONS: [&str; 12] = [
     "frequency",
     "solve",
     "series",
+    "integrate",
     "equilibria",
     "stability",
 ];
@@ -61,6 +63,7 @@ impl Validator<'_> {
             s.energy.as_ref().map(|_| "energy"),
             s.equilibria.as_ref().map(|_| "equilibria"),
             s.series.as_ref().map(|_| "series"),
+            s.integrate.as_ref().map(|_| "integrate"),
             s.stability.as_ref().map(|_| "stability"),
         ]
         .into_iter()
@@ -214,6 +217,14 @@ impl Validator<'_> {
             Operation::Energy {
                 of: self.lagrangian(of, field, "energy", earlier, coordinates)?,
             }
+        } else if let Some(of) = &s.integrate {
+            let over = self.ranges(s, offset, field, scope)?;
+            let mut inner = scope.clone();
+            inner.extend(over.iter().map(|(v, _, _)| v.clone()));
+            Operation::Integrate {
+                of: self.claim_expr(of, &format!("{field}.integrate"), &inner)?,
+                over,
+            }
         } else if let Some(of) = &s.series {
             let [(var, value)] = s.about.iter().collect::<Vec<_>>()[..] else {
                 return Err(self.err(
@@ -313,6 +324,13 @@ impl Validator<'_> {
                  has none",
             ));
         }
+        if !s.over.is_empty() && !matches!(op, Operation::Integrate { .. }) {
+            return Err(self.err(
+                offset,
+                &format!("{field}.over"),
+                "`over` gives the ranges of an `integrate` step; this step has none",
+            ));
+        }
         if s.order.is_some() && !matches!(op, Operation::Series { .. }) {
             return Err(self.err(
                 offset,
@@ -360,7 +378,65 @@ impl Validator<'_> {
     }
 }
 
+/// The most nested integrals of one `integrate` step.
+const MAX_RANGES: usize = 3;
+
 impl Validator<'_> {
+    /// An `integrate` step's `over`: [variable, from, to], innermost first, each variable a new
+    /// name, each range's limits in the scene's names and the variables after it.
+    fn ranges(
+        &self,
+        s: &RawStep,
+        offset: usize,
+        field: &str,
+        scope: &BTreeSet<String>,
+    ) -> Result<Vec<(String, Expr, Expr)>, SceneError> {
+        let key = format!("{field}.over");
+        if s.over.is_empty() || s.over.len() > MAX_RANGES {
+            return Err(self.err(
+                offset,
+                &key,
+                format!(
+                    "`integrate` needs `over`: one to {MAX_RANGES} ranges [variable, from, to], \
+                     innermost first, such as over = [[\"x\", \"0\", \"a\"]]"
+                ),
+            ));
+        }
+        let mut vars: Vec<String> = Vec::new();
+        for range in &s.over {
+            let [var, ..] = &range.get_ref()[..] else {
+                return Err(self.err(range.span().start, &key, "a range is [variable, from, to]"));
+            };
+            let v = var.get_ref();
+            if !super::is_identifier(v) || scope.contains(v) || vars.contains(v) {
+                return Err(self.err(
+                    content_start(var),
+                    &key,
+                    format!(
+                        "`{v}` cannot be an integration variable: it needs a name of its own, not \
+                         a symbol, coordinate or step of this scene, nor another range's"
+                    ),
+                ));
+            }
+            vars.push(v.clone());
+        }
+        let mut out = Vec::new();
+        for (k, range) in s.over.iter().enumerate() {
+            let [_, lo, hi] = &range.get_ref()[..] else {
+                return Err(self.err(range.span().start, &key, "a range is [variable, from, to]"));
+            };
+            // Limits use the scene's names and the variables integrated after this one.
+            let mut names = scope.clone();
+            names.extend(vars[k + 1..].iter().cloned());
+            out.push((
+                vars[k].clone(),
+                self.claim_expr(lo, &key, &names)?,
+                self.claim_expr(hi, &key, &names)?,
+            ));
+        }
+        Ok(out)
+    }
+
     /// The earlier step holding the Lagrangian that `op` takes, in a scene with coordinates.
     fn lagrangian(
         &self,
