@@ -81,13 +81,18 @@ pub fn zeros(e: &Expr, q: &str) -> Result<Zeros, EngineError> {
                 for z in zs {
                     // Where the denominator vanishes too, the expression has a pole or is 0/0
                     // (θ = π in a²(1 − cos θ)/(1 + cos θ)): not a zero.
-                    let (c, s) = z.trig.clone().expect("an angle's zero has its cos and sin");
-                    let below = denominator.substitute(&|name| match name {
-                        C => Some(c.clone()),
-                        S => Some(s.clone()),
-                        _ => None,
-                    });
-                    if !out.zeros.contains(&z) && !engine::simplify(&below)?.is_zero() {
+                    let pole = match &z.trig {
+                        Some((c, s)) => {
+                            engine::simplify(&denominator.substitute(&|name| match name {
+                                C => Some(c.clone()),
+                                S => Some(s.clone()),
+                                _ => None,
+                            }))?
+                            .is_zero()
+                        }
+                        None => false,
+                    };
+                    if !pole && !out.zeros.contains(&z) {
                         out.zeros.push(z);
                     }
                 }

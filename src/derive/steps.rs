@@ -240,167 +240,9 @@ fn equations<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)], De
 /// Derives every step in order, each simplified by the engine, and writes its page steps.
 pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     for step in &scene.steps {
-        let located = |e: DeriveError| -> DeriveError {
-            DeriveError::Step(StepError::Operation {
-                step: step.name.clone(),
-                line: step.line,
-                message: e.to_string(),
-            })
-        };
         // A statement other than `name = result`: an integral shown with its limits.
         let mut shown: Option<Formula> = None;
-        let result = match &step.op {
-            Operation::Be(e) => {
-                let x = expand_names(scene, d, step, e).map_err(DeriveError::Step)?;
-                StepResult::Expr(cas::simplify(&x)?)
-            }
-            Operation::Differentiate { of, by } => {
-                let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
-                let raw = if by == "t" {
-                    time_derivative(&f, &scene.coordinates).map_err(located)?
-                } else {
-                    f.diff(by).map_err(|e| located(e.into()))?
-                };
-                StepResult::Expr(cas::simplify(&raw)?)
-            }
-            Operation::Lagrange { of } => {
-                let l = scalar(d, of)?;
-                let residuals = euler_lagrange(l, &scene.coordinates).map_err(located)?;
-                let exprs: Vec<Expr> = residuals.iter().map(|(_, e)| e.clone()).collect();
-                let simplified = cas::simplify_all(exprs)?;
-                StepResult::Equations(
-                    residuals
-                        .into_iter()
-                        .zip(simplified)
-                        .map(|((q, _), e)| (q, e))
-                        .collect(),
-                )
-            }
-            Operation::Linearise { of, about } => {
-                let eqs = equations(d, of)?;
-                let (rest, linear) = linearise(eqs, about, &scene.coordinates).map_err(located)?;
-                // A state of rest leaves nothing over: else it is not an equilibrium.
-                let left = cas::simplify_all(rest)?;
-                if let Some((k, r)) = left.iter().enumerate().find(|(_, r)| !r.is_zero()) {
-                    return Err(located(DeriveError::NotDerivable(format!(
-                        "the state given by `about` is not at rest: the equation of `{}` leaves \
-                         {} there, not 0; give an equilibrium",
-                        eqs[k].0,
-                        r.to_text()
-                    ))));
-                }
-                let simplified =
-                    cas::simplify_all(linear.iter().map(|(_, e)| e.clone()).collect())?;
-                StepResult::Equations(
-                    linear
-                        .into_iter()
-                        .zip(simplified)
-                        .map(|((q, _), e)| (q, e))
-                        .collect(),
-                )
-            }
-            Operation::Frequency { of } => match equations(d, of)? {
-                [_] => StepResult::Expr(frequency(equations(d, of)?).map_err(located)?),
-                eqs => StepResult::Modes(normal_modes(eqs, &scene.values).map_err(located)?),
-            },
-            Operation::Integrate { of, over } => {
-                let expand = |e: &Expr| expand_names(scene, d, step, e).map_err(DeriveError::Step);
-                let f = expand(of)?;
-                let over = over
-                    .iter()
-                    .map(|(v, lo, hi)| Ok((v.clone(), expand(lo)?, expand(hi)?)))
-                    .collect::<Result<Vec<_>, DeriveError>>()?;
-                let (value, domain) = super::integral::integral(&f, &over).map_err(located)?;
-                shown = Some(super::inertia::integral_formula(
-                    &step.name, &f, &domain, &value,
-                ));
-                StepResult::Expr(value)
-            }
-            Operation::Series {
-                of,
-                var,
-                about,
-                order,
-            } => {
-                let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
-                let x0 = expand_names(scene, d, step, about).map_err(DeriveError::Step)?;
-                StepResult::Expr(super::series::series(&f, var, &x0, *order).map_err(located)?)
-            }
-            Operation::Equilibria { of } => {
-                let (coordinate, zeros) = equilibria(equations(d, of)?).map_err(located)?;
-                StepResult::Equilibria { coordinate, zeros }
-            }
-            Operation::Stability { of } => {
-                let Some(StepResult::Equilibria { coordinate, zeros }) = d.named.get(of) else {
-                    return Err(DeriveError::Inconsistent(format!(
-                        "step `{of}` was validated as earlier equilibria"
-                    )));
-                };
-                let motion = scene.steps.iter().find_map(|s| match &s.op {
-                    Operation::Equilibria { of: m } if &s.name == of => Some(m),
-                    _ => None,
-                });
-                let eqs = equations(d, motion.map_or("", String::as_str))?;
-                let squares = stability(eqs, zeros).map_err(located)?;
-                // A sign the rational test cannot decide (a root in Ω²) leaves the condition.
-                let verdicts = squares.iter().map(|w2| match w2 {
-                    None => Stable::Unknown,
-                    Some(w2) => match signs_over_positive(std::slice::from_ref(w2)) {
-                        Ok(s) if s[0] == Sign::Positive => Stable::Always,
-                        Ok(s) if s[0] == Sign::Negative => Stable::Never,
-                        _ => Stable::Where,
-                    },
-                });
-                let cases = zeros
-                    .iter()
-                    .zip(squares.clone())
-                    .zip(verdicts)
-                    .map(|((z, w2), verdict)| Stability {
-                        at: z.clone(),
-                        omega_squared: w2,
-                        verdict,
-                    })
-                    .collect();
-                StepResult::Stability {
-                    coordinate: coordinate.clone(),
-                    cases,
-                }
-            }
-            Operation::Momentum { of, coordinate } => {
-                let (p, force) = momentum(scalar(d, of)?, coordinate).map_err(located)?;
-                conserved(p, force)?
-            }
-            Operation::Energy { of } => {
-                let (e, rate) = energy(scalar(d, of)?, &scene.coordinates).map_err(located)?;
-                conserved(e, rate)?
-            }
-            Operation::Substitute { of, set } => match substituted_equations(d, of) {
-                // Equations of motion with names replaced: a steady state (θ'' = θ' = 0), a
-                // conserved rate put in.
-                Some(eqs) => {
-                    let values = replacements(scene, d, step, set).map_err(DeriveError::Step)?;
-                    let exprs = eqs
-                        .iter()
-                        .map(|(_, e)| e.substitute(&|s| values.get(s).cloned()))
-                        .collect();
-                    let simplified = cas::simplify_all(exprs)?;
-                    let names = eqs.iter().map(|(q, _)| q.clone());
-                    StepResult::Equations(names.zip(simplified).collect())
-                }
-                None => {
-                    let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
-                    StepResult::Expr(cas::simplify(&raw)?)
-                }
-            },
-            Operation::Solve { of, unknown } => {
-                let eqs = equations(d, of)?;
-                let mut roots = solve(eqs, unknown, &scene.values).map_err(located)?;
-                match roots.len() {
-                    1 => StepResult::Expr(roots.remove(0)),
-                    _ => StepResult::Roots(roots),
-                }
-            }
-        };
+        let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
         let mut steps = page_steps(step, &result);
         if let (Some(formula), [only]) = (shown, &mut steps[..]) {
             only.statement = formula;
@@ -409,6 +251,189 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         d.named.insert(step.name.clone(), result);
     }
     Ok(())
+}
+
+/// One step's result, derived by the engine (its errors located by the caller).
+fn derive_step(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    shown: &mut Option<Formula>,
+) -> Result<StepResult, DeriveError> {
+    Ok(match &step.op {
+        Operation::Be(e) => {
+            let x = expand_names(scene, d, step, e).map_err(DeriveError::Step)?;
+            StepResult::Expr(cas::simplify(&x)?)
+        }
+        Operation::Differentiate { of, by } => {
+            let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
+            let raw = if by == "t" {
+                time_derivative(&f, &scene.coordinates)?
+            } else {
+                f.diff(by)?
+            };
+            StepResult::Expr(cas::simplify(&raw)?)
+        }
+        Operation::Lagrange { of } => {
+            let l = scalar(d, of)?;
+            let residuals = euler_lagrange(l, &scene.coordinates)?;
+            let exprs: Vec<Expr> = residuals.iter().map(|(_, e)| e.clone()).collect();
+            let simplified = cas::simplify_all(exprs)?;
+            StepResult::Equations(
+                residuals
+                    .into_iter()
+                    .zip(simplified)
+                    .map(|((q, _), e)| (q, e))
+                    .collect(),
+            )
+        }
+        Operation::Linearise { of, about } => {
+            let eqs = equations(d, of)?;
+            let (rest, linear) = linearise(eqs, about, &scene.coordinates)?;
+            // A state of rest leaves nothing over: else it is not an equilibrium.
+            let left = cas::simplify_all(rest)?;
+            if let Some((k, r)) = left.iter().enumerate().find(|(_, r)| !r.is_zero()) {
+                return Err(DeriveError::NotDerivable(format!(
+                    "the state given by `about` is not at rest: the equation of `{}` leaves \
+                     {} there, not 0; give an equilibrium",
+                    eqs[k].0,
+                    r.to_text()
+                )));
+            }
+            let simplified = cas::simplify_all(linear.iter().map(|(_, e)| e.clone()).collect())?;
+            StepResult::Equations(
+                linear
+                    .into_iter()
+                    .zip(simplified)
+                    .map(|((q, _), e)| (q, e))
+                    .collect(),
+            )
+        }
+        Operation::Frequency { of } => match equations(d, of)? {
+            [_] => StepResult::Expr(frequency(equations(d, of)?)?),
+            eqs => StepResult::Modes(normal_modes(eqs, &scene.values)?),
+        },
+        Operation::Integrate { of, over } => {
+            let expand = |e: &Expr| expand_names(scene, d, step, e).map_err(DeriveError::Step);
+            let f = expand(of)?;
+            let over = over
+                .iter()
+                .map(|(v, lo, hi)| Ok((v.clone(), expand(lo)?, expand(hi)?)))
+                .collect::<Result<Vec<_>, DeriveError>>()?;
+            let (value, domain) = super::integral::integral(&f, &over)?;
+            *shown = Some(super::inertia::integral_formula(
+                &step.name, &f, &domain, &value,
+            ));
+            StepResult::Expr(value)
+        }
+        Operation::Series {
+            of,
+            var,
+            about,
+            order,
+        } => {
+            let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
+            let x0 = expand_names(scene, d, step, about).map_err(DeriveError::Step)?;
+            StepResult::Expr(super::series::series(&f, var, &x0, *order)?)
+        }
+        Operation::Equilibria { of } => {
+            let (coordinate, zeros) = equilibria(equations(d, of)?)?;
+            StepResult::Equilibria { coordinate, zeros }
+        }
+        Operation::Stability { of } => {
+            let Some(StepResult::Equilibria { coordinate, zeros }) = d.named.get(of) else {
+                return Err(DeriveError::Inconsistent(format!(
+                    "step `{of}` was validated as earlier equilibria"
+                )));
+            };
+            let motion = scene.steps.iter().find_map(|s| match &s.op {
+                Operation::Equilibria { of: m } if &s.name == of => Some(m),
+                _ => None,
+            });
+            let eqs = equations(d, motion.map_or("", String::as_str))?;
+            let squares = stability(eqs, zeros)?;
+            // A sign the rational test cannot decide (a root in Ω²) leaves the condition.
+            let verdicts = squares.iter().map(|w2| match w2 {
+                None => Stable::Unknown,
+                Some(w2) => match signs_over_positive(std::slice::from_ref(w2)) {
+                    Ok(s) if s[0] == Sign::Positive => Stable::Always,
+                    Ok(s) if s[0] == Sign::Negative => Stable::Never,
+                    _ => Stable::Where,
+                },
+            });
+            let cases = zeros
+                .iter()
+                .zip(squares.clone())
+                .zip(verdicts)
+                .map(|((z, w2), verdict)| Stability {
+                    at: z.clone(),
+                    omega_squared: w2,
+                    verdict,
+                })
+                .collect();
+            StepResult::Stability {
+                coordinate: coordinate.clone(),
+                cases,
+            }
+        }
+        Operation::Momentum { of, coordinate } => {
+            let (p, force) = momentum(scalar(d, of)?, coordinate)?;
+            conserved(p, force)?
+        }
+        Operation::Energy { of } => {
+            let (e, rate) = energy(scalar(d, of)?, &scene.coordinates)?;
+            conserved(e, rate)?
+        }
+        Operation::Substitute { of, set } => match substituted_equations(d, of) {
+            // Equations of motion with names replaced: a steady state (θ'' = θ' = 0), a
+            // conserved rate put in.
+            Some(eqs) => {
+                let values = replacements(scene, d, step, set).map_err(DeriveError::Step)?;
+                let exprs = eqs
+                    .iter()
+                    .map(|(_, e)| e.substitute(&|s| values.get(s).cloned()))
+                    .collect();
+                let simplified = cas::simplify_all(exprs)?;
+                let names = eqs.iter().map(|(q, _)| q.clone());
+                StepResult::Equations(names.zip(simplified).collect())
+            }
+            None => {
+                let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
+                StepResult::Expr(cas::simplify(&raw)?)
+            }
+        },
+        Operation::Solve { of, unknown } => {
+            let eqs = equations(d, of)?;
+            let mut roots = solve(eqs, unknown, &scene.values)?;
+            match roots.len() {
+                1 => StepResult::Expr(roots.remove(0)),
+                _ => StepResult::Roots(roots),
+            }
+        }
+    })
+}
+
+/// An error of a step, at the step's line; an expansion over the engine's budget says what to
+/// do about a step, not about a body.
+fn locate(step: &AuthorStep, e: DeriveError) -> DeriveError {
+    let message = match &e {
+        DeriveError::Step(_) | DeriveError::Inconsistent(_) | DeriveError::Missing(_) => {
+            return e;
+        }
+        DeriveError::Cas(cas::CasError {
+            reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { degree, terms }),
+        }) => format!(
+            "its expressions would expand to degree {degree} with {terms:.0e} terms, beyond the \
+             engine's budget: split the step into smaller ones, or give a part a name of its \
+             own under [definitions]"
+        ),
+        other => other.to_string(),
+    };
+    DeriveError::Step(StepError::Operation {
+        step: step.name.clone(),
+        line: step.line,
+        message,
+    })
 }
 
 /// A step as the page shows it: `name = result`, or each equation of motion `… = 0`.

@@ -619,3 +619,26 @@ fn paraboloid_by_integration() {
         "{err}"
     );
 }
+
+/// A step whose expansion is beyond the engine's budget says so at its own line, with advice
+/// about the step (not about a body's dimensions).
+#[test]
+fn a_step_over_the_engines_budget_says_what_to_do_at_its_line() {
+    let text = r#"
+id = "big"
+title = "Too big"
+notes = { lecture = "6" }
+symbols = { x = "one", y = "other" }
+[[step]]
+name = "P"
+be = "(x + y)^40"
+[numeric]
+values = { x = 1.0, y = 2.0 }
+"#;
+    let err = run_scene(Scene::parse(text, Path::new("p.toml")).unwrap(), None)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("step `P`"), "{err}");
+    assert!(err.contains("split the step into smaller ones"), "{err}");
+    assert!(!err.contains("body"), "{err}");
+}
