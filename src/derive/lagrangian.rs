@@ -180,9 +180,31 @@ pub fn normal_modes(
             modes.len()
         )));
     }
-    let at = |e: &Expr| e.eval(&|s| values.get(s).copied()).unwrap_or(f64::NAN);
-    modes.sort_by(|a, b| at(a).total_cmp(&at(b)));
+    sort_by_value(&mut modes, values);
     Ok(modes)
+}
+
+/// Values in the order of their numbers at `values` (one without a number, last).
+pub fn sort_by_value(exprs: &mut [Expr], values: &BTreeMap<String, f64>) {
+    let at = |e: &Expr| crate::model::value::eval_at(e, values).unwrap_or(f64::NAN);
+    exprs.sort_by(|a, b| at(a).total_cmp(&at(b)));
+}
+
+/// `e` at rest in the coordinate `q`: its rate and acceleration 0.
+fn at_rest(e: &Expr, q: &str) -> Expr {
+    let (rate, accel) = (format!("{q}'"), format!("{q}''"));
+    e.substitute(&|s| (s == rate || s == accel).then(|| Expr::int(0)))
+}
+
+/// Two expressions simplified in one call to the engine.
+pub fn simplify_two(a: Expr, b: Expr) -> Result<(Expr, Expr), DeriveError> {
+    let mut both = cas::simplify_all(vec![a, b])?.into_iter();
+    match (both.next(), both.next()) {
+        (Some(a), Some(b)) => Ok((a, b)),
+        _ => Err(DeriveError::Inconsistent(
+            "two expressions simplified, not two back".into(),
+        )),
+    }
 }
 
 /// The root variable of the characteristic polynomial: a name no scene can write.
@@ -237,8 +259,7 @@ pub fn equilibria(eqs: &[(String, Expr)]) -> Result<(String, Vec<cas::Zero>), De
             eqs.len()
         )));
     };
-    let at_rest =
-        r.substitute(&|s| (s == format!("{q}'") || s == format!("{q}''")).then(|| Expr::int(0)));
+    let at_rest = at_rest(r, q);
     let found = cas::zeros(&cas::simplify(&at_rest)?, q)?;
     if let Some(f) = found.unsolved.first() {
         return Err(DeriveError::NotDerivable(format!(
@@ -278,16 +299,11 @@ pub fn stability(
             "the equilibria were found for one coordinate".into(),
         ));
     };
-    let (rate, accel) = (format!("{q}'"), format!("{q}''"));
-    let at_rest = |e: &Expr| e.substitute(&|s| (s == rate || s == accel).then(|| Expr::int(0)));
     // Simplified before an equilibrium goes in, which keeps the expansion small.
-    let mut km = cas::simplify_all(vec![at_rest(&r.diff(q)?), at_rest(&r.diff(&accel)?)])?;
-    let (m, k) = (km.pop(), km.pop());
-    let (Some(k), Some(m)) = (k, m) else {
-        return Err(DeriveError::Inconsistent(
-            "two simplified, not two back".into(),
-        ));
-    };
+    let (k, m) = simplify_two(
+        at_rest(&r.diff(q)?, q),
+        at_rest(&r.diff(&format!("{q}''"))?, q),
+    )?;
     let mut out = Vec::new();
     for z in zeros {
         let ratio = Expr::over(z.put_into(&k, q), z.put_into(&m, q));

@@ -46,8 +46,7 @@ pub fn solve(
                 "the equation has no root in `{unknown}`"
             )));
         }
-        let at = |e: &Expr| e.eval(&|s| values.get(s).copied()).unwrap_or(f64::NAN);
-        found.sort_by(|a, b| at(a).total_cmp(&at(b)));
+        super::lagrangian::sort_by_value(&mut found, values);
         return Ok(found);
     }
     let slope = cas::simplify(&slope)?;

@@ -4,8 +4,8 @@
 
 use super::algebra::{Env, Value, evaluate};
 use super::lagrangian::{
-    energy, equilibria, euler_lagrange, frequency, linearise, momentum, normal_modes, stability,
-    time_derivative,
+    energy, equilibria, euler_lagrange, frequency, linearise, momentum, normal_modes, simplify_two,
+    stability, time_derivative,
 };
 use super::sign::{Sign, signs_over_positive};
 pub use super::solve::equation_with;
@@ -205,13 +205,7 @@ pub fn substituted_equations<'a>(d: &'a Derivation, of: &Expr) -> Option<&'a [(S
 
 /// A momentum or energy, conserved when the force on it (∂L/∂q, or ∂L/∂t) is identically 0.
 fn conserved(value: Expr, force: Expr) -> Result<StepResult, DeriveError> {
-    let mut both = cas::simplify_all(vec![value, force])?.into_iter();
-    let (value, force) = (both.next(), both.next());
-    let (Some(value), Some(force)) = (value, force) else {
-        return Err(DeriveError::Inconsistent(
-            "two expressions simplified, not two back".into(),
-        ));
-    };
+    let (value, force) = simplify_two(value, force)?;
     Ok(StepResult::Conserved {
         value,
         conserved: force.is_zero(),
@@ -224,6 +218,41 @@ fn scalar<'a>(d: &'a Derivation, of: &str) -> Result<&'a Expr, DeriveError> {
         DeriveError::Inconsistent(format!(
             "step `{of}` was validated as an earlier scalar step"
         ))
+    })
+}
+
+/// Equations with each residual simplified (in one call to the engine), their names kept.
+fn simplified(eqs: Vec<(String, Expr)>) -> Result<StepResult, DeriveError> {
+    let (names, exprs): (Vec<String>, Vec<Expr>) = eqs.into_iter().unzip();
+    let exprs = cas::simplify_all(exprs)?;
+    Ok(StepResult::Equations(
+        names.into_iter().zip(exprs).collect(),
+    ))
+}
+
+/// An `integrate` step's ranges with earlier steps put into their limits.
+pub fn expand_ranges(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    over: &[(String, Expr, Expr)],
+) -> Result<Vec<(String, Expr, Expr)>, StepError> {
+    over.iter()
+        .map(|(v, lo, hi)| {
+            Ok((
+                v.clone(),
+                expand_names(scene, d, step, lo)?,
+                expand_names(scene, d, step, hi)?,
+            ))
+        })
+        .collect()
+}
+
+/// The equations of motion whose states of rest the `equilibria` step `of` found.
+pub fn equilibria_source<'a>(scene: &'a Scene, of: &str) -> Option<&'a str> {
+    scene.steps.iter().find_map(|s| match &s.op {
+        Operation::Equilibria { of: m } if s.name == of => Some(m.as_str()),
+        _ => None,
     })
 }
 
@@ -275,17 +304,7 @@ fn derive_step(
             StepResult::Expr(cas::simplify(&raw)?)
         }
         Operation::Lagrange { of } => {
-            let l = scalar(d, of)?;
-            let residuals = euler_lagrange(l, &scene.coordinates)?;
-            let exprs: Vec<Expr> = residuals.iter().map(|(_, e)| e.clone()).collect();
-            let simplified = cas::simplify_all(exprs)?;
-            StepResult::Equations(
-                residuals
-                    .into_iter()
-                    .zip(simplified)
-                    .map(|((q, _), e)| (q, e))
-                    .collect(),
-            )
+            simplified(euler_lagrange(scalar(d, of)?, &scene.coordinates)?)?
         }
         Operation::Linearise { of, about } => {
             let eqs = equations(d, of)?;
@@ -300,26 +319,15 @@ fn derive_step(
                     r.to_text()
                 )));
             }
-            let simplified = cas::simplify_all(linear.iter().map(|(_, e)| e.clone()).collect())?;
-            StepResult::Equations(
-                linear
-                    .into_iter()
-                    .zip(simplified)
-                    .map(|((q, _), e)| (q, e))
-                    .collect(),
-            )
+            simplified(linear)?
         }
         Operation::Frequency { of } => match equations(d, of)? {
-            [_] => StepResult::Expr(frequency(equations(d, of)?)?),
+            eqs @ [_] => StepResult::Expr(frequency(eqs)?),
             eqs => StepResult::Modes(normal_modes(eqs, &scene.values)?),
         },
         Operation::Integrate { of, over } => {
-            let expand = |e: &Expr| expand_names(scene, d, step, e).map_err(DeriveError::Step);
-            let f = expand(of)?;
-            let over = over
-                .iter()
-                .map(|(v, lo, hi)| Ok((v.clone(), expand(lo)?, expand(hi)?)))
-                .collect::<Result<Vec<_>, DeriveError>>()?;
+            let f = expand_names(scene, d, step, of)?;
+            let over = expand_ranges(scene, d, step, over)?;
             let (value, domain) = super::integral::integral(&f, &over)?;
             *shown = Some(super::inertia::integral_formula(
                 &step.name, &f, &domain, &value,
@@ -346,29 +354,23 @@ fn derive_step(
                     "step `{of}` was validated as earlier equilibria"
                 )));
             };
-            let motion = scene.steps.iter().find_map(|s| match &s.op {
-                Operation::Equilibria { of: m } if &s.name == of => Some(m),
-                _ => None,
-            });
-            let eqs = equations(d, motion.map_or("", String::as_str))?;
-            let squares = stability(eqs, zeros)?;
-            // A sign the rational test cannot decide (a root in Ω²) leaves the condition.
-            let verdicts = squares.iter().map(|w2| match w2 {
-                None => Stable::Unknown,
-                Some(w2) => match signs_over_positive(std::slice::from_ref(w2)) {
-                    Ok(s) if s[0] == Sign::Positive => Stable::Always,
-                    Ok(s) if s[0] == Sign::Negative => Stable::Never,
-                    _ => Stable::Where,
-                },
-            });
+            let eqs = equations(d, equilibria_source(scene, of).unwrap_or(""))?;
             let cases = zeros
                 .iter()
-                .zip(squares.clone())
-                .zip(verdicts)
-                .map(|((z, w2), verdict)| Stability {
+                .zip(stability(eqs, zeros)?)
+                .map(|(z, w2)| Stability {
                     at: z.clone(),
+                    // A sign the rational test cannot decide (a root in Ω²) leaves the
+                    // condition.
+                    verdict: match &w2 {
+                        None => Stable::Unknown,
+                        Some(w2) => match signs_over_positive(std::slice::from_ref(w2)) {
+                            Ok(s) if s[0] == Sign::Positive => Stable::Always,
+                            Ok(s) if s[0] == Sign::Negative => Stable::Never,
+                            _ => Stable::Where,
+                        },
+                    },
                     omega_squared: w2,
-                    verdict,
                 })
                 .collect();
             StepResult::Stability {
@@ -388,14 +390,12 @@ fn derive_step(
             // Equations of motion with names replaced: a steady state (θ'' = θ' = 0), a
             // conserved rate put in.
             Some(eqs) => {
-                let values = replacements(scene, d, step, set).map_err(DeriveError::Step)?;
-                let exprs = eqs
-                    .iter()
-                    .map(|(_, e)| e.substitute(&|s| values.get(s).cloned()))
-                    .collect();
-                let simplified = cas::simplify_all(exprs)?;
-                let names = eqs.iter().map(|(q, _)| q.clone());
-                StepResult::Equations(names.zip(simplified).collect())
+                let values = replacements(scene, d, step, set)?;
+                simplified(
+                    eqs.iter()
+                        .map(|(q, e)| (q.clone(), e.substitute(&|s| values.get(s).cloned())))
+                        .collect(),
+                )?
             }
             None => {
                 let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
@@ -436,6 +436,16 @@ fn locate(step: &AuthorStep, e: DeriveError) -> DeriveError {
     })
 }
 
+/// The author's reason, then what the derivation adds ("conserved: ..."), after a semicolon.
+fn with_reason(step: &AuthorStep, why: &Prose, added: Prose) -> Prose {
+    if step.why.is_empty() {
+        return added;
+    }
+    let mut out = why.clone().text("; ");
+    out.0.extend(added.0);
+    out
+}
+
 /// A step as the page shows it: `name = result`, or each equation of motion `… = 0`.
 fn page_steps(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
     let mut steps = page_statements(step, result);
@@ -464,11 +474,7 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
             } else {
                 format!("not conserved: ∂L/∂{of} is not 0")
             };
-            let why = if step.why.is_empty() {
-                Prose::default().text(&verdict)
-            } else {
-                why.text(&format!("; {verdict}"))
-            };
+            let why = with_reason(step, &why, Prose::default().text(&verdict));
             vec![Step::note(&title, named(value), why)]
         }
         StepResult::Equilibria { coordinate, zeros } => zeros
@@ -500,13 +506,7 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                         .text(&format!("about {coordinate} = "))
                         .expr(&c.at.value)
                         .text(&format!(": {verdict}"));
-                    let why = if step.why.is_empty() {
-                        at
-                    } else {
-                        let mut w = why.clone().text("; ");
-                        w.0.extend(at.0);
-                        w
-                    };
+                    let why = with_reason(step, &why, at);
                     Step::note(
                         &format!("{title}: stability"),
                         match &c.omega_squared {

@@ -20,7 +20,8 @@ use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::Derivation;
 use crate::derive::steps::{
-    StepResult, equation_with, expand_names, replacements, substituted_equations,
+    StepResult, equation_with, equilibria_source, expand_names, expand_ranges, replacements,
+    substituted_equations,
 };
 use crate::model::prose::Prose;
 use crate::scene::{AuthorStep, Claim, Operation, Scene, Verdict};
@@ -130,16 +131,13 @@ fn route(
             }
         }
         (Operation::Lagrange { of }, StepResult::Equations(eqs)) => {
-            let lagrangian = d.named.get(of).and_then(StepResult::scalar);
-            let lagrangian = lagrangian.ok_or(CheckError::NotDerived)?;
-            energy_check(scene, step, lagrangian, eqs, check)?;
+            energy_check(scene, step, scalar_of(d, of)?, eqs, check)?;
         }
         (
             Operation::Momentum { of, .. } | Operation::Energy { of },
             StepResult::Conserved { value, conserved },
         ) => {
-            let lagrangian = d.named.get(of).and_then(StepResult::scalar);
-            let lagrangian = lagrangian.ok_or(CheckError::NotDerived)?;
+            let lagrangian = scalar_of(d, of)?;
             let what = match &step.op {
                 Operation::Momentum { coordinate, .. } => Conserved::Momentum(coordinate),
                 _ => Conserved::Energy,
@@ -148,16 +146,7 @@ fn route(
         }
         (Operation::Integrate { of, over }, StepResult::Expr(exact)) => {
             let f = expand_names(scene, d, step, of)?;
-            let over = over
-                .iter()
-                .map(|(v, lo, hi)| {
-                    Ok((
-                        v.clone(),
-                        expand_names(scene, d, step, lo)?,
-                        expand_names(scene, d, step, hi)?,
-                    ))
-                })
-                .collect::<Result<Vec<_>, CheckError>>()?;
+            let over = expand_ranges(scene, d, step, over)?;
             quadrature_check(&scene.values, &f, &over, exact, check)?;
         }
         (
@@ -178,24 +167,15 @@ fn route(
             equilibria_check(scene, r, coordinate, zeros, check)?;
         }
         (Operation::Stability { of }, StepResult::Stability { coordinate, cases }) => {
-            let motion = scene.steps.iter().find_map(|s| match &s.op {
-                Operation::Equilibria { of: m } if &s.name == of => Some(m),
-                _ => None,
-            });
-            let r = single_equation(d, motion.ok_or(CheckError::NotDerived)?, coordinate)?;
+            let motion = equilibria_source(scene, of).ok_or(CheckError::NotDerived)?;
+            let r = single_equation(d, motion, coordinate)?;
             stability_check(scene, r, coordinate, cases, check)?;
         }
         (Operation::Frequency { of }, StepResult::Modes(modes)) => {
-            let Some(StepResult::Equations(linear)) = d.named.get(of) else {
-                return Err(CheckError::NotDerived);
-            };
-            modes_check(scene, linear, modes, check)?;
+            modes_check(scene, equations_of(d, of)?, modes, check)?;
         }
         (Operation::Linearise { of, about }, StepResult::Equations(linear)) => {
-            let Some(StepResult::Equations(full)) = d.named.get(of) else {
-                return Err(CheckError::NotDerived);
-            };
-            linear_check(scene, full, linear, about, seed, check)?;
+            linear_check(scene, equations_of(d, of)?, linear, about, seed, check)?;
         }
         (Operation::Frequency { of }, StepResult::Expr(omega)) => {
             let source = scene.steps.iter().find(|s| &s.name == of);
@@ -206,10 +186,7 @@ fn route(
             else {
                 return Err(CheckError::NotDerived);
             };
-            let Some(StepResult::Equations(full)) = d.named.get(motion_of) else {
-                return Err(CheckError::NotDerived);
-            };
-            period_check(scene, full, about, omega, check)?;
+            period_check(scene, equations_of(d, motion_of)?, about, omega, check)?;
         }
         (Operation::Substitute { of, set }, result) => {
             // Each expression as written beside its result: one, or one per equation.
@@ -251,10 +228,7 @@ fn route(
             }
         }
         (Operation::Solve { of, unknown }, StepResult::Expr(_) | StepResult::Roots(_)) => {
-            let Some(StepResult::Equations(all)) = d.named.get(of) else {
-                return Err(CheckError::NotDerived);
-            };
-            let eqs = std::slice::from_ref(equation_with(all, unknown)?);
+            let eqs = std::slice::from_ref(equation_with(equations_of(d, of)?, unknown)?);
             let roots: Vec<&Expr> = match result {
                 StepResult::Roots(roots) => roots.iter().collect(),
                 _ => result.scalar().into_iter().collect(),
@@ -305,16 +279,29 @@ fn route(
     Ok(())
 }
 
-/// The equation of motion of `q` in the named step.
-fn single_equation<'a>(d: &'a Derivation, of: &str, q: &str) -> Result<&'a Expr, CheckError> {
+/// The equations of the named step.
+fn equations_of<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)], CheckError> {
     match d.named.get(of) {
-        Some(StepResult::Equations(eqs)) => eqs
-            .iter()
-            .find(|(c, _)| c == q)
-            .map(|(_, e)| e)
-            .ok_or(CheckError::NotDerived),
+        Some(StepResult::Equations(eqs)) => Ok(eqs),
         _ => Err(CheckError::NotDerived),
     }
+}
+
+/// The expression of the named step (a Lagrangian).
+fn scalar_of<'a>(d: &'a Derivation, of: &str) -> Result<&'a Expr, CheckError> {
+    d.named
+        .get(of)
+        .and_then(StepResult::scalar)
+        .ok_or(CheckError::NotDerived)
+}
+
+/// The equation of motion of `q` in the named step.
+fn single_equation<'a>(d: &'a Derivation, of: &str, q: &str) -> Result<&'a Expr, CheckError> {
+    equations_of(d, of)?
+        .iter()
+        .find(|(c, _)| c == q)
+        .map(|(_, e)| e)
+        .ok_or(CheckError::NotDerived)
 }
 
 /// Each step's `gives`, as a claim of the notes: the same expression, or for equations of

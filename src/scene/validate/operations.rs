@@ -8,22 +8,25 @@ use crate::scene::raw::{RawStep, Text};
 use crate::scene::step::Operation;
 use std::collections::{BTreeMap, BTreeSet};
 
-/// The operations a step may name, one per step.
-const OPERATIONS: [&str; 13] = [
-    "be",
-    "differentiate",
-    "substitute",
-    "lagrange",
-    "momentum",
-    "energy",
-    "linearise",
-    "frequency",
-    "solve",
-    "series",
-    "integrate",
-    "equilibria",
-    "stability",
-];
+/// The operations a step may name, one per step, in the order the error lists them, and
+/// whether this step gives each: the one list of them.
+fn operations(s: &RawStep) -> [(&'static str, bool); 13] {
+    [
+        ("be", s.be.is_some()),
+        ("differentiate", s.differentiate.is_some()),
+        ("substitute", s.substitute.is_some()),
+        ("lagrange", s.lagrange.is_some()),
+        ("momentum", s.momentum.is_some()),
+        ("energy", s.energy.is_some()),
+        ("linearise", s.linearise.is_some()),
+        ("frequency", s.frequency.is_some()),
+        ("solve", s.solve.is_some()),
+        ("series", s.series.is_some()),
+        ("integrate", s.integrate.is_some()),
+        ("equilibria", s.equilibria.is_some()),
+        ("stability", s.stability.is_some()),
+    ]
+}
 
 /// The highest order of a `series`: each order is one more derivative of the expression.
 const MAX_ORDER: i64 = 6;
@@ -51,31 +54,15 @@ impl Validator<'_> {
         earlier: &BTreeMap<String, Holds>,
         coordinates: &BTreeMap<String, String>,
     ) -> Result<Operation, SceneError> {
-        let given: Vec<&str> = [
-            s.be.as_ref().map(|_| "be"),
-            s.differentiate.as_ref().map(|_| "differentiate"),
-            s.lagrange.as_ref().map(|_| "lagrange"),
-            s.linearise.as_ref().map(|_| "linearise"),
-            s.frequency.as_ref().map(|_| "frequency"),
-            s.substitute.as_ref().map(|_| "substitute"),
-            s.solve.as_ref().map(|_| "solve"),
-            s.momentum.as_ref().map(|_| "momentum"),
-            s.energy.as_ref().map(|_| "energy"),
-            s.equilibria.as_ref().map(|_| "equilibria"),
-            s.series.as_ref().map(|_| "series"),
-            s.integrate.as_ref().map(|_| "integrate"),
-            s.stability.as_ref().map(|_| "stability"),
-        ]
-        .into_iter()
-        .flatten()
-        .collect();
+        let all = operations(s);
+        let given: Vec<&str> = all.iter().filter(|(_, g)| *g).map(|(n, _)| *n).collect();
         if given.len() != 1 {
             return Err(self.err(
                 offset,
                 field,
                 format!(
                     "a step does one thing: give exactly one of {} (this one gives {})",
-                    OPERATIONS.join(", "),
+                    all.map(|(n, _)| n).join(", "),
                     if given.is_empty() {
                         "none".to_string()
                     } else {
@@ -300,51 +287,47 @@ impl Validator<'_> {
                 unknown: unknown.get_ref().clone(),
             }
         };
-        if !s.set.is_empty() && !matches!(op, Operation::Substitute { .. }) {
-            return Err(self.err(
-                offset,
-                &format!("{field}.set"),
-                "`set` gives the replacements of a `substitute` step; this step has none",
-            ));
-        }
-        if s.unknown.is_some() && !matches!(op, Operation::Solve { .. }) {
-            return Err(self.err(
-                offset,
-                &format!("{field}.for"),
-                "`for` names the unknown of a `solve` step; this step has none",
-            ));
-        }
-        if !s.about.is_empty()
-            && !matches!(op, Operation::Linearise { .. } | Operation::Series { .. })
-        {
-            return Err(self.err(
-                offset,
-                &format!("{field}.about"),
-                "`about` is the state a `linearise` or `series` step expands about; this step \
-                 has none",
-            ));
-        }
-        if !s.over.is_empty() && !matches!(op, Operation::Integrate { .. }) {
-            return Err(self.err(
-                offset,
-                &format!("{field}.over"),
-                "`over` gives the ranges of an `integrate` step; this step has none",
-            ));
-        }
-        if s.order.is_some() && !matches!(op, Operation::Series { .. }) {
-            return Err(self.err(
-                offset,
-                &format!("{field}.order"),
-                "`order` is the last power of a `series` step; this step has none",
-            ));
-        }
+        // A field of another operation than this step's: said before anything else about it.
+        let stray = |given: bool, belongs: bool, key: &str, message: &str| {
+            if given && !belongs {
+                return Err(self.err(offset, &format!("{field}.{key}"), message));
+            }
+            Ok(())
+        };
+        let is = |names: &[&str]| names.contains(&op.name());
+        stray(
+            !s.set.is_empty(),
+            is(&["substitute"]),
+            "set",
+            "`set` gives the replacements of a `substitute` step; this step has none",
+        )?;
+        stray(
+            s.unknown.is_some(),
+            is(&["solve"]),
+            "for",
+            "`for` names the unknown of a `solve` step; this step has none",
+        )?;
+        stray(
+            !s.about.is_empty(),
+            is(&["linearise", "series"]),
+            "about",
+            "`about` is the state a `linearise` or `series` step expands about; this step has none",
+        )?;
+        stray(
+            !s.over.is_empty(),
+            is(&["integrate"]),
+            "over",
+            "`over` gives the ranges of an `integrate` step; this step has none",
+        )?;
+        stray(
+            s.order.is_some(),
+            is(&["series"]),
+            "order",
+            "`order` is the last power of a `series` step; this step has none",
+        )?;
         // (A `frequency` of several coordinates is known only once derived: its `gives` is
         // then a claim with a problem that says to use the modes' names.)
-        let several = matches!(
-            op,
-            Operation::Equilibria { .. } | Operation::Stability { .. }
-        );
-        if let (true, Some(g)) = (several, &s.gives) {
+        if let (true, Some(g)) = (is(&["equilibria", "stability"]), &s.gives) {
             return Err(self.err(
                 content_start(g),
                 &format!("{field}.gives"),
@@ -355,25 +338,19 @@ impl Validator<'_> {
                 ),
             ));
         }
-        if s.of.is_some() && !matches!(op, Operation::Momentum { .. }) {
-            return Err(self.err(
-                offset,
-                &format!("{field}.of"),
-                "`of` names the Lagrangian of a `momentum` step; this step has none",
-            ));
-        }
-        let integrates = matches!(
-            op,
-            Operation::Lagrange { .. } | Operation::Momentum { .. } | Operation::Energy { .. }
-        );
-        if !integrates && !s.start.is_empty() {
-            return Err(self.err(
-                offset,
-                &format!("{field}.start"),
-                "`start` is the initial state of the motion a `lagrange`, `momentum` or \
-                 `energy` step's numeric check integrates; this step has none",
-            ));
-        }
+        stray(
+            s.of.is_some(),
+            is(&["momentum"]),
+            "of",
+            "`of` names the Lagrangian of a `momentum` step; this step has none",
+        )?;
+        stray(
+            !s.start.is_empty(),
+            is(&["lagrange", "momentum", "energy"]),
+            "start",
+            "`start` is the initial state of the motion a `lagrange`, `momentum` or `energy` \
+             step's numeric check integrates; this step has none",
+        )?;
         Ok(op)
     }
 }
