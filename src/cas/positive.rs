@@ -28,12 +28,43 @@ pub fn roots_over_positive(e: &Expr) -> Result<Expr, EngineError> {
         Expr::Pow(base, exp) => Expr::pow(roots_over_positive(base)?, roots_over_positive(exp)?),
         Expr::Add(v) => Expr::add(walk(v)?),
         Expr::Mul(v) => Expr::mul(walk(v)?),
+        Expr::Call(name, args) if name == "sqrt" && args.len() == 1 => {
+            roots_over_positive(&Expr::pow(args[0].clone(), Expr::rat(1, 2)))?
+        }
         Expr::Call(name, args) => Expr::Call(name.clone(), walk(args)?),
         other => other.clone(),
     })
 }
 
-/// Whether `e` is identically zero once its roots are taken over positive symbols.
+/// Whether `e` is identically zero once its roots are taken over positive symbols. Each root
+/// left is then named, so that fractions over the same √X combine as fractions over a symbol.
 pub fn is_zero(e: &Expr) -> Result<bool, EngineError> {
-    engine::is_zero(&roots_over_positive(e)?)
+    let e = roots_over_positive(e)?;
+    let mut roots = Vec::new();
+    let named = name_roots(&e, &mut roots)?;
+    Ok(!roots.is_empty() && engine::is_zero(&named)? || engine::is_zero(&e)?)
+}
+
+/// `e` with each fractional power replaced by a name of its own, the same power of the same
+/// radicand (in the engine's normal form, whatever order and signs it was written in) by the
+/// same name; `roots` collects them.
+fn name_roots(e: &Expr, roots: &mut Vec<(Expr, Expr)>) -> Result<Expr, EngineError> {
+    let mut walk = |xs: &[Expr]| -> Result<Vec<Expr>, EngineError> {
+        xs.iter().map(|x| name_roots(x, roots)).collect()
+    };
+    Ok(match e {
+        Expr::Pow(b, k) if matches!(k.as_ref(), Expr::Num(n) if !n.is_integer()) => {
+            let key = (engine::simplify(b)?, (**k).clone());
+            let at = roots.iter().position(|r| *r == key).unwrap_or_else(|| {
+                roots.push(key);
+                roots.len() - 1
+            });
+            Expr::sym(&format!("root__{at}"))
+        }
+        Expr::Add(v) => Expr::add(walk(v)?),
+        Expr::Mul(v) => Expr::mul(walk(v)?),
+        Expr::Pow(b, k) => Expr::pow(name_roots(b, roots)?, (**k).clone()),
+        Expr::Call(f, args) => Expr::Call(f.clone(), walk(args)?),
+        other => other.clone(),
+    })
 }

@@ -26,6 +26,19 @@ pub fn pull_squares(e: &Expr, positive: &dyn Fn(&str) -> bool) -> Expr {
 fn root_of(base: &Expr, positive: &dyn Fn(&str) -> bool) -> Expr {
     let mut factors = Vec::new();
     flatten(base, &mut factors);
+    // −(9/100)·(a − b) is (9/100)·(b − a): the sign goes into a sum, so the number leaves.
+    let negative = factors
+        .iter()
+        .position(|f| matches!(f, Expr::Num(r) if r.is_negative()));
+    let sum = factors.iter().position(|f| matches!(f, Expr::Add(_)));
+    if let (Some(n), Some(k)) = (negative, sum) {
+        if let Expr::Num(r) = &factors[n] {
+            factors[n] = Expr::Num(r.negated());
+        }
+        if let Expr::Add(terms) = &factors[k] {
+            factors[k] = Expr::add(terms.iter().cloned().map(Expr::negate).collect());
+        }
+    }
     let mut outside = Vec::new();
     let mut inside = Vec::new();
     for f in factors {
@@ -54,6 +67,19 @@ fn root_of(base: &Expr, positive: &dyn Fn(&str) -> bool) -> Expr {
                 }
                 _ => inside.push(f),
             },
+            // √(b^2j) = b^j for a b that is positive wherever the symbols are (a sum of
+            // positive terms such as R² + 4h²), or for any b when j is even.
+            Expr::Pow(b, k) => match k.as_ref() {
+                Expr::Num(n)
+                    if n.is_integer()
+                        && n.to_i64().is_some_and(|n| n % 2 == 0)
+                        && (n.to_i64().is_some_and(|n| n % 4 == 0) || is_positive(b, positive)) =>
+                {
+                    let n = n.to_i64().unwrap_or(0);
+                    outside.push(Expr::pow((**b).clone(), Expr::int(i128::from(n / 2))));
+                }
+                _ => inside.push(f),
+            },
             _ => inside.push(f),
         }
     }
@@ -62,6 +88,18 @@ fn root_of(base: &Expr, positive: &dyn Fn(&str) -> bool) -> Expr {
         outside.push(Expr::pow(inside, Expr::rat(1, 2)));
     }
     Expr::mul(outside)
+}
+
+/// Whether `e` is positive wherever the symbols for which `positive` holds are: built from
+/// positive numbers and those symbols by sums, products and powers.
+fn is_positive(e: &Expr, positive: &dyn Fn(&str) -> bool) -> bool {
+    match e {
+        Expr::Num(r) => !r.is_negative() && !r.is_zero(),
+        Expr::Sym(s) => positive(s),
+        Expr::Add(xs) | Expr::Mul(xs) => xs.iter().all(|x| is_positive(x, positive)),
+        Expr::Pow(b, k) => matches!(k.as_ref(), Expr::Num(_)) && is_positive(b, positive),
+        _ => false,
+    }
 }
 
 /// The factors of a product, with integer powers of products distributed: 3/(m²a⁴) is

@@ -307,3 +307,25 @@ fn angle_zeros_are_zeros_with_their_cosines_and_sines() {
     roots.sort_by(f64::total_cmp);
     assert_eq!(roots, vec![-3.0, 3.0]);
 }
+
+/// Over positive symbols a root's square factors come out, a sum of positive terms among them
+/// (√(X/(R² + 4h²)²) = √X/(R² + 4h²)), and fractions over the same root combine; a square of
+/// a difference stays inside (√((x − y)²) is |x − y|), so that claim is not proved.
+#[test]
+fn roots_over_positive_symbols_decide_what_a_student_would() {
+    let cone = p(
+        "(60*M*w3^2*R^4/((20*R^2 + 80*h^2)*(3*M*R^2 + 12*M*h^2)) - 1200*g*M*h^3/((20*R^2 + 80*h^2)*(3*M*R^2 + 12*M*h^2)) - 300*g*h*M*R^2/((20*R^2 + 80*h^2)*(3*M*R^2 + 12*M*h^2)))^(1/2)",
+    );
+    let notes =
+        p("sqrt((3/10*M*R^2)^2*w3^2 - 4*3/5*M*(R^2/4 + h^2)*M*g*3*h/4)/(2*3/5*M*(R^2/4 + h^2))");
+    let wrong =
+        p("sqrt((3/10*M*R^2)^2*w3^2 - 4*3/5*M*(R^2/4 + h^2)*M*g*h/4)/(2*3/5*M*(R^2/4 + h^2))");
+    let zero = is_zero_over_positive(vec![
+        Expr::minus(cone.clone(), notes),
+        Expr::minus(cone, wrong),
+        p("sqrt((x - y)^2) - (x - y)"),
+        p("sqrt(x^2*(a + b)^2) - x*(a + b)"),
+    ])
+    .unwrap();
+    assert_eq!(zero, [true, false, false, true]);
+}

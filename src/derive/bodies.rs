@@ -82,8 +82,10 @@ fn sin(v: &str) -> Expr {
     Expr::call("sin", e(v))
 }
 
-/// The mass model of one body in its own coordinates.
+/// The mass model of one body in its own coordinates, over the integration variables the
+/// scene gave it (`r_1` where the scene has an `r` of its own).
 pub fn mass_model(body: &Body) -> MassModel {
+    let v = |shape_name| variable(body, shape_name);
     let m = &body.mass;
     let pi = e("pi");
     let zero = Expr::int(0);
@@ -103,19 +105,22 @@ pub fn mass_model(body: &Body) -> MassModel {
             Expr::over(m.clone(), Expr::mul(size.to_vec())),
             Expr::int(1),
             "rho",
-            [e("x"), e("y"), e("z")],
+            [e(v("x")), e(v("y")), e(v("z"))],
             vec![
-                side("x", &size[0], *centred),
-                side("y", &size[1], *centred),
-                side("z", &size[2], *centred),
+                side(v("x"), &size[0], *centred),
+                side(v("y"), &size[1], *centred),
+                side(v("z"), &size[2], *centred),
             ],
         ),
         Shape::Plate { size, centred } => continuum(
             Expr::over(m.clone(), Expr::mul(size.to_vec())),
             Expr::int(1),
             "sigma",
-            [e("x"), e("y"), zero],
-            vec![side("x", &size[0], *centred), side("y", &size[1], *centred)],
+            [e(v("x")), e(v("y")), zero],
+            vec![
+                side(v("x"), &size[0], *centred),
+                side(v("y"), &size[1], *centred),
+            ],
         ),
         Shape::Rod {
             length,
@@ -123,7 +128,7 @@ pub fn mass_model(body: &Body) -> MassModel {
             centred,
         } => {
             let mut local = [zero.clone(), zero.clone(), zero.clone()];
-            local[along.index()] = e("s");
+            local[along.index()] = e(v("s"));
             let (lo, hi) = if *centred {
                 (Expr::negate(half(length)), half(length))
             } else {
@@ -134,7 +139,7 @@ pub fn mass_model(body: &Body) -> MassModel {
                 Expr::int(1),
                 "lambda",
                 local,
-                vec![poly("s", lo, hi)],
+                vec![poly(v("s"), lo, hi)],
             )
         }
         Shape::Hoop { radius } => continuum(
@@ -143,27 +148,27 @@ pub fn mass_model(body: &Body) -> MassModel {
             radius.clone(),
             "lambda",
             [
-                Expr::mul(vec![radius.clone(), cos("theta")]),
-                Expr::mul(vec![radius.clone(), sin("theta")]),
+                Expr::mul(vec![radius.clone(), cos(v("theta"))]),
+                Expr::mul(vec![radius.clone(), sin(v("theta"))]),
                 zero,
             ],
-            vec![period("theta", full)],
+            vec![period(v("theta"), full)],
         ),
         Shape::Disk { radius, inner } => continuum(
             Expr::over(
                 m.clone(),
                 Expr::mul(vec![pi, radial_span(radius, inner, 2)]),
             ),
-            e("r"),
+            e(v("r")),
             "sigma",
             [
-                Expr::mul(vec![e("r"), cos("theta")]),
-                Expr::mul(vec![e("r"), sin("theta")]),
+                Expr::mul(vec![e(v("r")), cos(v("theta"))]),
+                Expr::mul(vec![e(v("r")), sin(v("theta"))]),
                 zero,
             ],
             vec![
-                period("theta", full),
-                poly("r", inner_or_zero(inner), radius.clone()),
+                period(v("theta"), full),
+                poly(v("r"), inner_or_zero(inner), radius.clone()),
             ],
         ),
         Shape::Cylinder {
@@ -175,17 +180,17 @@ pub fn mass_model(body: &Body) -> MassModel {
                 m.clone(),
                 Expr::mul(vec![pi, radial_span(radius, inner, 2), height.clone()]),
             ),
-            e("r"),
+            e(v("r")),
             "rho",
             [
-                Expr::mul(vec![e("r"), cos("theta")]),
-                Expr::mul(vec![e("r"), sin("theta")]),
-                e("z"),
+                Expr::mul(vec![e(v("r")), cos(v("theta"))]),
+                Expr::mul(vec![e(v("r")), sin(v("theta"))]),
+                e(v("z")),
             ],
             vec![
-                period("theta", full),
-                poly("r", inner_or_zero(inner), radius.clone()),
-                poly("z", Expr::negate(half(height)), half(height)),
+                period(v("theta"), full),
+                poly(v("r"), inner_or_zero(inner), radius.clone()),
+                poly(v("z"), Expr::negate(half(height)), half(height)),
             ],
         ),
         Shape::Sphere { radius, inner } => continuum(
@@ -193,18 +198,18 @@ pub fn mass_model(body: &Body) -> MassModel {
                 Expr::mul(vec![Expr::int(3), m.clone()]),
                 Expr::mul(vec![Expr::int(4), pi, radial_span(radius, inner, 3)]),
             ),
-            Expr::mul(vec![pow(&e("r"), 2), sin("theta")]),
+            Expr::mul(vec![pow(&e(v("r")), 2), sin(v("theta"))]),
             "rho",
-            spherical(&e("r")),
+            spherical(&e(v("r")), v("theta"), v("phi")),
             vec![
-                period("phi", full),
-                period("theta", AngleSpan::Half),
-                poly("r", inner_or_zero(inner), radius.clone()),
+                period(v("phi"), full),
+                period(v("theta"), AngleSpan::Half),
+                poly(v("r"), inner_or_zero(inner), radius.clone()),
             ],
         ),
         Shape::Hemisphere { radius, centred } => {
             // θ over [0, π/2]: the dome towards +z. The centre of mass is 3R/8 above the face.
-            let mut local = spherical(&e("r"));
+            let mut local = spherical(&e(v("r")), v("theta"), v("phi"));
             if *centred {
                 local[2] = Expr::minus(
                     local[2].clone(),
@@ -216,13 +221,13 @@ pub fn mass_model(body: &Body) -> MassModel {
                     Expr::mul(vec![Expr::int(3), m.clone()]),
                     Expr::mul(vec![Expr::int(2), pi, pow(radius, 3)]),
                 ),
-                Expr::mul(vec![pow(&e("r"), 2), sin("theta")]),
+                Expr::mul(vec![pow(&e(v("r")), 2), sin(v("theta"))]),
                 "rho",
                 local,
                 vec![
-                    period("phi", full),
-                    period("theta", AngleSpan::Quarter),
-                    poly("r", Expr::int(0), radius.clone()),
+                    period(v("phi"), full),
+                    period(v("theta"), AngleSpan::Quarter),
+                    poly(v("r"), Expr::int(0), radius.clone()),
                 ],
             )
         }
@@ -233,12 +238,12 @@ pub fn mass_model(body: &Body) -> MassModel {
         } => {
             // z runs from the apex; the cross-section there has radius Rz/h, and s ∈ [0, 1] is
             // the fraction of it, so every limit is constant: dV = s (Rz/h)² ds dθ dz.
-            let section = Expr::over(Expr::mul(vec![radius.clone(), e("z")]), height.clone());
+            let section = Expr::over(Expr::mul(vec![radius.clone(), e(v("z"))]), height.clone());
             let along = match origin {
-                ConeOrigin::Apex => e("z"),
-                ConeOrigin::Base => Expr::minus(height.clone(), e("z")),
+                ConeOrigin::Apex => e(v("z")),
+                ConeOrigin::Base => Expr::minus(height.clone(), e(v("z"))),
                 ConeOrigin::Centre => {
-                    Expr::minus(Expr::mul(vec![Expr::rat(3, 4), height.clone()]), e("z"))
+                    Expr::minus(Expr::mul(vec![Expr::rat(3, 4), height.clone()]), e(v("z")))
                 }
             };
             continuum(
@@ -246,37 +251,47 @@ pub fn mass_model(body: &Body) -> MassModel {
                     Expr::mul(vec![Expr::int(3), m.clone()]),
                     Expr::mul(vec![pi, pow(radius, 2), height.clone()]),
                 ),
-                Expr::mul(vec![e("s"), pow(&section, 2)]),
+                Expr::mul(vec![e(v("s")), pow(&section, 2)]),
                 "rho",
                 [
-                    Expr::mul(vec![e("s"), section.clone(), cos("theta")]),
-                    Expr::mul(vec![e("s"), section, sin("theta")]),
+                    Expr::mul(vec![e(v("s")), section.clone(), cos(v("theta"))]),
+                    Expr::mul(vec![e(v("s")), section, sin(v("theta"))]),
                     along,
                 ],
                 vec![
-                    period("theta", full),
-                    poly("s", Expr::int(0), Expr::int(1)),
-                    poly("z", Expr::int(0), height.clone()),
+                    period(v("theta"), full),
+                    poly(v("s"), Expr::int(0), Expr::int(1)),
+                    poly(v("z"), Expr::int(0), height.clone()),
                 ],
             )
         }
         Shape::Shell { radius } => continuum(
             Expr::over(m.clone(), Expr::mul(vec![Expr::int(4), pi, pow(radius, 2)])),
-            Expr::mul(vec![pow(radius, 2), sin("theta")]),
+            Expr::mul(vec![pow(radius, 2), sin(v("theta"))]),
             "sigma",
-            spherical(radius),
-            vec![period("phi", full), period("theta", AngleSpan::Half)],
+            spherical(radius, v("theta"), v("phi")),
+            vec![period(v("phi"), full), period(v("theta"), AngleSpan::Half)],
         ),
         Shape::Points(pts) => MassModel::Points(pts.clone()),
     }
 }
 
+/// The body's name for one of its shape's variables.
+fn variable<'a>(body: &'a Body, shape_name: &'static str) -> &'a str {
+    body.shape
+        .variables()
+        .iter()
+        .position(|x| *x == shape_name)
+        .and_then(|i| body.variables.get(i))
+        .map_or(shape_name as &str, |own| own.as_str())
+}
+
 /// (r sinθ cosφ, r sinθ sinφ, r cosθ).
-fn spherical(r: &Expr) -> Vec3 {
+fn spherical(r: &Expr, theta: &str, phi: &str) -> Vec3 {
     [
-        Expr::mul(vec![r.clone(), sin("theta"), cos("phi")]),
-        Expr::mul(vec![r.clone(), sin("theta"), sin("phi")]),
-        Expr::mul(vec![r.clone(), cos("theta")]),
+        Expr::mul(vec![r.clone(), sin(theta), cos(phi)]),
+        Expr::mul(vec![r.clone(), sin(theta), sin(phi)]),
+        Expr::mul(vec![r.clone(), cos(theta)]),
     ]
 }
 

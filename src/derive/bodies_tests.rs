@@ -158,3 +158,41 @@ fn a_plate_with_a_square_hole_off_centre() {
         matrix([[&xx, &xy, "0"], [&xy, &xx, "0"], ["0", "0", &zz]]),
     );
 }
+
+/// A scene may name its own symbols `r` and `theta` (a disk of radius r, a tilt theta): the disk
+/// integrates over `r_1` and `theta_1`, and its tensor is still the table's M r²/4, M r²/4,
+/// M r²/2, equal to the numeric quadrature; the integrand is written in the body's names.
+#[test]
+fn a_disk_of_radius_r_beside_a_symbol_theta() {
+    let text = "id = \"t\"\ntitle = \"t\"\nnotes = { lecture = \"x\" }\nsymbols = { M = \"mass\", r = \"radius\", theta = \"a tilt\" }\n[[body]]\nkind = \"disk\"\nradius = \"r\"\nmass = \"M\"\nrotate = [{ axis = \"x\", angle = \"theta\" }]\n[outputs]\nwant = [\"inertia_tensor\", \"numeric\"]\n[numeric]\nvalues = { M = 2.0, r = 0.7, theta = 0.4 }\n";
+    let r = run_scene(Scene::parse(text, Path::new("t.toml")).unwrap(), None).unwrap();
+    assert_eq!(r.scene.bodies[0].variables, ["r_1", "theta_1"]);
+    assert!(r.verification.verified(), "{:#?}", r.verification);
+    let q = r
+        .verification
+        .quantities
+        .iter()
+        .find(|q| q.name == quantity::INERTIA_TENSOR)
+        .unwrap();
+    assert!(q.error <= 1e-14, "exact vs numeric {}", q.error);
+    // The disk tilted by theta about x: Iyy and Izz mix, Iyz = -(M r²/4) sin θ cos θ.
+    let table = matrix([
+        ["M*r^2/4", "0", "0"],
+        [
+            "0",
+            "M*r^2/4*cos(theta)^2 + M*r^2/2*sin(theta)^2",
+            "-M*r^2/4*sin(theta)*cos(theta)",
+        ],
+        [
+            "0",
+            "-M*r^2/4*sin(theta)*cos(theta)",
+            "M*r^2/4*sin(theta)^2 + M*r^2/2*cos(theta)^2",
+        ],
+    ]);
+    let tensor = r.derivation.get(quantity::INERTIA_TENSOR).unwrap();
+    assert!(values_equal(tensor, &table).unwrap(), "{tensor:?}");
+    let integrand = r.derivation.get(quantity::INTEGRAND).unwrap().entries();
+    let names: std::collections::BTreeSet<String> =
+        integrand.iter().flat_map(|e| e.symbols()).collect();
+    assert!(names.contains("r_1") && names.contains("theta_1") && names.contains("theta"));
+}

@@ -83,8 +83,16 @@ fn sizes_and_masses_must_be_positive_and_finite() {
 }
 
 #[test]
-fn integration_variables_cannot_be_symbols() {
-    let text = MINIMAL.replace("a = \"side\" }", "a = \"side\", x = \"oops\" }");
-    let e = parse(&text).unwrap_err();
-    assert!(e.message.contains("integration variable"), "{e}");
+fn a_body_integrates_over_names_of_its_own() {
+    // The scene's `x` is its own; the box integrates over `x_1` (`x_2` if `x_1` is taken too).
+    let text = MINIMAL.replace("a = \"side\" }", "a = \"side\", x = \"a length\" }");
+    let s = parse(&text).unwrap();
+    assert_eq!(s.bodies[0].variables, ["x_1", "y", "z"]);
+    let text = MINIMAL.replace(
+        "a = \"side\" }",
+        "a = \"side\", x = \"a length\", x_1 = \"another\" }",
+    );
+    let s = parse(&text).unwrap();
+    assert_eq!(s.bodies[0].variables, ["x_2", "y", "z"]);
+    assert_eq!(parse(MINIMAL).unwrap().bodies[0].variables, ["x", "y", "z"]);
 }

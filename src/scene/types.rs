@@ -135,6 +135,9 @@ pub struct Body {
     /// Applied in order to the body's own coordinates, then `shift`.
     pub rotations: Vec<(Axis, Expr)>,
     pub shift: [Expr; 3],
+    /// The names of its integration variables in this scene, in the order of
+    /// [`Shape::variables`]: the shape's own, or `r_1` when the scene has a name `r` of its own.
+    pub variables: Vec<String>,
 }
 
 #[derive(Debug, Clone)]
@@ -327,7 +330,8 @@ impl Shape {
         }
     }
 
-    /// The names of the shape's integration variables; scene symbols may not reuse them.
+    /// The names of the shape's integration variables; a body takes others where the scene
+    /// uses these (`Body::variables`).
     pub fn variables(&self) -> &'static [&'static str] {
         match self {
             Shape::Box { .. } => &["x", "y", "z"],

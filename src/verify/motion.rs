@@ -88,6 +88,17 @@ fn integrate<'a>(
         .collect();
     let rhs = |_t: f64, y: &[f64]| motion(eqs, &params, &coords, y);
     let run = dormand_prince(&rhs, &start, MOTION_TIME, MOTION_TOLERANCE, MOTION_STEPS)?;
+    // A start at rest in an equilibrium never moves: every conservation law holds trivially.
+    let moved = run.states.iter().any(|(_, y)| {
+        y.iter()
+            .zip(&start)
+            .any(|(a, b)| (a - b).abs() > 1e-9 * b.abs().max(1.0))
+    });
+    if !moved {
+        return Err(CheckError::AtRest {
+            coordinate: coords[0].clone(),
+        });
+    }
     let evaluations = run.evaluations * (coords.len() as u64 + 1);
     Ok(Integrated {
         states: run.states.into_iter().map(|(_, y)| y).collect(),

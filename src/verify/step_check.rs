@@ -40,6 +40,11 @@ pub enum CheckError {
     #[error("the equations cannot be solved for the accelerations here (a singular mass matrix)")]
     Singular,
     #[error(
+        "the motion from the step's start stays where it is (a state of rest), which tests \
+         nothing: give the step a `start` away from rest, such as start = {{ {coordinate} = 0.3 }}"
+    )]
+    AtRest { coordinate: String },
+    #[error(
         "the Lagrangian depends on t: the numeric check integrates time-independent motions only"
     )]
     TimeDependent,

@@ -642,3 +642,87 @@ values = { x = 1.0, y = 2.0 }
     assert!(err.contains("split the step into smaller ones"), "{err}");
     assert!(!err.contains("body"), "{err}");
 }
+
+/// The free top of tests/course, derived from its Lagrangian in Euler angles, reaches the rate
+/// the built-in family derives from Euler's equations (the lecture's symmetric top, eq (69)):
+/// the same expression exactly, and the same number at several tops. A wrong rate disagrees.
+#[test]
+fn free_top_steps_reach_the_built_in_precession_rate() {
+    use crate::model::catalogue::quantity;
+    let steps = course_scene("08-free-top.toml", "Lag", "Lag");
+    for (name, verdict, _) in verdicts(&steps) {
+        assert_eq!(verdict, Verdict::Agrees, "{name}");
+    }
+    assert!(steps.verification.steps.iter().all(|c| c.passed()));
+    let text = std::fs::read_to_string("lectures/lecture-3-9/02-symmetric-top.toml").unwrap();
+    let family = run(&text);
+    let built_in = family
+        .derivation
+        .scalar(quantity::PRECESSION_RATE)
+        .unwrap()
+        .clone();
+    let derived = steps.derivation.named["body_rate"]
+        .scalar()
+        .unwrap()
+        .clone();
+    let difference = crate::cas::Expr::minus(derived.clone(), built_in.clone());
+    assert!(crate::cas::simplify(&difference).unwrap().is_zero());
+    for (i1, i3, w3) in [(2.0, 3.0, 1.0), (5.0, 0.5, -2.0), (1.0, 1.0, 7.0)] {
+        let at = |s: &str| match s {
+            "I1" => Some(i1),
+            "I3" => Some(i3),
+            "w3" => Some(w3),
+            _ => None,
+        };
+        let (a, b) = (derived.eval(&at).unwrap(), built_in.eval(&at).unwrap());
+        assert!((a - b).abs() <= 1e-15 * a.abs().max(1.0), "{a} {b}");
+        assert!((a - (i3 - i1) / i1 * w3).abs() <= 1e-15 * a.abs().max(1.0));
+    }
+    let wrong = course_scene(
+        "08-free-top.toml",
+        "\"(I3 - I1)/I1*w3\"",
+        "\"(I1 - I3)/I1*w3\"",
+    );
+    let body = verdicts(&wrong)
+        .into_iter()
+        .find(|v| v.0 == "body_rate")
+        .unwrap();
+    assert_eq!(body.1, Verdict::Disagrees);
+}
+
+/// The cone of tests/course spins on its apex with Euler angles theta, phi, psi beside a body
+/// whose own angle is then theta_1: its moments come from the body, every `gives` agrees, and
+/// the wobble frequency is the textbook's with the cone's moments (3/20 M R² + 3/5 M h²,
+/// 3/10 M R², l = 3h/4) in floating point. A `lagrange` check that starts at rest fails and
+/// says to give a start.
+#[test]
+fn sleeping_cone_takes_its_moments_from_its_body() {
+    let r = course_scene("09-sleeping-cone.toml", "Lag", "Lag");
+    assert_eq!(r.scene.bodies[0].variables, ["s", "theta_1", "z"]);
+    for (name, verdict, _) in verdicts(&r) {
+        assert_eq!(verdict, Verdict::Agrees, "{name}");
+    }
+    assert!(r.verification.steps.iter().all(|c| c.passed()));
+    let (m, rr, h, g, w3) = (0.2f64, 0.03f64, 0.04f64, 9.81f64, 150.0f64);
+    let (i1, i3, l) = (
+        0.15 * m * rr * rr + 0.6 * m * h * h,
+        0.3 * m * rr * rr,
+        0.75 * h,
+    );
+    let want = ((i3 * w3).powi(2) - 4.0 * i1 * m * g * l).sqrt() / (2.0 * i1);
+    let omega = scalar_at(&r, "Omega", &[]);
+    assert!((omega - want).abs() < 1e-12 * want, "{omega} {want}");
+    let at_rest = course_scene("09-sleeping-cone.toml", "start = { theta = 0.2 }\n", "");
+    let tilt = at_rest
+        .verification
+        .steps
+        .iter()
+        .find(|c| c.step == "tilt")
+        .unwrap();
+    assert!(
+        tilt.problem
+            .as_deref()
+            .is_some_and(|p| p.contains("give the step a `start`")),
+        "{tilt:?}"
+    );
+}

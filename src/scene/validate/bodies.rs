@@ -25,22 +25,44 @@ use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
 
 impl Validator<'_> {
-    /// Every body; a symbol may not take the name of a body's integration variable.
+    /// Every body. Its integration variables are its own: where the scene names a symbol,
+    /// coordinate, definition, vector, step or step's integration variable `r`, the body
+    /// integrates over `r_1` instead.
     pub(super) fn bodies(
         &self,
         raw: &RawScene,
         allowed: &BTreeSet<String>,
     ) -> Result<Vec<Body>, SceneError> {
+        let taken: BTreeSet<&str> = raw
+            .symbols
+            .keys()
+            .chain(raw.coordinates.keys())
+            .chain(raw.definitions.keys())
+            .chain(raw.vectors.keys())
+            .map(|k| k.get_ref().as_str())
+            .chain(
+                raw.steps
+                    .iter()
+                    .map(|s| s.get_ref().name.get_ref().as_str()),
+            )
+            // An `integrate` step's own variables.
+            .chain(raw.steps.iter().flat_map(|s| {
+                s.get_ref()
+                    .over
+                    .iter()
+                    .filter_map(|range| range.get_ref().first().map(|v| v.get_ref().as_str()))
+            }))
+            .collect();
         let mut bodies = Vec::new();
         for (i, b) in raw.bodies.iter().enumerate() {
-            bodies.push(self.body(b, &format!("body[{i}]"), allowed)?);
-        }
-        for (i, b) in bodies.iter().enumerate() {
-            for v in b.shape.variables() {
-                if let Some((name, _)) = raw.symbols.iter().find(|(n, _)| n.get_ref() == v) {
-                    return Err(self.err(name.span().start, &format!("symbols.{v}"), format!("`{v}` is the integration variable of body[{i}] ({}); choose another name", b.shape.kind())));
-                }
-            }
+            let mut body = self.body(b, &format!("body[{i}]"), allowed)?;
+            body.variables = body
+                .shape
+                .variables()
+                .iter()
+                .map(|v| own_name(v, &taken))
+                .collect();
+            bodies.push(body);
         }
         Ok(bodies)
     }
@@ -269,6 +291,7 @@ impl Validator<'_> {
             subtract,
             rotations,
             shift,
+            variables: Vec::new(),
         })
     }
 
@@ -402,4 +425,15 @@ pub(super) fn body_symbols(b: &Body) -> BTreeSet<String> {
         pts.iter().for_each(|(_, at)| exprs.extend(at.iter()));
     }
     exprs.iter().flat_map(|e| e.symbols()).collect()
+}
+
+/// `v` if the scene does not use it, else the first of `v_1`, `v_2`, ... that it does not.
+fn own_name(v: &str, taken: &BTreeSet<&str>) -> String {
+    if !taken.contains(v) {
+        return v.to_string();
+    }
+    (1..)
+        .map(|k| format!("{v}_{k}"))
+        .find(|n| !taken.contains(n.as_str()))
+        .expect("a scene names finitely many things")
 }

@@ -93,11 +93,11 @@ impl Validator<'_> {
         let symbols = self.symbols(&raw)?;
         let mut allowed: BTreeSet<String> = symbols.keys().cloned().collect();
         allowed.insert("pi".into());
-        // Bodies first: their integration variables may not be symbols.
+        // Bodies first: their integration variables are names a claim may use.
         let bodies = self.bodies(&raw, &allowed)?;
         let variables: BTreeSet<String> = bodies
             .iter()
-            .flat_map(|b| b.shape.variables().iter().map(|s| s.to_string()))
+            .flat_map(|b| b.variables.iter().cloned())
             .collect();
         let (definitions, vectors, mut claim_names) =
             self.definitions_and_vectors(&raw, &allowed, &variables)?;

@@ -41,8 +41,7 @@ impl Validator<'_> {
                     &field,
                     format!(
                         "`{n}` is already a name in this scene (a symbol, a definition, a \
-                         derived quantity, or a body's integration variable, such as a \
-                         cylinder's `theta`); a coordinate needs a name of its own"
+                         vector or a derived quantity); a coordinate needs a name of its own"
                     ),
                 ));
             }
