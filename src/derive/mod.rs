@@ -312,4 +312,6 @@ mod bodies_tests;
 #[cfg(test)]
 mod dynamics_tests;
 #[cfg(test)]
+mod solve_tests;
+#[cfg(test)]
 mod tests;

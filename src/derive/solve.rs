@@ -1,5 +1,6 @@
 //! `solve`: the one equation of a step that contains the unknown, solved exactly: linear, or
-//! every root of its polynomial factors up to degree two.
+//! every root of its polynomial factors up to degree two and of quartics in u²; several
+//! unknowns, the linear system of the equations that contain them (Cramer's rule).
 
 use super::DeriveError;
 use crate::cas::{self, Expr};
@@ -22,15 +23,28 @@ pub fn solve(
             e.substitute(&|s| calls.iter().find(|(n, _)| n == s).map(|(_, c)| c.clone()))
         };
         let mut roots = cas::roots(&named, unknown)?;
-        for (root, _) in roots.roots.iter_mut().chain(roots.unsolved.iter_mut()) {
+        // A quartic in u² is a quadratic in v = u²: u = ±√v for each of its roots.
+        let mut unsolved = Vec::new();
+        for (factor, multiplicity) in std::mem::take(&mut roots.unsolved) {
+            match biquadratic_roots(&factor, unknown)? {
+                Some(found) => roots
+                    .roots
+                    .extend(found.into_iter().map(|r| (r, multiplicity))),
+                None => unsolved.push(back(&factor)),
+            }
+        }
+        for (root, _) in roots.roots.iter_mut() {
             *root = back(root);
         }
-        if let Some((factor, _)) = roots.unsolved.first() {
+        if let Some(factor) = unsolved.first() {
+            let degree = degree(factor, unknown)?;
             return Err(DeriveError::NotDerivable(format!(
-                "the equation has the factor {} of degree {} in `{unknown}`: `solve` gives \
-                 closed forms of factors up to degree two",
+                "the equation has the factor {} of degree {degree} in `{unknown}`: `solve` gives \
+                 closed forms of factors up to degree two, and of quartics in {unknown}^2{}",
                 factor.to_text(),
-                degree(factor, unknown)?
+                numeric_roots(factor, unknown, degree, values)
+                    .map(|r| format!("; at the scene's values its roots are {r}"))
+                    .unwrap_or_default()
             )));
         }
         // Every symbol of a scene is positive: √(4 a² b) = 2 a √b.
@@ -57,6 +71,110 @@ pub fn solve(
     }
     let rest = r.substitute(&|s| (s == unknown).then(|| Expr::int(0)));
     Ok(vec![cas::simplify(&Expr::negate(Expr::over(rest, slope)))?])
+}
+
+/// The coefficients c_0 .. c_degree of a polynomial in `x`, c_k = p^(k)(0)/k!.
+fn coefficients(p: &Expr, x: &str, degree: usize) -> Result<Vec<Expr>, DeriveError> {
+    let at_zero = |e: &Expr| e.substitute(&|s| (s == x).then(|| Expr::int(0)));
+    let mut d = p.clone();
+    let mut out = Vec::new();
+    let mut factorial: i128 = 1;
+    for k in 0..=degree {
+        if k > 0 {
+            d = d.diff(x)?;
+            factorial *= k as i128;
+        }
+        out.push(Expr::over(at_zero(&d), Expr::int(factorial)));
+    }
+    Ok(cas::simplify_all(out)?)
+}
+
+/// The roots of a quartic with no odd powers of `x`, c4 x⁴ + c2 x² + c0: ±√v for each root v
+/// of c4 v² + c2 v + c0. `None` for any other factor.
+fn biquadratic_roots(factor: &Expr, x: &str) -> Result<Option<Vec<Expr>>, DeriveError> {
+    if degree(factor, x)? != 4 {
+        return Ok(None);
+    }
+    let c = coefficients(factor, x, 4)?;
+    if !(c[1].is_zero() && c[3].is_zero()) {
+        return Ok(None);
+    }
+    let v = "v__square";
+    let quadratic = Expr::add(vec![
+        Expr::mul(vec![c[4].clone(), Expr::pow(Expr::sym(v), Expr::int(2))]),
+        Expr::mul(vec![c[2].clone(), Expr::sym(v)]),
+        c[0].clone(),
+    ]);
+    let squares = cas::roots(&quadratic, v)?;
+    if !squares.unsolved.is_empty() {
+        return Ok(None);
+    }
+    Ok(Some(
+        squares
+            .roots
+            .into_iter()
+            .flat_map(|(square, _)| {
+                let root = Expr::pow(square, Expr::rat(1, 2));
+                [Expr::negate(root.clone()), root]
+            })
+            .collect(),
+    ))
+}
+
+/// The roots of a polynomial at the scene's values, as text: the eigenvalues of its companion
+/// matrix. `None` when a coefficient has no value there.
+fn numeric_roots(
+    p: &Expr,
+    x: &str,
+    degree: usize,
+    values: &BTreeMap<String, f64>,
+) -> Option<String> {
+    let c: Vec<f64> = coefficients(p, x, degree)
+        .ok()?
+        .iter()
+        .map(|e| crate::model::value::eval_at(e, values).ok())
+        .collect::<Option<_>>()?;
+    let lead = *c.last()?;
+    if lead == 0.0 || !c.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    // x^n = −Σ c_k/c_n x^k: the companion matrix's eigenvalues are the roots.
+    let companion = nalgebra::DMatrix::from_fn(degree, degree, |i, j| {
+        if j == degree - 1 {
+            -c[i] / lead
+        } else if i == j + 1 {
+            1.0
+        } else {
+            0.0
+        }
+    });
+    let mut roots: Vec<(f64, f64)> = companion
+        .complex_eigenvalues()
+        .iter()
+        .map(|z| (z.re, z.im))
+        .collect();
+    roots.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let scale = roots
+        .iter()
+        .map(|(re, im)| re.hypot(*im))
+        .fold(1.0, f64::max);
+    Some(
+        roots
+            .iter()
+            .map(|&(re, im)| {
+                if im.abs() <= 1e-12 * scale {
+                    format!("{re:.6}")
+                } else {
+                    format!(
+                        "{re:.6} {} {:.6}i",
+                        if im < 0.0 { "-" } else { "+" },
+                        im.abs()
+                    )
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(", "),
+    )
 }
 
 /// The degree of a polynomial in `x`: how many derivatives leave something.
@@ -124,4 +242,115 @@ pub fn equation_with<'a>(
                 .join(", ")
         ))),
     }
+}
+
+/// The linear system of the equations that contain the unknowns, one equation an unknown,
+/// solved by Cramer's rule: each unknown's value, in the order of `unknowns`.
+pub fn solve_system(
+    eqs: &[(String, Expr)],
+    unknowns: &[String],
+) -> Result<Vec<(String, Expr)>, DeriveError> {
+    let with: Vec<&(String, Expr)> = eqs
+        .iter()
+        .filter(|(_, e)| e.symbols().iter().any(|s| unknowns.contains(s)))
+        .collect();
+    if with.len() != unknowns.len() {
+        return Err(DeriveError::NotDerivable(format!(
+            "`solve` of {} unknowns takes as many equations that contain them, and {} do{}",
+            unknowns.len(),
+            with.len(),
+            if with.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " (those of {})",
+                    with.iter()
+                        .map(|(q, _)| q.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            }
+        )));
+    }
+    let n = unknowns.len();
+    // R_i = Σ_j a_ij u_j + b_i: the slopes must not hold an unknown.
+    let mut slopes = Vec::new();
+    let mut curvatures = Vec::new();
+    for (_, r) in &with {
+        for u in unknowns {
+            let a = r.diff(u)?;
+            for v in unknowns {
+                curvatures.push(a.diff(v)?);
+            }
+            slopes.push(a);
+        }
+    }
+    let curvatures = cas::simplify_all(curvatures)?;
+    if let Some(k) = curvatures.iter().position(|c| !c.is_zero()) {
+        let (q, _) = with[k / (n * n)];
+        return Err(DeriveError::NotDerivable(format!(
+            "the equation of {q} is not linear in {}: `solve` of several unknowns takes a \
+             linear system; solve for one unknown at a time instead",
+            unknowns.join(", ")
+        )));
+    }
+    let a: Vec<Expr> = cas::simplify_all(slopes)?;
+    let zero_unknowns =
+        |e: &Expr| e.substitute(&|s| unknowns.contains(&s.to_string()).then(|| Expr::int(0)));
+    let minus_b: Vec<Expr> = with
+        .iter()
+        .map(|(_, r)| Expr::negate(zero_unknowns(r)))
+        .collect();
+    let matrix: Vec<Vec<Expr>> = (0..n).map(|i| a[i * n..(i + 1) * n].to_vec()).collect();
+    let det = cas::simplify(&determinant(&matrix))?;
+    if det.is_zero() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the equations do not determine {}: their determinant in the unknowns is zero",
+            unknowns.join(", ")
+        )));
+    }
+    let numerators: Vec<Expr> = (0..n)
+        .map(|j| {
+            let replaced: Vec<Vec<Expr>> = matrix
+                .iter()
+                .zip(&minus_b)
+                .map(|(row, b)| {
+                    let mut row = row.clone();
+                    row[j] = b.clone();
+                    row
+                })
+                .collect();
+            Expr::over(determinant(&replaced), det.clone())
+        })
+        .collect();
+    Ok(unknowns
+        .iter()
+        .cloned()
+        .zip(cas::simplify_all(numerators)?)
+        .collect())
+}
+
+/// The determinant by expansion along the first row (at most 4 × 4).
+fn determinant(m: &[Vec<Expr>]) -> Expr {
+    if m.len() == 1 {
+        return m[0][0].clone();
+    }
+    Expr::add(
+        (0..m.len())
+            .map(|j| {
+                let minor: Vec<Vec<Expr>> = m[1..]
+                    .iter()
+                    .map(|row| {
+                        row.iter()
+                            .enumerate()
+                            .filter(|(k, _)| *k != j)
+                            .map(|(_, e)| e.clone())
+                            .collect()
+                    })
+                    .collect();
+                let sign = if j % 2 == 0 { 1 } else { -1 };
+                Expr::mul(vec![Expr::int(sign), m[0][j].clone(), determinant(&minor)])
+            })
+            .collect(),
+    )
 }

@@ -9,7 +9,7 @@ use super::lagrangian::{
 };
 use super::sign::{Sign, signs_over_positive};
 pub use super::solve::equation_with;
-use super::solve::solve;
+use super::solve::{solve, solve_system};
 use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr, Formula};
 use crate::model::prose::Prose;
@@ -33,6 +33,8 @@ pub enum StepResult {
     /// Every root of a `solve` that has more than one, in order of their values at the
     /// scene's values.
     Roots(Vec<Expr>),
+    /// The value of each unknown of a `solve` of several, in the order of `for`.
+    Solution(Vec<(String, Expr)>),
     /// The states of rest of one coordinate.
     Equilibria {
         coordinate: String,
@@ -74,6 +76,7 @@ impl StepResult {
             StepResult::Equations(_)
             | StepResult::Modes(_)
             | StepResult::Roots(_)
+            | StepResult::Solution(_)
             | StepResult::Equilibria { .. }
             | StepResult::Stability { .. } => None,
         }
@@ -83,6 +86,11 @@ impl StepResult {
     /// `Omega_1`, `Omega_2`, ... for the modes of a step `Omega`.
     pub fn values(&self, name: &str) -> Vec<(String, Expr)> {
         match self {
+            StepResult::Solution(pairs) => pairs
+                .iter()
+                .enumerate()
+                .map(|(k, (_, value))| (mode_name(name, k), value.clone()))
+                .collect(),
             StepResult::Modes(values) | StepResult::Roots(values) => values
                 .iter()
                 .enumerate()
@@ -402,12 +410,17 @@ fn derive_step(
                 StepResult::Expr(cas::simplify(&raw)?)
             }
         },
-        Operation::Solve { of, unknown } => {
+        Operation::Solve { of, unknowns } => {
             let eqs = equations(d, of)?;
-            let mut roots = solve(eqs, unknown, &scene.values)?;
-            match roots.len() {
-                1 => StepResult::Expr(roots.remove(0)),
-                _ => StepResult::Roots(roots),
+            match &unknowns[..] {
+                [unknown] => {
+                    let mut roots = solve(eqs, unknown, &scene.values)?;
+                    match roots.len() {
+                        1 => StepResult::Expr(roots.remove(0)),
+                        _ => StepResult::Roots(roots),
+                    }
+                }
+                _ => StepResult::Solution(solve_system(eqs, unknowns)?),
             }
         }
     })
@@ -522,6 +535,21 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                 })
                 .collect()
         }
+        // Each unknown = its value, titled with the name later steps use.
+        StepResult::Solution(pairs) => pairs
+            .iter()
+            .enumerate()
+            .map(|(k, (unknown, value))| {
+                Step::note(
+                    &format!(
+                        "{title}: {}, the value of {unknown}",
+                        mode_name(&step.name, k)
+                    ),
+                    Formula::equation(Formula::Expr(Expr::sym(unknown)), value.clone()),
+                    why.clone(),
+                )
+            })
+            .collect(),
         StepResult::Modes(values) | StepResult::Roots(values) => values
             .iter()
             .enumerate()

@@ -147,6 +147,14 @@ pub struct RawClaim {
     pub role: Option<Text>,
 }
 
+/// A `solve` step's unknowns: one name, or a list of them for a linear system.
+#[derive(Deserialize)]
+#[serde(untagged)]
+pub enum RawUnknowns {
+    One(String),
+    Many(Vec<String>),
+}
+
 /// One step of an author's derivation: a name, one operation, and optionally the notes' form
 /// of its result (`gives`), checked like a claim.
 #[derive(Deserialize)]
@@ -173,11 +181,11 @@ pub struct RawStep {
     /// For `substitute`: each name and what replaces it (`"theta'" = "x'/R"`).
     #[serde(default)]
     pub set: BTreeMap<Spanned<String>, Text>,
-    /// Solve the named equation of motion for one unknown (`for`).
+    /// Solve the named equations of motion for one unknown, or a list of them (`for`).
     #[serde(default)]
     pub solve: Option<Text>,
     #[serde(default, rename = "for")]
-    pub unknown: Option<Text>,
+    pub unknown: Option<Spanned<RawUnknowns>>,
     /// The generalised momentum of this coordinate, from the Lagrangian named by `of`.
     #[serde(default)]
     pub momentum: Option<Text>,

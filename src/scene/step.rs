@@ -34,7 +34,7 @@ impl AuthorStep {
         if matches!(self.op, Operation::Frequency { .. }) && coordinates >= 2 {
             names.extend((0..coordinates).map(|k| mode_name(&self.name, k)));
         }
-        // A `solve` with several roots names them `x_1`, `x_2`, ... (at most four).
+        // A `solve` with several roots or unknowns names them `x_1`, `x_2`, ... (at most four).
         if matches!(self.op, Operation::Solve { .. }) {
             names.extend((0..4).map(|k| mode_name(&self.name, k)));
         }
@@ -70,8 +70,9 @@ pub enum Operation {
         of: Expr,
         set: BTreeMap<String, Expr>,
     },
-    /// The named equation of motion solved for one unknown it is linear in.
-    Solve { of: String, unknown: String },
+    /// The named equations of motion solved: for one unknown, the equation that contains it
+    /// (every root); for several, the linear system of the equations that contain them.
+    Solve { of: String, unknowns: Vec<String> },
     /// The generalised momentum ∂L/∂q' of one coordinate, from the named Lagrangian.
     Momentum { of: String, coordinate: String },
     /// The energy function Σ q'·∂L/∂q' − L of the named Lagrangian.

@@ -555,6 +555,7 @@ mod principal;
 mod rest;
 mod rounding;
 mod series;
+mod solve;
 mod step_check;
 pub mod steps;
 pub mod variants;

@@ -10,6 +10,7 @@ use super::motion::{
 };
 use super::rest::{equilibria_check, stability_check};
 use super::series::remainder_check;
+use super::solve::{roots_check, system_check};
 pub use super::step_check::{CheckError, StepCheck};
 use super::step_check::{H, at, random_point};
 use super::{
@@ -227,52 +228,22 @@ fn route(
                 check.evaluations += values.len() as u64;
             }
         }
-        (Operation::Solve { of, unknown }, StepResult::Expr(_) | StepResult::Roots(_)) => {
+        (Operation::Solve { of, unknowns }, StepResult::Expr(_) | StepResult::Roots(_)) => {
+            let unknown = &unknowns[0];
             let eqs = std::slice::from_ref(equation_with(equations_of(d, of)?, unknown)?);
             let roots: Vec<&Expr> = match result {
                 StepResult::Roots(roots) => roots.iter().collect(),
                 _ => result.scalar().into_iter().collect(),
             };
-            check.method = format!(
-                "each solution put back into the equation, at {CONFIRMATION_POINTS} random points \
-                 and the scene's values (where it is real)"
-            );
-            check.tolerance = NUMERICALLY_ZERO;
-            let mut rng = Rng::new(seed);
-            let mut points: Vec<BTreeMap<String, f64>> = (0..CONFIRMATION_POINTS)
-                .map(|_| {
-                    let exprs: Vec<&Expr> = eqs
-                        .iter()
-                        .map(|(_, e)| e)
-                        .chain(roots.iter().copied())
-                        .collect();
-                    random_point(&exprs, &mut rng)
-                })
+            roots_check(scene, eqs, &roots, unknown, seed, check)?;
+        }
+        (Operation::Solve { of, unknowns }, StepResult::Solution(solution)) => {
+            let eqs: Vec<(String, Expr)> = equations_of(d, of)?
+                .iter()
+                .filter(|(_, e)| e.symbols().iter().any(|s| unknowns.contains(s)))
+                .cloned()
                 .collect();
-            points.push(scene.values.clone());
-            let mut real = 0;
-            for mut point in points {
-                for root in &roots {
-                    let Ok(u) = at(root, &point) else { continue };
-                    if !u.is_finite() {
-                        continue;
-                    }
-                    point.insert(unknown.clone(), 0.0);
-                    let scale = eqs
-                        .iter()
-                        .map(|(_, e)| at(e, &point))
-                        .sum::<Result<f64, _>>()?;
-                    point.insert(unknown.clone(), u);
-                    for (_, e) in eqs {
-                        check.evaluations += 2;
-                        check.error = check.error.max(at(e, &point)?.abs() / scale.abs().max(1.0));
-                    }
-                    real += 1;
-                }
-            }
-            if real == 0 {
-                return Err(CheckError::NoRealRoot);
-            }
+            system_check(scene, &eqs, solution, seed, check)?;
         }
         _ => return Err(CheckError::NotDerived),
     }
@@ -330,15 +301,15 @@ pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, ca
         };
         let mut r = match d.named.get(&step.name) {
             Some(StepResult::Equations(eqs)) => same_equation(scene, d, step, &claim, eqs, gives)?,
-            Some(StepResult::Modes(modes) | StepResult::Roots(modes)) => {
+            Some(
+                several @ (StepResult::Modes(_) | StepResult::Roots(_) | StepResult::Solution(_)),
+            ) => {
+                let n = several.values(&step.name).len();
                 let mut r = unchecked(&claim);
                 r.problem = Some(format!(
-                    "this step gives {} values, named {}_1 to {}_{}: state each in a claim on its \
-                     name instead of `gives`",
-                    modes.len(),
-                    step.name,
-                    step.name,
-                    modes.len()
+                    "this step gives {n} values, named {}_1 to {}_{n}: state each in a claim on \
+                     its name instead of `gives`",
+                    step.name, step.name,
                 ));
                 r
             }

@@ -726,3 +726,28 @@ fn sleeping_cone_takes_its_moments_from_its_body() {
         "{tilt:?}"
     );
 }
+
+/// The system check fails the double pendulum's accelerations swapped, and passes them as
+/// derived.
+#[test]
+fn the_system_check_fails_a_wrong_solution() {
+    use crate::derive::steps::StepResult;
+    let r = course_scene("03-double-pendulum.toml", "Lag", "Lag");
+    let StepResult::Solution(solution) = &r.derivation.named["acc"] else {
+        panic!()
+    };
+    let eqs = match &r.derivation.named["eom"] {
+        StepResult::Equations(eqs) => eqs.clone(),
+        other => panic!("{other:?}"),
+    };
+    let mut right = blank();
+    super::solve::system_check(&r.scene, &eqs, solution, 7, &mut right).unwrap();
+    assert!(right.passed(), "{right:?}");
+    let swapped = vec![
+        (solution[0].0.clone(), solution[1].1.clone()),
+        (solution[1].0.clone(), solution[0].1.clone()),
+    ];
+    let mut wrong = blank();
+    super::solve::system_check(&r.scene, &eqs, &swapped, 7, &mut wrong).unwrap();
+    assert!(!wrong.passed(), "{wrong:?}");
+}

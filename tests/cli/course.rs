@@ -274,8 +274,8 @@ fn a_step_that_cannot_be_derived_is_reported_at_its_line() {
     assert!(!err.contains("panicked"), "{err}");
 }
 
-/// `solve` of an irreducible quintic stops the scene at the step's line, naming the factor and
-/// its degree (closed forms go to degree two).
+/// `solve` of an irreducible quintic stops the scene at the step's line, naming the factor, its
+/// degree (closed forms go to degree two) and its roots at the scene's values.
 #[test]
 fn solve_of_degree_five_is_reported_at_its_line() {
     let out = mechbook(&["check", "tests/fixtures/step-solve-degree-5.toml"]);
@@ -286,6 +286,11 @@ fn solve_of_degree_five_is_reported_at_its_line() {
             "tests/fixtures/step-solve-degree-5.toml:24:1: scene `quintic` could not be derived: \
              step `x0`: the equation has the factor -a*x - b + k*x^5 of degree 5 in `x`"
         ),
+        "{err}"
+    );
+    // Its one real root at k = 3, a = 1, b = 0.5 (3x⁵ − x − 0.5 = 0 by bisection: 0.852744…).
+    assert!(
+        err.contains("at the scene's values its roots are") && err.contains(", 0.852744"),
         "{err}"
     );
 }

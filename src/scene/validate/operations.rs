@@ -4,7 +4,7 @@
 use super::{Validator, content_start};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
-use crate::scene::raw::{RawStep, Text};
+use crate::scene::raw::{RawStep, RawUnknowns, Text};
 use crate::scene::step::Operation;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -30,6 +30,8 @@ fn operations(s: &RawStep) -> [(&'static str, bool); 13] {
 
 /// The highest order of a `series`: each order is one more derivative of the expression.
 const MAX_ORDER: i64 = 6;
+/// The most unknowns of one `solve`: its results are named `x_1` to `x_4`, as its roots are.
+const MAX_UNKNOWNS: usize = 4;
 
 /// What an earlier step holds, for the operations that take a step by name.
 #[derive(Clone, Copy, PartialEq)]
@@ -265,26 +267,48 @@ impl Validator<'_> {
             if motion.is_err() {
                 self.earlier(of, field, "solve", Holds::Linear, earlier)?;
             }
-            let Some(unknown) = &s.unknown else {
+            let Some(given) = &s.unknown else {
                 return Err(self.err(
                     offset,
                     field,
-                    "`solve` needs `for`: the unknown, such as for = \"x''\"",
+                    "`solve` needs `for`: the unknown, such as for = \"x''\", or a list of them \
+                     for a linear system, such as for = [\"x''\", \"F\"]",
                 ));
             };
-            if !scope.contains(unknown.get_ref()) || earlier.contains_key(unknown.get_ref()) {
-                return Err(self.err(
-                    content_start(unknown),
-                    &format!("{field}.for"),
-                    format!(
-                        "cannot solve for `{}`: not a symbol, coordinate or rate of this scene",
-                        unknown.get_ref()
-                    ),
-                ));
+            let (at, key) = (content_start(given), format!("{field}.for"));
+            let unknowns: Vec<&String> = match given.get_ref() {
+                RawUnknowns::One(u) => vec![u],
+                RawUnknowns::Many(list) => {
+                    if list.is_empty() || list.len() > MAX_UNKNOWNS {
+                        return Err(self.err(
+                            given.span().start,
+                            &key,
+                            format!(
+                                "`for` lists one to {MAX_UNKNOWNS} unknowns; this lists {}",
+                                list.len()
+                            ),
+                        ));
+                    }
+                    list.iter().collect()
+                }
+            };
+            let mut names: Vec<String> = Vec::new();
+            for u in unknowns {
+                if !scope.contains(u) || earlier.contains_key(u) || names.contains(u) {
+                    return Err(self.err(
+                        at,
+                        &key,
+                        format!(
+                            "cannot solve for `{u}`: not a symbol, coordinate or rate of this \
+                             scene, or listed twice"
+                        ),
+                    ));
+                }
+                names.push(u.clone());
             }
             Operation::Solve {
                 of: of.get_ref().clone(),
-                unknown: unknown.get_ref().clone(),
+                unknowns: names,
             }
         };
         // A field of another operation than this step's: said before anything else about it.
