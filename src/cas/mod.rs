@@ -21,7 +21,7 @@ mod size;
 mod trig;
 
 pub use angles::{Zero, Zeros};
-pub use engine::EngineError;
+pub use engine::{EngineError, MAX_DEGREE, MAX_TERMS};
 pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
 pub use formula::{Accent, Formula, Name, Op};
 pub use parse::{ParseError, Parsed, parse, parse_input};

@@ -13,7 +13,7 @@ use super::solve::{solve, solve_system};
 use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr, Formula};
 use crate::model::prose::Prose;
-use crate::scene::{AuthorStep, Operation, Scene, mode_name};
+use crate::scene::{AuthorStep, MAX_NAMED_STATES, Operation, Scene, mode_name};
 use std::collections::BTreeMap;
 
 /// What a step found: an expression, or equations of motion (each coordinate's residual, which
@@ -86,6 +86,19 @@ impl StepResult {
     /// `Omega_1`, `Omega_2`, ... for the modes of a step `Omega`.
     pub fn values(&self, name: &str) -> Vec<(String, Expr)> {
         match self {
+            StepResult::Equilibria { zeros, .. } => zeros
+                .iter()
+                .take(MAX_NAMED_STATES)
+                .enumerate()
+                .map(|(k, z)| (mode_name(name, k), z.value.clone()))
+                .collect(),
+            // Ω² about each state, where it was derived.
+            StepResult::Stability { cases, .. } => cases
+                .iter()
+                .take(MAX_NAMED_STATES)
+                .enumerate()
+                .filter_map(|(k, c)| Some((mode_name(name, k), c.omega_squared.clone()?)))
+                .collect(),
             StepResult::Solution(pairs) => pairs
                 .iter()
                 .enumerate()

@@ -17,7 +17,7 @@ mod verdict;
 pub use course::{Course, CourseError, LectureTitle};
 pub use error::{Locator, SceneError};
 pub use load::{MAX_DEPTH, MAX_SCENE_BYTES, find_scenes, load_all};
-pub use step::{AuthorStep, Operation, mode_name};
+pub use step::{AuthorStep, MAX_NAMED_STATES, Operation, mode_name};
 pub use types::{
     Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia, NotesRef, PlotRequest,
     Problem, Scene, Shape, Variant, Verdict, lecture_slug,

@@ -27,8 +27,8 @@ pub struct AuthorStep {
 
 impl AuthorStep {
     /// The names this step gives later steps and claims: its own, for a `frequency` of n ≥ 2
-    /// coordinates its modes `Omega_1` ... `Omega_n`, one per coordinate, and for a `solve` its
-    /// roots when it has several.
+    /// coordinates its modes `Omega_1` ... `Omega_n`, one per coordinate, for a `solve` its
+    /// roots or unknowns when it has several, and for `equilibria` and `stability` each state.
     pub fn names_given(&self, coordinates: usize) -> Vec<String> {
         let mut names = vec![self.name.clone()];
         if matches!(self.op, Operation::Frequency { .. }) && coordinates >= 2 {
@@ -38,9 +38,19 @@ impl AuthorStep {
         if matches!(self.op, Operation::Solve { .. }) {
             names.extend((0..4).map(|k| mode_name(&self.name, k)));
         }
+        // Each state of rest `rest_1`, ..., and its Ω² under the `stability` step's name.
+        if matches!(
+            self.op,
+            Operation::Equilibria { .. } | Operation::Stability { .. }
+        ) {
+            names.extend((0..MAX_NAMED_STATES).map(|k| mode_name(&self.name, k)));
+        }
         names
     }
 }
+
+/// The most states of rest (and their Ω²) a step names for later steps and claims.
+pub const MAX_NAMED_STATES: usize = 8;
 
 /// The name of a `frequency` step's k-th normal mode, or a `solve` step's k-th root (from 0):
 /// `Omega_1` for the first of `Omega`.

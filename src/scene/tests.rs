@@ -96,3 +96,21 @@ fn a_body_integrates_over_names_of_its_own() {
     assert_eq!(s.bodies[0].variables, ["x_2", "y", "z"]);
     assert_eq!(parse(MINIMAL).unwrap().bodies[0].variables, ["x", "y", "z"]);
 }
+
+/// A definition is held to the engine's budget, not to the bodies' degree 6: the gyroscope's
+/// M g d/((M R²/2) w) (degree 7 as the validator counts) loads.
+#[test]
+fn a_definition_of_degree_seven_loads() {
+    let text = MINIMAL.replace(
+        "a = \"side\" }",
+        "a = \"side\", g = \"gravity\", d = \"arm\", R = \"radius\", w = \"spin\" }\n[definitions]\nOmega = \"m*g*d/((m*R^2/2)*w)\"",
+    );
+    let s = parse(&text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(s.definitions.contains_key("Omega"));
+    let too_much = MINIMAL.replace(
+        "a = \"side\" }",
+        "a = \"side\" }\n[definitions]\nhuge = \"(a + m)^40\"",
+    );
+    let e = parse(&too_much).unwrap_err();
+    assert!(e.message.contains("beyond the engine's budget"), "{e}");
+}

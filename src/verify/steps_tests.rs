@@ -6,6 +6,7 @@ use super::steps::*;
 use crate::cas::parse;
 use crate::pipeline::{SceneReport, run_scene};
 use crate::scene::{Scene, Verdict};
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// The physical pendulum of tests/course, with `gives` of the caller's choosing for the
@@ -431,6 +432,32 @@ fn bead_on_hoop_equilibria_and_stability() {
     let StepResult::Stability { cases, .. } = &r.derivation.named["stable"] else {
         panic!()
     };
+    // Each state and its Ω² under a name of its own, against floats computed here.
+    let (g, rr, w) = (9.81f64, 0.5f64, 6.0f64);
+    let named: BTreeMap<String, f64> = ["rest", "stable"]
+        .iter()
+        .flat_map(|s| r.derivation.named[*s].values(s))
+        .map(|(n, e)| (n, e.eval(&|s| r.scene.values.get(s).copied()).unwrap()))
+        .collect();
+    let c = g / (rr * w * w);
+    let want = [
+        ("rest_1", 0.0),
+        ("rest_2", std::f64::consts::PI),
+        ("rest_3", c.acos()),
+        ("rest_4", -c.acos()),
+        ("stable_1", g / rr - w * w),
+        ("stable_2", -g / rr - w * w),
+        ("stable_3", w * w * (1.0 - c * c)),
+    ];
+    for (name, value) in want {
+        assert!(
+            (named[name] - value).abs() < 1e-12 * value.abs().max(1.0),
+            "{name}"
+        );
+    }
+    for claim in r.verification.claims.iter().filter(|c| c.step.is_none()) {
+        assert_eq!(claim.verdict, Verdict::Agrees, "{claim:?}");
+    }
     let verdicts: Vec<Stable> = cases.iter().map(|c| c.verdict).collect();
     assert_eq!(
         verdicts,

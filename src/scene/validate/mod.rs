@@ -443,7 +443,50 @@ impl Validator<'_> {
         field: &str,
         allowed: &BTreeSet<String>,
     ) -> Result<Expr, SceneError> {
-        self.parse_checked(text, start, field, allowed, false)
+        let e = self.parse_checked(text, start, field, allowed, false)?;
+        let size = e.expansion_size();
+        if size.degree > MAX_INPUT_DEGREE || size.terms > MAX_INPUT_TERMS {
+            return Err(self.err(
+                start,
+                field,
+                format!(
+                    "this expression expands to degree {} with up to {:.0} terms; a scene's \
+                     dimensions and masses stay within degree {MAX_INPUT_DEGREE} and \
+                     {MAX_INPUT_TERMS} terms, so that the derivations stay fast: introduce a \
+                     symbol for it",
+                    size.degree, size.terms
+                ),
+            ));
+        }
+        Ok(e)
+    }
+
+    /// A definition: an expression of the scene's names that claims and steps use, within the
+    /// engine's own budget (the bodies' tighter limits do not apply).
+    pub(super) fn definition_expr(
+        &self,
+        t: &Text,
+        field: &str,
+        allowed: &BTreeSet<String>,
+    ) -> Result<Expr, SceneError> {
+        let e = self.parse_checked(t.get_ref(), content_start(t), field, allowed, false)?;
+        let size = e.expansion_size();
+        if size.degree > crate::cas::MAX_DEGREE || size.terms > crate::cas::MAX_TERMS {
+            return Err(self.err(
+                content_start(t),
+                field,
+                format!(
+                    "this definition would expand to degree {} with up to {:.0} terms, beyond \
+                     the engine's budget of degree {} and {:.0} terms: define its parts under \
+                     names of their own",
+                    size.degree,
+                    size.terms,
+                    crate::cas::MAX_DEGREE,
+                    crate::cas::MAX_TERMS
+                ),
+            ));
+        }
+        Ok(e)
     }
 
     /// Parses `text` (at byte `start` of the file), checks its names against `names` and its
@@ -479,20 +522,6 @@ impl Validator<'_> {
             return Err(self.err(start + offset, field, message));
         }
         check_calls(&parsed.expr, claim).map_err(|m| self.err(start, field, m.to_string()))?;
-        let size = parsed.expr.expansion_size();
-        if !claim && (size.degree > MAX_INPUT_DEGREE || size.terms > MAX_INPUT_TERMS) {
-            return Err(self.err(
-                start,
-                field,
-                format!(
-                    "this expression expands to degree {} with up to {:.0} terms; a scene's \
-                     dimensions and masses stay within degree {MAX_INPUT_DEGREE} and \
-                     {MAX_INPUT_TERMS} terms, so that the derivations stay fast: introduce a \
-                     symbol for it",
-                    size.degree, size.terms
-                ),
-            ));
-        }
         Ok(parsed.expr)
     }
 

@@ -285,7 +285,7 @@ impl Validator<'_> {
                 toml::Value::Integer(n) => *n as f64,
                 toml::Value::Float(x) => *x,
                 toml::Value::String(text) => {
-                    let e = self.parse_checked(text, at, &f, &allowed, false)?;
+                    let e = self.expr_str(text, at, &f, &allowed)?;
                     e.eval(&|s| values.get(s).copied()).map_err(|m| match m {
                         crate::cas::EvalError::NoValue(s) => self.err(
                             at,

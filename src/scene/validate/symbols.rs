@@ -65,7 +65,7 @@ impl Validator<'_> {
             scope.extend(variables.iter().cloned());
             definitions.insert(
                 n.clone(),
-                self.expr(value, &format!("definitions.{n}"), &scope)?,
+                self.definition_expr(value, &format!("definitions.{n}"), &scope)?,
             );
             claim_names.insert(n.clone());
         }
