@@ -44,6 +44,12 @@ impl Plan {
                 "outputs `principal_axes` and `numeric`".into(),
             ));
         }
+        if scene.moments_from_bodies {
+            wanted.push((
+                Stage::ParallelAxis,
+                "`inertia = \"principal\"`: the free top's moments about the centre of mass".into(),
+            ));
+        }
         for p in &scene.plots {
             let why = format!("plot `{}`", p.kind());
             wanted.push((Stage::Plots, why.clone()));

@@ -6,6 +6,7 @@
 
 pub mod algebra;
 pub mod bodies;
+mod body_moments;
 pub mod earth;
 pub mod euler;
 pub mod free_top;
@@ -291,6 +292,9 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     }
     if plan.runs(Stage::SymmetricTop) {
         free_top::symmetric_top(&mut d)?;
+        if scene.moments_from_bodies {
+            body_moments::moments_from_bodies(&mut d)?;
+        }
     }
     if plan.runs(Stage::AxisStability) {
         stability::axis_stability(&mut d)?;
@@ -309,6 +313,8 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
 
 #[cfg(test)]
 mod bodies_tests;
+#[cfg(test)]
+mod body_moments_tests;
 #[cfg(test)]
 mod dynamics_tests;
 #[cfg(test)]

@@ -242,6 +242,9 @@ pub struct RawProblem {
 #[serde(deny_unknown_fields)]
 pub struct RawOutputs {
     pub want: Spanned<Vec<Text>>,
+    /// `"principal"`: the free top's moments are the bodies' own, about their centre of mass.
+    #[serde(default)]
+    pub inertia: Option<Text>,
 }
 
 #[derive(Deserialize, Default)]

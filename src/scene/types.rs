@@ -49,6 +49,9 @@ pub struct Scene {
     pub cite: BTreeMap<String, String>,
     /// A problem for students, with its variants.
     pub problem: Option<Problem>,
+    /// `[outputs] inertia = "principal"`: `symmetric_top` takes I1 = I2 and I3 from the
+    /// bodies' moments about their centre of mass, not from symbols.
+    pub moments_from_bodies: bool,
 }
 
 /// A problem: a statement whose `{symbol}` placeholders each variant fills in, and the derived

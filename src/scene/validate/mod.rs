@@ -4,6 +4,7 @@
 mod bodies;
 mod claims;
 mod operations;
+mod outputs;
 mod plots;
 mod problem;
 mod steps;
@@ -18,6 +19,7 @@ use super::types::{Claim, NotesRef, Scene};
 use crate::cas::{Expr, parse_input as parse_expr};
 use crate::model::catalogue::{Output, find};
 use claims::check_calls;
+use outputs::FREE_TOP_MOMENTS;
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
 
@@ -148,6 +150,7 @@ impl Validator<'_> {
         let (expect, expect_lines) = self.expect(&raw, &allowed, &variables)?;
         let cite = self.cites(&raw)?;
         let problem = self.problem(&raw, &symbols, &values, &wants, &bodies)?;
+        let moments_from_bodies = self.moments_from_bodies(&raw, &symbols, &bodies, &wants)?;
         Ok(Scene {
             id_at: self.loc.line_col(content_start(&raw.id)),
             lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
@@ -183,6 +186,7 @@ impl Validator<'_> {
             expect,
             cite,
             problem,
+            moments_from_bodies,
         })
     }
 
@@ -293,30 +297,6 @@ impl Validator<'_> {
         Ok(())
     }
 
-    /// The outputs asked for, by name.
-    fn wants(&self, raw: &RawScene) -> Result<Vec<Output>, SceneError> {
-        let mut wants = Vec::new();
-        for (i, w) in raw.wanted().iter().enumerate() {
-            let Some((_, o)) = Output::ALL.iter().find(|(n, _)| n == w.get_ref()) else {
-                let names: Vec<&str> = Output::ALL.iter().map(|(n, _)| *n).collect();
-                return Err(self.err(
-                    content_start(w),
-                    &format!("outputs.want[{i}]"),
-                    format!(
-                        "unknown output `{}`{}; the outputs are {}",
-                        w.get_ref(),
-                        crate::base::suggest::did_you_mean(w.get_ref(), names.iter().copied()),
-                        names.join(", ")
-                    ),
-                ));
-            };
-            wants.push(*o);
-        }
-        wants.sort();
-        wants.dedup();
-        Ok(wants)
-    }
-
     /// What the requests need from the rest of the scene: a body, symbols, `omega`, `axis`.
     #[allow(clippy::too_many_arguments)]
     fn requests(
@@ -348,11 +328,19 @@ impl Validator<'_> {
                 "the scene asks for nothing: list at least one output, claim or step",
             ));
         }
+        let from_bodies = raw.outputs.as_ref().is_some_and(|o| o.inertia.is_some());
         for w in wants {
             let Some(needed) = w.free_body_symbols() else {
                 continue;
             };
-            if let Some(missing) = needed.iter().find(|n| !symbols.contains_key(**n)) {
+            // The free top's moments may come from the bodies instead.
+            let given = |n: &str| {
+                from_bodies && *w == Output::SymmetricTop && FREE_TOP_MOMENTS.contains(&n)
+            };
+            if let Some(missing) = needed
+                .iter()
+                .find(|n| !symbols.contains_key(**n) && !given(n))
+            {
                 return Err(self.err(
                     raw.outputs_span(),
                     "outputs.want",

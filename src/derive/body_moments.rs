@@ -1,0 +1,91 @@
+//! `[outputs] inertia = "principal"`: the free symmetric top's I1 = I2 and I3 taken from the
+//! scene's own bodies, their moments about the centre of mass, and put into every result of the
+//! `symmetric_top` family, which is derived in I1 and I3 first.
+
+use super::{Derivation, DeriveError, Step, simplify_value};
+use crate::cas::{self, Expr, Formula};
+use crate::model::catalogue::{Stage, quantity, stage_for_quantity};
+
+/// I1 (= I2) and I3: the diagonal of the bodies' tensor about their centre of mass, whose
+/// off-diagonal entries must vanish, with two of its three moments equal.
+pub fn moments_from_bodies(d: &mut Derivation) -> Result<(), DeriveError> {
+    let cm = d.matrix(quantity::INERTIA_CM)?.clone();
+    let off = vec![cm[0][1].clone(), cm[0][2].clone(), cm[1][2].clone()];
+    if !cas::is_zero_all(off)?.into_iter().all(|z| z) {
+        return Err(DeriveError::NotDerivable(
+            "`inertia = \"principal\"` takes the free top's moments along the frame's axes, and \
+             the bodies' tensor about their centre of mass is not diagonal there: turn the body \
+             so that its symmetry axis is x, y or z"
+                .into(),
+        ));
+    }
+    let m = [cm[0][0].clone(), cm[1][1].clone(), cm[2][2].clone()];
+    let equal = cas::is_zero_all(vec![
+        Expr::minus(m[0].clone(), m[1].clone()),
+        Expr::minus(m[1].clone(), m[2].clone()),
+        Expr::minus(m[0].clone(), m[2].clone()),
+    ])?;
+    // The two equal moments are I1 = I2; the third, about the symmetry axis, is I3.
+    let (i1, i3) = match equal[..] {
+        [true, _, _] => (m[0].clone(), m[2].clone()),
+        [_, true, _] => (m[1].clone(), m[0].clone()),
+        [_, _, true] => (m[0].clone(), m[1].clone()),
+        _ => {
+            return Err(DeriveError::NotDerivable(format!(
+                "`symmetric_top` needs two equal moments, and the bodies' about their centre of \
+                 mass are {}, {} and {}: the body is not a symmetric top",
+                m[0].to_text(),
+                m[1].to_text(),
+                m[2].to_text()
+            )));
+        }
+    };
+    d.steps.push(Step::note(
+        "The bodies' own moments",
+        Formula::parse("I_1 = I_2 = $0, quad I_3 = $1", &[i1.clone(), i3.clone()]),
+        "inertia = \"principal\": the free top is the scene's body, turning about its centre of \
+         mass; its moments come from the tensor there, and every result above takes them",
+    ));
+    let put = |e: &Expr| {
+        e.substitute(&|s| match s {
+            "I1" => Some(i1.clone()),
+            "I3" => Some(i3.clone()),
+            _ => None,
+        })
+    };
+    let names: Vec<String> = d
+        .quantities
+        .keys()
+        .filter(|n| stage_for_quantity(n) == Some(Stage::SymmetricTop))
+        .cloned()
+        .collect();
+    for name in names {
+        let v = &d.quantities[&name];
+        let entries: Vec<Expr> = v
+            .entries()
+            .iter()
+            .map(|e| simplify_arguments(&put(e)))
+            .collect::<Result<_, _>>()?;
+        let replaced = simplify_value(&v.with_entries(&entries))?;
+        d.quantities.insert(name, replaced);
+    }
+    Ok(())
+}
+
+/// `e` with the argument of each call simplified: the phase β ω3 t + θ of the solution, once
+/// the moments are put into β.
+fn simplify_arguments(e: &Expr) -> Result<Expr, DeriveError> {
+    let walk = |xs: &[Expr]| -> Result<Vec<Expr>, DeriveError> {
+        xs.iter().map(simplify_arguments).collect()
+    };
+    Ok(match e {
+        Expr::Call(f, args) => Expr::Call(
+            f.clone(),
+            args.iter().map(cas::simplify).collect::<Result<_, _>>()?,
+        ),
+        Expr::Add(xs) => Expr::add(walk(xs)?),
+        Expr::Mul(xs) => Expr::mul(walk(xs)?),
+        Expr::Pow(b, k) => Expr::pow(simplify_arguments(b)?, (**k).clone()),
+        other => other.clone(),
+    })
+}

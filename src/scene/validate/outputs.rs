@@ -1,0 +1,90 @@
+//! `[outputs]`: what the scene asks for, and `inertia = "principal"`, the free top's moments
+//! taken from the scene's own bodies.
+
+use super::{Validator, content_start};
+use crate::model::catalogue::Output;
+use crate::scene::error::SceneError;
+use crate::scene::raw::RawScene;
+use crate::scene::types::Body;
+use std::collections::BTreeMap;
+
+/// The free top's moments, which `inertia = "principal"` takes from the bodies.
+pub const FREE_TOP_MOMENTS: &[&str] = &["I1", "I3"];
+
+impl Validator<'_> {
+    /// The outputs asked for, by name.
+    pub(super) fn wants(&self, raw: &RawScene) -> Result<Vec<Output>, SceneError> {
+        let mut wants = Vec::new();
+        for (i, w) in raw.wanted().iter().enumerate() {
+            let Some((_, o)) = Output::ALL.iter().find(|(n, _)| n == w.get_ref()) else {
+                let names: Vec<&str> = Output::ALL.iter().map(|(n, _)| *n).collect();
+                return Err(self.err(
+                    content_start(w),
+                    &format!("outputs.want[{i}]"),
+                    format!(
+                        "unknown output `{}`{}; the outputs are {}",
+                        w.get_ref(),
+                        crate::base::suggest::did_you_mean(w.get_ref(), names.iter().copied()),
+                        names.join(", ")
+                    ),
+                ));
+            };
+            wants.push(*o);
+        }
+        wants.sort();
+        wants.dedup();
+        Ok(wants)
+    }
+
+    /// `[outputs] inertia`: only `"principal"`, for `symmetric_top`, with a body, and without
+    /// symbols of the moments it replaces.
+    pub(super) fn moments_from_bodies(
+        &self,
+        raw: &RawScene,
+        symbols: &BTreeMap<String, String>,
+        bodies: &[Body],
+        wants: &[Output],
+    ) -> Result<bool, SceneError> {
+        let Some(inertia) = raw.outputs.as_ref().and_then(|o| o.inertia.as_ref()) else {
+            return Ok(false);
+        };
+        let (at, field) = (content_start(inertia), "outputs.inertia");
+        if inertia.get_ref() != "principal" {
+            return Err(self.err(
+                at,
+                field,
+                format!(
+                    "`{}`: the one choice is \"principal\", the bodies' own moments",
+                    inertia.get_ref()
+                ),
+            ));
+        }
+        if !wants.contains(&Output::SymmetricTop) {
+            return Err(self.err(
+                at,
+                field,
+                "`inertia = \"principal\"` gives `symmetric_top` its moments: add it to want",
+            ));
+        }
+        if bodies.is_empty() {
+            return Err(self.err(
+                at,
+                field,
+                "`inertia = \"principal\"` takes the moments of the scene's bodies, but there \
+                 is no [[body]]",
+            ));
+        }
+        if let Some(n) = FREE_TOP_MOMENTS.iter().find(|n| symbols.contains_key(**n)) {
+            return Err(self.err(
+                at,
+                field,
+                format!(
+                    "with `inertia = \"principal\"` the bodies give {}: `{n}` cannot also be a \
+                     symbol; remove it from [symbols]",
+                    FREE_TOP_MOMENTS.join(" and ")
+                ),
+            ));
+        }
+        Ok(true)
+    }
+}
