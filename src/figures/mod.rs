@@ -11,6 +11,7 @@ mod flip;
 mod frame;
 mod herpolhode;
 pub mod integrator_pareto;
+mod motion;
 mod omega_vs_time;
 pub mod polar_motion;
 mod polhodes;
@@ -51,6 +52,10 @@ pub enum FigureError {
     NotSymmetric,
     #[error("polar motion needs a wobble (ω1 or ω2 non-zero)")]
     NoWobble,
+    #[error("a motion plot draws equations, and step `{step}` gives none")]
+    NoEquations { step: String },
+    #[error("the motion could not be integrated: {0}")]
+    Motion(String),
     #[error(
         "plot `{slug}`: its data is not all finite numbers: the body or ω(0) is beyond double \
          precision; check the plot's inertia, omega and t"
@@ -179,6 +184,19 @@ fn plot(
                 };
                 out.push(free_body_figure(*kind, inertia, *omega, *t, fidelity)?)
             }
+            PlotRequest::Motion {
+                step,
+                linear,
+                start,
+                t,
+            } => out.push(motion::motion(
+                scene,
+                d,
+                step,
+                linear.as_deref(),
+                start,
+                *t,
+            )?),
         }
         // Two plots of one kind in a scene get distinct file names.
         let last = out.len() - 1;
@@ -257,5 +275,7 @@ fn trim_num(x: f64) -> String {
 
 #[cfg(test)]
 mod free_body_tests;
+#[cfg(test)]
+mod motion_tests;
 #[cfg(test)]
 mod tests;

@@ -8,6 +8,7 @@ pub mod eigen;
 pub mod elliptic;
 pub mod free_body;
 pub mod integrators;
+pub mod motion;
 pub mod ode;
 pub mod pareto;
 pub mod quadrature;

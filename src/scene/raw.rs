@@ -273,4 +273,10 @@ pub struct RawPlot {
     pub inertia: Option<Spanned<toml::Value>>,
     pub omega: Option<Spanned<toml::Value>>,
     pub t: Option<Spanned<f64>>,
+    /// For `motion`: the step of equations of motion drawn, the linear ones drawn beside it,
+    /// and the state both start from.
+    pub step: Option<Text>,
+    pub linear: Option<Text>,
+    #[serde(default)]
+    pub start: BTreeMap<Spanned<String>, Spanned<f64>>,
 }

@@ -402,6 +402,14 @@ pub enum PlotRequest {
         omega: [f64; 3],
         t: f64,
     },
+    /// An author's equations of motion integrated from `start` to `t`, each coordinate against
+    /// time, with a step's linear equations from the same start beside them.
+    Motion {
+        step: String,
+        linear: Option<String>,
+        start: BTreeMap<String, f64>,
+        t: f64,
+    },
 }
 
 /// A free-body plot's principal moments: given, or those of the scene's own bodies about their
@@ -471,6 +479,7 @@ impl PlotRequest {
         "polar-motion",
         "cones",
         "integrator-pareto",
+        "motion",
     ];
 
     pub fn kind(&self) -> &'static str {
@@ -479,6 +488,7 @@ impl PlotRequest {
             PlotRequest::Convergence => "convergence",
             PlotRequest::PrincipalAxes => "principal-axes",
             PlotRequest::FreeBody { kind, .. } => kind.name(),
+            PlotRequest::Motion { .. } => "motion",
         }
     }
 
@@ -494,7 +504,7 @@ impl PlotRequest {
             PlotRequest::FreeBody {
                 inertia: FreeInertia::Given(_),
                 ..
-            }
+            } | PlotRequest::Motion { .. }
         )
     }
 }

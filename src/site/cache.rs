@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 /// line with the entry's key and checksum; 4: a claim's sides and derived value as trees; 5: a
 /// variant's values as trees; 6: the results of an author's steps; 7: a step's momentum or
 /// energy, normal modes, equilibria and stability).
-const FORMAT: u64 = 7;
+const FORMAT: u64 = 8;
 
 /// The largest entry read: the shipped scenes' largest report is about 200 KB.
 pub const MAX_ENTRY_BYTES: u64 = 64 << 20;

@@ -6,6 +6,7 @@ use super::CONFIRMATION_POINTS;
 use super::step_check::{CheckError, H, StepCheck, at, random_point};
 use crate::base::rng::Rng;
 use crate::cas::Expr;
+use crate::numeric::motion::{MOTION_STEPS, MOTION_TOLERANCE, rates, state};
 use crate::numeric::ode::dormand_prince;
 use crate::scene::{AuthorStep, Scene};
 use std::collections::BTreeMap;
@@ -14,12 +15,8 @@ use std::collections::BTreeMap;
 /// [`MOTION_TOLERANCE`]: Dormand–Prince keeps the local error to the tolerance, so the drift
 /// over a few hundred steps stays near 1e-8; a wrong equation of motion drifts by order one.
 const ENERGY_AGREEMENT: f64 = 1e-6;
-const MOTION_TOLERANCE: f64 = 1e-10;
-/// The integrated motion's length, in the scene's unit of time, and its step cap.
+/// The integrated motion's length, in the scene's unit of time.
 const MOTION_TIME: f64 = 10.0;
-const MOTION_STEPS: u64 = 200_000;
-/// A coordinate's default start (at rest), when the step gives none.
-const DEFAULT_START: f64 = 0.5;
 
 /// The motion of a Lagrangian's equations, integrated from a step's start at the scene's values.
 struct Integrated<'a> {
@@ -77,16 +74,8 @@ fn integrate<'a>(
     for (k, v) in &step.start {
         params.insert(k.clone(), *v);
     }
-    let start: Vec<f64> = coords
-        .iter()
-        .map(|q| params.get(*q).copied().unwrap_or(DEFAULT_START))
-        .chain(
-            coords
-                .iter()
-                .map(|q| params.get(&format!("{q}'")).copied().unwrap_or(0.0)),
-        )
-        .collect();
-    let rhs = |_t: f64, y: &[f64]| motion(eqs, &params, &coords, y);
+    let start = crate::numeric::motion::start(&params, &coords);
+    let rhs = |_t: f64, y: &[f64]| rates(eqs, &params, &coords, y);
     let run = dormand_prince(&rhs, &start, MOTION_TIME, MOTION_TOLERANCE, MOTION_STEPS)?;
     // A start at rest in an equilibrium never moves: every conservation law holds trivially.
     let moved = run.states.iter().any(|(_, y)| {
@@ -276,7 +265,7 @@ pub(super) fn period_check(
         "the period of the full motion from {PERIOD_AMPLITUDE} off rest, integrated for three \
          periods (Dormand–Prince, tolerance {MOTION_TOLERANCE:e}), against 2π/Ω"
     );
-    let rhs = |_t: f64, y: &[f64]| motion(full, &params, &coords, y);
+    let rhs = |_t: f64, y: &[f64]| rates(full, &params, &coords, y);
     let run = dormand_prince(
         &rhs,
         &[q0 + PERIOD_AMPLITUDE, 0.0],
@@ -316,55 +305,6 @@ pub(super) fn period_check(
     let measured = (last - first) / (crossings.len() - 1) as f64;
     check.error = (measured - period).abs() / period;
     Ok(())
-}
-
-/// The names at a state: the parameters, each coordinate and rate from `y` (coordinates, then
-/// rates), each acceleration from `a`.
-fn state(
-    params: &BTreeMap<String, f64>,
-    coords: &[&String],
-    y: &[f64],
-    a: &[f64],
-) -> BTreeMap<String, f64> {
-    let n = coords.len();
-    let mut p = params.clone();
-    for (k, q) in coords.iter().enumerate() {
-        p.insert((*q).clone(), y[k]);
-        p.insert(format!("{q}'"), y[n + k]);
-        p.insert(format!("{q}''"), a[k]);
-    }
-    p
-}
-
-/// y' for the equations of motion at state y: each residual is linear in the accelerations, so
-/// they solve M a = −R(a = 0), M's columns R(a = e_j) − R(0).
-fn motion(
-    eqs: &[(String, Expr)],
-    params: &BTreeMap<String, f64>,
-    coords: &[&String],
-    y: &[f64],
-) -> Result<Vec<f64>, CheckError> {
-    let n = coords.len();
-    let residuals = |a: &[f64]| -> Result<Vec<f64>, CheckError> {
-        let p = state(params, coords, y, a);
-        eqs.iter().map(|(_, e)| at(e, &p)).collect()
-    };
-    let zero = vec![0.0; n];
-    let f0 = residuals(&zero)?;
-    let mut m = nalgebra::DMatrix::zeros(n, n);
-    for j in 0..n {
-        let mut unit = zero.clone();
-        unit[j] = 1.0;
-        let fj = residuals(&unit)?;
-        for i in 0..n {
-            m[(i, j)] = fj[i] - f0[i];
-        }
-    }
-    let a = m
-        .lu()
-        .solve(&nalgebra::DVector::from_iterator(n, f0.iter().map(|x| -x)))
-        .ok_or(CheckError::Singular)?;
-    Ok(y[n..].iter().copied().chain(a.iter().copied()).collect())
 }
 
 /// The engine's normal-mode frequencies against the eigenvalues of M⁻¹K by nalgebra's Schur

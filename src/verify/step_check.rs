@@ -73,6 +73,15 @@ pub struct StepCheck {
     pub problem: Option<String>,
 }
 
+impl From<crate::numeric::motion::MotionError> for CheckError {
+    fn from(e: crate::numeric::motion::MotionError) -> CheckError {
+        match e {
+            crate::numeric::motion::MotionError::Eval(e) => CheckError::Eval(e),
+            crate::numeric::motion::MotionError::Singular => CheckError::Singular,
+        }
+    }
+}
+
 impl StepCheck {
     pub fn passed(&self) -> bool {
         self.problem.is_none() && self.error <= self.tolerance

@@ -3,6 +3,7 @@
 
 mod bodies;
 mod claims;
+mod motion_plot;
 mod operations;
 mod outputs;
 mod plots;
@@ -127,7 +128,7 @@ impl Validator<'_> {
         let wants = self.wants(&raw)?;
         // Values before plots: a free-body plot's inertia and omega may be expressions.
         let values = self.values(&raw, &symbols, &bodies, omega.iter().chain(axis.iter()))?;
-        let plots = self.plots(&raw, &symbols, &values)?;
+        let plots = self.plots(&raw, &symbols, &values, &steps, &coordinates)?;
         self.requests(
             &raw,
             &symbols,

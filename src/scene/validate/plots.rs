@@ -3,6 +3,7 @@
 use super::{MAX_PLOT_RADIANS, MAX_PLOT_TIME, MAX_PLOTS, Validator, content_start};
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawPlot, RawScene};
+use crate::scene::step::AuthorStep;
 use crate::scene::types::{FreeBodyPlot, FreeInertia, PlotRequest};
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
@@ -14,6 +15,8 @@ impl Validator<'_> {
         raw: &RawScene,
         symbols: &BTreeMap<String, String>,
         values: &BTreeMap<String, f64>,
+        steps: &[AuthorStep],
+        coordinates: &BTreeMap<String, String>,
     ) -> Result<Vec<PlotRequest>, SceneError> {
         if let Some(p) = raw.plots.get(MAX_PLOTS) {
             return Err(self.err(
@@ -28,7 +31,12 @@ impl Validator<'_> {
         }
         let mut plots = Vec::new();
         for (i, p) in raw.plots.iter().enumerate() {
-            plots.push(self.plot(p, &format!("plot[{i}]"), symbols, values)?);
+            let field = format!("plot[{i}]");
+            plots.push(if p.get_ref().kind.get_ref() == "motion" {
+                self.motion_plot(p, &field, steps, coordinates)?
+            } else {
+                self.plot(p, &field, symbols, values)?
+            });
         }
         Ok(plots)
     }
@@ -42,6 +50,13 @@ impl Validator<'_> {
     ) -> Result<PlotRequest, SceneError> {
         let rp = p.get_ref();
         let start = p.span().start;
+        if rp.step.is_some() || rp.linear.is_some() || !rp.start.is_empty() {
+            return Err(self.err(
+                start,
+                field,
+                "`step`, `linear` and `start` belong to a motion plot",
+            ));
+        }
         let sweep_fields = rp.over.is_some() || rp.range.is_some() || rp.samples.is_some();
         let body_fields = rp.inertia.is_some() || rp.omega.is_some() || rp.t.is_some();
         if let Some((_, kind)) = FreeBodyPlot::ALL

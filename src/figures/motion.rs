@@ -1,0 +1,160 @@
+//! An author's equations of motion against time: each coordinate integrated from the plot's
+//! start (Dormand–Prince), with a step's linear equations from the same start beside them.
+
+use super::FigureError;
+use super::frame::fig;
+use crate::base::format::{sci, short};
+use crate::derive::Derivation;
+use crate::derive::steps::StepResult;
+use crate::model::figure::{Accuracy, Figure, Legend, Mark, Series};
+use crate::numeric::motion::{MOTION_STEPS, MOTION_TOLERANCE, rates, start};
+use crate::numeric::ode::dormand_prince;
+use crate::scene::Scene;
+use std::collections::BTreeMap;
+
+/// Samples drawn along the motion.
+const SAMPLES: usize = 240;
+
+/// The equations of a step, by coordinate.
+fn equations<'a>(
+    d: &'a Derivation,
+    step: &str,
+) -> Result<&'a [(String, crate::cas::Expr)], FigureError> {
+    match d.named.get(step) {
+        Some(StepResult::Equations(eqs)) => Ok(eqs),
+        _ => Err(FigureError::NoEquations {
+            step: step.to_string(),
+        }),
+    }
+}
+
+/// The state at each of [`SAMPLES`] + 1 times from 0 to `t_end`, integrated piece by piece at
+/// `tol`, and the right-hand sides it took.
+fn sampled(
+    eqs: &[(String, crate::cas::Expr)],
+    params: &BTreeMap<String, f64>,
+    t_end: f64,
+    tol: f64,
+) -> Result<(Vec<Vec<f64>>, u64), FigureError> {
+    let coords: Vec<&String> = eqs.iter().map(|(q, _)| q).collect();
+    let rhs = |_t: f64, y: &[f64]| rates(eqs, params, &coords, y);
+    let mut y = start(params, &coords);
+    let mut out = vec![y.clone()];
+    let mut evaluations = 0;
+    let dt = t_end / SAMPLES as f64;
+    for _ in 0..SAMPLES {
+        let run = dormand_prince(&rhs, &y, dt, tol, MOTION_STEPS)
+            .map_err(|e| FigureError::Motion(e.to_string()))?;
+        evaluations += run.evaluations;
+        y = run.states.last().map_or(y, |(_, s)| s.clone());
+        out.push(y.clone());
+    }
+    Ok((out, evaluations))
+}
+
+pub(super) fn motion(
+    scene: &Scene,
+    d: &Derivation,
+    step: &str,
+    linear: Option<&str>,
+    from: &BTreeMap<String, f64>,
+    t_end: f64,
+) -> Result<Figure, FigureError> {
+    let full = equations(d, step)?;
+    let mut params = scene.values.clone();
+    params.extend(from.iter().map(|(k, v)| (k.clone(), *v)));
+    let (states, cost) = sampled(full, &params, t_end, MOTION_TOLERANCE)?;
+    // The same motion at a hundredth of the tolerance: their difference estimates the error.
+    let (finer, _) = sampled(full, &params, t_end, MOTION_TOLERANCE / 100.0)?;
+    let size = states
+        .iter()
+        .flat_map(|y| y[..full.len()].iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    let error = states
+        .iter()
+        .zip(&finer)
+        .flat_map(|(a, b)| a[..full.len()].iter().zip(&b[..full.len()]))
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        / size;
+    let time = |j: usize| t_end * j as f64 / SAMPLES as f64;
+    let mut series = Vec::new();
+    for (k, (q, _)) in full.iter().enumerate() {
+        series.push(Series {
+            name: format!("{q} ({step})"),
+            mark: Mark::Line,
+            colour: k,
+            points: states
+                .iter()
+                .enumerate()
+                .map(|(j, y)| (time(j), y[k]))
+                .collect(),
+        });
+    }
+    let mut apart = String::new();
+    if let Some(linear) = linear {
+        let eqs = equations(d, linear)?;
+        let (lin, _) = sampled(eqs, &params, t_end, MOTION_TOLERANCE)?;
+        let mut gap = 0.0f64;
+        for (k, (q, _)) in eqs.iter().enumerate() {
+            let Some(kf) = full.iter().position(|(p, _)| p == q) else {
+                continue;
+            };
+            gap = states
+                .iter()
+                .zip(&lin)
+                .fold(gap, |m, (a, b)| m.max((a[kf] - b[k]).abs()));
+            series.push(Series {
+                name: format!("{q} ({linear})"),
+                mark: Mark::Dashed,
+                colour: kf,
+                points: lin
+                    .iter()
+                    .enumerate()
+                    .map(|(j, y)| (time(j), y[k]))
+                    .collect(),
+            });
+        }
+        apart = format!(
+            " Dashed: the linear equations `{linear}` from the same start, at most {} from the \
+             full motion.",
+            sci(gap)
+        );
+    }
+    let start_text: Vec<String> = full
+        .iter()
+        .map(|(q, _)| {
+            let n = full.len();
+            let k = full.iter().position(|(p, _)| p == q).unwrap_or(0);
+            format!("{q} = {}, {q}' = {}", states[0][k], states[0][n + k])
+        })
+        .collect();
+    let desc = format!(
+        "The equations of motion `{step}` integrated from {} over 0 ≤ t ≤ {} at the scene's \
+         values (Dormand–Prince 5(4), tolerance {}, {cost} right-hand sides; against a run at a \
+         hundredth of the tolerance the coordinates differ by at most {} of their size).{apart}",
+        start_text.join(", "),
+        t_end,
+        short(MOTION_TOLERANCE),
+        sci(error)
+    );
+    let mut f = fig(
+        &format!("motion-{step}"),
+        format!("The motion of {step}"),
+        desc,
+        "t",
+        "coordinate",
+        series,
+    );
+    f.legend = Legend::LowerRight;
+    f.accuracy = vec![Accuracy {
+        result: format!("the motion of {step}"),
+        method: format!("Dormand–Prince 5(4), tol {}", short(MOTION_TOLERANCE)),
+        true_error: None,
+        estimated_error: Some(error),
+        cost,
+        unit: "right-hand sides".into(),
+        seconds: 0.0,
+    }];
+    Ok(f)
+}
