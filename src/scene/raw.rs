@@ -149,7 +149,10 @@ pub struct RawClaim {
 
 /// A `solve` step's unknowns: one name, or a list of them for a linear system.
 #[derive(Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "`for` takes the unknown's name, or a list of names such as [\"x''\", \"F\"]"
+)]
 pub enum RawUnknowns {
     One(String),
     Many(Vec<String>),
