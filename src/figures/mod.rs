@@ -55,7 +55,7 @@ pub enum FigureError {
     #[error("a motion plot draws equations, and step `{step}` gives none")]
     NoEquations { step: String },
     #[error("the motion could not be integrated: {0}")]
-    Motion(String),
+    Motion(#[from] crate::numeric::ode::OdeError),
     #[error(
         "plot `{slug}`: its data is not all finite numbers: the body or ω(0) is beyond double \
          precision; check the plot's inertia, omega and t"

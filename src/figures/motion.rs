@@ -43,8 +43,7 @@ fn sampled(
     let mut evaluations = 0;
     let dt = t_end / SAMPLES as f64;
     for _ in 0..SAMPLES {
-        let run = dormand_prince(&rhs, &y, dt, tol, MOTION_STEPS)
-            .map_err(|e| FigureError::Motion(e.to_string()))?;
+        let run = dormand_prince(&rhs, &y, dt, tol, MOTION_STEPS)?;
         evaluations += run.evaluations;
         y = run.states.last().map_or(y, |(_, s)| s.clone());
         out.push(y.clone());
