@@ -6,6 +6,7 @@
 
 use super::engine::{self, EngineError};
 use super::expr::Expr;
+use super::polynomial;
 use super::trig;
 
 /// The names cos q and sin q take while the expression is factored.
@@ -50,7 +51,7 @@ pub fn zeros(e: &Expr, q: &str) -> Result<Zeros, EngineError> {
     let has = |name: &str| symbols.iter().any(|s| s == name);
     let mut out = Zeros::default();
     if !has(C) && !has(S) {
-        let roots = engine::roots(e, q)?;
+        let roots = polynomial::roots(e, q)?;
         out.zeros = roots
             .roots
             .into_iter()
@@ -114,7 +115,7 @@ fn back(f: &Expr, q: &str) -> Expr {
 
 /// The angles of a factor in cos q alone (degree ≤ 2): for each root c, ±acos c.
 fn cos_zeros(f: &Expr) -> Result<Option<Vec<Zero>>, EngineError> {
-    let roots = engine::roots(f, C)?;
+    let roots = polynomial::roots(f, C)?;
     if !roots.unsolved.is_empty() {
         return Ok(None);
     }

@@ -9,7 +9,7 @@ use super::expr::Expr;
 use super::parse::parse;
 use super::rational::Rational;
 use super::trig;
-use super::{AngleSpan, Integral, Roots};
+use super::{AngleSpan, Integral};
 use symbolica::coefficient::CoefficientView;
 use symbolica::prelude::*;
 
@@ -104,7 +104,7 @@ fn large_number_under_a_root(e: &Expr, under_root: bool) -> Option<usize> {
 }
 
 /// `e` expanded, unless its expansion could exceed the budget: then an error that says so.
-fn expand(e: &Expr) -> Result<Atom, EngineError> {
+pub(super) fn expand(e: &Expr) -> Result<Atom, EngineError> {
     if let Some(digits) = large_number_under_a_root(e, false) {
         return Err(EngineError::LargeRoot { digits });
     }
@@ -231,7 +231,7 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, EngineError> {
     })
 }
 
-fn from_atom(a: &Atom) -> Result<Expr, EngineError> {
+pub(super) fn from_atom(a: &Atom) -> Result<Expr, EngineError> {
     from_view(a.as_view())
 }
 
@@ -485,57 +485,6 @@ pub fn integrate(integrand: &Expr, domain: &[Integral]) -> Result<Expr, EngineEr
         current = normal_form(&current)?;
     }
     Ok(current)
-}
-
-pub fn roots(poly: &Expr, var: &str) -> Result<Roots, EngineError> {
-    let (h, args) = trig::to_half_angle(poly);
-    let rat: RationalPolynomial<_, u16> = expand(&h)?.to_rational_polynomial(&Q, &Z, None);
-    let mut out = Roots {
-        roots: Vec::new(),
-        unsolved: Vec::new(),
-    };
-    let back =
-        |e: Expr| -> Result<Expr, EngineError> { simplify(&trig::from_half_angle(&e, &args)) };
-    for (factor, mult) in rat.numerator.factor() {
-        let factor = from_atom(&factor.to_expression())?;
-        let mut c = [Expr::int(0), Expr::int(0), Expr::int(0)];
-        let terms = coefficients(&factor, var)?;
-        let degree = terms.iter().map(|(k, _)| *k).max().unwrap_or(0);
-        if degree == 0 {
-            continue;
-        }
-        if degree > 2 {
-            out.unsolved.push((back(factor)?, mult as u32));
-            continue;
-        }
-        for (k, coeff) in terms {
-            c[k as usize] = coeff;
-        }
-        if degree == 1 {
-            out.roots.push((
-                back(Expr::negate(Expr::over(c[0].clone(), c[1].clone())))?,
-                mult as u32,
-            ));
-        } else {
-            // (−b ± √(b² − 4ac)) / 2a
-            let disc = Expr::minus(
-                Expr::pow(c[1].clone(), Expr::int(2)),
-                Expr::mul(vec![Expr::int(4), c[2].clone(), c[0].clone()]),
-            );
-            let sqrt = Expr::pow(simplify(&disc)?, Expr::rat(1, 2));
-            for sign in [-1, 1] {
-                let num = Expr::add(vec![
-                    Expr::negate(c[1].clone()),
-                    Expr::mul(vec![Expr::int(sign), sqrt.clone()]),
-                ]);
-                out.roots.push((
-                    back(Expr::over(num, Expr::mul(vec![Expr::int(2), c[2].clone()])))?,
-                    mult as u32,
-                ));
-            }
-        }
-    }
-    Ok(out)
 }
 
 /// Divides the entries by their common factor: the factors of a + z1·b + z2·c (fresh

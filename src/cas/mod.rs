@@ -13,6 +13,7 @@ mod factor;
 mod formula;
 mod formula_print;
 mod parse;
+mod polynomial;
 mod positive;
 mod print;
 mod radical;
@@ -111,9 +112,9 @@ impl AngleSpan {
 /// The exact roots of a polynomial, found by factoring it over the rationals.
 #[derive(Debug, Clone)]
 pub struct Roots {
-    /// (root, multiplicity), for every linear and quadratic factor.
+    /// (root, multiplicity), for every linear and quadratic factor and quartic in var².
     pub roots: Vec<(Expr, u32)>,
-    /// Irreducible factors of degree three or more, with their multiplicity.
+    /// The other irreducible factors of degree three or more, with their multiplicity.
     pub unsolved: Vec<(Expr, u32)>,
 }
 
@@ -356,10 +357,16 @@ pub fn factor_all(exprs: Vec<Expr>) -> Result<Vec<Expr>, CasError> {
     run(move || exprs.iter().map(engine::factor).collect())
 }
 
+/// (power of `var`, coefficient) pairs of a polynomial in `var`, expanded.
+pub fn coefficients(poly: &Expr, var: &str) -> Result<Vec<(u32, Expr)>, CasError> {
+    let (poly, var) = (poly.clone(), var.to_string());
+    run(move || engine::coefficients(&poly, &var))
+}
+
 /// The exact roots in `var` of a polynomial whose other symbols are parameters.
 pub fn roots(poly: &Expr, var: &str) -> Result<Roots, CasError> {
     let (poly, var) = (poly.clone(), var.to_string());
-    run(move || engine::roots(&poly, &var))
+    run(move || polynomial::roots(&poly, &var))
 }
 
 /// Where an expression in the coordinate `q` vanishes: its roots, or for an expression in sin q

@@ -20,6 +20,7 @@ pub mod series;
 pub mod sign;
 mod solve;
 pub mod stability;
+mod step_result;
 pub mod steps;
 pub mod variants;
 
@@ -217,6 +218,18 @@ impl Derivation {
             Value::Matrix(m) => Ok(m),
             other => Err(wrong_kind(name, other)),
         }
+    }
+
+    /// A tensor about the frame's origin at `values` (exact or by quadrature) moved to the
+    /// centre of mass, with the derived mass and centre there: I_cm = I − M(R²𝟙 − R Rᵀ).
+    pub fn about_centre_at(
+        &self,
+        tensor: &nalgebra::Matrix3<f64>,
+        values: &crate::model::value::Values,
+    ) -> Result<nalgebra::Matrix3<f64>, DeriveError> {
+        let m = crate::model::value::eval_at(self.scalar(quantity::MASS)?, values)?;
+        let r = crate::model::value::vector_at(self.vector(quantity::CENTRE_OF_MASS)?, values)?;
+        Ok(tensor - m * (r.norm_squared() * nalgebra::Matrix3::identity() - r * r.transpose()))
     }
 }
 

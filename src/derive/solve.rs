@@ -7,8 +7,8 @@ use crate::cas::{self, Expr};
 use std::collections::BTreeMap;
 
 /// The one equation R = 0 solved for `unknown`: −R(0)/(∂R/∂u) when it is linear, else every
-/// root of the polynomial R in `unknown` (factors of degree up to two), ordered by their values
-/// at `values`.
+/// root of the polynomial R in `unknown` (factors of degree up to two, quartics in its square),
+/// ordered by their values at `values`.
 pub fn solve(
     eqs: &[(String, Expr)],
     unknown: &str,
@@ -23,26 +23,18 @@ pub fn solve(
             e.substitute(&|s| calls.iter().find(|(n, _)| n == s).map(|(_, c)| c.clone()))
         };
         let mut roots = cas::roots(&named, unknown)?;
-        // A quartic in u² is a quadratic in v = u²: u = ±√v for each of its roots.
-        let mut unsolved = Vec::new();
-        for (factor, multiplicity) in std::mem::take(&mut roots.unsolved) {
-            match biquadratic_roots(&factor, unknown)? {
-                Some(found) => roots
-                    .roots
-                    .extend(found.into_iter().map(|r| (r, multiplicity))),
-                None => unsolved.push(back(&factor)),
-            }
-        }
         for (root, _) in roots.roots.iter_mut() {
             *root = back(root);
         }
-        if let Some(factor) = unsolved.first() {
-            let degree = degree(factor, unknown)?;
+        if let Some((factor, _)) = roots.unsolved.first() {
+            let factor = back(factor);
+            let terms = cas::coefficients(&factor, unknown)?;
+            let degree = terms.iter().map(|(k, _)| *k).max().unwrap_or(0);
             return Err(DeriveError::NotDerivable(format!(
                 "the equation has the factor {} of degree {degree} in `{unknown}`: `solve` gives \
                  closed forms of factors up to degree two, and of quartics in {unknown}^2{}",
                 factor.to_text(),
-                numeric_roots(factor, unknown, degree, values)
+                numeric_roots(&terms, values)
                     .map(|r| format!("; at the scene's values its roots are {r}"))
                     .unwrap_or_default()
             )));
@@ -73,67 +65,14 @@ pub fn solve(
     Ok(vec![cas::simplify(&Expr::negate(Expr::over(rest, slope)))?])
 }
 
-/// The coefficients c_0 .. c_degree of a polynomial in `x`, c_k = p^(k)(0)/k!.
-fn coefficients(p: &Expr, x: &str, degree: usize) -> Result<Vec<Expr>, DeriveError> {
-    let at_zero = |e: &Expr| e.substitute(&|s| (s == x).then(|| Expr::int(0)));
-    let mut d = p.clone();
-    let mut out = Vec::new();
-    let mut factorial: i128 = 1;
-    for k in 0..=degree {
-        if k > 0 {
-            d = d.diff(x)?;
-            factorial *= k as i128;
-        }
-        out.push(Expr::over(at_zero(&d), Expr::int(factorial)));
-    }
-    Ok(cas::simplify_all(out)?)
-}
-
-/// The roots of a quartic with no odd powers of `x`, c4 x⁴ + c2 x² + c0: ±√v for each root v
-/// of c4 v² + c2 v + c0. `None` for any other factor.
-fn biquadratic_roots(factor: &Expr, x: &str) -> Result<Option<Vec<Expr>>, DeriveError> {
-    if degree(factor, x)? != 4 {
-        return Ok(None);
-    }
-    let c = coefficients(factor, x, 4)?;
-    if !(c[1].is_zero() && c[3].is_zero()) {
-        return Ok(None);
-    }
-    let v = "v__square";
-    let quadratic = Expr::add(vec![
-        Expr::mul(vec![c[4].clone(), Expr::pow(Expr::sym(v), Expr::int(2))]),
-        Expr::mul(vec![c[2].clone(), Expr::sym(v)]),
-        c[0].clone(),
-    ]);
-    let squares = cas::roots(&quadratic, v)?;
-    if !squares.unsolved.is_empty() {
-        return Ok(None);
-    }
-    Ok(Some(
-        squares
-            .roots
-            .into_iter()
-            .flat_map(|(square, _)| {
-                let root = Expr::pow(square, Expr::rat(1, 2));
-                [Expr::negate(root.clone()), root]
-            })
-            .collect(),
-    ))
-}
-
 /// The roots of a polynomial at the scene's values, as text: the eigenvalues of its companion
 /// matrix. `None` when a coefficient has no value there.
-fn numeric_roots(
-    p: &Expr,
-    x: &str,
-    degree: usize,
-    values: &BTreeMap<String, f64>,
-) -> Option<String> {
-    let c: Vec<f64> = coefficients(p, x, degree)
-        .ok()?
-        .iter()
-        .map(|e| crate::model::value::eval_at(e, values).ok())
-        .collect::<Option<_>>()?;
+fn numeric_roots(terms: &[(u32, Expr)], values: &BTreeMap<String, f64>) -> Option<String> {
+    let degree = terms.iter().map(|(k, _)| *k as usize).max()?;
+    let mut c = vec![0.0; degree + 1];
+    for (k, coeff) in terms {
+        c[*k as usize] = crate::model::value::eval_at(coeff, values).ok()?;
+    }
     let lead = *c.last()?;
     if lead == 0.0 || !c.iter().all(|v| v.is_finite()) {
         return None;
@@ -176,23 +115,6 @@ fn numeric_roots(
             .join(", "),
     )
 }
-
-/// The degree of a polynomial in `x`: how many derivatives leave something.
-fn degree(p: &Expr, x: &str) -> Result<usize, DeriveError> {
-    let mut d = p.clone();
-    for k in 0..=MAX_DEGREE_SHOWN {
-        d = cas::simplify(&d.diff(x)?)?;
-        if d.is_zero() {
-            return Ok(k);
-        }
-    }
-    Err(DeriveError::NotDerivable(format!(
-        "`solve` of a polynomial of degree over {MAX_DEGREE_SHOWN} in `{x}`"
-    )))
-}
-
-/// The highest degree a message about an unsolved factor names.
-const MAX_DEGREE_SHOWN: usize = 30;
 
 /// `e` with each function call (sin θ, cos θ) that does not hold the unknown replaced by a
 /// name of its own, and the calls by name.

@@ -238,16 +238,12 @@ fn free_body_figure(
 /// values, ascending: I_cm = I − M(R²𝟙 − R Rᵀ) from the exact tensor, mass and centre.
 fn own_principal_moments(scene: &Scene, d: &Derivation) -> Result<[f64; 3], FigureError> {
     use crate::model::catalogue::quantity;
-    use crate::model::value::{eval_at, vector_at};
-    let get = |name| d.get(name).map_err(|e| FigureError::Derive(Box::new(e)));
-    let tensor = get(quantity::INERTIA_TENSOR)?.matrix_at(&scene.values)?;
     let derived = |e| FigureError::Derive(Box::new(e));
-    let mass = d.scalar(quantity::MASS).map_err(derived)?;
-    let centre = d.vector(quantity::CENTRE_OF_MASS).map_err(derived)?;
-    let m = eval_at(mass, &scene.values)?;
-    let r = vector_at(centre, &scene.values)?;
-    let about_centre =
-        tensor - m * (r.norm_squared() * nalgebra::Matrix3::identity() - r * r.transpose());
+    let tensor = d
+        .get(quantity::INERTIA_TENSOR)
+        .map_err(derived)?
+        .matrix_at(&scene.values)?;
+    let about_centre = d.about_centre_at(&tensor, &scene.values).map_err(derived)?;
     let mut moments: Vec<f64> = nalgebra::SymmetricEigen::new(about_centre)
         .eigenvalues
         .iter()

@@ -20,12 +20,12 @@ fn equations<'a>(
     d: &'a Derivation,
     step: &str,
 ) -> Result<&'a [(String, crate::cas::Expr)], FigureError> {
-    match d.named.get(step) {
-        Some(StepResult::Equations(eqs)) => Ok(eqs),
-        _ => Err(FigureError::NoEquations {
+    d.named
+        .get(step)
+        .and_then(StepResult::equations)
+        .ok_or_else(|| FigureError::NoEquations {
             step: step.to_string(),
-        }),
-    }
+        })
 }
 
 /// The state at each of [`SAMPLES`] + 1 times from 0 to `t_end`, integrated piece by piece at
@@ -60,6 +60,7 @@ pub(super) fn motion(
     t_end: f64,
 ) -> Result<Figure, FigureError> {
     let full = equations(d, step)?;
+    let n = full.len();
     let mut params = scene.values.clone();
     params.extend(from.iter().map(|(k, v)| (k.clone(), *v)));
     let (states, cost) = sampled(full, &params, t_end, MOTION_TOLERANCE)?;
@@ -67,13 +68,13 @@ pub(super) fn motion(
     let (finer, _) = sampled(full, &params, t_end, MOTION_TOLERANCE / 100.0)?;
     let size = states
         .iter()
-        .flat_map(|y| y[..full.len()].iter())
+        .flat_map(|y| y[..n].iter())
         .fold(0.0f64, |m, v| m.max(v.abs()))
         .max(f64::MIN_POSITIVE);
     let error = states
         .iter()
         .zip(&finer)
-        .flat_map(|(a, b)| a[..full.len()].iter().zip(&b[..full.len()]))
+        .flat_map(|(a, b)| a[..n].iter().zip(&b[..n]))
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
         / size;
     let time = |j: usize| t_end * j as f64 / SAMPLES as f64;
@@ -122,11 +123,8 @@ pub(super) fn motion(
     }
     let start_text: Vec<String> = full
         .iter()
-        .map(|(q, _)| {
-            let n = full.len();
-            let k = full.iter().position(|(p, _)| p == q).unwrap_or(0);
-            format!("{q} = {}, {q}' = {}", states[0][k], states[0][n + k])
-        })
+        .enumerate()
+        .map(|(k, (q, _))| format!("{q} = {}, {q}' = {}", states[0][k], states[0][n + k]))
         .collect();
     let desc = format!(
         "The equations of motion `{step}` integrated from {} over 0 ≤ t ≤ {} at the scene's \

@@ -1,7 +1,6 @@
 //! The free top whose moments are its body's (`inertia = "principal"`): its precession rate
 //! by a route that shares nothing with the family's formula.
 
-use crate::cas::EvalError;
 use crate::derive::Derivation;
 use crate::model::catalogue::quantity;
 use crate::scene::Scene;
@@ -14,17 +13,11 @@ pub(super) fn body_precession_rate(
     scene: &Scene,
     d: &Derivation,
     t: &nalgebra::Matrix3<f64>,
-) -> Result<f64, EvalError> {
+) -> f64 {
     let vals = &scene.values;
-    let m = d.quantities[quantity::MASS].numbers_at(vals)?[0];
-    let c = match d.quantities.get(quantity::CENTRE_OF_MASS) {
-        Some(v) => {
-            let n = v.numbers_at(vals)?;
-            nalgebra::Vector3::new(n[0], n[1], n[2])
-        }
-        None => nalgebra::Vector3::zeros(),
+    let Ok(about_cm) = d.about_centre_at(t, vals) else {
+        return f64::NAN;
     };
-    let about_cm = t - m * (c.norm_squared() * nalgebra::Matrix3::identity() - c * c.transpose());
     let mut e: Vec<f64> = about_cm.symmetric_eigenvalues().iter().copied().collect();
     e.sort_by(f64::total_cmp);
     // The equal pair: the lower two, or the upper two.
@@ -36,7 +29,7 @@ pub(super) fn body_precession_rate(
     let mut with_moments = vals.clone();
     with_moments.insert("I1".into(), i1);
     with_moments.insert("I3".into(), i3);
-    Ok(crate::numeric::answers::Routes::new(scene, &with_moments)
+    crate::numeric::answers::Routes::new(scene, &with_moments)
         .answer(quantity::PRECESSION_RATE)
-        .map_or(f64::NAN, |r| r[0]))
+        .map_or(f64::NAN, |r| r[0])
 }

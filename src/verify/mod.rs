@@ -486,7 +486,7 @@ pub fn check_quantities(
     if scene.moments_from_bodies && d.quantities.contains_key(quantity::PRECESSION_RATE) {
         numeric_of.push((
             quantity::PRECESSION_RATE,
-            vec![free_top::body_precession_rate(scene, d, &t)?],
+            vec![free_top::body_precession_rate(scene, d, &t)],
         ));
     }
     let mut out = Vec::new();

@@ -252,10 +252,10 @@ fn route(
 
 /// The equations of the named step.
 fn equations_of<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)], CheckError> {
-    match d.named.get(of) {
-        Some(StepResult::Equations(eqs)) => Ok(eqs),
-        _ => Err(CheckError::NotDerived),
-    }
+    d.named
+        .get(of)
+        .and_then(StepResult::equations)
+        .ok_or(CheckError::NotDerived)
 }
 
 /// The expression of the named step (a Lagrangian).

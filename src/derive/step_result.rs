@@ -1,0 +1,113 @@
+//! What an author's step found, and the names it gives later steps and claims.
+
+use crate::cas::{self, Expr};
+use crate::scene::{MAX_NAMED_STATES, mode_name};
+
+/// What a step found: an expression, or equations of motion (each coordinate's residual, which
+/// the motion keeps at zero).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum StepResult {
+    Expr(Expr),
+    /// A generalised momentum or the energy function, and whether the motion conserves it.
+    Conserved {
+        value: Expr,
+        conserved: bool,
+    },
+    Equations(Vec<(String, Expr)>),
+    /// The normal-mode angular frequencies of n ≥ 2 coordinates, slowest first at the scene's
+    /// values.
+    Modes(Vec<Expr>),
+    /// Every root of a `solve` that has more than one, in order of their values at the
+    /// scene's values.
+    Roots(Vec<Expr>),
+    /// The value of each unknown of a `solve` of several, in the order of `for`.
+    Solution(Vec<(String, Expr)>),
+    /// The states of rest of one coordinate.
+    Equilibria {
+        coordinate: String,
+        zeros: Vec<cas::Zero>,
+    },
+    /// About each equilibrium, the squared frequency of small oscillations and its sign.
+    Stability {
+        coordinate: String,
+        cases: Vec<Stability>,
+    },
+}
+
+/// One equilibrium's stability: Ω² = k/m there, stable where it is positive.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Stability {
+    pub at: cas::Zero,
+    /// None where its exact form would expand beyond the engine's budget.
+    pub omega_squared: Option<Expr>,
+    pub verdict: Stable,
+}
+
+/// Whether an equilibrium is stable, for positive values of every symbol.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Stable {
+    Always,
+    Never,
+    /// Where Ω² > 0: the condition is the page's.
+    Where,
+    /// Ω² not derived (beyond the engine's budget): its value at the scene's values is the
+    /// numeric check's.
+    Unknown,
+}
+
+impl StepResult {
+    /// The one expression a later step may use by this step's name.
+    pub fn scalar(&self) -> Option<&Expr> {
+        match self {
+            StepResult::Expr(e) | StepResult::Conserved { value: e, .. } => Some(e),
+            StepResult::Equations(_)
+            | StepResult::Modes(_)
+            | StepResult::Roots(_)
+            | StepResult::Solution(_)
+            | StepResult::Equilibria { .. }
+            | StepResult::Stability { .. } => None,
+        }
+    }
+
+    /// The equations of motion, linear equations or steady state a step holds.
+    pub fn equations(&self) -> Option<&[(String, Expr)]> {
+        match self {
+            StepResult::Equations(eqs) => Some(eqs),
+            _ => None,
+        }
+    }
+
+    /// The names later steps and claims use: the step's own name for an expression, and
+    /// `Omega_1`, `Omega_2`, ... for the modes of a step `Omega`.
+    pub fn values(&self, name: &str) -> Vec<(String, Expr)> {
+        match self {
+            StepResult::Equilibria { zeros, .. } => zeros
+                .iter()
+                .take(MAX_NAMED_STATES)
+                .enumerate()
+                .map(|(k, z)| (mode_name(name, k), z.value.clone()))
+                .collect(),
+            // Ω² about each state, where it was derived.
+            StepResult::Stability { cases, .. } => cases
+                .iter()
+                .take(MAX_NAMED_STATES)
+                .enumerate()
+                .filter_map(|(k, c)| Some((mode_name(name, k), c.omega_squared.clone()?)))
+                .collect(),
+            StepResult::Solution(pairs) => pairs
+                .iter()
+                .enumerate()
+                .map(|(k, (_, value))| (mode_name(name, k), value.clone()))
+                .collect(),
+            StepResult::Modes(values) | StepResult::Roots(values) => values
+                .iter()
+                .enumerate()
+                .map(|(k, w)| (mode_name(name, k), w.clone()))
+                .collect(),
+            _ => self
+                .scalar()
+                .map(|e| vec![(name.to_string(), e.clone())])
+                .unwrap_or_default(),
+        }
+    }
+}
