@@ -133,6 +133,8 @@ fn to_atom(e: &Expr) -> Atom {
             "sin" => Symbol::SIN.call(to_atom(&args[0])),
             "cos" => Symbol::COS.call(to_atom(&args[0])),
             "sqrt" => to_atom(&args[0]).pow(Atom::num((1, 2))),
+            // A closed form's angle (Cardano's trigonometric form, an equilibrium): opaque here.
+            "acos" | "asin" => symbol!(format!("{PREFIX}{name}").as_str()).call(to_atom(&args[0])),
             other => unreachable!("`{other}` is resolved before the engine"),
         },
         other => unreachable!("`{other}` is resolved before the engine"),
@@ -214,6 +216,10 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, EngineError> {
                 "cos"
             } else if s == Symbol::SQRT {
                 "sqrt"
+            } else if let Some(inverse @ ("acos" | "asin")) =
+                s.get_stripped_name().strip_prefix(PREFIX)
+            {
+                inverse
             } else {
                 return Err(EngineError::UnexpectedFunction {
                     name: s.get_stripped_name().to_string(),

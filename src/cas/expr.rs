@@ -264,6 +264,14 @@ impl Expr {
                     "sin" => Expr::call("cos", u.clone()),
                     "cos" => Expr::negate(Expr::call("sin", u.clone())),
                     "sqrt" => Expr::over(Expr::int(1), Expr::mul(vec![Expr::int(2), self.clone()])),
+                    // d acos u = −du/√(1 − u²), d asin u = du/√(1 − u²).
+                    "acos" | "asin" => Expr::over(
+                        Expr::int(if name == "acos" { -1 } else { 1 }),
+                        Expr::pow(
+                            Expr::minus(Expr::int(1), Expr::pow(u.clone(), Expr::int(2))),
+                            Expr::rat(1, 2),
+                        ),
+                    ),
                     _ => return Err(DiffError::Function { name: name.clone() }),
                 };
                 Expr::mul(vec![outer, u.diff(x)?])
@@ -298,7 +306,7 @@ impl Expr {
                     "sin" => x.sin(),
                     "cos" => x.cos(),
                     "sqrt" => x.sqrt(),
-                    // Only an equilibrium's angle holds these (see cas::zeros).
+                    // Only an equilibrium's angle (cas::zeros) or a cubic's closed form holds these.
                     "acos" => x.acos(),
                     "asin" => x.asin(),
                     _ => return Err(EvalError::NotScalarFunction(name.clone())),

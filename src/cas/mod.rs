@@ -7,6 +7,7 @@
 //! instead of aborting. Another engine could replace `engine.rs` without touching the derivations.
 
 mod angles;
+mod closed_form;
 mod engine;
 mod expr;
 mod factor;
@@ -22,6 +23,7 @@ mod size;
 mod trig;
 
 pub use angles::{Zero, Zeros};
+pub use closed_form::NoClosedForm;
 pub use engine::{EngineError, MAX_DEGREE, MAX_TERMS};
 pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
 pub use formula::{Accent, Formula, Name, Op};
@@ -32,6 +34,7 @@ pub use size::ExpansionSize;
 pub use trig::{pi_multiple, special_angles};
 
 use std::cell::RefCell;
+use std::collections::BTreeMap;
 use std::fs::File;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::OnceLock;
@@ -367,6 +370,17 @@ pub fn coefficients(poly: &Expr, var: &str) -> Result<Vec<(u32, Expr)>, CasError
 pub fn roots(poly: &Expr, var: &str) -> Result<Roots, CasError> {
     let (poly, var) = (poly.clone(), var.to_string());
     run(move || polynomial::roots(&poly, &var))
+}
+
+/// The real roots at `values` of an irreducible cubic or quartic in `var`, in the closed form
+/// that is real there (Cardano's, the trigonometric, Ferrari's); or why there is none.
+pub fn closed_form_roots(
+    poly: &Expr,
+    var: &str,
+    values: &BTreeMap<String, f64>,
+) -> Result<Result<Vec<Expr>, NoClosedForm>, CasError> {
+    let (poly, var, values) = (poly.clone(), var.to_string(), values.clone());
+    run(move || closed_form::real_roots(&poly, &var, &values))
 }
 
 /// Where an expression in the coordinate `q` vanishes: its roots, or for an expression in sin q

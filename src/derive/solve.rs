@@ -1,14 +1,15 @@
 //! `solve`: the one equation of a step that contains the unknown, solved exactly: linear, or
-//! every root of its polynomial factors up to degree two and of quartics in u²; several
-//! unknowns, the linear system of the equations that contain them (Cramer's rule).
+//! every root of its polynomial factors up to degree two and of quartics in u², and the real
+//! roots of cubic and quartic factors in closed form; several unknowns, the linear system of the
+//! equations that contain them (Cramer's rule).
 
 use super::DeriveError;
 use crate::cas::{self, Expr};
 use std::collections::BTreeMap;
 
 /// The one equation R = 0 solved for `unknown`: −R(0)/(∂R/∂u) when it is linear, else every
-/// root of the polynomial R in `unknown` (factors of degree up to two, quartics in its square),
-/// ordered by their values at `values`.
+/// root of the polynomial R in `unknown` (factors of degree up to two, quartics in its square;
+/// of a cubic or quartic factor, the roots real at `values`), ordered by their values there.
 pub fn solve(
     eqs: &[(String, Expr)],
     unknown: &str,
@@ -26,18 +27,14 @@ pub fn solve(
         for (root, _) in roots.roots.iter_mut() {
             *root = back(root);
         }
-        if let Some((factor, _)) = roots.unsolved.first() {
+        // Cubics and quartics: the closed form that is real at the scene's values.
+        let mut closed = Vec::new();
+        for (factor, _) in &roots.unsolved {
             let factor = back(factor);
-            let terms = cas::coefficients(&factor, unknown)?;
-            let degree = terms.iter().map(|(k, _)| *k).max().unwrap_or(0);
-            return Err(DeriveError::NotDerivable(format!(
-                "the equation has the factor {} of degree {degree} in `{unknown}`: `solve` gives \
-                 closed forms of factors up to degree two, and of quartics in {unknown}^2{}",
-                factor.to_text(),
-                numeric_roots(&terms, values)
-                    .map(|r| format!("; at the scene's values its roots are {r}"))
-                    .unwrap_or_default()
-            )));
+            match cas::closed_form_roots(&factor, unknown, values)? {
+                Ok(found) => closed.extend(found),
+                Err(why) => return Err(no_closed_form(&factor, unknown, values, why)?),
+            }
         }
         // Every symbol of a scene is positive: √(4 a² b) = 2 a √b.
         let mut found: Vec<Expr> = Vec::new();
@@ -47,9 +44,10 @@ pub fn solve(
                 found.push(root);
             }
         }
+        found.extend(closed);
         if found.is_empty() {
             return Err(DeriveError::NotDerivable(format!(
-                "the equation has no root in `{unknown}`"
+                "the equation has no real root in `{unknown}` at the scene's values"
             )));
         }
         super::lagrangian::sort_by_value(&mut found, values);
@@ -63,6 +61,33 @@ pub fn solve(
     }
     let rest = r.substitute(&|s| (s == unknown).then(|| Expr::int(0)));
     Ok(vec![cas::simplify(&Expr::negate(Expr::over(rest, slope)))?])
+}
+
+/// Why a factor has no closed form here, with its roots at the scene's values when it has them.
+fn no_closed_form(
+    factor: &Expr,
+    unknown: &str,
+    values: &BTreeMap<String, f64>,
+    why: cas::NoClosedForm,
+) -> Result<DeriveError, DeriveError> {
+    let terms = cas::coefficients(factor, unknown)?;
+    let numeric = numeric_roots(&terms, values)
+        .map(|r| format!("; at the scene's values its roots are {r}"))
+        .unwrap_or_default();
+    Ok(DeriveError::NotDerivable(match why {
+        cas::NoClosedForm::Degree(degree) => format!(
+            "the equation has the factor {} of degree {degree} in `{unknown}`: `solve` gives \
+             closed forms up to degree four{numeric}",
+            factor.to_text()
+        ),
+        cas::NoClosedForm::NoValue(part) => format!(
+            "the equation has the factor {} in `{unknown}`, whose closed form depends on the \
+             sign of {}, and that has no value at the scene's values: give each of its names a \
+             value in [numeric]",
+            factor.to_text(),
+            part.to_text()
+        ),
+    }))
 }
 
 /// The roots of a polynomial at the scene's values, as text: the eigenvalues of its companion

@@ -77,6 +77,15 @@ impl StepResult {
         }
     }
 
+    /// What `solve` takes from the step `name`: its equations, or its expression e as e = 0.
+    pub fn solvable(&self, name: &str) -> Option<std::borrow::Cow<'_, [(String, Expr)]>> {
+        match (self.equations(), self.scalar()) {
+            (Some(eqs), _) => Some(eqs.into()),
+            (None, Some(e)) => Some(vec![(name.to_string(), e.clone())].into()),
+            (None, None) => None,
+        }
+    }
+
     /// The names later steps and claims use: the step's own name for an expression, and
     /// `Omega_1`, `Omega_2`, ... for the modes of a step `Omega`.
     pub fn values(&self, name: &str) -> Vec<(String, Expr)> {

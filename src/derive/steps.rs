@@ -326,7 +326,15 @@ fn derive_step(
             }
         },
         Operation::Solve { of, unknowns } => {
-            let eqs = equations(d, of)?;
+            let earlier = d.named.get(of).ok_or_else(|| {
+                DeriveError::Inconsistent(format!("step `{of}` was validated as an earlier step"))
+            })?;
+            let eqs = &*earlier.solvable(of).ok_or_else(|| {
+                DeriveError::NotDerivable(format!(
+                    "`{of}` gives several results: `solve` takes equations, or one expression \
+                     (solved for where it is zero)"
+                ))
+            })?;
             match &unknowns[..] {
                 [unknown] => {
                     let mut roots = solve(eqs, unknown, &scene.values)?;

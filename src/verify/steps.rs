@@ -230,7 +230,8 @@ fn route(
         }
         (Operation::Solve { of, unknowns }, StepResult::Expr(_) | StepResult::Roots(_)) => {
             let unknown = &unknowns[0];
-            let eqs = std::slice::from_ref(equation_with(equations_of(d, of)?, unknown)?);
+            let all = solvable_of(d, of)?;
+            let eqs = std::slice::from_ref(equation_with(&all, unknown)?);
             let roots: Vec<&Expr> = match result {
                 StepResult::Roots(roots) => roots.iter().collect(),
                 _ => result.scalar().into_iter().collect(),
@@ -238,7 +239,7 @@ fn route(
             roots_check(scene, eqs, &roots, unknown, seed, check)?;
         }
         (Operation::Solve { of, unknowns }, StepResult::Solution(solution)) => {
-            let eqs: Vec<(String, Expr)> = equations_of(d, of)?
+            let eqs: Vec<(String, Expr)> = solvable_of(d, of)?
                 .iter()
                 .filter(|(_, e)| e.symbols().iter().any(|s| unknowns.contains(s)))
                 .cloned()
@@ -255,6 +256,17 @@ fn equations_of<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)],
     d.named
         .get(of)
         .and_then(StepResult::equations)
+        .ok_or(CheckError::NotDerived)
+}
+
+/// What a `solve` step took from the named step: its equations, or its expression as e = 0.
+fn solvable_of<'a>(
+    d: &'a Derivation,
+    of: &str,
+) -> Result<std::borrow::Cow<'a, [(String, Expr)]>, CheckError> {
+    d.named
+        .get(of)
+        .and_then(|r| r.solvable(of))
         .ok_or(CheckError::NotDerived)
 }
 

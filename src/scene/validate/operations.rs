@@ -263,9 +263,21 @@ impl Validator<'_> {
             }
         } else {
             let of = s.solve.as_ref().expect("one operation is given");
-            let motion = self.earlier(of, field, "solve", Holds::Motion, earlier);
-            if motion.is_err() {
-                self.earlier(of, field, "solve", Holds::Linear, earlier)?;
+            // Equations of motion, linear ones, or an expression e (solved as e = 0).
+            match earlier.get(of.get_ref()) {
+                Some(Holds::Motion | Holds::Linear | Holds::Expression) => {}
+                Some(Holds::Equilibria) => {
+                    return Err(self.err(
+                        content_start(of),
+                        &format!("{field}.solve"),
+                        format!(
+                            "`{}` holds states of rest (from `equilibria`), but `solve` takes \
+                             equations, or an expression to solve for where it is zero",
+                            of.get_ref()
+                        ),
+                    ));
+                }
+                None => self.earlier(of, field, "solve", Holds::Motion, earlier)?,
             }
             let Some(given) = &s.unknown else {
                 return Err(self.err(
