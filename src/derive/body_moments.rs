@@ -1,62 +1,113 @@
-//! `[outputs] inertia = "principal"`: the free symmetric top's I1 = I2 and I3 taken from the
-//! scene's own bodies, their moments about the centre of mass, and put into every result of the
-//! `symmetric_top` family, which is derived in I1 and I3 first.
+//! `[outputs] inertia = "principal"`: the principal moments of the Lecture 3/9 families taken
+//! from the scene's own bodies, their moments about the centre of mass, and put into every
+//! result of those families, which are derived in I1, I2 and I3 first.
 
 use super::{Derivation, DeriveError, Step, simplify_value};
 use crate::cas::{self, Expr, Formula};
 use crate::model::catalogue::{Stage, quantity, stage_for_quantity};
 
-/// I1 (= I2) and I3: the diagonal of the bodies' tensor about their centre of mass, whose
-/// off-diagonal entries must vanish, with two of its three moments equal.
+/// The families written in principal moments.
+const FAMILIES: [Stage; 4] = [
+    Stage::EulerEquations,
+    Stage::SymmetricTop,
+    Stage::AxisStability,
+    Stage::Poinsot,
+];
+
+/// The moments from the diagonal of the bodies' tensor about their centre of mass, whose
+/// off-diagonal entries must vanish. With Euler's equations, the axes' stability or Poinsot's
+/// construction, I1, I2 and I3 are the moments about x, y and z (a symmetric top then needs
+/// I1 = I2); with the free top alone, I1 = I2 are the two equal ones and I3 the third.
 pub fn moments_from_bodies(d: &mut Derivation) -> Result<(), DeriveError> {
     let cm = d.matrix(quantity::INERTIA_CM)?.clone();
     let off = vec![cm[0][1].clone(), cm[0][2].clone(), cm[1][2].clone()];
     if !cas::is_zero_all(off)?.into_iter().all(|z| z) {
         return Err(DeriveError::NotDerivable(
-            "`inertia = \"principal\"` takes the free top's moments along the frame's axes, and \
+            "`inertia = \"principal\"` takes the principal moments along the frame's axes, and \
              the bodies' tensor about their centre of mass is not diagonal there: turn the body \
-             so that its symmetry axis is x, y or z"
+             so that its symmetry axes are x, y and z"
                 .into(),
         ));
     }
     let m = [cm[0][0].clone(), cm[1][1].clone(), cm[2][2].clone()];
+    let derived = |s: Stage| {
+        d.quantities
+            .keys()
+            .any(|n| stage_for_quantity(n) == Some(s))
+    };
+    let three = FAMILIES
+        .iter()
+        .any(|s| *s != Stage::SymmetricTop && derived(*s));
+    let top = derived(Stage::SymmetricTop);
     let equal = cas::is_zero_all(vec![
         Expr::minus(m[0].clone(), m[1].clone()),
         Expr::minus(m[1].clone(), m[2].clone()),
         Expr::minus(m[0].clone(), m[2].clone()),
     ])?;
-    // The two equal moments are I1 = I2; the third, about the symmetry axis, is I3.
-    let (i1, i3) = match equal[..] {
-        [true, _, _] => (m[0].clone(), m[2].clone()),
-        [_, true, _] => (m[1].clone(), m[0].clone()),
-        [_, _, true] => (m[0].clone(), m[1].clone()),
-        _ => {
-            return Err(DeriveError::NotDerivable(format!(
-                "`symmetric_top` needs two equal moments, and the bodies' about their centre of \
-                 mass are {}, {} and {}: the body is not a symmetric top",
-                m[0].to_text(),
-                m[1].to_text(),
-                m[2].to_text()
-            )));
-        }
+    let not_a_top = || {
+        DeriveError::NotDerivable(format!(
+            "`symmetric_top` needs two equal moments{}, and the bodies' about their centre of \
+             mass are {}, {} and {}: the body is not a symmetric top{}",
+            if three { " about x and y" } else { "" },
+            m[0].to_text(),
+            m[1].to_text(),
+            m[2].to_text(),
+            if three {
+                " about z (with the other families, I1, I2 and I3 are the moments about x, y \
+                 and z)"
+            } else {
+                ""
+            }
+        ))
     };
-    d.steps.push(Step::note(
-        "The bodies' own moments",
-        Formula::parse("I_1 = I_2 = $0, quad I_3 = $1", &[i1.clone(), i3.clone()]),
-        "inertia = \"principal\": the free top is the scene's body, turning about its centre of \
-         mass; its moments come from the tensor there, and every result above takes them",
-    ));
+    let moments: Vec<(&str, Expr)> = if three {
+        if top && !equal[0] {
+            return Err(not_a_top());
+        }
+        vec![
+            ("I1", m[0].clone()),
+            ("I2", m[1].clone()),
+            ("I3", m[2].clone()),
+        ]
+    } else {
+        // The two equal moments are I1 = I2; the third, about the symmetry axis, is I3.
+        let (i1, i3) = match equal[..] {
+            [true, _, _] => (m[0].clone(), m[2].clone()),
+            [_, true, _] => (m[1].clone(), m[0].clone()),
+            [_, _, true] => (m[0].clone(), m[1].clone()),
+            _ => return Err(not_a_top()),
+        };
+        vec![("I1", i1), ("I3", i3)]
+    };
+    let values: Vec<Expr> = moments.iter().map(|(_, e)| e.clone()).collect();
+    d.steps.push(if three {
+        Step::note(
+            "The bodies' own moments",
+            Formula::parse("I_1 = $0, quad I_2 = $1, quad I_3 = $2", &values),
+            "inertia = \"principal\": the body turns about its centre of mass, where its tensor \
+             is diagonal; I1, I2 and I3 are its moments about x, y and z, and every result above \
+             takes them",
+        )
+    } else {
+        Step::note(
+            "The bodies' own moments",
+            Formula::parse("I_1 = I_2 = $0, quad I_3 = $1", &values),
+            "inertia = \"principal\": the free top is the scene's body, turning about its centre \
+             of mass; its moments come from the tensor there, and every result above takes them",
+        )
+    });
     let put = |e: &Expr| {
-        e.substitute(&|s| match s {
-            "I1" => Some(i1.clone()),
-            "I3" => Some(i3.clone()),
-            _ => None,
+        e.substitute(&|s| {
+            moments
+                .iter()
+                .find(|(n, _)| *n == s)
+                .map(|(_, v)| v.clone())
         })
     };
     let names: Vec<String> = d
         .quantities
         .keys()
-        .filter(|n| stage_for_quantity(n) == Some(Stage::SymmetricTop))
+        .filter(|n| stage_for_quantity(n).is_some_and(|s| FAMILIES.contains(&s)))
         .cloned()
         .collect();
     for name in names {

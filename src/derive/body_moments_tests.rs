@@ -73,7 +73,7 @@ fn a_body_that_is_no_symmetric_top_is_an_error() {
         "[[body]]\nkind = \"cone\"\nradius = \"R\"\nheight = \"h\"\nmass = \"M\"\norigin = \"centre\"\nrotate = [{ axis = \"x\", angle = \"pi/6\" }]",
     );
     let e = scene(&tilted).unwrap_err();
-    assert!(e.contains("symmetry axis is x, y or z"), "{e}");
+    assert!(e.contains("symmetry axes are x, y and z"), "{e}");
 }
 
 #[test]
@@ -89,5 +89,102 @@ fn inertia_principal_is_checked_where_it_is_written() {
     assert!(e.contains("the one choice is \"principal\""), "{e}");
     let without = text.replace("\"symmetric_top\", ", "");
     let e = scene(&without).unwrap_err();
-    assert!(e.contains("add it to want"), "{e}");
+    assert!(e.contains("add one of them to want"), "{e}");
+}
+
+/// tests/course/dynamics/12-tumbling-box.toml: Euler's equations, the axes' stability and
+/// Poinsot's construction with a box's own moments. Each Ω_k² against the textbook's box
+/// moments in floating point (I1 = M(b² + c²)/12 about x, …), and each result that has a
+/// numeric route (the quadrature's tensor and Euler's equations as matrix arithmetic) within
+/// 1e-13 of it.
+#[test]
+fn a_box_tumbles_with_its_own_moments() {
+    let text = std::fs::read_to_string("tests/course/dynamics/12-tumbling-box.toml").unwrap();
+    let r = scene(&text).unwrap();
+    assert!(
+        r.verification
+            .claims
+            .iter()
+            .all(|c| c.verdict == Verdict::Agrees)
+    );
+    let v = |s: &str| r.scene.values[s];
+    let (m, a, b, c) = (v("M"), v("a"), v("b"), v("c"));
+    let i = [
+        m * (b * b + c * c) / 12.0,
+        m * (a * a + c * c) / 12.0,
+        m * (a * a + b * b) / 12.0,
+    ];
+    let w = [v("w1"), v("w2"), v("w3")];
+    let exact = r
+        .derivation
+        .quantities
+        .get(quantity::OSCILLATION_FREQUENCY_SQUARED)
+        .unwrap()
+        .numbers_at(&r.scene.values)
+        .unwrap();
+    for k in 0..3 {
+        let (p, q) = ((k + 1) % 3, (k + 2) % 3);
+        let textbook = w[k] * w[k] * (i[k] - i[p]) * (i[k] - i[q]) / (i[p] * i[q]);
+        assert!(
+            (exact[k] - textbook).abs() < 1e-13 * textbook.abs(),
+            "axis {}: {} against {textbook}",
+            k + 1,
+            exact[k]
+        );
+    }
+    // The middle axis y is the unstable one: Ω₂² < 0 < Ω₁², Ω₃².
+    assert!(
+        exact[1] < 0.0 && exact[0] > 0.0 && exact[2] > 0.0,
+        "{exact:?}"
+    );
+    let checked: Vec<&str> = r
+        .verification
+        .quantities
+        .iter()
+        .map(|q| q.name.as_str())
+        .collect();
+    for name in [
+        quantity::TORQUE_FREE_RATES,
+        quantity::TWICE_ENERGY,
+        quantity::MOMENTUM_SQUARED,
+        quantity::OSCILLATION_FREQUENCY_SQUARED,
+        quantity::GROWTH_RATE_SQUARED,
+    ] {
+        assert!(
+            checked.contains(&name),
+            "{name} has no numeric route: {checked:?}"
+        );
+    }
+    for q in &r.verification.quantities {
+        assert!(q.passed && q.error < 1e-13, "{q:?}");
+    }
+}
+
+/// With Euler's equations beside the free top, I1, I2 and I3 are the moments about x, y and z,
+/// so a cone must stand along z; along x it is an error that says so.
+#[test]
+fn with_the_other_families_a_top_stands_along_z() {
+    let text = std::fs::read_to_string("tests/course/dynamics/10-free-cone.toml").unwrap();
+    let both = text
+        .replace(
+            "want = [\"symmetric_top\", \"numeric\"]",
+            "want = [\"symmetric_top\", \"euler_equations\", \"numeric\"]",
+        )
+        .replace(
+            "symbols = { M",
+            "symbols = { wd1 = \"r\", wd2 = \"r\", wd3 = \"r\", N1 = \"n\", N2 = \"n\", N3 = \"n\", M",
+        )
+        .replace("values = { M", "values = { wd1 = 0.0, wd2 = 0.0, wd3 = 0.0, N1 = 0.0, N2 = 0.0, N3 = 0.0, M");
+    let r = scene(&both).unwrap();
+    assert!(
+        r.derivation
+            .quantities
+            .contains_key(quantity::TORQUE_FREE_RATES)
+    );
+    let along_x = both.replace(
+        "origin = \"centre\"",
+        "origin = \"centre\"\nrotate = [{ axis = \"y\", angle = \"pi/2\" }]",
+    );
+    let e = scene(&along_x).unwrap_err();
+    assert!(e.contains("two equal moments about x and y"), "{e}");
 }

@@ -305,15 +305,15 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     }
     if plan.runs(Stage::SymmetricTop) {
         free_top::symmetric_top(&mut d)?;
-        if scene.moments_from_bodies {
-            body_moments::moments_from_bodies(&mut d)?;
-        }
     }
     if plan.runs(Stage::AxisStability) {
         stability::axis_stability(&mut d)?;
     }
     if plan.runs(Stage::Poinsot) {
         poinsot::poinsot(&mut d)?;
+    }
+    if scene.moments_from_bodies {
+        body_moments::moments_from_bodies(&mut d)?;
     }
     if plan.runs(Stage::EarthPrecession) {
         earth::earth_precession(&mut d)?;

@@ -489,6 +489,9 @@ pub fn check_quantities(
             vec![free_top::body_precession_rate(scene, d, &t)],
         ));
     }
+    if scene.moments_from_bodies {
+        numeric_of.extend(body_moments::body_family_values(scene, d, &t));
+    }
     let mut out = Vec::new();
     for (name, num) in numeric_of {
         let Some(exact) = d.quantities.get(name) else {
@@ -555,6 +558,7 @@ pub fn verify_numeric(
     Ok(())
 }
 
+mod body_moments;
 mod free_top;
 mod integral;
 mod motion;

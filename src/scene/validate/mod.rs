@@ -20,7 +20,7 @@ use super::types::{Claim, NotesRef, Scene};
 use crate::cas::{Expr, parse_input as parse_expr};
 use crate::model::catalogue::{Output, find};
 use claims::check_calls;
-use outputs::FREE_TOP_MOMENTS;
+use outputs::body_moments;
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
 
@@ -334,10 +334,8 @@ impl Validator<'_> {
             let Some(needed) = w.free_body_symbols() else {
                 continue;
             };
-            // The free top's moments may come from the bodies instead.
-            let given = |n: &str| {
-                from_bodies && *w == Output::SymmetricTop && FREE_TOP_MOMENTS.contains(&n)
-            };
+            // The principal moments may come from the bodies instead.
+            let given = |n: &str| from_bodies && body_moments(*w).contains(&n);
             if let Some(missing) = needed
                 .iter()
                 .find(|n| !symbols.contains_key(**n) && !given(n))

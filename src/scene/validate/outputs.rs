@@ -1,5 +1,5 @@
-//! `[outputs]`: what the scene asks for, and `inertia = "principal"`, the free top's moments
-//! taken from the scene's own bodies.
+//! `[outputs]`: what the scene asks for, and `inertia = "principal"`, the Lecture 3/9 families'
+//! moments taken from the scene's own bodies.
 
 use super::{Validator, content_start};
 use crate::model::catalogue::Output;
@@ -8,8 +8,16 @@ use crate::scene::raw::RawScene;
 use crate::scene::types::Body;
 use std::collections::BTreeMap;
 
-/// The free top's moments, which `inertia = "principal"` takes from the bodies.
-pub const FREE_TOP_MOMENTS: &[&str] = &["I1", "I3"];
+/// The moments an output is written in, which `inertia = "principal"` takes from the bodies:
+/// the free top's I1 = I2 and I3; Euler's equations', the axes' stability's and Poinsot's I1,
+/// I2 and I3 about x, y and z.
+pub fn body_moments(output: Output) -> &'static [&'static str] {
+    match output {
+        Output::SymmetricTop => &["I1", "I3"],
+        Output::EulerEquations | Output::AxisStability | Output::Poinsot => &["I1", "I2", "I3"],
+        _ => &[],
+    }
+}
 
 impl Validator<'_> {
     /// The outputs asked for, by name.
@@ -36,8 +44,8 @@ impl Validator<'_> {
         Ok(wants)
     }
 
-    /// `[outputs] inertia`: only `"principal"`, for `symmetric_top`, with a body, and without
-    /// symbols of the moments it replaces.
+    /// `[outputs] inertia`: only `"principal"`, for the outputs written in principal moments,
+    /// with a body, and without symbols of the moments it replaces.
     pub(super) fn moments_from_bodies(
         &self,
         raw: &RawScene,
@@ -59,11 +67,18 @@ impl Validator<'_> {
                 ),
             ));
         }
-        if !wants.contains(&Output::SymmetricTop) {
+        let mut moments: Vec<&str> = wants
+            .iter()
+            .flat_map(|w| body_moments(*w).iter().copied())
+            .collect();
+        moments.sort();
+        moments.dedup();
+        if moments.is_empty() {
             return Err(self.err(
                 at,
                 field,
-                "`inertia = \"principal\"` gives `symmetric_top` its moments: add it to want",
+                "`inertia = \"principal\"` gives the principal moments of symmetric_top, \
+                 euler_equations, axis_stability or poinsot: add one of them to want",
             ));
         }
         if bodies.is_empty() {
@@ -74,14 +89,14 @@ impl Validator<'_> {
                  is no [[body]]",
             ));
         }
-        if let Some(n) = FREE_TOP_MOMENTS.iter().find(|n| symbols.contains_key(**n)) {
+        if let Some(n) = moments.iter().find(|n| symbols.contains_key(**n)) {
             return Err(self.err(
                 at,
                 field,
                 format!(
                     "with `inertia = \"principal\"` the bodies give {}: `{n}` cannot also be a \
                      symbol; remove it from [symbols]",
-                    FREE_TOP_MOMENTS.join(" and ")
+                    moments.join(" and ")
                 ),
             ));
         }
