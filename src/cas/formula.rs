@@ -104,6 +104,7 @@ pub(super) const GREEK: &[(&str, &str)] = &[
     ("beta", "β"),
     ("gamma", "γ"),
     ("delta", "δ"),
+    ("Delta", "Δ"),
     ("epsilon", "ε"),
     ("theta", "θ"),
     ("lambda", "λ"),

@@ -211,7 +211,7 @@ pub fn simplify_two(a: Expr, b: Expr) -> Result<(Expr, Expr), DeriveError> {
 const LAMBDA: &str = "lambda__";
 
 /// The determinant of an n×n matrix (row-major), by expansion along the first row; n ≤ 4.
-fn determinant(m: &[Expr], n: usize) -> Expr {
+pub(super) fn determinant(m: &[Expr], n: usize) -> Expr {
     if n == 1 {
         return m[0].clone();
     }

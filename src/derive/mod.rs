@@ -16,6 +16,7 @@ mod kinematics;
 pub mod lagrangian;
 pub mod poinsot;
 mod principal;
+pub mod rest_states;
 pub mod series;
 pub mod sign;
 mod solve;
@@ -330,6 +331,8 @@ mod bodies_tests;
 mod body_moments_tests;
 #[cfg(test)]
 mod dynamics_tests;
+#[cfg(test)]
+mod rest_states_tests;
 #[cfg(test)]
 mod solve_tests;
 #[cfg(test)]

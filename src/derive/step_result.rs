@@ -32,6 +32,26 @@ pub enum StepResult {
         coordinate: String,
         cases: Vec<Stability>,
     },
+    /// The states of rest of several coordinates: a zero of each, in `coordinates`' order.
+    RestStates {
+        coordinates: Vec<String>,
+        states: Vec<Vec<cas::Zero>>,
+    },
+    /// About each of those states, its stiffness and whether it is stable.
+    RestStability {
+        coordinates: Vec<String>,
+        cases: Vec<StateStability>,
+    },
+}
+
+/// One state of rest of several coordinates: K = ∂R/∂q there (row-major), its leading
+/// principal minors, and the verdict (stable where every minor is positive).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct StateStability {
+    pub at: Vec<cas::Zero>,
+    pub stiffness: Vec<Expr>,
+    pub minors: Vec<Expr>,
+    pub verdict: Stable,
 }
 
 /// One equilibrium's stability: Ω² = k/m there, stable where it is positive.
@@ -65,7 +85,9 @@ impl StepResult {
             | StepResult::Roots(_)
             | StepResult::Solution(_)
             | StepResult::Equilibria { .. }
-            | StepResult::Stability { .. } => None,
+            | StepResult::Stability { .. }
+            | StepResult::RestStates { .. }
+            | StepResult::RestStability { .. } => None,
         }
     }
 

@@ -10,7 +10,7 @@ use super::lagrangian::{
 use super::sign::{Sign, signs_over_positive};
 pub use super::solve::equation_with;
 use super::solve::{solve, solve_system};
-pub use super::step_result::{Stability, Stable, StepResult};
+pub use super::step_result::{Stability, Stable, StateStability, StepResult};
 use super::{Derivation, DeriveError, Step};
 use crate::cas::{self, Expr, Formula};
 use crate::model::prose::Prose;
@@ -268,10 +268,29 @@ fn derive_step(
             StepResult::Expr(super::series::series(&f, var, &x0, *order)?)
         }
         Operation::Equilibria { of } => {
-            let (coordinate, zeros) = equilibria(equations(d, of)?)?;
+            let eqs = equations(d, of)?;
+            if eqs.len() > 1 {
+                let (coordinates, states) = super::rest_states::rest_states(eqs)?;
+                return Ok(StepResult::RestStates {
+                    coordinates,
+                    states,
+                });
+            }
+            let (coordinate, zeros) = equilibria(eqs)?;
             StepResult::Equilibria { coordinate, zeros }
         }
         Operation::Stability { of } => {
+            if let Some(StepResult::RestStates {
+                coordinates,
+                states,
+            }) = d.named.get(of)
+            {
+                let eqs = equations(d, equilibria_source(scene, of).unwrap_or(""))?;
+                return Ok(StepResult::RestStability {
+                    coordinates: coordinates.clone(),
+                    cases: super::rest_states::rest_stability(eqs, coordinates, states)?,
+                });
+            }
             let Some(StepResult::Equilibria { coordinate, zeros }) = d.named.get(of) else {
                 return Err(DeriveError::Inconsistent(format!(
                     "step `{of}` was validated as earlier equilibria"
@@ -347,6 +366,20 @@ fn derive_step(
             }
         }
     })
+}
+
+/// A state of rest of several coordinates: q1 = v1, q2 = v2, …
+fn state_formula(coordinates: &[String], state: &[crate::cas::Zero]) -> Formula {
+    let mut row = Vec::new();
+    for (k, (q, z)) in coordinates.iter().zip(state).enumerate() {
+        if k > 0 {
+            row.push(Formula::Op(crate::cas::Op::Quad));
+        }
+        row.push(Formula::Expr(Expr::sym(q)));
+        row.push(Formula::Op(crate::cas::Op::Equals));
+        row.push(Formula::Expr(z.value.clone()));
+    }
+    Formula::Row(row)
 }
 
 /// An error of a step, at the step's line; an expansion over the engine's budget says what to
@@ -458,6 +491,57 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                 })
                 .collect()
         }
+        StepResult::RestStates {
+            coordinates,
+            states,
+        } => states
+            .iter()
+            .enumerate()
+            .map(|(k, state)| {
+                Step::note(
+                    &format!("{title}: equilibrium {}", k + 1),
+                    state_formula(coordinates, state),
+                    why.clone(),
+                )
+            })
+            .collect(),
+        StepResult::RestStability { coordinates, cases } => cases
+            .iter()
+            .map(|c| {
+                let verdict = match c.verdict {
+                    Stable::Always => "stable for all values",
+                    Stable::Never => "unstable for all values",
+                    Stable::Where | Stable::Unknown => "stable where every minor is positive",
+                };
+                let at = Prose::default()
+                    .text("about ")
+                    .formula(state_formula(coordinates, &c.at))
+                    .text(&format!(
+                        ": the leading minors of the stiffness K = ∂R/∂q there; every \
+                         frequency² is positive exactly when they all are (the mass matrix \
+                         being positive definite): {verdict}"
+                    ));
+                let mut row = Vec::new();
+                for (k, m) in c.minors.iter().enumerate() {
+                    if k > 0 {
+                        row.push(Formula::Op(crate::cas::Op::Quad));
+                    }
+                    row.push(Formula::Name(crate::cas::Name {
+                        base: "Delta".into(),
+                        sub: Some((k + 1).to_string()),
+                        accent: crate::cas::Accent::None,
+                        prime: false,
+                    }));
+                    row.push(Formula::Op(crate::cas::Op::Equals));
+                    row.push(Formula::Expr(m.clone()));
+                }
+                Step::note(
+                    &format!("{title}: stability"),
+                    Formula::Row(row),
+                    with_reason(step, &why, at),
+                )
+            })
+            .collect(),
         // Each unknown = its value, titled with the name later steps use.
         StepResult::Solution(pairs) => pairs
             .iter()

@@ -564,6 +564,7 @@ mod integral;
 mod motion;
 mod principal;
 mod rest;
+mod rest_states;
 mod rounding;
 mod series;
 mod solve;

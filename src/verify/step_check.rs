@@ -30,6 +30,20 @@ pub enum CheckError {
     #[error("about {at:.9}, Ω² is {square:e} at the scene's values, against the stated verdict")]
     WrongVerdict { at: f64, square: f64 },
     #[error(
+        "the static equations also vanish at {at} (at the scene's values), where no exact state \
+         of rest is"
+    )]
+    MissedState { at: String },
+    #[error(
+        "the exact state of rest {at} (at the scene's values) is not one Newton's method finds"
+    )]
+    NotAState { at: String },
+    #[error(
+        "about {at}, the eigenvalues of M⁻¹K are {squares} at the scene's values, against the \
+         stated verdict"
+    )]
+    WrongStateVerdict { at: String, squares: String },
+    #[error(
         "no solution is real at the random points or at the scene's values: nothing to put back"
     )]
     NoRealRoot,

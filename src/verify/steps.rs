@@ -9,6 +9,7 @@ use super::motion::{
     Conserved, conserved_check, energy_check, linear_check, modes_check, period_check,
 };
 use super::rest::{equilibria_check, stability_check};
+use super::rest_states::{rest_stability_check, states_check};
 use super::series::remainder_check;
 use super::solve::{roots_check, system_check};
 pub use super::step_check::{CheckError, StepCheck};
@@ -171,6 +172,13 @@ fn route(
             let motion = equilibria_source(scene, of).ok_or(CheckError::NotDerived)?;
             let r = single_equation(d, motion, coordinate)?;
             stability_check(scene, r, coordinate, cases, check)?;
+        }
+        (Operation::Equilibria { of }, StepResult::RestStates { states, .. }) => {
+            states_check(scene, equations_of(d, of)?, states, check)?;
+        }
+        (Operation::Stability { of }, StepResult::RestStability { cases, .. }) => {
+            let motion = equilibria_source(scene, of).ok_or(CheckError::NotDerived)?;
+            rest_stability_check(scene, equations_of(d, motion)?, cases, check)?;
         }
         (Operation::Frequency { of }, StepResult::Modes(modes)) => {
             modes_check(scene, equations_of(d, of)?, modes, check)?;
