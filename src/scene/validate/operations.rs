@@ -369,8 +369,10 @@ impl Validator<'_> {
                 &format!("{field}.gives"),
                 format!(
                     "`gives` states one result, and `{}` finds one per state of rest: leave \
-                     `gives` out and read them on the page",
+                     `gives` out and state each in a [[claim]] on its name ({name}_1, \
+                     {name}_2, …, for one coordinate)",
                     op.name(),
+                    name = s.name.get_ref(),
                 ),
             ));
         }
