@@ -326,6 +326,7 @@ pub fn run_scene_with(
     if let Some(problem) = &scene.problem {
         verification.variants = verify::variants::check_variants(&scene, derivation, problem)
             .map_err(|e| fail(StageError::Variant(Box::new(e))))?;
+        verification.pin = Some(verify::variants::Pin::new(&scene, problem));
     }
     Ok(SceneReport {
         scene,

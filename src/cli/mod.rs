@@ -38,10 +38,11 @@ pub enum Command {
     Init(init::InitArgs),
     /// Derive and verify every scene; print a summary table; fail when anything changed.
     ///
-    /// A scene records the verdict it expects for each claim of the notes and, optionally, its
-    /// exact results. `check` exits with 1 when a verdict or a result differs from the record,
-    /// or when a claim has no verdict yet, or when exact and numeric results disagree: a
-    /// regression test for the derivations. It writes no files, unless `--bless` is given.
+    /// A scene records the verdict it expects for each claim of the notes, optionally its exact
+    /// results, and a problem's variants (so that students' sheets cannot change unnoticed).
+    /// `check` exits with 1 when a verdict, a result or a variant differs from the record, or
+    /// when one has no record yet, or when exact and numeric results disagree: a regression
+    /// test for the derivations. It writes no files, unless `--bless` is given.
     Check(check::CheckArgs),
     /// Build the course site: an index, one page per scene, and per lecture a student and an
     /// instructor handout for printing, a problem sheet with its answer key, and a Moodle quiz

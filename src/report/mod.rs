@@ -95,6 +95,37 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
             recordable: true,
         });
     }
+    if let Some(pin) = r.verification.pin.as_ref().filter(|p| !p.unchanged()) {
+        let text = match &pin.recorded {
+            None => format!(
+                "{src}:{}: the problem's {} variants are not yet recorded: review them, then run \
+                 `mechbook check --bless`, which pins them in the scene's [expect]",
+                pin.line,
+                pin.derived.len()
+            ),
+            Some(recorded) => {
+                let differ = pin.differing();
+                format!(
+                    "{src}:{}: the problem's variants changed since they were recorded: {} of {} \
+                     students' sheets differ (variant{} {}); if no sheet has been handed out, \
+                     run `mechbook check --bless` to record the new ones",
+                    pin.line,
+                    differ.len(),
+                    recorded.len().max(pin.derived.len()),
+                    if differ.len() == 1 { "" } else { "s" },
+                    differ
+                        .iter()
+                        .map(|k| k.to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            }
+        };
+        failures.push(Failure {
+            text,
+            recordable: true,
+        });
+    }
     for q in r.verification.quantities.iter().filter(|q| !q.passed) {
         failures.push(unrecordable(format!(
             "{src}: `{}`: exact and numeric differ by {} (relative)",

@@ -24,7 +24,7 @@ pub use types::{
 };
 pub use validate::{
     CLAIM_FUNCTIONS, MAX_INPUT_DEGREE, MAX_INPUT_TERMS, MAX_NAME, MAX_PLOT_RADIANS, MAX_PLOT_TIME,
-    RESERVED_IDS, control_character,
+    PINNED_VARIANTS, RESERVED_IDS, control_character,
 };
 
 use load::{read_scene_file, toml_error};

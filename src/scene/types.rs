@@ -52,6 +52,9 @@ pub struct Scene {
     /// `[outputs] inertia = "principal"`: `symmetric_top` takes I1 = I2 and I3 from the
     /// bodies' moments about their centre of mass, not from symbols.
     pub moments_from_bodies: bool,
+    /// `[expect] variants`: the problem's variants as `check --bless` recorded them (one
+    /// hash each, in order), and the key's line.
+    pub pinned_variants: Option<(Vec<String>, usize)>,
 }
 
 /// A problem: a statement whose `{symbol}` placeholders each variant fills in, and the derived
@@ -76,6 +79,20 @@ pub struct Variant {
 }
 
 impl Variant {
+    /// Eight hex digits of a hash of its values (names and exact values in name order): what
+    /// a student's sheet holds, recorded by `check --bless` to pin it.
+    pub fn pin(&self) -> String {
+        let text: String = self
+            .values
+            .iter()
+            .map(|(name, value)| format!("{name}={};", value.to_text()))
+            .collect();
+        format!(
+            "{:08x}",
+            crate::base::hash::content_hash(text.as_bytes()) >> 32
+        )
+    }
+
     /// The values in f64 (π known), for the numeric routes.
     pub fn numbers(&self) -> BTreeMap<String, f64> {
         self.values

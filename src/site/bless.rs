@@ -5,6 +5,7 @@
 
 use crate::model::catalogue::recorded_names;
 use crate::pipeline::SceneReport;
+use crate::scene::PINNED_VARIANTS;
 use std::os::unix::fs::{MetadataExt, OpenOptionsExt};
 use std::path::{Path, PathBuf};
 use toml_edit::{DocumentMut, Item, TableLike, Value};
@@ -283,6 +284,34 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
                 doc.insert("expect", Item::Table(table));
             }
         }
+    }
+
+    // The problem's variants, pinned: one hash a variant, so that `check` sees a sheet change.
+    if let Some(pin) = r.verification.pin.as_ref().filter(|p| !p.unchanged()) {
+        if doc.get("expect").is_none() {
+            let mut table = toml_edit::Table::new();
+            table.decor_mut().set_prefix(EXPECT_COMMENT);
+            doc.insert("expect", Item::Table(table));
+        }
+        let table = doc
+            .get_mut("expect")
+            .and_then(Item::as_table_like_mut)
+            .ok_or_else(|| BlessError::Shape {
+                path: path.clone(),
+                field: "expect",
+            })?;
+        set_keeping_decor(table, PINNED_VARIANTS, &pin.derived.join(" "));
+        changes.push(Blessed {
+            line: pin.line,
+            what: match &pin.recorded {
+                None => format!("[expect] variants: {} pinned", pin.derived.len()),
+                Some(_) => format!(
+                    "[expect] variants: pinned again ({} of {} differed)",
+                    pin.differing().len(),
+                    pin.derived.len()
+                ),
+            },
+        });
     }
     Ok((doc.to_string(), changes))
 }

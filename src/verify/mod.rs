@@ -124,6 +124,9 @@ pub struct Verification {
     /// Each of the author's steps against its numeric route.
     #[serde(default)]
     pub steps: Vec<StepCheck>,
+    /// A problem's variants against those `check --bless` pinned.
+    #[serde(default)]
+    pub pin: Option<variants::Pin>,
 }
 
 impl Verification {
@@ -141,7 +144,9 @@ impl Verification {
     }
 
     pub fn passed(&self) -> bool {
-        self.regressions.iter().all(|r| r.unchanged) && self.verified()
+        self.regressions.iter().all(|r| r.unchanged)
+            && self.pin.as_ref().is_none_or(variants::Pin::unchanged)
+            && self.verified()
     }
 
     /// Whether every check of the derivation passed, leaving out the recorded results (which

@@ -134,3 +134,25 @@ fn rounded_claims_tell_apart_every_figure_they_state() {
     let (agrees, _) = rounded_agreement(&value("2/3"), &value("0.6666"), 4).unwrap();
     assert!(!agrees);
 }
+
+/// A pin names the variants whose sheet differs: a changed one, and one added or removed.
+#[test]
+fn a_pin_names_the_sheets_that_differ() {
+    let pin = |recorded: &[&str], derived: &[&str]| super::variants::Pin {
+        recorded: Some(recorded.iter().map(|s| s.to_string()).collect()),
+        derived: derived.iter().map(|s| s.to_string()).collect(),
+        line: 1,
+    };
+    let same = pin(&["a", "b"], &["a", "b"]);
+    assert!(same.unchanged() && same.differing().is_empty());
+    assert_eq!(
+        pin(&["a", "b", "c"], &["a", "x", "c", "d"]).differing(),
+        [2, 4]
+    );
+    assert_eq!(pin(&["a", "b", "c"], &["a"]).differing(), [2, 3]);
+    let unrecorded = super::variants::Pin {
+        recorded: None,
+        ..same
+    };
+    assert!(!unrecorded.unchanged());
+}

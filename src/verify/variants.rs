@@ -74,6 +74,47 @@ pub fn agreement(scene: &Scene, name: &str) -> f64 {
     }
 }
 
+/// A problem's variants as pinned in `[expect] variants` and as derived now, one hash each.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Pin {
+    pub recorded: Option<Vec<String>>,
+    pub derived: Vec<String>,
+    /// The `variants` key's line, or the `[problem]`'s when nothing is recorded.
+    pub line: usize,
+}
+
+impl Pin {
+    pub fn new(scene: &Scene, problem: &Problem) -> Pin {
+        let derived = problem.variants.iter().map(|v| v.pin()).collect();
+        match &scene.pinned_variants {
+            Some((hashes, line)) => Pin {
+                recorded: Some(hashes.clone()),
+                derived,
+                line: *line,
+            },
+            None => Pin {
+                recorded: None,
+                derived,
+                line: problem.at.0,
+            },
+        }
+    }
+
+    pub fn unchanged(&self) -> bool {
+        self.recorded.as_ref() == Some(&self.derived)
+    }
+
+    /// The numbers (from 1) of the variants whose sheet differs from the recorded one: a
+    /// changed variant, and one added or taken away.
+    pub fn differing(&self) -> Vec<usize> {
+        let recorded = self.recorded.as_deref().unwrap_or(&[]);
+        (0..recorded.len().max(self.derived.len()))
+            .filter(|&k| recorded.get(k) != self.derived.get(k))
+            .map(|k| k + 1)
+            .collect()
+    }
+}
+
 pub fn check_variants(
     scene: &Scene,
     d: &Derivation,

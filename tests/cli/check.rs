@@ -310,3 +310,48 @@ fn fidelity_trades_cost_for_error() {
         }
     }
 }
+
+/// A problem's variants are pinned: a new seed changes the students' sheets, and `check` fails
+/// at the `variants` line saying how many differ; `--bless` records the new ones, after which
+/// `check` passes. Without the record, `check` fails as for an unrecorded result.
+#[test]
+fn changed_variants_fail_check_until_blessed() {
+    let dir = scratch("pinned-variants");
+    let original = std::fs::read_to_string("lectures/lecture-3-4/10-problem-box.toml").unwrap();
+    let line = original
+        .lines()
+        .position(|l| l.starts_with("variants = "))
+        .expect("the lecture problem is pinned")
+        + 1;
+    let path = dir.join("scene.toml");
+    let at = path.to_str().unwrap();
+    std::fs::write(&path, original.replace("seed = 7", "seed = 8")).unwrap();
+    let out = mechbook(&["check", at]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = stdout(&out);
+    assert!(
+        text.contains(&format!(
+            "scene.toml:{line}: the problem's variants changed since they were recorded: "
+        )) && text.contains("of 12 students' sheets differ"),
+        "{text}"
+    );
+    let blessed = mechbook(&["check", "--bless", at]);
+    assert_eq!(blessed.status.code(), Some(0), "{}", stdout(&blessed));
+    assert!(stdout(&blessed).contains("[expect] variants: pinned again"));
+    let out = mechbook(&["check", at]);
+    assert_eq!(out.status.code(), Some(0), "{}", stdout(&out));
+    let unpinned: String = original
+        .lines()
+        .filter(|l| !l.starts_with("variants = "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&path, unpinned).unwrap();
+    let out = mechbook(&["check", at]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stdout(&out).contains("the problem's 12 variants are not yet recorded"),
+        "{}",
+        stdout(&out)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

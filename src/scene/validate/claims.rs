@@ -12,6 +12,9 @@ use std::collections::{BTreeMap, BTreeSet};
 /// `[expect]`: each quantity's recorded value, and the line of its key.
 type Recorded = (BTreeMap<String, Expr>, BTreeMap<String, usize>);
 
+/// The `[expect]` key that pins a problem's variants.
+pub const PINNED_VARIANTS: &str = "variants";
+
 impl Validator<'_> {
     /// Every claim, its names checked against what the scene defines and derives.
     pub(super) fn claims(
@@ -42,6 +45,10 @@ impl Validator<'_> {
         let mut lines = BTreeMap::new();
         for (name, value) in &raw.expect {
             let n = name.get_ref();
+            // The problem's pinned variants: read by `pinned_variants`.
+            if n == PINNED_VARIANTS {
+                continue;
+            }
             if !is_quantity(n) {
                 return Err(self.err(
                     name.span().start,
@@ -66,6 +73,48 @@ impl Validator<'_> {
             lines.insert(n.clone(), self.loc.line_col(name.span().start).0);
         }
         Ok((expect, lines))
+    }
+
+    /// `[expect] variants`: one 8-digit hex hash per variant, as `check --bless` writes them;
+    /// only in a scene with a `[problem]`.
+    pub(super) fn pinned_variants(
+        &self,
+        raw: &RawScene,
+        has_problem: bool,
+    ) -> Result<Option<(Vec<String>, usize)>, SceneError> {
+        let Some((name, value)) = raw
+            .expect
+            .iter()
+            .find(|(n, _)| n.get_ref() == PINNED_VARIANTS)
+        else {
+            return Ok(None);
+        };
+        let field = format!("expect.{PINNED_VARIANTS}");
+        if !has_problem {
+            return Err(self.err(
+                name.span().start,
+                &field,
+                "`variants` pins a problem's variants, and this scene has no [problem]: remove it",
+            ));
+        }
+        let hashes: Vec<String> = value
+            .get_ref()
+            .split_whitespace()
+            .map(String::from)
+            .collect();
+        if hashes.is_empty()
+            || !hashes
+                .iter()
+                .all(|h| h.len() == 8 && h.chars().all(|c| c.is_ascii_hexdigit()))
+        {
+            return Err(self.err(
+                content_start(value),
+                &field,
+                "`variants` holds the hashes `check --bless` writes (8 hex digits a variant); \
+                 remove it and run `mechbook check --bless` to record them again",
+            ));
+        }
+        Ok(Some((hashes, self.loc.line_col(name.span().start).0)))
     }
 
     fn claim(

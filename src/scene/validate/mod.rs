@@ -12,6 +12,7 @@ mod steps;
 mod symbols;
 mod text;
 
+pub use claims::PINNED_VARIANTS;
 pub use text::control_character;
 
 use super::error::{Locator, SceneError};
@@ -152,6 +153,7 @@ impl Validator<'_> {
         let cite = self.cites(&raw)?;
         let problem = self.problem(&raw, &symbols, &values, &wants, &bodies)?;
         let moments_from_bodies = self.moments_from_bodies(&raw, &symbols, &bodies, &wants)?;
+        let pinned_variants = self.pinned_variants(&raw, problem.is_some())?;
         Ok(Scene {
             id_at: self.loc.line_col(content_start(&raw.id)),
             lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
@@ -188,6 +190,7 @@ impl Validator<'_> {
             cite,
             problem,
             moments_from_bodies,
+            pinned_variants,
         })
     }
 
