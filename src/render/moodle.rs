@@ -121,12 +121,14 @@ pub fn tolerance(problem: &Problem, numbers: &[f64]) -> f64 {
     problem.tolerance * scale
 }
 
+/// An answer's words, as on the key, with the order its blanks take when it has several:
+/// "Principal moments (in ascending order, I1 ≤ I2 ≤ I3)".
 fn label(name: &str) -> String {
-    let mut words = name.replace('_', " ");
-    if let Some(first) = words.get(0..1) {
-        words.replace_range(0..1, &first.to_uppercase());
+    let words = super::problems::answer_words(name);
+    match super::problems::answer_order(name) {
+        Some(order) => format!("{words} ({order})"),
+        None => words.to_string(),
     }
-    words
 }
 
 /// The statement with each value as TeX, the rest escaped for HTML.

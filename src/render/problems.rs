@@ -178,22 +178,38 @@ pub fn decimals(shape: &Value, numbers: &[f64]) -> String {
     super::numbers_latex(shape, &n)
 }
 
+/// An answer's name in words, as a student reads it: "Moment about the axis".
+pub fn answer_words(name: &str) -> &str {
+    match name {
+        quantity::PRINCIPAL_MOMENTS => "Principal moments",
+        quantity::PRECESSION_RATE => "Precession rate",
+        quantity::RADIUS_OF_GYRATION => "Radius of gyration",
+        quantity::INERTIA_TENSOR => "Inertia tensor",
+        quantity::ANGULAR_MOMENTUM => "Angular momentum",
+        quantity::KINETIC_ENERGY => "Kinetic energy",
+        quantity::MOMENT_ABOUT_AXIS => "Moment about the axis",
+        _ => name,
+    }
+}
+
+/// The order a list or matrix answer's entries are asked in, for a blank per entry.
+pub fn answer_order(name: &str) -> Option<&'static str> {
+    match name {
+        quantity::PRINCIPAL_MOMENTS => Some("in ascending order, I1 ≤ I2 ≤ I3"),
+        quantity::ANGULAR_MOMENTUM => Some("its x, y and z components"),
+        quantity::INERTIA_TENSOR => Some("rows and columns x, y, z"),
+        _ => None,
+    }
+}
+
 /// "Inertia tensor" and its symbol, as HTML.
 fn answer_label(name: &str) -> Result<String, RenderError> {
-    let (words, symbol) = match name {
-        quantity::PRINCIPAL_MOMENTS => ("Principal moments", Some("I_1 \\le I_2 \\le I_3")),
-        quantity::PRECESSION_RATE => ("Precession rate", Some("\\Omega")),
-        quantity::RADIUS_OF_GYRATION => ("Radius of gyration", Some("k")),
-        _ => (
-            match name {
-                quantity::INERTIA_TENSOR => "Inertia tensor",
-                quantity::ANGULAR_MOMENTUM => "Angular momentum",
-                quantity::KINETIC_ENERGY => "Kinetic energy",
-                quantity::MOMENT_ABOUT_AXIS => "Moment about the axis",
-                _ => name,
-            },
-            quantity_symbol(name),
-        ),
+    let words = answer_words(name);
+    let symbol = match name {
+        quantity::PRINCIPAL_MOMENTS => Some("I_1 \\le I_2 \\le I_3"),
+        quantity::PRECESSION_RATE => Some("\\Omega"),
+        quantity::RADIUS_OF_GYRATION => Some("k"),
+        _ => quantity_symbol(name),
     };
     Ok(match symbol {
         Some(s) => format!("{words} {}", math::inline(s)?),

@@ -274,6 +274,21 @@ fn moodle_quizzes_parse_and_carry_the_key_answers() {
             }
             // A tolerance that rejects the right answer, or accepts every answer, is no blank.
             assert!(given.iter().any(|(_, t)| *t > 0.0));
+            // Each blank is labelled in words, a list with the order it takes; no internal
+            // name shows.
+            let question = child_text(&["questiontext", "text"]);
+            assert!(!question.contains('_'), "{id}: {question}");
+            for a in v["answers"].as_array().unwrap() {
+                let label = match a["quantity"].as_str().unwrap() {
+                    "principal_moments" => "Principal moments (in ascending order, I1 ≤ I2 ≤ I3):",
+                    "inertia_tensor" => "Inertia tensor (rows and columns x, y, z):",
+                    "moment_about_axis" => "Moment about the axis:",
+                    _ => continue,
+                };
+                if q.attribute("type") == Some("cloze") {
+                    assert!(question.contains(label), "{id}: {question}");
+                }
+            }
         }
     }
     std::fs::remove_dir_all(dir).unwrap();
