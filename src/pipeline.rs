@@ -72,6 +72,9 @@ pub enum StageError {
     Eval(#[from] EvalError),
     #[error(transparent)]
     Figure(#[from] FigureError),
+    /// An expression whose dimensions do not fit, at its line.
+    #[error(transparent)]
+    Dimension(verify::dimensions::DimensionFault),
     /// Boxed: a variant's error carries a derivation's or an integration's.
     #[error(transparent)]
     Variant(Box<verify::variants::VariantError>),
@@ -119,8 +122,28 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
             ..fail(e.into())
         }
     })?;
-    let (claims, regressions) =
+    verify::dimensions::check_dimensions(scene, &derivation).map_err(|f| RunError {
+        at: (f.line, 1),
+        ..fail(StageError::Dimension(f))
+    })?;
+    let (mut claims, regressions) =
         verify::verify_symbolic(scene, &derivation, plan).map_err(|e| fail(e.into()))?;
+    for (line, why) in verify::dimensions::claim_notes(scene, &derivation) {
+        if let Some(c) = claims
+            .iter_mut()
+            .find(|c| c.line == line && c.step.is_none())
+        {
+            c.differences
+                .push(format!("the two sides differ in dimension: {why}").into());
+            if c.verdict == crate::scene::Verdict::Agrees {
+                c.problem = Some(format!(
+                    "the two sides agree, yet differ in dimension ({why}): check the symbols' \
+                     units"
+                ));
+            }
+            c.dimension = Some(why);
+        }
+    }
     let (engine_after, calls_after) = crate::cas::stats();
     Ok(Symbolic {
         derivation,

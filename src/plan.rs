@@ -105,6 +105,13 @@ impl Plan {
                 }
             }
         }
+        for a in scene.problem.iter().flat_map(|p| &p.answers) {
+            for name in referenced_quantities(&a.value) {
+                if let Some(st) = stage_for_quantity(&name) {
+                    wanted.push((st, format!("the answer `{}` uses `{name}`", a.written)));
+                }
+            }
+        }
         if !scene.steps.is_empty() {
             wanted.push((Stage::Steps, format!("{} step(s)", scene.steps.len())));
         }

@@ -50,6 +50,9 @@ pub enum Formula {
     Nabla(Option<String>),
     /// A value taken in a frame: `(dL/dt)|_body`.
     At(Box<Formula>, String),
+    /// Mathematics an author wrote in LaTeX between `$` signs (the author's own notation, not
+    /// another printer's output): LaTeX as written, and text between `$` signs.
+    Tex(String),
 }
 
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -68,6 +68,7 @@ fn latex(f: &Formula, out: &mut String) {
         Formula::Nabla(None) => "\\nabla".into(),
         Formula::Nabla(Some(by)) => format!("\\nabla_{{{}}}", latex_base(by)),
         Formula::At(a, frame) => format!("\\left.{}\\right|_{{\\mathrm{{{frame}}}}}", a.to_latex()),
+        Formula::Tex(s) => s.clone(),
     };
     join(out, &piece);
 }
@@ -232,6 +233,11 @@ fn text(f: &Formula, out: &mut String) {
             text_operand(a, out);
             out.push('|');
             out.push_str(frame);
+        }
+        Formula::Tex(s) => {
+            out.push('$');
+            out.push_str(s);
+            out.push('$');
         }
     }
 }

@@ -295,7 +295,7 @@ fn call(name: &str, args: Vec<Value>) -> Result<Value, ClaimError> {
         kinds: kinds.join(" and "),
     };
     Ok(match (name, args.as_slice()) {
-        ("sin" | "cos" | "sqrt", [Scalar(x)]) => Scalar(Expr::call(name, x.clone())),
+        ("sin" | "cos" | "sqrt" | "acos", [Scalar(x)]) => Scalar(Expr::call(name, x.clone())),
         ("dot", [Vector(a), Vector(b)]) => Scalar(dot(a, b)),
         ("cross", [Vector(a), Vector(b)]) => Vector(cross(a, b)),
         ("outer", [Vector(a), Vector(b)]) => Matrix(std::array::from_fn(|i| {

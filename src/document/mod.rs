@@ -37,6 +37,8 @@ pub struct Page {
     pub fidelity: Fidelity,
     /// Each symbol and what it stands for.
     pub symbols: Vec<(String, String)>,
+    /// The declared units of symbols and coordinates, by name, as written.
+    pub units: std::collections::BTreeMap<String, String>,
     /// Each body in words: its shape, mass, rotations and shift.
     pub bodies: Vec<String>,
     pub steps: Vec<Step>,
@@ -166,6 +168,11 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
             .symbols
             .iter()
             .map(|(k, v)| (k.clone(), v.clone()))
+            .collect(),
+        units: s
+            .units
+            .iter()
+            .map(|(k, u)| (k.clone(), u.text.clone()))
             .collect(),
         bodies: s.bodies.iter().map(describe_body).collect(),
         steps: r

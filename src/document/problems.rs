@@ -4,7 +4,7 @@
 //! once.
 
 use super::page_file;
-use crate::cas::{Expr, Formula};
+use crate::cas::Formula;
 use crate::model::prose::Prose;
 use crate::pipeline::SceneReport;
 use crate::verify::variants::{AnswerCheck, VariantCheck};
@@ -20,6 +20,8 @@ pub struct Problem {
     pub page: String,
     /// A quiz answer's tolerance, relative to the answer.
     pub tolerance: f64,
+    /// What each answer is: its value as written, label, unit and tolerance.
+    pub answers: Vec<crate::scene::Answer>,
     pub variants: Vec<Variant>,
 }
 
@@ -28,9 +30,17 @@ pub struct Variant {
     pub number: usize,
     /// The statement with each `{name}` given by this variant's value.
     pub statement: Prose,
-    /// The values the statement names, for the key.
-    pub given: Vec<(String, Expr)>,
+    /// The values the statement names, in its order, for the key.
+    pub given: Vec<Given>,
     pub answers: Vec<AnswerCheck>,
+}
+
+/// A value the statement gives: its name, as the author wrote it, and its unit's text.
+#[derive(Debug, Clone)]
+pub struct Given {
+    pub name: String,
+    pub value: Formula,
+    pub unit: Option<String>,
 }
 
 impl Variant {
@@ -49,6 +59,7 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
         title: r.scene.title.clone(),
         page: page_file(r),
         tolerance: p.tolerance,
+        answers: p.answers.clone(),
         variants: r
             .verification
             .variants
@@ -56,11 +67,15 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
             .map(|v| Variant {
                 number: v.number,
                 statement: fill_statement(&p.statement, v),
-                given: v
-                    .values
-                    .iter()
-                    .filter(|(name, _)| p.statement.contains(&format!("{{{name}}}")))
-                    .cloned()
+                given: placeholders(&p.statement)
+                    .into_iter()
+                    .filter_map(|name| {
+                        Some(Given {
+                            value: shown(v, &name)?,
+                            unit: r.scene.units.get(&name).map(|u| u.text.clone()),
+                            name,
+                        })
+                    })
                     .collect(),
                 answers: v.answers.clone(),
             })
@@ -68,23 +83,81 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
     })
 }
 
-/// The statement with each `{name}` replaced by the variant's value.
+/// The statement with each `{name}` replaced by the variant's value, and its `$…$`
+/// mathematics kept as the author's LaTeX (a `{name}` inside it given the value's LaTeX).
 pub(super) fn fill_statement(statement: &str, v: &VariantCheck) -> Prose {
     let mut out = Prose::default();
-    let mut rest = statement;
-    while let Some(open) = rest.find('{') {
-        let close = open + rest[open..].find('}').unwrap_or(rest.len() - open);
-        out = out.text(&rest[..open]);
-        let name = rest.get(open + 1..close).unwrap_or("");
-        out = match v.values.iter().find(|(n, _)| n == name) {
-            Some((_, e)) => out.formula(Formula::Expr(e.clone())),
-            // Validation allows only declared symbols, and every symbol in a statement has a
-            // value in each variant; a template's own text is shown as written.
-            None => out.text(&format!("{{{name}}}")),
-        };
-        rest = rest.get(close + 1..).unwrap_or("");
+    for (k, part) in crate::model::prose::dollar_split(statement)
+        .iter()
+        .enumerate()
+    {
+        if k % 2 == 1 {
+            out = out.formula(Formula::Tex(fill_math(part, v)));
+            continue;
+        }
+        let mut rest = part.as_str();
+        while let Some(open) = rest.find('{') {
+            let close = open + rest[open..].find('}').unwrap_or(rest.len() - open);
+            out = out.text(&rest[..open]);
+            let name = rest.get(open + 1..close).unwrap_or("");
+            out = match shown(v, name) {
+                Some(f) => out.formula(f),
+                // Validation allows only declared symbols, and every symbol in a statement has
+                // a value in each variant; a template's own text is shown as written.
+                None => out.text(&format!("{{{name}}}")),
+            };
+            rest = rest.get(close + 1..).unwrap_or("");
+        }
+        if !rest.is_empty() {
+            out = out.text(rest);
+        }
     }
-    out.text(rest)
+    out
+}
+
+/// LaTeX with each `{name}` of a value replaced by `{its LaTeX}`; other groups as written.
+fn fill_math(latex: &str, v: &VariantCheck) -> String {
+    let mut out = String::new();
+    let mut rest = latex;
+    while let Some(open) = rest.find('{') {
+        out.push_str(&rest[..open]);
+        let after = &rest[open + 1..];
+        match after
+            .find('}')
+            .and_then(|c| Some((c, shown(v, &after[..c])?)))
+        {
+            Some((close, value)) => {
+                out.push_str(&format!("{{{}}}", value.to_latex()));
+                rest = &after[close + 1..];
+            }
+            None => {
+                out.push('{');
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// A variant's value as the author wrote it (see [`crate::scene::shown_value`]).
+fn shown(v: &VariantCheck, name: &str) -> Option<Formula> {
+    let (_, e) = v.values.iter().find(|(n, _)| n == name)?;
+    let decimal = v.decimal.iter().any(|d| d == name);
+    Some(crate::scene::shown_value(e, decimal))
+}
+
+/// The names of a statement's `{name}` placeholders, each once, in the order they first come.
+fn placeholders(statement: &str) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for piece in statement.split('{').skip(1) {
+        if let Some((name, _)) = piece.split_once('}')
+            && !out.iter().any(|n| n == name)
+        {
+            out.push(name.to_string());
+        }
+    }
+    out
 }
 
 /// A lecture's problem sheet: as many variants as its problem with the most.

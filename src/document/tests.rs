@@ -58,6 +58,7 @@ fn problem_of(id: &str, variants: usize) -> Problem {
         title: id.into(),
         page: format!("{id}.html"),
         tolerance: 0.01,
+        answers: Vec::new(),
         variants: (1..=variants)
             .map(|number| Variant {
                 number,
@@ -116,6 +117,7 @@ fn a_statement_takes_each_value_as_a_formula() {
     let v = VariantCheck {
         number: 1,
         values: vec![("m".into(), Expr::int(3))],
+        decimal: Vec::new(),
         answers: Vec::new(),
     };
     let filled = problems::fill_statement("A mass {m} kg on {q}.", &v);

@@ -7,4 +7,5 @@ pub mod fidelity;
 pub mod figure;
 pub mod moments;
 pub mod prose;
+pub mod units;
 pub mod value;

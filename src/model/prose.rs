@@ -49,6 +49,40 @@ impl Prose {
     }
 }
 
+/// An author's text with its `$…$` spans: each span the LaTeX inside it (as a [`Formula::Tex`]),
+/// the rest text; `\$` is a dollar sign. Validation has seen that every `$` is closed.
+pub fn author(text: &str) -> Prose {
+    let mut out = Prose::default();
+    for (k, part) in dollar_split(text).into_iter().enumerate() {
+        if k % 2 == 0 {
+            if !part.is_empty() {
+                out = out.text(&part);
+            }
+        } else {
+            out = out.formula(Formula::Tex(part));
+        }
+    }
+    out
+}
+
+/// The text between unescaped `$` signs: text, mathematics, text, ... (`\$` a dollar sign in
+/// text). An odd count of parts means every `$` was closed.
+pub fn dollar_split(text: &str) -> Vec<String> {
+    let mut parts = vec![String::new()];
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' if chars.peek() == Some(&'$') => {
+                chars.next();
+                parts.last_mut().expect("one part at least").push('$');
+            }
+            '$' => parts.push(String::new()),
+            c => parts.last_mut().expect("one part at least").push(c),
+        }
+    }
+    parts
+}
+
 impl From<String> for Prose {
     fn from(text: String) -> Prose {
         Prose(vec![Piece::Text(text)])

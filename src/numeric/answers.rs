@@ -4,7 +4,7 @@
 
 use super::body::NumBody;
 use super::integrators::{IntegrationError, Method, Resolution, integrate};
-use super::quadrature::{reference_rule, run};
+use super::quadrature::{centre_of_mass, reference_rule, run};
 use crate::cas::EvalError;
 use crate::model::catalogue::quantity;
 use crate::model::moments::{Moments, MomentsError};
@@ -79,6 +79,8 @@ impl<'a> Routes<'a> {
                 vec![(n.dot(&(t * n)) / self.mass()?).sqrt()]
             }
             quantity::PRECESSION_RATE => vec![self.precession_rate()?],
+            quantity::MASS => vec![self.mass()?],
+            quantity::CENTRE_OF_MASS => self.centre_of_mass()?.iter().copied().collect(),
             other => return Err(RouteError::NoRoute(other.into())),
         })
     }
@@ -97,6 +99,17 @@ impl<'a> Routes<'a> {
         }
         self.tensor = Some(total);
         Ok(total)
+    }
+
+    /// Σ m_i c_i / Σ m_i over the bodies, each centre by its body's reference rule.
+    fn centre_of_mass(&self) -> Result<Vector3<f64>, RouteError> {
+        let (mut moment, mut mass) = (Vector3::zeros(), 0.0);
+        for body in &self.scene.bodies {
+            let nb = NumBody::from_scene(body, self.values)?;
+            moment += nb.mass * centre_of_mass(&nb, self.scene.seed);
+            mass += nb.mass;
+        }
+        Ok(moment / mass)
     }
 
     fn mass(&self) -> Result<f64, RouteError> {

@@ -170,6 +170,28 @@ pub fn reference_rule(shape: &NumShape) -> (Method, usize) {
     }
 }
 
+/// A body's centre of mass in the scene frame by its reference rule: exact, since the rule
+/// integrates the quadratic tensor integrand and so the linear first moment too. Points are
+/// weighed by their masses.
+pub fn centre_of_mass(body: &NumBody, seed: u64) -> Vector3<f64> {
+    match &body.shape {
+        NumShape::Points(pts) => {
+            let total: f64 = pts.iter().map(|(m, _)| m).sum();
+            pts.iter()
+                .map(|(m, r)| *m * body.place(r))
+                .sum::<Vector3<f64>>()
+                / total
+        }
+        shape => {
+            let (method, level) = reference_rule(shape);
+            rule(shape, method, level, &mut Rng::new(seed))
+                .into_iter()
+                .map(|(w, r)| w * body.place(&r))
+                .sum()
+        }
+    }
+}
+
 /// Gauss–Legendre nodes and weights on [-1, 1] by Newton's method on P_n.
 ///
 /// n nodes integrate polynomials up to degree 2n − 1 exactly, so two points per axis already

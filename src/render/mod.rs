@@ -39,6 +39,8 @@ pub struct StepView {
 pub struct ClaimView {
     pub eq: String,
     pub statement: String,
+    /// The statement as HTML: its `$…$` mathematics as MathML.
+    pub statement_html: String,
     pub verdict: String,
     /// The quantity claimed, the notes' formula for it and the derived one, as MathML (empty
     /// when not checkable).
@@ -91,6 +93,8 @@ pub struct FigureView {
 pub struct PageView {
     pub id: String,
     pub title: String,
+    /// The title as HTML: its `$…$` mathematics as MathML.
+    pub title_html: String,
     pub lecture: String,
     pub section: String,
     pub equations: String,
@@ -99,7 +103,8 @@ pub struct PageView {
     /// The numeric fidelity, with its target and cost cap.
     pub fidelity: String,
     pub fidelity_name: String,
-    pub symbols: Vec<(String, String)>,
+    /// Each symbol as MathML, its meaning as written, and its meaning as HTML with its unit.
+    pub symbols: Vec<(String, String, String)>,
     pub bodies: Vec<String>,
     pub steps: Vec<StepView>,
     pub results: Vec<StepView>,
@@ -151,6 +156,11 @@ fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError>
         }
     }
     Ok(out)
+}
+
+/// An author's text as HTML: escaped, its `$…$` mathematics as MathML.
+pub fn author_html(text: &str) -> Result<String, RenderError> {
+    prose_html(&crate::model::prose::author(text))
 }
 
 fn value_math(v: &Value) -> Result<String, RenderError> {
@@ -296,6 +306,7 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
         claims.push(ClaimView {
             eq: c.eq.clone(),
             statement: c.statement.clone(),
+            statement_html: author_html(&c.statement)?,
             verdict: c.verdict.as_str().into(),
             quantity: render(c.quantity.as_ref())?,
             notes: render(c.notes.as_ref())?,
@@ -315,6 +326,7 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
     Ok(PageView {
         id: page.id.clone(),
         title: page.title.clone(),
+        title_html: author_html(&page.title)?,
         lecture: page.lecture.clone(),
         section: page.section.clone(),
         equations: page.equations.join(", "),
@@ -328,7 +340,17 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
         symbols: page
             .symbols
             .iter()
-            .map(|(k, v)| Ok((math::mathml(&Expr::sym(k).to_latex(), false)?, v.clone())))
+            .map(|(k, v)| {
+                let unit = page
+                    .units
+                    .get(k)
+                    .map_or(String::new(), |u| format!(" ({})", problems::unit_html(u)));
+                Ok((
+                    math::mathml(&Expr::sym(k).to_latex(), false)?,
+                    v.clone(),
+                    format!("{}{unit}", author_html(v)?),
+                ))
+            })
             .collect::<Result<_, RenderError>>()?,
         bodies: page.bodies.clone(),
         steps,

@@ -33,9 +33,21 @@ fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
     let statement = statement_tex(&v.statement);
     let scalars: usize = v.answers.iter().map(|a| a.exact_numbers.len()).sum();
     let mut out = String::new();
-    if let [a] = v.answers.as_slice()
+    if let ([a], [spec]) = (v.answers.as_slice(), problem.answers.as_slice())
         && scalars == 1
     {
+        let units = match &spec.unit {
+            // Graded: a missing or wrong unit costs a tenth of the mark, typed after the number
+            // (Moodle's qtype_numerical: unitgradingtype 1 = UNITGRADEDOUTOFMARK, showunits
+            // 0 = UNITINPUT, read by its XML import's import_numerical).
+            Some(u) => format!(
+                "    <unitgradingtype>1</unitgradingtype>\n    <unitpenalty>0.1</unitpenalty>\n    \
+                 <showunits>0</showunits>\n    <unitsleft>0</unitsleft>\n    <units><unit>\
+                 <multiplier>1</multiplier><unit_name>{}</unit_name></unit></units>\n",
+                xml_text(&u.text)
+            ),
+            None => String::new(),
+        };
         let _ = write!(
             out,
             "  <question type=\"numerical\">\n    <name><text>{}</text></name>\n    \
@@ -43,21 +55,25 @@ fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
              <generalfeedback format=\"html\"><text>{}</text></generalfeedback>\n    \
              <defaultgrade>1</defaultgrade>\n    <penalty>0.3333333</penalty>\n    <hidden>0</hidden>\n    \
              <answer fraction=\"100\" format=\"moodle_auto_format\"><text>{}</text>\
-             <feedback format=\"html\"><text></text></feedback><tolerance>{}</tolerance></answer>\n  \
-             </question>\n",
+             <feedback format=\"html\"><text></text></feedback><tolerance>{}</tolerance></answer>\n\
+             {units}  </question>\n",
             xml_text(&name),
             cdata(&format!("<p>{statement}</p>")),
-            cdata(&feedback(v, solution)),
+            cdata(&feedback(problem, v, solution)),
             number(a.exact_numbers[0]),
-            number(tolerance(problem, &a.exact_numbers)),
+            number(tolerance(spec.tolerance, &a.exact_numbers)),
         );
         return out;
     }
     let mut text = format!("<p>{statement}</p>\n");
-    for a in &v.answers {
-        let tol = tolerance(problem, &a.exact_numbers);
-        let blank = |x: f64| format!("{{1:NUMERICAL:={}:{}}}", number(x), number(tol));
-        let _ = writeln!(text, "<p>{}:</p>", html_escape(&label(&a.quantity)));
+    for (spec, a) in problem.answers.iter().zip(&v.answers) {
+        let tol = tolerance(spec.tolerance, &a.exact_numbers);
+        let unit = spec
+            .unit
+            .as_ref()
+            .map_or(String::new(), |u| format!(" {}", html_escape(&u.text)));
+        let blank = |x: f64| format!("{{1:NUMERICAL:={}:{}}}{unit}", number(x), number(tol));
+        let _ = writeln!(text, "<p>{}:</p>", html_escape(&label(spec)));
         match &a.exact {
             Value::Scalar(_) => {
                 let _ = writeln!(text, "<p>{}</p>", blank(a.exact_numbers[0]));
@@ -87,21 +103,26 @@ fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
          <penalty>0.3333333</penalty>\n    <hidden>0</hidden>\n  </question>\n",
         xml_text(&name),
         cdata(&text),
-        cdata(&feedback(v, solution)),
+        cdata(&feedback(problem, v, solution)),
     );
     out
 }
 
 /// The exact answers, shown after the attempt, and a link to the worked solution when the site's
 /// address is known.
-fn feedback(v: &Variant, solution: Option<&str>) -> String {
-    let parts: Vec<String> = v
+fn feedback(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
+    let parts: Vec<String> = problem
         .answers
         .iter()
-        .map(|a| {
+        .zip(&v.answers)
+        .map(|(spec, a)| {
+            let unit = spec
+                .unit
+                .as_ref()
+                .map_or(String::new(), |u| format!(" {}", html_escape(&u.text)));
             format!(
-                "{}: \\({}\\)",
-                html_escape(&label(&a.quantity)),
+                "{}: \\({}\\){unit}",
+                html_escape(&label(spec)),
                 a.exact.to_latex()
             )
         })
@@ -115,15 +136,22 @@ fn feedback(v: &Variant, solution: Option<&str>) -> String {
     format!("<p>Exactly: {}.</p>{link}", parts.join("; "))
 }
 
-/// An answer's absolute tolerance: relative to its largest entry.
-pub fn tolerance(problem: &Problem, numbers: &[f64]) -> f64 {
+/// An answer's absolute tolerance: `relative` to its largest entry.
+pub fn tolerance(relative: f64, numbers: &[f64]) -> f64 {
     let scale = numbers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    problem.tolerance * scale
+    relative * scale
 }
 
 /// An answer's words, as on the key, with the order its blanks take when it has several:
-/// "Principal moments (in ascending order, I1 ≤ I2 ≤ I3)".
-fn label(name: &str) -> String {
+/// "Principal moments (in ascending order, I1 ≤ I2 ≤ I3)". An expression without a label is
+/// shown as written.
+fn label(spec: &crate::scene::Answer) -> String {
+    if let Some(words) = &spec.label {
+        return super::problems::capitalised(words);
+    }
+    let Some(name) = spec.bare_quantity() else {
+        return spec.written.clone();
+    };
     let words = super::problems::answer_words(name);
     match super::problems::answer_order(name) {
         Some(order) => format!("{words} ({order})"),

@@ -25,6 +25,7 @@ pub struct SheetVariant<P> {
 pub struct StudentProblem {
     pub number: usize,
     pub title: String,
+    pub title_html: String,
     /// The problem's own variant that this sheet variant uses.
     pub variant: usize,
     /// HTML: the text escaped, each value as MathML.
@@ -35,6 +36,7 @@ pub struct StudentProblem {
 pub struct KeyProblem {
     pub number: usize,
     pub title: String,
+    pub title_html: String,
     pub variant: usize,
     /// The variant's values, as MathML.
     pub values: String,
@@ -92,6 +94,7 @@ pub fn student_sheet(sheet: &Sheet) -> Result<Vec<SheetVariant<StudentProblem>>,
         Ok(StudentProblem {
             number,
             title: p.title.clone(),
+            title_html: super::author_html(&p.title)?,
             variant: v.number,
             statement: statement_html(&v.statement)?,
         })
@@ -116,6 +119,7 @@ pub enum KeyEntry {
     Shared {
         number: usize,
         title: String,
+        title_html: String,
         variant: usize,
     },
 }
@@ -137,6 +141,7 @@ pub fn answer_key(sheet: &Sheet) -> Result<AnswerKey, RenderError> {
             KeyEntry::Shared {
                 number,
                 title: p.title.clone(),
+                title_html: super::author_html(&p.title)?,
                 variant: v.number,
             }
         } else {
@@ -150,19 +155,36 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
     let values: Vec<String> = v
         .given
         .iter()
-        .map(|(name, e)| format!("{} = {}", Expr::sym(name).to_latex(), e.to_latex()))
+        .map(|g| {
+            let unit = g.unit.as_deref().map_or(String::new(), |u| {
+                format!("\\,{}", crate::model::units::unit_latex(u))
+            });
+            format!(
+                "{} = {}{unit}",
+                Expr::sym(&g.name).to_latex(),
+                g.value.to_latex()
+            )
+        })
         .collect();
     let mut answers = Vec::new();
-    for a in &v.answers {
+    for (spec, a) in p.answers.iter().zip(&v.answers) {
+        let unit = spec
+            .unit
+            .as_ref()
+            .map_or(String::new(), |u| format!(" {}", unit_html(&u.text)));
         answers.push(KeyAnswer {
-            label: answer_label(&a.quantity)?,
-            exact: math::inline(&a.exact.to_latex())?,
-            decimal: math::inline(&decimals(&a.exact, &a.exact_numbers))?,
+            label: spec_label(spec)?,
+            exact: format!("{}{unit}", math::inline(&a.exact.to_latex())?),
+            decimal: format!(
+                "{}{unit}",
+                math::inline(&decimals(&a.exact, &a.exact_numbers))?
+            ),
         });
     }
     Ok(KeyProblem {
         number,
         title: p.title.clone(),
+        title_html: super::author_html(&p.title)?,
         variant: v.number,
         values: math::inline(&values.join(",\\; "))?,
         answers,
@@ -200,6 +222,42 @@ pub fn answer_order(name: &str) -> Option<&'static str> {
         quantity::INERTIA_TENSOR => Some("rows and columns x, y, z"),
         _ => None,
     }
+}
+
+/// An answer's label as HTML: the author's words, a bare quantity's own, or the expression.
+fn spec_label(a: &crate::scene::Answer) -> Result<String, RenderError> {
+    match (&a.label, a.bare_quantity()) {
+        (Some(words), _) => Ok(tera::escape_html(&capitalised(words))),
+        (None, Some(q)) => answer_label(q),
+        (None, None) => math::inline(&a.value.to_latex()),
+    }
+}
+
+/// The first letter in capitals: a label heads its row.
+pub fn capitalised(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    }
+}
+
+/// A unit as HTML: `kg m^2/s` as kg m<sup>2</sup>/s, a `*` as a space.
+pub fn unit_html(text: &str) -> String {
+    let escaped = tera::escape_html(text).replace('*', " ");
+    let mut out = String::new();
+    let mut rest = escaped.as_str();
+    while let Some(i) = rest.find('^') {
+        out.push_str(&rest[..i]);
+        let power: String = rest[i + 1..]
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '-')
+            .collect();
+        out.push_str(&format!("<sup>{}</sup>", power.replace('-', "−")));
+        rest = &rest[i + 1 + power.len()..];
+    }
+    out.push_str(rest);
+    format!("<span class=\"unit\">{out}</span>")
 }
 
 /// "Inertia tensor" and its symbol, as HTML.

@@ -33,6 +33,7 @@ const DEFAULTS: &[(&str, &str)] = &[
 struct PageLink {
     href: String,
     title: String,
+    title_html: String,
     errata: usize,
 }
 
@@ -210,12 +211,15 @@ pub fn site_files(
                 problems,
                 pages: idx
                     .iter()
-                    .map(|&i| PageLink {
-                        href: page_file(&reports[i]),
-                        title: pages[i].title.clone(),
-                        errata: pages[i].errata,
+                    .map(|&i| {
+                        Ok(PageLink {
+                            href: page_file(&reports[i]),
+                            title: pages[i].title.clone(),
+                            title_html: super::author_html(&pages[i].title)?,
+                            errata: pages[i].errata,
+                        })
                     })
-                    .collect(),
+                    .collect::<Result<_, RenderError>>()?,
             },
         );
     }

@@ -204,6 +204,8 @@ pub fn scene_json(page: &Page) -> Json {
             "passed": v.passed(),
             "answers": v.answers.iter().map(|a| json!({
                 "quantity": a.quantity,
+                "label": a.label,
+                "unit": a.unit,
                 "exact": a.exact.to_text(),
                 "latex": a.exact.to_latex(),
                 "entries": a.exact.entries().iter().map(|e| e.to_latex()).collect::<Vec<_>>(),

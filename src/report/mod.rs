@@ -55,7 +55,7 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
     let src = r.scene.source.display();
     for c in r.verification.claims.iter().filter(|c| !c.passed()) {
         let recordable = c.problem.is_none();
-        let why = c.problem.clone().unwrap_or_else(|| match c.expected {
+        let mut why = c.problem.clone().unwrap_or_else(|| match c.expected {
             Some(expected) => format!(
                 "verdict {} but the scene records {}",
                 c.verdict.as_str(),
@@ -68,6 +68,9 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
                 c.verdict.as_str()
             ),
         });
+        if let Some(dimension) = &c.dimension {
+            why.push_str(&format!("; the two sides differ in dimension: {dimension}"));
+        }
         failures.push(Failure {
             text: format!("{src}:{}: claim ({}): {why}", c.line, c.eq),
             recordable,

@@ -14,7 +14,7 @@ pub struct RawScene {
     pub title: Text,
     pub notes: RawNotes,
     #[serde(default)]
-    pub symbols: BTreeMap<Spanned<String>, Text>,
+    pub symbols: BTreeMap<Spanned<String>, Spanned<RawMeaning>>,
     #[serde(default)]
     pub definitions: BTreeMap<Spanned<String>, Text>,
     #[serde(default)]
@@ -29,7 +29,7 @@ pub struct RawScene {
     pub claims: Vec<Spanned<RawClaim>>,
     /// Generalised coordinates: functions of the time `t`, with their rates `q'` and `q''`.
     #[serde(default)]
-    pub coordinates: BTreeMap<Spanned<String>, Text>,
+    pub coordinates: BTreeMap<Spanned<String>, Spanned<RawMeaning>>,
     /// The author's own derivation, a named step at a time.
     #[serde(default, rename = "step")]
     pub steps: Vec<Spanned<RawStep>>,
@@ -51,6 +51,137 @@ pub struct RawScene {
     /// TOML values, since the symbols' names are the scene's own.
     #[serde(default)]
     pub variants: Option<Spanned<BTreeMap<Spanned<String>, Spanned<toml::Value>>>>,
+}
+
+/// A symbol's or a coordinate's meaning: a string, or `{ meaning = "...", unit = "kg" }`.
+pub enum RawMeaning {
+    Words(String),
+    WithUnit { meaning: Text, unit: Option<Text> },
+}
+
+/// The meaning, located: the string itself, or the table's `meaning`.
+pub fn meaning_of(m: &Spanned<RawMeaning>) -> Text {
+    match m.get_ref() {
+        RawMeaning::Words(w) => Spanned::new(m.span(), w.clone()),
+        RawMeaning::WithUnit { meaning, .. } => meaning.clone(),
+    }
+}
+
+/// The unit, if the table gives one.
+pub fn unit_of(m: &Spanned<RawMeaning>) -> Option<&Text> {
+    match m.get_ref() {
+        RawMeaning::Words(_) => None,
+        RawMeaning::WithUnit { unit, .. } => unit.as_ref(),
+    }
+}
+
+impl<'de> Deserialize<'de> for RawMeaning {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visit;
+        impl<'de> serde::de::Visitor<'de> for Visit {
+            type Value = RawMeaning;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a meaning in words, or { meaning = \"...\", unit = \"...\" }")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<RawMeaning, E> {
+                Ok(RawMeaning::Words(v.to_string()))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut m: A,
+            ) -> Result<RawMeaning, A::Error> {
+                let (mut meaning, mut unit) = (None, None);
+                while let Some(key) = m.next_key::<String>()? {
+                    match key.as_str() {
+                        "meaning" if meaning.is_none() => meaning = Some(m.next_value()?),
+                        "unit" if unit.is_none() => unit = Some(m.next_value()?),
+                        "meaning" | "unit" => {
+                            return Err(serde::de::Error::custom(format!("`{key}` given twice")));
+                        }
+                        other => {
+                            return Err(serde::de::Error::unknown_field(
+                                other,
+                                &["meaning", "unit"],
+                            ));
+                        }
+                    }
+                }
+                let meaning = meaning.ok_or_else(|| serde::de::Error::missing_field("meaning"))?;
+                Ok(RawMeaning::WithUnit { meaning, unit })
+            }
+        }
+        d.deserialize_any(Visit)
+    }
+}
+
+/// A problem's answer: a name or an expression, or a table
+/// `{ value = "...", label = "...", unit = "...", tolerance = "0.5%" }`.
+pub struct RawAnswer {
+    pub value: Text,
+    pub label: Option<Text>,
+    pub unit: Option<Text>,
+    /// A number (0.005) or a percentage (`"0.5%"`), relative to the answer.
+    pub tolerance: Option<Spanned<toml::Value>>,
+}
+
+impl<'de> Deserialize<'de> for RawAnswer {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visit;
+        impl<'de> serde::de::Visitor<'de> for Visit {
+            type Value = RawAnswer;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(
+                    "a quantity's name or an expression, or { value = \"...\", label = \"...\", \
+                     unit = \"...\", tolerance = \"...\" }",
+                )
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<RawAnswer, E> {
+                // The caller locates the string by the answer's own span.
+                Ok(RawAnswer {
+                    value: Spanned::new(0..0, v.to_string()),
+                    label: None,
+                    unit: None,
+                    tolerance: None,
+                })
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut m: A,
+            ) -> Result<RawAnswer, A::Error> {
+                const FIELDS: &[&str] = &["value", "label", "unit", "tolerance"];
+                let (mut value, mut label, mut unit, mut tolerance) = (None, None, None, None);
+                while let Some(key) = m.next_key::<String>()? {
+                    let twice = || serde::de::Error::custom(format!("`{key}` given twice"));
+                    match key.as_str() {
+                        "value" if value.is_none() => value = Some(m.next_value()?),
+                        "label" if label.is_none() => label = Some(m.next_value()?),
+                        "unit" if unit.is_none() => unit = Some(m.next_value()?),
+                        "tolerance" if tolerance.is_none() => tolerance = Some(m.next_value()?),
+                        "value" | "label" | "unit" | "tolerance" => return Err(twice()),
+                        other => return Err(serde::de::Error::unknown_field(other, FIELDS)),
+                    }
+                }
+                let value = value.ok_or_else(|| serde::de::Error::missing_field("value"))?;
+                Ok(RawAnswer {
+                    value,
+                    label,
+                    unit,
+                    tolerance,
+                })
+            }
+        }
+        d.deserialize_any(Visit)
+    }
+}
+
+/// An answer's value, located: a plain string is located by the answer's own span.
+pub fn answer_value(a: &Spanned<RawAnswer>) -> Text {
+    let v = &a.get_ref().value;
+    if v.span() == (0..0) {
+        Spanned::new(a.span(), v.get_ref().clone())
+    } else {
+        v.clone()
+    }
 }
 
 impl RawScene {
@@ -235,7 +366,7 @@ pub struct RawStep {
 #[serde(deny_unknown_fields)]
 pub struct RawProblem {
     pub statement: Text,
-    pub answers: Spanned<Vec<Text>>,
+    pub answers: Spanned<Vec<Spanned<RawAnswer>>>,
     /// A Moodle answer's tolerance, relative to the answer (0.01 is 1%).
     #[serde(default)]
     pub tolerance: Option<Spanned<f64>>,

@@ -3,6 +3,7 @@
 use crate::cas::Expr;
 use crate::model::catalogue::Output;
 use crate::model::fidelity::Fidelity;
+use crate::model::units::Unit;
 use crate::scene::step::AuthorStep;
 pub use crate::scene::verdict::{ClaimRole, Verdict};
 use std::collections::{BTreeMap, BTreeSet};
@@ -55,6 +56,8 @@ pub struct Scene {
     /// `[expect] variants`: the problem's variants as `check --bless` recorded them (one
     /// hash each, in order), and the key's line.
     pub pinned_variants: Option<(Vec<String>, usize)>,
+    /// The declared units of symbols and coordinates; a name without one is not checked.
+    pub units: BTreeMap<String, Unit>,
 }
 
 /// A problem: a statement whose `{symbol}` placeholders each variant fills in, and the derived
@@ -62,12 +65,37 @@ pub struct Scene {
 #[derive(Debug, Clone)]
 pub struct Problem {
     pub statement: String,
-    pub answers: Vec<String>,
+    pub answers: Vec<Answer>,
     /// A Moodle answer's tolerance, relative to the answer.
     pub tolerance: f64,
     pub variants: Vec<Variant>,
     /// Where `[problem]` is (line, column), for errors found when its variants are derived.
     pub at: (usize, usize),
+}
+
+/// One answer of a problem: a derived quantity, a named step, or an expression of them and of
+/// the scene's symbols, with the words and unit a student sees.
+#[derive(Debug, Clone)]
+pub struct Answer {
+    pub value: Expr,
+    /// As the author wrote it: the catalogue's name for a bare quantity.
+    pub written: String,
+    /// The author's words for it; a bare quantity has the catalogue's own.
+    pub label: Option<String>,
+    pub unit: Option<Unit>,
+    /// A quiz answer's tolerance, relative to the answer.
+    pub tolerance: f64,
+    pub line: usize,
+}
+
+impl Answer {
+    /// The catalogue quantity it is, when it is one by itself (the 7 answers of old).
+    pub fn bare_quantity(&self) -> Option<&str> {
+        match &self.value {
+            Expr::Sym(s) if crate::model::catalogue::ANSWERS.iter().any(|(q, _)| q == s) => Some(s),
+            _ => None,
+        }
+    }
 }
 
 /// One variant of a problem: every symbol with a value, exactly.
@@ -76,6 +104,8 @@ pub struct Variant {
     /// 1-based.
     pub number: usize,
     pub values: BTreeMap<String, Expr>,
+    /// The names whose values the author wrote in decimals: shown so where they end.
+    pub decimal: BTreeSet<String>,
 }
 
 impl Variant {

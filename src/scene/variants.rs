@@ -177,6 +177,7 @@ pub fn draw(
             public_left_out = true;
         } else {
             out.push(Variant {
+                decimal: Default::default(),
                 number: out.len() + 1,
                 values,
             });
@@ -223,6 +224,45 @@ pub fn range(from: &Rational, to: &Rational, step: &Rational, limit: usize) -> O
             .map(|k| Expr::Num(from.add(&step.mul(&Rational::int(k as i128)))))
             .collect(),
     )
+}
+
+/// `e` as a formula: a terminating decimal (`0.3`, `-2.25`) when `decimal` and it has one.
+pub fn shown_value(e: &Expr, decimal: bool) -> crate::cas::Formula {
+    if decimal
+        && let Expr::Num(r) = e
+        && let Some(text) = terminating_decimal(r)
+    {
+        return crate::cas::Formula::Number(text);
+    }
+    crate::cas::Formula::Expr(e.clone())
+}
+
+/// A rational's decimal expansion when it ends within 30 digits: 3/8 is 0.375, 1/3 has none.
+pub fn terminating_decimal(r: &crate::cas::Rational) -> Option<String> {
+    let (n, d) = r.to_i64_pair()?;
+    let (mut twos, mut fives, mut rest) = (0u32, 0u32, d);
+    while rest % 2 == 0 {
+        rest /= 2;
+        twos += 1;
+    }
+    while rest % 5 == 0 {
+        rest /= 5;
+        fives += 1;
+    }
+    let places = twos.max(fives);
+    if rest != 1 || places > 30 {
+        return None;
+    }
+    // n/d = n·(10^places/d) / 10^places.
+    let scaled = (n as i128) * (10i128.checked_pow(places)? / d as i128);
+    let sign = if scaled < 0 { "-" } else { "" };
+    let digits = scaled.unsigned_abs().to_string();
+    if places == 0 {
+        return Some(format!("{sign}{digits}"));
+    }
+    let padded = format!("{digits:0>width$}", width = places as usize + 1);
+    let (whole, frac) = padded.split_at(padded.len() - places as usize);
+    Some(format!("{sign}{whole}.{frac}"))
 }
 
 #[cfg(test)]

@@ -18,8 +18,9 @@ use std::path::{Path, PathBuf};
 /// Bumped when the entry format changes (2: rationals of any size, stored as text; 3: a first
 /// line with the entry's key and checksum; 4: a claim's sides and derived value as trees; 5: a
 /// variant's values as trees; 6: the results of an author's steps; 7: a step's momentum or
-/// energy, normal modes, equilibria and stability).
-const FORMAT: u64 = 8;
+/// energy, normal modes, equilibria and stability; 8: motion plots; 9: a problem's answers with
+/// their labels and units, and the values the author wrote in decimals).
+const FORMAT: u64 = 9;
 
 /// The largest entry read: the shipped scenes' largest report is about 200 KB.
 pub const MAX_ENTRY_BYTES: u64 = 64 << 20;

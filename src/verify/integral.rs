@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 const POINTS: usize = 24;
 /// Rounding over 24³ weighted terms of size about 1 stays near 1e-13; a wrong factor or limit
 /// is off by order one.
-const QUADRATURE_AGREEMENT: f64 = 1e-10;
+pub(super) const QUADRATURE_AGREEMENT: f64 = 1e-10;
 
 /// The exact integral at the scene's values against the quadrature of the integrand.
 pub(super) fn quadrature_check(
@@ -33,6 +33,24 @@ pub(super) fn quadrature_check(
     let x = at(exact, values)?;
     check.error = (x - numeric).abs() / x.abs().max(numeric.abs()).max(f64::MIN_POSITIVE);
     Ok(())
+}
+
+/// The integral at `values` by the same nested rule, with its evaluations: the numeric value
+/// of an `integrate` step where a problem's answer uses it.
+pub(super) fn quadrature(
+    values: &BTreeMap<String, f64>,
+    f: &Expr,
+    over: &[(String, Expr, Expr)],
+) -> Result<(f64, u64), CheckError> {
+    let mut evaluations = 0;
+    let x = nested(
+        f,
+        over,
+        values.clone(),
+        &gauss_legendre(POINTS),
+        &mut evaluations,
+    )?;
+    Ok((x, evaluations))
 }
 
 /// ∫ over the outermost remaining range of the integral over the others.

@@ -67,6 +67,9 @@ pub struct ClaimResult {
     /// The author's step whose `gives` this is (its index), or `None` for a `[[claim]]`.
     #[serde(default)]
     pub step: Option<usize>,
+    /// Why its two sides differ in dimension, where they do (a scene with units).
+    #[serde(default)]
+    pub dimension: Option<String>,
 }
 
 impl ClaimResult {
@@ -265,6 +268,7 @@ fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
         role: claim.role,
         line: claim.line,
         step: None,
+        dimension: None,
     }
 }
 
@@ -563,7 +567,9 @@ pub fn verify_numeric(
     Ok(())
 }
 
+mod answer_routes;
 mod body_moments;
+pub mod dimensions;
 mod free_top;
 mod integral;
 mod motion;
@@ -581,6 +587,8 @@ pub use rounding::round_to_figures;
 use rounding::rounded_agreement;
 pub use steps::StepCheck;
 
+#[cfg(test)]
+mod answer_routes_tests;
 #[cfg(test)]
 mod steps_tests;
 #[cfg(test)]

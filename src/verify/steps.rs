@@ -260,7 +260,10 @@ fn route(
 }
 
 /// The equations of the named step.
-fn equations_of<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)], CheckError> {
+pub(super) fn equations_of<'a>(
+    d: &'a Derivation,
+    of: &str,
+) -> Result<&'a [(String, Expr)], CheckError> {
     d.named
         .get(of)
         .and_then(StepResult::equations)
@@ -268,7 +271,7 @@ fn equations_of<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)],
 }
 
 /// What a `solve` step took from the named step: its equations, or its expression as e = 0.
-fn solvable_of<'a>(
+pub(super) fn solvable_of<'a>(
     d: &'a Derivation,
     of: &str,
 ) -> Result<std::borrow::Cow<'a, [(String, Expr)]>, CheckError> {

@@ -1,15 +1,18 @@
 //! Every variant of a problem, checked: its exact answers (the derivation with the variant's
 //! values substituted) against the independent numeric routes at the variant's numbers.
 
+use super::answer_routes::{AnswerRouteError, AnswerRoutes};
+use super::dimensions::answer_scale;
 use super::exact_vs_numeric;
 use super::principal::PRINCIPAL_AGREEMENT;
 use crate::base::float::max_relative_error;
 use crate::cas::Expr;
-use crate::derive::variants::exact_answers;
+use crate::cas::Rational;
+use crate::derive::variants::{ExactAnswer, exact_answers};
 use crate::derive::{Derivation, DeriveError};
 use crate::model::catalogue::quantity;
 use crate::model::value::Value;
-use crate::numeric::answers::{RouteError, Routes};
+use crate::numeric::answers::RouteError;
 use crate::scene::{Problem, Scene};
 
 /// How closely the precession rate integrated at tolerance 1e-12 must match the exact rate
@@ -22,12 +25,21 @@ pub struct VariantCheck {
     pub number: usize,
     /// Each symbol's exact value, the varying ones and the fixed ones.
     pub values: Vec<(String, Expr)>,
+    /// The names whose values the author wrote in decimals.
+    #[serde(default)]
+    pub decimal: Vec<String>,
     pub answers: Vec<AnswerCheck>,
 }
 
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct AnswerCheck {
+    /// The answer as the author wrote it: a quantity's name or an expression.
     pub quantity: String,
+    /// The author's words for it, and the unit it is given in.
+    #[serde(default)]
+    pub label: Option<String>,
+    #[serde(default)]
+    pub unit: Option<String>,
     pub exact: Value,
     /// The exact answer's entries in f64, and the numeric route's.
     pub exact_numbers: Vec<f64>,
@@ -62,6 +74,10 @@ pub enum VariantFailure {
     Derive(#[from] DeriveError),
     #[error("the numeric route failed: {0}")]
     Route(#[from] RouteError),
+    #[error("the numeric route failed: {0}")]
+    AnswerRoute(#[from] AnswerRouteError),
+    #[error(transparent)]
+    Dimension(super::dimensions::DimensionFault),
 }
 
 /// How closely a route must agree: the quadrature rules are exact for these integrands, so
@@ -127,12 +143,45 @@ pub fn check_variants(
             number: v.number,
             source,
         };
-        let exact = exact_answers(d, problem, v).map_err(|e| fail(e.into()))?;
+        let exact = exact_answers(scene, d, problem, v).map_err(|e| fail(e.into()))?;
         let numbers = v.numbers_within_a_turn(&angles);
-        let mut routes = Routes::new(scene, &numbers);
+        let agree = |name: &str| agreement(scene, name);
+        let mut routes = AnswerRoutes::new(scene, d, &numbers, &agree);
         let mut answers = Vec::new();
-        for a in exact {
-            let numeric = routes.answer(&a.quantity).map_err(|e| fail(e.into()))?;
+        for (answer, a) in problem.answers.iter().zip(exact) {
+            let (numeric, tolerance) = match answer.bare_quantity() {
+                Some(q) => (
+                    routes.routes.answer(q).map_err(|e| fail(e.into()))?,
+                    agreement(scene, q),
+                ),
+                None => {
+                    let r = routes
+                        .expression(&answer.value)
+                        .map_err(|e| fail(e.into()))?;
+                    // The routes' own errors carried to the answer, and rounding beside them.
+                    (vec![r.value], r.tolerance + exact_vs_numeric(scene))
+                }
+            };
+            // In the unit asked for: the derived value times its unit's size over that unit's.
+            let scale = answer_scale(scene, d, answer)
+                .map_err(|f| fail(VariantFailure::Dimension(f)))?
+                .filter(|s| *s != Rational::ONE);
+            let (a, numeric) = match &scale {
+                Some(s) => (
+                    ExactAnswer {
+                        value: a.value.with_entries(
+                            &a.value
+                                .entries()
+                                .into_iter()
+                                .map(|e| Expr::mul(vec![Expr::Num(s.clone()), e]))
+                                .collect::<Vec<_>>(),
+                        ),
+                        ..a
+                    },
+                    numeric.iter().map(|x| x * s.to_f64()).collect(),
+                ),
+                None => (a, numeric),
+            };
             let exact_numbers: Vec<f64> = a
                 .value
                 .entries()
@@ -141,7 +190,9 @@ pub fn check_variants(
                 .collect();
             let error = max_relative_error(&numeric, &exact_numbers);
             answers.push(AnswerCheck {
-                tolerance: agreement(scene, &a.quantity),
+                label: answer.label.clone(),
+                unit: answer.unit.as_ref().map(|u| u.text.clone()),
+                tolerance,
                 quantity: a.quantity,
                 exact: a.value,
                 exact_numbers,
@@ -157,6 +208,7 @@ pub fn check_variants(
                 .iter()
                 .map(|(k, e)| (k.clone(), e.clone()))
                 .collect(),
+            decimal: v.decimal.iter().cloned().collect(),
             answers,
         });
     }

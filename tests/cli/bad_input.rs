@@ -4,19 +4,29 @@
 use super::{mechbook, stderr};
 use std::path::Path;
 
-#[test]
-fn each_invalid_fixture_gives_its_message() {
-    let dir = Path::new("tests/fixtures/invalid");
-    let mut fixtures: Vec<_> = std::fs::read_dir(dir)
+/// The scene files of a fixture folder, each with its expected message (its `.expected`).
+pub fn fixtures(dir: &Path) -> Vec<(std::path::PathBuf, String)> {
+    let mut files: Vec<_> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
-    fixtures.sort();
+    files.sort();
+    files
+        .into_iter()
+        .map(|f| {
+            let expected = std::fs::read_to_string(f.with_extension("expected"))
+                .unwrap_or_else(|_| panic!("{} has no .expected", f.display()));
+            (f, expected.trim().to_string())
+        })
+        .collect()
+}
+
+#[test]
+fn each_invalid_fixture_gives_its_message() {
+    let fixtures = fixtures(Path::new("tests/fixtures/invalid"));
     assert!(fixtures.len() >= 15, "fixtures missing");
-    for f in fixtures {
-        let expected = std::fs::read_to_string(f.with_extension("expected"))
-            .unwrap_or_else(|_| panic!("{} has no .expected", f.display()));
+    for (f, expected) in fixtures {
         let out = mechbook(&["check", f.to_str().unwrap()]);
         let err = stderr(&out);
         assert_eq!(out.status.code(), Some(1), "{}: {err}", f.display());

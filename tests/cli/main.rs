@@ -3,6 +3,7 @@
 //! This process never calls Symbolica itself, so the child processes it starts never meet a
 //! second Symbolica user in it; concurrent children wait for each other on mechbook's lock.
 
+mod answers;
 mod authoring;
 mod bad_input;
 mod build;

@@ -38,7 +38,7 @@ fn sheet(site: &Path, scene: &Json, kind: &str) -> String {
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-fn numbers(a: &Json) -> Vec<f64> {
+pub fn numbers(a: &Json) -> Vec<f64> {
     a["numeric"]
         .as_array()
         .unwrap()

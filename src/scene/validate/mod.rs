@@ -1,6 +1,7 @@
 //! Validation: a raw scene's fields checked part by part (symbols, bodies, claims, plots),
 //! each error located at its field.
 
+mod answers;
 mod bodies;
 mod claims;
 mod motion_plot;
@@ -12,6 +13,7 @@ mod steps;
 mod symbols;
 mod text;
 
+pub use answers::{ROUTED_QUANTITIES, step_has_route};
 pub use claims::PINNED_VARIANTS;
 pub use text::control_character;
 
@@ -44,6 +46,7 @@ pub const CLAIM_FUNCTIONS: &[&str] = &[
     "det",
     "sign",
     "subs",
+    "acos",
 ];
 const RESERVED: &[&str] = &["pi"];
 
@@ -151,7 +154,15 @@ impl Validator<'_> {
         };
         let (expect, expect_lines) = self.expect(&raw, &allowed, &variables)?;
         let cite = self.cites(&raw)?;
-        let problem = self.problem(&raw, &symbols, &values, &wants, &bodies)?;
+        let problem = self.problem(
+            &raw,
+            &symbols,
+            &values,
+            &wants,
+            &bodies,
+            (&claim_names, &steps),
+        )?;
+        let units = self.units(&raw)?;
         let moments_from_bodies = self.moments_from_bodies(&raw, &symbols, &bodies, &wants)?;
         let pinned_variants = self.pinned_variants(&raw, problem.is_some())?;
         Ok(Scene {
@@ -191,6 +202,7 @@ impl Validator<'_> {
             problem,
             moments_from_bodies,
             pinned_variants,
+            units,
         })
     }
 

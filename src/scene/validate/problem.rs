@@ -3,10 +3,12 @@
 
 use super::{Validator, content_start};
 use crate::cas::{Expr, Rational};
-use crate::model::catalogue::{ANSWERS, Output};
+use crate::model::catalogue::Output;
+use crate::scene::AuthorStep;
 use crate::scene::error::SceneError;
 use crate::scene::raw::RawScene;
-use crate::scene::types::{Body, Problem, Variant};
+use crate::scene::raw::answer_value;
+use crate::scene::types::{Answer, Body, Problem, Variant};
 use crate::scene::variants::{
     Comparison, DrawError, MAX_COMBINATIONS, MAX_VARIANTS, Requirement, draw, range,
 };
@@ -23,6 +25,17 @@ type Entry = (Spanned<String>, Spanned<toml::Value>);
 /// The most digits in a variant's value, numerator or denominator: longer ones are beyond what
 /// the numeric check can follow, and slow every exact step.
 pub const MAX_VALUE_DIGITS: usize = 30;
+
+/// Whether a range or list is written in decimals (`"0.3"`, not `"3/10"`): its values are then
+/// shown so.
+fn written_in_decimals(v: &toml::Value) -> bool {
+    match v {
+        toml::Value::String(s) => s.contains('.'),
+        toml::Value::Array(items) => items.iter().any(written_in_decimals),
+        toml::Value::Table(t) => t.values().any(written_in_decimals),
+        _ => false,
+    }
+}
 
 /// Why a value cannot be a variant's, if it cannot: it has more than [`MAX_VALUE_DIGITS`]
 /// digits, or its size is beyond double precision, where the numeric check would see infinity
@@ -62,6 +75,7 @@ impl Validator<'_> {
         values: &BTreeMap<String, f64>,
         wants: &[Output],
         bodies: &[Body],
+        (names, steps): (&BTreeSet<String>, &[AuthorStep]),
     ) -> Result<Option<Problem>, SceneError> {
         let Some(p) = &raw.problem else {
             if let Some(v) = &raw.variants {
@@ -76,49 +90,6 @@ impl Validator<'_> {
         let at = p.span().start;
         let p = p.get_ref();
         let placeholders = self.statement(&p.statement, symbols)?;
-        let mut answers = Vec::new();
-        for (i, a) in p.answers.get_ref().iter().enumerate() {
-            let field = format!("problem.answers[{i}]");
-            let name = a.get_ref();
-            let Some((_, output)) = ANSWERS.iter().find(|(q, _)| q == name) else {
-                let names: Vec<&str> = ANSWERS.iter().map(|(q, _)| *q).collect();
-                return Err(self.err(
-                    content_start(a),
-                    &field,
-                    format!(
-                        "`{name}` cannot be a problem's answer{}; the answers with an \
-                         independent numeric check are {}",
-                        crate::base::suggest::did_you_mean(name, names.iter().copied()),
-                        names.join(", ")
-                    ),
-                ));
-            };
-            if !wants.contains(output) {
-                return Err(self.err(
-                    content_start(a),
-                    &field,
-                    format!(
-                        "the answer `{name}` is derived by the output `{}`: add it to outputs.want",
-                        output.name()
-                    ),
-                ));
-            }
-            if answers.contains(name) {
-                return Err(self.err(
-                    content_start(a),
-                    &field,
-                    format!("`{name}` is listed twice"),
-                ));
-            }
-            answers.push(name.clone());
-        }
-        if answers.is_empty() {
-            return Err(self.err(
-                p.answers.span().start,
-                "problem.answers",
-                "a problem needs at least one answer, such as [\"inertia_tensor\"]",
-            ));
-        }
         let tolerance = match &p.tolerance {
             Some(t) if !(t.get_ref().is_finite() && *t.get_ref() > 0.0 && *t.get_ref() < 1.0) => {
                 return Err(self.err(
@@ -131,6 +102,32 @@ impl Validator<'_> {
             Some(t) => *t.get_ref(),
             None => DEFAULT_TOLERANCE,
         };
+        let mut answers: Vec<Answer> = Vec::new();
+        for (i, a) in p.answers.get_ref().iter().enumerate() {
+            let answer = self.answer(
+                a,
+                &format!("problem.answers[{i}]"),
+                names,
+                wants,
+                steps,
+                tolerance,
+            )?;
+            if answers.iter().any(|b| b.value == answer.value) {
+                return Err(self.err(
+                    content_start(&answer_value(a)),
+                    &format!("problem.answers[{i}]"),
+                    format!("`{}` is listed twice", answer.written),
+                ));
+            }
+            answers.push(answer);
+        }
+        if answers.is_empty() {
+            return Err(self.err(
+                p.answers.span().start,
+                "problem.answers",
+                "a problem needs at least one answer, such as [\"inertia_tensor\"]",
+            ));
+        }
         let variants = self.variants(raw, symbols, values, bodies)?;
         if let Some((name, at)) = placeholders
             .iter()
@@ -174,27 +171,48 @@ impl Validator<'_> {
                 ),
             ));
         }
-        let mut rest = text.as_str();
-        let mut offset = 0;
-        while let Some(i) = rest.find(['{', '}']) {
-            let at = content_start(s) + offset + i;
-            if rest[i..].starts_with('}') {
-                return Err(self.err(at, field, "a `}` without its `{`"));
+        // Outside `$…$` every brace is a placeholder's; inside, `{name}` of a symbol is one and
+        // any other brace is the mathematics' own grouping.
+        let bytes = text.as_bytes();
+        let mut in_math = false;
+        let mut i = 0;
+        while i < bytes.len() {
+            let at = content_start(s) + i;
+            match bytes[i] {
+                b'\\' if bytes.get(i + 1) == Some(&b'$') => i += 1,
+                b'$' => in_math = !in_math,
+                b'}' if !in_math => return Err(self.err(at, field, "a `}` without its `{`")),
+                b'{' => {
+                    let close = text[i..].find('}').map(|c| i + c);
+                    let name = close.map(|c| &text[i + 1..c]);
+                    match (name, in_math) {
+                        (Some(name), _) if symbols.contains_key(name) => {
+                            found.push((name.to_string(), at));
+                            i = close.expect("found with the name");
+                        }
+                        (_, true) => {}
+                        (None, false) => {
+                            return Err(self.err(
+                                at,
+                                field,
+                                "a `{` without its `}`: write `{symbol}`",
+                            ));
+                        }
+                        (Some(name), false) => {
+                            return Err(self.err(
+                                at,
+                                field,
+                                format!(
+                                    "`{{{name}}}` is not a declared symbol; placeholders name \
+                                     symbols"
+                                ),
+                            ));
+                        }
+                    }
+                }
+                _ => {}
             }
-            let Some(close) = rest[i..].find('}') else {
-                return Err(self.err(at, field, "a `{` without its `}`: write `{symbol}`"));
-            };
-            let name = &rest[i + 1..i + close];
-            if !symbols.contains_key(name) {
-                return Err(self.err(
-                    at,
-                    field,
-                    format!("`{{{name}}}` is not a declared symbol; placeholders name symbols"),
-                ));
-            }
-            found.push((name.to_string(), at));
-            offset += i + close + 1;
-            rest = &rest[i + close + 1..];
+            i += 1;
         }
         Ok(found)
     }
@@ -217,10 +235,13 @@ impl Validator<'_> {
                     .map(|r| (k.clone(), Expr::Num(if *v < 0.0 { r.negated() } else { r })))
             })
             .collect();
+        // TOML's numbers are written in decimals; a range or list below says how it is written.
+        let mut decimal: BTreeSet<String> = fixed.keys().cloned().collect();
         let Some(table) = &raw.variants else {
             return Ok(vec![Variant {
                 number: 1,
                 values: fixed,
+                decimal,
             }]);
         };
         let table_at = table.span().start;
@@ -256,6 +277,11 @@ impl Validator<'_> {
                 }
                 _ if symbols.contains_key(name) => {
                     option_at.insert(name.to_string(), at);
+                    if written_in_decimals(value.get_ref()) {
+                        decimal.insert(name.to_string());
+                    } else {
+                        decimal.remove(name);
+                    }
                     options.push((name.to_string(), self.options(value, &field)?))
                 }
                 _ => {
@@ -291,7 +317,7 @@ impl Validator<'_> {
                 ),
             ));
         };
-        let variants = draw(&options, &fixed, &require, count, seed).map_err(|e| {
+        let mut variants = draw(&options, &fixed, &require, count, seed).map_err(|e| {
             let short = match e {
                 DrawError::Short(short) => short,
                 DrawError::Undecided { index, values, why } => {
@@ -337,6 +363,9 @@ impl Validator<'_> {
                 ),
             )
         })?;
+        for v in &mut variants {
+            v.decimal = decimal.clone();
+        }
         for v in &variants {
             let numbers = v.numbers();
             let Some(b) = self.broken_rule(raw, bodies, &numbers) else {

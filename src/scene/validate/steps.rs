@@ -45,7 +45,10 @@ impl Validator<'_> {
                     ),
                 ));
             }
-            out.insert(n.clone(), meaning.get_ref().clone());
+            out.insert(
+                n.clone(),
+                crate::scene::raw::meaning_of(meaning).into_inner(),
+            );
         }
         Ok(out)
     }

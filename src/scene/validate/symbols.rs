@@ -6,7 +6,7 @@ use super::{RESERVED, Validator, is_identifier};
 use crate::cas::Expr;
 use crate::model::catalogue::{CATALOGUE, is_quantity};
 use crate::scene::error::SceneError;
-use crate::scene::raw::RawScene;
+use crate::scene::raw::{RawScene, meaning_of, unit_of};
 use crate::scene::types::Body;
 use crate::scene::validate::CLAIM_FUNCTIONS;
 use std::collections::{BTreeMap, BTreeSet};
@@ -38,9 +38,32 @@ impl Validator<'_> {
                     format!("`{n}` cannot be a symbol name"),
                 ));
             }
-            symbols.insert(n.clone(), meaning.get_ref().clone());
+            symbols.insert(n.clone(), meaning_of(meaning).into_inner());
         }
         Ok(symbols)
+    }
+
+    /// The units declared on symbols and coordinates (`{ meaning = "...", unit = "kg" }`).
+    pub(super) fn units(
+        &self,
+        raw: &RawScene,
+    ) -> Result<BTreeMap<String, crate::model::units::Unit>, SceneError> {
+        let mut out = BTreeMap::new();
+        for (table, kind) in [(&raw.symbols, "symbols"), (&raw.coordinates, "coordinates")] {
+            for (name, meaning) in table {
+                if let Some(u) = unit_of(meaning) {
+                    let unit = crate::model::units::Unit::parse(u.get_ref()).map_err(|e| {
+                        self.err(
+                            u.span().start + 1,
+                            &format!("{kind}.{}.unit", name.get_ref()),
+                            e.to_string(),
+                        )
+                    })?;
+                    out.insert(name.get_ref().clone(), unit);
+                }
+            }
+        }
+        Ok(out)
     }
 
     /// `[definitions]` and `[vectors]`, and with them the names a claim may use.

@@ -80,14 +80,67 @@ fn basic_escape_before_letter(source: &str, letter: char) -> Option<String> {
     None
 }
 
+/// Why LaTeX between `$` signs cannot be typeset, if it cannot: empty, or what the LaTeX
+/// reader says of it.
+fn latex_problem(latex: &str) -> Option<String> {
+    use pulldown_latex::{Parser, RenderConfig, Storage, push_mathml};
+    if latex.trim().is_empty() {
+        return Some("it is empty".into());
+    }
+    let storage = Storage::new();
+    let mut out = String::new();
+    match push_mathml(
+        &mut out,
+        Parser::new(latex, &storage),
+        RenderConfig::default(),
+    ) {
+        Err(e) => Some(e.to_string()),
+        // The reader marks what it cannot read in <merror>, with its reason inside.
+        Ok(()) if out.contains("<merror") => Some(
+            out.split("<merror")
+                .nth(1)
+                .and_then(|m| m.split("<mtext>").nth(1))
+                .and_then(|m| m.split("</mtext>").next())
+                .and_then(|m| m.lines().map(str::trim).find(|l| !l.is_empty()))
+                .map(|m| {
+                    m.replace("&lt;", "<")
+                        .replace("&gt;", ">")
+                        .replace("&amp;", "&")
+                })
+                .unwrap_or_else(|| "the LaTeX reader marks it as an error".into()),
+        ),
+        Ok(()) => None,
+    }
+}
+
 impl Validator<'_> {
     /// One prose field, refused at its line when it holds a control character.
     fn prose(&self, t: &Text, field: &str, lines: bool) -> Result<(), SceneError> {
         let source = self.loc.text.get(t.span()).unwrap_or("");
-        match control_character(t.get_ref(), source, lines) {
-            Some(why) => Err(self.err(content_start(t), field, why)),
-            None => Ok(()),
+        if let Some(why) = control_character(t.get_ref(), source, lines) {
+            return Err(self.err(content_start(t), field, why));
         }
+        let parts = crate::model::prose::dollar_split(t.get_ref());
+        if parts.len().is_multiple_of(2) {
+            let last = t.get_ref().rfind('$').unwrap_or(0);
+            return Err(self.err(
+                content_start(t) + last,
+                field,
+                "a `$` without its closing `$`: mathematics goes between two `$` signs; write a \
+                 dollar sign as `\\$`",
+            ));
+        }
+        for math in parts.iter().skip(1).step_by(2) {
+            if let Some(why) = latex_problem(math) {
+                let at = t.get_ref().find(math.as_str()).unwrap_or(0);
+                return Err(self.err(
+                    content_start(t) + at,
+                    field,
+                    format!("the mathematics `${math}$` cannot be typeset: {why}"),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Every prose field of the scene: the title, the symbols' meanings, the bodies' labels,
@@ -95,7 +148,8 @@ impl Validator<'_> {
     pub(super) fn prose_fields(&self, raw: &RawScene) -> Result<(), SceneError> {
         self.prose(&raw.title, "title", false)?;
         for (name, meaning) in &raw.symbols {
-            self.prose(meaning, &format!("symbols.{}", name.get_ref()), false)?;
+            let meaning = crate::scene::raw::meaning_of(meaning);
+            self.prose(&meaning, &format!("symbols.{}", name.get_ref()), false)?;
         }
         for (i, b) in raw.bodies.iter().enumerate() {
             if let Some(label) = &b.get_ref().label {

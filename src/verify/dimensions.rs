@@ -1,0 +1,195 @@
+//! Dimensions checked everywhere a scene with units writes an expression: each step as
+//! written and the form it `gives`, each claim against its quantity, and each answer against
+//! its unit. The derived quantities carry the dimensions of the symbols they are derived from
+//! (a tensor is mass × length²), so they need no table. A name without a unit is not checked.
+
+use super::claim_env;
+use crate::cas::{Expr, Rational};
+use crate::derive::Derivation;
+use crate::derive::algebra::evaluate;
+use crate::derive::steps::{StepResult, expand_names};
+use crate::derive::variants::{general_answer, step_values};
+use crate::model::units::{DimensionError, Measure, measure_of};
+use crate::scene::{Answer, Claim, Operation, Scene};
+
+/// A dimension error at a line of the scene.
+#[derive(Debug, thiserror::Error)]
+#[error("{what}: {why}")]
+pub struct DimensionFault {
+    pub line: usize,
+    pub what: String,
+    pub why: String,
+}
+
+/// What a name measures: a symbol or coordinate by its unit, a rate by its coordinate's per
+/// second, the time `t` in seconds; anything else is not known.
+fn names<'a>(scene: &'a Scene) -> impl Fn(&str) -> Option<Measure> + 'a {
+    move |s: &str| {
+        if s == "t" {
+            return Some(Measure::of(&crate::model::units::Unit::parse("s").ok()?));
+        }
+        if let Some(q) = s.strip_suffix("''") {
+            return Some(names(scene)(q)?.per_second().per_second());
+        }
+        if let Some(q) = s.strip_suffix('\'') {
+            return Some(names(scene)(q)?.per_second());
+        }
+        scene.units.get(s).map(Measure::of)
+    }
+}
+
+fn measure(scene: &Scene, e: &Expr) -> Result<Option<Measure>, DimensionError> {
+    measure_of(e, &names(scene))
+}
+
+/// Every expression of the scene checked; the first fault, in the file's order of steps and
+/// answers. A scene without units has nothing to check. Claims are not refused here: a claim
+/// whose sides differ in dimension disagrees, with the reason beside it ([`claim_notes`]).
+pub fn check_dimensions(scene: &Scene, d: &Derivation) -> Result<(), DimensionFault> {
+    if scene.units.is_empty() {
+        return Ok(());
+    }
+    // The bodies' tensor: a size given in a mass, say, shows as a sum of unlike terms.
+    if let Some(tensor) = d
+        .quantities
+        .get(crate::model::catalogue::quantity::INERTIA_TENSOR)
+    {
+        for e in tensor.entries() {
+            measure(scene, &e).map_err(|e| DimensionFault {
+                line: scene.id_at.0,
+                what: "the bodies' inertia tensor".into(),
+                why: format!("{e}; check the bodies' sizes, positions and masses"),
+            })?;
+        }
+    }
+    for step in &scene.steps {
+        let what = format!("step `{}`", step.name);
+        let fault = |why: String| DimensionFault {
+            line: step.line,
+            what: what.clone(),
+            why,
+        };
+        let written: Vec<&Expr> = match &step.op {
+            Operation::Be(e) => vec![e],
+            Operation::Differentiate { of, .. } | Operation::Integrate { of, .. } => vec![of],
+            Operation::Series { of, .. } => vec![of],
+            _ => vec![],
+        };
+        for e in written {
+            if let Ok(x) = expand_names(scene, d, step, e) {
+                measure(scene, &x).map_err(|e| fault(e.to_string()))?;
+            }
+        }
+        let Some(gives) = &step.gives else { continue };
+        let Ok(notes) = expand_names(scene, d, step, gives) else {
+            continue;
+        };
+        let stated = measure(scene, &notes).map_err(|e| fault(format!("`gives`: {e}")))?;
+        if let (Some(stated), Some(StepResult::Expr(result))) = (stated, d.named.get(&step.name))
+            && let Ok(Some(derived)) = measure(scene, result)
+            && stated.dimension != derived.dimension
+            && !notes.is_zero()
+        {
+            return Err(fault(format!(
+                "`gives` is in {}, but the step's result is in {}: they differ by {}; check \
+                 `gives`, or the symbols' units",
+                stated.dimension,
+                derived.dimension,
+                stated.dimension.over(&derived.dimension)
+            )));
+        }
+    }
+    if let Some(problem) = &scene.problem {
+        for a in &problem.answers {
+            answer_scale(scene, d, a)?;
+        }
+    }
+    Ok(())
+}
+
+/// Why a claim's two sides differ in dimension, if they do (its value's own unlike sum
+/// included).
+fn claim_mismatch(scene: &Scene, env: &crate::derive::algebra::Env, c: &Claim) -> Option<String> {
+    let (Some(q), Some(v)) = (&c.quantity, &c.value) else {
+        return None;
+    };
+    let (Ok(q), Ok(v)) = (evaluate(q, env), evaluate(v, env)) else {
+        return None;
+    };
+    for (derived, stated) in q.entries().iter().zip(v.entries()) {
+        let stated_m = match measure(scene, &stated) {
+            Ok(m) => m,
+            Err(e) => return Some(e.to_string()),
+        };
+        if let (Ok(Some(derived_m)), Some(stated_m)) = (measure(scene, derived), stated_m)
+            && derived_m.dimension != stated_m.dimension
+            && !stated.is_zero()
+            && !derived.is_zero()
+        {
+            return Some(format!(
+                "the claim's value is in {}, but `{}` is in {}: they differ by {}",
+                stated_m.dimension,
+                c.quantity.as_ref().map_or(String::new(), |q| q.to_text()),
+                derived_m.dimension,
+                stated_m.dimension.over(&derived_m.dimension)
+            ));
+        }
+    }
+    None
+}
+
+/// The claims whose sides differ in dimension, by line, each with why: such a claim
+/// disagrees, and the reason is a line of its erratum.
+pub fn claim_notes(scene: &Scene, d: &Derivation) -> Vec<(usize, String)> {
+    if scene.units.is_empty() {
+        return Vec::new();
+    }
+    let env = claim_env(scene, d);
+    scene
+        .claims
+        .iter()
+        .filter_map(|c| Some((c.line, claim_mismatch(scene, &env, c)?)))
+        .collect()
+}
+
+/// What an answer's derived value is multiplied by to be in its unit: the size of the unit its
+/// symbols give it over the size of the unit asked for (100 for an answer in cm of symbols in
+/// m). `None` when the answer has no unit or its symbols have none.
+pub fn answer_scale(
+    scene: &Scene,
+    d: &Derivation,
+    a: &Answer,
+) -> Result<Option<Rational>, DimensionFault> {
+    let Some(unit) = &a.unit else {
+        return Ok(None);
+    };
+    let fault = |why: String| DimensionFault {
+        line: a.line,
+        what: format!("the answer `{}`", a.written),
+        why,
+    };
+    let Ok(general) = general_answer(scene, d, &step_values(d), a) else {
+        return Ok(None);
+    };
+    let mut found: Option<Measure> = None;
+    for e in general.entries() {
+        if let Some(m) = measure(scene, &e).map_err(|e| fault(e.to_string()))?
+            && !e.is_zero()
+        {
+            found = Some(m);
+        }
+    }
+    let Some(m) = found else {
+        return Ok(None);
+    };
+    if m.dimension != unit.dimension {
+        return Err(fault(format!(
+            "it is in {}, but its unit `{}` is in {}: give it a unit of {}",
+            m.dimension, unit.text, unit.dimension, m.dimension
+        )));
+    }
+    Ok(Some(
+        m.scale
+            .mul(&unit.scale.recip().expect("a unit is not zero")),
+    ))
+}

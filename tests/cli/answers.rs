@@ -1,0 +1,188 @@
+//! Problems that grade any expression, with units (tests/course/problems): every key answer
+//! against a closed form written here, no answer on a student's sheet, the Moodle quizzes
+//! parsed with their units, and each dimension error located.
+
+use super::problems::numbers;
+use super::{mechbook, scratch, stderr, stdout};
+use mechbook::base::format::{figures, significant};
+use mechbook::render::math::inline;
+use nalgebra::{Matrix3, Vector3};
+use serde_json::Value as Json;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+const COURSE: &str = "tests/course/problems";
+
+fn checked() -> Vec<Json> {
+    let out = mechbook(&["check", "--json", COURSE]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let json: Json = serde_json::from_str(&stdout(&out)).unwrap();
+    json["scenes"].as_array().unwrap().clone()
+}
+
+fn values(v: &Json) -> BTreeMap<String, f64> {
+    v["values"]
+        .as_object()
+        .unwrap()
+        .iter()
+        .map(|(k, x)| (k.clone(), x["numeric"].as_f64().unwrap()))
+        .collect()
+}
+
+/// Each answer of each variant by a closed form of this test's own, in the answer's unit.
+fn expected(id: &str, x: &BTreeMap<String, f64>) -> Vec<Vec<f64>> {
+    let g = |k: &str| x[k];
+    match id {
+        "problem-pendulum" => vec![
+            vec![g("M") * g("L").powi(2) / 3.0],
+            vec![2.0 * std::f64::consts::PI * (2.0 * g("L") / (3.0 * g("g"))).sqrt()],
+        ],
+        "problem-angle-l-omega" => {
+            let (a, b, c) = (g("a"), g("b"), g("c"));
+            let tensor =
+                Matrix3::from_diagonal(&Vector3::new(b * b + c * c, a * a + c * c, a * a + b * b))
+                    * (g("m") / 12.0);
+            let w = Vector3::new(g("w"), 0.0, g("w"));
+            let l = tensor * w;
+            let angle = (l.dot(&w) / (l.norm() * w.norm())).acos();
+            vec![l.iter().copied().collect(), vec![angle]]
+        }
+        "problem-rolling" => vec![vec![2.0 / 3.0 * g("g") * g("alpha").sin()]],
+        "problem-critical-spin" => {
+            vec![vec![
+                2.0 * (g("I1") * g("M") * g("g") * g("l")).sqrt() / g("I3"),
+            ]]
+        }
+        // In centimetres: the cylinder's centre at H/2, the cone's at H + h/4.
+        "problem-centre-of-mass" => vec![vec![
+            100.0 * (g("m") * g("H") / 2.0 + g("k") * (g("H") + g("h") / 4.0)) / (g("m") + g("k")),
+        ]],
+        other => panic!("no closed form for {other}"),
+    }
+}
+
+#[test]
+fn every_key_answer_matches_a_closed_form_and_none_reaches_a_student() {
+    let scenes = checked();
+    assert_eq!(scenes.len(), 5);
+    let dir = scratch("answers-site");
+    let site = dir.join("site");
+    let built = mechbook(&["build", COURSE, "--out", site.to_str().unwrap()]);
+    assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+    let mut answers = 0;
+    for s in &scenes {
+        let id = s["id"].as_str().unwrap();
+        assert_eq!(s["passed"], true, "{id}");
+        let lecture = s["notes"]["lecture"].as_str().unwrap().replace(' ', "-");
+        let sheet = |kind: &str| {
+            let path = site.join(format!("handouts/lecture-{lecture}-problems-{kind}.html"));
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        };
+        let (student, key) = (sheet("student"), sheet("key"));
+        for v in s["variants"].as_array().unwrap() {
+            let want = expected(id, &values(v));
+            let given = v["answers"].as_array().unwrap();
+            assert_eq!(given.len(), want.len(), "{id}");
+            for (a, w) in given.iter().zip(&want) {
+                assert_eq!(a["passed"], true, "{id}: {a}");
+                for (got, w) in numbers(a).iter().zip(w) {
+                    assert!(
+                        (got - w).abs() <= 1e-12 * w.abs().max(1.0),
+                        "{id} variant {}: {} is {got}, the closed form {w}",
+                        v["number"],
+                        a["quantity"]
+                    );
+                    answers += 1;
+                    // The key gives it to four figures; the student's sheet nowhere.
+                    assert!(key.contains(&figures(*got, 4)), "{id}: key lacks {got}");
+                    for decimal in [figures(*got, 4), significant(*got, 6)] {
+                        if decimal.contains('.') && *got != 0.0 {
+                            assert!(!student.contains(&decimal), "{id}: {decimal} on a sheet");
+                        }
+                    }
+                }
+                let exact = inline(a["latex"].as_str().unwrap()).unwrap();
+                assert!(!student.contains(&exact), "{id}: {exact} on a sheet");
+            }
+        }
+    }
+    assert!(answers >= 40, "{answers} answers");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn moodle_questions_carry_units_labels_and_blanks_for_every_answer() {
+    let dir = scratch("answers-moodle");
+    let site = dir.join("site");
+    let built = mechbook(&["build", COURSE, "--out", site.to_str().unwrap()]);
+    assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+    let read =
+        |id: &str| std::fs::read_to_string(site.join(format!("export/moodle/{id}.xml"))).unwrap();
+    // One answer: a numerical question whose unit Moodle grades.
+    let text = read("problem-rolling");
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let questions: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("question") && n.attribute("type") == Some("numerical"))
+        .collect();
+    assert_eq!(questions.len(), 6);
+    for q in &questions {
+        let unit = q
+            .descendants()
+            .find(|n| n.has_tag_name("unit_name"))
+            .and_then(|n| n.text());
+        assert_eq!(unit, Some("m/s^2"));
+        let multiplier = q.descendants().find(|n| n.has_tag_name("multiplier"));
+        assert_eq!(multiplier.and_then(|n| n.text()), Some("1"));
+        let grading = q.children().find(|n| n.has_tag_name("unitgradingtype"));
+        assert_eq!(grading.and_then(|n| n.text()), Some("1"));
+    }
+    // Two answers: a cloze question, each blank with its label before it and unit after it.
+    let text = read("problem-pendulum");
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    for q in doc
+        .descendants()
+        .filter(|n| n.has_tag_name("question") && n.attribute("type") == Some("cloze"))
+    {
+        let body = q
+            .descendants()
+            .find(|n| n.has_tag_name("questiontext"))
+            .and_then(|n| n.descendants().find(|n| n.has_tag_name("text")))
+            .and_then(|n| n.text())
+            .unwrap();
+        assert!(
+            body.contains("<p>Moment of inertia about the pivot:</p>"),
+            "{body}"
+        );
+        assert!(
+            body.contains("<p>Period of small oscillations:</p>"),
+            "{body}"
+        );
+        assert_eq!(body.matches("{1:NUMERICAL:=").count(), 2, "{body}");
+        assert_eq!(body.matches("} kg m^2</p>").count(), 1, "{body}");
+        assert_eq!(body.matches("} s</p>").count(), 1, "{body}");
+        // The statement's $…$ is TeX for Moodle's filter, its values put in.
+        assert!(body.contains("\\(M = {"), "{body}");
+        assert!(!body.contains('$'), "{body}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn each_dimension_error_is_located_and_says_what_to_do() {
+    let dir = Path::new("tests/fixtures/dimensions");
+    let fixtures = super::bad_input::fixtures(dir);
+    assert_eq!(fixtures.len(), 4);
+    for (f, want) in fixtures {
+        let out = mechbook(&["check", f.to_str().unwrap()]);
+        // A refused step or answer is on stderr; a claim's failure is in the report.
+        let err = format!("{}{}", stdout(&out), stderr(&out));
+        assert_eq!(out.status.code(), Some(1), "{}: {err}", f.display());
+        assert!(
+            err.contains(&format!("{}/{}", dir.display(), want.trim())),
+            "{}:\n want: {}\n got:  {err}",
+            f.display(),
+            want.trim()
+        );
+    }
+}
