@@ -56,7 +56,7 @@ try {
   try {
     await page.waitForSelector("#mechbook-serve-error", { state: "visible", timeout: 2000 });
     const text = await page.textContent("#mechbook-serve-error");
-    if (!text.includes("01-book.toml:28:20")) fail(`the error does not locate the mistake: ${text}`);
+    if (!text.includes("01-book.toml:33:20")) fail(`the error does not locate the mistake: ${text}`);
     if (shots) await page.screenshot({ path: `${shots}-error.png` });
   } catch {
     fail("the error did not appear in the page within 2 s");

@@ -205,7 +205,7 @@ fn serve_rebuilds_on_edit_shows_errors_in_the_page_and_stops_on_ctrl_c() {
     assert!(shown.is_some(), "the error was not shown within {EDIT:?}");
     let broken = page(port, "/book.html");
     assert!(
-        broken.contains("01-book.toml:28:20: field `claim[0].value`"),
+        broken.contains("01-book.toml:33:20: field `claim[0].value`"),
         "{broken}"
     );
     assert!(broken.contains("write `2*d`"));
