@@ -73,7 +73,7 @@ fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
             .as_ref()
             .map_or(String::new(), |u| format!(" {}", html_escape(&u.text)));
         let blank = |x: f64| format!("{{1:NUMERICAL:={}:{}}}{unit}", number(x), number(tol));
-        let _ = writeln!(text, "<p>{}:</p>", html_escape(&label(spec)));
+        let _ = writeln!(text, "<p>{}:</p>", label_tex(spec));
         match &a.exact {
             Value::Scalar(_) => {
                 let _ = writeln!(text, "<p>{}</p>", blank(a.exact_numbers[0]));
@@ -120,11 +120,7 @@ fn feedback(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
                 .unit
                 .as_ref()
                 .map_or(String::new(), |u| format!(" {}", html_escape(&u.text)));
-            format!(
-                "{}: \\({}\\){unit}",
-                html_escape(&label(spec)),
-                a.exact.to_latex()
-            )
+            format!("{}: \\({}\\){unit}", label_tex(spec), a.exact.to_latex())
         })
         .collect();
     let link = solution.map_or(String::new(), |url| {
@@ -157,6 +153,11 @@ fn label(spec: &crate::scene::Answer) -> String {
         Some(order) => format!("{words} ({order})"),
         None => words.to_string(),
     }
+}
+
+/// A label for Moodle's HTML: escaped, its `$…$` as TeX between `\(` and `\)`.
+fn label_tex(spec: &crate::scene::Answer) -> String {
+    statement_tex(&crate::model::prose::author(&label(spec)))
 }
 
 /// The statement with each value as TeX, the rest escaped for HTML.

@@ -227,7 +227,7 @@ pub fn answer_order(name: &str) -> Option<&'static str> {
 /// An answer's label as HTML: the author's words, a bare quantity's own, or the expression.
 fn spec_label(a: &crate::scene::Answer) -> Result<String, RenderError> {
     match (&a.label, a.bare_quantity()) {
-        (Some(words), _) => Ok(tera::escape_html(&capitalised(words))),
+        (Some(words), _) => super::author_html(&capitalised(words)),
         (None, Some(q)) => answer_label(q),
         (None, None) => math::inline(&a.value.to_latex()),
     }

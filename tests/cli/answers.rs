@@ -165,6 +165,15 @@ fn moodle_questions_carry_units_labels_and_blanks_for_every_answer() {
         assert!(body.contains("\\(M = {"), "{body}");
         assert!(!body.contains('$'), "{body}");
     }
+    // A label's $…$ is TeX for Moodle too.
+    let text = read("problem-angle-l-omega");
+    roxmltree::Document::parse(&text).unwrap();
+    assert_eq!(
+        text.matches("<p>Angle between \\(\\vec{L}\\) and \\(\\vec{\\omega}\\):</p>")
+            .count(),
+        6,
+        "{text}"
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 

@@ -115,7 +115,10 @@ impl Validator<'_> {
                      oscillations\"",
                 ));
             }
-            Some(l) => Some(l.get_ref().clone()),
+            Some(l) => {
+                self.prose(l, &format!("{field}.label"), false)?;
+                Some(l.get_ref().clone())
+            }
             None => None,
         };
         let tolerance = match &raw.tolerance {

@@ -115,7 +115,7 @@ fn latex_problem(latex: &str) -> Option<String> {
 
 impl Validator<'_> {
     /// One prose field, refused at its line when it holds a control character.
-    fn prose(&self, t: &Text, field: &str, lines: bool) -> Result<(), SceneError> {
+    pub(super) fn prose(&self, t: &Text, field: &str, lines: bool) -> Result<(), SceneError> {
         let source = self.loc.text.get(t.span()).unwrap_or("");
         if let Some(why) = control_character(t.get_ref(), source, lines) {
             return Err(self.err(content_start(t), field, why));
