@@ -87,3 +87,37 @@ mod tests {
         assert_eq!(significant(1200.0, 3), "1200");
     }
 }
+
+/// A number as LaTeX: `4.6875e-6` as `4.6875 \times 10^{-6}`, so that no page reads an italic e
+/// and a spaced minus; other numbers as they are.
+pub fn latex_number(s: &str) -> String {
+    match s.split_once(['e', 'E']) {
+        Some((mantissa, exponent)) if !mantissa.is_empty() => {
+            let exponent = exponent.trim_start_matches('+');
+            let exponent = match exponent.strip_prefix('-') {
+                Some(digits) => format!("-{}", digits.trim_start_matches('0')),
+                None => exponent.trim_start_matches('0').to_string(),
+            };
+            if mantissa == "1" {
+                format!("10^{{{exponent}}}")
+            } else {
+                format!("{mantissa} \\times 10^{{{exponent}}}")
+            }
+        }
+        _ => s.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod latex_number_tests {
+    use super::latex_number;
+
+    #[test]
+    fn exponents_become_powers_of_ten() {
+        assert_eq!(latex_number("4.6875e-6"), "4.6875 \\times 10^{-6}");
+        assert_eq!(latex_number("-1.5e+07"), "-1.5 \\times 10^{7}");
+        assert_eq!(latex_number("1e-12"), "10^{-12}");
+        assert_eq!(latex_number("0.25"), "0.25");
+        assert_eq!(latex_number("-3"), "-3");
+    }
+}

@@ -144,10 +144,11 @@ pub fn inertia_kernel(r: &Vec3) -> Mat3 {
     })
 }
 
-/// The right-handed rotation by `angle` about coordinate axis `axis` (0, 1, 2).
+/// The right-handed rotation by `angle` about coordinate axis `axis` (0, 1, 2). At a multiple of
+/// π/12 its sine and cosine are exact numbers (a body turned by π/2 keeps no cos(π/2)).
 pub fn rotation(axis: usize, angle: &Expr) -> Mat3 {
-    let c = Expr::call("cos", angle.clone());
-    let s = Expr::call("sin", angle.clone());
+    let c = crate::cas::special_angles(&Expr::call("cos", angle.clone()));
+    let s = crate::cas::special_angles(&Expr::call("sin", angle.clone()));
     let (o, z) = (Expr::int(1), Expr::int(0));
     let ns = Expr::negate(s.clone());
     match axis {

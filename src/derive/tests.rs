@@ -156,6 +156,29 @@ fn rotating_a_body_rotates_its_tensor() {
 }
 
 #[test]
+fn a_quarter_turn_leaves_no_cosine_of_pi_over_two() {
+    let body = "[[body]]\nkind = \"box\"\nsize = [\"a\", \"b\", \"c\"]\nmass = \"m\"\n";
+    let turned = run(
+        &format!(
+            "{body}rotate = [{{ axis = \"y\", angle = \"pi/2\" }}, {{ axis = \"z\", angle = \"pi/6\" }}]\n"
+        ),
+        "m = \"m\", a = \"a\", b = \"b\", c = \"c\"",
+        "m = 1.0, a = 1.0, b = 2.0, c = 3.0",
+        ALL,
+    );
+    assert_cross_checked(&turned);
+    let text = tensor(&turned).to_text();
+    assert!(!text.contains("cos") && !text.contains("sin"), "{text}");
+    // No step shows the turn's angles (the Viète form of the moments has its own cosines).
+    for step in &turned.derivation.steps {
+        let shown = step.statement.to_text();
+        for angle in ["π/2", "π/6", "1/2*pi", "1/6*pi", "1/2 π", "1/6 π"] {
+            assert!(!shown.contains(angle), "{shown}");
+        }
+    }
+}
+
+#[test]
 fn a_sphere_is_isotropic_and_a_shell_has_more_inertia() {
     let r = run(
         "[[body]]\nkind = \"sphere\"\nradius = \"R\"\nmass = \"M\"\n",

@@ -170,13 +170,32 @@ fn value_math(v: &Value) -> Result<String, RenderError> {
 /// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
 /// of the symbols it contains) and the number, vector or matrix as MathML.
 fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
-    use crate::base::format::significant;
-    let n: Vec<String> = at.numbers.iter().map(|x| significant(*x, 6)).collect();
+    use crate::base::format::{latex_number, significant};
+    // An entry below the rounding of the largest (cos(π/2) in floats, 6e-17) is zero.
+    let largest = at.numbers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let n: Vec<String> = at
+        .numbers
+        .iter()
+        .map(|x| {
+            let x = if x.abs() <= 64.0 * f64::EPSILON * largest {
+                0.0
+            } else {
+                *x
+            };
+            latex_number(&significant(x, 6))
+        })
+        .collect();
     let latex = numbers_latex(v, &n);
     let symbols: Vec<String> = at
         .symbols
         .iter()
-        .map(|(k, x)| format!("{} = {}", Expr::sym(k).to_latex(), significant(*x, 6)))
+        .map(|(k, x)| {
+            format!(
+                "{} = {}",
+                Expr::sym(k).to_latex(),
+                latex_number(&significant(*x, 6))
+            )
+        })
         .collect();
     Ok(format!(
         "at {}: {}",
@@ -390,7 +409,11 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
 fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
     use crate::base::format::significant;
     use crate::numeric::eigen::Space;
-    let values: Vec<String> = p.exact.iter().map(|v| significant(*v, 6)).collect();
+    let values: Vec<String> = p
+        .exact
+        .iter()
+        .map(|v| crate::base::format::latex_number(&significant(*v, 6)))
+        .collect();
     let mut latex = format!("\\{} = {}", p.letter, values.join(",\\; "));
     if p.closed_form {
         let axes: Vec<String> = p
@@ -399,9 +422,9 @@ fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
             .filter_map(|e| match &e.space {
                 Space::Axis(v) => Some(format!(
                     "\\left({}, {}, {}\\right)",
-                    significant(v.x, 4),
-                    significant(v.y, 4),
-                    significant(v.z, 4)
+                    crate::base::format::latex_number(&significant(v.x, 4)),
+                    crate::base::format::latex_number(&significant(v.y, 4)),
+                    crate::base::format::latex_number(&significant(v.z, 4))
                 )),
                 _ => None,
             })

@@ -196,7 +196,10 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
 
 /// The answer's numbers to [`KEY_FIGURES`] figures, in the shape of the exact value.
 pub fn decimals(shape: &Value, numbers: &[f64]) -> String {
-    let n: Vec<String> = numbers.iter().map(|x| figures(*x, KEY_FIGURES)).collect();
+    let n: Vec<String> = numbers
+        .iter()
+        .map(|x| crate::base::format::latex_number(&figures(*x, KEY_FIGURES)))
+        .collect();
     super::numbers_latex(shape, &n)
 }
 

@@ -1,7 +1,8 @@
 // Opens every page of a built site from file:// in headless Chromium and checks that
 //   1. the browser logs no console error, page error or failed request;
 //   2. every <math> element is rendered as MathML (a MathMLElement) with a non-zero box;
-//   3. every <img> (the SVG plots) has loaded with a non-zero natural size.
+//   3. every <img> (the SVG plots) has loaded with a non-zero natural size;
+//   4. no number in math is in e-notation (4.68750e−6 reads as 4.6875·e − 6): 4.6875 × 10⁻⁶.
 // Usage: node check-pages.mjs SITE_DIR   (playwright-core must be resolvable; see .ci/run)
 import { launch } from "./chromium.mjs";
 import { readdirSync, statSync } from "node:fs";
@@ -42,12 +43,14 @@ for (const file of pages) {
     const img = [...document.querySelectorAll("img")];
     const badImg = img.filter((i) => !i.complete || i.naturalWidth <= 0 || i.naturalHeight <= 0)
       .map((i) => i.getAttribute("src"));
-    return { math: math.length, badMath, img: img.length, badImg };
+    const eNotation = math.map((m) => m.textContent).filter((t) => /\d[eE][−+-]?\d/.test(t));
+    return { math: math.length, badMath, img: img.length, badImg, eNotation };
   });
   maths += r.math;
   images += r.img;
   if (r.badMath > 0) problems.push(`${r.badMath} of ${r.math} <math> elements not rendered as MathML with a size`);
   for (const src of r.badImg) problems.push(`plot did not load: ${src}`);
+  for (const t of r.eNotation.slice(0, 3)) problems.push(`a number in e-notation: ${t.slice(0, 80)}`);
   const rel = file.slice(site.length + 1);
   if (problems.length) {
     failures += 1;
