@@ -191,7 +191,12 @@ pub fn site_files(
                 &serde_json::json!({ "name": name, "heading": course.lecture_heading(name) }),
             );
             ctx.insert("instructor", &instructor);
-            let chosen: Vec<&PageView> = idx.iter().map(|&i| &pages[i]).collect();
+            // A student's handout leaves the problems to the problem sheet.
+            let chosen: Vec<&PageView> = idx
+                .iter()
+                .filter(|&&i| instructor || reports[i].scene.problem.is_none())
+                .map(|&i| &pages[i])
+                .collect();
             ctx.insert("pages", &chosen);
             let file = format!(
                 "handouts/{slug}-{}.html",

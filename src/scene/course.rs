@@ -36,12 +36,24 @@ pub struct Course {
     /// The output folder (default `site`).
     #[serde(default)]
     pub output: Option<PathBuf>,
+    /// The paper handouts, sheets and pages print on: `"a4"` (the default) or `"letter"`.
+    #[serde(default)]
+    pub paper: Paper,
     /// Titles of the lectures: `[[lecture]] id = "3/4"`, `title = "The inertia tensor"`.
     #[serde(default, rename = "lecture")]
     pub lectures: Vec<LectureTitle>,
     /// The file, and where each lecture's `id` is in it, for errors about the lectures.
     #[serde(skip)]
     pub source: Option<(PathBuf, Vec<(usize, usize)>)>,
+}
+
+/// A paper size, as CSS's `@page { size }` names it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Paper {
+    #[default]
+    A4,
+    Letter,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -103,6 +115,7 @@ impl Default for Course {
             author: String::new(),
             base_url: String::new(),
             output: None,
+            paper: Paper::A4,
             lectures: Vec::new(),
             source: None,
         }

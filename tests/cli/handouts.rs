@@ -1,0 +1,96 @@
+//! The handouts a lecture prints: the student's marks the notes' mistakes and errata, leaves
+//! the problems to the sheet, and every page prints on the course's paper.
+
+use super::{mechbook, scratch, stderr};
+use std::path::Path;
+
+fn read(site: &Path, file: &str) -> String {
+    std::fs::read_to_string(site.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+#[test]
+fn the_student_handout_marks_mistakes_and_errata_and_leaves_problems_to_the_sheet() {
+    let dir = scratch("handouts-marked");
+    let site = dir.join("site");
+    let built = mechbook(&["build", "lectures", "--out", site.to_str().unwrap()]);
+    assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+    let student = read(&site, "handouts/lecture-3-4-student.html");
+    let instructor = read(&site, "handouts/lecture-3-4-instructor.html");
+    // Eq (4) is an erratum of the notes: marked, with the correct form; never listed as a claim.
+    assert!(
+        student.contains("Erratum: eq. (4) of the notes is wrong"),
+        "{student}"
+    );
+    assert!(
+        !student.contains("<li>(4) "),
+        "an erratum listed as the notes' claim"
+    );
+    assert!(student.matches("<dd>Correct: ").count() >= 4);
+    // An agreeing claim is listed as it is.
+    assert!(student.contains("<li>(3) "));
+    // The problems are on the sheet, not in the summary; the instructor keeps them.
+    assert!(!student.contains("A box about its centre"));
+    assert!(instructor.contains("A box about its centre"));
+    assert!(student.contains("summary</h1>"));
+    // A4 unless the course says otherwise, on every page that prints.
+    for file in [
+        "handouts/lecture-3-4-student.html",
+        "handouts/lecture-3-4-problems-student.html",
+        "handouts/lecture-3-4-problems-key.html",
+        "cube-corner.html",
+        "index.html",
+    ] {
+        assert!(read(&site, file).contains("@page { size: a4; }"), "{file}");
+    }
+    let sheet = read(&site, "handouts/lecture-3-4-problems-student.html");
+    assert!(
+        sheet.contains("<p class=\"name-line\">Name <span></span> Student ID <span></span></p>")
+    );
+
+    // A course of its own: a deliberate mistake is marked as one, and `paper = "letter"`.
+    let course = dir.join("course");
+    std::fs::create_dir_all(&course).unwrap();
+    std::fs::copy(
+        "tests/course/bodies/03-cone.toml",
+        course.join("03-cone.toml"),
+    )
+    .unwrap();
+    std::fs::write(
+        course.join("mechbook.toml"),
+        "title = \"Cones\"\npaper = \"letter\"\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let built = mechbook(&[
+        "build",
+        course.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+    let student = read(&out, "handouts/lecture-Bodies-of-revolution-student.html");
+    assert!(
+        student.contains("A common mistake, not the notes' claim"),
+        "{student}"
+    );
+    assert!(student.contains("@page { size: letter; }"));
+    // An unknown paper is an error at its line.
+    std::fs::write(
+        course.join("mechbook.toml"),
+        "title = \"Cones\"\npaper = \"a5\"\n",
+    )
+    .unwrap();
+    let refused = mechbook(&[
+        "build",
+        course.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(refused.status.code(), Some(1));
+    assert!(
+        stderr(&refused).contains("mechbook.toml:2:"),
+        "{}",
+        stderr(&refused)
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
