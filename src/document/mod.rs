@@ -39,6 +39,8 @@ pub struct Page {
     pub symbols: Vec<(String, String)>,
     /// The declared units of symbols and coordinates, by name, as written.
     pub units: std::collections::BTreeMap<String, String>,
+    /// The scene's abbreviations (`lambda = M/(2*pi*R)`), which its claims and steps use.
+    pub definitions: Vec<(String, Expr)>,
     /// Each body in words: its shape, mass, rotations and shift.
     pub bodies: Vec<String>,
     pub steps: Vec<Step>,
@@ -173,6 +175,11 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
             .units
             .iter()
             .map(|(k, u)| (k.clone(), u.text.clone()))
+            .collect(),
+        definitions: s
+            .definitions
+            .iter()
+            .map(|(k, e)| (k.clone(), e.clone()))
             .collect(),
         bodies: s.bodies.iter().map(describe_body).collect(),
         steps: r

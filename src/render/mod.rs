@@ -105,6 +105,8 @@ pub struct PageView {
     pub fidelity_name: String,
     /// Each symbol as MathML, its meaning as written, and its meaning as HTML with its unit.
     pub symbols: Vec<(String, String, String)>,
+    /// Each abbreviation the scene defines, as MathML: `λ = M/(2πR)`.
+    pub definitions: Vec<String>,
     pub bodies: Vec<String>,
     pub steps: Vec<StepView>,
     pub results: Vec<StepView>,
@@ -370,6 +372,11 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
                     format!("{}{unit}", author_html(v)?),
                 ))
             })
+            .collect::<Result<_, RenderError>>()?,
+        definitions: page
+            .definitions
+            .iter()
+            .map(|(k, e)| math::inline(&format!("{} = {}", Expr::sym(k).to_latex(), e.to_latex())))
             .collect::<Result<_, RenderError>>()?,
         bodies: page.bodies.clone(),
         steps,

@@ -35,6 +35,8 @@ struct PageLink {
     title: String,
     title_html: String,
     errata: usize,
+    /// A problem scene: listed under the lecture's problems, after its derivations.
+    problem: bool,
 }
 
 #[derive(Serialize)]
@@ -222,6 +224,7 @@ pub fn site_files(
                             title: pages[i].title.clone(),
                             title_html: super::author_html(&pages[i].title)?,
                             errata: pages[i].errata,
+                            problem: reports[i].scene.problem.is_some(),
                         })
                     })
                     .collect::<Result<_, RenderError>>()?,

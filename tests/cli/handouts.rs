@@ -42,6 +42,26 @@ fn the_student_handout_marks_mistakes_and_errata_and_leaves_problems_to_the_shee
     ] {
         assert!(read(&site, file).contains("@page { size: a4; }"), "{file}");
     }
+    // The instructor's opens with its contents, a link to each scene's section.
+    let contents = instructor.split("</nav>").next().unwrap();
+    assert!(contents.contains("<h2>Contents</h2>"));
+    assert!(
+        contents.contains("<a href=\"#cube-corner\">") && instructor.contains("id=\"cube-corner\"")
+    );
+    // The index lists each lecture's derivations, then its problems under their own heading.
+    let index = read(&site, "index.html");
+    let lecture = index.split("<h2>Lecture 3&#x2F;9").next().unwrap();
+    let problems = lecture
+        .find("<h3>Problems</h3>")
+        .expect("a Problems heading");
+    assert!(lecture.find("A box about its centre").unwrap() > problems);
+    assert!(lecture.find("Homogeneous cube about a corner").unwrap() < problems);
+    // A scene's abbreviations are in its setup: the hoop's line density.
+    let hoop = read(&site, "hoop.html");
+    assert!(
+        hoop.contains("<p class=\"definitions\">Abbreviations: <math"),
+        "{hoop}"
+    );
     let sheet = read(&site, "handouts/lecture-3-4-problems-student.html");
     assert!(
         sheet.contains("<p class=\"name-line\">Name <span></span> Student ID <span></span></p>")
