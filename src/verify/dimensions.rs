@@ -22,9 +22,12 @@ pub struct DimensionFault {
 }
 
 /// What a name measures: a symbol or coordinate by its unit, a rate by its coordinate's per
-/// second, the time `t` in seconds; anything else is not known.
+/// second, the time `t` in seconds unless the scene gives it a unit; anything else is not known.
 fn names<'a>(scene: &'a Scene) -> impl Fn(&str) -> Option<Measure> + 'a {
     move |s: &str| {
+        if let Some(unit) = scene.units.get(s) {
+            return Some(Measure::of(unit));
+        }
         if s == "t" {
             return Some(Measure::of(&crate::model::units::Unit::parse("s").ok()?));
         }
@@ -34,7 +37,7 @@ fn names<'a>(scene: &'a Scene) -> impl Fn(&str) -> Option<Measure> + 'a {
         if let Some(q) = s.strip_suffix('\'') {
             return Some(names(scene)(q)?.per_second());
         }
-        scene.units.get(s).map(Measure::of)
+        None
     }
 }
 
