@@ -4,20 +4,12 @@
 //   3. every <img> (the SVG plots) has loaded with a non-zero natural size;
 //   4. no number in math is in e-notation (4.68750e−6 reads as 4.6875·e − 6): 4.6875 × 10⁻⁶.
 // Usage: node check-pages.mjs SITE_DIR   (playwright-core must be resolvable; see .ci/run)
-import { launch } from "./chromium.mjs";
-import { readdirSync, statSync } from "node:fs";
-import { join, resolve } from "node:path";
+import { launch, pagesUnder } from "./chromium.mjs";
+import { resolve } from "node:path";
 import { pathToFileURL } from "node:url";
 
 const site = resolve(process.argv[2] ?? "site");
-const pages = [];
-(function walk(dir) {
-  for (const name of readdirSync(dir).sort()) {
-    const p = join(dir, name);
-    if (statSync(p).isDirectory()) walk(p);
-    else if (name.endsWith(".html")) pages.push(p);
-  }
-})(site);
+const pages = pagesUnder(site);
 if (pages.length === 0) {
   console.error(`no pages under ${site}`);
   process.exit(1);

@@ -2,7 +2,7 @@
 // profile that is removed when the browser is closed. `options` go to Playwright's
 // launchPersistentContext (a viewport, say).
 import { chromium } from "playwright-core";
-import { mkdtempSync, rmSync } from "node:fs";
+import { mkdtempSync, readdirSync, rmSync, statSync } from "node:fs";
 import { join } from "node:path";
 import { tmpdir } from "node:os";
 
@@ -21,4 +21,14 @@ export async function launch(options = {}) {
     rmSync(profile, { recursive: true, force: true });
   };
   return browser;
+}
+
+// Every .html file under `dir`, in sorted order, for the checks that open each page.
+export function pagesUnder(dir, pages = []) {
+  for (const name of readdirSync(dir).sort()) {
+    const p = join(dir, name);
+    if (statSync(p).isDirectory()) pagesUnder(p, pages);
+    else if (name.endsWith(".html")) pages.push(p);
+  }
+  return pages;
 }

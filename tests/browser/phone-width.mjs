@@ -2,20 +2,12 @@
 // formulas whose box reaches past the screen's edge, display formulas that scroll sideways or
 // up and down inside their box, and pages that scroll sideways.
 // Usage: node phone-width.mjs SITE_DIR   (playwright-core must be resolvable; see .ci/run)
-import { launch } from "./chromium.mjs";
-import { readdirSync, statSync } from "node:fs";
-import { join, resolve } from "node:path";
+import { launch, pagesUnder } from "./chromium.mjs";
+import { resolve } from "node:path";
 import { pathToFileURL } from "node:url";
 
 const site = resolve(process.argv[2] ?? "site");
-const pages = [];
-(function walk(dir) {
-  for (const name of readdirSync(dir).sort()) {
-    const p = join(dir, name);
-    if (statSync(p).isDirectory()) walk(p);
-    else if (name.endsWith(".html")) pages.push(p);
-  }
-})(site);
+const pages = pagesUnder(site);
 const browser = await launch();
 let failing = 0;
 const totals = { past: 0, scrolled: 0 };

@@ -4,12 +4,10 @@
 // the run (exit 1): long formulas are cut into pieces that wrap (src/render/linebreak.rs).
 // Run by .ci/run on the lectures and tests/course. Usage, with playwright-core resolvable as in
 // .ci/run:  node print-width.mjs SITE_DIR [SITE_DIR ...]
-import { launch } from "./chromium.mjs";
-import { readdirSync, statSync } from "node:fs";
-import { join } from "node:path";
+import { launch, pagesUnder } from "./chromium.mjs";
 import { pathToFileURL } from "node:url";
 const pages = [];
-for (const site of process.argv.slice(2)) (function walk(d) { for (const n of readdirSync(d).sort()) { const p = join(d, n); if (statSync(p).isDirectory()) walk(p); else if (n.endsWith(".html")) pages.push(p); } })(site);
+for (const site of process.argv.slice(2)) pagesUnder(site, pages);
 // A4 printable width at 96 dpi, 1.9 cm margins.
 const browser = await launch({ viewport: { width: 718, height: 1000 } });
 const page = await browser.newPage();
