@@ -5,9 +5,9 @@
 use super::algebra::{Env, evaluate};
 use super::{Derivation, DeriveError};
 use crate::cas::{self, Expr, special_angles};
-use crate::model::catalogue::{Kind, find, quantity};
+use crate::model::catalogue::{Kind, find, quantity, routed_quantities};
 use crate::model::value::Value;
-use crate::scene::{Answer, Problem, ROUTED_QUANTITIES, Scene, Variant};
+use crate::scene::{Answer, Problem, Scene, Variant};
 use std::collections::BTreeMap;
 
 /// One answer of one variant: the quantity and its exact value there.
@@ -66,7 +66,7 @@ pub fn resolve_expr(scene: &Scene, e: &Expr) -> Result<Value, super::algebra::Cl
             env.insert(name.into(), Value::Vector(v.clone()));
         }
     }
-    for name in ROUTED_QUANTITIES {
+    for name in routed_quantities() {
         let p = |k| Expr::sym(&placeholder(name, k));
         let value = match find(name).map(|q| q.kind) {
             Some(Kind::Vector) => Value::Vector(std::array::from_fn(p)),
@@ -118,19 +118,32 @@ pub fn general_answer(
     Ok(Value::Scalar(filled))
 }
 
-/// Every answer of `problem` at `variant`, in the order the problem lists them.
-pub fn exact_answers(
+/// Every answer of `problem` in the scene's symbols ([`general_answer`]), in its order: worked
+/// out once, then each variant's values put in.
+pub fn general_answers(
     scene: &Scene,
     d: &Derivation,
+    problem: &Problem,
+) -> Result<Vec<Value>, DeriveError> {
+    let steps = step_values(d);
+    problem
+        .answers
+        .iter()
+        .map(|a| general_answer(scene, d, &steps, a))
+        .collect()
+}
+
+/// Every answer of `problem` at `variant`, in the order the problem lists them, from their
+/// [`general_answers`].
+pub fn exact_answers(
+    general: &[Value],
     problem: &Problem,
     variant: &Variant,
 ) -> Result<Vec<ExactAnswer>, DeriveError> {
     let mut entries: Vec<Vec<Expr>> = Vec::new();
     let mut for_engine: Vec<(usize, usize, Expr)> = Vec::new();
-    let steps = step_values(d);
-    for (i, answer) in problem.answers.iter().enumerate() {
+    for (i, (answer, general)) in problem.answers.iter().zip(general).enumerate() {
         let name = &answer.written;
-        let general = general_answer(scene, d, &steps, answer)?;
         let mut row = Vec::new();
         for (k, e) in general.entries().iter().enumerate() {
             let e = special_angles(&e.substitute(&|s| variant.values.get(s).cloned()));
@@ -157,7 +170,7 @@ pub fn exact_answers(
         }
     }
     let mut out = Vec::new();
-    for (answer, mut row) in problem.answers.iter().zip(entries) {
+    for ((answer, general), mut row) in problem.answers.iter().zip(general).zip(entries) {
         let name = &answer.written;
         // The roots were ordered at the scene's values; a variant orders its own.
         if answer.bare_quantity() == Some(quantity::PRINCIPAL_MOMENTS) {
@@ -168,13 +181,9 @@ pub fn exact_answers(
                     .then_with(|| a.to_text().cmp(&b.to_text()))
             });
         }
-        let shape = match answer.bare_quantity() {
-            Some(q) => d.quantities[q].clone(),
-            None => Value::Scalar(Expr::int(0)),
-        };
         out.push(ExactAnswer {
             quantity: name.clone(),
-            value: shape.with_entries(&row),
+            value: general.with_entries(&row),
         });
     }
     Ok(out)

@@ -59,6 +59,8 @@ pub struct Page {
     pub exact_vs_numeric: Vec<QuantityCheck>,
     pub regressions: Vec<RegressionResult>,
     pub variants: Vec<VariantCheck>,
+    /// The problem's answers as the author wrote them (label, unit), in the variants' order.
+    pub answers: Vec<crate::scene::Answer>,
     /// Each of the author's steps against its numeric route.
     pub step_checks: Vec<StepCheck>,
     pub figures: Vec<FigureBlock>,
@@ -237,6 +239,11 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
         exact_vs_numeric: r.verification.quantities.clone(),
         regressions: r.verification.regressions.clone(),
         variants: r.verification.variants.clone(),
+        answers: r
+            .scene
+            .problem
+            .as_ref()
+            .map_or(Vec::new(), |p| p.answers.clone()),
         step_checks: r.verification.steps.clone(),
         figures: r
             .figures

@@ -67,8 +67,10 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
             .map(|v| Variant {
                 number: v.number,
                 statement: fill_statement(&p.statement, v),
-                given: placeholders(&p.statement)
-                    .into_iter()
+                given: p
+                    .given
+                    .iter()
+                    .cloned()
                     .filter_map(|name| {
                         Some(Given {
                             value: shown(v, &name)?,
@@ -145,19 +147,6 @@ fn shown(v: &VariantCheck, name: &str) -> Option<Formula> {
     let (_, e) = v.values.iter().find(|(n, _)| n == name)?;
     let decimal = v.decimal.iter().any(|d| d == name);
     Some(crate::scene::shown_value(e, decimal))
-}
-
-/// The names of a statement's `{name}` placeholders, each once, in the order they first come.
-fn placeholders(statement: &str) -> Vec<String> {
-    let mut out: Vec<String> = Vec::new();
-    for piece in statement.split('{').skip(1) {
-        if let Some((name, _)) = piece.split_once('}')
-            && !out.iter().any(|n| n == name)
-        {
-            out.push(name.to_string());
-        }
-    }
-    out
 }
 
 /// A lecture's problem sheet: as many variants as its problem with the most.

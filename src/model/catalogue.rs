@@ -241,6 +241,14 @@ pub const ANSWERS: &[(&str, Output)] = &[
     (quantity::PRECESSION_RATE, Output::SymmetricTop),
 ];
 
+/// The derived quantities an expression answer may use: the mass and the centre of mass, and
+/// every quantity of [`ANSWERS`]. `numeric::answers::Routes` has a route for each.
+pub fn routed_quantities() -> impl Iterator<Item = &'static str> {
+    [quantity::MASS, quantity::CENTRE_OF_MASS]
+        .into_iter()
+        .chain(ANSWERS.iter().map(|(q, _)| *q))
+}
+
 /// The symbol a page prints for a derived quantity a claim names, where one is standard and
 /// clashes with no scene symbol: a claim's `inertia_tensor[0][1]` reads I_{xy}. Other names
 /// print as upright words.

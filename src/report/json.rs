@@ -202,10 +202,10 @@ pub fn scene_json(page: &Page) -> Json {
                 "numeric": e.eval(&|_| None).ok().map(num),
             }))).collect::<serde_json::Map<_, _>>(),
             "passed": v.passed(),
-            "answers": v.answers.iter().map(|a| json!({
+            "answers": v.answers.iter().zip(&page.answers).map(|(a, spec)| json!({
                 "quantity": a.quantity,
-                "label": a.label,
-                "unit": a.unit,
+                "label": spec.label,
+                "unit": spec.unit.as_ref().map(|u| &u.text),
                 "exact": a.exact.to_text(),
                 "latex": a.exact.to_latex(),
                 "entries": a.exact.entries().iter().map(|e| e.to_latex()).collect::<Vec<_>>(),

@@ -24,7 +24,7 @@ pub use types::{
 };
 pub use validate::{
     CLAIM_FUNCTIONS, MAX_INPUT_DEGREE, MAX_INPUT_TERMS, MAX_NAME, MAX_PLOT_RADIANS, MAX_PLOT_TIME,
-    PINNED_VARIANTS, RESERVED_IDS, ROUTED_QUANTITIES, control_character, step_has_route,
+    PINNED_VARIANTS, RESERVED_IDS, control_character, step_has_route, step_named,
 };
 pub use variants::{shown_value, terminating_decimal};
 

@@ -65,6 +65,8 @@ pub struct Scene {
 #[derive(Debug, Clone)]
 pub struct Problem {
     pub statement: String,
+    /// The symbols the statement names, each once, in the order it first names them.
+    pub given: Vec<String>,
     pub answers: Vec<Answer>,
     /// A Moodle answer's tolerance, relative to the answer.
     pub tolerance: f64,

@@ -13,7 +13,7 @@ use crate::derive::Derivation;
 use crate::derive::steps::{equation_with, expand_names, expand_ranges};
 use crate::derive::variants::{placeholder_of, resolve_expr};
 use crate::numeric::answers::{RouteError, Routes};
-use crate::scene::{Operation, Scene, mode_name};
+use crate::scene::{Operation, Scene, step_named};
 use std::collections::BTreeMap;
 
 /// How closely Newton's method must put a root back: it converges quadratically to rounding,
@@ -47,14 +47,14 @@ pub enum AnswerRouteError {
 
 /// An expression answer's routes at one variant: the variant's numbers (symbol -> f64).
 pub struct AnswerRoutes<'a> {
-    pub scene: &'a Scene,
-    pub d: &'a Derivation,
-    pub numbers: &'a BTreeMap<String, f64>,
+    scene: &'a Scene,
+    d: &'a Derivation,
+    numbers: &'a BTreeMap<String, f64>,
     pub routes: Routes<'a>,
     /// Each step's value, once per variant.
     steps: BTreeMap<String, Routed>,
     /// The quantities' relative agreement with the exact route, by name.
-    pub agreement: &'a dyn Fn(&str) -> f64,
+    agreement: &'a dyn Fn(&str) -> f64,
 }
 
 impl<'a> AnswerRoutes<'a> {
@@ -144,10 +144,7 @@ impl<'a> AnswerRoutes<'a> {
     /// A step's result (its own name, or `x_k` of one with several) by the step's own route.
     fn step(&mut self, name: &str) -> Result<Routed, AnswerRouteError> {
         let scene = self.scene;
-        let step = scene
-            .steps
-            .iter()
-            .find(|s| s.name == name || (0..8).any(|k| mode_name(&s.name, k) == name))
+        let step = step_named(&scene.steps, scene.coordinates.len(), name)
             .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
         match &step.op {
             Operation::Be(e) => self.expression(e),

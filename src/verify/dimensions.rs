@@ -10,6 +10,7 @@ use crate::derive::algebra::evaluate;
 use crate::derive::steps::{StepResult, expand_names};
 use crate::derive::variants::{general_answer, step_values};
 use crate::model::units::{DimensionError, Measure, measure_of};
+use crate::model::value::Value;
 use crate::scene::{Answer, Claim, Operation, Scene};
 
 /// A dimension error at a line of the scene.
@@ -103,8 +104,11 @@ pub fn check_dimensions(scene: &Scene, d: &Derivation) -> Result<(), DimensionFa
         }
     }
     if let Some(problem) = &scene.problem {
+        let steps = step_values(d);
         for a in &problem.answers {
-            answer_scale(scene, d, a)?;
+            if let Ok(general) = general_answer(scene, d, &steps, a) {
+                answer_scale(scene, a, &general)?;
+            }
         }
     }
     Ok(())
@@ -160,8 +164,8 @@ pub fn claim_notes(scene: &Scene, d: &Derivation) -> Vec<(usize, String)> {
 /// m). `None` when the answer has no unit or its symbols have none.
 pub fn answer_scale(
     scene: &Scene,
-    d: &Derivation,
     a: &Answer,
+    general: &Value,
 ) -> Result<Option<Rational>, DimensionFault> {
     let Some(unit) = &a.unit else {
         return Ok(None);
@@ -170,9 +174,6 @@ pub fn answer_scale(
         line: a.line,
         what: format!("the answer `{}`", a.written),
         why,
-    };
-    let Ok(general) = general_answer(scene, d, &step_values(d), a) else {
-        return Ok(None);
     };
     let mut found: Option<Measure> = None;
     for e in general.entries() {

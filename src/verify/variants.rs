@@ -8,7 +8,7 @@ use super::principal::PRINCIPAL_AGREEMENT;
 use crate::base::float::max_relative_error;
 use crate::cas::Expr;
 use crate::cas::Rational;
-use crate::derive::variants::{ExactAnswer, exact_answers};
+use crate::derive::variants::{exact_answers, general_answers};
 use crate::derive::{Derivation, DeriveError};
 use crate::model::catalogue::quantity;
 use crate::model::value::Value;
@@ -35,11 +35,6 @@ pub struct VariantCheck {
 pub struct AnswerCheck {
     /// The answer as the author wrote it: a quantity's name or an expression.
     pub quantity: String,
-    /// The author's words for it, and the unit it is given in.
-    #[serde(default)]
-    pub label: Option<String>,
-    #[serde(default)]
-    pub unit: Option<String>,
     pub exact: Value,
     /// The exact answer's entries in f64, and the numeric route's.
     pub exact_numbers: Vec<f64>,
@@ -138,17 +133,41 @@ pub fn check_variants(
 ) -> Result<Vec<VariantCheck>, VariantError> {
     let mut out = Vec::new();
     let angles = scene.whole_turn_symbols();
+    // What does not depend on the variant, once: each answer in symbols, in its unit (its
+    // derived value times its symbols' unit's size over the unit asked for). A failure here is
+    // the first variant's, where it would first show.
+    let first = problem.variants.first().map_or(1, |v| v.number);
+    let fail_first = |source: VariantFailure| VariantError {
+        number: first,
+        source,
+    };
+    let mut general = general_answers(scene, d, problem).map_err(|e| fail_first(e.into()))?;
+    let mut scales = Vec::new();
+    for (answer, g) in problem.answers.iter().zip(&mut general) {
+        let scale = answer_scale(scene, answer, g)
+            .map_err(|f| fail_first(VariantFailure::Dimension(f)))?
+            .filter(|s| *s != Rational::ONE);
+        if let Some(s) = &scale {
+            let entries: Vec<Expr> = g
+                .entries()
+                .into_iter()
+                .map(|e| Expr::mul(vec![Expr::Num(s.clone()), e]))
+                .collect();
+            *g = g.with_entries(&entries);
+        }
+        scales.push(scale.map_or(1.0, |s| s.to_f64()));
+    }
     for v in &problem.variants {
         let fail = |source: VariantFailure| VariantError {
             number: v.number,
             source,
         };
-        let exact = exact_answers(scene, d, problem, v).map_err(|e| fail(e.into()))?;
+        let exact = exact_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
         let numbers = v.numbers_within_a_turn(&angles);
         let agree = |name: &str| agreement(scene, name);
         let mut routes = AnswerRoutes::new(scene, d, &numbers, &agree);
         let mut answers = Vec::new();
-        for (answer, a) in problem.answers.iter().zip(exact) {
+        for ((answer, a), scale) in problem.answers.iter().zip(exact).zip(&scales) {
             let (numeric, tolerance) = match answer.bare_quantity() {
                 Some(q) => (
                     routes.routes.answer(q).map_err(|e| fail(e.into()))?,
@@ -162,26 +181,7 @@ pub fn check_variants(
                     (vec![r.value], r.tolerance + exact_vs_numeric(scene))
                 }
             };
-            // In the unit asked for: the derived value times its unit's size over that unit's.
-            let scale = answer_scale(scene, d, answer)
-                .map_err(|f| fail(VariantFailure::Dimension(f)))?
-                .filter(|s| *s != Rational::ONE);
-            let (a, numeric) = match &scale {
-                Some(s) => (
-                    ExactAnswer {
-                        value: a.value.with_entries(
-                            &a.value
-                                .entries()
-                                .into_iter()
-                                .map(|e| Expr::mul(vec![Expr::Num(s.clone()), e]))
-                                .collect::<Vec<_>>(),
-                        ),
-                        ..a
-                    },
-                    numeric.iter().map(|x| x * s.to_f64()).collect(),
-                ),
-                None => (a, numeric),
-            };
+            let numeric: Vec<f64> = numeric.iter().map(|x| x * scale).collect();
             let exact_numbers: Vec<f64> = a
                 .value
                 .entries()
@@ -190,8 +190,6 @@ pub fn check_variants(
                 .collect();
             let error = max_relative_error(&numeric, &exact_numbers);
             answers.push(AnswerCheck {
-                label: answer.label.clone(),
-                unit: answer.unit.as_ref().map(|u| u.text.clone()),
                 tolerance,
                 quantity: a.quantity,
                 exact: a.value,

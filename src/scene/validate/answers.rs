@@ -4,29 +4,14 @@
 
 use super::{Validator, content_start};
 use crate::cas::Expr;
-use crate::model::catalogue::{ANSWERS, Output, find, quantity};
+use crate::model::catalogue::{ANSWERS, Output, find, routed_quantities};
 use crate::model::units::Unit;
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawAnswer, answer_value};
-use crate::scene::step::mode_name;
 use crate::scene::types::Answer;
 use crate::scene::{AuthorStep, Operation};
 use std::collections::BTreeSet;
 use toml::Spanned;
-
-/// The derived quantities an expression answer may use: each has a numeric route of its own
-/// (quadrature, `SymmetricEigen`, an integration) that every variant is checked on.
-pub const ROUTED_QUANTITIES: &[&str] = &[
-    quantity::MASS,
-    quantity::CENTRE_OF_MASS,
-    quantity::INERTIA_TENSOR,
-    quantity::PRINCIPAL_MOMENTS,
-    quantity::ANGULAR_MOMENTUM,
-    quantity::KINETIC_ENERGY,
-    quantity::MOMENT_ABOUT_AXIS,
-    quantity::RADIUS_OF_GYRATION,
-    quantity::PRECESSION_RATE,
-];
 
 /// The steps whose result has a numeric value of its own at any values: `be` (the expression
 /// as written, its names by their own routes), `frequency` of one coordinate (the period of the
@@ -51,7 +36,7 @@ impl Validator<'_> {
         field: &str,
         names: &BTreeSet<String>,
         wants: &[Output],
-        steps: &[AuthorStep],
+        (steps, coordinates): (&[AuthorStep], usize),
         default_tolerance: f64,
     ) -> Result<Answer, SceneError> {
         let text = answer_value(a);
@@ -73,7 +58,7 @@ impl Validator<'_> {
             ));
         }
         for name in value.symbols() {
-            if find(&name).is_some() && !ROUTED_QUANTITIES.contains(&name.as_str()) {
+            if find(&name).is_some() && !routed_quantities().any(|q| q == name) {
                 return Err(self.err(
                     at,
                     field,
@@ -81,11 +66,11 @@ impl Validator<'_> {
                         "`{name}` has no numeric route to check each variant's answer on; an \
                          answer may use {}, the scene's symbols and the results of `be`, \
                          `frequency`, `solve` and `integrate` steps",
-                        ROUTED_QUANTITIES.join(", ")
+                        routed_quantities().collect::<Vec<_>>().join(", ")
                     ),
                 ));
             }
-            if let Some(step) = step_named(steps, &name)
+            if let Some(step) = step_named(steps, coordinates, &name)
                 && !step_has_route(&step.op)
             {
                 return Err(self.err(
@@ -158,8 +143,12 @@ impl Validator<'_> {
 }
 
 /// The step that gives `name`: its own name, or `x_k` of a step `x` with several results.
-fn step_named<'a>(steps: &'a [AuthorStep], name: &str) -> Option<&'a AuthorStep> {
+pub fn step_named<'a>(
+    steps: &'a [AuthorStep],
+    coordinates: usize,
+    name: &str,
+) -> Option<&'a AuthorStep> {
     steps
         .iter()
-        .find(|s| s.name == name || (0..8).any(|k| mode_name(&s.name, k) == name))
+        .find(|s| s.names_given(coordinates).iter().any(|n| n == name))
 }

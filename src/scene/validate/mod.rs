@@ -13,7 +13,7 @@ mod steps;
 mod symbols;
 mod text;
 
-pub use answers::{ROUTED_QUANTITIES, step_has_route};
+pub use answers::{step_has_route, step_named};
 pub use claims::PINNED_VARIANTS;
 pub use text::control_character;
 
@@ -160,7 +160,7 @@ impl Validator<'_> {
             &values,
             &wants,
             &bodies,
-            (&claim_names, &steps),
+            (&claim_names, &steps, coordinates.len()),
         )?;
         let units = self.units(&raw)?;
         let moments_from_bodies = self.moments_from_bodies(&raw, &symbols, &bodies, &wants)?;

@@ -75,7 +75,7 @@ impl Validator<'_> {
         values: &BTreeMap<String, f64>,
         wants: &[Output],
         bodies: &[Body],
-        (names, steps): (&BTreeSet<String>, &[AuthorStep]),
+        (names, steps, coordinates): (&BTreeSet<String>, &[AuthorStep], usize),
     ) -> Result<Option<Problem>, SceneError> {
         let Some(p) = &raw.problem else {
             if let Some(v) = &raw.variants {
@@ -109,7 +109,7 @@ impl Validator<'_> {
                 &format!("problem.answers[{i}]"),
                 names,
                 wants,
-                steps,
+                (steps, coordinates),
                 tolerance,
             )?;
             if answers.iter().any(|b| b.value == answer.value) {
@@ -142,8 +142,15 @@ impl Validator<'_> {
                 ),
             ));
         }
+        let mut given: Vec<String> = Vec::new();
+        for (name, _) in placeholders {
+            if !given.contains(&name) {
+                given.push(name);
+            }
+        }
         Ok(Some(Problem {
             statement: p.statement.get_ref().clone(),
+            given,
             answers,
             tolerance,
             variants,
