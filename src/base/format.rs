@@ -1,17 +1,61 @@
 //! Deterministic number formatting, shared by captions, reports and pages.
 
-/// A relative error or a time in compact scientific form; exact zero prints as 0.
+/// A relative error or a time in compact scientific form, as a reader writes it: 8.3×10⁻¹⁶
+/// (never 8.3e-16, which reads as 8.3·e − 16); exact zero prints as 0.
 pub fn sci(x: f64) -> String {
     if x == 0.0 {
         "0".into()
     } else {
-        format!("{x:.1e}")
+        text_number(&format!("{x:.1e}"))
     }
 }
 
-/// A tolerance or bound: `1e-10` rather than `1.0e-10`.
+/// A tolerance or bound: 10⁻¹⁰ rather than 1.0×10⁻¹⁰.
 pub fn short(x: f64) -> String {
-    sci(x).replace(".0e", "e")
+    if x == 0.0 {
+        "0".into()
+    } else {
+        text_number(&format!("{x:.1e}").replace(".0e", "e"))
+    }
+}
+
+/// A number in e-notation as text: `8.3e-16` as 8.3×10⁻¹⁶, `1e-10` as 10⁻¹⁰, `2.5e0` as 2.5;
+/// other numbers as they are.
+pub fn text_number(s: &str) -> String {
+    let Some((mantissa, exponent)) = s.split_once(['e', 'E']) else {
+        return s.to_string();
+    };
+    let Ok(power) = exponent.parse::<i32>() else {
+        return s.to_string();
+    };
+    if mantissa.is_empty() {
+        return s.to_string();
+    }
+    if power == 0 {
+        return mantissa.to_string();
+    }
+    let superscript: String = power
+        .to_string()
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            '0' => '⁰',
+            '1' => '¹',
+            '2' => '²',
+            '3' => '³',
+            '4' => '⁴',
+            '5' => '⁵',
+            '6' => '⁶',
+            '7' => '⁷',
+            '8' => '⁸',
+            _ => '⁹',
+        })
+        .collect();
+    match mantissa {
+        "1" => format!("10{superscript}"),
+        "-1" => format!("-10{superscript}"),
+        m => format!("{m}×10{superscript}"),
+    }
 }
 
 /// A computed value to `digits` significant figures, in plain notation between 1e-4 and 1e6 (no
@@ -110,7 +154,22 @@ pub fn latex_number(s: &str) -> String {
 
 #[cfg(test)]
 mod latex_number_tests {
-    use super::latex_number;
+    use super::{latex_number, sci, short, text_number};
+
+    #[test]
+    fn text_numbers_use_powers_of_ten() {
+        assert_eq!(sci(8.34e-16), "8.3×10⁻¹⁶");
+        assert_eq!(sci(1.0), "1.0");
+        assert_eq!(sci(123.0), "1.2×10²");
+        assert_eq!(sci(0.0), "0");
+        assert_eq!(short(1e-10), "10⁻¹⁰");
+        assert_eq!(short(5e-9), "5×10⁻⁹");
+        assert_eq!(text_number("-2.5e+07"), "-2.5×10⁷");
+        assert_eq!(text_number("0.25"), "0.25");
+        assert_eq!(text_number("NaN"), "NaN");
+        // Every digit has its superscript.
+        assert_eq!(text_number("1e-1234567890"), "10⁻¹²³⁴⁵⁶⁷⁸⁹⁰");
+    }
 
     #[test]
     fn exponents_become_powers_of_ten() {

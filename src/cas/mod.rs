@@ -310,8 +310,10 @@ pub fn stats() -> (f64, u64) {
     )
 }
 
-/// Expands and normalises each expression to a canonical sum of terms.
+/// Expands and normalises each expression to a canonical sum of terms, with the sine and
+/// cosine of every multiple of π/12 put in exactly (no step keeps cos(π/2)).
 pub fn simplify_all(exprs: Vec<Expr>) -> Result<Vec<Expr>, CasError> {
+    let exprs: Vec<Expr> = exprs.iter().map(trig::special_angles).collect();
     run(move || exprs.iter().map(engine::simplify).collect())
 }
 

@@ -49,7 +49,7 @@ pub fn expand_multiple_angles(e: &Expr) -> Expr {
     }
 }
 
-/// sin and cos of a multiple of π/6 or π/4 replaced by their exact values (cos π/6 = √3/2), so
+/// sin and cos of a multiple of π/12 replaced by their exact values (cos π/6 = √3/2), so
 /// that a variant's angle such as `pi/6` gives an exact answer; other calls are kept. A rational
 /// multiple of π loses its whole turns first, exactly, so that no float ever sees 1e20·π + π/6
 /// (where f64 has no digit of the π/6 left).
@@ -57,15 +57,8 @@ pub fn special_angles(e: &Expr) -> Expr {
     match e {
         Expr::Call(name, args) if (name == "sin" || name == "cos") && args.len() == 1 => {
             let arg = without_whole_turns(&special_angles(&args[0]));
-            let twelfths = match &arg {
-                Expr::Sym(p) if p == "pi" => Some(12),
-                Expr::Mul(v) if v.len() == 2 && v[1] == Expr::sym("pi") => match &v[0] {
-                    Expr::Num(r) => r.mul(&Rational::int(12)).to_i64(),
-                    _ => None,
-                },
-                other if other.is_zero() => Some(0),
-                _ => None,
-            };
+            // Any form of qπ: `pi/6`, `5*pi/12`, `pi*5/12`.
+            let twelfths = pi_multiple(&arg).and_then(|q| q.mul(&Rational::int(12)).to_i64());
             // sin x = cos(π/2 − x): six twelfths of π.
             let k = twelfths.map(|k| if name == "sin" { 6 - k } else { k });
             match k.and_then(cos_twelfths) {
@@ -109,6 +102,37 @@ mod turns {
     use crate::cas::parse;
 
     #[test]
+    fn every_multiple_of_pi_over_twelve_is_exact_and_agrees_with_f64() {
+        let e = |s: &str| parse(s).unwrap().expr;
+        for k in -30..=30 {
+            for (name, f) in [("sin", f64::sin as fn(f64) -> f64), ("cos", f64::cos)] {
+                // Written three ways: kπ/12, k*pi/12 and pi*k/12.
+                for text in [
+                    format!("{name}({k}/12*pi)"),
+                    format!("{name}({k}*pi/12)"),
+                    format!("{name}(pi*{k}/12)"),
+                ] {
+                    let exact = special_angles(&e(&text));
+                    assert!(
+                        !exact.to_text().contains(name),
+                        "{text} kept: {}",
+                        exact.to_text()
+                    );
+                    let value = exact.eval(&|_| None).unwrap();
+                    // The float route's own error: its argument is off by about |x|ε.
+                    let x = k as f64 * std::f64::consts::PI / 12.0;
+                    let float = f(x);
+                    let bound = 4.0 * f64::EPSILON * (1.0 + x.abs());
+                    assert!(
+                        (value - float).abs() <= bound,
+                        "{text}: {value} against {float}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn whole_turns_come_off_exactly_before_the_special_angles() {
         let e = |s: &str| parse(s).unwrap().expr;
         // cos(1e20 π + π/6) = cos(π/6); in f64 the argument has no digit of π/6 left.
@@ -129,7 +153,8 @@ mod turns {
     }
 }
 
-/// cos(kπ/12) exactly when k is a multiple of 2 or 3.
+/// cos(kπ/12) exactly: cos(π/12) = (√6 + √2)/4 and cos(5π/12) = (√6 − √2)/4 besides the
+/// familiar ones.
 fn cos_twelfths(k: i64) -> Option<Expr> {
     let k = k.rem_euclid(24);
     let k = if k > 12 { 24 - k } else { k };
@@ -137,6 +162,11 @@ fn cos_twelfths(k: i64) -> Option<Expr> {
     let half_root = |n: i128| Expr::mul(vec![Expr::rat(1, 2), Expr::call("sqrt", Expr::int(n))]);
     let magnitude = match k {
         0 => Expr::int(1),
+        1 | 5 => {
+            let root = |n: i128| Expr::mul(vec![Expr::rat(1, 4), Expr::call("sqrt", Expr::int(n))]);
+            let second = Expr::mul(vec![Expr::int(if k == 1 { 1 } else { -1 }), root(2)]);
+            Expr::add(vec![root(6), second])
+        }
         2 => half_root(3),
         3 => half_root(2),
         4 => Expr::rat(1, 2),

@@ -109,7 +109,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         "β from the measured H",
         "beta",
         beta_value.clone(),
-        "H = 3.2737949e-3 (IERS Conventions 2010, Table 1.1, via REFERENCE.md)",
+        "H = 3.2737949×10⁻³ (IERS Conventions 2010, Table 1.1, via REFERENCE.md)",
     )?;
     // The body-frame wobble has angular frequency βω3 (eq 69), so its period is 2π/(βω3); with
     // ω3 = 2π per sidereal day that is 1/β sidereal days.

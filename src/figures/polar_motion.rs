@@ -51,13 +51,14 @@ pub(super) fn polar_motion(
         .collect();
     let desc = format!(
         "Earth's free (Euler) wobble: the rotation axis in the body frame, (ω1/ω3, ω2/ω3), for \
-         I = ({}, {}, {}) (so β = (C − A)/A = {beta:.7e}) and one turn per sidereal day. The exact \
+         I = ({}, {}, {}) (so β = (C − A)/A = {}) and one turn per sidereal day. The exact \
          solution closes after {euler_sidereal:.3} sidereal days = {euler_solar:.3} mean solar days \
          (1/β sidereal days); dots mark 12 months. The observed Chandler period is about \
          {CHANDLER_DAYS} days, {:.3} times longer, because Earth is not rigid.",
         i.0[0],
         i.0[1],
         i.0[2],
+        crate::base::format::text_number(&format!("{beta:.7e}")),
         CHANDLER_DAYS / euler_solar
     );
     let mut f = fig(

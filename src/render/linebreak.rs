@@ -10,8 +10,22 @@
 /// a unit is about 0.66 em, and a step's text column (A4 less margins, or the screen's 52 rem,
 /// less the list's indent and the pieces' hanging indent) about 64 units.
 pub const LINE: f32 = 56.0;
-/// A numerator or radicand wider than this is worth opening.
+/// A phone's line: 390 px less the margins and the list's indent, about 330 px. Formulas wider
+/// than this are set a second time for small screens (render/math.rs).
+pub const PHONE: f32 = 28.0;
+/// On a phone a piece that cannot be cut is scaled down to fit, but never below this; a matrix
+/// that would need more is recast as the tuple of its rows, which can wrap.
+pub const SMALLEST: f32 = 0.7;
+/// A numerator or radicand wider than this is worth opening (a phone's line takes less).
 const CELL: f32 = 20.0;
+const PHONE_CELL: f32 = 10.0;
+
+/// How wide a piece may be, and from what width a fraction or root is worth opening.
+#[derive(Clone, Copy)]
+struct Fit {
+    limit: f32,
+    cell: f32,
+}
 
 /// The LaTeX our printer writes, as a tree: brace groups, `\left…\right` pairs and environments
 /// are single nodes, so that a cut never falls inside one.
@@ -249,10 +263,13 @@ fn env_width(name: &str, body: &[Node]) -> f32 {
 }
 
 fn is_operator(t: &str) -> bool {
-    matches!(t, "+" | "-" | "=" | "\\approx" | "<" | ">")
+    matches!(
+        t,
+        "+" | "-" | "=" | "\\approx" | "<" | ">" | "\\cdot" | "\\times"
+    )
 }
 
-/// Cuts a sequence before each binary +, − and = and after each comma at its own level. Each
+/// Cuts a sequence before each binary +, −, =, · and × and after each comma at its own level. Each
 /// segment keeps its operator, so that the pieces read as the whole.
 pub(super) fn segments(nodes: &[Node]) -> Vec<Vec<Node>> {
     let mut out: Vec<Vec<Node>> = vec![Vec::new()];
@@ -293,22 +310,22 @@ fn has_fraction(nodes: &[Node]) -> bool {
 
 /// Where a segment can open: a parenthesised sum or list, a fraction with a long numerator, or
 /// a one-row matrix (a vector). Returns the widest such node's index.
-fn opening(seg: &[Node]) -> Option<usize> {
+fn opening(seg: &[Node], cell: f32) -> Option<usize> {
     let mut best: Option<(usize, f32)> = None;
     for (i, n) in seg.iter().enumerate() {
         let w = match n {
             Node::Delim { open, inner, .. }
-                if open == "\\left(" && (has_cut(inner) || opening(inner).is_some()) =>
+                if open == "\\left(" && (has_cut(inner) || opening(inner, cell).is_some()) =>
             {
                 width(inner)
             }
             Node::Tok(t) if t == "\\sqrt" => match seg.get(i + 1) {
-                Some(Node::Group(num)) if width(num) > CELL => width(num),
+                Some(Node::Group(num)) if width(num) > cell => width(num),
                 _ => continue,
             },
             Node::Tok(t) if t == "\\frac" => match (seg.get(i + 1), seg.get(i + 2)) {
                 (Some(Node::Group(num)), Some(Node::Group(den)))
-                    if width(num).max(width(den)) > CELL =>
+                    if width(num).max(width(den)) > cell =>
                 {
                     width(num).max(width(den))
                 }
@@ -327,11 +344,11 @@ fn opening(seg: &[Node]) -> Option<usize> {
 }
 
 /// The pieces of one segment, opening its widest group while it is wider than `limit`.
-fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
-    if width(&seg) <= limit {
+fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<String> {
+    if width(&seg) <= fit.limit {
         return vec![latex(&seg)];
     }
-    let Some(i) = opening(&seg) else {
+    let Some(i) = opening(&seg, fit.cell) else {
         return vec![latex(&seg)];
     };
     let (before, rest) = seg.split_at(i);
@@ -346,7 +363,7 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
             reshaped.push(bracket(radicand.clone()));
             reshaped.extend(tree("^{1/2}"));
             reshaped.extend(rest[2..].iter().cloned());
-            return open_segment(reshaped, limit);
+            return open_segment(reshaped, fit);
         }
         Node::Tok(_) => {
             let (Some(Node::Group(num)), Some(Node::Group(den))) = (rest.get(1), rest.get(2))
@@ -367,9 +384,9 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
                 reshaped.push(Node::Group(den.clone()));
                 reshaped.extend(bracketed_if_cut(num));
             } else {
-                // \frac{n}{d} → n (d)^{-1}.
+                // \frac{n}{d} → n (d)^{-1}, a sum n in brackets.
                 if latex(num).trim() != "1" {
-                    reshaped.extend(num.iter().cloned());
+                    reshaped.extend(bracketed_if_cut(num));
                 }
                 // More than one atom takes a bracket before its power: `R^{2}` or a root that
                 // opens into (s)^{1/2} would otherwise get a second superscript.
@@ -381,7 +398,7 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
                 reshaped.extend(tree("^{-1}"));
             }
             reshaped.extend(rest[3..].iter().cloned());
-            return open_segment(reshaped, limit);
+            return open_segment(reshaped, fit);
         }
         Node::Delim { inner, .. } => (inner.clone(), after),
         Node::Env { body, .. } => {
@@ -391,24 +408,48 @@ fn open_segment(seg: Vec<Node>, limit: f32) -> Vec<String> {
         Node::Group(_) => return vec![latex(&seg)],
     };
     let big = if has_fraction(&inner) { "Big" } else { "big" };
-    let mut inner_pieces = pieces_of(&inner, limit);
+    let mut inner_pieces = pieces_of(&inner, fit);
     let last = inner_pieces.len() - 1;
-    inner_pieces[0] = format!("{}\\{big}l({}", latex(before), inner_pieces[0]);
-    inner_pieces[last] = format!("{}\\{big}r){}", inner_pieces[last], latex(after));
-    inner_pieces
+    // What stands before the bracket, and after it, goes on a piece of its own (opened in
+    // turn) when it would make the bracket's first or last piece too wide; a power stays on
+    // its bracket.
+    let scripts = after
+        .iter()
+        .position(|n| !matches!(tok(n), Some("^" | "_")) && !matches!(n, Node::Group(_)))
+        .unwrap_or(after.len());
+    let (power, rest) = after.split_at(scripts);
+    let mut out = Vec::new();
+    let wide = |a: &[Node], piece: &str| width(a) + width(&tree(piece)) > fit.limit;
+    if !before.is_empty() && wide(before, &inner_pieces[0]) {
+        out.extend(open_segment(before.to_vec(), fit));
+        inner_pieces[0] = format!("\\{big}l({}", inner_pieces[0]);
+    } else {
+        inner_pieces[0] = format!("{}\\{big}l({}", latex(before), inner_pieces[0]);
+    }
+    if !rest.is_empty() && wide(after, &inner_pieces[last]) {
+        inner_pieces[last] = format!("{}\\{big}r){}", inner_pieces[last], latex(power));
+        out.extend(inner_pieces);
+        out.extend(open_segment(rest.to_vec(), fit));
+    } else {
+        inner_pieces[last] = format!("{}\\{big}r){}", inner_pieces[last], latex(after));
+        out.extend(inner_pieces);
+    }
+    out
 }
 
-fn pieces_of(nodes: &[Node], limit: f32) -> Vec<String> {
+fn pieces_of(nodes: &[Node], fit: Fit) -> Vec<String> {
     segments(nodes)
         .into_iter()
-        .flat_map(|s| open_segment(s, limit))
+        .flat_map(|s| open_segment(s, fit))
         .map(|s| s.trim().to_string())
+        .filter(|s| !s.is_empty())
         .collect()
 }
 
 /// A matrix whose cells are long, with each long cell stacked on short lines (left-aligned,
 /// later lines indented).
-fn stack_cells(nodes: Vec<Node>) -> Vec<Node> {
+/// `room` is the widest a matrix may stay: the line, or more when the piece may be scaled down.
+fn stack_cells(nodes: Vec<Node>, limit: f32, room: f32) -> Vec<Node> {
     nodes
         .into_iter()
         .map(|n| match n {
@@ -417,7 +458,7 @@ fn stack_cells(nodes: Vec<Node>) -> Vec<Node> {
                 // The columns share a line, less room for a name and an equals sign.
                 let columns = rows.iter().map(Vec::len).max().unwrap_or(1) as f32;
                 // Each column: its gap (1.5) and the \quad of a continued line (2).
-                let cell_width = ((LINE - 6.0) / columns - 3.5).max(12.0);
+                let cell_width = ((limit - 6.0) / columns - 3.5).max(12.0);
                 let mut out = String::new();
                 for (r, row) in rows.iter().enumerate() {
                     if r > 0 {
@@ -431,14 +472,14 @@ fn stack_cells(nodes: Vec<Node>) -> Vec<Node> {
                     }
                 }
                 let body = tree(&out);
-                if env_width(&name, &body) <= LINE - 6.0 {
+                if env_width(&name, &body) <= room - 6.0 {
                     Node::Env { name, body }
                 } else {
                     // Too wide even stacked: the rows as a tuple of tuples, which can wrap.
                     as_tuples(&rows)
                 }
             }
-            Node::Group(v) => Node::Group(stack_cells(v)),
+            Node::Group(v) => Node::Group(stack_cells(v, limit, room)),
             other => other,
         })
         .collect()
@@ -479,7 +520,13 @@ fn stacked(cell: &[Node], most: f32) -> String {
         return latex(cell);
     }
     let mut lines: Vec<String> = Vec::new();
-    for piece in pieces_of(cell, most) {
+    for piece in pieces_of(
+        cell,
+        Fit {
+            limit: most,
+            cell: CELL,
+        },
+    ) {
         let w = width(&tree(&piece));
         match lines.last_mut() {
             Some(line) if width(&tree(line)) + w <= most => {
@@ -506,6 +553,37 @@ fn stacked(cell: &[Node], most: f32) -> String {
     format!("\\begin{{aligned}}{}\\end{{aligned}}", body.join(" \\\\ "))
 }
 
+/// A phone's piece still too wide for its line that holds words in `\text{…}`: each word ends a
+/// piece, so that the sentence wraps as prose does.
+fn split_words(piece: String) -> Vec<String> {
+    if width_of(&piece) <= PHONE {
+        return vec![piece];
+    }
+    let nodes = tree(&piece);
+    let mut out = Vec::new();
+    let mut current: Vec<Node> = Vec::new();
+    let mut i = 0;
+    while i < nodes.len() {
+        if let (Some("\\text"), Some(Node::Group(g))) = (tok(&nodes[i]), nodes.get(i + 1)) {
+            let text = latex(g);
+            if !text.contains(['{', '}', '\\']) && text.trim().contains(' ') {
+                for word in text.split_whitespace() {
+                    current.extend(tree(&format!("\\text{{{word}}}")));
+                    out.push(latex(&current).trim().to_string());
+                    current.clear();
+                }
+                i += 2;
+                continue;
+            }
+        }
+        current.push(nodes[i].clone());
+        i += 1;
+    }
+    out.push(latex(&current).trim().to_string());
+    out.retain(|p| !p.is_empty());
+    out
+}
+
 /// The estimated width of a formula, in characters.
 pub fn width_of(formula: &str) -> f32 {
     width(&tree(formula))
@@ -515,13 +593,32 @@ pub fn width_of(formula: &str) -> f32 {
 /// at sums, equals signs and commas, long groups opened, long matrix cells stacked. Display
 /// formulas take `LINE`; formulas within a sentence a shorter limit, as they start mid-line.
 pub fn pieces(formula: &str, limit: f32) -> Vec<String> {
+    let fit = Fit { limit, cell: CELL };
+    pieces_within(formula, fit, limit)
+}
+
+/// A formula as the pieces to set on a phone's line: as `pieces`, with shorter numerators and
+/// radicands opened, a matrix up to 1/SMALLEST of the line wide (its piece will be scaled
+/// down), and a sentence in `\text` broken between its words.
+pub fn phone_pieces(formula: &str) -> Vec<String> {
+    let fit = Fit {
+        limit: PHONE,
+        cell: PHONE_CELL,
+    };
+    pieces_within(formula, fit, PHONE / SMALLEST)
+        .into_iter()
+        .flat_map(split_words)
+        .collect()
+}
+
+fn pieces_within(formula: &str, fit: Fit, room: f32) -> Vec<String> {
     let nodes = tree(formula);
-    if width(&nodes) <= limit {
+    if width(&nodes) <= fit.limit {
         return vec![formula.to_string()];
     }
-    let nodes = stack_cells(nodes);
-    if width(&nodes) <= limit {
+    let nodes = stack_cells(nodes, fit.limit, room);
+    if width(&nodes) <= fit.limit {
         return vec![latex(&nodes)];
     }
-    pieces_of(&nodes, limit)
+    pieces_of(&nodes, fit)
 }

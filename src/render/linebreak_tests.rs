@@ -145,3 +145,72 @@ fn a_wide_matrix_stacks_its_long_cells() {
     assert!(p[0].contains("\\\\ &\\quad + m a_{"), "{}", p[0]);
     assert!(width(&tree(&p[0])) <= LINE, "{}", width(&tree(&p[0])));
 }
+
+#[test]
+fn a_sum_over_a_wider_sum_keeps_its_numerator_in_brackets() {
+    // (a_0 + … + a_5)(b_0 + … + b_11)^{-1}: without the first bracket it would read
+    // a_0 + … + a_5 (b…)^{-1}, another formula (found on a phone, in the tumbling box).
+    let num: Vec<String> = (0..6).map(|k| format!("a_{{{k}}}")).collect();
+    let den: Vec<String> = (0..12).map(|k| format!("b_{{{k}}}")).collect();
+    let formula = format!("\\frac{{{}}}{{{}}}", num.join(" + "), den.join(" + "));
+    for p in [pieces(&formula, 20.0), phone_pieces(&formula)] {
+        let all = p.join(" ");
+        assert!(
+            all.starts_with("\\left(a_{0}") || all.starts_with("\\bigl(a_{0}"),
+            "{all}"
+        );
+        let between = &all[all.find("a_{5}").unwrap()..all.find("b_{0}").unwrap()];
+        assert!(
+            between.contains("\\right)") || between.contains("\\bigr)"),
+            "{all}"
+        );
+        assert!(all.ends_with("b_{11}\\bigr)^{-1}"), "{all}");
+    }
+}
+
+#[test]
+fn on_a_phone_a_long_factor_before_a_bracket_is_a_piece_of_its_own() {
+    // The sleeping cone's potential: 1/(a long denominator) before the numerator's bracket.
+    let formula = "U = \\frac{3 M \\left(2 \\omega_{3}^{2} R^{4} - 2 \\omega_{3}^{2} R^{4} \\cos\\left(\\theta\\right) + 20 g h^{3} \\cos\\left(\\theta\\right) + 5 g h R^{2} \\cos\\left(\\theta\\right)\\right)}{20 R^{2} + 20 R^{2} \\cos\\left(\\theta\\right) + 80 h^{2} + 80 h^{2} \\cos\\left(\\theta\\right)}";
+    let p = phone_pieces(formula);
+    for piece in &p {
+        assert!(width(&tree(piece)) <= PHONE, "{piece} in {p:?}");
+    }
+    assert_eq!(p[0], "U");
+    assert!(p[1].starts_with("= \\bigl(20 R^{2}"), "{p:?}");
+    let k = p
+        .iter()
+        .position(|s| s.ends_with("\\bigr)^{-1}3 M"))
+        .unwrap();
+    assert!(p[k + 1].starts_with("\\bigl(2 \\omega"), "{p:?}");
+    // On paper the same formula is no different: it fits the line.
+    assert_eq!(pieces(formula, LINE), vec![formula]);
+}
+
+#[test]
+fn on_a_phone_a_sentence_breaks_between_its_words() {
+    let formula = "I_{3} < I_{1}:\\;\\text{positive for some choices and negative for others}";
+    let p = phone_pieces(formula);
+    assert_eq!(p[0], "I_{3}");
+    assert_eq!(p[1], "< I_{1}:\\;\\text{positive}");
+    assert_eq!(p.last().unwrap(), "\\text{others}");
+    assert_eq!(p.len(), 9, "{p:?}");
+    assert_eq!(pieces(formula, LINE), vec![formula]);
+}
+
+#[test]
+fn on_a_phone_no_piece_is_wider_than_it_may_be_scaled_to() {
+    // The widest formulas of tests/course, each as the derivation prints it.
+    for formula in [
+        "I_{xy} = \\int_{0}^{R}\\int_{0}^{\\frac{\\pi}{2}}\\int_{0}^{2\\pi}\\frac{3 M r^{4} \\cos\\left(\\phi\\right) \\sin\\left(\\phi\\right) \\sin\\left(\\theta\\right) \\left(-1 + \\,{\\cos}^{2}\\left(\\theta\\right)\\right)}{2 \\pi R^{3}}\\,d\\phi\\,d\\theta\\,dr = 0",
+        "\\Omega = \\sqrt{\\frac{60 M}{\\left(20 R^{2} + 80 h^{2}\\right) \\left(3 M R^{2} + 12 M h^{2}\\right)} \\left(\\omega_{3}^{2} R^{4} - 20 g h^{3} - 5 g h R^{2}\\right)}",
+        "\\mathrm{turn}_{1} = 2 \\sqrt{\\frac{1159339}{8661249}} \\cos\\left(\\frac{\\arccos\\left(\\frac{5677487248}{127450279035 \\frac{1159339}{8661249}^{\\frac{3}{2}}}\\right) - 4 \\pi}{3}\\right) + \\frac{3440}{2943}",
+        "\\overleftrightarrow{I} = \\begin{pmatrix}\\frac{m}{3} \\left(d^{2} + h^{2}\\right) & -\\frac{h m w}{4} & -\\frac{d m w}{4} \\\\ -\\frac{h m w}{4} & \\frac{m}{3} \\left(d^{2} + w^{2}\\right) & -\\frac{d h m}{4} \\\\ -\\frac{d m w}{4} & -\\frac{d h m}{4} & \\frac{m}{3} \\left(h^{2} + w^{2}\\right)\\end{pmatrix}",
+    ] {
+        let p = phone_pieces(formula);
+        assert!(p.len() > 1 || formula.contains("pmatrix"), "{p:?}");
+        for piece in &p {
+            assert!(width(&tree(piece)) <= PHONE / SMALLEST, "{piece}");
+        }
+    }
+}

@@ -47,6 +47,8 @@ pub struct ClaimView {
     pub quantity: String,
     pub notes: String,
     pub derived: String,
+    /// An agreeing claim whose derived form is longer than the notes' (and equal to it).
+    pub derived_equal: bool,
     /// Each as HTML, its formulas as MathML.
     pub differences: Vec<String>,
     /// For a number the notes give roughly: how it was rounded to compare.
@@ -222,6 +224,18 @@ pub(crate) fn numbers_latex(v: &Value, n: &[String]) -> String {
 }
 
 /// An author's step's numeric check in one sentence (escaped for HTML).
+/// The derived side of a claim as LaTeX; a number the notes give roughly as a decimal
+/// (303.6246, not a fraction of 30 digits).
+fn derived_latex(v: &Value, rough: bool) -> String {
+    match v {
+        Value::Scalar(e) if rough => match e.eval(&|_| None) {
+            Ok(x) => crate::base::format::latex_number(&crate::base::format::significant(x, 7)),
+            Err(_) => v.to_latex(),
+        },
+        _ => v.to_latex(),
+    }
+}
+
 fn check_text(c: &crate::verify::StepCheck) -> String {
     tera::escape_html(&match &c.problem {
         Some(p) => format!("Not checked numerically: {p}"),
@@ -311,18 +325,27 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
                 .transpose()
                 .map(Option::unwrap_or_default)
         };
-        let derived = match &c.derived {
-            None => String::new(),
-            Some(v) => {
-                let latex = v.to_latex();
-                // Beside a claim that agrees, the derived form is a courtesy: left out when it
-                // would fill more than three lines (it is in `check --json`).
-                if c.verdict == Verdict::Agrees && !math::fits_lines(&latex, 3) {
-                    String::new()
-                } else {
-                    math::inline(&latex)?
-                }
-            }
+        let notes_latex = c.notes.as_ref().map(|e| e.to_latex_named(&quantity_symbol));
+        let derived_latex = c
+            .derived
+            .as_ref()
+            .map(|v| derived_latex(v, c.precision.is_some()));
+        // Beside a claim that agrees, the derived form is shown when it says something the
+        // notes' form does not and is about as short; a longer one is equal to the notes' form
+        // (their difference simplifies to 0), which the page says instead. It is in
+        // `check --json` either way.
+        let notes = notes_latex.as_deref().unwrap_or("");
+        let agrees = c.verdict == Verdict::Agrees && c.precision.is_none();
+        let same = agrees && derived_latex.as_deref() == Some(notes);
+        let derived_equal = agrees
+            && !same
+            && derived_latex.as_deref().is_some_and(|latex| {
+                linebreak::width_of(latex)
+                    > (2.0 * linebreak::width_of(notes)).max(linebreak::PHONE)
+            });
+        let derived = match &derived_latex {
+            Some(latex) if !derived_equal && !same => math::inline(latex)?,
+            _ => String::new(),
         };
         claims.push(ClaimView {
             eq: c.eq.clone(),
@@ -332,6 +355,7 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
             quantity: render(c.quantity.as_ref())?,
             notes: render(c.notes.as_ref())?,
             derived,
+            derived_equal,
             differences: c
                 .differences
                 .iter()

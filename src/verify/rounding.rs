@@ -1,5 +1,6 @@
 //! A number the notes give roughly ("about 300 days"): both sides rounded to the notes' figures.
 
+use crate::base::format::{significant, text_number};
 use crate::cas::EvalError;
 use crate::model::value::Value;
 
@@ -56,6 +57,11 @@ pub(super) fn rounded_agreement(
     let unit = if figures == 1 { "figure" } else { "figures" };
     Ok((
         agrees,
-        format!("{d:.6e} rounds to {rd} at {figures} significant {unit}; the notes give {n}"),
+        format!(
+            "{} rounds to {} at {figures} significant {unit}; the notes give {}",
+            text_number(&significant(d, 7)),
+            text_number(&format!("{rd}")),
+            text_number(&format!("{n}"))
+        ),
     ))
 }

@@ -1,6 +1,6 @@
-// Measures a built site on a 390 px phone screen (issue 28, not yet run by CI: it fails today):
-// formulas whose box reaches past the screen's edge, display formulas that scroll sideways or
-// up and down inside their box, and pages that scroll sideways.
+// A built site on a 390 px phone screen: no formula's box reaches past the screen's edge, no
+// display formula scrolls sideways or up and down inside its box, and no page scrolls
+// sideways. Run by .ci/run on the lectures, tests/course and the `init` starter.
 // Usage: node phone-width.mjs SITE_DIR   (playwright-core must be resolvable; see .ci/run)
 import { launch, pagesUnder } from "./chromium.mjs";
 import { resolve } from "node:path";

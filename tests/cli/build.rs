@@ -340,7 +340,7 @@ fn the_cache_rebuilds_only_what_changed() {
     );
     let page = String::from_utf8(d["cube-centre.html"].clone()).unwrap();
     assert!(
-        page.contains("Numeric fidelity: draft (target relative error 1e-3"),
+        page.contains("Numeric fidelity: draft (target relative error 10⁻³"),
         "{page}"
     );
     std::fs::remove_dir_all(&dir).unwrap();

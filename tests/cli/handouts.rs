@@ -114,3 +114,38 @@ fn the_student_handout_marks_mistakes_and_errata_and_leaves_problems_to_the_shee
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn a_step_at_a_multiple_of_pi_over_twelve_is_worked_out_exactly() {
+    let dir = scratch("handouts-special-angles");
+    let course = dir.join("course");
+    let made = mechbook(&["init", course.to_str().unwrap()]);
+    assert_eq!(made.status.code(), Some(0), "{}", stderr(&made));
+    let scene = course.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap().replace(
+        "[outputs]",
+        "[[step]]\nname = \"proj\"\nbe = \"m*cos(pi/2) + m*sin(pi/6) + m*cos(5*pi/12)\"\n\
+         why = \"exact values\"\n\n[outputs]",
+    );
+    std::fs::write(&scene, text).unwrap();
+    let site = dir.join("site");
+    let built = mechbook(&[
+        "build",
+        course.to_str().unwrap(),
+        "--out",
+        site.to_str().unwrap(),
+    ]);
+    assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+    let page = read(&site, "book.html");
+    let step = &page[page.find("<strong>proj</strong>").expect("the step")..];
+    let step = &step[..step.find("</li>").unwrap()];
+    // m/2 + m(√6 − √2)/4: no sine or cosine is left.
+    assert!(
+        !step.contains("<mi>cos</mi>") && !step.contains("<mi>sin</mi>"),
+        "{step}"
+    );
+    assert!(
+        step.contains("<msqrt><mrow><mn>6</mn></mrow></msqrt>"),
+        "{step}"
+    );
+}
