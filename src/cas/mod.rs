@@ -17,6 +17,7 @@ mod parse;
 mod polynomial;
 mod positive;
 mod print;
+pub use print::typeset_as;
 mod radical;
 mod rational;
 mod size;

@@ -5,7 +5,24 @@
 use super::expr::Expr;
 use super::factor::common_factor;
 use super::rational::Rational;
+use std::cell::RefCell;
+use std::collections::BTreeMap;
 use std::fmt;
+
+thread_local! {
+    /// The names the scene being rendered typesets itself (`tex = "\\Omega"`), read by the
+    /// LaTeX printer; empty outside [`typeset_as`].
+    static TYPESET: RefCell<BTreeMap<String, String>> = const { RefCell::new(BTreeMap::new()) };
+}
+
+/// Runs `f` with the scene's own typesetting of its names (name -> LaTeX), so that every
+/// formula of its page prints them so; the table before is put back after.
+pub fn typeset_as<R>(names: &BTreeMap<String, String>, f: impl FnOnce() -> R) -> R {
+    let before = TYPESET.with(|t| t.replace(names.clone()));
+    let out = f();
+    TYPESET.with(|t| t.replace(before));
+    out
+}
 
 impl Expr {
     /// Plain text in the syntax the parser reads back (and that Symbolica reads).
@@ -283,6 +300,9 @@ const GREEK: &[&str] = &[
 /// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
 /// `inertia_tensor` -> upright text.
 fn latex_symbol(s: &str) -> String {
+    if let Some(tex) = TYPESET.with(|t| t.borrow().get(s).cloned()) {
+        return tex;
+    }
     // A coordinate's rates: `phi'` is φ̇, `phi''` φ̈.
     if let Some(base) = s.strip_suffix("''") {
         return format!("\\ddot{{{}}}", latex_symbol(base));

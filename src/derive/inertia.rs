@@ -269,17 +269,28 @@ pub fn derive_tensor(
         let centre = simplify_value(&Value::Vector(std::array::from_fn(|i| {
             Expr::over(sum[i].clone(), mass.clone())
         })))?;
+        let r = centre_name(scene);
         d.steps.push(Step::equation(
             "Centre of mass",
-            "vec(R)",
+            &format!("vec({r})"),
             &centre,
             Prose::default()
-                .math("vec(R) = 1/M int vec(r) ~ dm")
+                .math(&format!("vec({r}) = 1/M int vec(r) ~ dm"))
                 .text(", from the same integrals"),
         ));
         d.set(quantity::CENTRE_OF_MASS, centre)?;
     }
     Ok(())
+}
+
+/// The centre of mass's name: R, or R_cm in a scene that has an R of its own (a radius), so
+/// that no name means two things on its page.
+fn centre_name(scene: &Scene) -> &'static str {
+    if scene.symbols.contains_key("R") || scene.coordinates.contains_key("R") {
+        "R_cm"
+    } else {
+        "R"
+    }
 }
 
 /// Proves I_origin = I_cm + M(d²𝟙 − ddᵀ), with I_cm integrated directly about the centre of mass.
@@ -319,14 +330,19 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         "Tensor about the centre of mass, by direct integration",
         "I_cm",
         &about_cm,
-        "the same integrals with r measured from R",
+        format!(
+            "the same integrals with r measured from {}",
+            centre_name(scene)
+        ),
     ));
     // Route 2: the theorem, I_cm + M(d²𝟙 − ddᵀ) with d = R.
     let shift_term = mat_scale(&mass, &inertia_kernel(&centre));
     let theorem = simplify_value(&Value::Matrix(mat_add(&cm, &shift_term)))?;
+    let r = centre_name(scene);
+    let parallel_axis = format!("I_cm + M big({r}^2 one - vec({r}) vec({r})^T)");
     d.steps.push(Step::equation(
         "Parallel-axis theorem",
-        "I_cm + M big(R^2 one - vec(R) vec(R)^T)",
+        &parallel_axis,
         &theorem,
         cited(
             "parallel-axis",
@@ -344,7 +360,7 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
     }
     d.steps.push(Step::note(
         "Both routes agree",
-        Formula::parse("I_cm + M big(R^2 one - vec(R) vec(R)^T) - ten(I) = 0", &[]),
+        Formula::parse(&format!("{parallel_axis} - ten(I) = 0"), &[]),
         "every entry of the difference simplifies to zero",
     ));
     d.set(quantity::INERTIA_CM, about_cm)?;

@@ -39,6 +39,8 @@ pub struct Page {
     pub symbols: Vec<(String, String)>,
     /// The declared units of symbols and coordinates, by name, as written.
     pub units: std::collections::BTreeMap<String, String>,
+    /// How the scene typesets its names (name -> LaTeX), where it says.
+    pub tex: std::collections::BTreeMap<String, String>,
     /// The scene's abbreviations (`lambda = M/(2*pi*R)`), which its claims and steps use.
     pub definitions: Vec<(String, Expr)>,
     /// Each body in words: its shape, mass, rotations and shift.
@@ -173,6 +175,7 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
             .iter()
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect(),
+        tex: s.tex.clone(),
         units: s
             .units
             .iter()

@@ -23,6 +23,8 @@ pub struct Problem {
     /// What each answer is: its value as written, label, unit and tolerance.
     pub answers: Vec<crate::scene::Answer>,
     pub variants: Vec<Variant>,
+    /// How the scene typesets its names (name -> LaTeX), where it says.
+    pub tex: std::collections::BTreeMap<String, String>,
 }
 
 #[derive(Debug, Clone)]
@@ -60,6 +62,7 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
         page: page_file(r),
         tolerance: p.tolerance,
         answers: p.answers.clone(),
+        tex: r.scene.tex.clone(),
         variants: r
             .verification
             .variants

@@ -59,6 +59,7 @@ fn problem_of(id: &str, variants: usize) -> Problem {
         page: format!("{id}.html"),
         tolerance: 0.01,
         answers: Vec::new(),
+        tex: Default::default(),
         variants: (1..=variants)
             .map(|number| Variant {
                 number,

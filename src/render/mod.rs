@@ -255,7 +255,12 @@ fn check_text(c: &crate::verify::StepCheck) -> String {
 }
 
 /// The HTML view of one page. `timings` adds measured seconds to the numeric table.
+/// A scene's page, with its names typeset as the scene says.
 pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
+    crate::cas::typeset_as(&page.tex, || scene_page_view(page, timings))
+}
+
+fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
     let steps = page
         .steps
         .iter()

@@ -76,8 +76,10 @@ fn sheet_views<P>(
                 .iter()
                 .map(|sp| {
                     let (number, p) = sheet.problem(sp.problem);
-                    make(number, p, &p.variants[sp.variant], sp.shared)
-                        .map_err(|e| e.in_scene(&p.source))
+                    crate::cas::typeset_as(&p.tex, || {
+                        make(number, p, &p.variants[sp.variant], sp.shared)
+                    })
+                    .map_err(|e| e.in_scene(&p.source))
                 })
                 .collect::<Result<_, RenderError>>()?;
             Ok(SheetVariant {
@@ -130,8 +132,9 @@ pub fn answer_key(sheet: &Sheet) -> Result<AnswerKey, RenderError> {
         .iter()
         .map(|a| {
             let (number, p) = sheet.problem(a.problem);
-            let mut answered = key_problem(number, p, &p.variants[a.variant])
-                .map_err(|e| e.in_scene(&p.source))?;
+            let mut answered =
+                crate::cas::typeset_as(&p.tex, || key_problem(number, p, &p.variants[a.variant]))
+                    .map_err(|e| e.in_scene(&p.source))?;
             answered.serves = a.serves.clone();
             Ok(answered)
         })
@@ -310,18 +313,23 @@ pub fn shared_css(variants: usize) -> String {
 
 /// The sheet's print rules: the course and sheet title at the top of every page, and the
 /// variant's number at its top right (a named page per variant). Opened at `#variant-N` (an
-/// empty marker before `<main>`), the sheet shows and prints variant N alone: one student's.
+/// empty marker before `<main>`), the sheet shows and prints variant N alone: one student's,
+/// its shared answers (on a key) and its own run on, on pages headed with its number, rather
+/// than the shared ones on a page of their own, and without the pointers to them.
 pub fn print_css(course: &str, sheet: &str, variants: usize) -> String {
     let mut css = format!(
         "@page {{ margin: 18mm 15mm; @top-left {{ content: {}; font-size: 9pt; }} @bottom-right {{ content: \
-         \"page \" counter(page); font-size: 9pt; }} }}\n.pick {{ display: none; }}\n",
+         \"page \" counter(page); font-size: 9pt; }} }}\n.pick {{ display: none; }}\n\
+         .pick:target ~ main .pointer {{ display: none; }}\n",
         css_string(&format!("{course} · {sheet}"))
     );
     for k in 1..=variants {
         css.push_str(&format!(
             ".variant-{k} {{ page: variant-{k}; }} @page variant-{k} {{ @top-right {{ content: \
              \"Variant {k}\"; font-size: 9pt; font-weight: bold; }} }}\n\
-             #variant-{k}:target ~ main .variant:not(.variant-{k}) {{ display: none; }}\n"
+             #variant-{k}:target ~ main .variant:not(.variant-{k}) {{ display: none; }}\n\
+             #variant-{k}:target ~ main .shared {{ page: variant-{k}; }}\n\
+             #variant-{k}:target ~ main .variant-{k} {{ break-before: auto; page-break-before: auto; }}\n"
         ));
     }
     css

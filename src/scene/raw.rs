@@ -56,7 +56,12 @@ pub struct RawScene {
 /// A symbol's or a coordinate's meaning: a string, or `{ meaning = "...", unit = "kg" }`.
 pub enum RawMeaning {
     Words(String),
-    WithUnit { meaning: Text, unit: Option<Text> },
+    WithUnit {
+        meaning: Text,
+        unit: Option<Text>,
+        /// How the name is typeset, in LaTeX: `tex = "\\Omega"`.
+        tex: Option<Text>,
+    },
 }
 
 /// The meaning, located: the string itself, or the table's `meaning`.
@@ -64,6 +69,14 @@ pub fn meaning_of(m: &Spanned<RawMeaning>) -> Text {
     match m.get_ref() {
         RawMeaning::Words(w) => Spanned::new(m.span(), w.clone()),
         RawMeaning::WithUnit { meaning, .. } => meaning.clone(),
+    }
+}
+
+/// How the name is typeset, if the table says.
+pub fn tex_of(m: &Spanned<RawMeaning>) -> Option<&Text> {
+    match m.get_ref() {
+        RawMeaning::Words(_) => None,
+        RawMeaning::WithUnit { tex, .. } => tex.as_ref(),
     }
 }
 
@@ -81,7 +94,9 @@ impl<'de> Deserialize<'de> for RawMeaning {
         impl<'de> serde::de::Visitor<'de> for Visit {
             type Value = RawMeaning;
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("a meaning in words, or { meaning = \"...\", unit = \"...\" }")
+                f.write_str(
+                    "a meaning in words, or { meaning = \"...\", unit = \"...\", tex = \"...\" }",
+                )
             }
             fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<RawMeaning, E> {
                 Ok(RawMeaning::Words(v.to_string()))
@@ -90,24 +105,25 @@ impl<'de> Deserialize<'de> for RawMeaning {
                 self,
                 mut m: A,
             ) -> Result<RawMeaning, A::Error> {
-                let (mut meaning, mut unit) = (None, None);
+                let (mut meaning, mut unit, mut tex) = (None, None, None);
                 while let Some(key) = m.next_key::<String>()? {
                     match key.as_str() {
                         "meaning" if meaning.is_none() => meaning = Some(m.next_value()?),
                         "unit" if unit.is_none() => unit = Some(m.next_value()?),
-                        "meaning" | "unit" => {
+                        "tex" if tex.is_none() => tex = Some(m.next_value()?),
+                        "meaning" | "unit" | "tex" => {
                             return Err(serde::de::Error::custom(format!("`{key}` given twice")));
                         }
                         other => {
                             return Err(serde::de::Error::unknown_field(
                                 other,
-                                &["meaning", "unit"],
+                                &["meaning", "unit", "tex"],
                             ));
                         }
                     }
                 }
                 let meaning = meaning.ok_or_else(|| serde::de::Error::missing_field("meaning"))?;
-                Ok(RawMeaning::WithUnit { meaning, unit })
+                Ok(RawMeaning::WithUnit { meaning, unit, tex })
             }
         }
         d.deserialize_any(Visit)

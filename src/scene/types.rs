@@ -58,6 +58,9 @@ pub struct Scene {
     pub pinned_variants: Option<(Vec<String>, usize)>,
     /// The declared units of symbols and coordinates; a name without one is not checked.
     pub units: BTreeMap<String, Unit>,
+    /// How symbols and coordinates are typeset when the scene says (`tex = "\\Omega"`), as
+    /// LaTeX that has been read at load.
+    pub tex: BTreeMap<String, String>,
 }
 
 /// A problem: a statement whose `{symbol}` placeholders each variant fills in, and the derived

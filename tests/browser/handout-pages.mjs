@@ -37,14 +37,16 @@ for (const file of handouts) {
   const wrong = boxes.filter(([x, y]) => Math.abs(x - w) > 1.5 || Math.abs(y - h) > 1.5);
   if (!boxes.length) fail(file, "pdfinfo gave no page sizes");
   if (wrong.length) fail(file, `${wrong.length} of ${boxes.length} pages are ${wrong[0].join(" × ")} pt, not ${paper}`);
-  // A page's text less what every page repeats (the running head) and a bare page number.
+  // A page's text less its running head (what every page's first line starts with, such as
+  // the course and the sheet, whatever follows it: "Variant 3") and a bare page number.
   const texts = boxes.map((_, k) => execFileSync("pdftotext", ["-layout", "-f", `${k + 1}`, "-l", `${k + 1}`, out, "-"], { encoding: "utf8" }));
-  const lines = texts.map((t) => t.split("\n").map((l) => l.trim()).filter((l) => l));
-  const everywhere = boxes.length > 1
-    ? new Set(lines[0].filter((l) => lines.every((p) => p.includes(l))))
-    : new Set();
+  const lines = texts.map((t) => t.split("\n").map((l) => l.replace(/\s+/g, " ").trim()).filter((l) => l));
+  const firsts = lines.map((ls) => ls[0] ?? "");
+  let head = boxes.length > 1 ? firsts[0] : "";
+  for (const f of firsts) while (!f.startsWith(head)) head = head.slice(0, -1);
   lines.forEach((ls, k) => {
-    const body = ls.filter((l) => !everywhere.has(l) && !/^(page\s*)?\d+(\s*(of|\/)\s*\d+)?$/i.test(l));
+    const body = ls.filter((l) => !(head.length >= 12 && l.startsWith(head))
+      && !/^(page\s*)?\d+(\s*(of|\/)\s*\d+)?$/i.test(l));
     if (!body.length) fail(file, `page ${k + 1} of ${boxes.length} has no content`);
   });
   printed += boxes.length;

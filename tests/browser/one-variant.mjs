@@ -1,11 +1,15 @@
 // One student's variant, printed: each student sheet (and its key) opened at #variant-N must
 // show and print that variant alone, one page per problem, and the whole sheet one page per
 // problem of every variant (no blank page, no problem split). Printed as a teacher would: A4 and US Letter, with
-// the sheet's own @page rules. Run by .ci/run. Usage, with playwright-core resolvable as there:
+// the sheet's own @page rules. A key printed at #variant-N takes no more pages than variant N
+// takes in the whole key (its pages there are those headed "Variant N"; poppler's pdftotext
+// reads them). Run by .ci/run. Usage, with playwright-core resolvable as there:
 //   node one-variant.mjs SITE_DIR [SITE_DIR ...]   (PDF_DIR=dir keeps the PDFs to look at)
 import { launch } from "./chromium.mjs";
-import { readdirSync, writeFileSync } from "node:fs";
+import { execFileSync } from "node:child_process";
+import { mkdtempSync, readdirSync, rmSync, writeFileSync } from "node:fs";
 import { join, basename } from "node:path";
+import { tmpdir } from "node:os";
 import { pathToFileURL } from "node:url";
 
 const sheets = process.argv.slice(2).flatMap(site => {
@@ -16,7 +20,14 @@ if (!sheets.length) { console.log("one variant: no student sheet found"); proces
 const browser = await launch();
 const page = await browser.newPage();
 const pages = pdf => (pdf.toString("latin1").match(/\/Type\s*\/Page[^s]/g) || []).length;
-let failing = 0, printed = 0, sharedChecked = 0;
+let failing = 0, printed = 0, sharedChecked = 0, keysChecked = 0;
+const scratch = mkdtempSync(join(tmpdir(), "mechbook-one-variant-"));
+// The text of each page of a PDF, from poppler.
+const pageTexts = (pdf) => {
+  const file = join(scratch, "key.pdf");
+  writeFileSync(file, pdf);
+  return execFileSync("pdftotext", ["-layout", file, "-"], { encoding: "utf8" }).split("\f").slice(0, pages(pdf));
+};
 const fail = (...m) => { console.log("FAIL", ...m); failing++; };
 for (const f of sheets) {
   const url = pathToFileURL(f).href;
@@ -50,11 +61,24 @@ for (const f of sheets) {
   const shared = await page.evaluate(() => [...document.querySelectorAll("section.shared .key-problem")].map(a => [a.classList.contains("s-2"), getComputedStyle(a).display !== "none"]));
   if (variants >= 2 && shared.some(([uses, shown]) => uses !== shown)) fail(key, `#variant-2 shows shared answers it does not use, or hides one it uses`);
   sharedChecked += shared.length;
+  // Each variant's key alone takes no more pages than it does in the whole key.
+  await page.goto(key);
+  const whole = await page.pdf({ preferCSSPageSize: true });
+  const heads = pageTexts(whole).map((t) => (t.split("\n")[0].match(/Variant (\d+)\s*$/) || [])[1]);
+  for (let k = 1; k <= variants; k++) {
+    await page.goto(`${key}#variant-${k}`);
+    const alone = pages(await page.pdf({ preferCSSPageSize: true }));
+    const within = heads.filter((h) => h === `${k}`).length;
+    printed += 1;
+    keysChecked += 1;
+    if (alone > within) fail(key, `#variant-${k} prints on ${alone} pages, ${within} in the whole key`);
+  }
   // Back to every variant ("Show all variants" is a link to #sheet).
   await page.goto(`${url}#sheet`);
   const back = await page.evaluate(() => [...document.querySelectorAll("section.variant")].filter(s => getComputedStyle(s).display !== "none").length);
   if (back !== variants) fail(f, `#sheet shows ${back} of ${variants} variants`);
 }
 await browser.close();
-console.log(`one variant: ${sheets.length} student sheets, ${printed} PDFs printed (A4 and Letter), ${sharedChecked} shared answers checked, ${failing} failing`);
+rmSync(scratch, { recursive: true, force: true });
+console.log(`one variant: ${sheets.length} student sheets, ${printed} PDFs printed (A4 and Letter), ${sharedChecked} shared answers checked, ${keysChecked} variants' keys no longer than in the whole key, ${failing} failing`);
 process.exit(failing ? 1 : 0);

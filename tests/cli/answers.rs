@@ -195,3 +195,40 @@ fn each_dimension_error_is_located_and_says_what_to_do() {
         );
     }
 }
+
+#[test]
+fn a_symbol_is_typeset_as_its_scene_says_on_the_page_and_the_key() {
+    // problem-angle-l-omega declares w with tex = "\\omega".
+    let dir = scratch("answers-tex");
+    let site = dir.join("site");
+    let built = mechbook(&["build", COURSE, "--out", site.to_str().unwrap()]);
+    assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+    let read = |file: &str| std::fs::read_to_string(site.join(file)).unwrap();
+    let page = read("problem-angle-l-omega.html");
+    assert!(
+        page.contains("<tr><td><math display=\"inline\"><mi>ω</mi></math></td><td>each non-zero"),
+        "the setup table"
+    );
+    assert!(!page.contains("<mi>w</mi>"), "w left as w on the page");
+    let key = read("handouts/lecture-Rotational-dynamics-problems-key.html");
+    let ours = &key[key.find("The angle between L and ω").expect("the problem")..];
+    let ours = &ours[..ours.find("</article>").unwrap()];
+    assert!(
+        ours.contains("<mi>ω</mi></math> <math display=\"inline\"><mrow></mrow><mo>=</mo>"),
+        "{ours}"
+    );
+    assert!(!ours.contains("<mi>w</mi>"), "{ours}");
+    // Other scenes are not touched: the pendulum's own names are as before.
+    assert!(read("problem-pendulum.html").contains("<mi>M</mi>"));
+    // A scene with a radius R calls its centre of mass R⃗_cm, not R⃗.
+    let centre = read("problem-centre-of-mass.html");
+    let step = &centre[centre.find("Centre of mass</strong>").unwrap()..];
+    assert!(
+        step.starts_with(
+            "Centre of mass</strong><math display=\"block\"><msub><mover><mrow><mi>R</mi></mrow><mi>→</mi></mover><mrow><mrow><mi mathvariant=\"normal\">c</mi><mi mathvariant=\"normal\">m</mi>"
+        ),
+        "{}",
+        &step[..300]
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}

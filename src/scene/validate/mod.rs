@@ -163,6 +163,7 @@ impl Validator<'_> {
             (&claim_names, &steps, coordinates.len()),
         )?;
         let units = self.units(&raw)?;
+        let tex = self.typesetting(&raw)?;
         let moments_from_bodies = self.moments_from_bodies(&raw, &symbols, &bodies, &wants)?;
         let pinned_variants = self.pinned_variants(&raw, problem.is_some())?;
         Ok(Scene {
@@ -203,6 +204,7 @@ impl Validator<'_> {
             moments_from_bodies,
             pinned_variants,
             units,
+            tex,
         })
     }
 

@@ -6,7 +6,7 @@ use super::{RESERVED, Validator, is_identifier};
 use crate::cas::Expr;
 use crate::model::catalogue::{CATALOGUE, is_quantity};
 use crate::scene::error::SceneError;
-use crate::scene::raw::{RawScene, meaning_of, unit_of};
+use crate::scene::raw::{RawScene, meaning_of, tex_of, unit_of};
 use crate::scene::types::Body;
 use crate::scene::validate::CLAIM_FUNCTIONS;
 use std::collections::{BTreeMap, BTreeSet};
@@ -61,6 +61,36 @@ impl Validator<'_> {
                     })?;
                     out.insert(name.get_ref().clone(), unit);
                 }
+            }
+        }
+        Ok(out)
+    }
+
+    /// How symbols and coordinates are typeset (`{ meaning = "...", tex = "\\Omega" }`): LaTeX
+    /// that the pages' reader can set, without `$` signs.
+    pub(super) fn typesetting(
+        &self,
+        raw: &RawScene,
+    ) -> Result<BTreeMap<String, String>, SceneError> {
+        let mut out = BTreeMap::new();
+        for (table, kind) in [(&raw.symbols, "symbols"), (&raw.coordinates, "coordinates")] {
+            for (name, meaning) in table {
+                let Some(tex) = tex_of(meaning) else {
+                    continue;
+                };
+                let problem = if tex.get_ref().contains('$') {
+                    Some("it is LaTeX already: leave out the `$` signs".to_string())
+                } else {
+                    super::text::latex_problem(tex.get_ref())
+                };
+                if let Some(why) = problem {
+                    return Err(self.err(
+                        tex.span().start + 1,
+                        &format!("{kind}.{}.tex", name.get_ref()),
+                        format!("`{}` cannot be typeset: {why}", tex.get_ref()),
+                    ));
+                }
+                out.insert(name.get_ref().clone(), tex.get_ref().trim().to_string());
             }
         }
         Ok(out)

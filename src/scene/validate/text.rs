@@ -82,7 +82,7 @@ fn basic_escape_before_letter(source: &str, letter: char) -> Option<String> {
 
 /// Why LaTeX between `$` signs cannot be typeset, if it cannot: empty, or what the LaTeX
 /// reader says of it.
-fn latex_problem(latex: &str) -> Option<String> {
+pub(super) fn latex_problem(latex: &str) -> Option<String> {
     use pulldown_latex::{Parser, RenderConfig, Storage, push_mathml};
     if latex.trim().is_empty() {
         return Some("it is empty".into());
