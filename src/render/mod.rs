@@ -2,6 +2,7 @@
 //! [`Page`] with the math already converted to MathML, then the site's files in memory. No file
 //! I/O here.
 
+mod latex_tree;
 mod linebreak;
 #[cfg(test)]
 mod linebreak_tests;
