@@ -19,6 +19,24 @@ pub fn short(x: f64) -> String {
     }
 }
 
+/// A digit or a minus sign as a superscript (⁻¹⁶); any other character as it is.
+pub fn superscript(c: char) -> char {
+    match c {
+        '-' => '⁻',
+        '0' => '⁰',
+        '1' => '¹',
+        '2' => '²',
+        '3' => '³',
+        '4' => '⁴',
+        '5' => '⁵',
+        '6' => '⁶',
+        '7' => '⁷',
+        '8' => '⁸',
+        '9' => '⁹',
+        other => other,
+    }
+}
+
 /// A number in e-notation as text: `8.3e-16` as 8.3×10⁻¹⁶, `1e-10` as 10⁻¹⁰, `2.5e0` as 2.5;
 /// other numbers as they are.
 pub fn text_number(s: &str) -> String {
@@ -34,23 +52,7 @@ pub fn text_number(s: &str) -> String {
     if power == 0 {
         return mantissa.to_string();
     }
-    let superscript: String = power
-        .to_string()
-        .chars()
-        .map(|c| match c {
-            '-' => '⁻',
-            '0' => '⁰',
-            '1' => '¹',
-            '2' => '²',
-            '3' => '³',
-            '4' => '⁴',
-            '5' => '⁵',
-            '6' => '⁶',
-            '7' => '⁷',
-            '8' => '⁸',
-            _ => '⁹',
-        })
-        .collect();
+    let superscript: String = power.to_string().chars().map(superscript).collect();
     match mantissa {
         "1" => format!("10{superscript}"),
         "-1" => format!("-10{superscript}"),

@@ -2,6 +2,7 @@
 //! (which turn it into MathML). Each prints the tree; neither reads the other's output.
 
 use super::formula::{Accent, Formula, GREEK, Name, Op};
+use crate::base::format::superscript;
 
 impl Formula {
     pub fn to_latex(&self) -> String {
@@ -184,7 +185,14 @@ fn text(f: &Formula, out: &mut String) {
         Formula::Sup(a, b) => {
             text_operand(a, out);
             match b.as_ref() {
-                Formula::Number(s) => out.extend(s.chars().map(superscript_digit)),
+                // Digits only: a minus stays as it is written.
+                Formula::Number(s) => out.extend(s.chars().map(|c| {
+                    if c.is_ascii_digit() {
+                        superscript(c)
+                    } else {
+                        c
+                    }
+                })),
                 Formula::Name(n) if n.base == "T" && n.sub.is_none() => out.push('ᵀ'),
                 other => {
                     out.push('^');
@@ -324,22 +332,6 @@ fn text_name(n: &Name) -> String {
         s.push('\'');
     }
     s
-}
-
-fn superscript_digit(c: char) -> char {
-    match c {
-        '0' => '⁰',
-        '1' => '¹',
-        '2' => '²',
-        '3' => '³',
-        '4' => '⁴',
-        '5' => '⁵',
-        '6' => '⁶',
-        '7' => '⁷',
-        '8' => '⁸',
-        '9' => '⁹',
-        other => other,
-    }
 }
 
 #[cfg(test)]

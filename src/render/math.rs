@@ -48,16 +48,28 @@ pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
 /// A formula wider than a phone's line is set twice, for paper and wide screens and for phones;
 /// the style sheet shows one (`.wide`, `.narrow`).
 pub fn block(latex: &str) -> Result<String, RenderError> {
-    let wide = set_block(&linebreak::pieces(latex, linebreak::LINE), false)?;
+    for_both_screens(latex, linebreak::LINE, set_block, "div")
+}
+
+/// The formula set for paper and wide screens (cut at `line`), and, when it is wider than a
+/// phone's line and the phone's setting differs, for phones too: each in a `tag` of class
+/// `wide` or `narrow`.
+fn for_both_screens(
+    latex: &str,
+    line: f32,
+    set: fn(&[String], bool) -> Result<String, RenderError>,
+    tag: &str,
+) -> Result<String, RenderError> {
+    let wide = set(&linebreak::pieces(latex, line), false)?;
     if linebreak::width_of(latex) <= linebreak::PHONE {
         return Ok(wide);
     }
-    let narrow = set_block(&linebreak::phone_pieces(latex), true)?;
+    let narrow = set(&linebreak::phone_pieces(latex), true)?;
     if narrow == wide {
         return Ok(wide);
     }
     Ok(format!(
-        "<div class=\"wide\">{wide}</div><div class=\"narrow\">{narrow}</div>"
+        "<{tag} class=\"wide\">{wide}</{tag}><{tag} class=\"narrow\">{narrow}</{tag}>"
     ))
 }
 
@@ -112,17 +124,7 @@ fn binary(k: usize, piece: &str) -> String {
 /// wrap, once it is wider than half a line. Set twice, as a display formula is, when it is
 /// wider than a phone's line.
 pub fn inline(latex: &str) -> Result<String, RenderError> {
-    let wide = set_inline(&linebreak::pieces(latex, linebreak::LINE / 2.0), false)?;
-    if linebreak::width_of(latex) <= linebreak::PHONE {
-        return Ok(wide);
-    }
-    let narrow = set_inline(&linebreak::phone_pieces(latex), true)?;
-    if narrow == wide {
-        return Ok(wide);
-    }
-    Ok(format!(
-        "<span class=\"wide\">{wide}</span><span class=\"narrow\">{narrow}</span>"
-    ))
+    for_both_screens(latex, linebreak::LINE / 2.0, set_inline, "span")
 }
 
 fn set_inline(pieces: &[String], phone: bool) -> Result<String, RenderError> {
