@@ -4,6 +4,7 @@
 
 use super::CONFIRMATION_POINTS;
 use super::step_check::{CheckError, H, StepCheck, at, random_point};
+use crate::base::format::{sci, short};
 use crate::base::rng::Rng;
 use crate::cas::Expr;
 use crate::numeric::motion::{MOTION_STEPS, MOTION_TOLERANCE, rates, state};
@@ -108,7 +109,8 @@ pub(super) fn energy_check(
 ) -> Result<(), CheckError> {
     check.method = format!(
         "the energy Σ q'·∂L/∂q' − L along the motion integrated from the start for t = \
-         {MOTION_TIME} (Dormand–Prince, tolerance {MOTION_TOLERANCE:e})"
+         {MOTION_TIME} (Dormand–Prince, tolerance {})",
+        short(MOTION_TOLERANCE)
     );
     check.tolerance = ENERGY_AGREEMENT;
     let m = integrate(scene, step, lagrangian, eqs)?;
@@ -174,11 +176,15 @@ pub(super) fn conserved_check(
     };
     check.method = format!(
         "the exact value against {route} along the motion integrated from the start for t = \
-         {MOTION_TIME} (Dormand–Prince, tolerance {MOTION_TOLERANCE:e}){}",
+         {MOTION_TIME} (Dormand–Prince, tolerance {}){}",
+        short(MOTION_TOLERANCE),
         if conserved {
             ", and its drift from the start".to_string()
         } else {
-            format!("; it changes by {:.1e} of its size along it", drift / scale)
+            format!(
+                "; it changes by {} of its size along it",
+                sci(drift / scale)
+            )
         }
     );
     check.evaluations = m.evaluations + m.states.len() as u64 * (2 * m.coords.len() as u64 + 3);
@@ -211,7 +217,8 @@ pub(super) fn linear_check(
 ) -> Result<(), CheckError> {
     check.method = format!(
         "the full equations against the linear ones at {CONFIRMATION_POINTS} random states \
-         {AMPLITUDE:e} from rest (they differ by O(amplitude²))"
+         {} from rest (they differ by O(amplitude²))",
+        short(AMPLITUDE)
     );
     check.tolerance = LINEAR_AGREEMENT;
     let mut rng = Rng::new(seed);
@@ -254,7 +261,8 @@ pub(super) fn period_check(
     let period = 2.0 * std::f64::consts::PI / w;
     check.method = format!(
         "the period of the full motion from {PERIOD_AMPLITUDE} off rest, integrated for three \
-         periods (Dormand–Prince, tolerance {MOTION_TOLERANCE:e}), against 2π/Ω"
+         periods (Dormand–Prince, tolerance {}), against 2π/Ω",
+        short(MOTION_TOLERANCE)
     );
     let (measured, evaluations) = measured_period(full, about, &scene.values, period)?;
     check.evaluations = evaluations;

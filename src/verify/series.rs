@@ -2,6 +2,7 @@
 //! at four steps h, h/2, h/4, h/8 from the point; the remainder must shrink like h^(order+1).
 
 use super::step_check::{CheckError, StepCheck, at};
+use crate::base::format::text_number;
 use crate::cas::Expr;
 use crate::scene::Scene;
 
@@ -47,9 +48,10 @@ pub(super) fn remainder_check(
     };
     check.error = (f64::from(order + 1) - observed).max(0.0);
     check.method = format!(
-        "the expression as written against the series at {var} = x0 + h for h = {first:e} to \
-         {:e}: the remainder falls {} (order + 1 = {} wanted, {ORDER_SLACK} short allowed)",
-        first / 8.0,
+        "the expression as written against the series at {var} = x0 + h for h = {} to \
+         {}: the remainder falls {} (order + 1 = {} wanted, {ORDER_SLACK} short allowed)",
+        text_number(&format!("{first:e}")),
+        text_number(&format!("{:e}", first / 8.0)),
         if observed.is_finite() {
             format!("like h^{observed:.2}")
         } else {
