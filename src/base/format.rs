@@ -37,18 +37,20 @@ pub fn superscript(c: char) -> char {
     }
 }
 
+/// A number in e-notation split into its mantissa and power of ten (`8.3e-16` is 8.3 and −16);
+/// `None` for any other number.
+fn power_of_ten(s: &str) -> Option<(&str, i32)> {
+    let (mantissa, exponent) = s.split_once(['e', 'E'])?;
+    let power = exponent.parse::<i32>().ok()?;
+    (!mantissa.is_empty()).then_some((mantissa, power))
+}
+
 /// A number in e-notation as text: `8.3e-16` as 8.3×10⁻¹⁶, `1e-10` as 10⁻¹⁰, `2.5e0` as 2.5;
 /// other numbers as they are.
 pub fn text_number(s: &str) -> String {
-    let Some((mantissa, exponent)) = s.split_once(['e', 'E']) else {
+    let Some((mantissa, power)) = power_of_ten(s) else {
         return s.to_string();
     };
-    let Ok(power) = exponent.parse::<i32>() else {
-        return s.to_string();
-    };
-    if mantissa.is_empty() {
-        return s.to_string();
-    }
     if power == 0 {
         return mantissa.to_string();
     }
@@ -137,20 +139,10 @@ mod tests {
 /// A number as LaTeX: `4.6875e-6` as `4.6875 \times 10^{-6}`, so that no page reads an italic e
 /// and a spaced minus; other numbers as they are.
 pub fn latex_number(s: &str) -> String {
-    match s.split_once(['e', 'E']) {
-        Some((mantissa, exponent)) if !mantissa.is_empty() => {
-            let exponent = exponent.trim_start_matches('+');
-            let exponent = match exponent.strip_prefix('-') {
-                Some(digits) => format!("-{}", digits.trim_start_matches('0')),
-                None => exponent.trim_start_matches('0').to_string(),
-            };
-            if mantissa == "1" {
-                format!("10^{{{exponent}}}")
-            } else {
-                format!("{mantissa} \\times 10^{{{exponent}}}")
-            }
-        }
-        _ => s.to_string(),
+    match power_of_ten(s) {
+        Some(("1", power)) => format!("10^{{{power}}}"),
+        Some((mantissa, power)) => format!("{mantissa} \\times 10^{{{power}}}"),
+        None => s.to_string(),
     }
 }
 

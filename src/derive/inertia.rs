@@ -325,20 +325,17 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         });
     }
     let cm = simplify_mat(&about_cm.unwrap())?;
+    let r = centre_name(scene);
     let about_cm = Value::Matrix(cm.clone());
     d.steps.push(Step::equation(
         "Tensor about the centre of mass, by direct integration",
         "I_cm",
         &about_cm,
-        format!(
-            "the same integrals with r measured from {}",
-            centre_name(scene)
-        ),
+        format!("the same integrals with r measured from {r}"),
     ));
     // Route 2: the theorem, I_cm + M(d²𝟙 − ddᵀ) with d = R.
     let shift_term = mat_scale(&mass, &inertia_kernel(&centre));
     let theorem = simplify_value(&Value::Matrix(mat_add(&cm, &shift_term)))?;
-    let r = centre_name(scene);
     let parallel_axis = format!("I_cm + M big({r}^2 one - vec({r}) vec({r})^T)");
     d.steps.push(Step::equation(
         "Parallel-axis theorem",

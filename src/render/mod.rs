@@ -175,7 +175,6 @@ fn value_math(v: &Value) -> Result<String, RenderError> {
 /// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
 /// of the symbols it contains) and the number, vector or matrix as MathML.
 fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
-    use crate::base::format::{latex_number, significant};
     // An entry below the rounding of the largest (cos(π/2) in floats, 6e-17) is zero.
     let largest = at.numbers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let n: Vec<String> = at
@@ -187,20 +186,14 @@ fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
             } else {
                 *x
             };
-            latex_number(&significant(x, 6))
+            number_latex(x, 6)
         })
         .collect();
     let latex = numbers_latex(v, &n);
     let symbols: Vec<String> = at
         .symbols
         .iter()
-        .map(|(k, x)| {
-            format!(
-                "{} = {}",
-                Expr::sym(k).to_latex(),
-                latex_number(&significant(*x, 6))
-            )
-        })
+        .map(|(k, x)| format!("{} = {}", Expr::sym(k).to_latex(), number_latex(*x, 6)))
         .collect();
     Ok(format!(
         "at {}: {}",
@@ -224,19 +217,24 @@ pub(crate) fn numbers_latex(v: &Value, n: &[String]) -> String {
     }
 }
 
-/// An author's step's numeric check in one sentence (escaped for HTML).
 /// The derived side of a claim as LaTeX; a number the notes give roughly as a decimal
 /// (303.6246, not a fraction of 30 digits).
 fn derived_latex(v: &Value, rough: bool) -> String {
     match v {
         Value::Scalar(e) if rough => match e.eval(&|_| None) {
-            Ok(x) => crate::base::format::latex_number(&crate::base::format::significant(x, 7)),
+            Ok(x) => number_latex(x, 7),
             Err(_) => v.to_latex(),
         },
         _ => v.to_latex(),
     }
 }
 
+/// A computed number to `digits` significant figures, as LaTeX (4.6875 × 10⁻⁶, never e-notation).
+fn number_latex(x: f64, digits: usize) -> String {
+    crate::base::format::latex_number(&crate::base::format::significant(x, digits))
+}
+
+/// An author's step's numeric check in one sentence (escaped for HTML).
 fn check_text(c: &crate::verify::StepCheck) -> String {
     tera::escape_html(&match &c.problem {
         Some(p) => format!("Not checked numerically: {p}"),
@@ -255,8 +253,8 @@ fn check_text(c: &crate::verify::StepCheck) -> String {
     })
 }
 
-/// The HTML view of one page. `timings` adds measured seconds to the numeric table.
-/// A scene's page, with its names typeset as the scene says.
+/// The HTML view of one page, its names typeset as the scene says. `timings` adds measured
+/// seconds to the numeric table.
 pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
     crate::cas::typeset_as(&page.tex, || scene_page_view(page, timings))
 }
@@ -444,13 +442,8 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
 /// The principal moments as numbers, with the axes when only the numerics give them, and how
 /// well the two routes agree.
 fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
-    use crate::base::format::significant;
     use crate::numeric::eigen::Space;
-    let values: Vec<String> = p
-        .exact
-        .iter()
-        .map(|v| crate::base::format::latex_number(&significant(*v, 6)))
-        .collect();
+    let values: Vec<String> = p.exact.iter().map(|v| number_latex(*v, 6)).collect();
     let mut latex = format!("\\{} = {}", p.letter, values.join(",\\; "));
     if p.closed_form {
         let axes: Vec<String> = p
@@ -459,9 +452,9 @@ fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
             .filter_map(|e| match &e.space {
                 Space::Axis(v) => Some(format!(
                     "\\left({}, {}, {}\\right)",
-                    crate::base::format::latex_number(&significant(v.x, 4)),
-                    crate::base::format::latex_number(&significant(v.y, 4)),
-                    crate::base::format::latex_number(&significant(v.z, 4))
+                    number_latex(v.x, 4),
+                    number_latex(v.y, 4),
+                    number_latex(v.z, 4)
                 )),
                 _ => None,
             })
