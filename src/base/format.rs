@@ -39,7 +39,7 @@ pub fn superscript(c: char) -> char {
 
 /// A number in e-notation split into its mantissa and power of ten (`8.3e-16` is 8.3 and −16);
 /// `None` for any other number.
-fn power_of_ten(s: &str) -> Option<(&str, i32)> {
+pub fn power_of_ten(s: &str) -> Option<(&str, i32)> {
     let (mantissa, exponent) = s.split_once(['e', 'E'])?;
     let power = exponent.parse::<i32>().ok()?;
     (!mantissa.is_empty()).then_some((mantissa, power))

@@ -41,7 +41,7 @@ impl fmt::Display for Expr {
 }
 
 #[derive(Clone, Copy, PartialEq, PartialOrd)]
-enum Prec {
+pub(super) enum Prec {
     Sum,
     Product,
     /// A factor of a product.
@@ -68,8 +68,54 @@ fn split_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
     (num, den)
 }
 
+/// A product as the pages set it: negative powers and the denominators of rationals below one
+/// fraction bar, the rest above it.
+pub(super) fn page_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
+    let (mut num, mut den) = (Vec::new(), Vec::new());
+    for f in v {
+        match f {
+            Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(r) if r.is_negative()) => {
+                let Expr::Num(r) = x.as_ref() else {
+                    unreachable!()
+                };
+                den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.negated())));
+            }
+            Expr::Num(r) if !r.is_integer() => {
+                let (n, d) = r.abs_parts();
+                num.push(Expr::Num(if r.is_negative() { n.negated() } else { n }));
+                den.push(Expr::Num(d));
+            }
+            other => num.push(other.clone()),
+        }
+    }
+    (num, den)
+}
+
+/// An index chain `v[0][2]`: its base and its indices in the order written; and, when they are all
+/// 0, 1 or 2, the axes they name (`xz`).
+pub(super) fn index_chain(e: &Expr) -> (&Expr, Vec<&Expr>, Option<Vec<char>>) {
+    let mut indices = Vec::new();
+    let mut base = e;
+    while let Expr::Index(b, i) = base {
+        indices.push(i.as_ref());
+        base = b;
+    }
+    indices.reverse();
+    let axes = indices
+        .iter()
+        .map(|i| match i {
+            Expr::Num(r) if r.is_integer() => ["0", "1", "2"]
+                .iter()
+                .position(|d| r.to_string() == *d)
+                .map(|k| ['x', 'y', 'z'][k]),
+            _ => None,
+        })
+        .collect();
+    (base, indices, axes)
+}
+
 /// A term of a sum printed with its sign: `(negative, magnitude)`.
-fn split_sign(e: &Expr) -> (bool, Expr) {
+pub(super) fn split_sign(e: &Expr) -> (bool, Expr) {
     match e {
         Expr::Num(r) if r.is_negative() => (true, Expr::Num(r.negated())),
         Expr::Mul(v) => match v.first() {
@@ -86,7 +132,7 @@ fn split_sign(e: &Expr) -> (bool, Expr) {
 
 /// One output syntax: how parentheses open and close, and how each kind of node is written.
 /// Sums and negative products are the walk's own.
-trait Style {
+pub(super) trait Style {
     fn open(&self) -> &'static str;
     fn close(&self) -> &'static str;
     fn symbol(&self, name: &str, out: &mut String);
@@ -104,7 +150,7 @@ trait Style {
     fn index(&self, e: &Expr, out: &mut String);
 }
 
-fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
+pub(super) fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
     match e {
         Expr::Num(r) => style.number(r, ctx, out),
         Expr::Sym(s) => style.symbol(s, out),
@@ -364,24 +410,7 @@ impl Style for Latex<'_> {
         }
     }
     fn product(&self, v: &[Expr], ctx: Prec, out: &mut String) {
-        // Collect negative powers into a fraction.
-        let (mut num, mut den) = (Vec::new(), Vec::new());
-        for f in v {
-            match f {
-                Expr::Pow(b, x) if matches!(x.as_ref(), Expr::Num(r) if r.is_negative()) => {
-                    let Expr::Num(r) = x.as_ref() else {
-                        unreachable!()
-                    };
-                    den.push(Expr::pow(b.as_ref().clone(), Expr::Num(r.negated())));
-                }
-                Expr::Num(r) if !r.is_integer() => {
-                    let (n, d) = r.abs_parts();
-                    num.push(Expr::Num(if r.is_negative() { n.negated() } else { n }));
-                    den.push(Expr::Num(d));
-                }
-                other => num.push(other.clone()),
-            }
-        }
+        let (num, den) = page_fraction(v);
         if ctx > Prec::Product {
             out.push_str("\\left(");
         }
@@ -504,35 +533,19 @@ impl Style for Latex<'_> {
     }
     fn index(&self, e: &Expr, out: &mut String) {
         // v[0][2] -> v_{0 2}: one subscript for the whole chain.
-        let mut indices = Vec::new();
-        let mut base = e;
-        while let Expr::Index(b, i) = base {
-            indices.push(i.as_ref());
-            base = b;
-        }
+        let (base, indices, axes) = index_chain(e);
         // A named vector or tensor takes axis letters: I_{xy}, L_{z}.
         if let Expr::Sym(name) = base
             && let Some(symbol) = (self.named)(name)
+            && let Some(axes) = axes
         {
-            let axes: Option<String> = indices
-                .iter()
-                .rev()
-                .map(|i| match i {
-                    Expr::Num(r) if r.is_integer() => ["0", "1", "2"]
-                        .iter()
-                        .position(|d| r.to_string() == *d)
-                        .map(|k| ['x', 'y', 'z'][k]),
-                    _ => None,
-                })
-                .collect();
-            if let Some(axes) = axes {
-                out.push_str(&format!("{{{symbol}}}_{{{axes}}}"));
-                return;
-            }
+            let axes: String = axes.into_iter().collect();
+            out.push_str(&format!("{{{symbol}}}_{{{axes}}}"));
+            return;
         }
         write(base, out, Prec::Power, self);
         out.push_str("_{");
-        for (k, i) in indices.iter().rev().enumerate() {
+        for (k, i) in indices.iter().enumerate() {
             if k > 0 {
                 out.push(' ');
             }

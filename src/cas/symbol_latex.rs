@@ -20,29 +20,51 @@ pub fn typeset_as<R>(names: &BTreeMap<String, String>, f: impl FnOnce() -> R) ->
     out
 }
 
+/// The scene's own LaTeX for a name, while its page is rendered.
+pub(super) fn scene_tex(s: &str) -> Option<String> {
+    TYPESET.with(|t| t.borrow().get(s).cloned())
+}
+
 const GREEK: &[&str] = &[
     "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
     "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "phi", "chi", "psi", "omega", "Gamma",
     "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Phi", "Psi", "Omega",
 ];
 
-/// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
-/// `inertia_tensor` -> upright text.
-pub(super) fn latex_symbol(s: &str) -> String {
-    if let Some(tex) = TYPESET.with(|t| t.borrow().get(s).cloned()) {
-        return tex;
-    }
-    // A coordinate's rates: `phi'` is φ̇, `phi''` φ̈.
+/// A symbol's name read by the conventions, for each printer to set in its own notation.
+pub(super) enum NameForm<'a> {
+    /// A coordinate's rate: `phi'` (the first) or `phi''` (the second, `true`).
+    Rate(&'a str, bool),
+    /// A name with a word after `_` (`inertia_tensor`): upright, whole.
+    Word(&'a str),
+    /// I with its axes as a subscript: `Ixx`.
+    Inertia(&'a str),
+    /// A head and its subscript (empty for none): `w1`, `theta`, `m2`, `Om`.
+    Head(Head<'a>, &'a str),
+}
+
+pub(super) enum Head<'a> {
+    /// ω is written w in scene files: w1 is ω₁ ...
+    Omega,
+    /// ... and wd1 its rate.
+    OmegaRate,
+    Greek(&'a str),
+    /// A longer name, upright.
+    Upright(&'a str),
+    Letter(&'a str),
+}
+
+pub(super) fn name_form(s: &str) -> NameForm<'_> {
     if let Some(base) = s.strip_suffix("''") {
-        return format!("\\ddot{{{}}}", latex_symbol(base));
+        return NameForm::Rate(base, true);
     }
     if let Some(base) = s.strip_suffix('\'') {
-        return format!("\\dot{{{}}}", latex_symbol(base));
+        return NameForm::Rate(base, false);
     }
     if let Some((_, tail)) = s.split_once('_')
         && !tail.chars().all(|c| c.is_ascii_digit())
     {
-        return format!("\\mathrm{{{}}}", s.replace('_', "\\_"));
+        return NameForm::Word(s);
     }
     let split = s
         .char_indices()
@@ -52,27 +74,54 @@ pub(super) fn latex_symbol(s: &str) -> String {
         Some(i) => (&s[..i], s[i..].trim_start_matches('_')),
         None => (s, ""),
     };
-    // ω is written w in scene files: w1 is ω₁ and wd1 its rate.
     let numbered = !tail.is_empty() && tail.chars().all(|c| c.is_ascii_digit());
     let head = if numbered && head == "w" {
-        "\\omega".to_string()
+        Head::Omega
     } else if numbered && head == "wd" {
-        "\\dot{\\omega}".to_string()
+        Head::OmegaRate
     } else if GREEK.contains(&head) {
-        format!("\\{head}")
+        Head::Greek(head)
     } else if head.len() > 1
         && head.starts_with('I')
         && head[1..].chars().all(|c| "xyz".contains(c))
     {
-        return format!("I_{{{}}}", &head[1..]);
+        return NameForm::Inertia(&head[1..]);
     } else if head.len() > 1 {
-        format!("\\mathrm{{{head}}}")
+        Head::Upright(head)
     } else {
-        head.to_string()
+        Head::Letter(head)
     };
-    if tail.is_empty() {
-        head
-    } else {
-        format!("{head}_{{{tail}}}")
+    NameForm::Head(head, tail)
+}
+
+/// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
+/// `inertia_tensor` -> upright text.
+pub(super) fn latex_symbol(s: &str) -> String {
+    if let Some(tex) = scene_tex(s) {
+        return tex;
+    }
+    match name_form(s) {
+        // A coordinate's rates: `phi'` is φ̇, `phi''` φ̈.
+        NameForm::Rate(base, second) => format!(
+            "\\{}{{{}}}",
+            if second { "ddot" } else { "dot" },
+            latex_symbol(base)
+        ),
+        NameForm::Word(w) => format!("\\mathrm{{{}}}", w.replace('_', "\\_")),
+        NameForm::Inertia(axes) => format!("I_{{{axes}}}"),
+        NameForm::Head(head, tail) => {
+            let head = match head {
+                Head::Omega => "\\omega".to_string(),
+                Head::OmegaRate => "\\dot{\\omega}".to_string(),
+                Head::Greek(g) => format!("\\{g}"),
+                Head::Upright(u) => format!("\\mathrm{{{u}}}"),
+                Head::Letter(l) => l.to_string(),
+            };
+            if tail.is_empty() {
+                head
+            } else {
+                format!("{head}_{{{tail}}}")
+            }
+        }
     }
 }

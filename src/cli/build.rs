@@ -31,6 +31,24 @@ pub struct BuildArgs {
     /// Derive every scene afresh, and neither read nor write the cache (overrides --cache).
     #[arg(long)]
     pub no_cache: bool,
+    /// A class roster (CSV with the columns `name` and `id`, docs/papers.md): one paper per
+    /// student, with their own variant of every problem sheet and their name and ID on every
+    /// page, a key in the roster's order, and variants.csv for grading. They go to --papers,
+    /// not into the site, which may be public.
+    #[arg(long, value_name = "CSV")]
+    pub roster: Option<PathBuf>,
+    /// Where the roster's papers go (replaced whole, like the site).
+    #[arg(
+        long,
+        value_name = "DIR",
+        default_value = "papers",
+        requires = "roster"
+    )]
+    pub papers: PathBuf,
+    /// The seed that deals the sheet variants to the roster's students: the same roster and
+    /// seed give every student the same variant again.
+    #[arg(long, default_value_t = 1, requires = "roster")]
+    pub seed: u64,
     /// Also write the outcome as JSON to this file: `serve` runs each build as a child
     /// process, so that it never holds the engine, and reads what happened here.
     #[arg(long, hide = true)]
@@ -52,6 +70,11 @@ impl BuildArgs {
         }
         if let Some(f) = self.fidelity.fidelity {
             a.extend(["--fidelity".into(), f.argument().into()]);
+        }
+        if let Some(r) = &self.roster {
+            a.extend(["--roster".into(), r.as_os_str().to_owned()]);
+            a.extend(["--papers".into(), self.papers.as_os_str().to_owned()]);
+            a.extend(["--seed".into(), self.seed.to_string().into()]);
         }
         if self.no_cache {
             a.push("--no-cache".into());
@@ -100,6 +123,8 @@ pub struct Build {
     timings: bool,
     fidelity: Option<Fidelity>,
     cache: Option<Cache>,
+    /// The roster, the papers' folder and the seed, with `--roster`.
+    roster: Option<(crate::scene::roster::Roster, PathBuf, u64)>,
 }
 
 /// What one build did.
@@ -140,8 +165,25 @@ impl Build {
             fidelity: FidelityArg { fidelity },
             cache,
             no_cache,
+            roster,
+            papers,
+            seed,
             status_file: _,
         } = args;
+        if roster.is_some() && !crate::render::pdf::ENABLED {
+            anyhow::bail!(
+                "--roster makes PDFs, and this mechbook was built without them: build it with \
+                 the default features (`cargo build --release`)"
+            );
+        }
+        let roster = match roster {
+            Some(path) => Some((
+                crate::scene::roster::Roster::from_file(&path)?,
+                papers,
+                seed,
+            )),
+            None => None,
+        };
         // No paths: the course's lectures/, all of it.
         let defaulted = paths.is_empty();
         let paths = default_paths(paths)?;
@@ -160,6 +202,7 @@ impl Build {
             timings,
             fidelity,
             cache: (!no_cache).then(|| Cache::new(&cache)),
+            roster,
         })
     }
 
@@ -197,9 +240,35 @@ impl Build {
             .count();
         let templates =
             crate::site::read_templates(self.templates.as_deref()).map_err(|e| fail(e.into()))?;
-        let site = crate::render::site_files(&reports, &course, &templates, self.timings)
+        let mut site = crate::render::site_files(&reports, &course, &templates, self.timings)
             .map_err(|e| fail(e.into()))?;
+        let sources = crate::render::pdf::site_documents(&reports, &course, &site)
+            .map_err(|e| fail(e.into()))?;
+        let pdfs = super::pdfs::typeset_all(&sources, self.cache.as_ref(), "site").map_err(fail)?;
+        let mut warnings = pdfs.warnings;
+        let (typeset, pdf_cached) = (pdfs.files.len() - pdfs.from_cache, pdfs.from_cache);
+        site.extend(pdfs.files);
+        let papers = match &self.roster {
+            Some((roster, dir, seed)) => {
+                let (sources, csv) =
+                    crate::render::pdf::roster_documents(&reports, &course, roster, *seed)
+                        .map_err(|e| fail(e.into()))?;
+                let made = super::pdfs::typeset_all(&sources, self.cache.as_ref(), "papers")
+                    .map_err(fail)?;
+                warnings.extend(made.warnings);
+                let mut files: crate::render::SiteFiles = made.files.into_iter().collect();
+                files.insert(PathBuf::from("variants.csv"), csv);
+                Some((dir, files, roster.students.len()))
+            }
+            None => None,
+        };
+        for w in &warnings {
+            eprintln!("mechbook: warning: {w}");
+        }
         crate::site::write_site(&self.out, &site).map_err(|e| fail(e.into()))?;
+        if let Some((dir, files, _)) = &papers {
+            crate::site::write_site(dir, files).map_err(|e| fail(e.into()))?;
+        }
         let handouts = site.keys().filter(|p| p.starts_with("handouts")).count();
         let plots = site.keys().filter(|p| p.starts_with("plots")).count();
         let failures: Vec<String> = reports
@@ -208,8 +277,22 @@ impl Build {
             .map(|f| f.text)
             .collect();
         let failed = reports.iter().filter(|r| !r.passed()).count();
+        let pdf = if crate::render::pdf::ENABLED {
+            format!(
+                ", {} PDFs ({typeset} typeset, {pdf_cached} from the cache)",
+                typeset + pdf_cached
+            )
+        } else {
+            String::new()
+        };
+        let papers = papers.map_or(String::new(), |(dir, _, students)| {
+            format!(
+                "; {students} students' papers and their key into {}",
+                dir.display()
+            )
+        });
         let summary = format!(
-            "built {} pages, {plots} plots and {handouts} handouts from {} scenes ({cached} from the cache, {symbolic_cached} re-run numerically on cached symbolic results) into {} in {:.2} s{}{}",
+            "built {} pages, {plots} plots and {handouts} handouts{pdf} from {} scenes ({cached} from the cache, {symbolic_cached} re-run numerically on cached symbolic results) into {} in {:.2} s{papers}{}{}",
             reports.len() + 1,
             reports.len(),
             self.out.display(),
@@ -233,6 +316,22 @@ impl Build {
         inputs.extend(files.iter().cloned());
         inputs.extend(self.templates.clone());
         inputs.push(PathBuf::from("."));
+        if let Some((roster, papers, _)) = &self.roster {
+            inputs.push(roster.source.clone());
+            crate::site::check_output(papers, &inputs)?;
+            let (site, papers_at) = (
+                crate::site::guard::resolve(&self.out),
+                crate::site::guard::resolve(papers),
+            );
+            if site.starts_with(&papers_at) || papers_at.starts_with(&site) {
+                anyhow::bail!(
+                    "--papers {} and the site's folder {} overlap: the papers have students' \
+                     names and the site may be published, so give them folders apart",
+                    papers.display(),
+                    self.out.display()
+                );
+            }
+        }
         crate::site::check_output(&self.out, &inputs)?;
         Ok(files)
     }

@@ -7,6 +7,7 @@ mod check;
 mod completions;
 mod derive;
 mod init;
+mod pdfs;
 mod serve;
 mod spin;
 

@@ -6,6 +6,7 @@
 
 mod problems;
 mod results;
+pub mod roster;
 
 pub use problems::{
     Problem, SharedAnswer, Sheet, SheetProblem, SheetVariant, Variant, problem, sheet,

@@ -8,6 +8,7 @@ mod linebreak;
 mod linebreak_tests;
 pub mod math;
 pub mod moodle;
+pub mod pdf;
 pub mod plot;
 pub mod problems;
 mod site_files;
@@ -175,19 +176,9 @@ fn value_math(v: &Value) -> Result<String, RenderError> {
 /// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
 /// of the symbols it contains) and the number, vector or matrix as MathML.
 fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
-    // An entry below the rounding of the largest (cos(π/2) in floats, 6e-17) is zero.
-    let largest = at.numbers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let n: Vec<String> = at
-        .numbers
-        .iter()
-        .map(|x| {
-            let x = if x.abs() <= 64.0 * f64::EPSILON * largest {
-                0.0
-            } else {
-                *x
-            };
-            number_latex(x, 6)
-        })
+    let n: Vec<String> = at_entries(at)
+        .into_iter()
+        .map(|x| number_latex(x, 6))
         .collect();
     let latex = numbers_latex(v, &n);
     let symbols: Vec<String> = at
@@ -236,7 +227,12 @@ fn number_latex(x: f64, digits: usize) -> String {
 
 /// An author's step's numeric check in one sentence (escaped for HTML).
 fn check_text(c: &crate::verify::StepCheck) -> String {
-    tera::escape_html(&match &c.problem {
+    tera::escape_html(&check_sentence(c))
+}
+
+/// An author's step's numeric check in one sentence, for every printer.
+pub(crate) fn check_sentence(c: &crate::verify::StepCheck) -> String {
+    match &c.problem {
         Some(p) => format!("Not checked numerically: {p}"),
         None => format!(
             "Checked numerically, by {}: {} {} (within {}), {} evaluations.",
@@ -250,7 +246,23 @@ fn check_text(c: &crate::verify::StepCheck) -> String {
             sci(c.tolerance),
             c.evaluations
         ),
-    })
+    }
+}
+
+/// A result's entries at the scene's numbers, an entry below the rounding of the largest
+/// (cos(π/2) in floats, 6e-17) made zero.
+pub(crate) fn at_entries(at: &At) -> Vec<f64> {
+    let largest = at.numbers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    at.numbers
+        .iter()
+        .map(|x| {
+            if x.abs() <= 64.0 * f64::EPSILON * largest {
+                0.0
+            } else {
+                *x
+            }
+        })
+        .collect()
 }
 
 /// The HTML view of one page, its names typeset as the scene says. `timings` adds measured

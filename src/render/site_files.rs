@@ -47,6 +47,8 @@ struct LectureView {
     instructor: String,
     /// The problem sheet and its key, when the lecture has problems.
     problems: Option<(String, String)>,
+    /// The same as PDFs, when this mechbook writes them.
+    pdf: Option<super::pdf::LecturePdfs>,
     pages: Vec<PageLink>,
 }
 
@@ -136,6 +138,10 @@ fn problem_sheets(
             ctx.insert("variants", &key.variants);
         }
         ctx.insert("print_css", &css);
+        ctx.insert(
+            "pdf",
+            &super::pdf::ENABLED.then(|| format!("pdf/{slug}-problems-{kind}.pdf")),
+        );
         let path = format!("handouts/{slug}-problems-{kind}.html");
         files.insert(
             PathBuf::from(&path),
@@ -200,6 +206,11 @@ pub fn site_files(
                 .map(|&i| &pages[i])
                 .collect();
             ctx.insert("pages", &chosen);
+            let kind = if instructor { "instructor" } else { "student" };
+            ctx.insert(
+                "pdf",
+                &super::pdf::ENABLED.then(|| format!("pdf/{slug}-{kind}.pdf")),
+            );
             let file = format!(
                 "handouts/{slug}-{}.html",
                 if instructor { "instructor" } else { "student" }
@@ -215,6 +226,8 @@ pub fn site_files(
                 heading: course.lecture_heading(name),
                 student: format!("handouts/{slug}-student.html"),
                 instructor: format!("handouts/{slug}-instructor.html"),
+                pdf: super::pdf::ENABLED
+                    .then(|| super::pdf::lecture_pdfs(&slug, problems.is_some())),
                 problems,
                 pages: idx
                     .iter()

@@ -8,13 +8,14 @@ mod course;
 mod error;
 mod load;
 mod raw;
+pub mod roster;
 mod step;
 mod types;
 mod validate;
 pub mod variants;
 mod verdict;
 
-pub use course::{Course, CourseError, LectureTitle};
+pub use course::{Course, CourseError, LectureTitle, Paper};
 pub use error::{Locator, SceneError};
 pub use load::{MAX_DEPTH, MAX_SCENE_BYTES, find_scenes, load_all};
 pub use step::{AuthorStep, MAX_NAMED_STATES, Operation, mode_name};

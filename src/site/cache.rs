@@ -140,9 +140,26 @@ impl Cache {
                 ),
             ),
         };
+        self.named_entry(id, kind, &key)
+    }
+
+    /// The file of an entry of `kind` for `id` under `key`, and the key its first line names.
+    fn named_entry(&self, id: &str, kind: &str, key: &str) -> (PathBuf, u64) {
         let hash = crate::base::hash::content_hash(key.as_bytes());
         let key = crate::base::hash::content_hash(format!("{id}\n{kind}\n{key}").as_bytes());
         (self.dir.join(format!("{id}.{kind}.{hash:016x}.json")), key)
+    }
+
+    /// A typeset PDF, stored under its document's name and the hash of its markup and
+    /// pictures (`inputs`): a changed document, or another mechbook, misses.
+    pub fn load_pdf(&self, name: &str, inputs: u64) -> Lookup {
+        let (path, key) = self.named_entry(name, "pdf", &format!("{}:{inputs:016x}", self.program));
+        self.load_at(path, key)
+    }
+
+    pub fn store_pdf(&self, name: &str, inputs: u64, pdf: &[u8]) -> Result<(), SiteError> {
+        let (path, key) = self.named_entry(name, "pdf", &format!("{}:{inputs:016x}", self.program));
+        self.store_at(&path, key, name, "pdf", pdf)
     }
 
     /// The stored bytes on a hit; a damaged entry is told to `damaged` and is a miss.
@@ -165,8 +182,12 @@ impl Cache {
 
     /// The stored bytes, checked against the key and checksum of their first line.
     pub fn load(&self, id: &str, content_hash: u64, fidelity: Option<&Fidelity>) -> Lookup {
-        use std::io::Read;
         let (path, key) = self.entry(id, content_hash, fidelity);
+        self.load_at(path, key)
+    }
+
+    fn load_at(&self, path: PathBuf, key: u64) -> Lookup {
+        use std::io::Read;
         let damaged = |why| Lookup::Damaged(path.clone(), why);
         let meta = match std::fs::symlink_metadata(&path) {
             Ok(m) => m,
@@ -202,18 +223,30 @@ impl Cache {
         bytes: &[u8],
     ) -> Result<(), SiteError> {
         let (path, key) = self.entry(id, content_hash, fidelity);
-        let io = |p: &Path| {
-            let p = p.to_path_buf();
-            move |source| SiteError::Io { path: p, source }
-        };
-        std::fs::create_dir_all(&self.dir).map_err(io(&self.dir))?;
-        super::replace_file(&path, &wrap_entry(key, bytes))?;
-        let name = path.file_name().map(|n| n.to_os_string());
         let kind = if fidelity.is_some() {
             "report"
         } else {
             "symbolic"
         };
+        self.store_at(&path, key, id, kind, bytes)
+    }
+
+    /// Writes an entry whole and removes the older entries of the same `id` and `kind`.
+    fn store_at(
+        &self,
+        path: &Path,
+        key: u64,
+        id: &str,
+        kind: &str,
+        bytes: &[u8],
+    ) -> Result<(), SiteError> {
+        let io = |p: &Path| {
+            let p = p.to_path_buf();
+            move |source| SiteError::Io { path: p, source }
+        };
+        std::fs::create_dir_all(&self.dir).map_err(io(&self.dir))?;
+        super::replace_file(path, &wrap_entry(key, bytes))?;
+        let name = path.file_name().map(|n| n.to_os_string());
         let prefix = format!("{id}.{kind}.");
         for e in std::fs::read_dir(&self.dir)
             .map_err(io(&self.dir))?

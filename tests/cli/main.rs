@@ -15,6 +15,8 @@ mod handouts;
 mod hostile;
 mod lock;
 mod output;
+#[cfg(feature = "pdf")]
+mod pdf;
 mod problems;
 mod serve;
 mod snapshots;

@@ -109,7 +109,10 @@ pub(super) fn latex_problem(latex: &str) -> Option<String> {
                 })
                 .unwrap_or_else(|| "the LaTeX reader marks it as an error".into()),
         ),
-        Ok(()) => None,
+        // The PDFs set it in Typst: a command they do not know is refused here too.
+        Ok(()) => crate::cas::latex_to_typst(latex)
+            .err()
+            .map(|e| e.to_string()),
     }
 }
 

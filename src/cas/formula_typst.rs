@@ -1,0 +1,156 @@
+//! The Typst printer of a [`Formula`], for the PDFs: the tree in Typst's math notation, as
+//! `formula_print.rs` prints it in LaTeX for the pages.
+
+use super::formula::{Accent, Formula, GREEK, Name, Op};
+use super::typst_latex::{TexError, latex_to_typst, typst_string};
+
+impl Formula {
+    /// Typst's math; `Err` only for an author's LaTeX that has no Typst form (scene
+    /// validation refuses it first).
+    pub fn to_typst(&self) -> Result<String, TexError> {
+        let mut out = String::new();
+        typst(self, &mut out)?;
+        Ok(out)
+    }
+}
+
+/// Appends a piece, with a space where two names would run into one name.
+fn join(out: &mut String, piece: &str) {
+    let ends_word = out.ends_with(|c: char| c.is_alphanumeric() || c == ')' || c == '"');
+    let starts_word = piece.starts_with(|c: char| c.is_alphanumeric() || c == '"');
+    if ends_word && starts_word {
+        out.push(' ');
+    }
+    out.push_str(piece);
+}
+
+fn typst(f: &Formula, out: &mut String) -> Result<(), TexError> {
+    let piece = match f {
+        Formula::Expr(e) => e.to_typst(),
+        Formula::Name(n) => typst_name(n),
+        // A decimal or an integer; a minus sign is Typst's too.
+        Formula::Number(s) => s.replace('-', "−"),
+        Formula::Text(s) => typst_string(s),
+        Formula::Upright(s) => format!("upright({})", typst_string(s)),
+        Formula::Row(items) => {
+            for item in items {
+                match item {
+                    Formula::Op(op) => join(out, typst_op(*op)),
+                    other => typst(other, out)?,
+                }
+            }
+            return Ok(());
+        }
+        Formula::Op(op) => typst_op(*op).to_string(),
+        Formula::Frac(a, b) => format!("frac({}, {})", a.to_typst()?, b.to_typst()?),
+        Formula::Sqrt(a) => format!("sqrt({})", a.to_typst()?),
+        Formula::Sup(a, b) => format!("{}^({})", a.to_typst()?, b.to_typst()?),
+        Formula::Paren(a, _) => format!("({})", a.to_typst()?),
+        Formula::Bracket(a) => format!("[{}]", a.to_typst()?),
+        Formula::Abs(a) => format!("abs({})", a.to_typst()?),
+        Formula::Identity => "bb(1)".into(),
+        Formula::Function(name) => format!("{name} "),
+        Formula::Sum(Some(i)) => format!("sum_({})", typst_base(i)),
+        Formula::Sum(None) => "sum ".into(),
+        Formula::Integral(None) => "integral ".into(),
+        Formula::Integral(Some(limits)) => format!(
+            "integral_({})^({}) ",
+            limits.0.to_typst()?,
+            limits.1.to_typst()?
+        ),
+        Formula::Nabla(None) => "nabla ".into(),
+        Formula::Nabla(Some(by)) => format!("nabla_({}) ", typst_base(by)),
+        Formula::At(a, frame) => {
+            format!("lr({} |)_(upright({}))", a.to_typst()?, typst_string(frame))
+        }
+        Formula::Tex(s) => latex_to_typst(s)?,
+    };
+    join(out, &piece);
+    Ok(())
+}
+
+fn typst_op(op: Op) -> &'static str {
+    match op {
+        Op::Equals => " = ",
+        Op::Approx => " approx ",
+        Op::Less => " < ",
+        Op::LessEqual => " <= ",
+        Op::Greater => " > ",
+        Op::Plus => " + ",
+        Op::Minus => " - ",
+        Op::Dot => " dot.op ",
+        Op::Cross => " times ",
+        Op::Parallel => " parallel ",
+        Op::Perp => " perp ",
+        Op::Comma => "\\, ",
+        Op::Colon => ": ",
+        Op::Semicolon => "\\; ",
+        Op::Slash => " \\/ ",
+        Op::Thin => " thin ",
+        Op::Medium => " med ",
+        Op::Quad => " quad ",
+    }
+}
+
+/// A letter: a Greek one by its name (Typst's names are LaTeX's), else as written, a word
+/// upright.
+fn typst_base(base: &str) -> String {
+    if let Some(letter) = super::typst_latex::greek(base) {
+        letter.to_string()
+    } else if GREEK.iter().any(|(name, _)| *name == base) || base.chars().count() == 1 {
+        base.to_string()
+    } else {
+        format!("upright({})", typst_string(base))
+    }
+}
+
+fn typst_name(n: &Name) -> String {
+    let base = typst_base(&n.base);
+    let base = match n.accent {
+        Accent::None => base,
+        Accent::Vector => format!("arrow({base})"),
+        Accent::Tensor => format!("accent({base}, arrow.l.r)"),
+        Accent::Dot => format!("dot({base})"),
+        Accent::DoubleDot => format!("dot.double({base})"),
+        Accent::VectorDot => format!("dot(arrow({base}))"),
+    };
+    let sub = match n.sub.as_deref() {
+        None => String::new(),
+        Some(s @ ("min" | "max")) => format!("_({s})"),
+        // A word is upright (I_cm); a pair of axes (I_xy) or a number is not.
+        Some(s) if s.len() > 1 && !s.chars().all(|c| c.is_ascii_digit() || "xyz".contains(c)) => {
+            format!("_(upright({}))", typst_string(s))
+        }
+        Some(s) if s.chars().all(|c| c.is_ascii_digit()) => format!("_({s})"),
+        Some(s) => {
+            let letters: Vec<String> = s.chars().map(|c| typst_base(&c.to_string())).collect();
+            format!("_({})", letters.join(" "))
+        }
+    };
+    let prime = if n.prime { "'" } else { "" };
+    format!("{base}{sub}{prime}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Formula;
+
+    fn t(notation: &str) -> String {
+        Formula::parse(notation, &[]).to_typst().unwrap()
+    }
+
+    #[test]
+    fn names_accents_and_operators_in_typst() {
+        assert_eq!(
+            t("vec(L) = ten(I) ~ vec(omega)"),
+            "arrow(L) = accent(I, arrow.l.r) thin arrow(ω)"
+        );
+        assert_eq!(t("2T ~ I_min <= L^2"), "2 T thin I_(min) <= L^(2)");
+        assert_eq!(t("I_cm"), "I_(upright(\"cm\"))");
+        assert_eq!(t("I_xy"), "I_(x y)");
+        assert_eq!(
+            t("beta = (I_3 - I_1)/I_1"),
+            "β = frac(I_(3) - I_(1), I_(1))"
+        );
+    }
+}

@@ -1,0 +1,315 @@
+//! The Typst printer of an expression, for the PDFs: the same walk as the text and LaTeX
+//! printers (`print.rs`), writing Typst's math notation (`frac(1, 12) m a^(2)`, `mat(…)`).
+
+use super::expr::Expr;
+use super::print::{Prec, Style, index_chain, page_fraction, write};
+use super::rational::Rational;
+use super::typst_latex::{latex_to_typst, typst_string};
+
+impl Expr {
+    pub fn to_typst(&self) -> String {
+        self.to_typst_named(&|_| None)
+    }
+
+    /// Typst with some symbols given a symbol of their own (the catalogue's, as LaTeX): a
+    /// claim's `inertia_tensor[0][1]` prints as I_xy when `named("inertia_tensor")` is `I`.
+    pub fn to_typst_named(&self, named: &dyn Fn(&str) -> Option<&'static str>) -> String {
+        let mut s = String::new();
+        write(self, &mut s, Prec::Sum, &Typst { named });
+        s
+    }
+}
+
+/// A symbol's name in Typst's math: the scene's own `tex` for it if it has one, else the
+/// conventions of [`super::symbol_latex`] (`w1` is ω₁, `Ixx` is I_xx, a word is upright).
+pub(super) fn typst_symbol(s: &str) -> String {
+    use super::symbol_latex::{Head, NameForm, name_form};
+    if let Some(tex) = super::symbol_latex::scene_tex(s)
+        && let Ok(t) = latex_to_typst(&tex)
+    {
+        return t;
+    }
+    match name_form(s) {
+        NameForm::Rate(base, second) => format!(
+            "{}({})",
+            if second { "dot.double" } else { "dot" },
+            typst_symbol(base)
+        ),
+        NameForm::Word(w) => format!("upright({})", typst_string(w)),
+        NameForm::Inertia(axes) => {
+            let axes: Vec<String> = axes.chars().map(String::from).collect();
+            format!("I_({})", axes.join(" "))
+        }
+        NameForm::Head(head, tail) => {
+            let head = match head {
+                Head::Omega => "ω".to_string(),
+                Head::OmegaRate => "dot(ω)".to_string(),
+                Head::Greek(g) => super::typst_latex::greek(g).unwrap_or(g).to_string(),
+                Head::Upright(u) => format!("upright({})", typst_string(u)),
+                Head::Letter(l) => l.to_string(),
+            };
+            if tail.is_empty() {
+                head
+            } else {
+                format!("{head}_({tail})")
+            }
+        }
+    }
+}
+
+/// Typst's math for the PDFs.
+struct Typst<'a> {
+    named: &'a dyn Fn(&str) -> Option<&'static str>,
+}
+
+impl Typst<'_> {
+    /// The claim language's vector and matrix functions in their usual notation (as the LaTeX
+    /// printer writes them). Returns false for any other call.
+    fn claim_call(&self, n: &str, args: &[Expr], out: &mut String) -> bool {
+        let put = |e: &Expr, ctx: Prec, out: &mut String| write(e, out, ctx, self);
+        match (n, args) {
+            ("dot" | "cross", [a, b]) => {
+                put(a, Prec::Factor, out);
+                out.push_str(if n == "dot" { " dot.op " } else { " times " });
+                put(b, Prec::Factor, out);
+            }
+            ("outer", [a, b]) => {
+                put(a, Prec::Power, out);
+                out.push_str(" thin ");
+                put(b, Prec::Power, out);
+                out.push_str("^(T)");
+            }
+            ("transpose", [a]) => {
+                put(a, Prec::Power, out);
+                out.push_str("^(T)");
+            }
+            ("eye", []) => out.push_str("bb(1)"),
+            ("rot_x" | "rot_y" | "rot_z", [angle]) => {
+                out.push_str(&format!("R_({}) (", &n[4..]));
+                put(angle, Prec::Sum, out);
+                out.push(')');
+            }
+            ("diff", [f, x]) => {
+                out.push_str("frac(∂, ∂ ");
+                put(x, Prec::Power, out);
+                out.push_str(") ");
+                put(f, Prec::Power, out);
+            }
+            ("subs", [f, x, v]) => {
+                out.push_str("lr(");
+                put(f, Prec::Sum, out);
+                out.push_str(" |)_(");
+                put(x, Prec::Sum, out);
+                out.push_str(" = ");
+                put(v, Prec::Sum, out);
+                out.push(')');
+            }
+            _ => return false,
+        }
+        true
+    }
+}
+
+impl Style for Typst<'_> {
+    fn factors_sums(&self) -> bool {
+        true
+    }
+    fn open(&self) -> &'static str {
+        "("
+    }
+    fn close(&self) -> &'static str {
+        ")"
+    }
+    fn symbol(&self, name: &str, out: &mut String) {
+        match (self.named)(name).map(latex_to_typst) {
+            Some(Ok(symbol)) => out.push_str(&symbol),
+            _ => out.push_str(&typst_symbol(name)),
+        }
+    }
+    fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
+        let body = if r.is_integer() {
+            r.abs_parts().0.to_string()
+        } else {
+            let (num, den) = r.abs_parts();
+            format!("frac({num}, {den})")
+        };
+        let negative = r.is_negative();
+        if negative && ctx > Prec::Sum {
+            out.push('(');
+        }
+        if negative {
+            out.push('-');
+        }
+        out.push_str(&body);
+        if negative && ctx > Prec::Sum {
+            out.push(')');
+        }
+    }
+    fn product(&self, v: &[Expr], ctx: Prec, out: &mut String) {
+        let (num, den) = page_fraction(v);
+        if ctx > Prec::Product {
+            out.push('(');
+        }
+        let write_factors = |fs: &[Expr], out: &mut String| {
+            let fs: Vec<&Expr> = fs.iter().filter(|f| !f.is_one()).collect();
+            if fs.is_empty() {
+                out.push('1');
+            }
+            let ctx = if fs.len() == 1 {
+                Prec::Sum
+            } else {
+                Prec::Power
+            };
+            for (i, f) in fs.iter().enumerate() {
+                if i > 0 {
+                    out.push_str(if matches!(f, Expr::Num(_)) {
+                        " dot.op "
+                    } else {
+                        " "
+                    });
+                }
+                write(f, out, ctx, self);
+            }
+        };
+        if den.is_empty() {
+            write_factors(&num, out);
+        } else {
+            out.push_str("frac(");
+            write_factors(&num, out);
+            out.push_str(", ");
+            write_factors(&den, out);
+            out.push(')');
+        }
+        if ctx > Prec::Product {
+            out.push(')');
+        }
+    }
+    fn power(&self, a: &Expr, b: &Expr, _ctx: Prec, out: &mut String) {
+        if let Expr::Num(r) = b {
+            if *r == Rational::new(1, 2).unwrap() {
+                out.push_str("sqrt(");
+                write(a, out, Prec::Sum, self);
+                out.push(')');
+                return;
+            }
+            if r.is_negative() {
+                out.push_str("frac(1, ");
+                write(
+                    &Expr::pow(a.clone(), Expr::Num(r.negated())),
+                    out,
+                    Prec::Sum,
+                    self,
+                );
+                out.push(')');
+                return;
+            }
+        }
+        // sin(x)^2 as sin^2(x), as the notes write it.
+        if let Expr::Call(n, args) = a
+            && (n == "sin" || n == "cos")
+        {
+            out.push_str(&format!("{n}^("));
+            write(b, out, Prec::Sum, self);
+            out.push_str(") (");
+            write(&args[0], out, Prec::Sum, self);
+            out.push(')');
+            return;
+        }
+        write(a, out, Prec::Power, self);
+        out.push_str("^(");
+        write(b, out, Prec::Sum, self);
+        out.push(')');
+    }
+    fn call(&self, n: &str, args: &[Expr], out: &mut String) {
+        if n == "sqrt" && args.len() == 1 {
+            out.push_str("sqrt(");
+            write(&args[0], out, Prec::Sum, self);
+            out.push(')');
+            return;
+        }
+        if self.claim_call(n, args, out) {
+            return;
+        }
+        match n {
+            "sin" | "cos" | "tan" | "exp" | "ln" | "log" | "arcsin" | "arccos" | "arctan" => {
+                out.push_str(n)
+            }
+            "acos" | "asin" | "atan" => out.push_str(&format!("arc{}", &n[1..])),
+            _ => out.push_str(&format!("op({})", typst_string(n))),
+        }
+        out.push_str(" (");
+        for (i, a) in args.iter().enumerate() {
+            if i > 0 {
+                out.push_str(", ");
+            }
+            write(a, out, Prec::Sum, self);
+        }
+        out.push(')');
+    }
+    fn list(&self, v: &[Expr], out: &mut String) {
+        let is_matrix = v.iter().all(|r| matches!(r, Expr::List(_)));
+        out.push_str("mat(");
+        for (i, row) in v.iter().enumerate() {
+            if i > 0 {
+                out.push_str(if is_matrix { "; " } else { ", " });
+            }
+            match row {
+                Expr::List(cells) if is_matrix => {
+                    for (j, c) in cells.iter().enumerate() {
+                        if j > 0 {
+                            out.push_str(", ");
+                        }
+                        write(c, out, Prec::Sum, self);
+                    }
+                }
+                other => write(other, out, Prec::Sum, self),
+            }
+        }
+        out.push(')');
+    }
+    fn index(&self, e: &Expr, out: &mut String) {
+        let (base, indices, axes) = index_chain(e);
+        if let Expr::Sym(name) = base
+            && let Some(Ok(symbol)) = (self.named)(name).map(latex_to_typst)
+            && let Some(axes) = axes
+        {
+            let axes: Vec<String> = axes.into_iter().map(String::from).collect();
+            out.push_str(&format!("{symbol}_({})", axes.join(" ")));
+            return;
+        }
+        write(base, out, Prec::Power, self);
+        out.push_str("_(");
+        for (k, i) in indices.iter().enumerate() {
+            if k > 0 {
+                out.push(' ');
+            }
+            write(i, out, Prec::Sum, self);
+        }
+        out.push(')');
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::parse::parse;
+
+    fn typst(text: &str) -> String {
+        parse(text).unwrap().expr.to_typst()
+    }
+
+    #[test]
+    fn fractions_powers_and_names_in_typst() {
+        assert_eq!(typst("m*a^2/12"), "frac(m a^(2), 12)");
+        assert_eq!(typst("w1 + Ixx + phi + Omega"), "ω_(1) + I_(x x) + ϕ + Ω");
+        assert_eq!(typst("sqrt(2)*pi"), "sqrt(2) π");
+        assert_eq!(typst("-3/4"), "-frac(3, 4)");
+        assert_eq!(typst("inertia_tensor"), "upright(\"inertia_tensor\")");
+        assert_eq!(typst("sin(x)^2"), "sin^(2) (x)");
+    }
+
+    #[test]
+    fn matrices_and_vectors() {
+        assert_eq!(typst("[[1, 0], [0, 1]]"), "mat(1, 0; 0, 1)");
+        assert_eq!(typst("[a, b, c]"), "mat(a, b, c)");
+    }
+}

@@ -1,0 +1,101 @@
+//! The PDFs of a build: each document typeset by Typst, or taken from the build cache when its
+//! markup and pictures are unchanged (a warm build typesets nothing).
+
+use crate::render::pdf::PdfSource;
+use crate::site::cache::{Cache, Lookup};
+use std::path::PathBuf;
+
+/// What typesetting made: each file, and what to tell the user.
+#[derive(Default)]
+pub struct Typeset {
+    pub files: Vec<(PathBuf, Vec<u8>)>,
+    pub from_cache: usize,
+    /// Characters no font has, by document; and cache entries that could not be used or kept.
+    pub warnings: Vec<String>,
+}
+
+/// Typesets `sources`, under `prefix` in the cache's names (`site`, `papers`).
+#[cfg(feature = "pdf")]
+pub fn typeset_all(
+    sources: &[PdfSource],
+    cache: Option<&Cache>,
+    prefix: &str,
+) -> anyhow::Result<Typeset> {
+    let mut out = Typeset::default();
+    for s in sources {
+        let name = format!(
+            "{prefix}-{}",
+            s.path.trim_end_matches(".pdf").replace('/', "-")
+        );
+        let inputs = inputs_hash(s);
+        if let Some(cache) = cache {
+            match cache.load_pdf(&name, inputs) {
+                Lookup::Hit(pdf) => {
+                    out.files.push((PathBuf::from(&s.path), pdf));
+                    out.from_cache += 1;
+                    continue;
+                }
+                Lookup::Miss => {}
+                Lookup::Damaged(path, why) => out.warnings.push(format!(
+                    "the cache entry {} is damaged ({why}): {} was typeset again",
+                    path.display(),
+                    s.path
+                )),
+            }
+        }
+        let done = crate::render::pdf::typeset::typeset(s)?;
+        if !done.past_the_edge.is_empty() {
+            out.warnings.push(format!(
+                "{}: text runs past the paper's edge on page(s) {}",
+                s.path,
+                done.past_the_edge
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        if !done.missing_glyphs.is_empty() {
+            out.warnings.push(format!(
+                "{}: no font has {}: they are left out of the PDF",
+                s.path,
+                done.missing_glyphs
+                    .iter()
+                    .map(|c| format!("`{c}` (U+{:04X})", u32::from(*c)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        if done.missing_glyphs.is_empty()
+            && done.past_the_edge.is_empty()
+            && let Some(cache) = cache
+            && let Err(e) = cache.store_pdf(&name, inputs, &done.pdf)
+        {
+            out.warnings.push(format!("the cache is not updated: {e}"));
+        }
+        out.files.push((PathBuf::from(&s.path), done.pdf));
+    }
+    Ok(out)
+}
+
+/// Without the feature `pdf` there is nothing to typeset.
+#[cfg(not(feature = "pdf"))]
+pub fn typeset_all(_: &[PdfSource], _: Option<&Cache>, _: &str) -> anyhow::Result<Typeset> {
+    Ok(Typeset::default())
+}
+
+/// The hash of everything a document's bytes depend on but the program (which the cache's
+/// key has already).
+#[cfg_attr(not(feature = "pdf"), allow(dead_code))]
+fn inputs_hash(s: &PdfSource) -> u64 {
+    let mut bytes = s.path.as_bytes().to_vec();
+    bytes.push(0);
+    bytes.extend_from_slice(s.markup.as_bytes());
+    for (path, image) in &s.images {
+        bytes.push(0);
+        bytes.extend_from_slice(path.as_bytes());
+        bytes.push(0);
+        bytes.extend_from_slice(&crate::base::hash::content_hash(image).to_le_bytes());
+    }
+    crate::base::hash::content_hash(&bytes)
+}

@@ -1,0 +1,146 @@
+//! Writing Typst markup: every piece of text goes in as a string literal (`#"…"`), so nothing an
+//! author writes is read as markup, and every formula is printed by the Typst printers of the
+//! expression tree.
+
+use super::super::RenderError;
+use crate::cas::{Expr, Formula, typst_string};
+use crate::model::prose::{Piece, Prose};
+use crate::scene::{Course, Paper};
+
+/// A document being written.
+#[derive(Default)]
+pub struct Markup(pub String);
+
+impl Markup {
+    /// Text, as written: a string literal, so no character of it is markup.
+    pub fn text(&mut self, s: &str) -> &mut Self {
+        if !s.is_empty() {
+            self.0.push('#');
+            self.0.push_str(&typst_string(s));
+            // A following `(` or `[` would read as the string's arguments.
+            self.0.push_str("#[]");
+        }
+        self
+    }
+
+    /// Markup of mechbook's own (`#v(2em)`, `*…*`, a newline).
+    pub fn raw(&mut self, s: &str) -> &mut Self {
+        self.0.push_str(s);
+        self
+    }
+
+    pub fn line(&mut self) -> &mut Self {
+        self.0.push('\n');
+        self
+    }
+
+    /// A formula in the line.
+    pub fn inline(&mut self, typst_math: &str) -> &mut Self {
+        self.0.push('$');
+        self.0.push_str(typst_math);
+        self.0.push('$');
+        self
+    }
+
+    /// A formula in the line, set at its full size (a matrix or a column, which the line would
+    /// shrink).
+    pub fn display(&mut self, typst_math: &str) -> &mut Self {
+        self.inline(&format!("display({typst_math})"))
+    }
+
+    /// A formula on a line of its own, centred; one wider than the line is scaled to fit it
+    /// (`fit`, in the preamble), as the phones' pages do, rather than run off the paper.
+    pub fn block(&mut self, typst_math: &str) -> &mut Self {
+        self.0.push_str("\n#fit[$ ");
+        self.0.push_str(typst_math);
+        self.0.push_str(" $]\n");
+        self
+    }
+
+    /// A sentence: its text as text, its formulas printed from their trees.
+    pub fn prose(&mut self, prose: &Prose) -> Result<&mut Self, RenderError> {
+        for piece in &prose.0 {
+            match piece {
+                Piece::Text(t) => self.text(t),
+                Piece::Math(f) => self.inline(&formula(f)?),
+            };
+        }
+        Ok(self)
+    }
+
+    /// An author's text with its `$…$` mathematics.
+    pub fn author(&mut self, text: &str) -> Result<&mut Self, RenderError> {
+        self.prose(&crate::model::prose::author(text))
+    }
+
+    /// A heading at `level` (1 is the document's title).
+    pub fn heading(&mut self, level: usize, title: &str) -> Result<&mut Self, RenderError> {
+        // The document's title is not in its own contents.
+        let outlined = if level == 1 { ", outlined: false" } else { "" };
+        self.0
+            .push_str(&format!("\n#heading(level: {level}{outlined})["));
+        self.author(title)?;
+        self.0.push_str("]\n");
+        Ok(self)
+    }
+
+    /// A paragraph break.
+    pub fn par(&mut self) -> &mut Self {
+        self.0.push_str("\n\n");
+        self
+    }
+}
+
+/// A formula in Typst's math.
+pub fn formula(f: &Formula) -> Result<String, RenderError> {
+    f.to_typst().map_err(|e| RenderError::Math {
+        latex: f.to_latex(),
+        message: e.to_string(),
+    })
+}
+
+/// A symbol's name in Typst's math.
+pub fn symbol(name: &str) -> String {
+    Expr::sym(name).to_typst()
+}
+
+/// A computed number to `digits` significant figures, in Typst's math (4.6875 × 10⁻⁶).
+pub fn number(x: f64, digits: usize) -> String {
+    if !x.is_finite() {
+        return typst_string(&x.to_string());
+    }
+    let s = crate::base::format::significant(x, digits);
+    match crate::base::format::power_of_ten(&s) {
+        Some(("1", power)) => format!("10^({power})"),
+        Some((mantissa, power)) => format!("{mantissa} times 10^({power})"),
+        None => s,
+    }
+    .replace('-', "−")
+}
+
+/// The page, fonts and running head and foot of every document: `head` at the top left of
+/// each page, `right` at its top right, the page number and count at the foot.
+pub fn preamble(course: &Course, title: &str, head: &str, right: &str) -> String {
+    let paper = match course.paper {
+        Paper::A4 => "a4",
+        Paper::Letter => "us-letter",
+    };
+    format!(
+        "#set document(title: {title}, author: {author})\n\
+         #set page(paper: \"{paper}\", margin: (x: 18mm, top: 22mm, bottom: 20mm), \
+         header: [#set text(8.5pt); #{head}#h(1fr)*#{right}*], \
+         footer: context [#set text(8.5pt); #h(1fr)#counter(page).display(\"1 of 1\", both: true)])\n\
+         #set text(font: \"New Computer Modern\", size: 10.5pt, lang: \"en\")\n\
+         #set par(justify: false)\n\
+         #show heading: set block(above: 1.4em, below: 0.7em)\n\
+         #show heading.where(level: 1): set text(15pt)\n\
+         #show heading.where(level: 2): set text(12.5pt)\n\
+         #show heading.where(level: 3): set text(10.5pt)\n\
+         #let fit(body) = layout(size => {{ let w = measure(body).width; \
+         if w > size.width {{ scale(size.width / w * 100%, reflow: true, body) }} else {{ body }} }})\n",
+        title = typst_string(title),
+        author = typst_string(&course.author),
+        head = typst_string(head),
+        right = typst_string(right),
+    )
+}

@@ -1,0 +1,288 @@
+//! The PDF printer of the documents: each lecture's handouts, problem sheet and key, and one
+//! paper per student of a roster, written as Typst markup from the same document model as the
+//! HTML (formulas by the Typst printers of the expression tree), then typeset in-process
+//! (`typeset.rs`, with the cargo feature `pdf`). No file I/O here: `site` writes the bytes.
+
+mod handout;
+mod markup;
+mod sheet;
+#[cfg(feature = "pdf")]
+pub mod typeset;
+
+use super::{RenderError, SiteFiles};
+use crate::document::{Sheet, roster::TooFewVariants};
+use crate::pipeline::SceneReport;
+use crate::scene::Course;
+use crate::scene::roster::Roster;
+use crate::scene::roster::Student;
+use markup::{Markup, preamble};
+
+/// One document to typeset: where it goes, its markup, and the pictures it shows.
+#[derive(Debug, Clone)]
+pub struct PdfSource {
+    /// Relative to the output folder: `pdf/lecture-3-4-student.pdf`.
+    pub path: String,
+    pub markup: String,
+    /// Path (as the markup names it) -> bytes: the plots of an instructor's handout.
+    pub images: Vec<(String, Vec<u8>)>,
+}
+
+/// A lecture's PDFs, relative to the site's root.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct LecturePdfs {
+    pub student: String,
+    pub instructor: String,
+    /// The problem sheet and its key, when the lecture has problems.
+    pub problems: Option<(String, String)>,
+}
+
+pub fn lecture_pdfs(slug: &str, has_problems: bool) -> LecturePdfs {
+    LecturePdfs {
+        student: format!("pdf/{slug}-student.pdf"),
+        instructor: format!("pdf/{slug}-instructor.pdf"),
+        problems: has_problems.then(|| {
+            (
+                format!("pdf/{slug}-problems-student.pdf"),
+                format!("pdf/{slug}-problems-key.pdf"),
+            )
+        }),
+    }
+}
+
+/// Whether this mechbook writes PDFs (the cargo feature `pdf`).
+pub const ENABLED: bool = cfg!(feature = "pdf");
+
+/// The lectures in the order their first scene appears: name and its scenes.
+fn lectures(reports: &[SceneReport]) -> Vec<(String, Vec<&SceneReport>)> {
+    let mut out: Vec<(String, Vec<&SceneReport>)> = Vec::new();
+    for r in reports {
+        let name = &r.scene.notes.lecture;
+        match out.iter_mut().find(|(n, _)| n == name) {
+            Some((_, v)) => v.push(r),
+            None => out.push((name.clone(), vec![r])),
+        }
+    }
+    out
+}
+
+fn lecture_sheet(reports: &[&SceneReport]) -> Option<Sheet> {
+    crate::document::sheet(
+        reports
+            .iter()
+            .filter_map(|r| crate::document::problem(r))
+            .collect(),
+    )
+}
+
+/// Every lecture's handouts, problem sheet and key. `site` holds the plots the instructor's
+/// handout shows.
+pub fn site_documents(
+    reports: &[SceneReport],
+    course: &Course,
+    site: &SiteFiles,
+) -> Result<Vec<PdfSource>, RenderError> {
+    let pages = crate::document::pages(reports);
+    let mut out = Vec::new();
+    for (name, scenes) in lectures(reports) {
+        let slug = crate::scene::lecture_slug(&name);
+        let heading = course.lecture_heading(&name);
+        let sheet = lecture_sheet(&scenes);
+        let paths = lecture_pdfs(&slug, sheet.is_some());
+        let chosen: Vec<&crate::document::Page> =
+            pages.iter().filter(|p| p.lecture == name).collect();
+        for instructor in [false, true] {
+            let (title, right, path) = if instructor {
+                (
+                    format!("{heading}: worked solutions and errata"),
+                    "Instructor",
+                    &paths.instructor,
+                )
+            } else {
+                (format!("{heading}: summary"), "Student", &paths.student)
+            };
+            let mut m = Markup(preamble(
+                course,
+                &title,
+                &course_head(course, &heading),
+                right,
+            ));
+            m.heading(1, &title)?;
+            // A student's handout leaves the problems to the problem sheet.
+            let shown: Vec<&crate::document::Page> = chosen
+                .iter()
+                .copied()
+                .filter(|p| instructor || p.answers.is_empty())
+                .collect();
+            handout::handout(&mut m, &shown, instructor)?;
+            let images = if instructor {
+                shown
+                    .iter()
+                    .flat_map(|p| &p.figures)
+                    .filter_map(|f| {
+                        let bytes = site.get(std::path::Path::new(&f.file))?;
+                        Some((f.file.clone(), bytes.clone()))
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            out.push(PdfSource {
+                path: path.clone(),
+                markup: m.0,
+                images,
+            });
+        }
+        if let (Some(sheet), Some((student, key))) = (&sheet, &paths.problems) {
+            let all: Vec<(usize, Option<&Student>)> =
+                (0..sheet.variants.len()).map(|k| (k, None)).collect();
+            let head = format!("{} · {heading}: problem sheet", course.title);
+            let mut m = Markup(preamble(
+                course,
+                &format!("{heading}: problem sheet"),
+                &head,
+                "",
+            ));
+            sheet::student_sheet(&mut m, &head, sheet, &all)?;
+            out.push(PdfSource {
+                path: student.clone(),
+                markup: m.0,
+                images: Vec::new(),
+            });
+            let head = format!("{} · {heading}: answer key", course.title);
+            let mut m = Markup(preamble(
+                course,
+                &format!("{heading}: answer key"),
+                &head,
+                "",
+            ));
+            sheet::key(&mut m, &head, sheet, &all)?;
+            out.push(PdfSource {
+                path: key.clone(),
+                markup: m.0,
+                images: Vec::new(),
+            });
+        }
+    }
+    Ok(out)
+}
+
+fn course_head(course: &Course, heading: &str) -> String {
+    format!("{} · {heading}", course.title)
+}
+
+/// Why a roster's papers could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum RosterPapersError {
+    #[error(transparent)]
+    TooFewVariants(#[from] TooFewVariants),
+    #[error(
+        "{}: no lecture has a problem sheet, so there is nothing to hand out: give a scene a \
+         [problem] with variants",
+        .0.display()
+    )]
+    NoSheet(std::path::PathBuf),
+    #[error(transparent)]
+    Render(#[from] RenderError),
+}
+
+/// The roster's papers: one PDF per student with their variant of every lecture's sheet and
+/// their name and ID on every page, the key to all of them in the roster's order, and
+/// `variants.csv` (name, id, lecture, variant, paper) for grading. Paths are relative to the
+/// papers' folder. Lecture `k`'s variants are dealt with the seed `seed + k`.
+pub fn roster_documents(
+    reports: &[SceneReport],
+    course: &Course,
+    roster: &Roster,
+    seed: u64,
+) -> Result<(Vec<PdfSource>, Vec<u8>), RosterPapersError> {
+    let mut sheets = Vec::new();
+    for (k, (name, scenes)) in lectures(reports).into_iter().enumerate() {
+        if let Some(sheet) = lecture_sheet(&scenes) {
+            let given = crate::document::roster::assign(
+                roster,
+                &sheet,
+                &name,
+                seed.wrapping_add(k as u64),
+            )?;
+            sheets.push((name, sheet, given));
+        }
+    }
+    if sheets.is_empty() {
+        return Err(RosterPapersError::NoSheet(roster.source.clone()));
+    }
+    let mut out = Vec::new();
+    let mut csv = String::from("name,id,lecture,variant,paper\n");
+    let mut key = Markup(preamble(
+        course,
+        &format!("{}: answer key for the class", course.title),
+        &format!("{} · answer key", course.title),
+        "",
+    ));
+    for (i, s) in roster.students.iter().enumerate() {
+        let file = format!("{:03}-{}.pdf", i + 1, file_safe(&s.id));
+        let mut paper = Markup(preamble(
+            course,
+            &format!("{}: problems for {}", course.title, s.name),
+            &course.title,
+            "",
+        ));
+        for (j, (name, sheet, given)) in sheets.iter().enumerate() {
+            let heading = course.lecture_heading(name);
+            let head = format!("{} · {heading}", course.title);
+            if j > 0 {
+                paper.raw("#pagebreak()\n");
+            }
+            sheet::student_sheet(&mut paper, &head, sheet, &[(given[i], Some(s))])?;
+            if i > 0 || j > 0 {
+                key.raw("#pagebreak()\n");
+            }
+            sheet::key(&mut key, &head, sheet, &[(given[i], Some(s))])?;
+            csv.push_str(&format!(
+                "{},{},{},{},{file}\n",
+                csv_field(&s.name),
+                csv_field(&s.id),
+                csv_field(name),
+                sheet.variants[given[i]].number
+            ));
+        }
+        out.push(PdfSource {
+            path: file,
+            markup: paper.0,
+            images: Vec::new(),
+        });
+    }
+    out.push(PdfSource {
+        path: "key.pdf".into(),
+        markup: key.0,
+        images: Vec::new(),
+    });
+    Ok((out, csv.into_bytes()))
+}
+
+/// An id as part of a file name: letters, digits, `-`, `_` and `.` kept, the rest `_`.
+fn file_safe(id: &str) -> String {
+    let s: String = id
+        .chars()
+        .take(40)
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || "-_".contains(c) {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() { "student".into() } else { s }
+}
+
+/// A CSV field, quoted when it needs to be.
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+#[cfg(all(test, feature = "pdf"))]
+mod tests;

@@ -1,0 +1,209 @@
+//! A lecture's problem sheet and answer key as Typst, from the same [`Sheet`] as the HTML: the
+//! student's sheet is written from the statements and values alone, so no answer reaches it.
+//! Each sheet variant starts a page and names itself at the top of its pages; a student's
+//! paper (from a roster) has their name and ID at the top of every page.
+
+use super::markup::{Markup, formula, symbol};
+use crate::document::{Problem, Sheet, Variant};
+use crate::render::RenderError;
+use crate::render::problems::{KEY_FIGURES, answer_words, capitalised};
+
+use crate::scene::roster::Student;
+
+/// One sheet variant's problems, each at its own variant: number, problem, variant.
+fn variant_problems(sheet: &Sheet, k: usize) -> Vec<(usize, &Problem, &Variant)> {
+    sheet.variants[k]
+        .problems
+        .iter()
+        .map(|sp| {
+            let (number, p) = sheet.problem(sp.problem);
+            (number, p, &p.variants[sp.variant])
+        })
+        .collect()
+}
+
+/// Starts sheet variant `k` (the `i`th of its document) on a new page, headed with the
+/// document's `head` on the left and `Variant k`, or the student's name, ID and variant, on the
+/// right; returns that right-hand head.
+fn start_variant(
+    m: &mut Markup,
+    head: &str,
+    sheet: &Sheet,
+    (i, k, student): (usize, usize, Option<&Student>),
+) -> String {
+    let number = sheet.variants[k].number;
+    if i > 0 {
+        m.raw("#pagebreak()\n");
+    }
+    let right = match student {
+        Some(s) => format!("{} · {} · Variant {number}", s.name, s.id),
+        None => format!("Variant {number}"),
+    };
+    m.raw(&format!(
+        "#set page(header: [#set text(8.5pt); #{}#h(1fr)*#{}*])\n",
+        crate::cas::typst_string(head),
+        crate::cas::typst_string(&right)
+    ));
+    right
+}
+
+/// The student's sheet: sheet variants `which` (all of them, or one student's), each from a
+/// new page, with a line for a name and ID, or the student's own.
+pub fn student_sheet(
+    m: &mut Markup,
+    head: &str,
+    sheet: &Sheet,
+    which: &[(usize, Option<&Student>)],
+) -> Result<(), RenderError> {
+    for (i, (k, student)) in which.iter().enumerate() {
+        start_variant(m, head, sheet, (i, *k, *student));
+        match student {
+            Some(s) => {
+                m.raw("#grid(columns: (1fr, auto), [*Name:* ")
+                    .text(&s.name)
+                    .raw("], [*ID:* ")
+                    .text(&s.id)
+                    .raw("])\n");
+            }
+            None => {
+                m.raw(
+                    "#grid(columns: (1fr, auto), [*Name:* #box(width: 6cm, repeat[.])], [*ID:* #box(width: 3.5cm, repeat[.])])\n",
+                );
+            }
+        }
+        for (n, p, v) in variant_problems(sheet, *k) {
+            crate::cas::typeset_as(&p.tex, || problem(m, n, p, v))
+                .map_err(|e| e.in_scene(&p.source))?;
+        }
+    }
+    Ok(())
+}
+
+fn problem(m: &mut Markup, number: usize, p: &Problem, v: &Variant) -> Result<(), RenderError> {
+    m.raw("\n#block(breakable: false)[\n#heading(level: 2)[")
+        .text(&format!("{number}. "));
+    m.author(&p.title)?;
+    m.raw("]\n");
+    m.prose(&v.statement)?;
+    m.raw("\n#block(width: 100%, height: 7cm, stroke: (paint: luma(180), thickness: 0.5pt), inset: 6pt)[#text(8pt, fill: luma(120))[Working]]\n]\n");
+    Ok(())
+}
+
+/// The answer key: for each sheet variant in `which`, its problems' values and answers, exact
+/// and to four figures, each from a new page, headed with the student it went to, if any.
+pub fn key(
+    m: &mut Markup,
+    head: &str,
+    sheet: &Sheet,
+    which: &[(usize, Option<&Student>)],
+) -> Result<(), RenderError> {
+    for (i, (k, student)) in which.iter().enumerate() {
+        let right = start_variant(m, head, sheet, (i, *k, *student));
+        m.raw("\n#heading(level: 2)[").text(&right).raw("]\n");
+        for (n, p, v) in variant_problems(sheet, *k) {
+            crate::cas::typeset_as(&p.tex, || key_problem(m, n, p, v))
+                .map_err(|e| e.in_scene(&p.source))?;
+        }
+    }
+    Ok(())
+}
+
+fn key_problem(m: &mut Markup, number: usize, p: &Problem, v: &Variant) -> Result<(), RenderError> {
+    m.raw("\n#heading(level: 3)[").text(&format!("{number}. "));
+    m.author(&p.title)?;
+    m.text(&format!(" (variant {})", v.number)).raw("]\n");
+    let given: Vec<String> = v
+        .given
+        .iter()
+        .map(|g| {
+            let unit = g
+                .unit
+                .as_deref()
+                .map_or(String::new(), |u| format!(" thin {}", unit_typst(u)));
+            Ok(format!(
+                "{} = {}{unit}",
+                symbol(&g.name),
+                formula(&g.value)?
+            ))
+        })
+        .collect::<Result<_, RenderError>>()?;
+    if !given.is_empty() {
+        m.text("Given: ").inline(&given.join("\\, quad ")).par();
+    }
+    m.raw("#table(columns: (auto, 1fr, auto), stroke: 0.4pt, inset: 5pt, [*Answer*], [*Exact*], [*Decimal*],\n");
+    for (spec, a) in p.answers.iter().zip(&v.answers) {
+        let unit = spec
+            .unit
+            .as_ref()
+            .map_or(String::new(), |u| format!(" thin {}", unit_typst(&u.text)));
+        m.raw("[");
+        match (&spec.label, spec.bare_quantity()) {
+            (Some(words), _) => {
+                m.author(&capitalised(words))?;
+            }
+            (None, Some(q)) => {
+                m.text(answer_words(q));
+            }
+            (None, None) => {
+                m.inline(&spec.value.to_typst());
+            }
+        }
+        m.raw("], [")
+            .display(&format!("{}{unit}", a.exact.to_expr().to_typst()))
+            .raw("], [")
+            .display(&format!(
+                "{}{unit}",
+                super::handout::numbers_typst(&a.exact, &decimals(&a.exact_numbers))
+            ))
+            .raw("],\n");
+    }
+    m.raw(")\n");
+    m.raw("#text(9pt)[").text(&format!(
+        "Each answer agrees with its numeric route to {} (relative).",
+        crate::base::format::sci(v.worst_error())
+    ));
+    m.raw("]\n");
+    Ok(())
+}
+
+/// The answer's numbers to the key's figures, in Typst's math.
+pub fn decimals(numbers: &[f64]) -> Vec<String> {
+    numbers
+        .iter()
+        .map(|x| {
+            if !x.is_finite() {
+                return crate::cas::typst_string(&x.to_string());
+            }
+            let s = crate::base::format::figures(*x, KEY_FIGURES);
+            match crate::base::format::power_of_ten(&s) {
+                Some((mantissa, power)) => format!("{mantissa} times 10^({power})"),
+                None => s,
+            }
+            .replace('-', "−")
+        })
+        .collect()
+}
+
+/// A unit in Typst's math, upright: `kg m^2/s` as kg m²/s, each power raised after the text
+/// before it.
+pub fn unit_typst(text: &str) -> String {
+    let text = text.replace('*', " ");
+    let mut out = String::new();
+    let mut rest = text.as_str();
+    while let Some(i) = rest.find('^') {
+        let power: String = rest[i + 1..]
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '-')
+            .collect();
+        out.push_str(&format!(
+            "upright({})^({}) ",
+            crate::cas::typst_string(&rest[..i]),
+            power.replace('-', "−")
+        ));
+        rest = &rest[i + 1 + power.len()..];
+    }
+    if !rest.is_empty() {
+        out.push_str(&format!("upright({})", crate::cas::typst_string(rest)));
+    }
+    out.trim_end().to_string()
+}

@@ -1,0 +1,98 @@
+//! Typesetting, tested on small documents: an author's text is never markup, a wide formula is
+//! scaled onto the paper, the checks find text past the edge and characters with no glyph, and
+//! the same markup gives the same bytes.
+
+use super::PdfSource;
+use super::markup::{Markup, preamble};
+use super::typeset::typeset;
+use crate::scene::{Course, Paper};
+
+fn course(paper: Paper) -> Course {
+    let mut c = Course::parse(
+        "title = \"Course\"\n",
+        std::path::Path::new("mechbook.toml"),
+    )
+    .unwrap();
+    c.paper = paper;
+    c
+}
+
+fn doc(paper: Paper, body: impl FnOnce(&mut Markup)) -> PdfSource {
+    let mut m = Markup(preamble(&course(paper), "Title", "Head", "Right"));
+    body(&mut m);
+    PdfSource {
+        path: "pdf/test.pdf".into(),
+        markup: m.0,
+        images: Vec::new(),
+    }
+}
+
+/// The PDF's text streams are compressed; its page size is in the clear.
+fn media_box(pdf: &[u8]) -> String {
+    let s = String::from_utf8_lossy(pdf);
+    let at = s.find("/MediaBox").expect("a MediaBox");
+    s[at..].chars().take_while(|c| *c != ']').collect()
+}
+
+#[test]
+fn an_authors_text_is_text_however_it_reads_as_markup() {
+    let title = "A *bold* _claim_ // #let x = 1 <label> @ref [x] \\ $";
+    let out = typeset(&doc(Paper::A4, |m| {
+        m.text(title);
+        m.heading(2, "The $\\beta$ of a top, #1").unwrap();
+    }))
+    .expect("typesets");
+    assert_eq!(out.pages, 1);
+    assert!(out.missing_glyphs.is_empty() && out.past_the_edge.is_empty());
+}
+
+#[test]
+fn a_formula_wider_than_the_paper_is_scaled_onto_it_and_text_past_the_edge_is_found() {
+    let long = vec!["a"; 160].join(" + ");
+    let fitted = typeset(&doc(Paper::A4, |m| {
+        m.block(&long);
+    }))
+    .unwrap();
+    assert!(fitted.past_the_edge.is_empty());
+    // The same formula set without `fit`, in a block wider than the paper, runs off it.
+    let unbroken = typeset(&doc(Paper::A4, |m| {
+        m.raw("#block(width: 400mm)[$ ").raw(&long).raw(" $]");
+    }))
+    .unwrap();
+    assert_eq!(unbroken.past_the_edge, vec![1]);
+}
+
+#[test]
+fn a_character_no_font_has_is_named() {
+    let out = typeset(&doc(Paper::A4, |m| {
+        m.text("Name: 王小明, Zoë Ørsted");
+    }))
+    .unwrap();
+    assert_eq!(out.missing_glyphs, vec!['小', '明', '王']);
+}
+
+#[test]
+fn the_same_markup_gives_the_same_bytes_on_the_courses_paper() {
+    let a4 = doc(Paper::A4, |m| {
+        m.text("Hello ").inline("frac(1, 12) m a^(2)");
+    });
+    let (one, two) = (typeset(&a4).unwrap(), typeset(&a4).unwrap());
+    assert_eq!(one.pdf, two.pdf);
+    let text = String::from_utf8_lossy(&one.pdf);
+    assert!(!text.contains("/CreationDate") && !text.contains("/ModDate"));
+    // 595.276 × 841.89 pt is A4; 612 × 792 pt is US Letter.
+    assert!(
+        media_box(&one.pdf).contains("595.2"),
+        "{}",
+        media_box(&one.pdf)
+    );
+    let letter = typeset(&doc(Paper::Letter, |m| {
+        m.text("Hello");
+    }))
+    .unwrap();
+    assert!(
+        media_box(&letter.pdf).contains("612"),
+        "{}",
+        media_box(&letter.pdf)
+    );
+}

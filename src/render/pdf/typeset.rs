@@ -1,0 +1,197 @@
+//! Typst in-process: a small world over one document's markup and its pictures, with the
+//! fonts built into the binary, no clock (`today` is `None`) and a fixed document identifier,
+//! so the same markup gives the same bytes on every machine.
+
+use super::PdfSource;
+use std::sync::OnceLock;
+use typst::diag::{FileError, FileResult, Warned};
+use typst::foundations::{Bytes, Datetime, Duration, Smart};
+use typst::syntax::{FileId, RootedPath, Source, VirtualPath, VirtualRoot};
+use typst::text::{Font, FontBook};
+use typst::utils::LazyHash;
+use typst::{Library, LibraryExt, World};
+use typst_layout::PagedDocument;
+
+/// Why a document could not be typeset: Typst's errors, each with the markup it points at
+/// (a bug of mechbook's printers, since every author's text is a string literal).
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{path}: Typst cannot typeset it: {}", messages.join("; "))]
+pub struct TypesetError {
+    pub path: String,
+    pub messages: Vec<String>,
+}
+
+/// The fonts, read once: New Computer Modern (text and math), Libertinus and DejaVu Sans Mono.
+fn fonts() -> &'static (LazyHash<FontBook>, Vec<Font>) {
+    static FONTS: OnceLock<(LazyHash<FontBook>, Vec<Font>)> = OnceLock::new();
+    FONTS.get_or_init(|| {
+        let fonts: Vec<Font> = typst_assets::fonts()
+            .flat_map(|data| Font::iter(Bytes::new(data)))
+            .collect();
+        (LazyHash::new(FontBook::from_fonts(&fonts)), fonts)
+    })
+}
+
+fn library() -> &'static LazyHash<Library> {
+    static LIBRARY: OnceLock<LazyHash<Library>> = OnceLock::new();
+    LIBRARY.get_or_init(|| LazyHash::new(Library::builder().build()))
+}
+
+struct Document<'a> {
+    main: Source,
+    source: &'a PdfSource,
+}
+
+fn file_id(path: &str) -> Option<FileId> {
+    Some(RootedPath::new(VirtualRoot::Project, VirtualPath::new(path).ok()?).intern())
+}
+
+impl World for Document<'_> {
+    fn library(&self) -> &LazyHash<Library> {
+        library()
+    }
+    fn book(&self) -> &LazyHash<FontBook> {
+        &fonts().0
+    }
+    fn main(&self) -> FileId {
+        self.main.id()
+    }
+    fn source(&self, id: FileId) -> FileResult<Source> {
+        if id == self.main.id() {
+            Ok(self.main.clone())
+        } else {
+            Err(FileError::AccessDenied)
+        }
+    }
+    fn file(&self, id: FileId) -> FileResult<Bytes> {
+        self.source
+            .images
+            .iter()
+            .find(|(path, _)| file_id(path) == Some(id))
+            .map(|(_, bytes)| Bytes::new(bytes.clone()))
+            .ok_or(FileError::AccessDenied)
+    }
+    fn font(&self, index: usize) -> Option<Font> {
+        fonts().1.get(index).cloned()
+    }
+    fn today(&self, _: Option<Duration>) -> Option<Datetime> {
+        None
+    }
+}
+
+/// A typeset document: its PDF, its page count, the characters no font had, and the pages
+/// (from 1) with text past the paper's edge.
+pub struct Typeset {
+    pub pdf: Vec<u8>,
+    pub pages: usize,
+    pub missing_glyphs: Vec<char>,
+    pub past_the_edge: Vec<usize>,
+}
+
+/// The PDF of one document.
+pub fn typeset(source: &PdfSource) -> Result<Typeset, TypesetError> {
+    let world = Document {
+        main: Source::detached(source.markup.clone()),
+        source,
+    };
+    let fail = |messages: Vec<String>| TypesetError {
+        path: source.path.clone(),
+        messages,
+    };
+    let Warned { output, warnings } = typst::compile::<PagedDocument>(&world);
+    let document = output.map_err(|errors| {
+        fail(
+            errors
+                .iter()
+                .map(|e| {
+                    let at = typst::WorldExt::range(&world, e.span)
+                        .and_then(|r| world.main.text().get(r))
+                        .unwrap_or("");
+                    format!("{} at `{at}`", e.message)
+                })
+                .collect(),
+        )
+    })?;
+    // Typst warns of a character no font has; it is a defect of the document, not a warning.
+    let mut missing_glyphs: Vec<char> = Vec::new();
+    for w in &warnings {
+        if w.message.contains("glyph") || w.message.contains("font") {
+            let at = typst::WorldExt::range(&world, w.span)
+                .and_then(|r| world.main.text().get(r))
+                .unwrap_or("");
+            missing_glyphs.extend(at.chars().filter(|c| !c.is_ascii()));
+        }
+    }
+    let options = typst_pdf::PdfOptions {
+        ident: Smart::Custom(source.path.clone()),
+        creator: Smart::Custom(Some("mechbook (Typst)".into())),
+        timestamp: None,
+        ..Default::default()
+    };
+    let pdf = typst_pdf::pdf(&document, &options)
+        .map_err(|errors| fail(errors.iter().map(|e| e.message.to_string()).collect()))?;
+    let mut missing = missing_glyphs_in(&document);
+    missing.extend(missing_glyphs);
+    missing.sort_unstable();
+    missing.dedup();
+    Ok(Typeset {
+        pdf,
+        pages: document.pages().len(),
+        missing_glyphs: missing,
+        past_the_edge: past_the_edge(&document),
+    })
+}
+
+/// The pages (from 1) where a piece of text reaches past the paper's left or right edge.
+fn past_the_edge(document: &PagedDocument) -> Vec<usize> {
+    use typst::layout::{Abs, Frame, FrameItem, Point, Transform};
+    fn walk(frame: &Frame, ts: Transform, width: Abs) -> bool {
+        frame.items().any(|(pos, item)| {
+            let ts = ts.pre_concat(Transform::translate(pos.x, pos.y));
+            match item {
+                FrameItem::Group(g) => walk(&g.frame, ts.pre_concat(g.transform), width),
+                FrameItem::Text(t) => {
+                    let (start, end) = (
+                        Point::zero().transform(ts).x,
+                        Point::new(t.width(), Abs::zero()).transform(ts).x,
+                    );
+                    let slack = Abs::pt(0.5);
+                    start.min(end) < -slack || start.max(end) > width + slack
+                }
+                _ => false,
+            }
+        })
+    }
+    document
+        .pages()
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| walk(&p.frame, Transform::identity(), p.frame.width()))
+        .map(|(i, _)| i + 1)
+        .collect()
+}
+
+/// The characters set with no glyph (a font's "notdef", glyph 0) anywhere in the document.
+fn missing_glyphs_in(document: &PagedDocument) -> Vec<char> {
+    use typst::layout::{Frame, FrameItem};
+    fn walk(frame: &Frame, out: &mut Vec<char>) {
+        for (_, item) in frame.items() {
+            match item {
+                FrameItem::Group(g) => walk(&g.frame, out),
+                FrameItem::Text(t) => {
+                    for g in &t.glyphs {
+                        if g.id == 0 {
+                            out.extend(t.text[g.range()].chars());
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for page in document.pages() {
+        walk(&page.frame, &mut out);
+    }
+    out
+}

@@ -1,0 +1,451 @@
+//! The PDFs, read back with poppler (`pdftotext`, `pdfinfo`, `pdffonts`; `.ci/run` installs
+//! them): no student's PDF holds an answer, the key holds every one, every page is on the
+//! course's paper, every font is embedded and no character lacks a glyph, two builds give the
+//! same bytes, and a roster gives each student a paper with their name on every page.
+
+use super::{mechbook, scratch, stderr, stdout};
+use mechbook::base::format::figures;
+use serde_json::Value as Json;
+use std::path::Path;
+use std::process::Command;
+
+/// Whether poppler is here; on CI it must be.
+fn poppler() -> bool {
+    let here = Command::new("pdftotext").arg("-v").output().is_ok();
+    assert!(
+        here || std::env::var_os("CI").is_none(),
+        "CI needs poppler-utils (pdftotext) for the PDF checks"
+    );
+    if !here {
+        eprintln!("skipped: no pdftotext (install poppler-utils)");
+    }
+    here
+}
+
+fn tool(name: &str, args: &[&str]) -> String {
+    let out = Command::new(name).args(args).output().expect(name);
+    assert!(out.status.success(), "{name} {args:?}: {}", stderr(&out));
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// A PDF's text, its pages apart (pdftotext ends each page with a form feed).
+fn pages(pdf: &Path) -> Vec<String> {
+    let text = tool("pdftotext", &["-layout", pdf.to_str().unwrap(), "-"]);
+    let mut pages: Vec<String> = text.split('\u{c}').map(str::to_string).collect();
+    if pages.last().is_some_and(|p| p.trim().is_empty()) {
+        pages.pop();
+    }
+    pages
+}
+
+fn text(pdf: &Path) -> String {
+    pages(pdf).join("\n")
+}
+
+fn derived(scene: &str) -> Json {
+    let out = mechbook(&["derive", "--json", scene]);
+    assert!(out.status.success(), "{scene}: {}", stderr(&out));
+    serde_json::from_str(&stdout(&out)).unwrap()
+}
+
+/// An answer's entry as the key prints it: four figures, without its sign (a minus is set
+/// apart), the mantissa of a power of ten.
+fn on_key(x: f64) -> String {
+    let s = figures(x, 4);
+    let s = s.trim_start_matches('-');
+    s.split(['e', 'E']).next().unwrap().to_string()
+}
+
+const PROBLEMS: &[&str] = &[
+    "lectures/lecture-3-4/10-problem-box.toml",
+    "lectures/lecture-3-4/11-problem-tilted-hoop.toml",
+    "lectures/lecture-3-9/06-problem-top.toml",
+];
+
+fn lecture_pdf(site: &Path, scene: &Json, kind: &str) -> std::path::PathBuf {
+    let lecture = scene["notes"]["lecture"]
+        .as_str()
+        .unwrap()
+        .replace('/', "-");
+    site.join(format!("pdf/lecture-{lecture}-{kind}.pdf"))
+}
+
+#[test]
+fn student_pdfs_hold_no_answer_and_the_key_holds_every_one() {
+    if !poppler() {
+        return;
+    }
+    let dir = scratch("pdf-answers");
+    let site = dir.join("site");
+    let out = mechbook(&[
+        "build",
+        "lectures",
+        "--no-cache",
+        "--out",
+        site.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
+    for scene in PROBLEMS {
+        let json = derived(scene);
+        let student = text(&lecture_pdf(&site, &json, "problems-student"));
+        let handout = text(&lecture_pdf(&site, &json, "student"));
+        let key = text(&lecture_pdf(&site, &json, "problems-key"));
+        // The student's handout leaves the problems to the sheet.
+        let title = json["title"].as_str().unwrap();
+        assert!(
+            !handout.contains(title),
+            "{scene}: on the student's handout"
+        );
+        let variants = json["variants"].as_array().unwrap();
+        for v in variants {
+            assert!(
+                student.contains(&format!("Variant {}", v["number"])),
+                "{scene}: no variant {}",
+                v["number"]
+            );
+            for a in v["answers"].as_array().unwrap() {
+                for x in super::problems::numbers(a) {
+                    let d = on_key(x);
+                    assert!(key.contains(&d), "{scene}: the key lacks {d}");
+                    // A decimal of four figures is an answer's, not a given value's.
+                    if x != 0.0 && d.contains('.') && d.len() >= 5 {
+                        assert!(!student.contains(&d), "{scene}: {d} on the student's sheet");
+                    }
+                }
+            }
+        }
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// Every PDF of a site: on `paper` (pdfinfo's name for it), fonts embedded.
+fn check_paper_and_fonts(site: &Path, paper: &str) -> usize {
+    let mut count = 0;
+    for e in std::fs::read_dir(site.join("pdf")).unwrap() {
+        let pdf = e.unwrap().path();
+        let p = pdf.to_str().unwrap();
+        let info = tool("pdfinfo", &["-l", "999", p]);
+        let sizes: Vec<&str> = info
+            .lines()
+            .filter(|l| l.starts_with("Page") && l.contains(" size:"))
+            .collect();
+        assert!(!sizes.is_empty(), "{p}: no page size");
+        for s in &sizes {
+            assert!(s.contains(paper), "{p}: {s}");
+        }
+        let fonts = tool("pdffonts", &[p]);
+        for line in fonts.lines().skip(2) {
+            let cols: Vec<&str> = line.split_whitespace().collect();
+            let n = cols.len();
+            assert!(
+                n >= 5 && cols[n - 5] == "yes",
+                "{p}: a font not embedded: {line}"
+            );
+        }
+        count += 1;
+    }
+    count
+}
+
+#[test]
+fn pdfs_are_on_the_courses_paper_with_every_glyph_and_the_same_bytes_twice() {
+    if !poppler() {
+        return;
+    }
+    let dir = scratch("pdf-paper");
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    let cache = dir.join("cache");
+    for out in [&a, &b] {
+        let run = mechbook(&[
+            "build",
+            "lectures",
+            "--cache",
+            cache.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(run.status.success(), "{}", stderr(&run));
+        assert!(!stderr(&run).contains("no font has"), "{}", stderr(&run));
+    }
+    // The second build took every PDF from the cache: the same bytes as typeset afresh.
+    let fresh = dir.join("fresh");
+    let run = mechbook(&[
+        "build",
+        "lectures",
+        "--no-cache",
+        "--out",
+        fresh.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let (ta, tb, tf) = (
+        super::read_tree(&a.join("pdf")),
+        super::read_tree(&b.join("pdf")),
+        super::read_tree(&fresh.join("pdf")),
+    );
+    assert_eq!(ta.len(), 8, "{:?}", ta.keys().collect::<Vec<_>>());
+    assert!(ta == tb && ta == tf, "two builds gave different PDFs");
+    assert_eq!(check_paper_and_fonts(&a, "(A4)"), 8);
+    // The index and the handouts link to them.
+    let index = std::fs::read_to_string(a.join("index.html")).unwrap();
+    for name in ta.keys() {
+        // Tera writes the `/` of a path as `&#x2F;`, which a browser reads back as `/`.
+        assert!(
+            index.contains(&format!("href=\"pdf&#x2F;{name}\"")),
+            "{name}"
+        );
+        let html = name.replace(".pdf", ".html");
+        let page = std::fs::read_to_string(a.join("handouts").join(&html)).unwrap();
+        assert!(
+            page.contains(&format!("href=\"../pdf&#x2F;{name}\"")),
+            "{html}"
+        );
+    }
+    // Letter paper, from mechbook.toml.
+    let course = dir.join("course");
+    let init = mechbook(&["init", course.to_str().unwrap()]);
+    assert!(init.status.success(), "{}", stderr(&init));
+    let toml = course.join("mechbook.toml");
+    let text = std::fs::read_to_string(&toml).unwrap();
+    std::fs::write(&toml, format!("paper = \"letter\"\n{text}")).unwrap();
+    let letter = dir.join("letter");
+    let run = mechbook(&[
+        "build",
+        course.to_str().unwrap(),
+        "--no-cache",
+        "--out",
+        letter.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert!(check_paper_and_fonts(&letter, "(letter)") >= 2);
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+fn roster(n: usize) -> String {
+    let mut s = String::from("id,name,email\n");
+    for i in 0..n {
+        s.push_str(&format!(
+            "S{:04},\"Student {i}, Name\",s{i}@example.org\n",
+            100 + i
+        ));
+    }
+    s
+}
+
+#[test]
+fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
+    if !poppler() {
+        return;
+    }
+    let dir = scratch("pdf-roster");
+    let csv = dir.join("students.csv");
+    // Lecture 3/4's sheet has 12 variants: 9 students take 9 of them.
+    std::fs::write(&csv, roster(9)).unwrap();
+    let (site, papers) = (dir.join("site"), dir.join("papers"));
+    let build = |seed: &str, papers: &Path| {
+        mechbook(&[
+            "build",
+            "lectures",
+            "--no-cache",
+            "--out",
+            site.to_str().unwrap(),
+            "--roster",
+            csv.to_str().unwrap(),
+            "--papers",
+            papers.to_str().unwrap(),
+            "--seed",
+            seed,
+        ])
+    };
+    let run = build("1", &papers);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let table = std::fs::read_to_string(papers.join("variants.csv")).unwrap();
+    let rows: Vec<&str> = table.lines().skip(1).collect();
+    // One row per student and lecture with a sheet.
+    assert_eq!(rows.len(), 9 * 2, "{table}");
+    let scenes: Vec<Json> = PROBLEMS.iter().map(|s| derived(s)).collect();
+    let key = text(&papers.join("key.pdf"));
+    for i in 0..9 {
+        let id = format!("S{:04}", 100 + i);
+        let name = format!("Student {i}, Name");
+        let file = papers.join(format!("{:03}-{id}.pdf", i + 1));
+        let paper = pages(&file);
+        assert!(paper.len() >= 2, "{id}: {} pages", paper.len());
+        for (k, page) in paper.iter().enumerate() {
+            assert!(
+                page.contains(&name) && page.contains(&id),
+                "{id}: page {} lacks the name or id",
+                k + 1
+            );
+        }
+        let whole = paper.join("\n");
+        for row in rows.iter().filter(|r| r.contains(&id)) {
+            // name (quoted), id, lecture, variant, paper
+            let cols: Vec<&str> = row.rsplitn(4, ',').collect();
+            let (variant, lecture) = (cols[1], cols[2]);
+            assert!(whole.contains(&format!("Variant {variant}")), "{id}: {row}");
+            for json in scenes.iter().filter(|j| j["notes"]["lecture"] == lecture) {
+                // A problem with fewer variants than the sheet cycles through them.
+                let all = json["variants"].as_array().unwrap();
+                let v = &all[(variant.parse::<usize>().unwrap() - 1) % all.len()];
+                for a in v["answers"].as_array().unwrap() {
+                    for x in super::problems::numbers(a) {
+                        let d = on_key(x);
+                        assert!(key.contains(&d), "{id}: key lacks {d}");
+                        if x != 0.0 && d.contains('.') && d.len() >= 5 {
+                            assert!(!whole.contains(&d), "{id}: {d} on their paper");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            key.contains(&name) && key.contains(&id),
+            "{id} not in the key"
+        );
+    }
+    // The same seed deals the same variants; another deals them anew.
+    let again = dir.join("again");
+    let run = build("1", &again);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert_eq!(
+        std::fs::read_to_string(again.join("variants.csv")).unwrap(),
+        table
+    );
+    assert_eq!(
+        std::fs::read(again.join("key.pdf")).unwrap(),
+        std::fs::read(papers.join("key.pdf")).unwrap()
+    );
+    let other = dir.join("other");
+    let run = build("2", &other);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert_ne!(
+        std::fs::read_to_string(other.join("variants.csv")).unwrap(),
+        table
+    );
+    // More students than lecture 3/4's 12 variants: refused, nothing written.
+    std::fs::write(&csv, roster(13)).unwrap();
+    let refused = dir.join("refused");
+    let run = build("1", &refused);
+    assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("13 students, but lecture 3/4's problem sheet has 12 variant(s)"),
+        "{}",
+        stderr(&run)
+    );
+    assert!(!refused.exists());
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn a_bad_roster_is_refused_at_its_line_and_the_papers_stay_out_of_the_site() {
+    let dir = scratch("pdf-roster-bad");
+    let csv = dir.join("students.csv");
+    std::fs::write(&csv, "name,id\nAda,1\nAlan,1\n").unwrap();
+    let site = dir.join("site");
+    let run = mechbook(&[
+        "build",
+        "lectures",
+        "--out",
+        site.to_str().unwrap(),
+        "--roster",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(
+        stderr(&run).contains("students.csv:3: the id `1` is listed twice (first at line 2)"),
+        "{}",
+        stderr(&run)
+    );
+    std::fs::write(&csv, roster(2)).unwrap();
+    let run = mechbook(&[
+        "build",
+        "lectures",
+        "--out",
+        site.to_str().unwrap(),
+        "--roster",
+        csv.to_str().unwrap(),
+        "--papers",
+        site.join("papers").to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(1));
+    assert!(stderr(&run).contains("overlap"), "{}", stderr(&run));
+    assert!(!site.exists());
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn thirty_students_get_thirty_papers_with_their_names_on_every_page() {
+    if !poppler() {
+        return;
+    }
+    let dir = scratch("pdf-thirty");
+    let course = dir.join("course");
+    let scenes = course.join("lectures");
+    std::fs::create_dir_all(&scenes).unwrap();
+    // Lecture 3/4's two problems, with 30 variants each, recorded afresh by --bless.
+    for f in ["10-problem-box.toml", "11-problem-tilted-hoop.toml"] {
+        let text = std::fs::read_to_string(Path::new("lectures/lecture-3-4").join(f)).unwrap();
+        let text: Vec<&str> = text
+            .lines()
+            .filter(|l| !l.starts_with("variants = "))
+            .map(|l| {
+                if l.starts_with("count = ") {
+                    "count = 30"
+                } else {
+                    l
+                }
+            })
+            .collect();
+        std::fs::write(scenes.join(f), text.join("\n") + "\n").unwrap();
+    }
+    std::fs::write(
+        course.join("mechbook.toml"),
+        "title = \"Thirty students\"\n",
+    )
+    .unwrap();
+    let bless = mechbook(&["check", "--bless", course.to_str().unwrap()]);
+    assert!(bless.status.success(), "{}", stderr(&bless));
+    let csv = dir.join("students.csv");
+    std::fs::write(&csv, roster(30)).unwrap();
+    let (site, papers) = (dir.join("site"), dir.join("papers"));
+    let run = mechbook(&[
+        "build",
+        course.to_str().unwrap(),
+        "--no-cache",
+        "--out",
+        site.to_str().unwrap(),
+        "--roster",
+        csv.to_str().unwrap(),
+        "--papers",
+        papers.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("30 students' papers"),
+        "{}",
+        stderr(&run)
+    );
+    let table = std::fs::read_to_string(papers.join("variants.csv")).unwrap();
+    let mut variants: Vec<&str> = table
+        .lines()
+        .skip(1)
+        .map(|r| r.rsplit(',').nth(1).unwrap())
+        .collect();
+    assert_eq!(variants.len(), 30);
+    variants.sort_unstable();
+    variants.dedup();
+    assert_eq!(variants.len(), 30, "a variant went to two students");
+    for i in 0..30 {
+        let id = format!("S{:04}", 100 + i);
+        let paper = pages(&papers.join(format!("{:03}-{id}.pdf", i + 1)));
+        assert!(!paper.is_empty());
+        for page in &paper {
+            assert!(
+                page.contains(&format!("Student {i}, Name")) && page.contains(&id),
+                "{id}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
