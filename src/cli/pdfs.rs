@@ -2,7 +2,7 @@
 //! markup and pictures are unchanged (a warm build typesets nothing).
 
 use crate::render::pdf::PdfSource;
-use crate::site::cache::{Cache, Lookup};
+use crate::site::cache::Cache;
 use std::path::PathBuf;
 
 /// What typesetting made: each file, and what to tell the user.
@@ -21,14 +21,24 @@ pub fn typeset_all(
     cache: Option<&Cache>,
     prefix: &str,
 ) -> anyhow::Result<Typeset> {
+    use std::io::IsTerminal;
+    // A roster's papers can take a while: a progress bar, as for the scenes.
+    let progress = std::io::stderr().is_terminal();
     let mut out = Typeset::default();
-    for s in sources {
+    for (i, s) in sources.iter().enumerate() {
+        if progress {
+            eprint!(
+                "\r\x1b[2K{}",
+                super::progress_bar(i, sources.len(), &s.path)
+            );
+        }
         let name = format!(
             "{prefix}-{}",
             s.path.trim_end_matches(".pdf").replace('/', "-")
         );
         let inputs = inputs_hash(s);
         if let Some(cache) = cache {
+            use crate::site::cache::Lookup;
             match cache.load_pdf(&name, inputs) {
                 Lookup::Hit(pdf) => {
                     out.files.push((PathBuf::from(&s.path), pdf));
@@ -43,7 +53,11 @@ pub fn typeset_all(
                 )),
             }
         }
-        let done = crate::render::pdf::typeset::typeset(s)?;
+        let done = crate::render::pdf::typeset::typeset(s).inspect_err(|_| {
+            if progress {
+                eprint!("\r\x1b[2K");
+            }
+        })?;
         if !done.past_the_edge.is_empty() {
             out.warnings.push(format!(
                 "{}: text runs past the paper's edge on page(s) {}",
@@ -74,6 +88,9 @@ pub fn typeset_all(
             out.warnings.push(format!("the cache is not updated: {e}"));
         }
         out.files.push((PathBuf::from(&s.path), done.pdf));
+    }
+    if progress {
+        eprint!("\r\x1b[2K");
     }
     Ok(out)
 }
