@@ -13,7 +13,12 @@ pub enum TexError {
     Environment(String),
     #[error("a `{0}` without its partner")]
     Unbalanced(char),
+    #[error("groups nested more than {MAX_DEPTH} deep")]
+    TooDeep,
 }
+
+/// The deepest nesting of groups read: a guard for the stack, far beyond what an author writes.
+const MAX_DEPTH: usize = 64;
 
 /// Commands that are one character in Typst's math.
 const SYMBOLS: &[(&str, &str)] = &[
@@ -137,7 +142,11 @@ const ACCENTS: &[(&str, &str)] = &[
 /// LaTeX math (as between `$` signs) in Typst's math notation.
 pub fn latex_to_typst(latex: &str) -> Result<String, TexError> {
     let tokens = tokens(latex);
-    let mut reader = Reader { tokens, at: 0 };
+    let mut reader = Reader {
+        tokens,
+        at: 0,
+        depth: 0,
+    };
     let out = reader.until(None)?;
     Ok(out.trim().to_string())
 }
@@ -178,6 +187,7 @@ fn tokens(latex: &str) -> Vec<String> {
 struct Reader {
     tokens: Vec<String>,
     at: usize,
+    depth: usize,
 }
 
 /// A Typst string literal: quotes and backslashes escaped.
@@ -271,7 +281,18 @@ impl Reader {
         Err(TexError::Unbalanced('{'))
     }
 
+    /// One item, its arguments with it; every nested group or argument passes through here.
     fn item(&mut self) -> Result<String, TexError> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(TexError::TooDeep);
+        }
+        let out = self.one_item();
+        self.depth -= 1;
+        out
+    }
+
+    fn one_item(&mut self) -> Result<String, TexError> {
         let Some(t) = self.next() else {
             return Ok(String::new());
         };
@@ -315,6 +336,7 @@ impl Reader {
                     let mut inner = Reader {
                         tokens: tokens(&raw),
                         at: 0,
+                        depth: self.depth,
                     };
                     format!("upright({})", inner.until(None)?)
                 }
@@ -459,5 +481,13 @@ mod tests {
             Err(TexError::Unbalanced('{'))
         );
         assert!(latex_to_typst("\\begin{align}x\\end{align}").is_err());
+        let deep = format!("{}x{}", "{".repeat(10_000), "}".repeat(10_000));
+        assert_eq!(latex_to_typst(&deep), Err(TexError::TooDeep));
+        let deep = format!("{}x{}", "\\frac{".repeat(5_000), "}{1}".repeat(5_000));
+        assert_eq!(latex_to_typst(&deep), Err(TexError::TooDeep));
+        assert_eq!(
+            latex_to_typst(&"\\vec".repeat(10_000)),
+            Err(TexError::TooDeep)
+        );
     }
 }

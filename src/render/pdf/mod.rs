@@ -275,12 +275,18 @@ fn file_safe(id: &str) -> String {
     if s.is_empty() { "student".into() } else { s }
 }
 
-/// A CSV field, quoted when it needs to be.
+/// A CSV field, quoted when it needs to be. A field a spreadsheet would take for a formula
+/// (`=…`, `+…`, `-…`, `@…`) starts with `'`, so that opening the file runs nothing.
 fn csv_field(s: &str) -> String {
+    let s = if s.starts_with(['=', '+', '-', '@', '\t', '\r']) {
+        format!("'{s}")
+    } else {
+        s.to_string()
+    };
     if s.contains([',', '"', '\n', '\r']) {
         format!("\"{}\"", s.replace('"', "\"\""))
     } else {
-        s.to_string()
+        s
     }
 }
 

@@ -96,3 +96,13 @@ fn the_same_markup_gives_the_same_bytes_on_the_courses_paper() {
         media_box(&letter.pdf)
     );
 }
+
+#[test]
+fn a_roster_field_is_quoted_and_never_a_spreadsheet_formula() {
+    use super::csv_field;
+    assert_eq!(csv_field("Ada"), "Ada");
+    assert_eq!(csv_field("Lovelace, Ada"), "\"Lovelace, Ada\"");
+    assert_eq!(csv_field("Alan \"Turing\""), "\"Alan \"\"Turing\"\"\"");
+    assert_eq!(csv_field("=HYPERLINK(1)"), "'=HYPERLINK(1)");
+    assert_eq!(csv_field("@sum, x"), "\"'@sum, x\"");
+}
