@@ -348,13 +348,20 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
     };
     match pipeline::run_scene(scene, Some(Fidelity::DRAFT)) {
         Ok(report) => {
-            mechbook::render::site_files(
-                &[report],
-                &Default::default(),
-                &Default::default(),
-                false,
-            )
-            .map_err(|e| format!("rendering failed: {e}"))?;
+            let reports = [report];
+            let course = Default::default();
+            let site = mechbook::render::site_files(&reports, &course, &Default::default(), false)
+                .map_err(|e| format!("rendering failed: {e}"))?;
+            // And typeset as PDF: whatever the author wrote, Typst must read the markup.
+            #[cfg(feature = "pdf")]
+            for doc in mechbook::render::pdf::site_documents(&reports, &course, &site)
+                .map_err(|e| format!("PDF markup failed: {e}"))?
+            {
+                mechbook::render::pdf::typeset::typeset(&doc)
+                    .map_err(|e| format!("typesetting failed: {e}"))?;
+            }
+            #[cfg(not(feature = "pdf"))]
+            let _ = site;
             Ok(Outcome::Ran)
         }
         Err(e) => {
