@@ -91,6 +91,31 @@ pub(super) fn page_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
     (num, den)
 }
 
+/// The factors above or below a page's fraction bar, side by side; `times` before a number
+/// (`2 · 3`, where `2 3` would read as 23). A lone factor needs no parentheses:
+/// \frac{a + b}{c}, not \frac{(a + b)}{c}.
+pub(super) fn page_factors(fs: &[Expr], times: &str, out: &mut String, style: &dyn Style) {
+    let fs: Vec<&Expr> = fs.iter().filter(|f| !f.is_one()).collect();
+    if fs.is_empty() {
+        out.push('1');
+    }
+    let ctx = if fs.len() == 1 {
+        Prec::Sum
+    } else {
+        Prec::Power
+    };
+    for (i, f) in fs.iter().enumerate() {
+        if i > 0 {
+            out.push_str(if matches!(f, Expr::Num(_)) {
+                times
+            } else {
+                " "
+            });
+        }
+        write(f, out, ctx, style);
+    }
+}
+
 /// An index chain `v[0][2]`: its base and its indices in the order written; and, when they are all
 /// 0, 1 or 2, the axes they name (`xz`).
 pub(super) fn index_chain(e: &Expr) -> (&Expr, Vec<&Expr>, Option<Vec<char>>) {
@@ -414,28 +439,7 @@ impl Style for Latex<'_> {
         if ctx > Prec::Product {
             out.push_str("\\left(");
         }
-        let write_factors = |fs: &[Expr], out: &mut String| {
-            let fs: Vec<&Expr> = fs.iter().filter(|f| !f.is_one()).collect();
-            if fs.is_empty() {
-                out.push('1');
-            }
-            // A lone factor needs no parentheses: \frac{a + b}{c}, not \frac{(a + b)}{c}.
-            let ctx = if fs.len() == 1 {
-                Prec::Sum
-            } else {
-                Prec::Power
-            };
-            for (i, f) in fs.iter().enumerate() {
-                if i > 0 {
-                    out.push_str(if matches!(f, Expr::Num(_)) {
-                        " \\cdot "
-                    } else {
-                        " "
-                    });
-                }
-                write(f, out, ctx, self);
-            }
-        };
+        let write_factors = |fs: &[Expr], out: &mut String| page_factors(fs, " \\cdot ", out, self);
         if den.is_empty() {
             write_factors(&num, out);
         } else {

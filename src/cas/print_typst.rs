@@ -2,7 +2,7 @@
 //! printers (`print.rs`), writing Typst's math notation (`frac(1, 12) m a^(2)`, `mat(…)`).
 
 use super::expr::Expr;
-use super::print::{Prec, Style, index_chain, page_fraction, write};
+use super::print::{Prec, Style, index_chain, page_factors, page_fraction, write};
 use super::rational::Rational;
 use super::typst_latex::{latex_to_typst, typst_string};
 
@@ -150,27 +150,7 @@ impl Style for Typst<'_> {
         if ctx > Prec::Product {
             out.push('(');
         }
-        let write_factors = |fs: &[Expr], out: &mut String| {
-            let fs: Vec<&Expr> = fs.iter().filter(|f| !f.is_one()).collect();
-            if fs.is_empty() {
-                out.push('1');
-            }
-            let ctx = if fs.len() == 1 {
-                Prec::Sum
-            } else {
-                Prec::Power
-            };
-            for (i, f) in fs.iter().enumerate() {
-                if i > 0 {
-                    out.push_str(if matches!(f, Expr::Num(_)) {
-                        " dot.op "
-                    } else {
-                        " "
-                    });
-                }
-                write(f, out, ctx, self);
-            }
-        };
+        let write_factors = |fs: &[Expr], out: &mut String| page_factors(fs, " dot.op ", out, self);
         if den.is_empty() {
             write_factors(&num, out);
         } else {
