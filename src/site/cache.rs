@@ -153,13 +153,17 @@ impl Cache {
     /// A typeset PDF, stored under its document's name and the hash of its markup and
     /// pictures (`inputs`): a changed document, or another mechbook, misses.
     pub fn load_pdf(&self, name: &str, inputs: u64) -> Lookup {
-        let (path, key) = self.named_entry(name, "pdf", &format!("{}:{inputs:016x}", self.program));
+        let (path, key) = self.pdf_entry(name, inputs);
         self.load_at(path, key)
     }
 
     pub fn store_pdf(&self, name: &str, inputs: u64, pdf: &[u8]) -> Result<(), SiteError> {
-        let (path, key) = self.named_entry(name, "pdf", &format!("{}:{inputs:016x}", self.program));
+        let (path, key) = self.pdf_entry(name, inputs);
         self.store_at(&path, key, name, "pdf", pdf)
+    }
+
+    fn pdf_entry(&self, name: &str, inputs: u64) -> (PathBuf, u64) {
+        self.named_entry(name, "pdf", &format!("{}:{inputs:016x}", self.program))
     }
 
     /// The stored bytes on a hit; a damaged entry is told to `damaged` and is a miss.

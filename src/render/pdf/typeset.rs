@@ -98,7 +98,7 @@ pub fn typeset(source: &PdfSource) -> Result<Typeset, TypesetError> {
         path: source.path.clone(),
         messages,
     };
-    let Warned { output, warnings } = typst::compile::<PagedDocument>(&world);
+    let Warned { output, .. } = typst::compile::<PagedDocument>(&world);
     let document = output.map_err(|errors| {
         fail(
             errors
@@ -112,16 +112,6 @@ pub fn typeset(source: &PdfSource) -> Result<Typeset, TypesetError> {
                 .collect(),
         )
     })?;
-    // Typst warns of a character no font has; it is a defect of the document, not a warning.
-    let mut missing_glyphs: Vec<char> = Vec::new();
-    for w in &warnings {
-        if w.message.contains("glyph") || w.message.contains("font") {
-            let at = typst::WorldExt::range(&world, w.span)
-                .and_then(|r| world.main.text().get(r))
-                .unwrap_or("");
-            missing_glyphs.extend(at.chars().filter(|c| !c.is_ascii()));
-        }
-    }
     let options = typst_pdf::PdfOptions {
         ident: Smart::Custom(source.path.clone()),
         creator: Smart::Custom(Some("mechbook (Typst)".into())),
@@ -130,8 +120,9 @@ pub fn typeset(source: &PdfSource) -> Result<Typeset, TypesetError> {
     };
     let pdf = typst_pdf::pdf(&document, &options)
         .map_err(|errors| fail(errors.iter().map(|e| e.message.to_string()).collect()))?;
+    // A character no font has is set as the font's "notdef": found in the laid-out pages, not
+    // in Typst's warnings' wording.
     let mut missing = missing_glyphs_in(&document);
-    missing.extend(missing_glyphs);
     missing.sort_unstable();
     missing.dedup();
     Ok(Typeset {
