@@ -3,5 +3,7 @@
 pub mod float;
 pub mod format;
 pub mod hash;
+pub mod markup;
+pub mod natural;
 pub mod rng;
 pub mod suggest;

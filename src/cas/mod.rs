@@ -345,17 +345,27 @@ pub fn is_zero_all(exprs: Vec<Expr>) -> Result<Vec<bool>, CasError> {
     run(move || exprs.iter().map(engine::is_zero).collect())
 }
 
-/// As [`is_zero_all`], with every symbol taken to be positive, so that √(g²) = g and
-/// √(X/(4 I1²)) = √X/(2 I1): a scene's symbols are masses, lengths, rates.
-pub fn is_zero_over_positive(exprs: Vec<Expr>) -> Result<Vec<bool>, CasError> {
-    run(move || exprs.iter().map(positive::is_zero).collect())
+/// As [`is_zero_all`], with every symbol but the `signed` ones taken to be positive, so that
+/// √(g²) = g and √(X/(4 I1²)) = √X/(2 I1): a scene's symbols are masses, lengths, constants;
+/// its coordinates and rates (`signed`) take either sign, so √(p²) stays |p|.
+pub fn is_zero_over_positive(
+    exprs: Vec<Expr>,
+    signed: std::collections::BTreeSet<String>,
+) -> Result<Vec<bool>, CasError> {
+    run(move || {
+        let positive = |s: &str| !signed.contains(s);
+        exprs
+            .iter()
+            .map(|e| positive::is_zero(e, &positive))
+            .collect()
+    })
 }
 
 /// `e` with each square root's radicand factored and its square factors taken out, every
 /// symbol positive: √(I₃²/ε² − b) = √(I₃² − b ε²)/ε.
 pub fn roots_over_positive(e: &Expr) -> Result<Expr, CasError> {
     let e = e.clone();
-    run(move || positive::roots_over_positive(&e))
+    run(move || positive::roots_over_positive(&e, &|_| true))
 }
 
 /// The expanded numerator and denominator of each rational function.

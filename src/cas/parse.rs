@@ -27,6 +27,10 @@ pub const MAX_EXPR_BYTES: usize = 4000;
 /// nest a few levels, and every stage that walks the tree recurses once a level.
 pub const MAX_NESTING: usize = 64;
 
+/// The largest constant power a scene writes (`x^1000`): every exact power of a scene's numbers
+/// then has at most a thousand times their digits.
+pub const MAX_POWER: f64 = 1000.0;
+
 /// The nesting limit for our own texts read back (the engine's output, a derived result):
 /// they can be longer than any scene's input, but never deeper than this, and the recursion
 /// stays far inside a thread's stack.
@@ -45,7 +49,7 @@ pub fn parse_input(text: &str) -> Result<Parsed, ParseError> {
             ),
         });
     }
-    parse_with(text, MAX_NESTING, super::rational::MAX_DIGITS)
+    parse_with(text, MAX_NESTING, super::rational::MAX_DIGITS, MAX_POWER)
 }
 
 /// Parses text that mechbook made itself: no length limit, and a generous nesting limit.
@@ -54,16 +58,23 @@ pub fn parse(text: &str) -> Result<Parsed, ParseError> {
         text,
         MAX_INTERNAL_NESTING,
         super::rational::MAX_ENGINE_DIGITS,
+        f64::INFINITY,
     )
 }
 
-fn parse_with(text: &str, max_depth: usize, max_digits: usize) -> Result<Parsed, ParseError> {
+fn parse_with(
+    text: &str,
+    max_depth: usize,
+    max_digits: usize,
+    max_power: f64,
+) -> Result<Parsed, ParseError> {
     let mut p = Parser {
         src: text.as_bytes(),
         pos: 0,
         depth: 0,
         max_depth,
         max_digits,
+        max_power,
         symbols: Vec::new(),
     };
     p.skip_ws();
@@ -149,6 +160,8 @@ struct Parser<'a> {
     max_depth: usize,
     /// A scene's numbers are short; the engine's products of them may be long.
     max_digits: usize,
+    /// The largest constant power a scene may write ([`MAX_POWER`]).
+    max_power: f64,
     symbols: Vec<(String, usize)>,
 }
 
@@ -256,7 +269,22 @@ impl Parser<'_> {
         if self.peek() == Some(b'^') {
             self.pos += 1;
             // Right-associative; the exponent may carry its own sign.
+            let at = self.pos;
             let exponent = self.unary()?;
+            // An exact power is taken of every number a scene substitutes: (3/10)^(10^12)
+            // would not fit in memory.
+            if let Ok(k) = exponent.eval(&|_| None)
+                && (k.is_nan() || k.abs() > self.max_power)
+            {
+                return Err(ParseError {
+                    offset: at,
+                    message: format!(
+                        "a power of {} is too large: a constant power is at most {MAX_POWER} \
+                         (in size)",
+                        short(&exponent.to_text())
+                    ),
+                });
+            }
             return Ok(Expr::pow(base, exponent));
         }
         Ok(base)

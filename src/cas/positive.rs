@@ -8,28 +8,33 @@ use super::radical::pull_squares;
 
 /// `e` with every square root's radicand factored over the rationals and its square factors
 /// taken out. A radicand that is not a rational function (a root inside a root, a sine) stays.
-pub fn roots_over_positive(e: &Expr) -> Result<Expr, EngineError> {
+pub fn roots_over_positive(e: &Expr, positive: &dyn Fn(&str) -> bool) -> Result<Expr, EngineError> {
     let walk = |xs: &[Expr]| -> Result<Vec<Expr>, EngineError> {
-        xs.iter().map(roots_over_positive).collect()
+        xs.iter()
+            .map(|x| roots_over_positive(x, positive))
+            .collect()
     };
     Ok(match e {
         Expr::Pow(base, exp) if **exp == Expr::rat(1, 2) => {
-            let base = roots_over_positive(base)?;
+            let base = roots_over_positive(base, positive)?;
             match engine::factor(&base) {
-                Ok(factored) => pull_squares(&Expr::pow(factored, Expr::rat(1, 2)), &|_| true),
+                Ok(factored) => pull_squares(&Expr::pow(factored, Expr::rat(1, 2)), positive),
                 Err(_) => Expr::pow(base, Expr::rat(1, 2)),
             }
         }
         // X^(−1/2) = 1/√X.
         Expr::Pow(base, exp) if **exp == Expr::rat(-1, 2) => Expr::pow(
-            roots_over_positive(&Expr::pow((**base).clone(), Expr::rat(1, 2)))?,
+            roots_over_positive(&Expr::pow((**base).clone(), Expr::rat(1, 2)), positive)?,
             Expr::int(-1),
         ),
-        Expr::Pow(base, exp) => Expr::pow(roots_over_positive(base)?, roots_over_positive(exp)?),
+        Expr::Pow(base, exp) => Expr::pow(
+            roots_over_positive(base, positive)?,
+            roots_over_positive(exp, positive)?,
+        ),
         Expr::Add(v) => Expr::add(walk(v)?),
         Expr::Mul(v) => Expr::mul(walk(v)?),
         Expr::Call(name, args) if name == "sqrt" && args.len() == 1 => {
-            roots_over_positive(&Expr::pow(args[0].clone(), Expr::rat(1, 2)))?
+            roots_over_positive(&Expr::pow(args[0].clone(), Expr::rat(1, 2)), positive)?
         }
         Expr::Call(name, args) => Expr::Call(name.clone(), walk(args)?),
         other => other.clone(),
@@ -38,8 +43,8 @@ pub fn roots_over_positive(e: &Expr) -> Result<Expr, EngineError> {
 
 /// Whether `e` is identically zero once its roots are taken over positive symbols. Each root
 /// left is then named, so that fractions over the same √X combine as fractions over a symbol.
-pub fn is_zero(e: &Expr) -> Result<bool, EngineError> {
-    let e = roots_over_positive(e)?;
+pub fn is_zero(e: &Expr, positive: &dyn Fn(&str) -> bool) -> Result<bool, EngineError> {
+    let e = roots_over_positive(e, positive)?;
     let mut roots = Vec::new();
     let named = name_roots(&e, &mut roots)?;
     Ok(!roots.is_empty() && engine::is_zero(&named)? || engine::is_zero(&e)?)

@@ -50,11 +50,36 @@ pub(super) fn typst_symbol(s: &str) -> String {
             };
             if tail.is_empty() {
                 head
-            } else {
+            } else if tail.chars().all(|c| c.is_ascii_digit()) {
                 format!("{head}_({tail})")
+            } else {
+                // `I1cone`, `d2U`: in Typst's math `1cone` would read as 1 times a variable
+                // `cone`; its letters apart are set in italics, as LaTeX sets `I_{1cone}`.
+                format!("{head}_({})", subscript_letters(tail))
             }
         }
     }
+}
+
+/// A subscript of digits and letters in Typst's math: each run of digits one number, each
+/// letter on its own (a run of letters would be read as one variable's name).
+fn subscript_letters(tail: &str) -> String {
+    let mut out = String::new();
+    let mut last_digit = false;
+    for c in tail.chars() {
+        let digit = c.is_ascii_digit();
+        // A space between any two but the digits of one number.
+        if !(out.is_empty() || digit && last_digit) {
+            out.push(' ');
+        }
+        if c.is_ascii_alphanumeric() {
+            out.push(c);
+        } else {
+            out.push_str(&typst_string(&c.to_string()));
+        }
+        last_digit = digit;
+    }
+    out
 }
 
 /// Typst's math for the PDFs.
@@ -285,6 +310,11 @@ mod tests {
         assert_eq!(typst("-3/4"), "-frac(3, 4)");
         assert_eq!(typst("inertia_tensor"), "upright(\"inertia_tensor\")");
         assert_eq!(typst("sin(x)^2"), "sin^(2) (x)");
+        // A digit then letters: each letter apart, never a variable `cone` (issue 41).
+        assert_eq!(
+            typst("I1cone + d2U + w12"),
+            "I_(1 c o n e) + d_(2 U) + ω_(12)"
+        );
     }
 
     #[test]

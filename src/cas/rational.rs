@@ -20,6 +20,8 @@ use std::str::FromStr;
 /// number stays cheap: a mass of 990 digits once took a 12-minute build.
 pub const MAX_DIGITS: usize = 100;
 pub const MAX_EXPONENT: i64 = 1000;
+/// The most bits of an exact power ([`Rational::pow`]): about the engine's 100,000 digits.
+pub const MAX_POWER_BITS: u64 = 400_000;
 /// The most digits of a number the engine gives back: its products of a scene's numbers.
 pub const MAX_ENGINE_DIGITS: usize = 100_000;
 
@@ -145,7 +147,18 @@ impl Rational {
     }
 
     /// x^k for an integer k; `None` for 0 to a negative power.
+    /// `self^k`; `None` for 0^-k, and for a power of more than [`MAX_POWER_BITS`] bits, which
+    /// would not fit in memory ((1/1000)^(10^12)).
     pub fn pow(&self, k: i64) -> Option<Rational> {
+        use malachite_base::num::logic::traits::SignificantBits;
+        let bits = self
+            .0
+            .numerator_ref()
+            .significant_bits()
+            .max(self.0.denominator_ref().significant_bits());
+        if bits > 1 && bits.saturating_mul(k.unsigned_abs()) > MAX_POWER_BITS {
+            return None;
+        }
         let base = if k < 0 { self.recip()? } else { self.clone() };
         Some(Rational((&base.0).pow(k.unsigned_abs())))
     }

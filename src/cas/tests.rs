@@ -320,12 +320,26 @@ fn roots_over_positive_symbols_decide_what_a_student_would() {
         p("sqrt((3/10*M*R^2)^2*w3^2 - 4*3/5*M*(R^2/4 + h^2)*M*g*3*h/4)/(2*3/5*M*(R^2/4 + h^2))");
     let wrong =
         p("sqrt((3/10*M*R^2)^2*w3^2 - 4*3/5*M*(R^2/4 + h^2)*M*g*h/4)/(2*3/5*M*(R^2/4 + h^2))");
-    let zero = is_zero_over_positive(vec![
-        Expr::minus(cone.clone(), notes),
-        Expr::minus(cone, wrong),
-        p("sqrt((x - y)^2) - (x - y)"),
-        p("sqrt(x^2*(a + b)^2) - x*(a + b)"),
-    ])
+    let zero = is_zero_over_positive(
+        vec![
+            Expr::minus(cone.clone(), notes),
+            Expr::minus(cone, wrong),
+            p("sqrt((x - y)^2) - (x - y)"),
+            p("sqrt(x^2*(a + b)^2) - x*(a + b)"),
+        ],
+        Default::default(),
+    )
     .unwrap();
     assert_eq!(zero, [true, false, false, true]);
+    // A rate takes either sign: √(2 I T) with T = I p²/2 is |I p|, not I p (issue 41).
+    let signed: std::collections::BTreeSet<String> = ["p".to_string()].into();
+    let zero = is_zero_over_positive(
+        vec![
+            p("sqrt(2*I*(I*p^2/2)) - I*p"),
+            p("sqrt(2*I*(I*q^2/2)) - I*q"),
+        ],
+        signed,
+    )
+    .unwrap();
+    assert_eq!(zero, [false, true]);
 }

@@ -141,14 +141,52 @@ const ACCENTS: &[(&str, &str)] = &[
 
 /// LaTeX math (as between `$` signs) in Typst's math notation.
 pub fn latex_to_typst(latex: &str) -> Result<String, TexError> {
-    let tokens = tokens(latex);
+    let mut tokens = tokens(latex);
+    escape_unbalanced_parentheses(&mut tokens);
     let mut reader = Reader {
         tokens,
         at: 0,
         depth: 0,
+        upright: false,
     };
     let out = reader.until(None)?;
     Ok(out.trim().to_string())
+}
+
+/// Marks as `\(` and `\)` the parentheses of every brace group (and of the whole) in which
+/// they do not pair up: the group may become an argument of a call that the printer writes,
+/// `sqrt(…)`, whose `)` an author's lone `)` would otherwise close (`\sqrt{)}`).
+fn escape_unbalanced_parentheses(tokens: &mut [String]) {
+    // Per open group: the indices of its parentheses, its depth, and whether it went below 0.
+    let mut groups: Vec<(Vec<usize>, i64, bool)> = vec![(Vec::new(), 0, false)];
+    let mut unbalanced: Vec<usize> = Vec::new();
+    let close = |g: (Vec<usize>, i64, bool), unbalanced: &mut Vec<usize>| {
+        if g.2 || g.1 != 0 {
+            unbalanced.extend(g.0);
+        }
+    };
+    for (i, t) in tokens.iter().enumerate() {
+        match t.as_str() {
+            "{" => groups.push((Vec::new(), 0, false)),
+            "}" if groups.len() > 1 => {
+                let g = groups.pop().expect("an open group");
+                close(g, &mut unbalanced);
+            }
+            "(" | ")" => {
+                let g = groups.last_mut().expect("the whole is a group");
+                g.0.push(i);
+                g.1 += if t == "(" { 1 } else { -1 };
+                g.2 |= g.1 < 0;
+            }
+            _ => {}
+        }
+    }
+    while let Some(g) = groups.pop() {
+        close(g, &mut unbalanced);
+    }
+    for i in unbalanced {
+        tokens[i] = format!("\\{}", tokens[i]);
+    }
 }
 
 fn tokens(latex: &str) -> Vec<String> {
@@ -188,6 +226,9 @@ struct Reader {
     tokens: Vec<String>,
     at: usize,
     depth: usize,
+    /// Inside `\mathrm{…}`: a run of letters is one upright word (`"kg"`), not a product of
+    /// italic letters.
+    upright: bool,
 }
 
 /// A Typst string literal: quotes and backslashes escaped.
@@ -256,15 +297,24 @@ impl Reader {
         }
     }
 
-    /// An argument's raw text, for `\text{…}` and `\mathrm{…}`.
+    /// An argument's raw text, for `\text{…}`: an escaped character (`\%`) as itself.
     fn raw_argument(&mut self) -> Result<String, TexError> {
+        Ok(self
+            .argument_tokens()?
+            .iter()
+            .map(|t| t.strip_prefix('\\').filter(|s| s.len() == 1).unwrap_or(t))
+            .collect())
+    }
+
+    /// An argument's tokens as they are, its inner braces kept.
+    fn argument_tokens(&mut self) -> Result<Vec<String>, TexError> {
         self.skip_spaces();
         if self.peek() != Some("{") {
-            return Ok(self.next().unwrap_or_default());
+            return Ok(self.next().into_iter().collect());
         }
         self.at += 1;
         let mut depth = 1;
-        let mut out = String::new();
+        let mut out = Vec::new();
         while let Some(t) = self.next() {
             match t.as_str() {
                 "{" => depth += 1,
@@ -276,7 +326,7 @@ impl Reader {
                 }
                 _ => {}
             }
-            out.push_str(t.strip_prefix('\\').filter(|s| s.len() == 1).unwrap_or(&t));
+            out.push(t);
         }
         Err(TexError::Unbalanced('{'))
     }
@@ -305,6 +355,14 @@ impl Reader {
             "/" | "," | ";" | "#" | "$" | "\"" | "&" => format!("\\{t}"),
             "~" => " space ".into(),
             s if s.starts_with('\\') => self.command(&s[1..])?,
+            s if self.upright && s.chars().all(char::is_alphabetic) => {
+                let mut word = s.to_string();
+                while let Some(next) = self.peek().filter(|n| n.chars().all(char::is_alphabetic)) {
+                    word.push_str(next);
+                    self.at += 1;
+                }
+                typst_string(&word)
+            }
             s if s.chars().all(|c| c.is_ascii_alphabetic()) => format!(" {s} "),
             s => s.to_string(),
         })
@@ -329,14 +387,19 @@ impl Reader {
             "overleftrightarrow" => format!("accent({}, arrow.l.r)", self.argument()?),
             "text" | "textrm" | "mbox" | "textit" => typst_string(&self.raw_argument()?),
             "mathrm" | "operatorname" | "rm" => {
-                let raw = self.raw_argument()?;
-                if raw.chars().all(|c| c.is_alphabetic() || c == ' ') {
-                    format!("upright({})", typst_string(&raw))
+                let inner = self.argument_tokens()?;
+                if inner
+                    .iter()
+                    .all(|t| t.chars().all(|c| c.is_alphabetic() || c == ' '))
+                {
+                    format!("upright({})", typst_string(&inner.concat()))
                 } else {
+                    // `\mathrm{kg\,m^2}`: its spaces, powers and symbols read as LaTeX.
                     let mut inner = Reader {
-                        tokens: tokens(&raw),
+                        tokens: inner,
                         at: 0,
                         depth: self.depth,
+                        upright: true,
                     };
                     format!("upright({})", inner.until(None)?)
                 }
@@ -360,7 +423,7 @@ impl Reader {
             "quad" => " quad ".into(),
             "qquad" => " wide ".into(),
             "\\" => " \\ ".into(),
-            "{" | "}" | "$" | "#" | "&" | "_" | "%" => format!("\\{name}"),
+            "{" | "}" | "$" | "#" | "&" | "_" | "%" | "(" | ")" => format!("\\{name}"),
             "|" => "‖".into(),
             other => return Err(TexError::Command(other.to_string())),
         })
@@ -428,6 +491,11 @@ impl Reader {
 
 /// Appends a piece, with a space where two names would run into one.
 fn push(out: &mut String, piece: &str) {
+    // A power or index with nothing before it (`m/s$^2$`) gets an empty base: Typst refuses a
+    // bare `^`.
+    if out.trim().is_empty() && (piece.starts_with('^') || piece.starts_with('_')) {
+        out.push_str("\"\"");
+    }
     let ends_word = out.ends_with(|c: char| c.is_alphanumeric() || c == ')' || c == '"');
     let starts_word = piece.starts_with(|c: char| c.is_alphanumeric() || c == '"');
     if ends_word && starts_word {
@@ -459,7 +527,7 @@ mod tests {
         assert_eq!(t("\\frac{1}{2} m"), "frac(1, 2) m");
         assert_eq!(
             t("g = 9.81\\,\\mathrm{m/s^2}"),
-            "g = 9.81 thin upright( m \\/ s ^(2))"
+            "g = 9.81 thin upright(\"m\"\\/\"s\"^(2))"
         );
         assert_eq!(t("\\text{every axis}"), "\"every axis\"");
         assert_eq!(
@@ -468,6 +536,19 @@ mod tests {
         );
         assert_eq!(t("\\left(x\\right)^{2}"), "( x )^(2)");
         assert_eq!(t("f(x, y)"), "f ( x \\, y )");
+    }
+
+    #[test]
+    fn what_an_author_writes_cannot_close_a_call_or_lose_a_base() {
+        // A lone `)` inside an argument is escaped; paired ones stay delimiters.
+        assert_eq!(t("\\sqrt{)}"), "sqrt(\\))");
+        assert_eq!(t("\\sqrt{(a)}"), "sqrt(( a ))");
+        assert_eq!(t("\\frac{(}{)}"), "frac(\\(, \\))");
+        assert_eq!(t("[0, 1)"), "[0\\, 1\\)");
+        // A power with no base gets an empty one.
+        assert_eq!(t("^2"), "\"\"^(2)");
+        // Units upright, their thin spaces and powers read.
+        assert_eq!(t("\\mathrm{kg\\,m^2}"), "upright(\"kg\" thin \"m\"^(2))");
     }
 
     #[test]

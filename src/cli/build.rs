@@ -211,7 +211,11 @@ impl Build {
     pub fn run(&self) -> Result<Built, NotBuilt> {
         let start = std::time::Instant::now();
         let fail = NotBuilt::Other;
-        let course = crate::scene::Course::load(&self.course_file).map_err(|e| fail(e.into()))?;
+        let mut course =
+            crate::scene::Course::load(&self.course_file).map_err(|e| fail(e.into()))?;
+        // The papers name each student's variant: the site, which may be published, then
+        // holds no variant's answers (the roster's own key is among the papers).
+        course.answers_private = self.roster.is_some();
         // Refused before anything is derived, so a refused build touches nothing. The
         // inputs are the scene files themselves, and the folders named.
         let files = self.check_output().map_err(fail)?;
@@ -246,6 +250,9 @@ impl Build {
             .map_err(|e| fail(e.into()))?;
         let pdfs = super::pdfs::typeset_all(&sources, self.cache.as_ref(), "site").map_err(fail)?;
         let mut warnings = pdfs.warnings;
+        // A document Typst cannot set fails the build, but the HTML site and the other PDFs
+        // are still written.
+        let mut failed_documents = pdfs.failed;
         let (typeset, pdf_cached) = (pdfs.files.len() - pdfs.from_cache, pdfs.from_cache);
         site.extend(pdfs.files);
         let papers = match &self.roster {
@@ -256,6 +263,7 @@ impl Build {
                 let made = super::pdfs::typeset_all(&sources, self.cache.as_ref(), "papers")
                     .map_err(fail)?;
                 warnings.extend(made.warnings);
+                failed_documents.extend(made.failed);
                 let mut files: crate::render::SiteFiles = made.files.into_iter().collect();
                 files.insert(PathBuf::from("variants.csv"), csv);
                 Some((dir, files, roster.students.len()))
@@ -271,7 +279,10 @@ impl Build {
         }
         let handouts = site.keys().filter(|p| p.starts_with("handouts")).count();
         let plots = site.keys().filter(|p| p.starts_with("plots")).count();
-        let failures: Vec<String> = reports
+        for f in &failed_documents {
+            eprintln!("mechbook: error: {f}");
+        }
+        let mut failures: Vec<String> = reports
             .iter()
             .flat_map(crate::report::failures)
             .map(|f| f.text)
@@ -287,7 +298,8 @@ impl Build {
         };
         let papers = papers.map_or(String::new(), |(dir, _, students)| {
             format!(
-                "; {students} students' papers and their key into {}",
+                "; {students} students' papers and their key into {} (the site leaves out the \
+                 answer keys and Moodle quizzes, since each paper names its variant)",
                 dir.display()
             )
         });
@@ -304,6 +316,15 @@ impl Build {
                 String::new()
             }
         );
+        let summary = if failed_documents.is_empty() {
+            summary
+        } else {
+            format!(
+                "{summary}; {} PDF(s) FAILED to typeset (above)",
+                failed_documents.len()
+            )
+        };
+        failures.extend(failed_documents);
         Ok(Built { summary, failures })
     }
 

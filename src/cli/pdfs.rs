@@ -12,6 +12,8 @@ pub struct Typeset {
     pub from_cache: usize,
     /// Characters no font has, by document; and cache entries that could not be used or kept.
     pub warnings: Vec<String>,
+    /// The documents Typst could not typeset, each with why: the rest are still written.
+    pub failed: Vec<String>,
 }
 
 /// Typesets `sources`, under `prefix` in the cache's names (`site`, `papers`).
@@ -53,11 +55,14 @@ pub fn typeset_all(
                 )),
             }
         }
-        let done = crate::render::pdf::typeset::typeset(s).inspect_err(|_| {
-            if progress {
-                eprint!("\r\x1b[2K");
+        let done = match crate::render::pdf::typeset::typeset(s) {
+            Ok(done) => done,
+            Err(e) => {
+                out.failed
+                    .push(format!("{}: cannot be typeset: {e}", s.path));
+                continue;
             }
-        })?;
+        };
         if !done.past_the_edge.is_empty() {
             out.warnings.push(format!(
                 "{}: text runs past the paper's edge on page(s) {}",

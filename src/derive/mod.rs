@@ -21,6 +21,7 @@ pub mod series;
 pub mod sign;
 mod solve;
 pub mod stability;
+mod step_page;
 mod step_result;
 pub mod steps;
 pub mod variants;

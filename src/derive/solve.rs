@@ -112,8 +112,7 @@ fn numeric_roots(terms: &[(u32, Expr)], values: &BTreeMap<String, f64>) -> Optio
             0.0
         }
     });
-    let mut roots: Vec<(f64, f64)> = companion
-        .complex_eigenvalues()
+    let mut roots: Vec<(f64, f64)> = crate::base::float::complex_eigenvalues(companion)?
         .iter()
         .map(|z| (z.re, z.im))
         .collect();

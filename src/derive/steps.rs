@@ -10,11 +10,11 @@ use super::lagrangian::{
 use super::sign::{Sign, signs_over_positive};
 pub use super::solve::equation_with;
 use super::solve::{solve, solve_system};
+use super::step_page::page_steps;
 pub use super::step_result::{Stability, Stable, StateStability, StepResult};
-use super::{Derivation, DeriveError, Step};
+use super::{Derivation, DeriveError};
 use crate::cas::{self, Expr, Formula};
-use crate::model::prose::Prose;
-use crate::scene::{AuthorStep, Operation, Scene, mode_name};
+use crate::scene::{AuthorStep, Operation, Scene};
 use std::collections::BTreeMap;
 
 /// Why a step could not be derived, at its line.
@@ -191,7 +191,20 @@ fn equations<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)], De
 
 /// Derives every step in order, each simplified by the engine, and writes its page steps.
 pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
+    let start = std::time::Instant::now();
     for step in &scene.steps {
+        // Each step is within the engine's budget; the scene as a whole within this one.
+        if start.elapsed() > STEPS_TIME_BUDGET {
+            return Err(locate(
+                step,
+                DeriveError::NotDerivable(format!(
+                    "the scene's steps before this one took {:.0} s, past the {} s a scene's \
+                     derivation may take: split the scene",
+                    start.elapsed().as_secs_f64(),
+                    STEPS_TIME_BUDGET.as_secs()
+                )),
+            ));
+        }
         // A statement other than `name = result`: an integral shown with its limits.
         let mut shown: Option<Formula> = None;
         let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
@@ -204,6 +217,10 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
     }
     Ok(())
 }
+
+/// The most time a scene's own steps may take to derive, checked before each step: a course's
+/// scenes take milliseconds to a few seconds.
+pub const STEPS_TIME_BUDGET: std::time::Duration = std::time::Duration::from_secs(120);
 
 /// One step's result, derived by the engine (its errors located by the caller).
 fn derive_step(
@@ -368,20 +385,6 @@ fn derive_step(
     })
 }
 
-/// A state of rest of several coordinates: q1 = v1, q2 = v2, …
-fn state_formula(coordinates: &[String], state: &[crate::cas::Zero]) -> Formula {
-    let mut row = Vec::new();
-    for (k, (q, z)) in coordinates.iter().zip(state).enumerate() {
-        if k > 0 {
-            row.push(Formula::Op(crate::cas::Op::Quad));
-        }
-        row.push(Formula::Expr(Expr::sym(q)));
-        row.push(Formula::Op(crate::cas::Op::Equals));
-        row.push(Formula::Expr(z.value.clone()));
-    }
-    Formula::Row(row)
-}
-
 /// An error of a step, at the step's line; an expansion over the engine's budget says what to
 /// do about a step, not about a body.
 fn locate(step: &AuthorStep, e: DeriveError) -> DeriveError {
@@ -403,189 +406,4 @@ fn locate(step: &AuthorStep, e: DeriveError) -> DeriveError {
         line: step.line,
         message,
     })
-}
-
-/// The author's reason, then what the derivation adds ("conserved: ..."), after a semicolon.
-fn with_reason(step: &AuthorStep, why: &Prose, added: Prose) -> Prose {
-    if step.why.is_empty() {
-        return added;
-    }
-    let mut out = why.clone().text("; ");
-    out.0.extend(added.0);
-    out
-}
-
-/// A step as the page shows it: `name = result`, or each equation of motion `… = 0`.
-fn page_steps(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
-    let mut steps = page_statements(step, result);
-    for s in &mut steps {
-        s.author = Some(step.name.clone());
-    }
-    steps
-}
-
-fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
-    let why = Prose::default().text(&step.why);
-    let title = match &step.eq {
-        Some(eq) => format!("{} (eq {eq})", step.name),
-        None => step.name.clone(),
-    };
-    let named = |e: &Expr| Formula::equation(Formula::Expr(Expr::sym(&step.name)), e.clone());
-    match result {
-        StepResult::Expr(e) => vec![Step::note(&title, named(e), why)],
-        StepResult::Conserved { value, conserved } => {
-            let of = match &step.op {
-                Operation::Momentum { coordinate, .. } => coordinate.as_str(),
-                _ => "t",
-            };
-            let verdict = if *conserved {
-                format!("conserved: the Lagrangian does not depend on {of} (∂L/∂{of} = 0)")
-            } else {
-                format!("not conserved: ∂L/∂{of} is not 0")
-            };
-            let why = with_reason(step, &why, Prose::default().text(&verdict));
-            vec![Step::note(&title, named(value), why)]
-        }
-        StepResult::Equilibria { coordinate, zeros } => zeros
-            .iter()
-            .enumerate()
-            .map(|(k, z)| {
-                Step::note(
-                    &format!("{title}: equilibrium {}", k + 1),
-                    Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
-                    why.clone(),
-                )
-            })
-            .collect(),
-        StepResult::Stability { coordinate, cases } => {
-            let omega2 = Formula::Expr(Expr::pow(Expr::sym("Omega"), Expr::int(2)));
-            cases
-                .iter()
-                .map(|c| {
-                    let verdict = match c.verdict {
-                        Stable::Always => "stable for all values",
-                        Stable::Never => "unstable for all values",
-                        Stable::Where => "stable where the right-hand side is positive",
-                        Stable::Unknown => {
-                            "its exact Ω² would expand beyond the engine's budget; where this \
-                         state of rest exists at the scene's values, the numeric check gives Ω²"
-                        }
-                    };
-                    let at = Prose::default()
-                        .text(&format!("about {coordinate} = "))
-                        .expr(&c.at.value)
-                        .text(&format!(": {verdict}"));
-                    let why = with_reason(step, &why, at);
-                    Step::note(
-                        &format!("{title}: stability"),
-                        match &c.omega_squared {
-                            Some(w2) => Formula::equation(omega2.clone(), w2.clone()),
-                            None => Formula::Row(vec![
-                                omega2.clone(),
-                                Formula::Op(crate::cas::Op::Equals),
-                                Formula::Text("?".into()),
-                            ]),
-                        },
-                        why,
-                    )
-                })
-                .collect()
-        }
-        StepResult::RestStates {
-            coordinates,
-            states,
-        } => states
-            .iter()
-            .enumerate()
-            .map(|(k, state)| {
-                Step::note(
-                    &format!("{title}: equilibrium {}", k + 1),
-                    state_formula(coordinates, state),
-                    why.clone(),
-                )
-            })
-            .collect(),
-        StepResult::RestStability { coordinates, cases } => cases
-            .iter()
-            .map(|c| {
-                let verdict = match c.verdict {
-                    Stable::Always => "stable for all values",
-                    Stable::Never => "unstable for all values",
-                    Stable::Where | Stable::Unknown => "stable where every minor is positive",
-                };
-                let at = Prose::default()
-                    .text("about ")
-                    .formula(state_formula(coordinates, &c.at))
-                    .text(&format!(
-                        ": the leading minors of the stiffness K = ∂R/∂q there; every \
-                         frequency² is positive exactly when they all are (the mass matrix \
-                         being positive definite): {verdict}"
-                    ));
-                let mut row = Vec::new();
-                for (k, m) in c.minors.iter().enumerate() {
-                    if k > 0 {
-                        row.push(Formula::Op(crate::cas::Op::Quad));
-                    }
-                    row.push(Formula::Name(crate::cas::Name {
-                        base: "Delta".into(),
-                        sub: Some((k + 1).to_string()),
-                        accent: crate::cas::Accent::None,
-                        prime: false,
-                    }));
-                    row.push(Formula::Op(crate::cas::Op::Equals));
-                    row.push(Formula::Expr(m.clone()));
-                }
-                Step::note(
-                    &format!("{title}: stability"),
-                    Formula::Row(row),
-                    with_reason(step, &why, at),
-                )
-            })
-            .collect(),
-        // Each unknown = its value, titled with the name later steps use.
-        StepResult::Solution(pairs) => pairs
-            .iter()
-            .enumerate()
-            .map(|(k, (unknown, value))| {
-                Step::note(
-                    &format!(
-                        "{title}: {}, the value of {unknown}",
-                        mode_name(&step.name, k)
-                    ),
-                    Formula::equation(Formula::Expr(Expr::sym(unknown)), value.clone()),
-                    why.clone(),
-                )
-            })
-            .collect(),
-        StepResult::Modes(values) | StepResult::Roots(values) => values
-            .iter()
-            .enumerate()
-            .map(|(k, w)| {
-                let sub = Expr::sym(&mode_name(&step.name, k));
-                let what = match result {
-                    StepResult::Modes(_) => "normal mode",
-                    _ => "root",
-                };
-                Step::note(
-                    &format!("{title}: {what} {}", k + 1),
-                    Formula::equation(Formula::Expr(sub), w.clone()),
-                    why.clone(),
-                )
-            })
-            .collect(),
-        StepResult::Equations(eqs) => eqs
-            .iter()
-            .map(|(q, e)| {
-                Step::note(
-                    &format!("{title}: the equation of motion of {q}"),
-                    Formula::Row(vec![
-                        Formula::Expr(e.clone()),
-                        Formula::Op(crate::cas::Op::Equals),
-                        Formula::Number("0".into()),
-                    ]),
-                    why.clone(),
-                )
-            })
-            .collect(),
-    }
 }

@@ -12,6 +12,7 @@ pub mod motion;
 pub mod ode;
 pub mod pareto;
 pub mod quadrature;
+pub mod rounding;
 
 use crate::cas::EvalError;
 use crate::model::fidelity::Fidelity;

@@ -40,7 +40,13 @@ pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
     // Cells in display style: a fraction in a matrix at the size of the text, not a script's
     // (MathML Core sets tables compact).
     let out = out.replace("<mtable", "<mtable displaystyle=\"true\"");
-    Ok(space_attributes(&escape_bare_less_than(&out)))
+    // Only mathematics reaches the page: an author's `\operatorname{</math><script>…}` is
+    // copied by the converter as it is, and refused here.
+    let safe = crate::base::markup::safe_mathml(&out).map_err(|e| RenderError::Math {
+        latex: latex.into(),
+        message: e.to_string(),
+    })?;
+    Ok(space_attributes(&safe))
 }
 
 /// A display formula: one block `<math>` when it fits a line; else its pieces, each an inline
@@ -133,24 +139,6 @@ fn set_inline(pieces: &[String], phone: bool) -> Result<String, RenderError> {
         out.push(scaled(mathml(&binary(k, piece), false)?, piece, phone));
     }
     Ok(out.join(" "))
-}
-
-/// The converter writes `a < b` as `<mo><</mo>`, which is not valid HTML: escape every `<` that
-/// does not open a tag.
-fn escape_bare_less_than(mathml: &str) -> String {
-    let mut out = String::with_capacity(mathml.len());
-    let mut chars = mathml.chars().peekable();
-    while let Some(c) = chars.next() {
-        let opens_tag = chars
-            .peek()
-            .is_some_and(|n| n.is_ascii_alphabetic() || *n == '/');
-        if c == '<' && !opens_tag {
-            out.push_str("&lt;");
-        } else {
-            out.push(c);
-        }
-    }
-    out
 }
 
 /// The converter writes `\bigl(` as `<mo … stretchy="true"minsize="1.2em" …>`, with no space

@@ -134,6 +134,9 @@ pub enum RenderError {
     MalformedPower { latex: String },
     #[error("plot `{slug}`: {message}")]
     Plot { slug: String, message: String },
+    /// Two of the site's files would have one name (one would silently replace the other).
+    #[error("two files of the site would both be `{}`: rename a scene or a lecture", path.display())]
+    Collision { path: PathBuf },
     /// Any of the above, in one scene's page.
     #[error("{}: {error}", path.display())]
     InScene {

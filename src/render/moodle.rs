@@ -121,7 +121,7 @@ fn feedback(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
                 .unit
                 .as_ref()
                 .map_or(String::new(), |u| format!(" {}", html_escape(&u.text)));
-            format!("{}: \\({}\\){unit}", label_tex(spec), a.exact.to_latex())
+            format!("{}: {}{unit}", label_tex(spec), tex(&a.exact.to_latex()))
         })
         .collect();
     let link = solution.map_or(String::new(), |url| {
@@ -168,7 +168,7 @@ fn statement_tex(statement: &Prose) -> String {
         .iter()
         .map(|piece| match piece {
             Piece::Text(t) => html_escape(t),
-            Piece::Math(f) => format!("\\({}\\)", f.to_latex()),
+            Piece::Math(f) => tex(&f.to_latex()),
         })
         .collect()
 }
@@ -178,6 +178,12 @@ fn statement_tex(statement: &Prose) -> String {
 fn number(x: f64) -> String {
     let s = crate::base::format::significant(x, DIGITS);
     if s == "-0" { "0".into() } else { s }
+}
+
+/// TeX between `\(` and `\)` in the question's HTML, escaped: Moodle's filter reads the text,
+/// so `a<b` must be `a&lt;b` there, not the start of an element.
+fn tex(latex: &str) -> String {
+    format!("\\({}\\)", html_escape(latex))
 }
 
 fn html_escape(s: &str) -> String {

@@ -13,6 +13,20 @@ use std::path::PathBuf;
 /// The site as relative path -> contents, sorted: what `site` writes.
 pub type SiteFiles = BTreeMap<PathBuf, Vec<u8>>;
 
+/// Adds a file to the site; one that is already there is an error, never replaced.
+fn add(files: &mut SiteFiles, path: impl Into<PathBuf>, bytes: Vec<u8>) -> Result<(), RenderError> {
+    use std::collections::btree_map::Entry;
+    match files.entry(path.into()) {
+        Entry::Vacant(v) => {
+            v.insert(bytes);
+            Ok(())
+        }
+        Entry::Occupied(o) => Err(RenderError::Collision {
+            path: o.key().clone(),
+        }),
+    }
+}
+
 /// The templates, embedded as defaults; a user's folder overrides them file by file.
 const DEFAULTS: &[(&str, &str)] = &[
     ("page.html", include_str!("../../templates/page.html")),
@@ -45,8 +59,9 @@ struct LectureView {
     heading: String,
     student: String,
     instructor: String,
-    /// The problem sheet and its key, when the lecture has problems.
-    problems: Option<(String, String)>,
+    /// The problem sheet and its key (none when the answers are private), when the lecture
+    /// has problems.
+    problems: Option<(String, Option<String>)>,
     /// The same as PDFs, when this mechbook writes them.
     pdf: Option<super::pdf::LecturePdfs>,
     pages: Vec<PageLink>,
@@ -101,7 +116,7 @@ fn problem_sheets(
     lecture: &str,
     reports: &[&SceneReport],
     files: &mut SiteFiles,
-) -> Result<Option<(String, String)>, RenderError> {
+) -> Result<Option<(String, Option<String>)>, RenderError> {
     let Some(sheet) = crate::document::sheet(
         reports
             .iter()
@@ -115,6 +130,9 @@ fn problem_sheets(
     let heading = course.lecture_heading(lecture);
     let mut paths = Vec::new();
     for (kind, title) in [("student", "problem sheet"), ("key", "answer key")] {
+        if kind == "key" && course.answers_private {
+            continue;
+        }
         let mut ctx = tera::Context::new();
         ctx.insert("site", course);
         ctx.insert(
@@ -143,13 +161,14 @@ fn problem_sheets(
             &super::pdf::ENABLED.then(|| format!("pdf/{slug}-problems-{kind}.pdf")),
         );
         let path = format!("handouts/{slug}-problems-{kind}.html");
-        files.insert(
+        add(
+            files,
             PathBuf::from(&path),
             render(tera, &format!("problems-{kind}.html"), &ctx)?,
-        );
+        )?;
         paths.push(path);
     }
-    Ok(Some((paths[0].clone(), paths[1].clone())))
+    Ok(Some((paths[0].clone(), paths.get(1).cloned())))
 }
 
 /// Every file of the site: index, one page per scene, its plots, two handouts per lecture, the
@@ -162,25 +181,35 @@ pub fn site_files(
 ) -> Result<SiteFiles, RenderError> {
     let (tera, css) = templates(template_overrides)?;
     let mut files = SiteFiles::new();
-    files.insert(PathBuf::from("style.css"), css.into_bytes());
+    add(&mut files, PathBuf::from("style.css"), css.into_bytes())?;
     let mut pages: Vec<PageView> = Vec::new();
     for (r, page) in reports.iter().zip(crate::document::pages(reports)) {
         let view = page_view(&page, timings).map_err(|e| e.in_scene(&page.source))?;
         for fig in &r.figures {
             let svg = plot::svg(fig).map_err(|e| e.in_scene(&page.source))?;
-            files.insert(PathBuf::from(figure_file(r, fig)), svg.into_bytes());
+            add(
+                &mut files,
+                PathBuf::from(figure_file(r, fig)),
+                svg.into_bytes(),
+            )?;
         }
         let mut ctx = tera::Context::new();
         ctx.insert("site", course);
         ctx.insert("page", &view);
         ctx.insert("lecture_heading", &course.lecture_heading(&view.lecture));
-        files.insert(
+        add(
+            &mut files,
             PathBuf::from(page_file(r)),
             render(&tera, "page.html", &ctx)?,
-        );
+        )?;
         pages.push(view);
     }
-    // Lectures in the order their first scene appears.
+    // Lectures in the course's order: as mechbook.toml lists them, the rest as they appear.
+    let appearance: Vec<&str> = reports
+        .iter()
+        .map(|r| r.scene.notes.lecture.as_str())
+        .collect();
+    let order = course.lecture_order(&appearance);
     let mut lectures: BTreeMap<usize, LectureView> = BTreeMap::new();
     let mut by_lecture: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     for (i, r) in reports.iter().enumerate() {
@@ -215,19 +244,23 @@ pub fn site_files(
                 "handouts/{slug}-{}.html",
                 if instructor { "instructor" } else { "student" }
             );
-            files.insert(PathBuf::from(file), render(&tera, "handout.html", &ctx)?);
+            add(
+                &mut files,
+                PathBuf::from(file),
+                render(&tera, "handout.html", &ctx)?,
+            )?;
         }
         let chosen: Vec<&SceneReport> = idx.iter().map(|&i| &reports[i]).collect();
         let problems = problem_sheets(&tera, course, name, &chosen, &mut files)?;
         lectures.insert(
-            idx[0],
+            order.iter().position(|l| l == name).unwrap_or(usize::MAX),
             LectureView {
                 name: name.clone(),
                 heading: course.lecture_heading(name),
                 student: format!("handouts/{slug}-student.html"),
                 instructor: format!("handouts/{slug}-instructor.html"),
                 pdf: super::pdf::ENABLED
-                    .then(|| super::pdf::lecture_pdfs(&slug, problems.is_some())),
+                    .then(|| super::pdf::lecture_pdfs(&slug, problems.is_some(), course)),
                 problems,
                 pages: idx
                     .iter()
@@ -244,24 +277,27 @@ pub fn site_files(
             },
         );
     }
-    for r in reports {
+    // Moodle's quizzes hold every variant's answers: not in a site whose answers are private.
+    for r in reports.iter().filter(|_| !course.answers_private) {
         let solution =
             (!course.base_url.is_empty()).then(|| format!("{}/{}", course.base_url, page_file(r)));
         if let Some(xml) =
             crate::document::problem(r).map(|p| super::moodle::quiz(&p, solution.as_deref()))
         {
-            files.insert(
+            add(
+                &mut files,
                 PathBuf::from(format!("export/moodle/{}.xml", r.scene.id)),
                 xml.into_bytes(),
-            );
+            )?;
         }
     }
     let mut ctx = tera::Context::new();
     ctx.insert("site", course);
     ctx.insert("lectures", &lectures.into_values().collect::<Vec<_>>());
-    files.insert(
+    add(
+        &mut files,
         PathBuf::from("index.html"),
         render(&tera, "index.html", &ctx)?,
-    );
+    )?;
     Ok(files)
 }

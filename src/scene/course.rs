@@ -45,6 +45,11 @@ pub struct Course {
     /// The file, and where each lecture's `id` is in it, for errors about the lectures.
     #[serde(skip)]
     pub source: Option<(PathBuf, Vec<(usize, usize)>)>,
+    /// Set by a build with a roster (never read from the file): the site leaves out every
+    /// answer of the variants (the keys and the Moodle quizzes), since the students' papers
+    /// name their variants and the site may be published.
+    #[serde(skip_deserializing)]
+    pub answers_private: bool,
 }
 
 /// A paper size, as CSS's `@page { size }` names it.
@@ -93,6 +98,26 @@ impl Course {
         })
     }
 
+    /// Lecture ids in the course's order: those `mechbook.toml` titles in its order, then the
+    /// others in `appearance` order (the order their first scene is found in).
+    pub fn lecture_order<'a>(&self, appearance: &[&'a str]) -> Vec<&'a str> {
+        let mut out: Vec<&'a str> = Vec::new();
+        for id in appearance {
+            if !out.contains(id) {
+                out.push(id);
+            }
+        }
+        let rank = |id: &str| {
+            self.lectures
+                .iter()
+                .position(|l| l.id == id)
+                .unwrap_or(usize::MAX)
+        };
+        // A stable sort: the untitled keep their order of appearance.
+        out.sort_by_key(|id| rank(id));
+        out
+    }
+
     /// A lecture's heading: its title from `mechbook.toml`, else "Lecture 3/4" for an id that
     /// starts with a digit, else the id itself ("Bodies of revolution").
     pub fn lecture_heading(&self, id: &str) -> String {
@@ -118,6 +143,7 @@ impl Default for Course {
             paper: Paper::A4,
             lectures: Vec::new(),
             source: None,
+            answers_private: false,
         }
     }
 }
@@ -273,6 +299,11 @@ mod tests {
         .unwrap();
         assert_eq!(course.lecture_heading("3/4"), "Inertia");
         assert_eq!(course.lecture_heading("3/9"), "Lecture 3/9");
+        // Titled lectures first, in the course file's order; the rest as they appear.
+        assert_eq!(
+            course.lecture_order(&["10", "3/9", "6", "3/4", "10"]),
+            ["3/4", "10", "3/9", "6"]
+        );
         let twice =
             "[[lecture]]\nid = \"3/4\"\ntitle = \"A\"\n[[lecture]]\nid = \"3/4\"\ntitle = \"B\"\n";
         match Course::parse(twice, path) {

@@ -9,40 +9,49 @@ use std::path::{Path, PathBuf};
 /// The largest scene file read: a hundred times the largest shipped scene.
 pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 
-/// A scene file's bytes: only a regular file (never a device or a FIFO, which could block or
-/// never end), and at most [`MAX_SCENE_BYTES`].
-pub(super) fn read_scene_file(path: &Path) -> Result<Vec<u8>, ReadError> {
+/// A file's bytes: only a regular file (never a device or a FIFO, which could block or never
+/// end), and at most `limit` bytes. `what` names the file in the messages ("a scene file").
+pub(crate) fn read_regular_file(
+    path: &Path,
+    limit: u64,
+    what: &'static str,
+) -> Result<Vec<u8>, ReadError> {
     use std::io::Read;
-    let unreadable = |e: std::io::Error| ReadError::Unreadable(e.to_string());
+    let unreadable = |e: std::io::Error| ReadError::Unreadable(what, e.to_string());
     let meta = std::fs::metadata(path).map_err(unreadable)?;
     if !meta.is_file() {
-        return Err(ReadError::NotAFile);
+        return Err(ReadError::NotAFile(what));
     }
-    if meta.len() > MAX_SCENE_BYTES {
-        return Err(ReadError::TooLarge(meta.len()));
+    if meta.len() > limit {
+        return Err(ReadError::TooLarge(what, meta.len(), limit));
     }
     let mut bytes = Vec::new();
     std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_SCENE_BYTES + 1).read_to_end(&mut bytes))
+        .and_then(|f| f.take(limit + 1).read_to_end(&mut bytes))
         .map_err(unreadable)?;
-    if bytes.len() as u64 > MAX_SCENE_BYTES {
-        return Err(ReadError::Grew);
+    if bytes.len() as u64 > limit {
+        return Err(ReadError::Grew(what, limit));
     }
     Ok(bytes)
 }
 
-/// Why a scene file's bytes could not be read.
+/// A scene file's bytes: a regular file of at most [`MAX_SCENE_BYTES`].
+pub(super) fn read_scene_file(path: &Path) -> Result<Vec<u8>, ReadError> {
+    read_regular_file(path, MAX_SCENE_BYTES, "the scene file")
+}
+
+/// Why a file's bytes could not be read; each names the kind of file.
 #[derive(Debug, thiserror::Error)]
-pub(super) enum ReadError {
-    #[error("cannot read the scene file: {0}")]
-    Unreadable(String),
-    #[error("not a regular file: a scene is a .toml file")]
-    NotAFile,
-    #[error("the file has {0} bytes; a scene file has at most {MAX_SCENE_BYTES}")]
-    TooLarge(u64),
+pub enum ReadError {
+    #[error("cannot read {0}: {1}")]
+    Unreadable(&'static str, String),
+    #[error("not a regular file: {0} must be a file of text, not a device, a FIFO or a folder")]
+    NotAFile(&'static str),
+    #[error("the file has {1} bytes; {0} may have at most {2}")]
+    TooLarge(&'static str, u64, u64),
     /// The file grew past the limit while it was read.
-    #[error("a scene file has at most {MAX_SCENE_BYTES} bytes")]
-    Grew,
+    #[error("{0} may have at most {1} bytes")]
+    Grew(&'static str, u64),
 }
 
 /// A TOML error, located, with the field it is about when the message does not say, and a
@@ -181,9 +190,31 @@ pub fn find_scenes(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
             out.push(p.clone());
         }
     }
-    out.sort();
+    // Natural order, folder by folder: `week-6/` before `week-10/`.
+    out.sort_by(|a, b| natural_path_order(a, b));
     out.dedup();
     Ok(out)
+}
+
+/// Two paths compared component by component, each in natural order.
+fn natural_path_order(a: &Path, b: &Path) -> std::cmp::Ordering {
+    let (mut x, mut y) = (a.components(), b.components());
+    loop {
+        match (x.next(), y.next()) {
+            (None, None) => return a.cmp(b),
+            (None, Some(_)) => return std::cmp::Ordering::Less,
+            (Some(_), None) => return std::cmp::Ordering::Greater,
+            (Some(c), Some(d)) => {
+                let order = crate::base::natural::compare(
+                    &c.as_os_str().to_string_lossy(),
+                    &d.as_os_str().to_string_lossy(),
+                );
+                if order != std::cmp::Ordering::Equal {
+                    return order;
+                }
+            }
+        }
+    }
 }
 
 /// Loads every scene first, so that one bad file stops the run before any output; every bad one
@@ -229,24 +260,32 @@ pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
             errors.push(located(w[1], w[1].id_at, "id", message));
         }
     }
-    let mut by_slug: std::collections::BTreeMap<String, &Scene> = Default::default();
+    // Each lecture writes four files named from its slug (`lecture-1-student.html`, …,
+    // `lecture-1-problems-student.html`): no two lectures may share one, case aside. Lectures
+    // `1` and `1 problems` would (the second's student handout is the first's sheet).
+    let mut by_file: std::collections::BTreeMap<String, &Scene> = Default::default();
     for s in by_id {
         let slug = lecture_slug(&s.notes.lecture).to_lowercase();
-        match by_slug.get(&slug) {
-            Some(first) if first.notes.lecture != s.notes.lecture => {
-                let message = format!(
-                    "lecture `{}` and lecture `{}` (in {}) would share the handout file name \
-                     `{slug}`: name them so that they differ in a letter or digit",
-                    s.notes.lecture,
-                    first.notes.lecture,
-                    first.source.display()
-                );
-                errors.push(located(s, s.lecture_at, "notes.lecture", message));
-            }
-            Some(_) => {}
-            None => {
-                by_slug.insert(slug, s);
-            }
+        let files = LECTURE_FILES.map(|kind| format!("{slug}-{kind}"));
+        let clash = files.iter().find_map(|f| {
+            by_file
+                .get(f)
+                .filter(|first| first.notes.lecture != s.notes.lecture)
+                .map(|first| (f, *first))
+        });
+        if let Some((file, first)) = clash {
+            let message = format!(
+                "lecture `{}` and lecture `{}` (in {}) would share the handout file name \
+                 `{file}`: name them so that they differ in a letter or digit",
+                s.notes.lecture,
+                first.notes.lecture,
+                first.source.display()
+            );
+            errors.push(located(s, s.lecture_at, "notes.lecture", message));
+            continue;
+        }
+        for f in files {
+            by_file.entry(f).or_insert(s);
         }
     }
     errors.extend(sheet_over_budget(&scenes));
@@ -257,6 +296,10 @@ pub fn load_all(paths: &[PathBuf]) -> Result<Vec<Scene>, Vec<SceneError>> {
         Err(errors)
     }
 }
+
+/// The files each lecture writes, after its slug: handouts, problem sheet and key (the site's
+/// `.html` and the `.pdf`).
+const LECTURE_FILES: [&str; 4] = ["student", "instructor", "problems-student", "problems-key"];
 
 /// The most pages a lecture's problem sheet may have: a variant of the sheet per variant of its
 /// largest problem, a page per problem in each. 200 students with 50 problems each fit; one

@@ -7,6 +7,9 @@ use std::path::{Path, PathBuf};
 /// The most students a roster may list: a class, not a registry.
 pub const MAX_STUDENTS: usize = 5000;
 
+/// The largest roster read: 5,000 students of 200 bytes a line.
+pub const MAX_ROSTER_BYTES: u64 = 1 << 20;
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct Student {
     pub name: String,
@@ -35,10 +38,16 @@ pub enum RosterError {
 
 impl Roster {
     pub fn from_file(path: &Path) -> Result<Roster, RosterError> {
-        let bytes = std::fs::read(path).map_err(|e| RosterError::Unreadable {
-            path: path.to_path_buf(),
-            why: e.to_string(),
-        })?;
+        // A regular file of bounded size: a FIFO would block and /dev/zero never end.
+        use crate::scene::load::ReadError;
+        let bytes = crate::scene::load::read_regular_file(path, MAX_ROSTER_BYTES, "the roster")
+            .map_err(|e| RosterError::Unreadable {
+                path: path.to_path_buf(),
+                why: match e {
+                    ReadError::Unreadable(_, why) => why,
+                    other => other.to_string(),
+                },
+            })?;
         let text = String::from_utf8(bytes).map_err(|_| RosterError::Unreadable {
             path: path.to_path_buf(),
             why: "it is not UTF-8 text: save it as CSV UTF-8".into(),

@@ -35,6 +35,11 @@ pub enum BlessError {
         .0.display()
     )]
     Changed(PathBuf),
+    #[error(
+        "{0}\n  (what `check --bless` would record here, `check` refuses: nothing was written; \
+         state the result in the scene's own names, or report this)"
+    )]
+    WouldBeRefused(Box<crate::scene::SceneError>),
     #[error("{}: {source}", path.display())]
     Io {
         path: PathBuf,
@@ -61,6 +66,12 @@ pub fn bless_scene(r: &SceneReport) -> Result<Vec<Blessed>, BlessError> {
     }
     let (new, blessed) = blessed_bytes(&original, r)?;
     if !blessed.is_empty() {
+        // What --bless writes, `check` must read: a recorded result naming something the
+        // scene does not declare would turn a passing scene into a refused one.
+        let text = String::from_utf8_lossy(&new);
+        if let Err(e) = crate::scene::Scene::parse(text.trim_start_matches('\u{feff}'), path) {
+            return Err(BlessError::WouldBeRefused(Box::new(e)));
+        }
         write_in_place(path, &original, &new)?;
     }
     Ok(blessed)

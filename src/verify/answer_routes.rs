@@ -105,7 +105,12 @@ impl<'a> AnswerRoutes<'a> {
                 .map_err(CheckError::from)?)
         };
         let value = at(None)?;
-        let mut tolerance = 0.0;
+        // Rounding, amplified where the expression cancels (2π/(ω₂ − ω₁) of a weak spring).
+        let rounding = crate::numeric::rounding::relative_rounding(&resolved, &|s| {
+            leaves.get(s).map(|r| r.value)
+        })
+        .map_or(0.0, |(_, bound)| bound * f64::EPSILON);
+        let mut tolerance = rounding;
         for (name, r) in &leaves {
             if r.tolerance > 0.0 {
                 let moved = at(Some((name, 1.0 + r.tolerance)))?;

@@ -9,7 +9,7 @@ use crate::derive::Derivation;
 use crate::derive::algebra::evaluate;
 use crate::derive::steps::{StepResult, expand_names};
 use crate::derive::variants::{general_answer, step_values};
-use crate::model::units::{DimensionError, Measure, measure_of};
+use crate::model::units::{Dimension, DimensionError, Measure, measure_of};
 use crate::model::value::Value;
 use crate::scene::{Answer, Claim, Operation, Scene};
 
@@ -159,6 +159,48 @@ pub fn claim_notes(scene: &Scene, d: &Derivation) -> Vec<(usize, String)> {
         .collect()
 }
 
+/// Whether a unit counts cycles: `Hz`, `kHz`, `MHz`, alone or in a product.
+fn in_hertz(unit: &crate::model::units::Unit) -> bool {
+    unit.text
+        .split(|c: char| c.is_whitespace() || c == '/' || c == '*' || c == '^')
+        .any(|t| t.ends_with("Hz"))
+}
+
+/// The name through which `e` is an angular frequency, if it is one: a `frequency` step's
+/// result, a name whose unit is in radians per second, or a step whose expression holds one of
+/// those without a π (which ω/(2π) has). Radians are dimensionless in SI, so the dimension
+/// check alone takes rad/s for Hz and would publish ω as a frequency 2π times too large.
+fn angular_name(scene: &Scene, e: &Expr) -> Option<String> {
+    let mut angular: Vec<String> = scene
+        .units
+        .iter()
+        .filter(|(_, u)| {
+            u.text.contains("rad") && u.dimension == Dimension::time().power(&Rational::int(-1))
+        })
+        .map(|(n, _)| n.clone())
+        .collect();
+    for step in &scene.steps {
+        let through = |x: &Expr| {
+            let names = x.symbols();
+            !names.iter().any(|n| n == "pi") && names.iter().any(|n| angular.contains(n))
+        };
+        let is_angular = match &step.op {
+            Operation::Frequency { .. } => true,
+            Operation::Be(x) => through(x),
+            Operation::Substitute { of, .. } => through(of),
+            _ => false,
+        };
+        if is_angular {
+            angular.extend(step.names_given(scene.coordinates.len()));
+        }
+    }
+    let names = e.symbols();
+    if names.iter().any(|n| n == "pi") {
+        return None;
+    }
+    names.into_iter().find(|n| angular.contains(n))
+}
+
 /// What an answer's derived value is multiplied by to be in its unit: the size of the unit its
 /// symbols give it over the size of the unit asked for (100 for an answer in cm of symbols in
 /// m). `None` when the answer has no unit or its symbols have none.
@@ -175,6 +217,16 @@ pub fn answer_scale(
         what: format!("the answer `{}`", a.written),
         why,
     };
+    if in_hertz(unit)
+        && let Some(name) = angular_name(scene, &a.value)
+    {
+        return Err(fault(format!(
+            "it is an angular frequency (rad/s, through `{name}`), but its unit `{}` counts \
+             cycles per second, 2π times fewer: give it the unit rad/s, or divide it by 2*pi \
+             for the frequency in Hz",
+            unit.text
+        )));
+    }
     let mut found: Option<Measure> = None;
     for e in general.entries() {
         if let Some(m) = measure(scene, &e).map_err(|e| fault(e.to_string()))?

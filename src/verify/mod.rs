@@ -5,7 +5,6 @@
 //! as a problem rather than silently trusted.
 
 use crate::base::float::max_relative_error;
-use crate::base::rng::Rng;
 use crate::cas::EvalError;
 use crate::cas::{self, Expr};
 use crate::derive::algebra::{Env, Value, evaluate};
@@ -18,7 +17,6 @@ use crate::numeric::NumericReport;
 use crate::numeric::eigen::Eigenspace;
 use crate::numeric::quadrature::{Method, QuadratureRun};
 use crate::scene::{ClaimRole, Scene, Verdict};
-use std::collections::BTreeMap;
 
 /// Exact and numeric values of the same quantity must agree this closely (relative), the
 /// accuracy the foundation issue asks of exact quadrature rules.
@@ -194,46 +192,6 @@ pub fn claim_env(scene: &Scene, d: &Derivation) -> Env {
     env
 }
 
-/// Is each entry numerically zero at a few random points? (`true` per entry only if at all.)
-/// Where the random points of [`numerically_zero`] lie: every symbol in [0.4, 1.4), positive
-/// and away from 0, where a mass or a moment in a denominator vanishes, and within a factor
-/// 3.5 of the others, so that no term of a degree-30 expression over- or underflows.
-const SAMPLE_FROM: f64 = 0.4;
-
-/// A difference below this, relative to its scale (at least 1), counts as zero at a random
-/// point. The expressions are sums of at most the engine's 20,000 terms of size about 1 there,
-/// so rounding leaves at most about 20,000 · 2.2e-16 ≈ 4.4e-12; a nonzero difference of
-/// rationals and roots of small numbers is far above 1e-9 at a random point. The margin of
-/// 200 covers cancellation among the terms.
-const NUMERICALLY_ZERO: f64 = 1e-9;
-
-fn numerically_zero(diffs: &[Expr], scale: &[Expr], seed: u64) -> Result<Vec<bool>, EvalError> {
-    let mut rng = Rng::new(seed);
-    let mut zero = vec![true; diffs.len()];
-    let mut names: Vec<String> = diffs
-        .iter()
-        .chain(scale)
-        .flat_map(|e| e.symbols())
-        .collect();
-    names.sort();
-    names.dedup();
-    for _ in 0..CONFIRMATION_POINTS {
-        let point: BTreeMap<String, f64> = names
-            .iter()
-            .map(|n| (n.clone(), SAMPLE_FROM + rng.uniform()))
-            .collect();
-        let env = |s: &str| point.get(s).copied().filter(|_| s != "pi");
-        for (k, d) in diffs.iter().enumerate() {
-            let v = d.eval(&env)?;
-            let s = scale[k].eval(&env)?.abs().max(1.0);
-            if v.abs() > NUMERICALLY_ZERO * s {
-                zero[k] = false;
-            }
-        }
-    }
-    Ok(zero)
-}
-
 pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, cas::CasError> {
     let env = claim_env(scene, d);
     let mut out = Vec::new();
@@ -340,7 +298,8 @@ fn check_claim(
         .zip(&ne)
         .map(|(a, b)| Expr::add(vec![a.clone(), b.clone()]))
         .collect();
-    match numerically_zero(&diffs, &scale, scene.seed.wrapping_add(i as u64)) {
+    let signed = signed_names(scene);
+    match numerically_zero(&diffs, &scale, scene.seed.wrapping_add(i as u64), &signed) {
         Ok(numeric) => {
             // Not zero as written but zero at every random point: perhaps once roots are taken
             // over positive symbols, as a scene's are (√(g²) = g).
@@ -348,8 +307,10 @@ fn check_claim(
                 .filter(|&k| !symbolic[k] && numeric[k])
                 .collect();
             if !retry.is_empty() {
-                let again =
-                    cas::is_zero_over_positive(retry.iter().map(|&k| diffs[k].clone()).collect())?;
+                let again = cas::is_zero_over_positive(
+                    retry.iter().map(|&k| diffs[k].clone()).collect(),
+                    signed.clone(),
+                )?;
                 for (k, zero) in retry.into_iter().zip(again) {
                     symbolic[k] |= zero;
                 }
@@ -585,6 +546,8 @@ pub mod variants;
 pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
 pub use rounding::round_to_figures;
 use rounding::rounded_agreement;
+mod random_points;
+use random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, numerically_zero, signed_names};
 pub use steps::StepCheck;
 
 #[cfg(test)]

@@ -217,7 +217,8 @@ pub(super) fn rest_stability_check(
         let Some(m_inv) = m.try_inverse() else {
             return Err(CheckError::Singular);
         };
-        let eigen = (m_inv * &k).complex_eigenvalues();
+        let eigen =
+            crate::base::float::complex_eigenvalues(m_inv * &k).ok_or(CheckError::NoEigenvalues)?;
         let all_positive = eigen
             .iter()
             .all(|z| z.re > 0.0 && z.im.abs() <= 1e-9 * z.re.abs().max(1.0));

@@ -11,6 +11,13 @@ use std::collections::BTreeMap;
 pub enum CheckError {
     #[error(transparent)]
     Eval(#[from] crate::cas::EvalError),
+    #[error("`{expression}` is {value} on the way: the check cannot compare it")]
+    Undefined { expression: String, value: f64 },
+    #[error(
+        "the expressions are undefined or infinite at the random points: too few of {tries} \
+         drawn could be compared"
+    )]
+    NoPointInDomain { tries: usize },
     #[error(transparent)]
     Step(#[from] crate::derive::steps::StepError),
     #[error(transparent)]
@@ -53,6 +60,8 @@ pub enum CheckError {
     NotFinite { at: f64 },
     #[error("the equations cannot be solved for the accelerations here (a singular mass matrix)")]
     Singular,
+    #[error("the eigenvalues of the linear equations did not converge")]
+    NoEigenvalues,
     #[error(
         "the motion from the step's start stays where it is (a state of rest), which tests \
          nothing: give the step a `start` away from rest, such as start = {{ {coordinate} = 0.3 }}"
@@ -98,7 +107,7 @@ impl From<crate::numeric::motion::MotionError> for CheckError {
 
 impl StepCheck {
     pub fn passed(&self) -> bool {
-        self.problem.is_none() && self.error <= self.tolerance
+        self.problem.is_none() && self.error.is_finite() && self.error <= self.tolerance
     }
 }
 
@@ -119,4 +128,18 @@ pub(super) fn random_point(exprs: &[&Expr], rng: &mut Rng) -> BTreeMap<String, f
 
 pub(super) fn at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
     Ok(e.eval(&|s| point.get(s).copied().filter(|_| s != "pi"))?)
+}
+
+/// `e` at `point`, where an infinite or undefined value is an error: a check that compared it
+/// would see inf − inf as NaN, which every `max` passes over, and agree "to 0".
+pub(super) fn finite_at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
+    let v = at(e, point)?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(CheckError::Undefined {
+            expression: e.to_text(),
+            value: v,
+        })
+    }
 }

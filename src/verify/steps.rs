@@ -15,8 +15,8 @@ use super::solve::{roots_check, system_check};
 pub use super::step_check::{CheckError, StepCheck};
 use super::step_check::{H, at, random_point};
 use super::{
-    CONFIRMATION_POINTS, ClaimResult, NUMERICALLY_ZERO, SAMPLE_FROM, check_claim, claim_env,
-    numerically_zero, unchecked,
+    CONFIRMATION_POINTS, ClaimResult, DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, check_claim,
+    claim_env, numerically_zero, signed_names, unchecked,
 };
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
@@ -32,6 +32,43 @@ use std::collections::BTreeMap;
 /// Central differences with Richardson extrapolation err by O(h⁴) in truncation and about
 /// ε·|f|/h in rounding; with h = 1e-3 both stay far below this, relative to the derivative.
 const DIFFERENCE_AGREEMENT: f64 = 1e-7;
+
+/// The derivative at 0 of `f(x)` (None where undefined) by central differences with Richardson
+/// extrapolation, and the evaluations spent. Near a singularity (acos at 1) the truncation
+/// error of h = 1e-3 is large, or a step leaves the domain: h is quartered until two successive
+/// estimates agree to the check's tolerance (the coarser of the two is returned: the one a
+/// smooth function gets at h = 1e-3), or h reaches 1e-7, where rounding ε/h would pass it.
+/// `None` when no step size gives a finite estimate.
+fn richardson(f: &dyn Fn(f64) -> Option<f64>) -> Option<(f64, u64)> {
+    let central = |h: f64| Some((f(h)? - f(-h)?) / (2.0 * h));
+    let estimate = |h: f64| Some((4.0 * central(h / 2.0)? - central(h)?) / 3.0);
+    // At h = 1e-3 the two central differences already agree to the tolerance for a smooth
+    // function: their Richardson extrapolation is then far more accurate still.
+    if let (Some(d1), Some(d2)) = (central(H), central(H / 2.0))
+        && (d1 - d2).abs() <= DIFFERENCE_AGREEMENT * d1.abs().max(d2.abs()).max(1.0)
+    {
+        return Some(((4.0 * d2 - d1) / 3.0, 4));
+    }
+    let mut evaluations = 4;
+    let mut h = H;
+    let mut last: Option<f64> = None;
+    while h >= 1e-7 {
+        evaluations += 4;
+        let next = estimate(h);
+        match (last, next) {
+            (Some(a), Some(b))
+                if (a - b).abs() <= DIFFERENCE_AGREEMENT * a.abs().max(b.abs()).max(1.0) =>
+            {
+                return Some((a, evaluations));
+            }
+            (None, None) => {}
+            (_, Some(b)) => last = Some(b),
+            (Some(_), None) => return last.map(|a| (a, evaluations)),
+        }
+        h /= 4.0;
+    }
+    last.map(|a| (a, evaluations))
+}
 /// Each step's numeric check, in order.
 pub fn check_steps(scene: &Scene, d: &Derivation) -> Vec<StepCheck> {
     (0..scene.steps.len())
@@ -75,13 +112,28 @@ fn route(
             );
             check.tolerance = NUMERICALLY_ZERO;
             let mut rng = Rng::new(seed);
-            for _ in 0..CONFIRMATION_POINTS {
+            let mut compared = 0;
+            for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
+                if compared == CONFIRMATION_POINTS {
+                    break;
+                }
                 let point = random_point(&[&raw, r], &mut rng);
                 let (a, b) = (at(&raw, &point)?, at(r, &point)?);
                 check.evaluations += 2;
+                // Where either is undefined or infinite, nothing is compared (inf − inf is
+                // NaN, which `max` would pass over): another point is drawn.
+                if !a.is_finite() || !b.is_finite() {
+                    continue;
+                }
+                compared += 1;
                 check.error = check
                     .error
                     .max((a - b).abs() / a.abs().max(b.abs()).max(1.0));
+            }
+            if compared < CONFIRMATION_POINTS {
+                return Err(CheckError::NoPointInDomain {
+                    tries: CONFIRMATION_POINTS * DOMAIN_TRIES,
+                });
             }
         }
         (Operation::Differentiate { of, by }, StepResult::Expr(r)) => {
@@ -92,7 +144,11 @@ fn route(
             );
             check.tolerance = DIFFERENCE_AGREEMENT;
             let mut rng = Rng::new(seed);
-            for _ in 0..CONFIRMATION_POINTS {
+            let mut checked = 0;
+            for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
+                if checked == CONFIRMATION_POINTS {
+                    break;
+                }
                 let mut point = random_point(&[&f, r], &mut rng);
                 let mut accel = BTreeMap::new();
                 for q in scene.coordinates.keys() {
@@ -120,16 +176,24 @@ fn route(
                     }
                     p
                 };
-                let central = |h: f64| -> Result<f64, CheckError> {
-                    Ok((at(&f, &moved(h))? - at(&f, &moved(-h))?) / (2.0 * h))
-                };
-                let (d1, d2) = (central(H)?, central(H / 2.0)?);
-                let numeric = (4.0 * d2 - d1) / 3.0;
+                // A point outside the expression's domain (acos of more than 1) is drawn again.
                 let exact = at(r, &point)?;
-                check.evaluations += 5;
+                if !exact.is_finite() || !at(&f, &point)?.is_finite() {
+                    continue;
+                }
+                let Some((numeric, evaluations)) = richardson(&|x| at(&f, &moved(x)).ok()) else {
+                    continue;
+                };
+                check.evaluations += evaluations + 1;
                 check.error = check
                     .error
                     .max((exact - numeric).abs() / exact.abs().max(numeric.abs()).max(1.0));
+                checked += 1;
+            }
+            if checked < CONFIRMATION_POINTS {
+                return Err(CheckError::NoPointInDomain {
+                    tries: CONFIRMATION_POINTS * DOMAIN_TRIES,
+                });
             }
         }
         (Operation::Lagrange { of }, StepResult::Equations(eqs)) => {
@@ -221,13 +285,16 @@ fn route(
                     .flat_map(|(f, r)| [f, *r])
                     .chain(values.values())
                     .collect();
-                let mut point = random_point(&exprs, &mut rng);
+                let point = random_point(&exprs, &mut rng);
+                // All at once, as the exact rule replaces: a replacement that names another
+                // replaced name takes that name's value before the replacement. The result is
+                // in the names as they were (after a swap, x stands where y stood).
+                let mut replaced = point.clone();
                 for (name, e) in &values {
-                    let x = at(e, &point)?;
-                    point.insert(name.clone(), x);
+                    replaced.insert(name.clone(), at(e, &point)?);
                 }
                 for (f, r) in &pairs {
-                    let (a, b) = (at(f, &point)?, at(r, &point)?);
+                    let (a, b) = (at(f, &replaced)?, at(r, &point)?);
                     check.evaluations += 2;
                     check.error = check
                         .error
@@ -393,8 +460,13 @@ fn same_equation(
     );
     let symbolic = state_free && !ratio.is_zero() && cas::is_zero_all(vec![difference.clone()])?[0];
     let scale = Expr::add(vec![notes.clone(), residual.clone()]);
-    let numeric = numerically_zero(&[difference], &[scale], scene.seed.wrapping_add(20_000))
-        .map(|z| z[0] && state_free && !ratio.is_zero());
+    let numeric = numerically_zero(
+        &[difference],
+        &[scale],
+        scene.seed.wrapping_add(20_000),
+        &signed_names(scene),
+    )
+    .map(|z| z[0] && state_free && !ratio.is_zero());
     match numeric {
         Ok(n) if n != symbolic => {
             r.verdict = Verdict::Undecided;

@@ -46,7 +46,7 @@ fn lectures_that_share_a_handout_file_are_an_error() {
     assert_eq!(r.status.code(), Some(1));
     let err = stderr(&r);
     assert_eq!(
-        err.matches("would share the handout file name `lecture-3-4`")
+        err.matches("would share the handout file name `lecture-3-4-student`")
             .count(),
         2,
         "{err}"

@@ -18,6 +18,7 @@ mod output;
 #[cfg(feature = "pdf")]
 mod pdf;
 mod problems;
+mod reliability;
 mod serve;
 mod snapshots;
 mod spin;

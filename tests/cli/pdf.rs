@@ -259,6 +259,18 @@ fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
     };
     let run = build("1", &papers);
     assert!(run.status.success(), "{}", stderr(&run));
+    // Each paper names its variant: the site, which may be published, holds no variant's
+    // answers (issue 41): no key, page or PDF, no Moodle quiz, no link to one.
+    let published = super::read_tree(&site);
+    for path in published.keys() {
+        assert!(
+            !path.contains("problems-key") && !path.starts_with("export"),
+            "{path} in a site built with a roster"
+        );
+    }
+    let index = String::from_utf8_lossy(&published["index.html"]).into_owned();
+    assert!(!index.contains("problems-key"), "{index}");
+    assert!(index.contains("problems-student"), "{index}");
     let table = std::fs::read_to_string(papers.join("variants.csv")).unwrap();
     let rows: Vec<&str> = table.lines().skip(1).collect();
     // One row per student and lecture with a sheet.

@@ -200,6 +200,24 @@ fn mutate_variants(text: &[u8], rng: &mut Rng) -> Option<Vec<u8>> {
     Some((lines.join("\n") + "\n").into_bytes())
 }
 
+/// Author mathematics and prose with HTML, XML and Typst specials: each must reach no page as
+/// markup, leave every Moodle file well-formed and every PDF typeset, or be refused at its line.
+const AUTHOR_SPECIALS: &[&str] = &[
+    r"A box $\\operatorname{</math><script>alert(1)</script>}$",
+    r"$a<b$ and $b>c$ & more",
+    r"$\\mathrm{<img src=x onerror=alert(1)>}$",
+    r"<svg onload=alert(1)> $x$",
+    r"$\\text{]]>}$ ]]> <![CDATA[",
+    r"$\\sqrt{)}$",
+    r"m/s$^2$",
+    r"$\\mathrm{kg\\,m^2}$",
+    r"$)$ and $($",
+    "$\\\\text{\\\"); #panic(1) //}$",
+    r"#let x = 1; #panic() $#$",
+    r"\uFFFE \uFFFF",
+    r"$\\frac{(}{)}$",
+];
+
 /// One mutation of `text`.
 fn mutate(text: &[u8], rng: &mut Rng) -> Vec<u8> {
     let mut t = text.to_vec();
@@ -210,7 +228,17 @@ fn mutate(text: &[u8], rng: &mut Rng) -> Vec<u8> {
     {
         return v;
     }
-    match rng.below(9) {
+    match rng.below(10) {
+        // Replace a quoted string's content with hostile author text (a title, a statement, a
+        // label, a meaning), its `$…$` included.
+        9 => {
+            let quotes: Vec<usize> = (0..t.len()).filter(|&i| t[i] == b'"').collect();
+            if quotes.len() >= 2 {
+                let k = rng.below(quotes.len() - 1);
+                let (a, b) = (quotes[k] + 1, quotes[k + 1]);
+                t.splice(a..b, rng.pick(AUTHOR_SPECIALS).bytes());
+            }
+        }
         // Replace a quoted string's content with a hostile expression.
         0 | 1 => {
             let quotes: Vec<usize> = (0..t.len()).filter(|&i| t[i] == b'"').collect();
@@ -352,6 +380,19 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
             let course = Default::default();
             let site = mechbook::render::site_files(&reports, &course, &Default::default(), false)
                 .map_err(|e| format!("rendering failed: {e}"))?;
+            // Nothing an author wrote is markup on a page; every Moodle file is XML.
+            for (file, bytes) in &site {
+                let text = String::from_utf8_lossy(bytes);
+                for markup in ["<script", "<img src=x", "<svg onload"] {
+                    if text.contains(markup) {
+                        return Err(format!("{} holds `{markup}`", file.display()));
+                    }
+                }
+                if file.extension().is_some_and(|x| x == "xml") {
+                    roxmltree::Document::parse(&text)
+                        .map_err(|e| format!("{}: not well-formed XML: {e}", file.display()))?;
+                }
+            }
             // And typeset as PDF: whatever the author wrote, Typst must read the markup.
             #[cfg(feature = "pdf")]
             for doc in mechbook::render::pdf::site_documents(&reports, &course, &site)

@@ -32,18 +32,19 @@ pub struct PdfSource {
 pub struct LecturePdfs {
     pub student: String,
     pub instructor: String,
-    /// The problem sheet and its key, when the lecture has problems.
-    pub problems: Option<(String, String)>,
+    /// The problem sheet and its key (none when the course's answers are private), when the
+    /// lecture has problems.
+    pub problems: Option<(String, Option<String>)>,
 }
 
-pub fn lecture_pdfs(slug: &str, has_problems: bool) -> LecturePdfs {
+pub fn lecture_pdfs(slug: &str, has_problems: bool, course: &Course) -> LecturePdfs {
     LecturePdfs {
         student: format!("pdf/{slug}-student.pdf"),
         instructor: format!("pdf/{slug}-instructor.pdf"),
         problems: has_problems.then(|| {
             (
                 format!("pdf/{slug}-problems-student.pdf"),
-                format!("pdf/{slug}-problems-key.pdf"),
+                (!course.answers_private).then(|| format!("pdf/{slug}-problems-key.pdf")),
             )
         }),
     }
@@ -52,17 +53,26 @@ pub fn lecture_pdfs(slug: &str, has_problems: bool) -> LecturePdfs {
 /// Whether this mechbook writes PDFs (the cargo feature `pdf`).
 pub const ENABLED: bool = cfg!(feature = "pdf");
 
-/// The lectures in the order their first scene appears: name and its scenes.
-fn lectures(reports: &[SceneReport]) -> Vec<(String, Vec<&SceneReport>)> {
-    let mut out: Vec<(String, Vec<&SceneReport>)> = Vec::new();
-    for r in reports {
-        let name = &r.scene.notes.lecture;
-        match out.iter_mut().find(|(n, _)| n == name) {
-            Some((_, v)) => v.push(r),
-            None => out.push((name.clone(), vec![r])),
-        }
-    }
-    out
+/// The lectures in the course's order (`Course::lecture_order`): name and its scenes.
+fn lectures<'a>(
+    reports: &'a [SceneReport],
+    course: &Course,
+) -> Vec<(String, Vec<&'a SceneReport>)> {
+    let appearance: Vec<&str> = reports
+        .iter()
+        .map(|r| r.scene.notes.lecture.as_str())
+        .collect();
+    course
+        .lecture_order(&appearance)
+        .into_iter()
+        .map(|name| {
+            let scenes = reports
+                .iter()
+                .filter(|r| r.scene.notes.lecture == name)
+                .collect();
+            (name.to_string(), scenes)
+        })
+        .collect()
 }
 
 fn lecture_sheet(reports: &[&SceneReport]) -> Option<Sheet> {
@@ -83,11 +93,11 @@ pub fn site_documents(
 ) -> Result<Vec<PdfSource>, RenderError> {
     let pages = crate::document::pages(reports);
     let mut out = Vec::new();
-    for (name, scenes) in lectures(reports) {
+    for (name, scenes) in lectures(reports, course) {
         let slug = crate::scene::lecture_slug(&name);
         let heading = course.lecture_heading(&name);
         let sheet = lecture_sheet(&scenes);
-        let paths = lecture_pdfs(&slug, sheet.is_some());
+        let paths = lecture_pdfs(&slug, sheet.is_some(), course);
         let chosen: Vec<&crate::document::Page> =
             pages.iter().filter(|p| p.lecture == name).collect();
         for instructor in [false, true] {
@@ -156,11 +166,13 @@ pub fn site_documents(
                 "",
             ));
             sheet::key(&mut m, &head, sheet, &all)?;
-            out.push(PdfSource {
-                path: key.clone(),
-                markup: m.0,
-                images: Vec::new(),
-            });
+            if let Some(key) = key {
+                out.push(PdfSource {
+                    path: key.clone(),
+                    markup: m.0,
+                    images: Vec::new(),
+                });
+            }
         }
     }
     Ok(out)
@@ -196,7 +208,7 @@ pub fn roster_documents(
     seed: u64,
 ) -> Result<(Vec<PdfSource>, Vec<u8>), RosterPapersError> {
     let mut sheets = Vec::new();
-    for (k, (name, scenes)) in lectures(reports).into_iter().enumerate() {
+    for (k, (name, scenes)) in lectures(reports, course).into_iter().enumerate() {
         if let Some(sheet) = lecture_sheet(&scenes) {
             let given = crate::document::roster::assign(
                 roster,

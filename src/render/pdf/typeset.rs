@@ -90,6 +90,28 @@ pub struct Typeset {
 
 /// The PDF of one document.
 pub fn typeset(source: &PdfSource) -> Result<Typeset, TypesetError> {
+    // Typst applies each `#set page(...)` to all that follows it, recursively: a sheet of
+    // thousands of variants, one set rule each, nests that deep, past the main thread's 8 MiB
+    // (5,000 variants overflowed it). Its own thread has room for the 10,000 pages a sheet
+    // may have; the stack is only reserved, not used, until it is needed.
+    std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .name("typst".into())
+            .stack_size(TYPESET_STACK)
+            .spawn_scoped(scope, || typeset_here(source))
+            .map_err(|e| TypesetError {
+                path: source.path.clone(),
+                messages: vec![format!("cannot start the typesetting thread: {e}")],
+            })?
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    })
+}
+
+/// The typesetting thread's stack: 1 GiB of address space.
+const TYPESET_STACK: usize = 1 << 30;
+
+fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
     let world = Document {
         main: Source::detached(source.markup.clone()),
         source,

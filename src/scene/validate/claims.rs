@@ -12,6 +12,26 @@ use std::collections::{BTreeMap, BTreeSet};
 /// `[expect]`: each quantity's recorded value, and the line of its key.
 type Recorded = (BTreeMap<String, Expr>, BTreeMap<String, usize>);
 
+/// The symmetric top's quantities that once had the names Poinsot's construction now has (an
+/// old scene's `momentum_squared` meant L² of the top, and now means L² in I1, I2 and I3): the
+/// old name and the new one.
+const RENAMED_FOR_THE_TOP: &[(&str, &str)] = &[
+    ("momentum_squared", "top_momentum_squared"),
+    ("twice_energy", "top_twice_energy"),
+];
+
+/// In a scene that wants the symmetric top and not Poinsot's construction, a name whose
+/// meaning changed: the old name and the new one.
+fn renamed(name: &str, wanted: &[&str]) -> Option<(&'static str, &'static str)> {
+    if !wanted.contains(&"symmetric_top") || wanted.contains(&"poinsot") {
+        return None;
+    }
+    RENAMED_FOR_THE_TOP
+        .iter()
+        .copied()
+        .find(|(old, _)| *old == name)
+}
+
 /// The `[expect]` key that pins a problem's variants.
 pub const PINNED_VARIANTS: &str = "variants";
 
@@ -23,13 +43,29 @@ impl Validator<'_> {
         claim_names: &BTreeSet<String>,
     ) -> Result<Vec<Claim>, SceneError> {
         let mut claims = Vec::new();
+        let wanted: Vec<&str> = raw.wanted().iter().map(|w| w.get_ref().as_str()).collect();
         for (i, c) in raw.claims.iter().enumerate() {
-            claims.push(self.claim(
+            let claim = self.claim(
                 c.get_ref(),
                 c.span().start,
                 &format!("claim[{i}]"),
                 claim_names,
-            )?);
+            )?;
+            let named = claim.quantity.iter().chain(&claim.value);
+            if let Some((old, new)) = named
+                .flat_map(|e| e.symbols())
+                .find_map(|n| renamed(&n, &wanted))
+            {
+                return Err(self.err(
+                    content_start(&c.get_ref().statement),
+                    &format!("claim[{i}]"),
+                    format!(
+                        "`{old}` is Poinsot's (in I1, I2 and I3) since the symmetric top's was \
+                         renamed; in a `symmetric_top` scene write `{new}`"
+                    ),
+                ));
+            }
+            claims.push(claim);
         }
         Ok(claims)
     }

@@ -16,6 +16,10 @@ type Coordinates = BTreeMap<String, String>;
 /// The most steps in one scene: a derivation of a page or two.
 pub const MAX_STEPS: usize = 64;
 
+/// The most coordinates a scene may have: a course's systems have a few (a triple pendulum,
+/// three); each costs derivatives of every step and two equations in each integration.
+pub const MAX_COORDINATES: usize = 12;
+
 impl Validator<'_> {
     /// `[coordinates]`: names not taken by anything else in the scene.
     pub(super) fn coordinates(
@@ -24,9 +28,21 @@ impl Validator<'_> {
         taken: &BTreeSet<String>,
     ) -> Result<Coordinates, SceneError> {
         let mut out = BTreeMap::new();
-        for (name, meaning) in &raw.coordinates {
+        for (k, (name, meaning)) in raw.coordinates.iter().enumerate() {
             let n = name.get_ref();
             let field = format!("coordinates.{n}");
+            // Every Lagrangian step differentiates by each coordinate and rate, and the
+            // numeric checks integrate 2n equations: 50 coordinates ran for over ten minutes.
+            if k == MAX_COORDINATES {
+                return Err(self.err(
+                    name.span().start,
+                    &field,
+                    format!(
+                        "a scene has at most {MAX_COORDINATES} coordinates: split the system, \
+                         or fix some coordinates by a constraint"
+                    ),
+                ));
+            }
             if !is_identifier(n) || n == "t" {
                 return Err(self.err(
                     name.span().start,
@@ -99,6 +115,23 @@ impl Validator<'_> {
                 Operation::Equilibria { .. } => Holds::Equilibria,
                 _ => Holds::Expression,
             };
+            // An equation `gives` is compared as an equation of motion; on a step that gives an
+            // expression it would be read as `lhs - rhs` and compared with the expression.
+            if let Some(g) = &s.get_ref().gives
+                && g.get_ref().contains('=')
+                && !matches!(holds, Holds::Motion | Holds::Linear)
+            {
+                return Err(self.err(
+                    content_start(g),
+                    &format!("{field}.gives"),
+                    format!(
+                        "`gives` states an equation, but step `{}` gives an expression, not \
+                         equations of motion: write the expression alone (what is right of \
+                         the `=`)",
+                        step.name
+                    ),
+                ));
+            }
             earlier.insert(step.name.clone(), holds);
             scope.extend(step.names_given(coordinates.len()));
             steps.push(step);

@@ -18,7 +18,7 @@ pub fn control_character(value: &str, source: &str, lines: bool) -> Option<Strin
     }
     let (at, c) = value
         .char_indices()
-        .find(|&(_, c)| c.is_control() && !(lines && c == '\n'))?;
+        .find(|&(_, c)| (c.is_control() && !(lines && c == '\n')) || noncharacter(c))?;
     let escape = match c {
         '\u{8}' => Some(('b', "a backspace")),
         '\u{c}' => Some(('f', "a form feed")),
@@ -37,12 +37,24 @@ pub fn control_character(value: &str, source: &str, lines: bool) -> Option<Strin
             "the text holds {name} (a control character), which a page or a Moodle file cannot \
              carry: remove it"
         ),
+        None if noncharacter(c) => format!(
+            "the text holds U+{:04X}, a noncharacter, which a Moodle file (XML) cannot carry: \
+             remove it",
+            u32::from(c)
+        ),
         None => format!(
             "the text holds the control character U+{:04X}, which a page or a Moodle file \
              cannot carry: remove it",
             u32::from(c)
         ),
     })
+}
+
+/// A Unicode noncharacter (U+FDD0 to U+FDEF, and the last two of every plane, U+FFFE and
+/// U+FFFF among them), which XML does not allow.
+fn noncharacter(c: char) -> bool {
+    let u = u32::from(c);
+    (0xFDD0..=0xFDEF).contains(&u) || (u & 0xFFFE) == 0xFFFE
 }
 
 /// TeX that TOML read as the escape `\<letter>` (`name`) and the letters `rest`.
@@ -109,16 +121,44 @@ pub(super) fn latex_problem(latex: &str) -> Option<String> {
                 })
                 .unwrap_or_else(|| "the LaTeX reader marks it as an error".into()),
         ),
-        // The PDFs set it in Typst: a command they do not know is refused here too.
-        Ok(()) => crate::cas::latex_to_typst(latex)
+        // What would put markup other than mathematics on a page (`\operatorname{<script>}`);
+        // and the PDFs set it in Typst: a command they do not know is refused here too.
+        Ok(()) => crate::base::markup::safe_mathml(&out)
             .err()
-            .map(|e| e.to_string()),
+            .map(|e| e.to_string())
+            .or_else(|| {
+                crate::cas::latex_to_typst(latex)
+                    .err()
+                    .map(|e| e.to_string())
+            }),
     }
 }
 
+/// The longest title, meaning or label, in characters: a heading, not a page.
+pub const MAX_LABEL_CHARS: usize = 500;
+/// The longest statement (of a claim or a problem), in characters: a few printed pages.
+pub const MAX_STATEMENT_CHARS: usize = 20_000;
+
 impl Validator<'_> {
-    /// One prose field, refused at its line when it holds a control character.
+    /// One prose field, refused at its line when it holds a control character or is longer
+    /// than its limit. `lines`: a statement, which may run over lines.
     pub(super) fn prose(&self, t: &Text, field: &str, lines: bool) -> Result<(), SceneError> {
+        let limit = if lines {
+            MAX_STATEMENT_CHARS
+        } else {
+            MAX_LABEL_CHARS
+        };
+        let length = t.get_ref().chars().count();
+        if length > limit {
+            return Err(self.err(
+                content_start(t),
+                field,
+                format!(
+                    "{length} characters; this field holds at most {limit}: shorten it \
+                     (a long explanation belongs in a claim's or the problem's statement)"
+                ),
+            ));
+        }
         let source = self.loc.text.get(t.span()).unwrap_or("");
         if let Some(why) = control_character(t.get_ref(), source, lines) {
             return Err(self.err(content_start(t), field, why));
@@ -203,6 +243,11 @@ mod tests {
                 .unwrap()
                 .contains("U+0007")
         );
+        for c in ['\u{FFFE}', '\u{FFFF}', '\u{FDD0}', '\u{10FFFF}'] {
+            let why = control_character(&format!("a{c}b"), "\"…\"", true).unwrap();
+            assert!(why.contains("noncharacter"), "{why}");
+        }
+        assert_eq!(control_character("a\u{FFFD}b", "\"…\"", true), None);
     }
 
     #[test]

@@ -1,0 +1,95 @@
+//! The random-point test: whether a difference of two expressions vanishes at a few random
+//! values of its symbols, the second route beside the engine's for every claim and `gives`.
+
+use super::CONFIRMATION_POINTS;
+use crate::base::rng::Rng;
+use crate::cas::{EvalError, Expr};
+use crate::scene::Scene;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Where the random points of [`numerically_zero`] lie: every symbol in [0.4, 1.4), positive
+/// and away from 0, where a mass or a moment in a denominator vanishes, and within a factor
+/// 3.5 of the others, so that no term of a degree-30 expression over- or underflows.
+pub(super) const SAMPLE_FROM: f64 = 0.4;
+
+/// A difference below this, relative to its scale (at least 1), counts as zero at a random
+/// point. The expressions are sums of at most the engine's 20,000 terms of size about 1 there,
+/// so rounding leaves at most about 20,000 · 2.2e-16 ≈ 4.4e-12; a nonzero difference of
+/// rationals and roots of small numbers is far above 1e-9 at a random point. The margin of
+/// 200 covers cancellation among the terms.
+pub(super) const NUMERICALLY_ZERO: f64 = 1e-9;
+
+/// Random points drawn per point tested, at most, to find points where an expression is
+/// defined.
+pub(super) const DOMAIN_TRIES: usize = 20;
+
+/// The names that take either sign: the coordinates, their rates and accelerations, and the
+/// time. Every other symbol of a scene is a mass, a length or a constant, taken positive.
+pub(super) fn signed_names(scene: &Scene) -> BTreeSet<String> {
+    let mut out: BTreeSet<String> = scene
+        .coordinates
+        .keys()
+        .flat_map(|q| [q.clone(), format!("{q}'"), format!("{q}''")])
+        .collect();
+    out.insert("t".into());
+    out
+}
+
+/// Whether each difference vanishes at [`CONFIRMATION_POINTS`] random points. The `signed`
+/// names are drawn with either sign (the first point positive, the second negative, the rest
+/// at random), so that |p| is not taken for p.
+pub(super) fn numerically_zero(
+    diffs: &[Expr],
+    scale: &[Expr],
+    seed: u64,
+    signed: &BTreeSet<String>,
+) -> Result<Vec<bool>, EvalError> {
+    let mut rng = Rng::new(seed);
+    let mut zero = vec![true; diffs.len()];
+    let mut names: Vec<String> = diffs
+        .iter()
+        .chain(scale)
+        .flat_map(|e| e.symbols())
+        .collect();
+    names.sort();
+    names.dedup();
+    // A point where an entry is undefined (the square root of a negative number at random
+    // values) says nothing of it: more points are drawn, until each entry has been tested at
+    // CONFIRMATION_POINTS points or DOMAIN_TRIES times that many were drawn. An entry defined
+    // nowhere keeps `true`: the symbolic test decides it, or conflicts with it.
+    let mut tested = vec![0usize; diffs.len()];
+    for k in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
+        if tested.iter().all(|&n| n >= CONFIRMATION_POINTS) {
+            break;
+        }
+        let point: BTreeMap<String, f64> = names
+            .iter()
+            .map(|n| {
+                let x = SAMPLE_FROM + rng.uniform();
+                let negative = signed.contains(n)
+                    && match k {
+                        0 => false,
+                        1 => true,
+                        _ => rng.uniform() < 0.5,
+                    };
+                (n.clone(), if negative { -x } else { x })
+            })
+            .collect();
+        let env = |s: &str| point.get(s).copied().filter(|_| s != "pi");
+        for (j, d) in diffs.iter().enumerate() {
+            if tested[j] >= CONFIRMATION_POINTS {
+                continue;
+            }
+            let v = d.eval(&env)?;
+            let s = scale[j].eval(&env)?.abs().max(1.0);
+            if !v.is_finite() || !s.is_finite() {
+                continue;
+            }
+            tested[j] += 1;
+            if v.abs() > NUMERICALLY_ZERO * s {
+                zero[j] = false;
+            }
+        }
+    }
+    Ok(zero)
+}
