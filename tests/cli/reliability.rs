@@ -468,3 +468,63 @@ fn bless_never_writes_a_file_that_check_refuses() {
     assert!(blessed >= 25, "{blessed} scenes blessed");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn a_solve_without_a_closed_form_returns_instead_of_running_forever() {
+    let dir = scratch("lennard-jones");
+    // The Lennard-Jones minimum, r⁶ = 2 s⁶: no factor over the rationals, and the companion
+    // matrix of its sextic is one on which nalgebra's unbounded Schur iteration never stops.
+    let scene = write(
+        &dir,
+        "lj.toml",
+        r#"
+id = "lj"
+title = "The Lennard-Jones minimum"
+notes = { lecture = "x" }
+symbols = { s = "length", r = "distance" }
+
+[[step]]
+name = "f"
+be = "r^6 - 2*s^6"
+why = "where the force vanishes"
+
+[[step]]
+name = "rmin"
+solve = "f"
+for = "r"
+why = "the minimum"
+
+[numeric]
+values = { s = 1.0, r = 1.1 }
+"#,
+    );
+    let out = mechbook(&["check", &scene]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("lj.toml") && err.contains("degree"), "{err}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn a_roster_that_is_no_regular_file_is_refused_at_once() {
+    if !mechbook::render::pdf::ENABLED {
+        return;
+    }
+    let dir = scratch("roster-device");
+    for roster in ["/dev/zero", "/dev/stdin"] {
+        let out = mechbook(&[
+            "build",
+            "lectures",
+            "--out",
+            dir.join("site").to_str().unwrap(),
+            "--roster",
+            roster,
+            "--papers",
+            dir.join("papers").to_str().unwrap(),
+        ]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{roster}: {err}");
+        assert!(err.contains("not a regular file"), "{roster}: {err}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
