@@ -58,8 +58,8 @@ pub fn typeset_all(
         let done = match crate::render::pdf::typeset::typeset(s) {
             Ok(done) => done,
             Err(e) => {
-                out.failed
-                    .push(format!("{}: cannot be typeset: {e}", s.path));
+                // The error names the document.
+                out.failed.push(e.to_string());
                 continue;
             }
         };
@@ -120,4 +120,44 @@ fn inputs_hash(s: &PdfSource) -> u64 {
         bytes.extend_from_slice(&crate::base::hash::content_hash(image).to_le_bytes());
     }
     crate::base::hash::content_hash(&bytes)
+}
+
+#[cfg(all(test, feature = "pdf"))]
+mod tests {
+    use super::typeset_all;
+    use crate::render::pdf::PdfSource;
+
+    fn source(path: &str, markup: &str) -> PdfSource {
+        PdfSource {
+            path: path.into(),
+            markup: markup.into(),
+            images: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_document_typst_cannot_set_is_named_and_the_others_are_still_made() {
+        let made = typeset_all(
+            &[
+                source("pdf/a.pdf", "Hello"),
+                source("pdf/b.pdf", "#panic(\"broken\")"),
+                source("pdf/c.pdf", "World"),
+            ],
+            None,
+            "test",
+        )
+        .unwrap();
+        let paths: Vec<String> = made
+            .files
+            .iter()
+            .map(|(p, _)| p.display().to_string())
+            .collect();
+        assert_eq!(paths, ["pdf/a.pdf", "pdf/c.pdf"]);
+        assert_eq!(made.failed.len(), 1, "{:?}", made.failed);
+        assert!(
+            made.failed[0].starts_with("pdf/b.pdf: Typst cannot typeset it"),
+            "{:?}",
+            made.failed
+        );
+    }
 }

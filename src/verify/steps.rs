@@ -40,7 +40,7 @@ const DIFFERENCE_AGREEMENT: f64 = 1e-7;
 /// smooth function gets at h = 1e-3), or h reaches 1e-7, where rounding ε/h would pass it.
 /// `None` when no step size gives a finite estimate.
 fn richardson(f: &dyn Fn(f64) -> Option<f64>) -> Option<(f64, u64)> {
-    let central = |h: f64| Some((f(h)? - f(-h)?) / (2.0 * h));
+    let central = |h: f64| Some((f(h)? - f(-h)?) / (2.0 * h)).filter(|d| d.is_finite());
     let estimate = |h: f64| Some((4.0 * central(h / 2.0)? - central(h)?) / 3.0);
     // At h = 1e-3 the two central differences already agree to the tolerance for a smooth
     // function: their Richardson extrapolation is then far more accurate still.
@@ -69,6 +69,7 @@ fn richardson(f: &dyn Fn(f64) -> Option<f64>) -> Option<(f64, u64)> {
     }
     last.map(|a| (a, evaluations))
 }
+
 /// Each step's numeric check, in order.
 pub fn check_steps(scene: &Scene, d: &Derivation) -> Vec<StepCheck> {
     (0..scene.steps.len())
@@ -181,7 +182,8 @@ fn route(
                 if !exact.is_finite() || !at(&f, &point)?.is_finite() {
                     continue;
                 }
-                let Some((numeric, evaluations)) = richardson(&|x| at(&f, &moved(x)).ok()) else {
+                let value = |x: f64| at(&f, &moved(x)).ok().filter(|v| v.is_finite());
+                let Some((numeric, evaluations)) = richardson(&value) else {
                     continue;
                 };
                 check.evaluations += evaluations + 1;

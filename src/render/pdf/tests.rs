@@ -106,3 +106,40 @@ fn a_roster_field_is_quoted_and_never_a_spreadsheet_formula() {
     assert_eq!(csv_field("=HYPERLINK(1)"), "'=HYPERLINK(1)");
     assert_eq!(csv_field("@sum, x"), "\"'@sum, x\"");
 }
+
+#[test]
+fn every_kind_of_name_a_scene_may_write_is_typeset() {
+    // A letter, then letters, digits and single underscores (scene::validate's rule): digits
+    // then letters (`I1cone`, `d2U`) once read as an unknown variable and failed the build.
+    let names = [
+        "I1cone",
+        "d2U",
+        "I1c",
+        "w1s",
+        "x_1y",
+        "Omega2a",
+        "phi2",
+        "Ixxy",
+        "alpha_beta",
+        "a1_b2",
+        "wd3",
+        "theta",
+        "L",
+        "Lag",
+        "p_phi",
+        "k12x3",
+    ];
+    let out = typeset(&doc(Paper::A4, |m| {
+        for name in names {
+            let e = crate::cas::Expr::sym(name);
+            m.inline(&e.to_typst());
+            let rate = crate::cas::Expr::sym(&format!("{name}'"));
+            m.inline(&rate.to_typst());
+        }
+    }));
+    assert!(
+        out.is_ok(),
+        "{}",
+        out.err().map(|e| e.to_string()).unwrap_or_default()
+    );
+}
