@@ -61,7 +61,8 @@ impl Validator<'_> {
                     &format!("claim[{i}]"),
                     format!(
                         "`{old}` is Poinsot's (in I1, I2 and I3) since the symmetric top's was \
-                         renamed; in a `symmetric_top` scene write `{new}`"
+                         renamed; in a `symmetric_top` scene write `{new}` (or add `poinsot` \
+                         to [outputs] want, for Poinsot's)"
                     ),
                 ));
             }
