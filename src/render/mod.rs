@@ -154,6 +154,28 @@ impl RenderError {
     }
 }
 
+/// The lectures in the course's order (`Course::lecture_order`): each lecture's id and the
+/// indices of its scenes in `reports`, in their order.
+fn lectures(
+    reports: &[crate::pipeline::SceneReport],
+    course: &crate::scene::Course,
+) -> Vec<(String, Vec<usize>)> {
+    let appearance: Vec<&str> = reports
+        .iter()
+        .map(|r| r.scene.notes.lecture.as_str())
+        .collect();
+    course
+        .lecture_order(&appearance)
+        .into_iter()
+        .map(|name| {
+            let scenes = (0..reports.len())
+                .filter(|&i| appearance[i] == name)
+                .collect();
+            (name.to_string(), scenes)
+        })
+        .collect()
+}
+
 /// A sentence as HTML: its text escaped, its formulas as MathML.
 fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError> {
     use crate::model::prose::Piece;

@@ -205,20 +205,8 @@ pub fn site_files(
         pages.push(view);
     }
     // Lectures in the course's order: as mechbook.toml lists them, the rest as they appear.
-    let appearance: Vec<&str> = reports
-        .iter()
-        .map(|r| r.scene.notes.lecture.as_str())
-        .collect();
-    let order = course.lecture_order(&appearance);
-    let mut lectures: BTreeMap<usize, LectureView> = BTreeMap::new();
-    let mut by_lecture: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    for (i, r) in reports.iter().enumerate() {
-        by_lecture
-            .entry(r.scene.notes.lecture.clone())
-            .or_default()
-            .push(i);
-    }
-    for (name, idx) in &by_lecture {
+    let mut lectures: Vec<LectureView> = Vec::new();
+    for (name, idx) in &super::lectures(reports, course) {
         let slug = crate::scene::lecture_slug(name);
         for instructor in [false, true] {
             let mut ctx = tera::Context::new();
@@ -252,30 +240,27 @@ pub fn site_files(
         }
         let chosen: Vec<&SceneReport> = idx.iter().map(|&i| &reports[i]).collect();
         let problems = problem_sheets(&tera, course, name, &chosen, &mut files)?;
-        lectures.insert(
-            order.iter().position(|l| l == name).unwrap_or(usize::MAX),
-            LectureView {
-                name: name.clone(),
-                heading: course.lecture_heading(name),
-                student: format!("handouts/{slug}-student.html"),
-                instructor: format!("handouts/{slug}-instructor.html"),
-                pdf: super::pdf::ENABLED
-                    .then(|| super::pdf::lecture_pdfs(&slug, problems.is_some(), course)),
-                problems,
-                pages: idx
-                    .iter()
-                    .map(|&i| {
-                        Ok(PageLink {
-                            href: page_file(&reports[i]),
-                            title: pages[i].title.clone(),
-                            title_html: super::author_html(&pages[i].title)?,
-                            errata: pages[i].errata,
-                            problem: reports[i].scene.problem.is_some(),
-                        })
+        lectures.push(LectureView {
+            name: name.clone(),
+            heading: course.lecture_heading(name),
+            student: format!("handouts/{slug}-student.html"),
+            instructor: format!("handouts/{slug}-instructor.html"),
+            pdf: super::pdf::ENABLED
+                .then(|| super::pdf::lecture_pdfs(&slug, problems.is_some(), course)),
+            problems,
+            pages: idx
+                .iter()
+                .map(|&i| {
+                    Ok(PageLink {
+                        href: page_file(&reports[i]),
+                        title: pages[i].title.clone(),
+                        title_html: super::author_html(&pages[i].title)?,
+                        errata: pages[i].errata,
+                        problem: reports[i].scene.problem.is_some(),
                     })
-                    .collect::<Result<_, RenderError>>()?,
-            },
-        );
+                })
+                .collect::<Result<_, RenderError>>()?,
+        });
     }
     // Moodle's quizzes hold every variant's answers: not in a site whose answers are private.
     for r in reports.iter().filter(|_| !course.answers_private) {
@@ -293,7 +278,7 @@ pub fn site_files(
     }
     let mut ctx = tera::Context::new();
     ctx.insert("site", course);
-    ctx.insert("lectures", &lectures.into_values().collect::<Vec<_>>());
+    ctx.insert("lectures", &lectures);
     add(
         &mut files,
         PathBuf::from("index.html"),

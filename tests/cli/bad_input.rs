@@ -6,13 +6,7 @@ use std::path::Path;
 
 /// The scene files of a fixture folder, each with its expected message (its `.expected`).
 pub fn fixtures(dir: &Path) -> Vec<(std::path::PathBuf, String)> {
-    let mut files: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    files.sort();
-    files
+    super::toml_files(dir)
         .into_iter()
         .map(|f| {
             let expected = std::fs::read_to_string(f.with_extension("expected"))

@@ -70,6 +70,17 @@ pub fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// The scene files (`*.toml`) directly in `dir`, sorted.
+pub fn toml_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    files
+}
+
 pub fn lecture(name: &str) -> PathBuf {
     Path::new("lectures/lecture-3-4").join(name)
 }

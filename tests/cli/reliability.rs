@@ -431,13 +431,7 @@ fn bless_never_writes_a_file_that_check_refuses() {
         "tests/course/problems",
         "lectures/lecture-3-9",
     ] {
-        let mut found: Vec<_> = std::fs::read_dir(folder)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-            .collect();
-        found.sort();
-        files.extend(found);
+        files.extend(super::toml_files(Path::new(folder)));
     }
     let mut blessed = 0;
     for (k, source) in files.iter().enumerate() {

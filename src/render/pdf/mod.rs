@@ -53,25 +53,14 @@ pub fn lecture_pdfs(slug: &str, has_problems: bool, course: &Course) -> LectureP
 /// Whether this mechbook writes PDFs (the cargo feature `pdf`).
 pub const ENABLED: bool = cfg!(feature = "pdf");
 
-/// The lectures in the course's order (`Course::lecture_order`): name and its scenes.
+/// The lectures in the course's order: each lecture's id and its scenes.
 fn lectures<'a>(
     reports: &'a [SceneReport],
     course: &Course,
 ) -> Vec<(String, Vec<&'a SceneReport>)> {
-    let appearance: Vec<&str> = reports
-        .iter()
-        .map(|r| r.scene.notes.lecture.as_str())
-        .collect();
-    course
-        .lecture_order(&appearance)
+    super::lectures(reports, course)
         .into_iter()
-        .map(|name| {
-            let scenes = reports
-                .iter()
-                .filter(|r| r.scene.notes.lecture == name)
-                .collect();
-            (name.to_string(), scenes)
-        })
+        .map(|(name, idx)| (name, idx.into_iter().map(|i| &reports[i]).collect()))
         .collect()
 }
 
