@@ -338,17 +338,21 @@ pub fn run_scene_with(
         regressions: symbolic.regressions,
         ..Verification::default()
     };
+    // The steps' checks and the variants' share one budget.
+    let deadline = verify::budget::Deadline::checks();
     verify::verify_numeric(
         &scene,
         derivation,
         numeric.as_ref(),
         &plan,
+        &deadline,
         &mut verification,
     )
     .map_err(|e| fail(e.into()))?;
     if let Some(problem) = &scene.problem {
-        verification.variants = verify::variants::check_variants(&scene, derivation, problem)
-            .map_err(|e| fail(StageError::Variant(Box::new(e))))?;
+        verification.variants =
+            verify::variants::check_variants(&scene, derivation, problem, &deadline)
+                .map_err(|e| fail(StageError::Variant(Box::new(e))))?;
         verification.pin = Some(verify::variants::Pin::new(&scene, problem));
     }
     Ok(SceneReport {

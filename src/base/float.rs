@@ -36,6 +36,59 @@ pub fn complex_eigenvalues(m: nalgebra::DMatrix<f64>) -> Option<Vec<nalgebra::Co
     Some(schur.complex_eigenvalues().iter().copied().collect())
 }
 
+/// The roots of Σ c_k x^k (c_n ≠ 0) by the Aberth–Ehrlich iteration, which refines all n
+/// together and converges where the companion matrix's Schur form may not (equal moduli, as
+/// in x⁶ − 2). `None` when it has not settled within 500 sweeps.
+pub fn polynomial_roots(c: &[f64]) -> Option<Vec<nalgebra::Complex<f64>>> {
+    use nalgebra::Complex;
+    let n = c.len().checked_sub(1)?;
+    let lead = c[n];
+    if n == 0 || lead == 0.0 || !c.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    // Every root lies within Cauchy's bound; start on a circle inside it, turned off the axes
+    // so that no start is a symmetric point of the polynomial.
+    let radius = 1.0 + c[..n].iter().fold(0.0f64, |m, x| m.max((x / lead).abs()));
+    let mut z: Vec<Complex<f64>> = (0..n)
+        .map(|k| {
+            let angle = std::f64::consts::TAU * (k as f64 + 0.25) / n as f64 + 0.4;
+            Complex::from_polar(radius / 2.0, angle)
+        })
+        .collect();
+    let value_and_slope = |x: Complex<f64>| {
+        let (mut p, mut dp) = (Complex::new(lead, 0.0), Complex::new(0.0, 0.0));
+        for coefficient in c[..n].iter().rev() {
+            dp = dp * x + p;
+            p = p * x + coefficient;
+        }
+        (p, dp)
+    };
+    for _ in 0..500 {
+        let mut moved = 0.0f64;
+        for k in 0..n {
+            let (p, dp) = value_and_slope(z[k]);
+            if p == Complex::new(0.0, 0.0) {
+                continue;
+            }
+            let ratio = p / dp;
+            let repulsion: Complex<f64> = (0..n)
+                .filter(|j| *j != k)
+                .map(|j| (z[k] - z[j]).inv())
+                .sum();
+            let step = ratio / (Complex::new(1.0, 0.0) - ratio * repulsion);
+            if !step.re.is_finite() || !step.im.is_finite() {
+                return None;
+            }
+            z[k] -= step;
+            moved = moved.max(step.norm() / z[k].norm().max(f64::MIN_POSITIVE));
+        }
+        if moved <= 4.0 * f64::EPSILON {
+            return Some(z);
+        }
+    }
+    None
+}
+
 #[cfg(test)]
 mod eigen_tests {
     use super::complex_eigenvalues;
@@ -64,5 +117,39 @@ mod eigen_tests {
             "{e:?}"
         );
         assert!(complex_eigenvalues(DMatrix::from_element(1, 1, f64::NAN)).is_none());
+    }
+
+    /// x⁶ − 2 (whose companion matrix's Schur form need not converge) has the six sixth
+    /// roots of 2; (x − 1)(x − 2)(x + 3) = x³ − 7x + 6 has 1, 2, −3.
+    #[test]
+    fn polynomial_roots_where_the_schur_form_fails_and_where_it_works() {
+        use super::polynomial_roots;
+        let roots = polynomial_roots(&[-2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]).unwrap();
+        assert_eq!(roots.len(), 6);
+        let mut angles: Vec<f64> = roots
+            .iter()
+            .map(|z| {
+                assert!((z.norm() - 2f64.powf(1.0 / 6.0)).abs() < 1e-14, "{z}");
+                z.arg().rem_euclid(std::f64::consts::TAU)
+            })
+            .collect();
+        angles.sort_by(f64::total_cmp);
+        for (k, a) in angles.iter().enumerate() {
+            let expected = std::f64::consts::FRAC_PI_3 * k as f64;
+            assert!((a - expected).abs() < 1e-13, "{a} against {expected}");
+        }
+        let mut real: Vec<f64> = polynomial_roots(&[6.0, -7.0, 0.0, 1.0])
+            .unwrap()
+            .iter()
+            .map(|z| {
+                assert!(z.im.abs() < 1e-14, "{z}");
+                z.re
+            })
+            .collect();
+        real.sort_by(f64::total_cmp);
+        for (r, e) in real.iter().zip([-3.0, 1.0, 2.0]) {
+            assert!((r - e).abs() < 1e-14, "{r} against {e}");
+        }
+        assert!(polynomial_roots(&[1.0, 0.0]).is_none(), "no leading term");
     }
 }

@@ -97,7 +97,12 @@ pub fn variants_bench(count: usize) -> Result<String> {
         .as_ref()
         .context("the bench scene has a problem")?;
     let start = Instant::now();
-    let checks = crate::verify::variants::check_variants(&scene, &symbolic.derivation, problem)?;
+    let checks = crate::verify::variants::check_variants(
+        &scene,
+        &symbolic.derivation,
+        problem,
+        &crate::verify::budget::Deadline::checks(),
+    )?;
     let check = start.elapsed().as_secs_f64();
     let worst = checks
         .iter()

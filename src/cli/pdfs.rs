@@ -132,6 +132,7 @@ mod tests {
             path: path.into(),
             markup: markup.into(),
             images: Vec::new(),
+            origins: Vec::new(),
         }
     }
 
@@ -158,6 +159,36 @@ mod tests {
             made.failed[0].starts_with("pdf/b.pdf: Typst cannot typeset it"),
             "{:?}",
             made.failed
+        );
+    }
+
+    /// An error in a scene's part of a document is reported at that scene's line; one in
+    /// mechbook's own markup between scenes names the document alone.
+    #[test]
+    fn a_typst_error_is_located_at_the_scene_whose_part_it_is_in() {
+        let markup = "Head #[one] #panic(\"two\") #[mine] #panic(\"three\")";
+        let at = |s: &str| markup.find(s).unwrap();
+        let mut in_scene = source("pdf/d.pdf", markup);
+        in_scene.origins = vec![
+            (at("#[one]"), "lectures/one.toml:3".into()),
+            (at(" #[mine]"), String::new()),
+        ];
+        let made = typeset_all(&[in_scene.clone()], None, "test").unwrap();
+        assert_eq!(made.failed.len(), 1, "{:?}", made.failed);
+        let e = &made.failed[0];
+        assert!(
+            e.starts_with(
+                "lectures/one.toml:3: pdf/d.pdf: Typst cannot typeset it: panicked with: two"
+            ) && e.contains("report the scene"),
+            "{e}"
+        );
+        // The same error in mechbook's own markup.
+        in_scene.markup = markup.replace("#panic(\"two\")", "#[two]");
+        let made = typeset_all(&[in_scene], None, "test").unwrap();
+        let e = &made.failed[0];
+        assert!(
+            e.starts_with("pdf/d.pdf: Typst cannot typeset it: panicked with: three"),
+            "{e}"
         );
     }
 }

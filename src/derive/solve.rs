@@ -91,7 +91,7 @@ fn no_closed_form(
 }
 
 /// The roots of a polynomial at the scene's values, as text: the eigenvalues of its companion
-/// matrix. `None` when a coefficient has no value there.
+/// matrix, or Aberth's roots. `None` when a coefficient has no value there.
 fn numeric_roots(terms: &[(u32, Expr)], values: &BTreeMap<String, f64>) -> Option<String> {
     let degree = terms.iter().map(|(k, _)| *k as usize).max()?;
     let mut c = vec![0.0; degree + 1];
@@ -112,10 +112,10 @@ fn numeric_roots(terms: &[(u32, Expr)], values: &BTreeMap<String, f64>) -> Optio
             0.0
         }
     });
-    let mut roots: Vec<(f64, f64)> = crate::base::float::complex_eigenvalues(companion)?
-        .iter()
-        .map(|z| (z.re, z.im))
-        .collect();
+    // Where the Schur form does not settle (equal moduli: r⁶ − 2 s⁶), Aberth's iteration does.
+    let roots = crate::base::float::complex_eigenvalues(companion)
+        .or_else(|| crate::base::float::polynomial_roots(&c))?;
+    let mut roots: Vec<(f64, f64)> = roots.iter().map(|z| (z.re, z.im)).collect();
     roots.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     let scale = roots
         .iter()

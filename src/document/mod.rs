@@ -33,8 +33,9 @@ pub struct Page {
     pub section: String,
     /// The notes' equation numbers the scene reproduces.
     pub equations: Vec<String>,
-    /// The scene file.
+    /// The scene file, and the line of its `id`.
     pub source: PathBuf,
+    pub line: usize,
     pub fidelity: Fidelity,
     /// Each symbol and what it stands for.
     pub symbols: Vec<(String, String)>,
@@ -170,6 +171,7 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
         section: s.notes.section.clone(),
         equations: s.notes.equations.clone(),
         source: s.source.clone(),
+        line: s.id_at.0,
         fidelity: r.fidelity,
         symbols: s
             .symbols

@@ -13,8 +13,9 @@ use crate::verify::variants::{AnswerCheck, VariantCheck};
 #[derive(Debug, Clone)]
 pub struct Problem {
     pub id: String,
-    /// The scene file, for errors.
+    /// The scene file and its `[problem]`'s line, for errors.
     pub source: std::path::PathBuf,
+    pub line: usize,
     pub title: String,
     /// The worked solution (with symbols), relative to the site's root.
     pub page: String,
@@ -58,6 +59,7 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
     Some(Problem {
         id: r.scene.id.clone(),
         source: r.scene.source.clone(),
+        line: p.at.0,
         title: r.scene.title.clone(),
         page: page_file(r),
         tolerance: p.tolerance,

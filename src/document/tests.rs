@@ -55,6 +55,7 @@ fn problem_of(id: &str, variants: usize) -> Problem {
     Problem {
         id: id.into(),
         source: format!("{id}.toml").into(),
+        line: 1,
         title: id.into(),
         page: format!("{id}.html"),
         tolerance: 0.01,

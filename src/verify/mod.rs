@@ -474,7 +474,7 @@ pub fn check_quantities(
             exact,
             numeric: num,
             error,
-            passed: error <= variants::agreement(scene, name),
+            passed: error <= variants::agreement(scene, name, vals),
         });
     }
     Ok(out)
@@ -510,13 +510,14 @@ pub fn verify_numeric(
     d: &Derivation,
     numeric: Option<&NumericReport>,
     plan: &crate::plan::Plan,
+    deadline: &budget::Deadline,
     v: &mut Verification,
 ) -> Result<(), EvalError> {
     if plan.runs(Stage::Principal) {
         v.principal = principal_values(scene, d)?;
     }
     if plan.runs(Stage::Steps) {
-        v.steps = steps::check_steps(scene, d);
+        v.steps = steps::check_steps(scene, d, deadline);
     }
     if let Some(n) = numeric {
         v.within_law = n.runs.iter().map(within_law).collect();
@@ -530,6 +531,7 @@ pub fn verify_numeric(
 
 mod answer_routes;
 mod body_moments;
+pub mod budget;
 pub mod dimensions;
 mod free_top;
 mod integral;

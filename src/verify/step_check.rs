@@ -23,6 +23,8 @@ pub enum CheckError {
     #[error(transparent)]
     Motion(#[from] crate::numeric::ode::OdeError),
     #[error(transparent)]
+    OverBudget(#[from] super::budget::OverBudget),
+    #[error(transparent)]
     Equations(#[from] crate::derive::DeriveError),
     #[error(
         "the static equation also vanishes at {at:.9} (at the scene's values), where no exact \

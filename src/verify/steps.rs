@@ -4,6 +4,7 @@
 //! energy function Σ q'·∂L/∂q' − L, itself found by differences. A step's `gives` is a claim of
 //! the notes, with a verdict.
 
+use super::budget::Deadline;
 use super::integral::quadrature_check;
 use super::motion::{
     Conserved, conserved_check, energy_check, linear_check, modes_check, period_check,
@@ -70,10 +71,21 @@ fn richardson(f: &dyn Fn(f64) -> Option<f64>) -> Option<(f64, u64)> {
     last.map(|a| (a, evaluations))
 }
 
-/// Each step's numeric check, in order.
-pub fn check_steps(scene: &Scene, d: &Derivation) -> Vec<StepCheck> {
+/// Each step's numeric check, in order; those after the deadline are not checked, and say so.
+pub fn check_steps(scene: &Scene, d: &Derivation, deadline: &Deadline) -> Vec<StepCheck> {
     (0..scene.steps.len())
-        .map(|i| check_step(scene, d, i))
+        .map(|i| match deadline.check() {
+            Ok(()) => check_step(scene, d, i),
+            Err(over) => StepCheck {
+                step: scene.steps[i].name.clone(),
+                line: scene.steps[i].line,
+                method: String::new(),
+                error: 0.0,
+                tolerance: 0.0,
+                evaluations: 0,
+                problem: Some(CheckError::from(over).to_string()),
+            },
+        })
         .collect()
 }
 

@@ -159,6 +159,32 @@ fn each_step_passes_its_numeric_route_and_the_period_shows_the_anharmonic_correc
     );
 }
 
+/// The steps share the scene's budget: past it, each remaining step is not checked, fails,
+/// and says why at its own line.
+#[test]
+fn steps_past_the_scenes_budget_fail_at_their_lines() {
+    let r = run(&pendulum(
+        "M*L^2/3",
+        "Ip*phi'' + M*g*L/2*sin(phi) = 0",
+        "Ip*phi'",
+        "sqrt(3*g/(2*L))",
+    ));
+    let spent = super::budget::Deadline::after(std::time::Duration::ZERO);
+    let checks = check_steps(&r.scene, &r.derivation, &spent);
+    assert_eq!(checks.len(), 6);
+    for (c, step) in checks.iter().zip(&r.scene.steps) {
+        assert!(!c.passed(), "{c:?}");
+        assert_eq!(c.line, step.line);
+        let problem = c.problem.as_deref().unwrap();
+        assert!(
+            problem.contains("not checked") && problem.contains("past the 0 s"),
+            "{problem}"
+        );
+    }
+    let in_time = check_steps(&r.scene, &r.derivation, &super::budget::Deadline::checks());
+    assert!(in_time.iter().all(StepCheck::passed), "{in_time:?}");
+}
+
 /// A wrong equation of motion does not keep the energy: the same check on the pendulum with
 /// the gravity term's sign flipped drifts by order one; so does a wrong linearisation and a
 /// wrong frequency.

@@ -496,6 +496,12 @@ values = { s = 1.0, r = 1.1 }
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("lj.toml") && err.contains("degree"), "{err}");
+    // Where the Schur form does not settle, Aberth's iteration still lists the roots: the
+    // sixth roots of 2 (2^(1/6) = 1.122462…).
+    assert!(
+        err.contains("-1.122462, ") && err.contains(", 1.122462") && err.contains("0.972081i"),
+        "{err}"
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 

@@ -22,8 +22,10 @@ pub fn handout(m: &mut Markup, pages: &[&Page], instructor: bool) -> Result<(), 
         m.raw("#outline(title: [Contents], depth: 2)\n#pagebreak(weak: true)\n");
     }
     for page in pages {
-        crate::cas::typeset_as(&page.tex, || section(m, page, instructor))
-            .map_err(|e| e.in_scene(&page.source))?;
+        m.scene_part(&page.source, page.line, |m| {
+            crate::cas::typeset_as(&page.tex, || section(m, page, instructor))
+        })
+        .map_err(|e| e.in_scene(&page.source))?;
     }
     Ok(())
 }

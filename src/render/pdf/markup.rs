@@ -7,38 +7,73 @@ use crate::cas::{Expr, Formula, typst_string};
 use crate::model::prose::{Piece, Prose};
 use crate::scene::{Course, Paper};
 
-/// A document being written.
+/// A document being written, and where each scene's part of it starts (for Typst's errors).
 #[derive(Default)]
-pub struct Markup(pub String);
+pub struct Markup {
+    pub text: String,
+    origins: Vec<(usize, String)>,
+}
 
 impl Markup {
+    pub fn new(preamble: String) -> Markup {
+        Markup {
+            text: preamble,
+            origins: Vec::new(),
+        }
+    }
+
+    /// The markup `write` adds comes from the scene at `source`, line `line`.
+    pub fn scene_part<T>(
+        &mut self,
+        source: &std::path::Path,
+        line: usize,
+        write: impl FnOnce(&mut Self) -> T,
+    ) -> T {
+        self.origins
+            .push((self.text.len(), format!("{}:{line}", source.display())));
+        let out = write(self);
+        // What follows is mechbook's own, until the next scene.
+        self.origins.push((self.text.len(), String::new()));
+        out
+    }
+
+    /// The document to typeset at `path`, with the pictures it shows.
+    pub fn source(self, path: &str, images: Vec<(String, Vec<u8>)>) -> super::PdfSource {
+        super::PdfSource {
+            path: path.to_string(),
+            markup: self.text,
+            images,
+            origins: self.origins,
+        }
+    }
+
     /// Text, as written: a string literal, so no character of it is markup.
     pub fn text(&mut self, s: &str) -> &mut Self {
         if !s.is_empty() {
-            self.0.push('#');
-            self.0.push_str(&typst_string(s));
+            self.text.push('#');
+            self.text.push_str(&typst_string(s));
             // A following `(` or `[` would read as the string's arguments.
-            self.0.push_str("#[]");
+            self.text.push_str("#[]");
         }
         self
     }
 
     /// Markup of mechbook's own (`#v(2em)`, `*…*`, a newline).
     pub fn raw(&mut self, s: &str) -> &mut Self {
-        self.0.push_str(s);
+        self.text.push_str(s);
         self
     }
 
     pub fn line(&mut self) -> &mut Self {
-        self.0.push('\n');
+        self.text.push('\n');
         self
     }
 
     /// A formula in the line.
     pub fn inline(&mut self, typst_math: &str) -> &mut Self {
-        self.0.push('$');
-        self.0.push_str(typst_math);
-        self.0.push('$');
+        self.text.push('$');
+        self.text.push_str(typst_math);
+        self.text.push('$');
         self
     }
 
@@ -51,9 +86,9 @@ impl Markup {
     /// A formula on a line of its own, centred; one wider than the line is scaled to fit it
     /// (`fit`, in the preamble), as the phones' pages do, rather than run off the paper.
     pub fn block(&mut self, typst_math: &str) -> &mut Self {
-        self.0.push_str("\n#fit[$ ");
-        self.0.push_str(typst_math);
-        self.0.push_str(" $]\n");
+        self.text.push_str("\n#fit[$ ");
+        self.text.push_str(typst_math);
+        self.text.push_str(" $]\n");
         self
     }
 
@@ -77,16 +112,16 @@ impl Markup {
     pub fn heading(&mut self, level: usize, title: &str) -> Result<&mut Self, RenderError> {
         // The document's title is not in its own contents.
         let outlined = if level == 1 { ", outlined: false" } else { "" };
-        self.0
+        self.text
             .push_str(&format!("\n#heading(level: {level}{outlined})["));
         self.author(title)?;
-        self.0.push_str("]\n");
+        self.text.push_str("]\n");
         Ok(self)
     }
 
     /// A paragraph break.
     pub fn par(&mut self) -> &mut Self {
-        self.0.push_str("\n\n");
+        self.text.push_str("\n\n");
         self
     }
 }

@@ -25,6 +25,9 @@ pub struct PdfSource {
     pub markup: String,
     /// Path (as the markup names it) -> bytes: the plots of an instructor's handout.
     pub images: Vec<(String, Vec<u8>)>,
+    /// Where each scene's part of the markup starts (a byte offset), and the scene's file and
+    /// line: a Typst error is reported at the scene it falls in.
+    pub origins: Vec<(usize, String)>,
 }
 
 /// A lecture's PDFs, relative to the site's root.
@@ -99,7 +102,7 @@ pub fn site_documents(
             } else {
                 (format!("{heading}: summary"), "Student", &paths.student)
             };
-            let mut m = Markup(preamble(
+            let mut m = Markup::new(preamble(
                 course,
                 &title,
                 &course_head(course, &heading),
@@ -125,30 +128,22 @@ pub fn site_documents(
             } else {
                 Vec::new()
             };
-            out.push(PdfSource {
-                path: path.clone(),
-                markup: m.0,
-                images,
-            });
+            out.push(m.source(path, images));
         }
         if let (Some(sheet), Some((student, key))) = (&sheet, &paths.problems) {
             let all: Vec<(usize, Option<&Student>)> =
                 (0..sheet.variants.len()).map(|k| (k, None)).collect();
             let head = format!("{} · {heading}: problem sheet", course.title);
-            let mut m = Markup(preamble(
+            let mut m = Markup::new(preamble(
                 course,
                 &format!("{heading}: problem sheet"),
                 &head,
                 "",
             ));
             sheet::student_sheet(&mut m, &head, sheet, &all)?;
-            out.push(PdfSource {
-                path: student.clone(),
-                markup: m.0,
-                images: Vec::new(),
-            });
+            out.push(m.source(student, Vec::new()));
             let head = format!("{} · {heading}: answer key", course.title);
-            let mut m = Markup(preamble(
+            let mut m = Markup::new(preamble(
                 course,
                 &format!("{heading}: answer key"),
                 &head,
@@ -156,11 +151,7 @@ pub fn site_documents(
             ));
             sheet::key(&mut m, &head, sheet, &all)?;
             if let Some(key) = key {
-                out.push(PdfSource {
-                    path: key.clone(),
-                    markup: m.0,
-                    images: Vec::new(),
-                });
+                out.push(m.source(key, Vec::new()));
             }
         }
     }
@@ -213,7 +204,7 @@ pub fn roster_documents(
     }
     let mut out = Vec::new();
     let mut csv = String::from("name,id,lecture,variant,paper\n");
-    let mut key = Markup(preamble(
+    let mut key = Markup::new(preamble(
         course,
         &format!("{}: answer key for the class", course.title),
         &format!("{} · answer key", course.title),
@@ -221,7 +212,7 @@ pub fn roster_documents(
     ));
     for (i, s) in roster.students.iter().enumerate() {
         let file = format!("{:03}-{}.pdf", i + 1, file_safe(&s.id));
-        let mut paper = Markup(preamble(
+        let mut paper = Markup::new(preamble(
             course,
             &format!("{}: problems for {}", course.title, s.name),
             &course.title,
@@ -246,17 +237,9 @@ pub fn roster_documents(
                 sheet.variants[given[i]].number
             ));
         }
-        out.push(PdfSource {
-            path: file,
-            markup: paper.0,
-            images: Vec::new(),
-        });
+        out.push(paper.source(&file, Vec::new()));
     }
-    out.push(PdfSource {
-        path: "key.pdf".into(),
-        markup: key.0,
-        images: Vec::new(),
-    });
+    out.push(key.source("key.pdf", Vec::new()));
     Ok((out, csv.into_bytes()))
 }
 

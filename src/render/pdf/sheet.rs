@@ -80,8 +80,10 @@ pub fn student_sheet(
             }
         }
         for (n, p, v) in variant_problems(sheet, *k) {
-            crate::cas::typeset_as(&p.tex, || problem(m, n, p, v))
-                .map_err(|e| e.in_scene(&p.source))?;
+            m.scene_part(&p.source, p.line, |m| {
+                crate::cas::typeset_as(&p.tex, || problem(m, n, p, v))
+            })
+            .map_err(|e| e.in_scene(&p.source))?;
         }
         end_variant(m);
     }
@@ -110,8 +112,10 @@ pub fn key(
         let right = start_variant(m, head, sheet, (i, *k, *student));
         m.raw("\n#heading(level: 2)[").text(&right).raw("]\n");
         for (n, p, v) in variant_problems(sheet, *k) {
-            crate::cas::typeset_as(&p.tex, || key_problem(m, n, p, v))
-                .map_err(|e| e.in_scene(&p.source))?;
+            m.scene_part(&p.source, p.line, |m| {
+                crate::cas::typeset_as(&p.tex, || key_problem(m, n, p, v))
+            })
+            .map_err(|e| e.in_scene(&p.source))?;
         }
         end_variant(m);
     }

@@ -18,13 +18,9 @@ fn course(paper: Paper) -> Course {
 }
 
 fn doc(paper: Paper, body: impl FnOnce(&mut Markup)) -> PdfSource {
-    let mut m = Markup(preamble(&course(paper), "Title", "Head", "Right"));
+    let mut m = Markup::new(preamble(&course(paper), "Title", "Head", "Right"));
     body(&mut m);
-    PdfSource {
-        path: "pdf/test.pdf".into(),
-        markup: m.0,
-        images: Vec::new(),
-    }
+    m.source("pdf/test.pdf", Vec::new())
 }
 
 /// The PDF's text streams are compressed; its page size is in the clear.
@@ -141,5 +137,54 @@ fn every_kind_of_name_a_scene_may_write_is_typeset() {
         out.is_ok(),
         "{}",
         out.err().map(|e| e.to_string()).unwrap_or_default()
+    );
+}
+
+/// Each scene's part of a lecture's documents is marked with its file and line (the `id`'s in
+/// a handout, the `[problem]`'s on a sheet), so a Typst error there is reported at the scene.
+#[test]
+fn each_scenes_part_of_a_document_is_marked_with_its_line() {
+    const BOX: &str = "id = \"b\"\ntitle = \"A box\"\nnotes = { lecture = \"x\" }\n\
+        symbols = { m = \"mass\", a = \"side\" }\n\
+        [[body]]\nkind = \"box\"\nsize = [\"a\", \"a\", \"a\"]\nmass = \"m\"\norigin = \"centre\"\n\
+        [outputs]\nwant = [\"inertia_tensor\"]\n\
+        [numeric]\nvalues = { m = 1.0, a = 1.0 }\n\
+        [problem]\nstatement = \"A cube of mass {m} kg and side {a} m.\"\n\
+        answers = [\"mass\"]\n\
+        [variants]\ncount = 2\nm = [\"2\", \"3\"]\na = [\"1\"]\n";
+    let scene = crate::scene::Scene::parse(BOX, std::path::Path::new("b.toml")).unwrap();
+    let reports = [crate::pipeline::run_scene(scene, None).unwrap()];
+    let course = Course::default();
+    let site = crate::render::site_files(&reports, &course, &Default::default(), false).unwrap();
+    let docs = super::site_documents(&reports, &course, &site).unwrap();
+    let marks: Vec<(&str, Vec<&str>)> = docs
+        .iter()
+        .map(|d| {
+            let names = d
+                .origins
+                .iter()
+                .filter(|(_, s)| !s.is_empty())
+                .map(|(_, s)| s.as_str())
+                .collect();
+            (d.path.as_str(), names)
+        })
+        .collect();
+    assert_eq!(
+        marks,
+        [
+            ("pdf/lecture-x-student.pdf", vec![]),
+            ("pdf/lecture-x-instructor.pdf", vec!["b.toml:1"]),
+            ("pdf/lecture-x-problems-student.pdf", vec!["b.toml:14"; 2]),
+            ("pdf/lecture-x-problems-key.pdf", vec!["b.toml:14"; 2]),
+        ]
+    );
+    // A mark starts the scene's part: its heading, with the scene's title, follows.
+    let instructor = &docs[1];
+    let (at, _) = &instructor.origins[0];
+    let part = instructor.markup[*at..].trim_start();
+    assert!(
+        part.starts_with("#heading(level: 2)[#\"A box\""),
+        "{}",
+        &part[..80]
     );
 }

@@ -13,12 +13,34 @@ use typst::{Library, LibraryExt, World};
 use typst_layout::PagedDocument;
 
 /// Why a document could not be typeset: Typst's errors, each with the markup it points at
-/// (a bug of mechbook's printers, since every author's text is a string literal).
+/// (a bug of mechbook's printers, since every author's text is a string literal), and the
+/// scene (file:line) whose part of the document the first of them falls in, if any.
 #[derive(Debug, Clone, thiserror::Error)]
-#[error("{path}: Typst cannot typeset it: {}", messages.join("; "))]
+#[error(
+    "{}{path}: Typst cannot typeset it: {}{}",
+    scene.as_ref().map_or(String::new(), |s| format!("{s}: ")),
+    messages.join("; "),
+    if scene.is_some() {
+        " (in this scene's part of the document, which `check` accepts: rewrite the mathematics \
+         or name Typst points at, and please report the scene as a mechbook bug)"
+    } else {
+        ""
+    }
+)]
 pub struct TypesetError {
     pub path: String,
     pub messages: Vec<String>,
+    pub scene: Option<String>,
+}
+
+/// The scene whose part of the markup holds byte `at`, if one does.
+fn scene_at(origins: &[(usize, String)], at: usize) -> Option<String> {
+    origins
+        .iter()
+        .rev()
+        .find(|(start, _)| *start <= at)
+        .map(|(_, scene)| scene.clone())
+        .filter(|scene| !scene.is_empty())
 }
 
 /// The fonts, read once: New Computer Modern (text and math), Libertinus and DejaVu Sans Mono.
@@ -102,6 +124,7 @@ pub fn typeset(source: &PdfSource) -> Result<Typeset, TypesetError> {
             .map_err(|e| TypesetError {
                 path: source.path.clone(),
                 messages: vec![format!("cannot start the typesetting thread: {e}")],
+                scene: None,
             })?
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
@@ -116,22 +139,34 @@ fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
         main: Source::detached(source.markup.clone()),
         source,
     };
-    let fail = |messages: Vec<String>| TypesetError {
+    let fail = |messages: Vec<String>, scene: Option<String>| TypesetError {
         path: source.path.clone(),
         messages,
+        scene,
     };
     let Warned { output, .. } = typst::compile::<PagedDocument>(&world);
     let document = output.map_err(|errors| {
+        let ranges: Vec<_> = errors
+            .iter()
+            .map(|e| typst::WorldExt::range(&world, e.span))
+            .collect();
+        let scene = ranges
+            .iter()
+            .flatten()
+            .find_map(|r| scene_at(&source.origins, r.start));
         fail(
             errors
                 .iter()
-                .map(|e| {
-                    let at = typst::WorldExt::range(&world, e.span)
+                .zip(&ranges)
+                .map(|(e, r)| {
+                    let at = r
+                        .clone()
                         .and_then(|r| world.main.text().get(r))
                         .unwrap_or("");
                     format!("{} at `{at}`", e.message)
                 })
                 .collect(),
+            scene,
         )
     })?;
     let options = typst_pdf::PdfOptions {
@@ -141,7 +176,7 @@ fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
         ..Default::default()
     };
     let pdf = typst_pdf::pdf(&document, &options)
-        .map_err(|errors| fail(errors.iter().map(|e| e.message.to_string()).collect()))?;
+        .map_err(|errors| fail(errors.iter().map(|e| e.message.to_string()).collect(), None))?;
     // A character no font has is set as the font's "notdef": found in the laid-out pages, not
     // in Typst's warnings' wording.
     let mut missing = missing_glyphs_in(&document);
