@@ -9,7 +9,16 @@ impl Formula {
     /// validation refuses it first).
     pub fn to_typst(&self) -> Result<String, TexError> {
         let mut out = String::new();
-        typst(self, &mut out)?;
+        typst(self, &mut out, false)?;
+        Ok(out)
+    }
+
+    /// Typst's math for a formula wider than its line, which Typst breaks after its relations
+    /// and operators: its vectors as tuples, whose entries' sums can break (a matrix's row
+    /// cannot).
+    pub fn to_typst_breakable(&self) -> Result<String, TexError> {
+        let mut out = String::new();
+        typst(self, &mut out, true)?;
         Ok(out)
     }
 }
@@ -24,8 +33,9 @@ fn join(out: &mut String, piece: &str) {
     out.push_str(piece);
 }
 
-fn typst(f: &Formula, out: &mut String) -> Result<(), TexError> {
+fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError> {
     let piece = match f {
+        Formula::Expr(e) if breakable => e.to_typst_breakable(),
         Formula::Expr(e) => e.to_typst(),
         Formula::Name(n) => typst_name(n),
         // A decimal or an integer; a minus sign is Typst's too.
@@ -36,7 +46,7 @@ fn typst(f: &Formula, out: &mut String) -> Result<(), TexError> {
             for item in items {
                 match item {
                     Formula::Op(op) => join(out, typst_op(*op)),
-                    other => typst(other, out)?,
+                    other => typst(other, out, breakable)?,
                 }
             }
             return Ok(());
@@ -53,11 +63,14 @@ fn typst(f: &Formula, out: &mut String) -> Result<(), TexError> {
         Formula::Sum(Some(i)) => format!("sum_({})", typst_base(i)),
         Formula::Sum(None) => "sum ".into(),
         Formula::Integral(None) => "integral ".into(),
-        Formula::Integral(Some(limits)) => format!(
-            "integral_({})^({}) ",
-            limits.0.to_typst()?,
-            limits.1.to_typst()?
-        ),
+        Formula::Integral(Some(limits)) => {
+            // Limits are set small: their fractions go on the line.
+            let limit = |f: &Formula| match f {
+                Formula::Expr(e) => Ok(e.to_typst_on_the_line()),
+                other => other.to_typst(),
+            };
+            format!("integral_({})^({}) ", limit(&limits.0)?, limit(&limits.1)?)
+        }
         Formula::Nabla(None) => "nabla ".into(),
         Formula::Nabla(Some(by)) => format!("nabla_({}) ", typst_base(by)),
         Formula::At(a, frame) => {

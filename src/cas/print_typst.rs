@@ -15,7 +15,38 @@ impl Expr {
     /// claim's `inertia_tensor[0][1]` prints as I_xy when `named("inertia_tensor")` is `I`.
     pub fn to_typst_named(&self, named: &dyn Fn(&str) -> Option<&'static str>) -> String {
         let mut s = String::new();
-        write(self, &mut s, Prec::Sum, &Typst { named });
+        let style = Typst {
+            named,
+            slash: false,
+            tuples: false,
+        };
+        write(self, &mut s, Prec::Sum, &style);
+        s
+    }
+
+    /// Typst for a formula wider than its line: a vector as a tuple `(a, b, c)`, which Typst
+    /// breaks after the operators inside it, where `mat(a, b, c)` is one unbreakable piece.
+    pub fn to_typst_breakable(&self) -> String {
+        let mut s = String::new();
+        let style = Typst {
+            named: &|_| None,
+            slash: false,
+            tuples: true,
+        };
+        write(self, &mut s, Prec::Sum, &style);
+        s
+    }
+
+    /// Typst with its fractions on the line (`a\/2`), for an integral's limits: a fraction
+    /// there is set at half the body's size.
+    pub fn to_typst_on_the_line(&self) -> String {
+        let mut s = String::new();
+        let style = Typst {
+            named: &|_| None,
+            slash: true,
+            tuples: false,
+        };
+        write(self, &mut s, Prec::Sum, &style);
         s
     }
 }
@@ -82,12 +113,38 @@ fn subscript_letters(tail: &str) -> String {
     out
 }
 
+/// Whether a root's argument is a sum, or a product with one (what a line can break).
+fn root_of_a_sum(e: &Expr) -> bool {
+    match e {
+        Expr::Add(_) => true,
+        Expr::Mul(fs) => fs.iter().any(|f| matches!(f, Expr::Add(_))),
+        _ => false,
+    }
+}
+
 /// Typst's math for the PDFs.
 struct Typst<'a> {
     named: &'a dyn Fn(&str) -> Option<&'static str>,
+    /// Fractions written on the line, with a slash.
+    slash: bool,
+    /// Vectors written as tuples.
+    tuples: bool,
 }
 
 impl Typst<'_> {
+    /// A matrix's cell. Typst sets cells in the text style, where a fraction's parts are
+    /// script-sized and their indices smaller still (half the body): one with a fraction is
+    /// set in the display style, as a textbook sets it.
+    fn cell(&self, c: &Expr, out: &mut String) {
+        let mut cell = String::new();
+        write(c, &mut cell, Prec::Sum, self);
+        if cell.contains("frac(") {
+            out.push_str(&format!("display({cell})"));
+        } else {
+            out.push_str(&cell);
+        }
+    }
+
     /// The claim language's vector and matrix functions in their usual notation (as the LaTeX
     /// printer writes them). Returns false for any other call.
     fn claim_call(&self, n: &str, args: &[Expr], out: &mut String) -> bool {
@@ -154,6 +211,9 @@ impl Style for Typst<'_> {
     fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
         let body = if r.is_integer() {
             r.abs_parts().0.to_string()
+        } else if self.slash {
+            let (num, den) = r.abs_parts();
+            format!("{num}\\/{den}")
         } else {
             let (num, den) = r.abs_parts();
             format!("frac({num}, {den})")
@@ -176,8 +236,36 @@ impl Style for Typst<'_> {
             out.push('(');
         }
         let write_factors = |fs: &[Expr], out: &mut String| page_factors(fs, " dot.op ", out, self);
+        // On the line, a part of more than one factor is bracketed below the slash; a lone
+        // sum on either side is bracketed too.
+        let on_the_line = |fs: &[Expr], below: bool, out: &mut String| match fs {
+            [one] => write(one, out, Prec::Power, self),
+            _ if below => {
+                out.push('(');
+                write_factors(fs, out);
+                out.push(')');
+            }
+            _ => write_factors(fs, out),
+        };
         if den.is_empty() {
             write_factors(&num, out);
+        } else if self.slash {
+            on_the_line(&num, false, out);
+            out.push_str("\\/");
+            on_the_line(&den, true, out);
+        } else if self.tuples && num.iter().any(|f| matches!(f, Expr::Add(_))) {
+            // A fraction is one piece: to be broken, a sum above the bar goes after 1/d.
+            out.push_str("frac(1, ");
+            write_factors(&den, out);
+            out.push_str(") ");
+            match num.as_slice() {
+                [sum] => {
+                    out.push('(');
+                    write(sum, out, Prec::Sum, self);
+                    out.push(')');
+                }
+                _ => write_factors(&num, out),
+            }
         } else {
             out.push_str("frac(");
             write_factors(&num, out);
@@ -191,6 +279,14 @@ impl Style for Typst<'_> {
     }
     fn power(&self, a: &Expr, b: &Expr, _ctx: Prec, out: &mut String) {
         if let Expr::Num(r) = b {
+            if *r == Rational::new(1, 2).unwrap() && self.tuples && root_of_a_sum(a) {
+                // A root's sign is one piece: to be broken, its sum goes in parentheses, which
+                // Typst does not pair (a paired group with an exponent is one piece too).
+                out.push_str("\\(");
+                write(a, out, Prec::Sum, self);
+                out.push_str("\\)^(1\\/2)");
+                return;
+            }
             if *r == Rational::new(1, 2).unwrap() {
                 out.push_str("sqrt(");
                 write(a, out, Prec::Sum, self);
@@ -222,10 +318,24 @@ impl Style for Typst<'_> {
         }
         write(a, out, Prec::Power, self);
         out.push_str("^(");
-        write(b, out, Prec::Sum, self);
+        match b {
+            // A fractional exponent on the line, as textbooks write it: x^(3/2).
+            Expr::Num(r) if !r.is_integer() => {
+                let (num, den) = r.abs_parts();
+                let sign = if r.is_negative() { "-" } else { "" };
+                out.push_str(&format!("{sign}{num}\\/{den}"));
+            }
+            _ => write(b, out, Prec::Sum, self),
+        }
         out.push(')');
     }
     fn call(&self, n: &str, args: &[Expr], out: &mut String) {
+        if n == "sqrt" && args.len() == 1 && self.tuples && root_of_a_sum(&args[0]) {
+            out.push_str("\\(");
+            write(&args[0], out, Prec::Sum, self);
+            out.push_str("\\)^(1\\/2)");
+            return;
+        }
         if n == "sqrt" && args.len() == 1 {
             out.push_str("sqrt(");
             write(&args[0], out, Prec::Sum, self);
@@ -253,6 +363,17 @@ impl Style for Typst<'_> {
     }
     fn list(&self, v: &[Expr], out: &mut String) {
         let is_matrix = v.iter().all(|r| matches!(r, Expr::List(_)));
+        if self.tuples && !is_matrix {
+            out.push('(');
+            for (i, entry) in v.iter().enumerate() {
+                if i > 0 {
+                    out.push_str(", ");
+                }
+                write(entry, out, Prec::Sum, self);
+            }
+            out.push(')');
+            return;
+        }
         out.push_str("mat(");
         for (i, row) in v.iter().enumerate() {
             if i > 0 {
@@ -264,10 +385,10 @@ impl Style for Typst<'_> {
                         if j > 0 {
                             out.push_str(", ");
                         }
-                        write(c, out, Prec::Sum, self);
+                        self.cell(c, out);
                     }
                 }
-                other => write(other, out, Prec::Sum, self),
+                other => self.cell(other, out),
             }
         }
         out.push(')');
@@ -310,11 +431,41 @@ mod tests {
         assert_eq!(typst("-3/4"), "-frac(3, 4)");
         assert_eq!(typst("inertia_tensor"), "upright(\"inertia_tensor\")");
         assert_eq!(typst("sin(x)^2"), "sin^(2) (x)");
+        assert_eq!(typst("x^(3/2)"), "x^(3\\/2)");
         // A digit then letters: each letter apart, never a variable `cone` (issue 41).
         assert_eq!(
             typst("I1cone + d2U + w12"),
             "I_(1 c o n e) + d_(2 U) + ω_(12)"
         );
+    }
+
+    #[test]
+    fn a_vector_as_a_tuple_where_a_formula_must_break() {
+        let e = parse("[a + b, c]").unwrap().expr;
+        assert_eq!(e.to_typst(), "mat(a + b, c)");
+        assert_eq!(e.to_typst_breakable(), "(a + b, c)");
+        // A root of a sum opens into a power, a root of a product does not.
+        let root = parse("sqrt(m*(a + b))").unwrap().expr;
+        assert_eq!(root.to_typst_breakable(), "\\(m (a + b)\\)^(1\\/2)");
+        assert_eq!(
+            parse("sqrt(m*a)").unwrap().expr.to_typst_breakable(),
+            "sqrt(m a)"
+        );
+        // A sum over a denominator goes after 1/d.
+        let fraction = parse("(a + b)/(2*c)").unwrap().expr;
+        assert_eq!(fraction.to_typst_breakable(), "frac(1, 2 c) (a + b)");
+        // A matrix stays a matrix: its rows cannot break.
+        let m = parse("[[a, b], [c, d]]").unwrap().expr;
+        assert_eq!(m.to_typst_breakable(), m.to_typst());
+    }
+
+    #[test]
+    fn fractions_on_the_line() {
+        let line = |text: &str| parse(text).unwrap().expr.to_typst_on_the_line();
+        assert_eq!(line("-a/2"), "-a\\/2");
+        assert_eq!(line("1/2"), "1\\/2");
+        assert_eq!(line("(a + b)/(2*c)"), "(a + b)\\/(2 c)");
+        assert_eq!(line("pi*R"), "π R");
     }
 
     #[test]

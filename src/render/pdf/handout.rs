@@ -3,7 +3,7 @@
 //! solutions (contents, every step with its reason and check, the figures). The same choices
 //! as the HTML handouts (`templates/handout.html`), from the same [`Page`]s.
 
-use super::markup::{Markup, formula, number, symbol};
+use super::markup::{Markup, formula_and_broken, number, symbol};
 use crate::base::format::sci;
 use crate::derive::ExactBasis;
 use crate::document::{At, Page};
@@ -83,7 +83,8 @@ fn steps(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
         ))
         .text(&st.title)
         .raw("*");
-        m.block(&formula(&st.statement)?);
+        let (whole, broken) = formula_and_broken(&st.statement)?;
+        m.block(&whole, &broken);
         m.raw("#text(9.5pt)[");
         m.prose(&st.why_cited())?;
         if let Some(c) = &st.check {
@@ -100,7 +101,8 @@ fn results(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
             3,
             &crate::render::problems::capitalised(&q.name.replace('_', " ")),
         )?;
-        m.block(&q.value.to_expr().to_typst());
+        let value = q.value.to_expr();
+        m.block(&value.to_typst(), &value.to_typst_breakable());
         if let Some(at) = &q.at {
             at_numbers(m, &q.value, at);
         }
@@ -121,16 +123,14 @@ fn results(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
             ),
             ExactBasis::All => "quad \"every axis\"".into(),
         };
-        m.block(&format!("{} {dir}", sp.value.to_typst()));
+        let line = format!("{} {dir}", sp.value.to_typst());
+        m.block(&line, &line);
     }
     if let Some(p) = &page.principal_values {
         m.heading(3, "Principal moments at the scene's values")?;
         let values: Vec<String> = p.exact.iter().map(|v| number(*v, 6)).collect();
-        m.block(&format!(
-            "{} = {}",
-            symbol(&p.letter),
-            values.join("\\, thin ")
-        ));
+        let line = format!("{} = {}", symbol(&p.letter), values.join("\\, thin "));
+        m.block(&line, &line);
         m.raw("#text(9.5pt)[").text(&format!(
             "at {}: the eigen-solver on the exact tensor agrees to {} (relative)",
             p.values
@@ -190,12 +190,18 @@ fn claims(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderErr
             .map(|e| e.to_typst_named(&quantity_symbol))
             .unwrap_or_default();
         let derived = c.derived.as_ref().map(|v| match v {
-            Value::Scalar(e) if c.precision.is_some() => e
-                .eval(&|_| None)
-                .map_or_else(|_| e.to_typst(), |x| number(x, 7)),
-            _ => v.to_expr().to_typst(),
+            Value::Scalar(e) if c.precision.is_some() => {
+                let x = e
+                    .eval(&|_| None)
+                    .map_or_else(|_| e.to_typst(), |x| number(x, 7));
+                (x.clone(), x)
+            }
+            _ => {
+                let e = v.to_expr();
+                (e.to_typst(), e.to_typst_breakable())
+            }
         });
-        let derived = derived.unwrap_or_default();
+        let (derived, derived_broken) = derived.unwrap_or_default();
         let mistake = c.role == ClaimRole::Mistake;
         let disagrees = c.verdict == Verdict::Disagrees;
         if !instructor && !mistake && !disagrees && c.verdict != Verdict::Agrees {
@@ -219,9 +225,9 @@ fn claims(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderErr
                 } else {
                     "The notes: "
                 })
-                .block(&notes)
+                .block(&notes, &notes)
                 .text(if instructor { "Derived: " } else { "Correct: " })
-                .block(&derived)
+                .block(&derived, &derived_broken)
                 .raw("]\n");
         } else {
             m.text(&format!("({}) ", c.eq));

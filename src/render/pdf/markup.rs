@@ -83,12 +83,16 @@ impl Markup {
         self.inline(&format!("display({typst_math})"))
     }
 
-    /// A formula on a line of its own, centred; one wider than the line is scaled to fit it
-    /// (`fit`, in the preamble), as the phones' pages do, rather than run off the paper.
-    pub fn block(&mut self, typst_math: &str) -> &mut Self {
-        self.text.push_str("\n#fit[$ ");
-        self.text.push_str(typst_math);
-        self.text.push_str(" $]\n");
+    /// A formula on a line of its own, centred; one wider than the line is broken after its
+    /// relations and operators, with a hanging indent, as a typesetter would (`fit`, in the
+    /// preamble): Typst breaks a line of inline mathematics there, inside parentheses too.
+    /// `broken` is the same formula printed to be broken (`to_typst_breakable`).
+    pub fn block(&mut self, whole: &str, broken: &str) -> &mut Self {
+        self.text.push_str("\n#fit($ ");
+        self.text.push_str(whole);
+        self.text.push_str(" $, $display(");
+        self.text.push_str(broken);
+        self.text.push_str(")$)\n");
         self
     }
 
@@ -134,6 +138,15 @@ pub fn formula(f: &Formula) -> Result<String, RenderError> {
     })
 }
 
+/// A formula in Typst's math, and as it is printed to be broken across lines.
+pub fn formula_and_broken(f: &Formula) -> Result<(String, String), RenderError> {
+    let broken = f.to_typst_breakable().map_err(|e| RenderError::Math {
+        latex: f.to_latex(),
+        message: e.to_string(),
+    })?;
+    Ok((formula(f)?, broken))
+}
+
 /// A symbol's name in Typst's math.
 pub fn symbol(name: &str) -> String {
     Expr::sym(name).to_typst()
@@ -171,8 +184,9 @@ pub fn preamble(course: &Course, title: &str, head: &str, right: &str) -> String
          #show heading.where(level: 1): set text(15pt)\n\
          #show heading.where(level: 2): set text(12.5pt)\n\
          #show heading.where(level: 3): set text(10.5pt)\n\
-         #let fit(body) = layout(size => {{ let w = measure(body).width; \
-         if w > size.width {{ scale(size.width / w * 100%, reflow: true, body) }} else {{ body }} }})\n",
+         #let fit(whole, broken) = layout(size => {{ if measure(whole).width <= size.width {{ whole }} \
+         else {{ block(width: 100%)[#set text(top-edge: \"bounds\", bottom-edge: \"bounds\"); \
+         #par(hanging-indent: 2em, leading: 0.6em)[#sym.zws#broken]] }} }})\n",
         title = typst_string(title),
         author = typst_string(&course.author),
         head = typst_string(head),

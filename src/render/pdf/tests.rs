@@ -46,7 +46,7 @@ fn an_authors_text_is_text_however_it_reads_as_markup() {
 fn a_formula_wider_than_the_paper_is_scaled_onto_it_and_text_past_the_edge_is_found() {
     let long = vec!["a"; 160].join(" + ");
     let fitted = typeset(&doc(Paper::A4, |m| {
-        m.block(&long);
+        m.block(&long, &long);
     }))
     .unwrap();
     assert!(fitted.past_the_edge.is_empty());
