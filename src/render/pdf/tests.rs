@@ -1,5 +1,5 @@
 //! Typesetting, tested on small documents: an author's text is never markup, a wide formula is
-//! scaled onto the paper, the checks find text past the edge and characters with no glyph, and
+//! broken across lines, the checks find text past the edge and characters with no glyph, and
 //! the same markup gives the same bytes.
 
 use super::PdfSource;
@@ -43,7 +43,7 @@ fn an_authors_text_is_text_however_it_reads_as_markup() {
 }
 
 #[test]
-fn a_formula_wider_than_the_paper_is_scaled_onto_it_and_text_past_the_edge_is_found() {
+fn a_formula_wider_than_the_paper_is_broken_onto_it_and_text_past_the_edge_is_found() {
     let long = vec!["a"; 160].join(" + ");
     let fitted = typeset(&doc(Paper::A4, |m| {
         m.block(&long, &long);
