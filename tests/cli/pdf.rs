@@ -525,3 +525,93 @@ fn wide_formulas_are_broken_not_shrunk() {
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// The headings of an HTML handout, as text (those with mathematics left out: MathML and the
+/// PDF's glyphs spell a letter differently).
+fn html_headings(html: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for level in html.split("<h").skip(1) {
+        let Some(rest) = level.strip_prefix(|c: char| ('2'..='4').contains(&c)) else {
+            continue;
+        };
+        let body = rest.split_once('>').map_or("", |(_, b)| b);
+        let body = body.split("</h").next().unwrap_or("");
+        if body.contains("<math") {
+            continue;
+        }
+        let mut text = String::new();
+        let mut in_tag = false;
+        for c in body.chars() {
+            match c {
+                '<' => in_tag = true,
+                '>' => in_tag = false,
+                c if !in_tag => text.push(c),
+                _ => {}
+            }
+        }
+        let text = text
+            .replace("&#x27;", "'")
+            .replace("&#x2F;", "/")
+            .replace("&quot;", "\"")
+            .replace("&lt;", "<")
+            .replace("&gt;", ">")
+            .replace("&amp;", "&");
+        out.push(text.trim().to_string());
+    }
+    out
+}
+
+fn words(s: &str) -> String {
+    s.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_lowercase()
+}
+
+/// Each handout's HTML and PDF show the same sections, steps, claims and problems: every
+/// heading of the HTML is in the PDF's text, in the same order. (The PDF key once answered a
+/// problem with fewer variants than the sheet under every variant, where the HTML key and the
+/// docs answer each of its variants once, in a section of its own.)
+#[test]
+fn each_handouts_html_and_pdf_show_the_same_sections() {
+    if !poppler() {
+        return;
+    }
+    let dir = scratch("pdf-same-sections");
+    for (name, folder) in [("lectures", "lectures"), ("course", "tests/course")] {
+        let out = dir.join(name);
+        let run = mechbook(&[
+            "build",
+            folder,
+            "--no-cache",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(
+            run.status.success() || run.status.code() == Some(1),
+            "{}",
+            stderr(&run)
+        );
+        let mut compared = 0;
+        for entry in std::fs::read_dir(out.join("handouts")).unwrap() {
+            let html = entry.unwrap().path();
+            let stem = html.file_stem().unwrap().to_str().unwrap().to_string();
+            let pdf = out.join("pdf").join(format!("{stem}.pdf"));
+            assert!(pdf.exists(), "{} has no PDF", html.display());
+            let headings = html_headings(&std::fs::read_to_string(&html).unwrap());
+            let text = words(&pages(&pdf).join(" "));
+            let mut at = 0;
+            for h in &headings {
+                let found = text[at..].find(&words(h));
+                assert!(
+                    found.is_some(),
+                    "{stem}: the HTML's heading `{h}` is not in the PDF after what came before"
+                );
+                at += found.unwrap();
+            }
+            compared += headings.len();
+        }
+        assert!(compared > 100, "{name}: {compared} headings");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}

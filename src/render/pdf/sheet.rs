@@ -92,7 +92,7 @@ pub fn student_sheet(
 
 fn problem(m: &mut Markup, number: usize, p: &Problem, v: &Variant) -> Result<(), RenderError> {
     m.raw("\n#block(breakable: false)[\n#heading(level: 2)[")
-        .text(&format!("{number}. "));
+        .text(&format!("Problem {number}: "));
     m.author(&p.title)?;
     m.raw("]\n");
     m.prose(&v.statement)?;
@@ -108,12 +108,43 @@ pub fn key(
     sheet: &Sheet,
     which: &[(usize, Option<&Student>)],
 ) -> Result<(), RenderError> {
+    // The site's key answers a problem with fewer variants than the sheet once, in a section
+    // of its own, as the HTML key does (the sheet's choice, `document::Sheet::shared`); a
+    // student's key answers their own variant where it is asked.
+    let whole_sheet = which.iter().all(|(_, student)| student.is_none());
+    if whole_sheet && !sheet.shared.is_empty() {
+        m.raw("\n#heading(level: 2)[")
+            .text(SHARED)
+            .raw("]\n#text(9pt)[")
+            .text("Each of their variants is answered once here, and each sheet variant says which one it uses.")
+            .raw("]\n");
+        for answer in &sheet.shared {
+            let (n, p) = sheet.problem(answer.problem);
+            let v = &p.variants[answer.variant];
+            let heading = format!("Problem {n}, its variant {}", v.number);
+            m.scene_part(&p.source, p.line, |m| {
+                crate::cas::typeset_as(&p.tex, || key_problem(m, &heading, p, v))
+            })
+            .map_err(|e| e.in_scene(&p.source))?;
+        }
+    }
     for (i, (k, student)) in which.iter().enumerate() {
         let right = start_variant(m, head, sheet, (i, *k, *student));
         m.raw("\n#heading(level: 2)[").text(&right).raw("]\n");
-        for (n, p, v) in variant_problems(sheet, *k) {
+        for sp in &sheet.variants[*k].problems {
+            let (n, p) = sheet.problem(sp.problem);
+            let v = &p.variants[sp.variant];
             m.scene_part(&p.source, p.line, |m| {
-                crate::cas::typeset_as(&p.tex, || key_problem(m, n, p, v))
+                crate::cas::typeset_as(&p.tex, || {
+                    if whole_sheet && sp.shared {
+                        shared_pointer(m, n, p, v)
+                    } else if sp.shared {
+                        // A student's own variant of a shared problem, answered here.
+                        key_problem(m, &format!("Problem {n}, its variant {}", v.number), p, v)
+                    } else {
+                        key_problem(m, &format!("Problem {n}"), p, v)
+                    }
+                })
             })
             .map_err(|e| e.in_scene(&p.source))?;
         }
@@ -122,10 +153,31 @@ pub fn key(
     Ok(())
 }
 
-fn key_problem(m: &mut Markup, number: usize, p: &Problem, v: &Variant) -> Result<(), RenderError> {
-    m.raw("\n#heading(level: 3)[").text(&format!("{number}. "));
+/// The heading of the key's section of shared answers, as on the HTML key.
+const SHARED: &str = "Problems with fewer variants than the sheet";
+
+/// A shared problem in a sheet variant of the key: which of its variants, answered where.
+fn shared_pointer(
+    m: &mut Markup,
+    number: usize,
+    p: &Problem,
+    v: &Variant,
+) -> Result<(), RenderError> {
+    m.raw("\n#heading(level: 3)[")
+        .text(&format!("Problem {number}: "));
     m.author(&p.title)?;
-    m.text(&format!(" (variant {})", v.number)).raw("]\n");
+    m.raw("]\n").text(&format!(
+        "Its variant {}: answered under {SHARED}.",
+        v.number
+    ));
+    m.raw("\n");
+    Ok(())
+}
+
+fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Result<(), RenderError> {
+    m.raw("\n#heading(level: 3)[").text(&format!("{heading}: "));
+    m.author(&p.title)?;
+    m.raw("]\n");
     let given: Vec<String> = v
         .given
         .iter()
