@@ -7,6 +7,7 @@ pub mod bless;
 pub mod cache;
 pub mod guard;
 pub mod init;
+pub mod pdfs;
 pub mod scratch;
 
 pub use guard::check_output;

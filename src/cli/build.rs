@@ -248,7 +248,7 @@ impl Build {
             .map_err(|e| fail(e.into()))?;
         let sources = crate::render::pdf::site_documents(&reports, &course, &site)
             .map_err(|e| fail(e.into()))?;
-        let pdfs = super::pdfs::typeset_all(&sources, self.cache.as_ref(), "site").map_err(fail)?;
+        let pdfs = typeset_with_progress(&sources, self.cache.as_ref(), "site");
         let mut warnings = pdfs.warnings;
         // A document Typst cannot set fails the build, but the HTML site and the other PDFs
         // are still written.
@@ -260,8 +260,7 @@ impl Build {
                 let (sources, csv) =
                     crate::render::pdf::roster_documents(&reports, &course, roster, *seed)
                         .map_err(|e| fail(e.into()))?;
-                let made = super::pdfs::typeset_all(&sources, self.cache.as_ref(), "papers")
-                    .map_err(fail)?;
+                let made = typeset_with_progress(&sources, self.cache.as_ref(), "papers");
                 warnings.extend(made.warnings);
                 failed_documents.extend(made.failed);
                 let mut files: crate::render::SiteFiles = made.files.into_iter().collect();
@@ -441,4 +440,25 @@ pub fn report_not_built(not_built: NotBuilt) -> Result<()> {
         NotBuilt::Other(e) => return Err(e),
     }
     Ok(())
+}
+
+/// The documents typeset (or taken from the cache), with a progress bar on a terminal: a
+/// roster's papers can take a while.
+fn typeset_with_progress(
+    sources: &[crate::render::pdf::PdfSource],
+    cache: Option<&crate::site::cache::Cache>,
+    prefix: &str,
+) -> crate::site::pdfs::Typeset {
+    use std::io::IsTerminal;
+    let terminal = std::io::stderr().is_terminal();
+    let mut progress = |done: usize, total: usize, path: &str| {
+        if terminal {
+            eprint!("\r\x1b[2K{}", super::progress_bar(done, total, path));
+        }
+    };
+    let made = crate::site::pdfs::typeset_all(sources, cache, prefix, &mut progress);
+    if terminal {
+        eprint!("\r\x1b[2K");
+    }
+    made
 }

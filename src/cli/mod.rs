@@ -7,7 +7,6 @@ mod check;
 mod completions;
 mod derive;
 mod init;
-mod pdfs;
 mod serve;
 mod spin;
 

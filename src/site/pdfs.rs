@@ -1,8 +1,9 @@
 //! The PDFs of a build: each document typeset by Typst, or taken from the build cache when its
-//! markup and pictures are unchanged (a warm build typesets nothing).
+//! markup and pictures are unchanged (a warm build typesets nothing). The bytes go to the
+//! caller, which writes them with the site.
 
+use super::cache::Cache;
 use crate::render::pdf::PdfSource;
-use crate::site::cache::Cache;
 use std::path::PathBuf;
 
 /// What typesetting made: each file, and what to tell the user.
@@ -16,31 +17,25 @@ pub struct Typeset {
     pub failed: Vec<String>,
 }
 
-/// Typesets `sources`, under `prefix` in the cache's names (`site`, `papers`).
+/// Typesets `sources`, under `prefix` in the cache's names (`site`, `papers`); `progress` is
+/// told of each document before it is made (done, total, path).
 #[cfg(feature = "pdf")]
 pub fn typeset_all(
     sources: &[PdfSource],
     cache: Option<&Cache>,
     prefix: &str,
-) -> anyhow::Result<Typeset> {
-    use std::io::IsTerminal;
-    // A roster's papers can take a while: a progress bar, as for the scenes.
-    let progress = std::io::stderr().is_terminal();
+    progress: &mut dyn FnMut(usize, usize, &str),
+) -> Typeset {
     let mut out = Typeset::default();
     for (i, s) in sources.iter().enumerate() {
-        if progress {
-            eprint!(
-                "\r\x1b[2K{}",
-                super::progress_bar(i, sources.len(), &s.path)
-            );
-        }
+        progress(i, sources.len(), &s.path);
         let name = format!(
             "{prefix}-{}",
             s.path.trim_end_matches(".pdf").replace('/', "-")
         );
         let inputs = inputs_hash(s);
         if let Some(cache) = cache {
-            use crate::site::cache::Lookup;
+            use super::cache::Lookup;
             match cache.load_pdf(&name, inputs) {
                 Lookup::Hit(pdf) => {
                     out.files.push((PathBuf::from(&s.path), pdf));
@@ -94,16 +89,18 @@ pub fn typeset_all(
         }
         out.files.push((PathBuf::from(&s.path), done.pdf));
     }
-    if progress {
-        eprint!("\r\x1b[2K");
-    }
-    Ok(out)
+    out
 }
 
 /// Without the feature `pdf` there is nothing to typeset.
 #[cfg(not(feature = "pdf"))]
-pub fn typeset_all(_: &[PdfSource], _: Option<&Cache>, _: &str) -> anyhow::Result<Typeset> {
-    Ok(Typeset::default())
+pub fn typeset_all(
+    _: &[PdfSource],
+    _: Option<&Cache>,
+    _: &str,
+    _: &mut dyn FnMut(usize, usize, &str),
+) -> Typeset {
+    Typeset::default()
 }
 
 /// The hash of everything a document's bytes depend on but the program (which the cache's
@@ -146,8 +143,8 @@ mod tests {
             ],
             None,
             "test",
-        )
-        .unwrap();
+            &mut |_, _, _| {},
+        );
         let paths: Vec<String> = made
             .files
             .iter()
@@ -173,7 +170,7 @@ mod tests {
             (at("#[one]"), "lectures/one.toml:3".into()),
             (at(" #[mine]"), String::new()),
         ];
-        let made = typeset_all(&[in_scene.clone()], None, "test").unwrap();
+        let made = typeset_all(&[in_scene.clone()], None, "test", &mut |_, _, _| {});
         assert_eq!(made.failed.len(), 1, "{:?}", made.failed);
         let e = &made.failed[0];
         assert!(
@@ -184,7 +181,7 @@ mod tests {
         );
         // The same error in mechbook's own markup.
         in_scene.markup = markup.replace("#panic(\"two\")", "#[two]");
-        let made = typeset_all(&[in_scene], None, "test").unwrap();
+        let made = typeset_all(&[in_scene], None, "test", &mut |_, _, _| {});
         let e = &made.failed[0];
         assert!(
             e.starts_with("pdf/d.pdf: Typst cannot typeset it: panicked with: three"),
