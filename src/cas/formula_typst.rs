@@ -54,7 +54,16 @@ fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError>
         Formula::Op(op) => typst_op(*op).to_string(),
         Formula::Frac(a, b) => format!("frac({}, {})", a.to_typst()?, b.to_typst()?),
         Formula::Sqrt(a) => format!("sqrt({})", a.to_typst()?),
-        Formula::Sup(a, b) => format!("{}^({})", a.to_typst()?, b.to_typst()?),
+        Formula::Sup(a, b) => match a.as_ref() {
+            // A paired group with an exponent is one piece: to be broken, its parentheses go
+            // unpaired, the exponent on the closing one.
+            Formula::Paren(inner, _) if breakable => {
+                let mut opened = String::new();
+                typst(inner, &mut opened, true)?;
+                format!("\\({opened}\\)^({})", b.to_typst()?)
+            }
+            _ => format!("{}^({})", a.to_typst()?, b.to_typst()?),
+        },
         Formula::Paren(a, _) => format!("({})", a.to_typst()?),
         Formula::Bracket(a) => format!("[{}]", a.to_typst()?),
         Formula::Abs(a) => format!("abs({})", a.to_typst()?),
@@ -150,6 +159,15 @@ mod tests {
 
     fn t(notation: &str) -> String {
         Formula::parse(notation, &[]).to_typst().unwrap()
+    }
+
+    /// Printed to be broken, a parenthesised sum with an exponent opens its parentheses (a
+    /// paired group with an exponent is one piece Typst cannot break); whole, it is as before.
+    #[test]
+    fn a_power_of_a_group_opens_where_it_must_break() {
+        let f = Formula::parse("(a + b)^2", &[]);
+        assert_eq!(f.to_typst().unwrap(), "(a + b)^(2)");
+        assert_eq!(f.to_typst_breakable().unwrap(), "\\(a + b\\)^(2)");
     }
 
     #[test]

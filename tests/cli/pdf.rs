@@ -491,8 +491,8 @@ fn shrunk_lines(pdf: &Path) -> (usize, usize) {
 
 /// A display formula wider than the line is broken across lines, not scaled: on the shipped
 /// lectures 533 of 6,095 lines were set below 60 % of the body (the smallest at 27 %, 8.7 %
-/// of the lines). Now 23 of 6,027 are: an inline fraction's indices, as a typesetter sets
-/// them, and a plot's subscript; and no text runs past the paper's edge.
+/// of the lines). Now 2 of 6,605 are, a plot's subscript; and no text runs past the
+/// paper's edge.
 #[test]
 fn wide_formulas_are_broken_not_shrunk() {
     if !poppler() {

@@ -69,11 +69,20 @@ impl Markup {
         self
     }
 
-    /// A formula in the line.
+    /// A formula in the line. One with a fraction is set in the display style (`tall`, in the
+    /// preamble): in the text style a fraction's indices are half the body's size, too small
+    /// to read on paper.
     pub fn inline(&mut self, typst_math: &str) -> &mut Self {
-        self.text.push('$');
-        self.text.push_str(typst_math);
-        self.text.push('$');
+        let tall = typst_math.contains("frac(") && !typst_math.starts_with("display(");
+        if tall {
+            self.text.push_str("#tall($display(");
+            self.text.push_str(typst_math);
+            self.text.push_str(")$)");
+        } else {
+            self.text.push('$');
+            self.text.push_str(typst_math);
+            self.text.push('$');
+        }
         self
     }
 
@@ -184,6 +193,7 @@ pub fn preamble(course: &Course, title: &str, head: &str, right: &str) -> String
          #show heading.where(level: 1): set text(15pt)\n\
          #show heading.where(level: 2): set text(12.5pt)\n\
          #show heading.where(level: 3): set text(10.5pt)\n\
+         #let tall(body) = {{ set text(top-edge: \"bounds\", bottom-edge: \"bounds\"); body }}\n\
          #let fit(whole, broken) = layout(size => {{ if measure(whole).width <= size.width {{ whole }} \
          else {{ block(width: 100%)[#set text(top-edge: \"bounds\", bottom-edge: \"bounds\"); \
          #par(hanging-indent: 2em, leading: 0.6em)[#sym.zws#broken]] }} }})\n",
