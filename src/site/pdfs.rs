@@ -59,8 +59,14 @@ pub fn typeset_all(
             }
         };
         if !done.past_the_edge.is_empty() {
+            // Named at the scenes whose formulas run past it, where known.
+            let scenes = if done.past_the_edge_in.is_empty() {
+                String::new()
+            } else {
+                format!(" (from {})", done.past_the_edge_in.join(", "))
+            };
             out.warnings.push(format!(
-                "{}: text runs past the paper's edge on page(s) {}",
+                "{}: text runs past the paper's edge on page(s) {}{scenes}",
                 s.path,
                 done.past_the_edge
                     .iter()

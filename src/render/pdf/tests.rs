@@ -50,12 +50,16 @@ fn a_formula_wider_than_the_paper_is_broken_onto_it_and_text_past_the_edge_is_fo
     }))
     .unwrap();
     assert!(fitted.past_the_edge.is_empty());
-    // The same formula set without `fit`, in a block wider than the paper, runs off it.
+    // The same formula set without `fit`, in a block wider than the paper, runs off it; the
+    // scene whose part it is in is named.
     let unbroken = typeset(&doc(Paper::A4, |m| {
-        m.raw("#block(width: 400mm)[$ ").raw(&long).raw(" $]");
+        m.scene_part(std::path::Path::new("x.toml"), 7, |m| {
+            m.raw("#block(width: 400mm)[$ ").raw(&long).raw(" $]");
+        });
     }))
     .unwrap();
     assert_eq!(unbroken.past_the_edge, vec![1]);
+    assert_eq!(unbroken.past_the_edge_in, vec!["x.toml:7".to_string()]);
 }
 
 #[test]

@@ -101,13 +101,14 @@ impl World for Document<'_> {
     }
 }
 
-/// A typeset document: its PDF, its page count, the characters no font had, and the pages
-/// (from 1) with text past the paper's edge.
+/// A typeset document: its PDF, its page count, the characters no font had, the pages (from
+/// 1) with text past the paper's edge, and the scenes (file:line) whose part that text is in.
 pub struct Typeset {
     pub pdf: Vec<u8>,
     pub pages: usize,
     pub missing_glyphs: Vec<char>,
     pub past_the_edge: Vec<usize>,
+    pub past_the_edge_in: Vec<String>,
 }
 
 /// The PDF of one document.
@@ -182,40 +183,77 @@ fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
     let mut missing = missing_glyphs_in(&document);
     missing.sort_unstable();
     missing.dedup();
+    // Text past the edge, by page, and the scenes whose part of the markup it came from.
+    let scene_of = |span: typst::syntax::Span| {
+        typst::WorldExt::range(&world, span).and_then(|r| scene_at(&source.origins, r.start))
+    };
+    let overflow = past_the_edge(&document, &scene_of);
+    let mut past_the_edge_in: Vec<String> = overflow.iter().flat_map(|(_, s)| s.clone()).collect();
+    past_the_edge_in.dedup();
     Ok(Typeset {
         pdf,
         pages: document.pages().len(),
         missing_glyphs: missing,
-        past_the_edge: past_the_edge(&document),
+        past_the_edge: overflow.iter().map(|(page, _)| *page).collect(),
+        past_the_edge_in,
     })
 }
 
-/// The pages (from 1) where a piece of text reaches past the paper's left or right edge.
-fn past_the_edge(document: &PagedDocument) -> Vec<usize> {
+/// The pages (from 1) where a piece of text reaches past the paper's left or right edge, each
+/// with the scenes (`scene_of` a glyph's source) of the text that does.
+fn past_the_edge(
+    document: &PagedDocument,
+    scene_of: &dyn Fn(typst::syntax::Span) -> Option<String>,
+) -> Vec<(usize, Vec<String>)> {
     use typst::layout::{Abs, Frame, FrameItem, Point, Transform};
-    fn walk(frame: &Frame, ts: Transform, width: Abs) -> bool {
-        frame.items().any(|(pos, item)| {
+    fn walk(
+        frame: &Frame,
+        ts: Transform,
+        width: Abs,
+        scene_of: &dyn Fn(typst::syntax::Span) -> Option<String>,
+        found: &mut Option<Vec<String>>,
+    ) {
+        for (pos, item) in frame.items() {
             let ts = ts.pre_concat(Transform::translate(pos.x, pos.y));
             match item {
-                FrameItem::Group(g) => walk(&g.frame, ts.pre_concat(g.transform), width),
+                FrameItem::Group(g) => {
+                    walk(&g.frame, ts.pre_concat(g.transform), width, scene_of, found)
+                }
                 FrameItem::Text(t) => {
                     let (start, end) = (
                         Point::zero().transform(ts).x,
                         Point::new(t.width(), Abs::zero()).transform(ts).x,
                     );
                     let slack = Abs::pt(0.5);
-                    start.min(end) < -slack || start.max(end) > width + slack
+                    if start.min(end) < -slack || start.max(end) > width + slack {
+                        let scenes = found.get_or_insert_with(Vec::new);
+                        let scene = t.glyphs.iter().find_map(|g| scene_of(g.span.0));
+                        if let Some(s) = scene
+                            && !scenes.contains(&s)
+                        {
+                            scenes.push(s);
+                        }
+                    }
                 }
-                _ => false,
+                _ => {}
             }
-        })
+        }
     }
     document
         .pages()
         .iter()
         .enumerate()
-        .filter(|(_, p)| walk(&p.frame, Transform::identity(), p.frame.width()))
-        .map(|(i, _)| i + 1)
+        .filter_map(|(i, p)| {
+            let mut found = None;
+            walk(
+                &p.frame,
+                Transform::identity(),
+                p.frame.width(),
+                scene_of,
+                &mut found,
+            );
+            found.map(|scenes| (i + 1, scenes))
+        })
         .collect()
 }
 
