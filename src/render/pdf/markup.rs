@@ -77,7 +77,8 @@ impl Markup {
         if tall {
             self.text.push_str("#tall($display(");
             self.text.push_str(typst_math);
-            self.text.push_str(")$)");
+            // A following `(` or `[` would read as the call's arguments.
+            self.text.push_str(")$)#[]");
         } else {
             self.text.push('$');
             self.text.push_str(typst_math);
