@@ -14,39 +14,25 @@ impl Expr {
     /// Typst with some symbols given a symbol of their own (the catalogue's, as LaTeX): a
     /// claim's `inertia_tensor[0][1]` prints as I_xy when `named("inertia_tensor")` is `I`.
     pub fn to_typst_named(&self, named: &dyn Fn(&str) -> Option<&'static str>) -> String {
-        let mut s = String::new();
-        let style = Typst {
-            named,
-            slash: false,
-            tuples: false,
-        };
-        write(self, &mut s, Prec::Sum, &style);
-        s
+        self.typst_in(named, Layout::Whole)
     }
 
-    /// Typst for a formula wider than its line: a vector as a tuple `(a, b, c)`, which Typst
-    /// breaks after the operators inside it, where `mat(a, b, c)` is one unbreakable piece.
+    /// Typst for a formula wider than its line, which Typst breaks after the operators inside
+    /// what it does not keep as one piece: a vector as a tuple `(a, b, c)` (not `mat(…)`), a
+    /// root of a sum and a sum over a bar opened.
     pub fn to_typst_breakable(&self) -> String {
-        let mut s = String::new();
-        let style = Typst {
-            named: &|_| None,
-            slash: false,
-            tuples: true,
-        };
-        write(self, &mut s, Prec::Sum, &style);
-        s
+        self.typst_in(&|_| None, Layout::Breakable)
     }
 
     /// Typst with its fractions on the line (`a\/2`), for an integral's limits: a fraction
     /// there is set at half the body's size.
     pub fn to_typst_on_the_line(&self) -> String {
+        self.typst_in(&|_| None, Layout::OnTheLine)
+    }
+
+    fn typst_in(&self, named: &dyn Fn(&str) -> Option<&'static str>, layout: Layout) -> String {
         let mut s = String::new();
-        let style = Typst {
-            named: &|_| None,
-            slash: true,
-            tuples: false,
-        };
-        write(self, &mut s, Prec::Sum, &style);
+        write(self, &mut s, Prec::Sum, &Typst { named, layout });
         s
     }
 }
@@ -122,16 +108,42 @@ fn root_of_a_sum(e: &Expr) -> bool {
     }
 }
 
+/// How a formula is laid out: whole, to be broken across lines, or with its fractions on the
+/// line.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Layout {
+    Whole,
+    Breakable,
+    OnTheLine,
+}
+
+/// A rational's magnitude as a fraction on the line: `3\/2`.
+fn slashed(r: &Rational) -> String {
+    let (num, den) = r.abs_parts();
+    format!("{num}\\/{den}")
+}
+
 /// Typst's math for the PDFs.
 struct Typst<'a> {
     named: &'a dyn Fn(&str) -> Option<&'static str>,
-    /// Fractions written on the line, with a slash.
-    slash: bool,
-    /// Vectors written as tuples.
-    tuples: bool,
+    layout: Layout,
 }
 
 impl Typst<'_> {
+    /// √a. To be broken, a root of a sum goes in parentheses Typst does not pair, with the
+    /// exponent ½: the root's sign, and a paired group with an exponent, are each one piece.
+    fn root(&self, a: &Expr, out: &mut String) {
+        if self.layout == Layout::Breakable && root_of_a_sum(a) {
+            out.push_str("\\(");
+            write(a, out, Prec::Sum, self);
+            out.push_str("\\)^(1\\/2)");
+        } else {
+            out.push_str("sqrt(");
+            write(a, out, Prec::Sum, self);
+            out.push(')');
+        }
+    }
+
     /// A matrix's cell. Typst sets cells in the text style, where a fraction's parts are
     /// script-sized and their indices smaller still (half the body): one with a fraction is
     /// set in the display style, as a textbook sets it.
@@ -211,9 +223,8 @@ impl Style for Typst<'_> {
     fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
         let body = if r.is_integer() {
             r.abs_parts().0.to_string()
-        } else if self.slash {
-            let (num, den) = r.abs_parts();
-            format!("{num}\\/{den}")
+        } else if self.layout == Layout::OnTheLine {
+            slashed(r)
         } else {
             let (num, den) = r.abs_parts();
             format!("frac({num}, {den})")
@@ -249,11 +260,12 @@ impl Style for Typst<'_> {
         };
         if den.is_empty() {
             write_factors(&num, out);
-        } else if self.slash {
+        } else if self.layout == Layout::OnTheLine {
             on_the_line(&num, false, out);
             out.push_str("\\/");
             on_the_line(&den, true, out);
-        } else if self.tuples && num.iter().any(|f| matches!(f, Expr::Add(_))) {
+        } else if self.layout == Layout::Breakable && num.iter().any(|f| matches!(f, Expr::Add(_)))
+        {
             // A fraction is one piece: to be broken, a sum above the bar goes after 1/d.
             out.push_str("frac(1, ");
             write_factors(&den, out);
@@ -279,19 +291,8 @@ impl Style for Typst<'_> {
     }
     fn power(&self, a: &Expr, b: &Expr, _ctx: Prec, out: &mut String) {
         if let Expr::Num(r) = b {
-            if *r == Rational::new(1, 2).unwrap() && self.tuples && root_of_a_sum(a) {
-                // A root's sign is one piece: to be broken, its sum goes in parentheses, which
-                // Typst does not pair (a paired group with an exponent is one piece too).
-                out.push_str("\\(");
-                write(a, out, Prec::Sum, self);
-                out.push_str("\\)^(1\\/2)");
-                return;
-            }
             if *r == Rational::new(1, 2).unwrap() {
-                out.push_str("sqrt(");
-                write(a, out, Prec::Sum, self);
-                out.push(')');
-                return;
+                return self.root(a, out);
             }
             if r.is_negative() {
                 out.push_str("frac(1, ");
@@ -321,26 +322,18 @@ impl Style for Typst<'_> {
         match b {
             // A fractional exponent on the line, as textbooks write it: x^(3/2).
             Expr::Num(r) if !r.is_integer() => {
-                let (num, den) = r.abs_parts();
-                let sign = if r.is_negative() { "-" } else { "" };
-                out.push_str(&format!("{sign}{num}\\/{den}"));
+                if r.is_negative() {
+                    out.push('-');
+                }
+                out.push_str(&slashed(r));
             }
             _ => write(b, out, Prec::Sum, self),
         }
         out.push(')');
     }
     fn call(&self, n: &str, args: &[Expr], out: &mut String) {
-        if n == "sqrt" && args.len() == 1 && self.tuples && root_of_a_sum(&args[0]) {
-            out.push_str("\\(");
-            write(&args[0], out, Prec::Sum, self);
-            out.push_str("\\)^(1\\/2)");
-            return;
-        }
         if n == "sqrt" && args.len() == 1 {
-            out.push_str("sqrt(");
-            write(&args[0], out, Prec::Sum, self);
-            out.push(')');
-            return;
+            return self.root(&args[0], out);
         }
         if self.claim_call(n, args, out) {
             return;
@@ -363,7 +356,7 @@ impl Style for Typst<'_> {
     }
     fn list(&self, v: &[Expr], out: &mut String) {
         let is_matrix = v.iter().all(|r| matches!(r, Expr::List(_)));
-        if self.tuples && !is_matrix {
+        if self.layout == Layout::Breakable && !is_matrix {
             out.push('(');
             for (i, entry) in v.iter().enumerate() {
                 if i > 0 {

@@ -77,13 +77,8 @@ pub fn check_steps(scene: &Scene, d: &Derivation, deadline: &Deadline) -> Vec<St
         .map(|i| match deadline.check() {
             Ok(()) => check_step(scene, d, i),
             Err(over) => StepCheck {
-                step: scene.steps[i].name.clone(),
-                line: scene.steps[i].line,
-                method: String::new(),
-                error: 0.0,
-                tolerance: 0.0,
-                evaluations: 0,
                 problem: Some(CheckError::from(over).to_string()),
+                ..not_yet_checked(&scene.steps[i])
             },
         })
         .collect()
@@ -92,7 +87,17 @@ pub fn check_steps(scene: &Scene, d: &Derivation, deadline: &Deadline) -> Vec<St
 /// The numeric check of step `i` (each step draws its random points from its own seed).
 pub fn check_step(scene: &Scene, d: &Derivation, i: usize) -> StepCheck {
     let step = &scene.steps[i];
-    let mut check = StepCheck {
+    let mut check = not_yet_checked(step);
+    let seed = scene.seed.wrapping_add(1000 + i as u64);
+    if let Err(problem) = route(scene, d, step, seed, &mut check) {
+        check.problem = Some(problem.to_string());
+    }
+    check
+}
+
+/// A step's check before its route has run: no method, no error, no work.
+fn not_yet_checked(step: &AuthorStep) -> StepCheck {
+    StepCheck {
         step: step.name.clone(),
         line: step.line,
         method: String::new(),
@@ -100,12 +105,7 @@ pub fn check_step(scene: &Scene, d: &Derivation, i: usize) -> StepCheck {
         tolerance: 0.0,
         evaluations: 0,
         problem: None,
-    };
-    let seed = scene.seed.wrapping_add(1000 + i as u64);
-    if let Err(problem) = route(scene, d, step, seed, &mut check) {
-        check.problem = Some(problem.to_string());
     }
-    check
 }
 
 fn route(

@@ -142,19 +142,20 @@ impl Markup {
 
 /// A formula in Typst's math.
 pub fn formula(f: &Formula) -> Result<String, RenderError> {
-    f.to_typst().map_err(|e| RenderError::Math {
-        latex: f.to_latex(),
-        message: e.to_string(),
-    })
+    f.to_typst().map_err(|e| math_error(f, e))
 }
 
 /// A formula in Typst's math, and as it is printed to be broken across lines.
 pub fn formula_and_broken(f: &Formula) -> Result<(String, String), RenderError> {
-    let broken = f.to_typst_breakable().map_err(|e| RenderError::Math {
+    let broken = f.to_typst_breakable().map_err(|e| math_error(f, e))?;
+    Ok((formula(f)?, broken))
+}
+
+fn math_error(f: &Formula, e: crate::cas::TexError) -> RenderError {
+    RenderError::Math {
         latex: f.to_latex(),
         message: e.to_string(),
-    })?;
-    Ok((formula(f)?, broken))
+    }
 }
 
 /// A symbol's name in Typst's math.

@@ -188,8 +188,12 @@ fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
         typst::WorldExt::range(&world, span).and_then(|r| scene_at(&source.origins, r.start))
     };
     let overflow = past_the_edge(&document, &scene_of);
-    let mut past_the_edge_in: Vec<String> = overflow.iter().flat_map(|(_, s)| s.clone()).collect();
-    past_the_edge_in.dedup();
+    let mut past_the_edge_in: Vec<String> = Vec::new();
+    for scene in overflow.iter().flat_map(|(_, scenes)| scenes) {
+        if !past_the_edge_in.contains(scene) {
+            past_the_edge_in.push(scene.clone());
+        }
+    }
     Ok(Typeset {
         pdf,
         pages: document.pages().len(),
