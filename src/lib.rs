@@ -5,6 +5,7 @@
 //!
 //! - `base`: number formatting, the content hash, the seeded generator; imports no stage.
 //! - `cas`: the only module that touches Symbolica; our own exact expression tree.
+//! - `notation`: one math notation: formula trees, the one LaTeX reader, and their printers.
 //! - `model`: the shared vocabulary: the catalogue of outputs, stages and quantities, exact
 //!   values, fidelity, validated moments, figure data.
 //! - `scene`: TOML -> a validated `Scene`. `plan`: what to compute, and nothing more.
@@ -22,6 +23,8 @@
 pub mod base;
 
 pub mod cas;
+
+pub mod notation;
 
 pub mod model;
 

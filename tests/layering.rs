@@ -12,6 +12,7 @@ use std::path::Path;
 const LAYERS: &[&[&str]] = &[
     &["base"],
     &["cas"],
+    &["notation"],
     &["model"],
     &["scene"],
     &["plan"],

@@ -7,3 +7,4 @@ pub mod markup;
 pub mod natural;
 pub mod rng;
 pub mod suggest;
+pub mod typst;

@@ -4,16 +4,16 @@
 use super::expr::Expr;
 use super::print::{Prec, Style, index_chain, page_factors, page_fraction, write};
 use super::rational::Rational;
-use super::typst_latex::{latex_to_typst, typst_string};
+use crate::base::typst::typst_string;
 
 impl Expr {
     pub fn to_typst(&self) -> String {
         self.to_typst_named(&|_| None)
     }
 
-    /// Typst with some symbols given a symbol of their own (the catalogue's, as LaTeX): a
+    /// Typst with some symbols given a symbol of their own (the catalogue's, in Typst): a
     /// claim's `inertia_tensor[0][1]` prints as I_xy when `named("inertia_tensor")` is `I`.
-    pub fn to_typst_named(&self, named: &dyn Fn(&str) -> Option<&'static str>) -> String {
+    pub fn to_typst_named(&self, named: &dyn Fn(&str) -> Option<String>) -> String {
         self.typst_in(named, Layout::Whole)
     }
 
@@ -30,7 +30,7 @@ impl Expr {
         self.typst_in(&|_| None, Layout::OnTheLine)
     }
 
-    fn typst_in(&self, named: &dyn Fn(&str) -> Option<&'static str>, layout: Layout) -> String {
+    fn typst_in(&self, named: &dyn Fn(&str) -> Option<String>, layout: Layout) -> String {
         let mut s = String::new();
         write(self, &mut s, Prec::Sum, &Typst { named, layout });
         s
@@ -41,9 +41,7 @@ impl Expr {
 /// conventions of [`super::symbol_latex`] (`w1` is ω₁, `Ixx` is I_xx, a word is upright).
 pub(super) fn typst_symbol(s: &str) -> String {
     use super::symbol_latex::{Head, NameForm, name_form};
-    if let Some(tex) = super::symbol_latex::scene_tex(s)
-        && let Ok(t) = latex_to_typst(&tex)
-    {
+    if let Some(t) = super::symbol_latex::scene_typst(s) {
         return t;
     }
     match name_form(s) {
@@ -61,7 +59,9 @@ pub(super) fn typst_symbol(s: &str) -> String {
             let head = match head {
                 Head::Omega => "ω".to_string(),
                 Head::OmegaRate => "dot(ω)".to_string(),
-                Head::Greek(g) => super::typst_latex::greek(g).unwrap_or(g).to_string(),
+                Head::Greek(g) => super::symbol_latex::greek_letter(g)
+                    .unwrap_or(g)
+                    .to_string(),
                 Head::Upright(u) => format!("upright({})", typst_string(u)),
                 Head::Letter(l) => l.to_string(),
             };
@@ -125,7 +125,7 @@ fn slashed(r: &Rational) -> String {
 
 /// Typst's math for the PDFs.
 struct Typst<'a> {
-    named: &'a dyn Fn(&str) -> Option<&'static str>,
+    named: &'a dyn Fn(&str) -> Option<String>,
     layout: Layout,
 }
 
@@ -215,9 +215,9 @@ impl Style for Typst<'_> {
         ")"
     }
     fn symbol(&self, name: &str, out: &mut String) {
-        match (self.named)(name).map(latex_to_typst) {
-            Some(Ok(symbol)) => out.push_str(&symbol),
-            _ => out.push_str(&typst_symbol(name)),
+        match (self.named)(name) {
+            Some(symbol) => out.push_str(&symbol),
+            None => out.push_str(&typst_symbol(name)),
         }
     }
     fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
@@ -389,7 +389,7 @@ impl Style for Typst<'_> {
     fn index(&self, e: &Expr, out: &mut String) {
         let (base, indices, axes) = index_chain(e);
         if let Expr::Sym(name) = base
-            && let Some(Ok(symbol)) = (self.named)(name).map(latex_to_typst)
+            && let Some(symbol) = (self.named)(name)
             && let Some(axes) = axes
         {
             let axes: Vec<String> = axes.into_iter().map(String::from).collect();

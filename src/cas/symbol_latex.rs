@@ -5,16 +5,24 @@
 use std::cell::RefCell;
 use std::collections::BTreeMap;
 
-thread_local! {
-    /// The names the scene being rendered typesets itself (`tex = "\\Omega"`), read by the
-    /// LaTeX printer; empty outside [`typeset_as`].
-    static TYPESET: RefCell<BTreeMap<String, String>> = const { RefCell::new(BTreeMap::new()) };
+/// A name's own typesetting, as the scene's author wrote it (`tex = "\\Omega"`) and as the
+/// one LaTeX reader (`notation/latex.rs`) set it in Typst's math.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SymbolTex {
+    pub latex: String,
+    pub typst: String,
 }
 
-/// Runs `f` with the scene's own typesetting of its names (name -> LaTeX), so that every
-/// formula of its page prints them so; the table before is put back after.
-pub fn typeset_as<R>(names: &BTreeMap<String, String>, f: impl FnOnce() -> R) -> R {
-    let before = TYPESET.with(|t| t.replace(names.clone()));
+thread_local! {
+    /// The names the scene being rendered typesets itself, read by the LaTeX and Typst
+    /// printers; empty outside [`typeset_as`].
+    static TYPESET: RefCell<BTreeMap<String, SymbolTex>> = const { RefCell::new(BTreeMap::new()) };
+}
+
+/// Runs `f` with the scene's own typesetting of its names, so that every formula of its page
+/// prints them so; the table before is put back after.
+pub fn typeset_as<R>(names: BTreeMap<String, SymbolTex>, f: impl FnOnce() -> R) -> R {
+    let before = TYPESET.with(|t| t.replace(names));
     let out = f();
     TYPESET.with(|t| t.replace(before));
     out
@@ -22,7 +30,64 @@ pub fn typeset_as<R>(names: &BTreeMap<String, String>, f: impl FnOnce() -> R) ->
 
 /// The scene's own LaTeX for a name, while its page is rendered.
 pub(super) fn scene_tex(s: &str) -> Option<String> {
-    TYPESET.with(|t| t.borrow().get(s).cloned())
+    TYPESET.with(|t| t.borrow().get(s).map(|x| x.latex.clone()))
+}
+
+/// The scene's own Typst for a name, while its page is rendered.
+pub(super) fn scene_typst(s: &str) -> Option<String> {
+    TYPESET.with(|t| t.borrow().get(s).map(|x| x.typst.clone()))
+}
+
+/// Greek letters by their LaTeX names, as LaTeX sets them (`phi` is ϕ, `varphi` φ).
+const GREEK_LETTERS: &[(&str, &str)] = &[
+    ("alpha", "α"),
+    ("beta", "β"),
+    ("gamma", "γ"),
+    ("delta", "δ"),
+    ("epsilon", "ϵ"),
+    ("varepsilon", "ε"),
+    ("zeta", "ζ"),
+    ("eta", "η"),
+    ("theta", "θ"),
+    ("vartheta", "ϑ"),
+    ("iota", "ι"),
+    ("kappa", "κ"),
+    ("lambda", "λ"),
+    ("mu", "μ"),
+    ("nu", "ν"),
+    ("xi", "ξ"),
+    ("pi", "π"),
+    ("varpi", "ϖ"),
+    ("rho", "ρ"),
+    ("varrho", "ϱ"),
+    ("sigma", "σ"),
+    ("varsigma", "ς"),
+    ("tau", "τ"),
+    ("upsilon", "υ"),
+    ("phi", "ϕ"),
+    ("varphi", "φ"),
+    ("chi", "χ"),
+    ("psi", "ψ"),
+    ("omega", "ω"),
+    ("Gamma", "Γ"),
+    ("Delta", "Δ"),
+    ("Theta", "Θ"),
+    ("Lambda", "Λ"),
+    ("Xi", "Ξ"),
+    ("Pi", "Π"),
+    ("Sigma", "Σ"),
+    ("Upsilon", "Υ"),
+    ("Phi", "Φ"),
+    ("Psi", "Ψ"),
+    ("Omega", "Ω"),
+];
+
+/// A Greek letter by its LaTeX name, for the Typst printers: the character itself.
+pub fn greek_letter(name: &str) -> Option<&'static str> {
+    GREEK_LETTERS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, c)| *c)
 }
 
 const GREEK: &[&str] = &[

@@ -3,8 +3,9 @@
 //! result of those families, which are derived in I1, I2 and I3 first.
 
 use super::{Derivation, DeriveError, Step, simplify_value};
-use crate::cas::{self, Expr, Formula};
+use crate::cas::{self, Expr};
 use crate::model::catalogue::{Stage, quantity, stage_for_quantity};
+use crate::notation::Formula;
 
 /// The families written in principal moments.
 const FAMILIES: [Stage; 4] = [

@@ -4,9 +4,10 @@
 
 use super::algebra::Value;
 use super::{Derivation, DeriveError, Step, cited};
-use crate::cas::{self, Expr, Formula};
+use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 
 /// Dynamical ellipticity H = (C − A)/C = 3.2737949e-3 (REFERENCE.md: IERS Conventions 2010,
 /// Table 1.1).

@@ -8,9 +8,10 @@ use super::sign::{Sign, sign_over_positive};
 use super::{
     Derivation, DeriveError, Step, cited, factored, simplify_value, simplify_vec, values_equal,
 };
-use crate::cas::{self, Expr, Formula};
+use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 
 fn s(name: &str) -> Expr {
     Expr::sym(name)

@@ -9,9 +9,10 @@ use super::bodies::{MassModel, mass_model, place};
 use super::{
     Derivation, DeriveError, Step, cited, simplify_mat, simplify_value, simplify_vec, values_equal,
 };
-use crate::cas::{self, AngleSpan, Expr, Formula, Integral};
+use crate::cas::{self, AngleSpan, Expr, Integral};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 use crate::scene::{Body, Scene};
 
 /// The six independent entries of a symmetric tensor, and their labels.

@@ -5,9 +5,10 @@
 use super::algebra::{Value, Vec3, cross, dot, mat_vec, scale_vec, sum_vecs};
 use super::bodies::place;
 use super::{Derivation, DeriveError, Step, cited, simplify_value, values_equal};
-use crate::cas::{self, Expr, Formula};
+use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 use crate::scene::{Scene, Shape};
 
 /// Every point mass of the scene in the frame, or `None` if a body is continuous.

@@ -28,11 +28,11 @@ pub mod variants;
 
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
-use crate::cas::Formula;
 use crate::cas::{self, CasError, DiffError, EvalError, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::catalogue::{self, Stage};
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 use crate::plan::Plan;
 use crate::scene::Scene;
 use algebra::Value;

@@ -6,9 +6,10 @@ use super::algebra::{Value, Vec3, diag, dot, mat_vec};
 use super::euler::{moments, omega, rate_along, torque_free_rates};
 use super::stability::classify;
 use super::{Derivation, DeriveError, Step, cited, factored};
-use crate::cas::{self, Expr, Formula};
+use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 
 fn scalar(d: &mut Derivation, name: &str, e: Expr) -> Result<Expr, DeriveError> {
     let e = cas::simplify(&e)?;

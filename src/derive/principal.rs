@@ -5,9 +5,10 @@
 
 use super::algebra::{Mat3, Value, Vec3, cross, det};
 use super::{Derivation, DeriveError, Step, cited};
-use crate::cas::{self, Expr, Formula, pull_squares};
+use crate::cas::{self, Expr, pull_squares};
 use crate::model::catalogue::quantity;
 use crate::model::value::{Values, eval_at};
+use crate::notation::Formula;
 use crate::scene::{Scene, Shape};
 use std::collections::BTreeSet;
 

@@ -6,10 +6,11 @@ use super::algebra::{Mat3, Value};
 use super::euler::{moments, omega, torque_free_rates};
 use super::sign::{Sign, signs_over_positive};
 use super::{Derivation, DeriveError, Step, cited, factored, simplify_vec};
-use crate::cas::{self, Expr, Formula};
+use crate::cas::{self, Expr};
 use crate::model::catalogue::quantity;
 use crate::model::moments::ORDERINGS;
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 
 /// Columns of the stability table: the axis has the largest, the smallest or the middle moment.
 pub const CLASSES: [&str; 3] = ["largest", "smallest", "intermediate"];

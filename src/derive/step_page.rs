@@ -3,8 +3,9 @@
 
 use super::Step;
 use super::step_result::{Stable, StepResult};
-use crate::cas::{Expr, Formula};
+use crate::cas::Expr;
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 use crate::scene::{AuthorStep, Operation, mode_name};
 
 /// A state of rest of several coordinates: q1 = v1, q2 = v2, …
@@ -12,10 +13,10 @@ fn state_formula(coordinates: &[String], state: &[crate::cas::Zero]) -> Formula 
     let mut row = Vec::new();
     for (k, (q, z)) in coordinates.iter().zip(state).enumerate() {
         if k > 0 {
-            row.push(Formula::Op(crate::cas::Op::Quad));
+            row.push(Formula::Op(crate::notation::Op::Quad));
         }
         row.push(Formula::Expr(Expr::sym(q)));
-        row.push(Formula::Op(crate::cas::Op::Equals));
+        row.push(Formula::Op(crate::notation::Op::Equals));
         row.push(Formula::Expr(z.value.clone()));
     }
     Formula::Row(row)
@@ -98,7 +99,7 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                             Some(w2) => Formula::equation(omega2.clone(), w2.clone()),
                             None => Formula::Row(vec![
                                 omega2.clone(),
-                                Formula::Op(crate::cas::Op::Equals),
+                                Formula::Op(crate::notation::Op::Equals),
                                 Formula::Text("?".into()),
                             ]),
                         },
@@ -140,15 +141,15 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                 let mut row = Vec::new();
                 for (k, m) in c.minors.iter().enumerate() {
                     if k > 0 {
-                        row.push(Formula::Op(crate::cas::Op::Quad));
+                        row.push(Formula::Op(crate::notation::Op::Quad));
                     }
-                    row.push(Formula::Name(crate::cas::Name {
+                    row.push(Formula::Name(crate::notation::Name {
                         base: "Delta".into(),
                         sub: Some((k + 1).to_string()),
-                        accent: crate::cas::Accent::None,
+                        accent: crate::notation::Accent::None,
                         prime: false,
                     }));
-                    row.push(Formula::Op(crate::cas::Op::Equals));
+                    row.push(Formula::Op(crate::notation::Op::Equals));
                     row.push(Formula::Expr(m.clone()));
                 }
                 Step::note(
@@ -196,7 +197,7 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                     &format!("{title}: the equation of motion of {q}"),
                     Formula::Row(vec![
                         Formula::Expr(e.clone()),
-                        Formula::Op(crate::cas::Op::Equals),
+                        Formula::Op(crate::notation::Op::Equals),
                         Formula::Number("0".into()),
                     ]),
                     why.clone(),

@@ -13,7 +13,8 @@ use super::solve::{solve, solve_system};
 use super::step_page::page_steps;
 pub use super::step_result::{Stability, Stable, StateStability, StepResult};
 use super::{Derivation, DeriveError};
-use crate::cas::{self, Expr, Formula};
+use crate::cas::{self, Expr};
+use crate::notation::Formula;
 use crate::scene::{AuthorStep, Operation, Scene};
 use std::collections::BTreeMap;
 

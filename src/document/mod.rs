@@ -13,11 +13,12 @@ pub use problems::{
 };
 pub use results::{At, PrincipalAxis, PrincipalValues, Quantity};
 
-use crate::cas::{Expr, Formula};
+use crate::cas::Expr;
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::Accuracy;
 use crate::model::prose::Prose;
 use crate::model::value::Value;
+use crate::notation::Formula;
 use crate::numeric::Work;
 use crate::pipeline::SceneReport;
 use crate::verify::variants::VariantCheck;

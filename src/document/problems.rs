@@ -4,8 +4,8 @@
 //! once.
 
 use super::page_file;
-use crate::cas::Formula;
 use crate::model::prose::Prose;
+use crate::notation::Formula;
 use crate::pipeline::SceneReport;
 use crate::verify::variants::{AnswerCheck, VariantCheck};
 

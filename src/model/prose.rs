@@ -1,7 +1,8 @@
 //! A sentence with formulas in it. Each formula stays a tree ([`Formula`]) until an output
 //! prints it: as text for the terminal and JSON, as LaTeX (then MathML) for the pages.
 
-use crate::cas::{Expr, Formula};
+use crate::cas::Expr;
+use crate::notation::Formula;
 
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Prose(pub Vec<Piece>);

@@ -1,52 +1,42 @@
-//! LaTeX -> MathML at build time, so pages need no JavaScript and no network.
+//! Formulas on the pages: MathML at build time (notation/mathml.rs), a long one in pieces a
+//! browser can wrap, so pages need no JavaScript and no network.
 
 use super::RenderError;
-use super::linebreak;
-use pulldown_latex::config::DisplayMode;
-use pulldown_latex::{Parser, RenderConfig, Storage, push_mathml};
+use crate::notation::latex::Node;
+use crate::notation::linebreak;
+use crate::notation::{self, MathmlError, Tex};
+use pulldown_latex::event::{Content, Grouping};
 
-/// MathML for one formula, displayed as a block or inline. A formula the converter cannot read is
-/// an error naming it, never a silently broken page.
-pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
-    let storage = Storage::new();
-    let parser = Parser::new(latex, &storage);
-    let config = RenderConfig {
-        display_mode: if block {
-            DisplayMode::Block
-        } else {
-            DisplayMode::Inline
+/// The formula read by the one LaTeX reader; what cannot be read is an error naming it.
+fn read(latex: &str) -> Result<Tex, RenderError> {
+    Tex::read(latex).map_err(|e| RenderError::Math {
+        latex: latex.into(),
+        message: e.to_string(),
+    })
+}
+
+/// MathML for a formula or a piece of it, displayed as a block or inline. A formula that
+/// cannot be set is an error naming it (`latex`, the whole), never a silently broken page.
+fn set(latex: &str, nodes: &[Node], block: bool) -> Result<String, RenderError> {
+    notation::mathml::mathml(nodes, block).map_err(|e| match e {
+        MathmlError::MalformedPower => RenderError::MalformedPower {
+            latex: latex.into(),
         },
-        ..RenderConfig::default()
-    };
-    let mut out = String::new();
-    push_mathml(&mut out, parser, config).map_err(|e| RenderError::Math {
-        latex: latex.into(),
-        message: e.to_string(),
-    })?;
-    // The converter renders what it cannot parse in red inside <merror>: treat that as failure.
-    if out.contains("<merror") {
-        return Err(RenderError::Math {
+        other => RenderError::Math {
             latex: latex.into(),
-            message: out,
-        });
-    }
-    // `\cos^{2}` comes out as an <msup> of three children (a space, `cos`, the exponent), which
-    // browsers draw as a small "cos2": the printer writes `{\cos}^{2}` instead; catch any other.
-    if out.contains("<msup><mspace") {
-        return Err(RenderError::MalformedPower {
-            latex: latex.into(),
-        });
-    }
-    // Cells in display style: a fraction in a matrix at the size of the text, not a script's
-    // (MathML Core sets tables compact).
-    let out = out.replace("<mtable", "<mtable displaystyle=\"true\"");
-    // Only mathematics reaches the page: an author's `\operatorname{</math><script>…}` is
-    // copied by the converter as it is, and refused here.
-    let safe = crate::base::markup::safe_mathml(&out).map_err(|e| RenderError::Math {
-        latex: latex.into(),
-        message: e.to_string(),
-    })?;
-    Ok(space_attributes(&safe))
+            message: other.to_string(),
+        },
+    })
+}
+
+/// MathML for one formula, displayed as a block or inline.
+pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
+    set(latex, &read(latex)?.nodes, block)
+}
+
+/// The estimated width of a formula, in characters (notation/linebreak.rs).
+pub fn width_of(latex: &str) -> Result<f32, RenderError> {
+    Ok(linebreak::width(&read(latex)?.nodes))
 }
 
 /// A display formula: one block `<math>` when it fits a line; else its pieces, each an inline
@@ -57,20 +47,18 @@ pub fn block(latex: &str) -> Result<String, RenderError> {
     for_both_screens(latex, linebreak::LINE, set_block, "div")
 }
 
+type Setter = fn(&str, &[Vec<Node>], bool) -> Result<String, RenderError>;
+
 /// The formula set for paper and wide screens (cut at `line`), and, when it is wider than a
 /// phone's line and the phone's setting differs, for phones too: each in a `tag` of class
 /// `wide` or `narrow`.
-fn for_both_screens(
-    latex: &str,
-    line: f32,
-    set: fn(&[String], bool) -> Result<String, RenderError>,
-    tag: &str,
-) -> Result<String, RenderError> {
-    let wide = set(&linebreak::pieces(latex, line), false)?;
-    if linebreak::width_of(latex) <= linebreak::PHONE {
+fn for_both_screens(latex: &str, line: f32, set: Setter, tag: &str) -> Result<String, RenderError> {
+    let tex = read(latex)?;
+    let wide = set(latex, &linebreak::pieces(&tex.nodes, line), false)?;
+    if linebreak::width(&tex.nodes) <= linebreak::PHONE {
         return Ok(wide);
     }
-    let narrow = set(&linebreak::phone_pieces(latex), true)?;
+    let narrow = set(latex, &linebreak::phone_pieces(&tex.nodes), true)?;
     if narrow == wide {
         return Ok(wide);
     }
@@ -79,16 +67,16 @@ fn for_both_screens(
     ))
 }
 
-fn set_block(pieces: &[String], phone: bool) -> Result<String, RenderError> {
+fn set_block(latex: &str, pieces: &[Vec<Node>], phone: bool) -> Result<String, RenderError> {
     if let [one] = pieces {
-        return Ok(scaled(mathml(one, true)?, one, phone));
+        return Ok(scaled(set(latex, one, true)?, one, phone));
     }
     let mut out = String::from("<div class=\"formula\">");
     for (k, piece) in pieces.iter().enumerate() {
         if k > 0 {
             out.push(' ');
         }
-        let m = mathml(&binary(k, piece), false)?;
+        let m = set(latex, &binary(k, piece), false)?;
         let m = m.replacen("<math", "<math displaystyle=\"true\"", 1);
         out.push_str(&scaled(m, piece, phone));
     }
@@ -99,8 +87,8 @@ fn set_block(pieces: &[String], phone: bool) -> Result<String, RenderError> {
 /// A phone's piece that is still wider than its line, set smaller to fit (not below SMALLEST).
 /// It is fitted to 90% of the line, as the estimate runs short on matrices (measured in
 /// Chromium: a 3×3 matrix about 15%).
-fn scaled(mathml: String, latex: &str, phone: bool) -> String {
-    let w = linebreak::width_of(latex);
+fn scaled(mathml: String, piece: &[Node], phone: bool) -> String {
+    let w = linebreak::width(piece);
     if !phone || w <= linebreak::PHONE {
         return mathml;
     }
@@ -112,18 +100,26 @@ fn scaled(mathml: String, latex: &str, phone: bool) -> String {
     )
 }
 
-/// A piece after the first that starts with +, −, =, ·, × or ≈ keeps the spacing of a binary operator:
-/// `{}` before it, else MathML sets it as a sign.
-fn binary(k: usize, piece: &str) -> String {
-    let operator = piece.starts_with(['+', '-', '='])
-        || ["\\cdot", "\\times", "\\approx"]
-            .iter()
-            .any(|o| piece.starts_with(o));
+/// A piece after the first that starts with +, −, =, ·, × or ≈ keeps the spacing of a binary
+/// operator: an empty group before it, else MathML sets it as a sign.
+fn binary(k: usize, piece: &[Node]) -> Vec<Node> {
+    let operator = match piece.first() {
+        Some(Node::Atom(Content::BinaryOp { content, .. })) => {
+            matches!(content, '+' | '−' | '⋅' | '×')
+        }
+        Some(Node::Atom(Content::Relation { content, .. })) => {
+            let mut buf = [0u8; 8];
+            let text = content.encode_utf8_to_buf(&mut buf);
+            text == b"=" || text == "≈".as_bytes()
+        }
+        _ => false,
+    };
+    let mut out = Vec::with_capacity(piece.len() + 1);
     if k > 0 && operator {
-        format!("{{}}{piece}")
-    } else {
-        piece.to_string()
+        out.push(Node::Group(Grouping::Normal, Vec::new()));
     }
+    out.extend(piece.iter().cloned());
+    out
 }
 
 /// A formula within a sentence: inline `<math>` pieces separated by spaces, where the line may
@@ -133,36 +129,12 @@ pub fn inline(latex: &str) -> Result<String, RenderError> {
     for_both_screens(latex, linebreak::LINE / 2.0, set_inline, "span")
 }
 
-fn set_inline(pieces: &[String], phone: bool) -> Result<String, RenderError> {
+fn set_inline(latex: &str, pieces: &[Vec<Node>], phone: bool) -> Result<String, RenderError> {
     let mut out = Vec::with_capacity(pieces.len());
     for (k, piece) in pieces.iter().enumerate() {
-        out.push(scaled(mathml(&binary(k, piece), false)?, piece, phone));
+        out.push(scaled(set(latex, &binary(k, piece), false)?, piece, phone));
     }
     Ok(out.join(" "))
-}
-
-/// The converter writes `\bigl(` as `<mo … stretchy="true"minsize="1.2em" …>`, with no space
-/// between two attributes, which HTML does not allow: put one after every attribute value that
-/// another attribute follows directly.
-fn space_attributes(mathml: &str) -> String {
-    let mut out = String::with_capacity(mathml.len());
-    let (mut in_tag, mut in_value) = (false, false);
-    let mut chars = mathml.chars().peekable();
-    while let Some(c) = chars.next() {
-        out.push(c);
-        match c {
-            '<' if !in_value => in_tag = true,
-            '>' if !in_value => in_tag = false,
-            '"' if in_tag => {
-                in_value = !in_value;
-                if !in_value && chars.peek().is_some_and(|n| n.is_ascii_alphabetic()) {
-                    out.push(' ');
-                }
-            }
-            _ => {}
-        }
-    }
-    out
 }
 
 #[cfg(test)]
@@ -191,12 +163,17 @@ mod tests {
     }
 
     #[test]
-    fn a_power_of_an_operator_needs_braces() {
-        assert!(mathml("M \\cos^{2}\\left(\\alpha\\right)", false).is_err());
-        let ok = mathml("\\,{\\cos}^{2}\\left(\\alpha\\right)", false).unwrap();
+    fn a_power_of_an_operator_is_set_on_a_group() {
+        // `\cos^{2}` would be an <msup> of three children, a small "cos2": the reader sets
+        // it as `{\cos}^{2}`, the form mechbook's printer writes.
+        let braced = mathml("M {\\cos}^{2}\\left(\\alpha\\right)", false).unwrap();
         assert!(
-            ok.contains("<msup><mrow><mi>cos</mi></mrow><mrow><mn>2</mn></mrow></msup>"),
-            "{ok}"
+            braced.contains("<msup><mrow><mi>cos</mi></mrow><mrow><mn>2</mn></mrow></msup>"),
+            "{braced}"
+        );
+        assert_eq!(
+            mathml("M \\cos^{2}\\left(\\alpha\\right)", false).unwrap(),
+            braced
         );
     }
 
@@ -247,7 +224,7 @@ mod tests {
     #[test]
     fn a_phone_piece_that_cannot_be_cut_is_scaled_to_fit() {
         let matrix = "\\begin{pmatrix}\\frac{m}{12} \\left(b^{2} + c^{2}\\right) & 0 & 0 \\\\ 0 & \\frac{m}{12} \\left(a^{2} + c^{2}\\right) & 0 \\\\ 0 & 0 & \\frac{m}{12} \\left(a^{2} + b^{2}\\right)\\end{pmatrix}";
-        let w = linebreak::width_of(matrix);
+        let w = width_of(matrix).unwrap();
         assert!(w > linebreak::PHONE, "{w}");
         let m = block(matrix).unwrap();
         let narrow = m.split_once("<div class=\"narrow\">").unwrap().1;
@@ -273,6 +250,18 @@ mod tests {
             .step_by(2)
             .any(|after| after.starts_with(|c: char| c.is_ascii_alphabetic()));
         assert!(!glued, "{m}");
+    }
+
+    #[test]
+    fn an_ampersand_is_the_character_on_the_page() {
+        let m = mathml("R \\& D", false).unwrap();
+        assert!(m.contains("<mi>&amp;</mi>"), "{m}");
+        // A `~` is a no-break space, not the text "&nbsp;".
+        let m = mathml("a~b", false).unwrap();
+        assert!(
+            m.contains("<mspace width=\"0.33333334em\"") && !m.contains("nbsp"),
+            "{m}"
+        );
     }
 
     #[test]

@@ -2,11 +2,8 @@
 //! [`Page`] with the math already converted to MathML, then the site's files in memory. No file
 //! I/O here.
 
-mod latex_tree;
-mod linebreak;
-#[cfg(test)]
-mod linebreak_tests;
 pub mod math;
+use crate::notation::linebreak;
 pub mod moodle;
 pub mod pdf;
 pub mod plot;
@@ -293,7 +290,7 @@ pub(crate) fn at_entries(at: &At) -> Vec<f64> {
 /// The HTML view of one page, its names typeset as the scene says. `timings` adds measured
 /// seconds to the numeric table.
 pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
-    crate::cas::typeset_as(&page.tex, || scene_page_view(page, timings))
+    crate::notation::typeset_as(&page.tex, || scene_page_view(page, timings))
 }
 
 fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
@@ -380,10 +377,12 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         let same = agrees && derived_latex.as_deref() == Some(notes);
         let derived_equal = agrees
             && !same
-            && derived_latex.as_deref().is_some_and(|latex| {
-                linebreak::width_of(latex)
-                    > (2.0 * linebreak::width_of(notes)).max(linebreak::PHONE)
-            });
+            && match derived_latex.as_deref() {
+                Some(latex) => {
+                    math::width_of(latex)? > (2.0 * math::width_of(notes)?).max(linebreak::PHONE)
+                }
+                None => false,
+            };
         let derived = match &derived_latex {
             Some(latex) if !derived_equal && !same => math::inline(latex)?,
             _ => String::new(),

@@ -22,7 +22,7 @@ pub fn quiz(problem: &Problem, solution: Option<&str>) -> String {
         xml_text(&problem.id)
     );
     for v in &problem.variants {
-        let q = crate::cas::typeset_as(&problem.tex, || question(problem, v, solution));
+        let q = crate::notation::typeset_as(&problem.tex, || question(problem, v, solution));
         out.push_str(&q);
     }
     out.push_str("</quiz>\n");

@@ -76,7 +76,7 @@ fn sheet_views<P>(
                 .iter()
                 .map(|sp| {
                     let (number, p) = sheet.problem(sp.problem);
-                    crate::cas::typeset_as(&p.tex, || {
+                    crate::notation::typeset_as(&p.tex, || {
                         make(number, p, &p.variants[sp.variant], sp.shared)
                     })
                     .map_err(|e| e.in_scene(&p.source))
@@ -132,9 +132,10 @@ pub fn answer_key(sheet: &Sheet) -> Result<AnswerKey, RenderError> {
         .iter()
         .map(|a| {
             let (number, p) = sheet.problem(a.problem);
-            let mut answered =
-                crate::cas::typeset_as(&p.tex, || key_problem(number, p, &p.variants[a.variant]))
-                    .map_err(|e| e.in_scene(&p.source))?;
+            let mut answered = crate::notation::typeset_as(&p.tex, || {
+                key_problem(number, p, &p.variants[a.variant])
+            })
+            .map_err(|e| e.in_scene(&p.source))?;
             answered.serves = a.serves.clone();
             Ok(answered)
         })

@@ -227,14 +227,14 @@ pub fn range(from: &Rational, to: &Rational, step: &Rational, limit: usize) -> O
 }
 
 /// `e` as a formula: a terminating decimal (`0.3`, `-2.25`) when `decimal` and it has one.
-pub fn shown_value(e: &Expr, decimal: bool) -> crate::cas::Formula {
+pub fn shown_value(e: &Expr, decimal: bool) -> crate::notation::Formula {
     if decimal
         && let Expr::Num(r) = e
         && let Some(text) = terminating_decimal(r)
     {
-        return crate::cas::Formula::Number(text);
+        return crate::notation::Formula::Number(text);
     }
-    crate::cas::Formula::Expr(e.clone())
+    crate::notation::Formula::Expr(e.clone())
 }
 
 /// A rational's decimal expansion when it ends within 30 digits: 3/8 is 0.375, 1/3 has none.

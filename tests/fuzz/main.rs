@@ -216,6 +216,11 @@ const AUTHOR_SPECIALS: &[&str] = &[
     r"#let x = 1; #panic() $#$",
     r"\uFFFE \uFFFF",
     r"$\\frac{(}{)}$",
+    r"$\\vec{\\omega}_x \\cdot \\hat n \\ne \\sqrt[3]{\\alpha}$ and $\\left.x\\right|_{0}$",
+    r"$\\begin{cases} a & x > 0 \\\\ b & x \\le 0 \\end{cases}$",
+    r"$\\overbrace{a} \\not< \\{a\\} \\|v\\| \\Bigl( x \\Bigr) 1{,}000 f'$",
+    r"$\\color{red} x$",
+    r"$\\vec\\vec\\vec\\vec\\vec\\vec x$ $a\\!b\\qquad c~d$",
 ];
 
 /// One mutation of `text`.

@@ -9,6 +9,7 @@ use crate::derive::ExactBasis;
 use crate::document::{At, Page};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
+use crate::notation::latex_to_typst;
 use crate::render::RenderError;
 use crate::scene::{ClaimRole, Verdict};
 
@@ -23,7 +24,7 @@ pub fn handout(m: &mut Markup, pages: &[&Page], instructor: bool) -> Result<(), 
     }
     for page in pages {
         m.scene_part(&page.source, page.line, |m| {
-            crate::cas::typeset_as(&page.tex, || section(m, page, instructor))
+            crate::notation::typeset_as(&page.tex, || section(m, page, instructor))
         })
         .map_err(|e| e.in_scene(&page.source))?;
     }
@@ -66,8 +67,8 @@ fn section(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderEr
         for f in &page.figures {
             m.raw(&format!(
                 "\n#figure(image({}, width: 100%, alt: {}), caption: [",
-                crate::cas::typst_string(&f.file),
-                crate::cas::typst_string(&f.title)
+                crate::base::typst::typst_string(&f.file),
+                crate::base::typst::typst_string(&f.title)
             ));
             m.text(&f.desc).raw("])\n");
         }
@@ -187,7 +188,7 @@ fn claims(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderErr
         let notes = c
             .notes
             .as_ref()
-            .map(|e| e.to_typst_named(&quantity_symbol))
+            .map(|e| e.to_typst_named(&|q| quantity_symbol(q).and_then(|t| latex_to_typst(t).ok())))
             .unwrap_or_default();
         let derived = c.derived.as_ref().map(|v| match v {
             Value::Scalar(e) if c.precision.is_some() => {

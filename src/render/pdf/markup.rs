@@ -3,8 +3,10 @@
 //! expression tree.
 
 use super::super::RenderError;
-use crate::cas::{Expr, Formula, typst_string};
+use crate::base::typst::typst_string;
+use crate::cas::Expr;
 use crate::model::prose::{Piece, Prose};
+use crate::notation::Formula;
 use crate::scene::{Course, Paper};
 
 /// A document being written, and where each scene's part of it starts (for Typst's errors).
@@ -151,7 +153,7 @@ pub fn formula_and_broken(f: &Formula) -> Result<(String, String), RenderError> 
     Ok((formula(f)?, broken))
 }
 
-fn math_error(f: &Formula, e: crate::cas::TexError) -> RenderError {
+fn math_error(f: &Formula, e: crate::notation::TexError) -> RenderError {
     RenderError::Math {
         latex: f.to_latex(),
         message: e.to_string(),

@@ -44,8 +44,8 @@ fn start_variant(
     };
     m.raw(&format!(
         "#[\n#set page(header: [#set text(8.5pt); #{}#h(1fr)*#{}*])\n",
-        crate::cas::typst_string(head),
-        crate::cas::typst_string(&right)
+        crate::base::typst::typst_string(head),
+        crate::base::typst::typst_string(&right)
     ));
     right
 }
@@ -81,7 +81,7 @@ pub fn student_sheet(
         }
         for (n, p, v) in variant_problems(sheet, *k) {
             m.scene_part(&p.source, p.line, |m| {
-                crate::cas::typeset_as(&p.tex, || problem(m, n, p, v))
+                crate::notation::typeset_as(&p.tex, || problem(m, n, p, v))
             })
             .map_err(|e| e.in_scene(&p.source))?;
         }
@@ -123,7 +123,7 @@ pub fn key(
             let v = &p.variants[answer.variant];
             let heading = format!("Problem {n}, its variant {}", v.number);
             m.scene_part(&p.source, p.line, |m| {
-                crate::cas::typeset_as(&p.tex, || key_problem(m, &heading, p, v))
+                crate::notation::typeset_as(&p.tex, || key_problem(m, &heading, p, v))
             })
             .map_err(|e| e.in_scene(&p.source))?;
         }
@@ -135,7 +135,7 @@ pub fn key(
             let (n, p) = sheet.problem(sp.problem);
             let v = &p.variants[sp.variant];
             m.scene_part(&p.source, p.line, |m| {
-                crate::cas::typeset_as(&p.tex, || {
+                crate::notation::typeset_as(&p.tex, || {
                     if whole_sheet && sp.shared {
                         shared_pointer(m, n, p, v)
                     } else if sp.shared {
@@ -238,7 +238,7 @@ pub fn decimals(numbers: &[f64]) -> Vec<String> {
         .iter()
         .map(|x| {
             if !x.is_finite() {
-                return crate::cas::typst_string(&x.to_string());
+                return crate::base::typst::typst_string(&x.to_string());
             }
             let s = crate::base::format::figures(*x, KEY_FIGURES);
             match crate::base::format::power_of_ten(&s) {
@@ -263,13 +263,16 @@ pub fn unit_typst(text: &str) -> String {
             .collect();
         out.push_str(&format!(
             "upright({})^({}) ",
-            crate::cas::typst_string(&rest[..i]),
+            crate::base::typst::typst_string(&rest[..i]),
             power.replace('-', "−")
         ));
         rest = &rest[i + 1 + power.len()..];
     }
     if !rest.is_empty() {
-        out.push_str(&format!("upright({})", crate::cas::typst_string(rest)));
+        out.push_str(&format!(
+            "upright({})",
+            crate::base::typst::typst_string(rest)
+        ));
     }
     out.trim_end().to_string()
 }

@@ -192,3 +192,46 @@ fn each_scenes_part_of_a_document_is_marked_with_its_line() {
         &part[..80]
     );
 }
+
+/// Whatever the one LaTeX reader reads is set by Typst too: each element of its tree (letters,
+/// numbers, operator names, accents, fonts, scripts above and below, fractions, roots, sized
+/// and paired brackets, spaces, matrices, cases, aligned lines, negations) in one formula each,
+/// the page's MathML made from the same tree.
+#[test]
+fn every_element_the_reader_reads_is_typeset() {
+    let forms = [
+        r"\vec{\omega}_x \cdot \hat n = \sqrt[3]{\alpha} \ne \Omega",
+        r"\mathrm{kg\,m^2}",
+        r"^2",
+        r"\left.\frac{dL}{dt}\right|_{\mathrm{body}}",
+        r"\mathbb{R} \mathcal{L} \mathbf{F} \boldsymbol\tau \mathit{x} \mathsf{y} \mathtt{z}",
+        r"\begin{cases} a & x > 0 \\ b & x \le 0 \end{cases}",
+        r"\begin{bmatrix} 1 & 2 \\ 3 & 4 \end{bmatrix} \begin{vmatrix} a \end{vmatrix} \begin{matrix} b \end{matrix}",
+        r"\begin{aligned} a &= b \\ &= c \end{aligned}",
+        r"\sum_{i=1}^{n} \int_0^\infty \lim_{x \to 0} \prod_k \oint",
+        r"\operatorname{tr} \sin^2 x \ln y \exp z \det A",
+        r"a\!b\,c\:d\;e\quad f\qquad g~h\ i \hspace{1cm} j",
+        r"\overbrace{a + b} \underbrace{c} \overline{d} \tilde e \dot f \ddot g \bar h",
+        r"\{a\} |x| \|v\| \langle a \rangle \Bigl( b \Bigr) \bigl[ c \bigr]",
+        r"x^{y^{z}}_{i} f'(x) 1{,}000 \% \# \& \$ \_",
+        r"\not< \not\in \pm \mp \times \div \approx \equiv \propto \parallel \perp",
+        r"\displaystyle\frac12 \textstyle\frac34 \scriptstyle x",
+        r#"\text{with words, (brackets); and a "quote"}"#,
+        r"\frac{(}{)} \sqrt{)} ( [ \{",
+    ];
+    for form in forms {
+        let tex = crate::notation::Tex::read(form).unwrap_or_else(|e| panic!("{form}: {e}"));
+        tex.to_mathml(false)
+            .unwrap_or_else(|e| panic!("{form}: {e}"));
+        let typst = tex.to_typst().unwrap_or_else(|e| panic!("{form}: {e}"));
+        let out = typeset(&doc(Paper::A4, |m| {
+            m.inline(&typst);
+        }));
+        let out = out.unwrap_or_else(|e| panic!("{form} as {typst}: {e}"));
+        assert!(
+            out.missing_glyphs.is_empty(),
+            "{form}: {:?}",
+            out.missing_glyphs
+        );
+    }
+}

@@ -92,46 +92,20 @@ fn basic_escape_before_letter(source: &str, letter: char) -> Option<String> {
     None
 }
 
-/// Why LaTeX between `$` signs cannot be typeset, if it cannot: empty, or what the LaTeX
-/// reader says of it.
+/// Why LaTeX between `$` signs cannot be typeset, if it cannot: empty, or what the one LaTeX
+/// reader says of it, or why the page's MathML or the PDF's Typst cannot be made from it.
 pub(super) fn latex_problem(latex: &str) -> Option<String> {
-    use pulldown_latex::{Parser, RenderConfig, Storage, push_mathml};
     if latex.trim().is_empty() {
         return Some("it is empty".into());
     }
-    let storage = Storage::new();
-    let mut out = String::new();
-    match push_mathml(
-        &mut out,
-        Parser::new(latex, &storage),
-        RenderConfig::default(),
-    ) {
-        Err(e) => Some(e.to_string()),
-        // The reader marks what it cannot read in <merror>, with its reason inside.
-        Ok(()) if out.contains("<merror") => Some(
-            out.split("<merror")
-                .nth(1)
-                .and_then(|m| m.split("<mtext>").nth(1))
-                .and_then(|m| m.split("</mtext>").next())
-                .and_then(|m| m.lines().map(str::trim).find(|l| !l.is_empty()))
-                .map(|m| {
-                    m.replace("&lt;", "<")
-                        .replace("&gt;", ">")
-                        .replace("&amp;", "&")
-                })
-                .unwrap_or_else(|| "the LaTeX reader marks it as an error".into()),
-        ),
-        // What would put markup other than mathematics on a page (`\operatorname{<script>}`);
-        // and the PDFs set it in Typst: a command they do not know is refused here too.
-        Ok(()) => crate::base::markup::safe_mathml(&out)
-            .err()
-            .map(|e| e.to_string())
-            .or_else(|| {
-                crate::cas::latex_to_typst(latex)
-                    .err()
-                    .map(|e| e.to_string())
-            }),
+    let tex = match crate::notation::Tex::read(latex) {
+        Ok(tex) => tex,
+        Err(e) => return Some(e.to_string()),
+    };
+    if let Err(e) = tex.to_mathml(false) {
+        return Some(e.to_string());
     }
+    tex.to_typst().err().map(|e| e.to_string())
 }
 
 /// The longest title, meaning or label, in characters: a heading, not a page.

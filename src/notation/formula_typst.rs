@@ -2,7 +2,9 @@
 //! `formula_print.rs` prints it in LaTeX for the pages.
 
 use super::formula::{Accent, Formula, GREEK, Name, Op};
-use super::typst_latex::{TexError, latex_to_typst, typst_string};
+use super::latex::TexError;
+use super::typst::latex_to_typst;
+use crate::base::typst::typst_string;
 
 impl Formula {
     /// Typst's math; `Err` only for an author's LaTeX that has no Typst form (scene
@@ -117,7 +119,7 @@ fn typst_op(op: Op) -> &'static str {
 /// A letter: a Greek one by its name (Typst's names are LaTeX's), else as written, a word
 /// upright.
 fn typst_base(base: &str) -> String {
-    if let Some(letter) = super::typst_latex::greek(base) {
+    if let Some(letter) = crate::cas::greek_letter(base) {
         letter.to_string()
     } else if GREEK.iter().any(|(name, _)| *name == base) || base.chars().count() == 1 {
         base.to_string()

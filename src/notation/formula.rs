@@ -14,7 +14,7 @@
 //!   `~~` a medium one; `"text"`; `rm(day)` an upright name; `quad`; `perp`; `det`; `nabla_rho`;
 //!   `int_(a)^(b)`; `(x)|_body` a value in a frame; `$0`, `$1`… the exact expressions handed in.
 
-use super::expr::Expr;
+use crate::cas::Expr;
 
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Formula {

@@ -336,8 +336,8 @@ fn text_name(n: &Name) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::super::expr::Expr;
     use super::Formula;
+    use crate::cas::Expr;
 
     fn both(notation: &str) -> (String, String) {
         let f = Formula::parse(notation, &[]);

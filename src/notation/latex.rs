@@ -1,0 +1,316 @@
+//! The one LaTeX reader. An author's `$…$`, a symbol's `tex`, and the LaTeX that the pages'
+//! printers hand on are read here, by pulldown-latex's parser, into one tree ([`Tex`]); the
+//! MathML, Typst and line-breaking code work on that tree and never on text. What the parser
+//! cannot read is refused with its reason, so scene validation names it at its line.
+
+use pulldown_latex::event::{
+    Content, Dimension, EnvironmentFlow, Event, Grouping, ScriptPosition, ScriptType, StateChange,
+    Visual,
+};
+use pulldown_latex::{Parser, Storage};
+
+/// Why LaTeX cannot be read or set.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TexError {
+    /// The parser's own reason, first line.
+    #[error("{0}")]
+    Parse(String),
+    #[error("groups nested more than {MAX_DEPTH} deep")]
+    TooDeep,
+    #[error("{0} is not among what the PDFs can set (see docs/scenes.md)")]
+    Unprintable(&'static str),
+}
+
+/// The deepest nesting read: a guard for the stack, far beyond what an author writes or
+/// mechbook's printers write.
+pub const MAX_DEPTH: usize = 200;
+
+/// The longest chain of commands each the argument of the one before (`\vec\vec…x`,
+/// `\frac1\frac1…`), which the parser reads by recursion: 2,000 overflow a test thread's
+/// stack (measured), 500 do not.
+const MAX_CHAIN: usize = 250;
+
+/// LaTeX read into a tree: each node one element of pulldown-latex's event stream, its operands
+/// (a fraction's two parts, a script's base and scripts, a group's content) as its children.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tex {
+    pub nodes: Vec<Node>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Node {
+    /// Words in text mode (`\text{…}`); `&nbsp;` for a `~` or `\ `.
+    Text(String),
+    Number(String),
+    /// An operator name: `\sin`, `\operatorname{tr}`.
+    Function(String),
+    /// Any other atom: a letter, an operator, a relation, a delimiter, punctuation.
+    Atom(Content<'static>),
+    /// `{…}`, `\left…\right`, an environment: the content, with its rows' `&` and `\\` as
+    /// [`Node::Flow`] items.
+    Group(Grouping, Vec<Node>),
+    /// A fraction (numerator, denominator), a root (radicand, index), a square root or a
+    /// negation (one operand).
+    Visual(Visual, Vec<Node>),
+    /// A base and its scripts: subscript, superscript, or both in that order.
+    Script {
+        ty: ScriptType,
+        position: ScriptPosition,
+        parts: Vec<Node>,
+    },
+    Space(Option<Dimension>),
+    State(StateChange),
+    Flow(EnvironmentFlow),
+}
+
+impl Tex {
+    /// Reads LaTeX math (as between `$` signs).
+    pub fn read(latex: &str) -> Result<Tex, TexError> {
+        if chained_commands(latex) > MAX_CHAIN {
+            return Err(TexError::TooDeep);
+        }
+        let storage = Storage::new();
+        let mut events = Parser::new(latex, &storage);
+        let mut nodes = Vec::new();
+        while let Some(node) = element(&mut events, 0)? {
+            nodes.push(node);
+        }
+        Ok(Tex { nodes })
+    }
+
+    /// The tree as pulldown-latex's events, for its MathML writer.
+    pub fn events(&self) -> Vec<Event<'_>> {
+        events(&self.nodes)
+    }
+}
+
+/// The nodes with every script on a bare operator name put on a group, `\cos^{2}` as
+/// `{\cos}^{2}`: pulldown-latex's writer sets the first, when an argument follows, as an
+/// `<msup>` of three children, which browsers draw as a small "cos2".
+pub fn braced_operators(nodes: &[Node]) -> Vec<Node> {
+    nodes
+        .iter()
+        .map(|n| match n {
+            Node::Script {
+                ty,
+                position,
+                parts,
+            } => {
+                let mut parts = braced_operators(parts);
+                if let Node::Function(_) = parts[0] {
+                    let name = parts.remove(0);
+                    parts.insert(0, Node::Group(Grouping::Normal, vec![name]));
+                }
+                Node::Script {
+                    ty: *ty,
+                    position: *position,
+                    parts,
+                }
+            }
+            Node::Group(g, inner) => Node::Group(g.clone(), braced_operators(inner)),
+            Node::Visual(v, parts) => Node::Visual(*v, braced_operators(parts)),
+            other => other.clone(),
+        })
+        .collect()
+}
+
+/// Nodes as pulldown-latex's events, for its MathML writer.
+pub fn events(nodes: &[Node]) -> Vec<Event<'_>> {
+    let mut out = Vec::new();
+    flatten(nodes, &mut out);
+    out
+}
+
+type Events<'a> = Parser<'a>;
+
+/// The longest run of commands that may each be the argument of the one before: a brace or a
+/// character that cannot be an argument (a bracket, an operator) ends a run; spaces, and a
+/// letter or digit after a command (`\frac1`, `\vec x`), do not.
+fn chained_commands(latex: &str) -> usize {
+    let (mut run, mut longest, mut after_command) = (0usize, 0usize, false);
+    let mut chars = latex.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' => {
+                // A control word, or a control symbol (`\\,`).
+                if chars.peek().is_some_and(char::is_ascii_alphabetic) {
+                    while chars.peek().is_some_and(char::is_ascii_alphabetic) {
+                        chars.next();
+                    }
+                } else {
+                    chars.next();
+                }
+                run += 1;
+                longest = longest.max(run);
+                after_command = true;
+            }
+            c if c.is_whitespace() => {}
+            c if after_command && c.is_alphanumeric() => after_command = false,
+            _ => {
+                run = 0;
+                after_command = false;
+            }
+        }
+    }
+    longest
+}
+
+fn parse_error(e: impl std::fmt::Display) -> TexError {
+    let text = e.to_string();
+    TexError::Parse(
+        text.lines()
+            .next()
+            .unwrap_or("unreadable")
+            .trim()
+            .to_string(),
+    )
+}
+
+/// One element and its operands; `None` at the end or at a group's `End` (consumed).
+fn element(events: &mut Events<'_>, depth: usize) -> Result<Option<Node>, TexError> {
+    if depth > MAX_DEPTH {
+        return Err(TexError::TooDeep);
+    }
+    let Some(event) = events.next() else {
+        return Ok(None);
+    };
+    let event = event.map_err(parse_error)?;
+    let operands = |events: &mut Events<'_>, n: usize| -> Result<Vec<Node>, TexError> {
+        (0..n)
+            .map(|_| {
+                element(events, depth + 1)?
+                    .ok_or_else(|| TexError::Parse("a missing operand".into()))
+            })
+            .collect()
+    };
+    Ok(Some(match event {
+        Event::End => return Ok(None),
+        Event::Content(c) => match c {
+            Content::Text(s) => Node::Text(s.to_string()),
+            Content::Number(s) => Node::Number(s.to_string()),
+            Content::Function(s) => Node::Function(s.to_string()),
+            Content::Ordinary { content, stretchy } => {
+                Node::Atom(Content::Ordinary { content, stretchy })
+            }
+            Content::LargeOp { content, small } => Node::Atom(Content::LargeOp { content, small }),
+            Content::BinaryOp { content, small } => {
+                Node::Atom(Content::BinaryOp { content, small })
+            }
+            Content::Relation { content, small } => {
+                Node::Atom(Content::Relation { content, small })
+            }
+            Content::Delimiter { content, size, ty } => {
+                Node::Atom(Content::Delimiter { content, size, ty })
+            }
+            Content::Punctuation(c) => Node::Atom(Content::Punctuation(c)),
+        },
+        Event::Begin(g) => {
+            let mut inner = Vec::new();
+            while let Some(n) = element(events, depth + 1)? {
+                inner.push(n);
+            }
+            Node::Group(g, inner)
+        }
+        Event::Visual(v) => {
+            let n = match v {
+                Visual::Fraction(_) | Visual::Root => 2,
+                Visual::SquareRoot | Visual::Negation => 1,
+            };
+            Node::Visual(v, operands(events, n)?)
+        }
+        Event::Script { ty, position } => {
+            let n = match ty {
+                ScriptType::SubSuperscript => 3,
+                ScriptType::Subscript | ScriptType::Superscript => 2,
+            };
+            let parts = operands(events, n)?;
+            Node::Script {
+                ty,
+                position,
+                parts,
+            }
+        }
+        Event::Space { width, .. } => Node::Space(width),
+        Event::StateChange(s) => Node::State(s),
+        Event::EnvironmentFlow(f) => Node::Flow(f),
+    }))
+}
+
+fn flatten<'a>(nodes: &'a [Node], out: &mut Vec<Event<'a>>) {
+    for n in nodes {
+        match n {
+            Node::Text(s) => out.push(Event::Content(Content::Text(s))),
+            Node::Number(s) => out.push(Event::Content(Content::Number(s))),
+            Node::Function(s) => out.push(Event::Content(Content::Function(s))),
+            Node::Atom(c) => out.push(Event::Content(*c)),
+            Node::Group(g, inner) => {
+                out.push(Event::Begin(g.clone()));
+                flatten(inner, out);
+                out.push(Event::End);
+            }
+            Node::Visual(v, parts) => {
+                out.push(Event::Visual(*v));
+                flatten(parts, out);
+            }
+            Node::Script {
+                ty,
+                position,
+                parts,
+            } => {
+                out.push(Event::Script {
+                    ty: *ty,
+                    position: *position,
+                });
+                flatten(parts, out);
+            }
+            Node::Space(width) => out.push(Event::Space {
+                width: *width,
+                height: None,
+                depth: None,
+            }),
+            Node::State(s) => out.push(Event::StateChange(*s)),
+            Node::Flow(f) => out.push(Event::EnvironmentFlow(f.clone())),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_fraction_and_a_script_hold_their_operands() {
+        let t = Tex::read("\\frac{1}{2} x^{2}").unwrap();
+        assert_eq!(t.nodes.len(), 2, "{t:?}");
+        assert!(matches!(&t.nodes[0], Node::Visual(Visual::Fraction(None), p) if p.len() == 2));
+        assert!(matches!(&t.nodes[1], Node::Script { parts, .. } if parts.len() == 2));
+    }
+
+    #[test]
+    fn the_events_read_back_are_the_parsers() {
+        for latex in [
+            "\\mathrm{kg\\,m^2}",
+            "\\begin{pmatrix}a & b \\\\ c & d\\end{pmatrix}",
+            "\\left(\\frac{a}{b}\\right)^{2} \\sum_{i} \\vec{\\omega}_{x}",
+        ] {
+            let storage = Storage::new();
+            let direct: Vec<Event> = Parser::new(latex, &storage).map(Result::unwrap).collect();
+            assert_eq!(Tex::read(latex).unwrap().events(), direct, "{latex}");
+        }
+    }
+
+    #[test]
+    fn unreadable_or_too_deep_latex_is_refused() {
+        assert!(matches!(Tex::read("\\frac{1}{"), Err(TexError::Parse(_))));
+        assert!(matches!(Tex::read("\\foo x"), Err(TexError::Parse(_))));
+        let deep = format!("{}x{}", "{".repeat(10_000), "}".repeat(10_000));
+        assert_eq!(Tex::read(&deep), Err(TexError::TooDeep));
+        let deep = format!("{}x{}", "\\frac{".repeat(5_000), "}{1}".repeat(5_000));
+        assert_eq!(Tex::read(&deep), Err(TexError::TooDeep));
+        assert_eq!(Tex::read(&"\\vec".repeat(10_000)), Err(TexError::TooDeep));
+        assert_eq!(Tex::read(&"\\frac1".repeat(10_000)), Err(TexError::TooDeep));
+        // A long formula of commands, each with its own brackets or braces, is read.
+        let long = "\\sin\\left(\\theta\\right) \\omega_{3} ".repeat(500);
+        assert!(Tex::read(&long).is_ok());
+    }
+}

@@ -1,0 +1,43 @@
+//! One math notation for every output. A formula is a tree: mechbook's own [`Formula`] (whose
+//! leaves are exact expressions), or LaTeX read once by the one reader ([`latex`], on
+//! pulldown-latex's parser) into a [`Tex`]. Printers go from the trees: MathML for the pages,
+//! Typst for the PDFs, text for the terminal, LaTeX for Moodle.
+
+mod formula;
+mod formula_print;
+mod formula_typst;
+pub mod latex;
+pub mod linebreak;
+#[cfg(test)]
+mod linebreak_tests;
+pub mod mathml;
+pub mod typst;
+mod width;
+
+pub use formula::{Accent, Formula, Name, Op};
+pub use latex::{Tex, TexError};
+pub use mathml::MathmlError;
+pub use typst::latex_to_typst;
+
+use crate::base::typst::typst_string;
+use crate::cas::SymbolTex;
+use std::collections::BTreeMap;
+
+/// Runs `f` with the scene's own typesetting of its names (name -> LaTeX), read here into the
+/// forms each printer writes, so that every formula of its page prints them so.
+pub fn typeset_as<R>(names: &BTreeMap<String, String>, f: impl FnOnce() -> R) -> R {
+    let names = names
+        .iter()
+        .map(|(name, latex)| {
+            // Scene validation refuses a `tex` the reader cannot set, so the fallback (the
+            // LaTeX as text) is never printed.
+            let typst = latex_to_typst(latex).unwrap_or_else(|_| typst_string(latex));
+            let tex = SymbolTex {
+                latex: latex.clone(),
+                typst,
+            };
+            (name.clone(), tex)
+        })
+        .collect();
+    crate::cas::typeset_as(names, f)
+}
