@@ -130,6 +130,15 @@ struct Typst<'a> {
 }
 
 impl Typst<'_> {
+    /// The style of a fraction's parts: a fraction inside one goes on the line (`3\/2`), as
+    /// textbooks write it, where Typst would set it at half the body's size.
+    fn in_a_fraction(&self) -> Typst<'_> {
+        Typst {
+            named: self.named,
+            layout: Layout::OnTheLine,
+        }
+    }
+
     /// √a. To be broken, a root of a sum goes in parentheses Typst does not pair, with the
     /// exponent ½: the root's sign, and a paired group with an exponent, are each one piece.
     fn root(&self, a: &Expr, out: &mut String) {
@@ -223,6 +232,9 @@ impl Style for Typst<'_> {
     fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
         let body = if r.is_integer() {
             r.abs_parts().0.to_string()
+        } else if self.layout == Layout::OnTheLine && ctx > Prec::Sum && !r.is_negative() {
+            // A factor or a base: (3/2)^(1/2), never 3/2^(1/2).
+            format!("({})", slashed(r))
         } else if self.layout == Layout::OnTheLine {
             slashed(r)
         } else {
@@ -268,7 +280,7 @@ impl Style for Typst<'_> {
         {
             // A fraction is one piece: to be broken, a sum above the bar goes after 1/d.
             out.push_str("frac(1, ");
-            write_factors(&den, out);
+            page_factors(&den, " dot.op ", out, &self.in_a_fraction());
             out.push_str(") ");
             match num.as_slice() {
                 [sum] => {
@@ -279,10 +291,11 @@ impl Style for Typst<'_> {
                 _ => write_factors(&num, out),
             }
         } else {
+            let inner = self.in_a_fraction();
             out.push_str("frac(");
-            write_factors(&num, out);
+            page_factors(&num, " dot.op ", out, &inner);
             out.push_str(", ");
-            write_factors(&den, out);
+            page_factors(&den, " dot.op ", out, &inner);
             out.push(')');
         }
         if ctx > Prec::Product {
@@ -300,7 +313,7 @@ impl Style for Typst<'_> {
                     &Expr::pow(a.clone(), Expr::Num(r.negated())),
                     out,
                     Prec::Sum,
-                    self,
+                    &self.in_a_fraction(),
                 );
                 out.push(')');
                 return;
@@ -459,6 +472,18 @@ mod tests {
         assert_eq!(line("1/2"), "1\\/2");
         assert_eq!(line("(a + b)/(2*c)"), "(a + b)\\/(2 c)");
         assert_eq!(line("pi*R"), "π R");
+        // A rational that is a factor or a base keeps its brackets.
+        assert_eq!(line("(3/5)^(3/2)"), "(3\\/5)^(3\\/2)");
+    }
+
+    /// Inside a fraction, a fraction goes on the line, as textbooks write it: Typst would set
+    /// it at half the body's size (the roots of a cubic, in tests/course's top).
+    #[test]
+    fn a_fraction_inside_a_fraction_is_on_the_line() {
+        let typst = |text: &str| parse(text).unwrap().expr.to_typst();
+        assert_eq!(typst("a/(7*(3/5)^(3/2))"), "frac(a, 7 (3\\/5)^(3\\/2))");
+        assert_eq!(typst("a/(b/c + d)"), "frac(a, b\\/c + d)");
+        assert_eq!(typst("a/b"), "frac(a, b)");
     }
 
     #[test]

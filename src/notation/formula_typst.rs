@@ -78,6 +78,7 @@ fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError>
             // Limits are set small: their fractions go on the line.
             let limit = |f: &Formula| match f {
                 Formula::Expr(e) => Ok(e.to_typst_on_the_line()),
+                Formula::Frac(a, b) => Ok(format!("{}\\/{}", a.to_typst()?, b.to_typst()?)),
                 other => other.to_typst(),
             };
             format!("integral_({})^({}) ", limit(&limits.0)?, limit(&limits.1)?)
