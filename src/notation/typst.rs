@@ -45,8 +45,9 @@ fn row(nodes: &[Node], upright: bool, out: &mut String) -> Result<(), TexError> 
             let mut inner = String::new();
             row(&nodes[i + 1..], upright, &mut inner)?;
             match open {
-                Some(f) => push(out, &format!("{f}({})", inner.trim())),
-                None => push(out, inner.trim()),
+                // A switch with nothing after it in its group (`\rm` ending a cell) sets nothing.
+                Some(f) if !inner.trim().is_empty() => push(out, &format!("{f}({})", inner.trim())),
+                _ => push(out, inner.trim()),
             }
             return Ok(());
         }
@@ -320,39 +321,39 @@ fn group(g: &Grouping, inner: &[Node], upright: bool) -> Result<String, TexError
 /// An environment's content: its rows (split at `\\`) joined by `row_sep`, each row's cells
 /// (split at `&`) by `cell_sep`.
 fn rows(body: &[Node], row_sep: &str, cell_sep: &str, upright: bool) -> Result<String, TexError> {
-    let mut table: Vec<Vec<String>> = vec![vec![String::new()]];
+    let mut table: Vec<Vec<Vec<Node>>> = vec![vec![Vec::new()]];
     for n in body {
         match n {
-            Node::Flow(EnvironmentFlow::NewLine { .. }) => table.push(vec![String::new()]),
+            Node::Flow(EnvironmentFlow::NewLine { .. }) => table.push(vec![Vec::new()]),
             Node::Flow(EnvironmentFlow::Alignment) => {
-                table.last_mut().expect("a row").push(String::new())
+                table.last_mut().expect("a row").push(Vec::new())
             }
             Node::Flow(EnvironmentFlow::StartLines { .. }) => {}
             n => {
                 let cell = table.last_mut().and_then(|r| r.last_mut()).expect("a cell");
-                let mut piece = String::new();
-                row(std::slice::from_ref(n), upright, &mut piece)?;
-                push(cell, &piece);
+                cell.push(n.clone());
             }
         }
     }
     if table.len() > 1
         && table
             .last()
-            .is_some_and(|r| r.len() == 1 && r[0].trim().is_empty())
+            .is_some_and(|r| r.len() == 1 && r[0].is_empty())
     {
         table.pop();
     }
-    Ok(table
-        .iter()
-        .map(|r| {
-            r.iter()
-                .map(|c| c.trim().to_string())
-                .collect::<Vec<_>>()
-                .join(cell_sep)
-        })
-        .collect::<Vec<_>>()
-        .join(row_sep))
+    let mut lines = Vec::with_capacity(table.len());
+    for r in &table {
+        let mut cells = Vec::with_capacity(r.len());
+        for cell in r {
+            // A cell is one group: a switch (`\rm`) holds to its end.
+            let mut out = String::new();
+            row(cell, upright, &mut out)?;
+            cells.push(out.trim().to_string());
+        }
+        lines.push(cells.join(cell_sep));
+    }
+    Ok(lines.join(row_sep))
 }
 
 /// A space of the given width: Typst's own spaces where LaTeX's are (`\,` thin, `\:` med,

@@ -218,6 +218,7 @@ fn every_element_the_reader_reads_is_typeset() {
         r"\displaystyle\frac12 \textstyle\frac34 \scriptstyle x",
         r#"\text{with words, (brackets); and a "quote"}"#,
         r"\frac{(}{)} \sqrt{)} ( [ \{",
+        r"\begin{matrix} \rm a & b \\ \bf c & \it d \end{matrix} x \rm y",
     ];
     for form in forms {
         let tex = crate::notation::Tex::read(form).unwrap_or_else(|e| panic!("{form}: {e}"));
