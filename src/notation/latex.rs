@@ -17,6 +17,11 @@ pub enum TexError {
     Parse(String),
     #[error("groups nested more than {MAX_DEPTH} deep")]
     TooDeep,
+    #[error(
+        "more than {MAX_CHAIN} commands in a chain, each the argument of the one before: give \
+         each argument its braces, `\\vec{{\\vec{{x}}}}`"
+    )]
+    Chain,
     #[error("{0} is not among what the PDFs can set (see docs/scenes.md)")]
     Unprintable(&'static str),
 }
@@ -28,7 +33,7 @@ pub const MAX_DEPTH: usize = 200;
 /// The longest chain of commands each the argument of the one before (`\vec\vec…x`,
 /// `\frac1\frac1…`), which the parser reads by recursion: 2,000 overflow a test thread's
 /// stack (measured), 500 do not.
-const MAX_CHAIN: usize = 250;
+pub const MAX_CHAIN: usize = 250;
 
 /// LaTeX read into a tree: each node one element of pulldown-latex's event stream, its operands
 /// (a fraction's two parts, a script's base and scripts, a group's content) as its children.
@@ -67,7 +72,7 @@ impl Tex {
     /// Reads LaTeX math (as between `$` signs).
     pub fn read(latex: &str) -> Result<Tex, TexError> {
         if chained_commands(latex) > MAX_CHAIN {
-            return Err(TexError::TooDeep);
+            return Err(TexError::Chain);
         }
         let storage = Storage::new();
         let mut events = Parser::new(latex, &storage);
@@ -307,8 +312,13 @@ mod tests {
         assert_eq!(Tex::read(&deep), Err(TexError::TooDeep));
         let deep = format!("{}x{}", "\\frac{".repeat(5_000), "}{1}".repeat(5_000));
         assert_eq!(Tex::read(&deep), Err(TexError::TooDeep));
-        assert_eq!(Tex::read(&"\\vec".repeat(10_000)), Err(TexError::TooDeep));
-        assert_eq!(Tex::read(&"\\frac1".repeat(10_000)), Err(TexError::TooDeep));
+        assert_eq!(Tex::read(&"\\vec".repeat(10_000)), Err(TexError::Chain));
+        assert_eq!(Tex::read(&"\\frac1".repeat(10_000)), Err(TexError::Chain));
+        assert_eq!(
+            TexError::Chain.to_string(),
+            "more than 250 commands in a chain, each the argument of the one before: give each \
+             argument its braces, `\\vec{\\vec{x}}`"
+        );
         // A long formula of commands, each with its own brackets or braces, is read.
         let long = "\\sin\\left(\\theta\\right) \\omega_{3} ".repeat(500);
         assert!(Tex::read(&long).is_ok());
