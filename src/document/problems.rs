@@ -99,7 +99,7 @@ pub(super) fn fill_statement(statement: &str, v: &VariantCheck) -> Prose {
         .enumerate()
     {
         if k % 2 == 1 {
-            out = out.formula(Formula::Tex(fill_math(part, v)));
+            out = out.formula(Formula::author(&fill_math(part, v)));
             continue;
         }
         let mut rest = part.as_str();

@@ -50,7 +50,7 @@ impl Prose {
     }
 }
 
-/// An author's text with its `$…$` spans: each span the LaTeX inside it (as a [`Formula::Tex`]),
+/// An author's text with its `$…$` spans: each span the LaTeX inside it (read as a [`Formula::Tex`]),
 /// the rest text; `\$` is a dollar sign. Validation has seen that every `$` is closed.
 pub fn author(text: &str) -> Prose {
     let mut out = Prose::default();
@@ -60,7 +60,7 @@ pub fn author(text: &str) -> Prose {
                 out = out.text(&part);
             }
         } else {
-            out = out.formula(Formula::Tex(part));
+            out = out.formula(Formula::author(&part));
         }
     }
     out

@@ -14,6 +14,7 @@
 //!   `~~` a medium one; `"text"`; `rm(day)` an upright name; `quad`; `perp`; `det`; `nabla_rho`;
 //!   `int_(a)^(b)`; `(x)|_body` a value in a frame; `$0`, `$1`… the exact expressions handed in.
 
+use super::latex::Tex;
 use crate::cas::Expr;
 
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -51,8 +52,8 @@ pub enum Formula {
     /// A value taken in a frame: `(dL/dt)|_body`.
     At(Box<Formula>, String),
     /// Mathematics an author wrote in LaTeX between `$` signs (the author's own notation, not
-    /// another printer's output): LaTeX as written, and text between `$` signs.
-    Tex(String),
+    /// another printer's output), read once by the one LaTeX reader.
+    Tex(Tex),
 }
 
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -139,6 +140,15 @@ impl Formula {
             p.pos
         );
         f
+    }
+
+    /// An author's mathematics, read by the one LaTeX reader. Validation has read every `$…$`
+    /// of a scene already, so it reads; should it not, it is shown as the text written.
+    pub fn author(latex: &str) -> Formula {
+        match Tex::read(latex) {
+            Ok(tex) => Formula::Tex(tex),
+            Err(_) => Formula::Text(latex.to_string()),
+        }
     }
 
     /// `lhs = value`: a statement whose right side is an exact expression.

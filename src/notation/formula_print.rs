@@ -69,7 +69,7 @@ fn latex(f: &Formula, out: &mut String) {
         Formula::Nabla(None) => "\\nabla".into(),
         Formula::Nabla(Some(by)) => format!("\\nabla_{{{}}}", latex_base(by)),
         Formula::At(a, frame) => format!("\\left.{}\\right|_{{\\mathrm{{{frame}}}}}", a.to_latex()),
-        Formula::Tex(s) => s.clone(),
+        Formula::Tex(t) => t.source.clone(),
     };
     join(out, &piece);
 }
@@ -242,9 +242,9 @@ fn text(f: &Formula, out: &mut String) {
             out.push('|');
             out.push_str(frame);
         }
-        Formula::Tex(s) => {
+        Formula::Tex(t) => {
             out.push('$');
-            out.push_str(s);
+            out.push_str(&t.source);
             out.push('$');
         }
     }

@@ -3,7 +3,6 @@
 
 use super::formula::{Accent, Formula, GREEK, Name, Op};
 use super::latex::TexError;
-use super::typst::latex_to_typst;
 use crate::base::typst::typst_string;
 
 impl Formula {
@@ -88,7 +87,7 @@ fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError>
         Formula::At(a, frame) => {
             format!("lr({} |)_(upright({}))", a.to_typst()?, typst_string(frame))
         }
-        Formula::Tex(s) => latex_to_typst(s)?,
+        Formula::Tex(t) => t.to_typst()?,
     };
     join(out, &piece);
     Ok(())

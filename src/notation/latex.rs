@@ -37,9 +37,26 @@ pub const MAX_CHAIN: usize = 250;
 
 /// LaTeX read into a tree: each node one element of pulldown-latex's event stream, its operands
 /// (a fraction's two parts, a script's base and scripts, a group's content) as its children.
+///
+/// It keeps the LaTeX it was read from, for Moodle, `--json` and the terminal, which show an
+/// author's mathematics as written; it is stored (the build cache) as that text, read again.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tex {
+    pub source: String,
     pub nodes: Vec<Node>,
+}
+
+impl serde::Serialize for Tex {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.source)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Tex {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Tex, D::Error> {
+        let source = String::deserialize(d)?;
+        Tex::read(&source).map_err(serde::de::Error::custom)
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -80,7 +97,10 @@ impl Tex {
         while let Some(node) = element(&mut events, 0)? {
             nodes.push(node);
         }
-        Ok(Tex { nodes })
+        Ok(Tex {
+            source: latex.to_string(),
+            nodes,
+        })
     }
 
     /// The tree as pulldown-latex's events, for its MathML writer.
@@ -302,6 +322,18 @@ mod tests {
             let direct: Vec<Event> = Parser::new(latex, &storage).map(Result::unwrap).collect();
             assert_eq!(Tex::read(latex).unwrap().events(), direct, "{latex}");
         }
+    }
+
+    /// An author's formula is stored (the build cache) as the LaTeX written, as it was when
+    /// it was that text, and read back into the same tree.
+    #[test]
+    fn a_formula_is_stored_as_its_latex_and_read_back() {
+        let f = crate::notation::Formula::author("\\frac{1}{2} m v^2");
+        let json = serde_json::to_string(&f).unwrap();
+        assert_eq!(json, r#"{"Tex":"\\frac{1}{2} m v^2"}"#);
+        let back: crate::notation::Formula = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, f);
+        assert!(serde_json::from_str::<Tex>(r#""\\frac{1}{""#).is_err());
     }
 
     #[test]

@@ -44,7 +44,7 @@ pub fn width_of(latex: &str) -> Result<f32, RenderError> {
 /// A formula wider than a phone's line is set twice, for paper and wide screens and for phones;
 /// the style sheet shows one (`.wide`, `.narrow`).
 pub fn block(latex: &str) -> Result<String, RenderError> {
-    for_both_screens(latex, linebreak::LINE, set_block, "div")
+    for_both_screens(&read(latex)?, linebreak::LINE, set_block, "div")
 }
 
 type Setter = fn(&str, &[Vec<Node>], bool) -> Result<String, RenderError>;
@@ -52,8 +52,8 @@ type Setter = fn(&str, &[Vec<Node>], bool) -> Result<String, RenderError>;
 /// The formula set for paper and wide screens (cut at `line`), and, when it is wider than a
 /// phone's line and the phone's setting differs, for phones too: each in a `tag` of class
 /// `wide` or `narrow`.
-fn for_both_screens(latex: &str, line: f32, set: Setter, tag: &str) -> Result<String, RenderError> {
-    let tex = read(latex)?;
+fn for_both_screens(tex: &Tex, line: f32, set: Setter, tag: &str) -> Result<String, RenderError> {
+    let latex = tex.source.as_str();
     let wide = set(latex, &linebreak::pieces(&tex.nodes, line), false)?;
     if linebreak::width(&tex.nodes) <= linebreak::PHONE {
         return Ok(wide);
@@ -126,7 +126,12 @@ fn binary(k: usize, piece: &[Node]) -> Vec<Node> {
 /// wrap, once it is wider than half a line. Set twice, as a display formula is, when it is
 /// wider than a phone's line.
 pub fn inline(latex: &str) -> Result<String, RenderError> {
-    for_both_screens(latex, linebreak::LINE / 2.0, set_inline, "span")
+    inline_tex(&read(latex)?)
+}
+
+/// [`inline`], of LaTeX read already.
+pub fn inline_tex(tex: &Tex) -> Result<String, RenderError> {
+    for_both_screens(tex, linebreak::LINE / 2.0, set_inline, "span")
 }
 
 fn set_inline(latex: &str, pieces: &[Vec<Node>], phone: bool) -> Result<String, RenderError> {

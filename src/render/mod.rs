@@ -180,6 +180,8 @@ fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError>
     for piece in &prose.0 {
         match piece {
             Piece::Text(t) => out.push_str(&tera::escape_html(t)),
+            // An author's mathematics is set from the tree read at load, others from LaTeX.
+            Piece::Math(crate::notation::Formula::Tex(t)) => out.push_str(&math::inline_tex(t)?),
             Piece::Math(f) => out.push_str(&math::inline(&f.to_latex())?),
         }
     }
