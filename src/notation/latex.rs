@@ -4,8 +4,8 @@
 //! cannot read is refused with its reason, so scene validation names it at its line.
 
 use pulldown_latex::event::{
-    Content, Dimension, EnvironmentFlow, Event, Grouping, ScriptPosition, ScriptType, StateChange,
-    Visual,
+    Content, Dimension, EnvironmentFlow, Event, Grouping, RelationContent, ScriptPosition,
+    ScriptType, StateChange, Visual,
 };
 use pulldown_latex::{Parser, Storage};
 
@@ -102,41 +102,72 @@ impl Tex {
             nodes,
         })
     }
+}
 
-    /// The tree as pulldown-latex's events, for its MathML writer.
-    pub fn events(&self) -> Vec<Event<'_>> {
-        events(&self.nodes)
-    }
+/// The nodes rewritten by `f`, children first: each node is handed to `f` with its operands and
+/// content already rewritten.
+pub fn rewrite(nodes: &[Node], f: &dyn Fn(Node) -> Node) -> Vec<Node> {
+    nodes
+        .iter()
+        .map(|n| {
+            let n = match n {
+                Node::Group(g, inner) => Node::Group(g.clone(), rewrite(inner, f)),
+                Node::Visual(v, parts) => Node::Visual(*v, rewrite(parts, f)),
+                Node::Script {
+                    ty,
+                    position,
+                    parts,
+                } => Node::Script {
+                    ty: *ty,
+                    position: *position,
+                    parts: rewrite(parts, f),
+                },
+                other => other.clone(),
+            };
+            f(n)
+        })
+        .collect()
 }
 
 /// The nodes with every script on a bare operator name put on a group, `\cos^{2}` as
 /// `{\cos}^{2}`: pulldown-latex's writer sets the first, when an argument follows, as an
 /// `<msup>` of three children, which browsers draw as a small "cos2".
 pub fn braced_operators(nodes: &[Node]) -> Vec<Node> {
-    nodes
-        .iter()
-        .map(|n| match n {
+    rewrite(nodes, &|n| match n {
+        Node::Script {
+            ty,
+            position,
+            mut parts,
+        } if matches!(parts[0], Node::Function(_)) => {
+            let name = parts.remove(0);
+            parts.insert(0, Node::Group(Grouping::Normal, vec![name]));
             Node::Script {
                 ty,
                 position,
                 parts,
-            } => {
-                let mut parts = braced_operators(parts);
-                if let Node::Function(_) = parts[0] {
-                    let name = parts.remove(0);
-                    parts.insert(0, Node::Group(Grouping::Normal, vec![name]));
-                }
-                Node::Script {
-                    ty: *ty,
-                    position: *position,
-                    parts,
-                }
             }
-            Node::Group(g, inner) => Node::Group(g.clone(), braced_operators(inner)),
-            Node::Visual(v, parts) => Node::Visual(*v, braced_operators(parts)),
-            other => other.clone(),
-        })
-        .collect()
+        }
+        other => other,
+    })
+}
+
+/// A relation's text: one character, or two (`≠` may be a pair).
+pub fn relation_text(content: &RelationContent) -> String {
+    let mut buf = [0u8; 8];
+    String::from_utf8_lossy(content.encode_utf8_to_buf(&mut buf)).into_owned()
+}
+
+/// An environment's rows (split at `\\`) of cells (split at `&`).
+pub fn cells(body: &[Node]) -> Vec<Vec<Vec<Node>>> {
+    let mut rows = vec![vec![Vec::new()]];
+    for n in body {
+        match n {
+            Node::Flow(EnvironmentFlow::NewLine { .. }) => rows.push(vec![Vec::new()]),
+            Node::Flow(EnvironmentFlow::Alignment) => rows.last_mut().unwrap().push(Vec::new()),
+            _ => rows.last_mut().unwrap().last_mut().unwrap().push(n.clone()),
+        }
+    }
+    rows
 }
 
 /// Nodes as pulldown-latex's events, for its MathML writer.
@@ -320,7 +351,7 @@ mod tests {
         ] {
             let storage = Storage::new();
             let direct: Vec<Event> = Parser::new(latex, &storage).map(Result::unwrap).collect();
-            assert_eq!(Tex::read(latex).unwrap().events(), direct, "{latex}");
+            assert_eq!(events(&Tex::read(latex).unwrap().nodes), direct, "{latex}");
         }
     }
 

@@ -11,8 +11,9 @@
 //! Widths are estimated in characters of a typical formula: about 0.66 em each.
 
 use super::latex::Node;
+use super::latex::cells;
 pub use super::width::width;
-use super::width::{cells, matrix, node_width, relation_is, table_width};
+use super::width::{matrix, node_width, relation_is, table_width};
 use pulldown_latex::event::{
     Content, DelimiterSize, DelimiterType, Dimension, DimensionUnit, EnvironmentFlow, Grouping,
     ScriptPosition, ScriptType, Visual,
@@ -116,7 +117,7 @@ fn opening(seg: &[Node], cell: f32) -> Option<usize> {
             Node::Group(Grouping::LeftRight(..), _) => {
                 if let Some(inner) = openable_bracket(n, cell) {
                     width(inner)
-                } else if let Some(body) = matrix(n)
+                } else if let Some((_, body)) = matrix(n)
                     && cells(body).len() == 1
                 {
                     table_width(body, true)
@@ -262,7 +263,7 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
         }
         Node::Group(_, inner) => match matrix(node) {
             // A vector (a one-row matrix) as a tuple: its entries separated by commas.
-            Some(body) => (comma_separated(cells(body).remove(0)), None),
+            Some((_, body)) => (comma_separated(cells(body).remove(0)), None),
             None => (inner.clone(), None),
         },
         _ => return vec![seg],
@@ -328,16 +329,10 @@ fn stack_cells(nodes: Vec<Node>, limit: f32, room: f32) -> Vec<Node> {
     nodes
         .into_iter()
         .map(|n| {
-            if let Some(body) = matrix(&n)
+            if let Some((kind, body)) = matrix(&n)
                 && cells(body).len() > 1
             {
                 let rows = cells(body);
-                let Node::Group(_, inner) = &n else {
-                    unreachable!("a matrix is a group")
-                };
-                let Node::Group(kind, _) = &inner[0] else {
-                    unreachable!("a matrix is a group")
-                };
                 // The columns share a line, less room for a name and an equals sign.
                 let columns = rows.iter().map(Vec::len).max().unwrap_or(1) as f32;
                 // Each column: its gap (1.5) and the \quad of a continued line (2).

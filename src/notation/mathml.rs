@@ -1,7 +1,7 @@
 //! The read LaTeX tree ([`Tex`]) as MathML, at build time, so pages need no JavaScript and no
 //! network: pulldown-latex's MathML writer, fed the tree's events.
 
-use super::latex::{Node, Tex, braced_operators, events};
+use super::latex::{Node, Tex, braced_operators, events, rewrite};
 use crate::base::markup::{MarkupError, safe_mathml};
 use pulldown_latex::config::DisplayMode;
 use pulldown_latex::event::{Dimension, DimensionUnit};
@@ -45,10 +45,11 @@ pub fn mathml(nodes: &[Node], block: bool) -> Result<String, MathmlError> {
         push_mathml(&mut out, events, config()).map_err(|e| MathmlError::Writer(e.to_string()))?;
         Ok(out)
     };
-    let mut out = write(&no_break_spaces(nodes))?;
+    let nodes = no_break_spaces(nodes);
+    let mut out = write(&nodes)?;
     // An author's `\cos^2 x`: set as mechbook's printer writes it, `{\cos}^{2}`.
     if out.contains("<msup><mspace") {
-        out = write(&braced_operators(&no_break_spaces(nodes)))?;
+        out = write(&braced_operators(&nodes))?;
     }
     if out.contains("<msup><mspace") {
         return Err(MathmlError::MalformedPower);
@@ -64,27 +65,13 @@ pub fn mathml(nodes: &[Node], block: bool) -> Result<String, MathmlError> {
 /// The nodes with the parser's `&nbsp;` text (a `~` or `\ `) as a space: the writer escapes
 /// text, and the page would show "&nbsp;".
 fn no_break_spaces(nodes: &[Node]) -> Vec<Node> {
-    nodes
-        .iter()
-        .map(|n| match n {
-            // An interword space, a third of an em.
-            Node::Text(s) if s == "&nbsp;" => {
-                Node::Space(Some(Dimension::new(1.0 / 3.0, DimensionUnit::Em)))
-            }
-            Node::Group(g, inner) => Node::Group(g.clone(), no_break_spaces(inner)),
-            Node::Visual(v, parts) => Node::Visual(*v, no_break_spaces(parts)),
-            Node::Script {
-                ty,
-                position,
-                parts,
-            } => Node::Script {
-                ty: *ty,
-                position: *position,
-                parts: no_break_spaces(parts),
-            },
-            other => other.clone(),
-        })
-        .collect()
+    rewrite(nodes, &|n| match n {
+        // An interword space, a third of an em.
+        Node::Text(s) if s == "&nbsp;" => {
+            Node::Space(Some(Dimension::new(1.0 / 3.0, DimensionUnit::Em)))
+        }
+        other => other,
+    })
 }
 
 /// The writer copies a `\&` or a text's `&` as it is: each `&` that starts no entity

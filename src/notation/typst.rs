@@ -2,11 +2,10 @@
 //! pages' MathML shows, so what loads prints in both. What Typst's math cannot set as the page
 //! does (a colour) is refused, so scene validation names it at its line.
 
-use super::latex::{Node, Tex, TexError};
+use super::latex::{Node, Tex, TexError, cells, relation_text};
 use crate::base::typst::typst_string;
 use pulldown_latex::event::{
-    Content, DimensionUnit, EnvironmentFlow, Font, Grouping, ScriptPosition, ScriptType,
-    StateChange, Style, Visual,
+    Content, DimensionUnit, Font, Grouping, ScriptPosition, ScriptType, StateChange, Style, Visual,
 };
 
 /// Operator names Typst's math knows by the same name; any other is `op("…")`.
@@ -38,7 +37,7 @@ fn row(nodes: &[Node], upright: bool, out: &mut String) -> Result<(), TexError> 
         if let Node::State(change) = n {
             // A change of font or style holds for the rest of its group.
             let (open, upright) = match change {
-                StateChange::Font(font) => (font_function(*font)?, *font == Some(Font::UpRight)),
+                StateChange::Font(font) => (font_function(*font), *font == Some(Font::UpRight)),
                 StateChange::Style(style) => (style_function(*style), upright),
                 StateChange::Color(_) => return Err(TexError::Unprintable("a colour")),
             };
@@ -77,8 +76,8 @@ fn letters(nodes: &[Node]) -> Option<String> {
     (!word.is_empty()).then_some(word)
 }
 
-fn font_function(font: Option<Font>) -> Result<Option<&'static str>, TexError> {
-    Ok(font.map(|f| match f {
+fn font_function(font: Option<Font>) -> Option<&'static str> {
+    font.map(|f| match f {
         Font::UpRight => "upright",
         Font::Bold | Font::BoldSymbol | Font::BoldItalic => "bold",
         Font::DoubleStruck | Font::DoubleStruckItalic => "bb",
@@ -90,7 +89,7 @@ fn font_function(font: Option<Font>) -> Result<Option<&'static str>, TexError> {
         | Font::SansSerifBoldItalic
         | Font::SansSerifItalic
         | Font::BoldSansSerif => "sans",
-    }))
+    })
 }
 
 fn style_function(style: Style) -> Option<&'static str> {
@@ -158,9 +157,7 @@ fn atom(c: &Content<'static>) -> String {
         Content::LargeOp { content, .. } => content.to_string(),
         Content::BinaryOp { content, .. } | Content::Punctuation(content) => character(content),
         Content::Relation { content, .. } => {
-            let mut buf = [0u8; 8];
-            let text = String::from_utf8_lossy(content.encode_utf8_to_buf(&mut buf)).to_string();
-            text.chars().map(character).collect()
+            relation_text(&content).chars().map(character).collect()
         }
         Content::Delimiter { content, .. } => character(content),
         Content::Text(_) | Content::Number(_) | Content::Function(_) => String::new(),
@@ -179,9 +176,7 @@ fn character(c: char) -> String {
 
 fn negated(n: &Node, upright: bool) -> Result<String, TexError> {
     if let Node::Atom(Content::Relation { content, .. }) = n {
-        let mut buf = [0u8; 8];
-        let text = String::from_utf8_lossy(content.encode_utf8_to_buf(&mut buf)).to_string();
-        let negation = match text.as_str() {
+        let negation = match relation_text(content).as_str() {
             "=" => Some('≠'),
             "<" => Some('≮'),
             ">" => Some('≯'),
@@ -214,27 +209,17 @@ fn script(
         ScriptType::Superscript => (None, Some(&parts[1])),
         ScriptType::SubSuperscript => (Some(&parts[1]), Some(&parts[2])),
     };
+    // A lone mark over or under the base: an accent, a line or a brace.
+    let mark = match (sub, sup) {
+        (None, Some(Node::Atom(Content::Ordinary { content, .. }))) => Some((false, *content)),
+        (Some(Node::Atom(Content::Ordinary { content, .. })), None) => Some((true, *content)),
+        _ => None,
+    };
     if position == ScriptPosition::AboveBelow
-        && sub.is_none()
-        && let Some(Node::Atom(Content::Ordinary { content, .. })) = sup
-        && let Some(accent) = accent(*content)
+        && let Some((under, mark)) = mark
+        && let Some(marked) = marked(&base, under, mark)
     {
-        return Ok(match accent {
-            "overline" => format!("overline({base})"),
-            a => format!("accent({base}, {a})"),
-        });
-    }
-    if position == ScriptPosition::AboveBelow
-        && let (Some(Node::Atom(Content::Ordinary { content, .. })), None) = (sub, sup)
-        && *content == '⏟'
-    {
-        return Ok(format!("underbrace({base})"));
-    }
-    if position == ScriptPosition::AboveBelow
-        && let (None, Some(Node::Atom(Content::Ordinary { content, .. }))) = (sub, sup)
-        && *content == '⏞'
-    {
-        return Ok(format!("overbrace({base})"));
+        return Ok(marked);
     }
     let base = match position {
         ScriptPosition::AboveBelow => format!("limits({base})"),
@@ -254,23 +239,27 @@ fn script(
     Ok(out)
 }
 
-/// Typst's accent for the mark pulldown-latex puts over a base.
-fn accent(mark: char) -> Option<&'static str> {
-    Some(match mark {
-        '→' => "arrow",
-        '←' => "arrow.l",
-        '↔' => "arrow.l.r",
-        '˙' => "dot",
-        '¨' => "dot.double",
-        '^' | 'ˆ' => "hat",
-        '~' | '˜' => "tilde",
-        'ˇ' => "caron",
-        '´' => "acute",
-        '`' => "grave",
-        '˘' => "breve",
-        '‾' | '¯' => "overline",
+/// The base with the mark pulldown-latex puts over (or `under`) it, in Typst.
+fn marked(base: &str, under: bool, mark: char) -> Option<String> {
+    let accent = match (under, mark) {
+        (true, '⏟') => return Some(format!("underbrace({base})")),
+        (false, '⏞') => return Some(format!("overbrace({base})")),
+        (false, '‾' | '¯') => return Some(format!("overline({base})")),
+        (true, _) => return None,
+        (false, '→') => "arrow",
+        (false, '←') => "arrow.l",
+        (false, '↔') => "arrow.l.r",
+        (false, '˙') => "dot",
+        (false, '¨') => "dot.double",
+        (false, '^' | 'ˆ') => "hat",
+        (false, '~' | '˜') => "tilde",
+        (false, 'ˇ') => "caron",
+        (false, '´') => "acute",
+        (false, '`') => "grave",
+        (false, '˘') => "breve",
         _ => return None,
-    })
+    };
+    Some(format!("accent({base}, {accent})"))
 }
 
 fn group(g: &Grouping, inner: &[Node], upright: bool) -> Result<String, TexError> {
@@ -321,20 +310,7 @@ fn group(g: &Grouping, inner: &[Node], upright: bool) -> Result<String, TexError
 /// An environment's content: its rows (split at `\\`) joined by `row_sep`, each row's cells
 /// (split at `&`) by `cell_sep`.
 fn rows(body: &[Node], row_sep: &str, cell_sep: &str, upright: bool) -> Result<String, TexError> {
-    let mut table: Vec<Vec<Vec<Node>>> = vec![vec![Vec::new()]];
-    for n in body {
-        match n {
-            Node::Flow(EnvironmentFlow::NewLine { .. }) => table.push(vec![Vec::new()]),
-            Node::Flow(EnvironmentFlow::Alignment) => {
-                table.last_mut().expect("a row").push(Vec::new())
-            }
-            Node::Flow(EnvironmentFlow::StartLines { .. }) => {}
-            n => {
-                let cell = table.last_mut().and_then(|r| r.last_mut()).expect("a cell");
-                cell.push(n.clone());
-            }
-        }
-    }
+    let mut table = cells(body);
     if table.len() > 1
         && table
             .last()

@@ -1,9 +1,9 @@
 //! The width of a formula, estimated on the read tree in characters of a typical formula
 //! (about 0.66 em each), for the line breaker (`linebreak.rs`).
 
-use super::latex::Node;
+use super::latex::{Node, cells, relation_text};
 use pulldown_latex::event::{
-    Content, Dimension, DimensionUnit, EnvironmentFlow, Font, Grouping, ScriptPosition,
+    Content, Dimension, DimensionUnit, Font, Grouping, RelationContent, ScriptPosition,
     StateChange, Visual,
 };
 
@@ -78,7 +78,7 @@ fn add(n: &Node, w: &mut f32) {
             _ => width(inner),
         },
         Node::Group(Grouping::LeftRight(..), inner) => match matrix(n) {
-            Some(body) => table_width(body, true),
+            Some((_, body)) => table_width(body, true),
             None => width(inner) + 1.0,
         },
         Node::Group(Grouping::Aligned, body) => table_width(body, false),
@@ -152,17 +152,10 @@ fn written_length(nodes: &[Node]) -> f32 {
         .sum()
 }
 
-pub(super) fn relation_is(
-    content: &pulldown_latex::event::RelationContent,
-    chars: &[char],
-) -> bool {
-    let mut buf = [0u8; 8];
-    let bytes = content.encode_utf8_to_buf(&mut buf);
-    let mut s = std::str::from_utf8(bytes).unwrap_or("").chars();
-    match (s.next(), s.next()) {
-        (Some(c), None) => chars.contains(&c),
-        _ => false,
-    }
+pub(super) fn relation_is(content: &RelationContent, chars: &[char]) -> bool {
+    let text = relation_text(content);
+    let mut s = text.chars();
+    matches!((s.next(), s.next()), (Some(c), None) if chars.contains(&c))
 }
 
 /// The mark an accent puts over its base (`\vec`, `\dot`, `\ddot`, `\overleftrightarrow`).
@@ -176,28 +169,15 @@ fn accent_mark(n: &Node) -> bool {
     )
 }
 
-/// The rows of a matrix in round brackets (`pmatrix`), if `n` is one.
-pub(super) fn matrix(n: &Node) -> Option<&[Node]> {
+/// The kind and rows of a matrix in round brackets (`pmatrix`), if `n` is one.
+pub(super) fn matrix(n: &Node) -> Option<(&Grouping, &[Node])> {
     match n {
         Node::Group(Grouping::LeftRight(Some('('), Some(')')), inner) => match inner.as_slice() {
-            [Node::Group(Grouping::Matrix { .. }, body)] => Some(body),
+            [Node::Group(kind @ Grouping::Matrix { .. }, body)] => Some((kind, body)),
             _ => None,
         },
         _ => None,
     }
-}
-
-/// Rows (split at `\\`) of cells (split at `&`).
-pub(super) fn cells(body: &[Node]) -> Vec<Vec<Vec<Node>>> {
-    let mut rows = vec![vec![Vec::new()]];
-    for n in body {
-        match n {
-            Node::Flow(EnvironmentFlow::NewLine { .. }) => rows.push(vec![Vec::new()]),
-            Node::Flow(EnvironmentFlow::Alignment) => rows.last_mut().unwrap().push(Vec::new()),
-            _ => rows.last_mut().unwrap().last_mut().unwrap().push(n.clone()),
-        }
-    }
-    rows
 }
 
 /// A table's columns with their gaps; our stacked cells (`aligned`) have none.

@@ -2,13 +2,13 @@
 //! browser can wrap, so pages need no JavaScript and no network.
 
 use super::RenderError;
-use crate::notation::latex::Node;
+use crate::notation::latex::{Node, relation_text};
 use crate::notation::linebreak;
 use crate::notation::{self, MathmlError, Tex};
 use pulldown_latex::event::{Content, Grouping};
 
 /// The formula read by the one LaTeX reader; what cannot be read is an error naming it.
-fn read(latex: &str) -> Result<Tex, RenderError> {
+pub fn read(latex: &str) -> Result<Tex, RenderError> {
     Tex::read(latex).map_err(|e| RenderError::Math {
         latex: latex.into(),
         message: e.to_string(),
@@ -108,9 +108,7 @@ fn binary(k: usize, piece: &[Node]) -> Vec<Node> {
             matches!(content, '+' | '−' | '⋅' | '×')
         }
         Some(Node::Atom(Content::Relation { content, .. })) => {
-            let mut buf = [0u8; 8];
-            let text = content.encode_utf8_to_buf(&mut buf);
-            text == b"=" || text == "≈".as_bytes()
+            matches!(relation_text(content).as_str(), "=" | "≈")
         }
         _ => false,
     };

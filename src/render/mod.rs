@@ -377,16 +377,18 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         let notes = notes_latex.as_deref().unwrap_or("");
         let agrees = c.verdict == Verdict::Agrees && c.precision.is_none();
         let same = agrees && derived_latex.as_deref() == Some(notes);
+        let derived_tex = derived_latex.as_deref().map(math::read).transpose()?;
         let derived_equal = agrees
             && !same
-            && match derived_latex.as_deref() {
-                Some(latex) => {
-                    math::width_of(latex)? > (2.0 * math::width_of(notes)?).max(linebreak::PHONE)
+            && match &derived_tex {
+                Some(tex) => {
+                    linebreak::width(&tex.nodes)
+                        > (2.0 * math::width_of(notes)?).max(linebreak::PHONE)
                 }
                 None => false,
             };
-        let derived = match &derived_latex {
-            Some(latex) if !derived_equal && !same => math::inline(latex)?,
+        let derived = match &derived_tex {
+            Some(tex) if !derived_equal && !same => math::inline_tex(tex)?,
             _ => String::new(),
         };
         claims.push(ClaimView {
