@@ -171,6 +171,10 @@ pub(super) trait Style {
     fn factors_sums(&self) -> bool {
         false
     }
+    /// What stands between a sum's common factor and the sum's parentheses: a space (c (a + b)).
+    fn before_factored_sum(&self, _factor: &Expr) -> &'static str {
+        " "
+    }
     fn list(&self, v: &[Expr], out: &mut String);
     fn index(&self, e: &Expr, out: &mut String);
 }
@@ -191,7 +195,7 @@ pub(super) fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
                 }
                 if !factor.is_one() {
                     write(&factor, out, Prec::Product, style);
-                    out.push(' ');
+                    out.push_str(style.before_factored_sum(&factor));
                 }
                 out.push_str(style.open());
                 write(&Expr::Add(rest), out, Prec::Sum, style);

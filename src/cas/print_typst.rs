@@ -117,6 +117,9 @@ enum Layout {
     OnTheLine,
 }
 
+/// A factor whose Typst is longer than this many characters is about half a line wide or more.
+const LONG_FACTOR: usize = 60;
+
 /// A rational's magnitude as a fraction on the line: `3\/2`.
 fn slashed(r: &Rational) -> String {
     let (num, den) = r.abs_parts();
@@ -216,6 +219,27 @@ impl Typst<'_> {
 impl Style for Typst<'_> {
     fn factors_sums(&self) -> bool {
         true
+    }
+    /// To be broken, a long factor with a fraction bar is joined to its sum by a dot, where
+    /// the line may break: the bar is one piece that Typst cannot break, and with the sum's
+    /// first term after it the piece may be wider than the line. (A short one, `frac(M, 12)`,
+    /// keeps the plain product.)
+    fn before_factored_sum(&self, factor: &Expr) -> &'static str {
+        let barred = match factor {
+            Expr::Mul(v) => !page_fraction(v).1.is_empty(),
+            Expr::Pow(_, x) => matches!(x.as_ref(), Expr::Num(r) if r.is_negative()),
+            _ => false,
+        };
+        let long = || {
+            let mut printed = String::new();
+            write(factor, &mut printed, Prec::Product, self);
+            printed.chars().count() > LONG_FACTOR
+        };
+        if self.layout == Layout::Breakable && barred && long() {
+            " dot.op "
+        } else {
+            " "
+        }
     }
     fn open(&self) -> &'static str {
         "("
@@ -463,6 +487,22 @@ mod tests {
         // A matrix stays a matrix: its rows cannot break.
         let m = parse("[[a, b], [c, d]]").unwrap().expr;
         assert_eq!(m.to_typst_breakable(), m.to_typst());
+    }
+
+    /// A long factor with a bar is joined to its sum by a dot, where Typst may break the line
+    /// (the starter's cos φ ran past the paper's edge); a short one is not.
+    #[test]
+    fn a_long_barred_factor_and_its_sum_may_break_between() {
+        // A sum whose terms share the factor, as the engine returns it.
+        let p = "(c^2*d^2/1296 + c^2*e^2/1296 + d^4/81)^(3/2)";
+        let long = parse(&format!("m^3*a*x/(46656*{p}) + m^3*b*y/(46656*{p})"))
+            .unwrap()
+            .expr;
+        let broken = long.to_typst_breakable();
+        assert!(broken.contains(") dot.op (a x + b y)"), "{broken}");
+        assert!(!long.to_typst().contains("dot.op"), "{}", long.to_typst());
+        let short = parse("m*a*x/12 + m*b*y/12").unwrap().expr;
+        assert_eq!(short.to_typst_breakable(), "frac(m, 12) (a x + b y)");
     }
 
     #[test]

@@ -276,7 +276,15 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     for (factor, mult) in &roots.unsolved {
         d.steps.push(Step::note(
             "Irreducible factor",
-            Formula::parse(&format!("big($0)^{mult}"), &[shown(factor)]),
+            // A simple factor has no exponent: (…), not (…)¹.
+            Formula::parse(
+                &if *mult > 1 {
+                    format!("big($0)^{mult}")
+                } else {
+                    "$0".to_string()
+                },
+                &[shown(factor)],
+            ),
             "no factorisation over the rationals: no root is rational in the symbols",
         ));
     }

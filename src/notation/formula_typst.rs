@@ -65,7 +65,12 @@ fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError>
             }
             _ => format!("{}^({})", a.to_typst()?, b.to_typst()?),
         },
-        Formula::Paren(a, _) => format!("({})", a.to_typst()?),
+        // Typst breaks a line inside parentheses too.
+        Formula::Paren(a, _) => {
+            let mut inner = String::new();
+            typst(a, &mut inner, breakable)?;
+            format!("({inner})")
+        }
         Formula::Bracket(a) => format!("[{}]", a.to_typst()?),
         Formula::Abs(a) => format!("abs({})", a.to_typst()?),
         Formula::Identity => "bb(1)".into(),
