@@ -244,11 +244,17 @@ impl Build {
             .count();
         let templates =
             crate::site::read_templates(self.templates.as_deref()).map_err(|e| fail(e.into()))?;
-        let mut site = crate::render::site_files(&reports, &course, &templates, self.timings)
-            .map_err(|e| fail(e.into()))?;
-        let sources = crate::render::pdf::site_documents(&reports, &course, &site)
-            .map_err(|e| fail(e.into()))?;
-        let pdfs = typeset_with_progress(&sources, self.cache.as_ref(), "site");
+        // Load, run, then the documents, once; each renderer prints them; then the PDFs are
+        // typeset (or taken from the cache) and everything is written.
+        let documents = crate::document::course::documents(&reports, &course);
+        let cx = crate::render::Context {
+            course: &course,
+            templates: &templates,
+            timings: self.timings,
+        };
+        let rendered = crate::render::render(&documents, &cx).map_err(|e| fail(e.into()))?;
+        let mut site = rendered.files;
+        let pdfs = typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site");
         let mut warnings = pdfs.warnings;
         // A document Typst cannot set fails the build, but the HTML site and the other PDFs
         // are still written.
@@ -258,7 +264,7 @@ impl Build {
         let papers = match &self.roster {
             Some((roster, dir, seed)) => {
                 let (sources, csv) =
-                    crate::render::pdf::roster_documents(&reports, &course, roster, *seed)
+                    crate::render::pdf::roster_documents(&documents, &course, roster, *seed)
                         .map_err(|e| fail(e.into()))?;
                 let made = typeset_with_progress(&sources, self.cache.as_ref(), "papers");
                 warnings.extend(made.warnings);
@@ -269,6 +275,9 @@ impl Build {
             }
             None => None,
         };
+        for n in &rendered.notes {
+            eprintln!("mechbook: note: {n}");
+        }
         for w in &warnings {
             eprintln!("mechbook: warning: {w}");
         }

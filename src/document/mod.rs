@@ -4,6 +4,7 @@
 //! Formulas stay trees ([`Formula`], [`Value`], [`Prose`]) and numbers stay numbers: nothing
 //! here is printed, and there is no file I/O.
 
+pub mod course;
 mod problems;
 mod results;
 pub mod roster;

@@ -27,11 +27,21 @@ pub const LINE: f32 = 56.0;
 /// than this are set a second time for small screens (render/math.rs).
 pub const PHONE: f32 = 28.0;
 /// On a phone a piece that cannot be cut is scaled down to fit, but never below this; a matrix
-/// that would need more is recast as the tuple of its rows, which can wrap.
-pub const SMALLEST: f32 = 0.7;
+/// that would need more is recast as the tuple of its rows, which can wrap, and a product is
+/// cut between its factors.
+pub const SMALLEST: f32 = 0.85;
+
+/// The scale that fits a phone's piece `w` wide to its line, unbounded (below 1 when it is
+/// wider). It fits 90 % of the line, as the estimate runs short on matrices (measured in
+/// Chromium: a 3×3 matrix about 15 %).
+pub fn phone_scale(w: f32) -> f32 {
+    0.9 * PHONE / w
+}
 /// A numerator or radicand wider than this is worth opening (a phone's line takes less).
 const CELL: f32 = 20.0;
 const PHONE_CELL: f32 = 10.0;
+/// What stands before an opened bracket and is at most this wide stays on its first piece.
+const SHORT_BEFORE: f32 = 8.0;
 
 /// How wide a piece may be, and from what width a fraction or root is worth opening.
 #[derive(Clone, Copy)]
@@ -200,7 +210,7 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
         return vec![seg];
     }
     let Some(i) = opening(&seg, fit.cell) else {
-        return vec![seg];
+        return super::product_cut::cut_product(seg, fit.limit);
     };
     let (before, rest) = seg.split_at(i);
     let (node, after) = (&rest[0], &rest[1..]);
@@ -273,14 +283,11 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
     } else {
         DelimiterSize::Big
     };
-    let mut inner_pieces = pieces_of(&inner, fit);
-    let last = inner_pieces.len() - 1;
     // What stands before the bracket, and after it, goes on a piece of its own (opened in
     // turn) when it would make the bracket's first or last piece too wide; a power stays on
     // its bracket.
     let open = delimiter('(', size, DelimiterType::Open);
     let mut close = delimiter(')', size, DelimiterType::Close);
-    let mut after_width = width(after);
     if let Some((ty, position, scripts)) = scripts {
         let mut parts = vec![close];
         parts.extend(scripts);
@@ -289,11 +296,21 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
             position,
             parts,
         };
-        // The scripts' width, as the script node counts them.
-        after_width += node_width(&close) - 2.0;
     }
+    // The content is cut to leave room on its first piece for the opening bracket, and for
+    // a short factor before it (`A cos`), which stays with it.
+    let short_before = width(before) <= SHORT_BEFORE;
+    let room = fit.limit - node_width(&open) - if short_before { width(before) } else { 0.0 };
+    let inner_fit = Fit {
+        limit: room.max(fit.limit / 2.0),
+        ..fit
+    };
+    let mut inner_pieces = pieces_of(&inner, inner_fit);
+    let last = inner_pieces.len() - 1;
+    let after_width = width(after) + node_width(&close);
     let mut out = Vec::new();
-    if !before.is_empty() && width(before) + width(&inner_pieces[0]) > fit.limit {
+    if !before.is_empty() && width(before) + node_width(&open) + width(&inner_pieces[0]) > fit.limit
+    {
         out.extend(open_segment(before.to_vec(), fit));
         inner_pieces[0].insert(0, open);
     } else {

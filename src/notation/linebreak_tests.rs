@@ -250,7 +250,30 @@ fn on_a_phone_no_piece_is_wider_than_it_may_be_scaled_to() {
         let p = phone(formula);
         assert!(p.len() > 1 || formula.contains("pmatrix"), "{p:?}");
         for piece in &p {
-            assert!(width(piece) <= PHONE / SMALLEST, "{piece:?}");
+            assert!(phone_scale(width(piece)) >= SMALLEST, "{piece:?}");
         }
+    }
+}
+
+/// A product with nothing left to open is cut between its factors, each later piece starting
+/// with ⋅; never between a function and its argument, nor before or inside a differential.
+#[test]
+fn a_long_product_is_cut_between_its_factors() {
+    let formula = "I_{xz} = \\int_{0}^{2\\pi}\\frac{M R^{2} \\cos\\left(\\alpha\\right) \\sin\\left(\\alpha\\right) \\,{\\cos}^{2}\\left(\\theta\\right)}{2 \\pi}\\,d\\theta = \\frac{M R^{2}}{2}";
+    let p = phone(formula);
+    assert_eq!(
+        p,
+        vec![
+            tex("I_{xz}"),
+            tex(
+                "= \\int_{0}^{2\\pi}\\frac{1}{2 \\pi} M R^{2} \\cos\\left(\\alpha\\right) \\sin\\left(\\alpha\\right) \\,"
+            ),
+            tex("\\cdot {\\cos}^{2}\\left(\\theta\\right)\\,d\\theta"),
+            tex("= \\frac{M R^{2}}{2}"),
+        ],
+        "{p:?}"
+    );
+    for piece in &p {
+        assert!(width(piece) <= PHONE, "{piece:?}");
     }
 }

@@ -11,6 +11,7 @@ pub mod linebreak;
 #[cfg(test)]
 mod linebreak_tests;
 pub mod mathml;
+mod product_cut;
 pub mod typst;
 mod width;
 

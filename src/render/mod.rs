@@ -1,16 +1,34 @@
-//! The HTML printer of the documents: page views for the templates, built from a
-//! [`Page`] with the math already converted to MathML, then the site's files in memory. No file
-//! I/O here.
+//! The renderers of the course's documents (`renderer.rs`): HTML (`html.rs`, and here the
+//! page views for its templates, built from a [`Page`] with the math already converted to
+//! MathML), Moodle's quizzes (`moodle.rs`) and the PDFs' markup (`pdf/`). The files are made
+//! in memory: no file I/O here.
 
+pub mod html;
 pub mod math;
 use crate::notation::linebreak;
 pub mod moodle;
 pub mod pdf;
 pub mod plot;
 pub mod problems;
-mod site_files;
+pub mod renderer;
 
-pub use site_files::{SiteFiles, TemplateTexts, site_files, template_names};
+pub use html::template_names;
+pub use renderer::{Context, Rendered, Renderer, SiteFiles, TemplateTexts};
+
+/// Every format a build writes, in order (the PDFs take the HTML's plots).
+pub const RENDERERS: &[&dyn Renderer] = &[&html::Html, &moodle::Moodle, &pdf::Pdf];
+
+/// The documents printed by every renderer.
+pub fn render(
+    docs: &crate::document::course::Documents,
+    cx: &Context,
+) -> Result<Rendered, RenderError> {
+    let mut out = Rendered::default();
+    for r in RENDERERS {
+        r.render(docs, cx, &mut out)?;
+    }
+    Ok(out)
+}
 
 use crate::base::format::sci;
 use crate::cas::Expr;
@@ -149,28 +167,6 @@ impl RenderError {
             error: Box::new(self),
         }
     }
-}
-
-/// The lectures in the course's order (`Course::lecture_order`): each lecture's id and the
-/// indices of its scenes in `reports`, in their order.
-fn lectures(
-    reports: &[crate::pipeline::SceneReport],
-    course: &crate::scene::Course,
-) -> Vec<(String, Vec<usize>)> {
-    let appearance: Vec<&str> = reports
-        .iter()
-        .map(|r| r.scene.notes.lecture.as_str())
-        .collect();
-    course
-        .lecture_order(&appearance)
-        .into_iter()
-        .map(|name| {
-            let scenes = (0..reports.len())
-                .filter(|&i| appearance[i] == name)
-                .collect();
-            (name.to_string(), scenes)
-        })
-        .collect()
 }
 
 /// A sentence as HTML: its text escaped, its formulas as MathML.

@@ -4,6 +4,9 @@
 //! typesets. Each blank's tolerance is absolute: the problem's relative tolerance times the
 //! largest entry of its answer, so that a zero entry is not asked for exactly.
 
+use super::RenderError;
+use super::renderer::{Context, Rendered, Renderer};
+use crate::document::course::Documents;
 use crate::document::{Problem, Variant};
 use crate::model::prose::{Piece, Prose};
 use crate::model::value::Value;
@@ -11,6 +14,33 @@ use std::fmt::Write;
 
 /// Significant figures of an answer and its tolerance in the file.
 const DIGITS: usize = 12;
+
+/// Each problem's quiz, `export/moodle/<scene id>.xml`.
+pub struct Moodle;
+
+impl Renderer for Moodle {
+    fn render(
+        &self,
+        docs: &Documents,
+        cx: &Context,
+        out: &mut Rendered,
+    ) -> Result<(), RenderError> {
+        // A quiz holds every variant's answers: none in a site whose answers are private.
+        if cx.course.answers_private {
+            return Ok(());
+        }
+        let base = &cx.course.base_url;
+        for (i, problem) in &docs.problems {
+            let solution = (!base.is_empty()).then(|| format!("{base}/{}", docs.files[*i]));
+            super::renderer::add(
+                &mut out.files,
+                format!("export/moodle/{}.xml", problem.id),
+                quiz(problem, solution.as_deref()).into_bytes(),
+            )?;
+        }
+        Ok(())
+    }
+}
 
 /// The quiz of a scene's problem. `solution` is the published address of the scene's worked
 /// solution (the course's `base_url`), which the feedback links to.

@@ -521,6 +521,24 @@ fn wide_formulas_are_broken_not_shrunk() {
         // No text past the paper's edge, no missing glyph: no warning at all. (The starter's
         // cos φ once ran past it: a long fraction with its sum's first term after it.)
         assert!(!stderr(&run).contains("warning"), "{}", stderr(&run));
+        // The pages scale a formula down on phones only as a last resort, never below 85 %,
+        // and the build names each one (the lectures' triple integrals over a box).
+        let said = stderr(&run);
+        let notes: Vec<&str> = said.lines().filter(|l| l.contains("on phones")).collect();
+        for note in &notes {
+            // Each size stands before " % ".
+            for part in note.split(" % ").collect::<Vec<_>>().iter().rev().skip(1) {
+                let p: u32 = part.rsplit(' ').next().unwrap().parse().unwrap();
+                assert!((85..100).contains(&p), "{note}");
+            }
+        }
+        if course == "lectures" {
+            assert!(
+                notes.iter().any(|n| n.contains("05b-cube-centre.toml")),
+                "{}",
+                stderr(&run)
+            );
+        }
         let (mut shrunk, mut lines) = (0, 0);
         for entry in std::fs::read_dir(dir.join("site/pdf")).unwrap() {
             let (s, l) = shrunk_lines(&entry.unwrap().path());

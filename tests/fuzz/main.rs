@@ -383,10 +383,16 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
         Ok(report) => {
             let reports = [report];
             let course = Default::default();
-            let site = mechbook::render::site_files(&reports, &course, &Default::default(), false)
+            let documents = mechbook::document::course::documents(&reports, &course);
+            let cx = mechbook::render::Context {
+                course: &course,
+                templates: &Default::default(),
+                timings: false,
+            };
+            let rendered = mechbook::render::render(&documents, &cx)
                 .map_err(|e| format!("rendering failed: {e}"))?;
             // Nothing an author wrote is markup on a page; every Moodle file is XML.
-            for (file, bytes) in &site {
+            for (file, bytes) in &rendered.files {
                 let text = String::from_utf8_lossy(bytes);
                 for markup in ["<script", "<img src=x", "<svg onload"] {
                     if text.contains(markup) {
@@ -400,14 +406,10 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
             }
             // And typeset as PDF: whatever the author wrote, Typst must read the markup.
             #[cfg(feature = "pdf")]
-            for doc in mechbook::render::pdf::site_documents(&reports, &course, &site)
-                .map_err(|e| format!("PDF markup failed: {e}"))?
-            {
-                mechbook::render::pdf::typeset::typeset(&doc)
+            for doc in &rendered.typeset {
+                mechbook::render::pdf::typeset::typeset(doc)
                     .map_err(|e| format!("typesetting failed: {e}"))?;
             }
-            #[cfg(not(feature = "pdf"))]
-            let _ = site;
             Ok(Outcome::Ran)
         }
         Err(e) => {

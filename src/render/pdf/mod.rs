@@ -9,9 +9,10 @@ mod sheet;
 #[cfg(feature = "pdf")]
 pub mod typeset;
 
+use super::renderer::{Context, Rendered, Renderer};
 use super::{RenderError, SiteFiles};
-use crate::document::{Sheet, roster::TooFewVariants};
-use crate::pipeline::SceneReport;
+use crate::document::course::Documents;
+use crate::document::roster::TooFewVariants;
 use crate::scene::Course;
 use crate::scene::roster::Roster;
 use crate::scene::roster::Student;
@@ -56,43 +57,39 @@ pub fn lecture_pdfs(slug: &str, has_problems: bool, course: &Course) -> LectureP
 /// Whether this mechbook writes PDFs (the cargo feature `pdf`).
 pub const ENABLED: bool = cfg!(feature = "pdf");
 
-/// The lectures in the course's order: each lecture's id and its scenes.
-fn lectures<'a>(
-    reports: &'a [SceneReport],
-    course: &Course,
-) -> Vec<(String, Vec<&'a SceneReport>)> {
-    super::lectures(reports, course)
-        .into_iter()
-        .map(|(name, idx)| (name, idx.into_iter().map(|i| &reports[i]).collect()))
-        .collect()
-}
+/// Each lecture's handouts, problem sheet and key, as Typst markup: `site/pdfs.rs` typesets
+/// them. The instructor's handout shows the HTML's plots (the HTML renderer runs first).
+pub struct Pdf;
 
-fn lecture_sheet(reports: &[&SceneReport]) -> Option<Sheet> {
-    crate::document::sheet(
-        reports
-            .iter()
-            .filter_map(|r| crate::document::problem(r))
-            .collect(),
-    )
+impl Renderer for Pdf {
+    fn render(
+        &self,
+        docs: &Documents,
+        cx: &Context,
+        out: &mut Rendered,
+    ) -> Result<(), RenderError> {
+        if ENABLED {
+            let sources = site_documents(docs, cx.course, &out.files)?;
+            out.typeset.extend(sources);
+        }
+        Ok(())
+    }
 }
 
 /// Every lecture's handouts, problem sheet and key. `site` holds the plots the instructor's
 /// handout shows.
 pub fn site_documents(
-    reports: &[SceneReport],
+    docs: &Documents,
     course: &Course,
     site: &SiteFiles,
 ) -> Result<Vec<PdfSource>, RenderError> {
-    let pages = crate::document::pages(reports);
     let mut out = Vec::new();
-    for (name, scenes) in lectures(reports, course) {
-        let slug = crate::scene::lecture_slug(&name);
-        let heading = course.lecture_heading(&name);
-        let sheet = lecture_sheet(&scenes);
-        let paths = lecture_pdfs(&slug, sheet.is_some(), course);
-        let chosen: Vec<&crate::document::Page> =
-            pages.iter().filter(|p| p.lecture == name).collect();
-        for instructor in [false, true] {
+    for lecture in &docs.lectures {
+        let heading = &lecture.heading;
+        let sheet = &lecture.sheet;
+        let paths = lecture_pdfs(&lecture.slug, sheet.is_some(), course);
+        for handout in &lecture.handouts {
+            let instructor = handout.instructor;
             let (title, right, path) = if instructor {
                 (
                     format!("{heading}: worked solutions and errata"),
@@ -105,16 +102,12 @@ pub fn site_documents(
             let mut m = Markup::new(preamble(
                 course,
                 &title,
-                &course_head(course, &heading),
+                &course_head(course, heading),
                 right,
             ));
             m.heading(1, &title)?;
-            // A student's handout leaves the problems to the problem sheet.
-            let shown: Vec<&crate::document::Page> = chosen
-                .iter()
-                .copied()
-                .filter(|p| instructor || p.answers.is_empty())
-                .collect();
+            let shown: Vec<&crate::document::Page> =
+                handout.pages.iter().map(|&i| &docs.pages[i]).collect();
             handout::handout(&mut m, &shown, instructor)?;
             let images = if instructor {
                 shown
@@ -130,7 +123,7 @@ pub fn site_documents(
             };
             out.push(m.source(path, images));
         }
-        if let (Some(sheet), Some((student, key))) = (&sheet, &paths.problems) {
+        if let (Some(sheet), Some((student, key))) = (sheet, &paths.problems) {
             let all: Vec<(usize, Option<&Student>)> =
                 (0..sheet.variants.len()).map(|k| (k, None)).collect();
             let head = format!("{} · {heading}: problem sheet", course.title);
@@ -182,21 +175,21 @@ pub enum RosterPapersError {
 /// `variants.csv` (name, id, lecture, variant, paper) for grading. Paths are relative to the
 /// papers' folder. Lecture `k`'s variants are dealt with the seed `seed + k`.
 pub fn roster_documents(
-    reports: &[SceneReport],
+    docs: &Documents,
     course: &Course,
     roster: &Roster,
     seed: u64,
 ) -> Result<(Vec<PdfSource>, Vec<u8>), RosterPapersError> {
     let mut sheets = Vec::new();
-    for (k, (name, scenes)) in lectures(reports, course).into_iter().enumerate() {
-        if let Some(sheet) = lecture_sheet(&scenes) {
+    for (k, lecture) in docs.lectures.iter().enumerate() {
+        if let Some(sheet) = &lecture.sheet {
             let given = crate::document::roster::assign(
                 roster,
-                &sheet,
-                &name,
+                sheet,
+                &lecture.name,
                 seed.wrapping_add(k as u64),
             )?;
-            sheets.push((name, sheet, given));
+            sheets.push((&lecture.name, sheet, given));
         }
     }
     if sheets.is_empty() {

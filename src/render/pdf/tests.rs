@@ -159,8 +159,13 @@ fn each_scenes_part_of_a_document_is_marked_with_its_line() {
     let scene = crate::scene::Scene::parse(BOX, std::path::Path::new("b.toml")).unwrap();
     let reports = [crate::pipeline::run_scene(scene, None).unwrap()];
     let course = Course::default();
-    let site = crate::render::site_files(&reports, &course, &Default::default(), false).unwrap();
-    let docs = super::site_documents(&reports, &course, &site).unwrap();
+    let documents = crate::document::course::documents(&reports, &course);
+    let cx = crate::render::Context {
+        course: &course,
+        templates: &Default::default(),
+        timings: false,
+    };
+    let docs = crate::render::render(&documents, &cx).unwrap().typeset;
     let marks: Vec<(&str, Vec<&str>)> = docs
         .iter()
         .map(|d| {

@@ -1,31 +1,13 @@
-//! Reports -> the site's files (HTML, CSS) through the Tera templates, as bytes in memory.
-//! Writing them is `site`'s job.
+//! The HTML renderer: the documents -> the site's pages, handouts, sheets, plots and style
+//! sheet through the Tera templates, as bytes in memory. Writing them is `site`'s job.
 
 use super::RenderError;
+use super::renderer::{Context, Rendered, Renderer, SiteFiles, TemplateTexts, add};
 use super::{PageView, page_view, plot, problems};
-use crate::document::{figure_file, page_file};
-use crate::pipeline::SceneReport;
+use crate::document::course::{Documents, Lecture};
 use crate::scene::Course;
 use serde::Serialize;
-use std::collections::BTreeMap;
 use std::path::PathBuf;
-
-/// The site as relative path -> contents, sorted: what `site` writes.
-pub type SiteFiles = BTreeMap<PathBuf, Vec<u8>>;
-
-/// Adds a file to the site; one that is already there is an error, never replaced.
-fn add(files: &mut SiteFiles, path: impl Into<PathBuf>, bytes: Vec<u8>) -> Result<(), RenderError> {
-    use std::collections::btree_map::Entry;
-    match files.entry(path.into()) {
-        Entry::Vacant(v) => {
-            v.insert(bytes);
-            Ok(())
-        }
-        Entry::Occupied(o) => Err(RenderError::Collision {
-            path: o.key().clone(),
-        }),
-    }
-}
 
 /// The templates, embedded as defaults; a user's folder overrides them file by file.
 const DEFAULTS: &[(&str, &str)] = &[
@@ -66,9 +48,6 @@ struct LectureView {
     pdf: Option<super::pdf::LecturePdfs>,
     pages: Vec<PageLink>,
 }
-
-/// A user's own templates: name -> text, each replacing the default of that name.
-pub type TemplateTexts = BTreeMap<String, String>;
 
 /// The template files a user's folder may replace, by name.
 pub fn template_names() -> impl Iterator<Item = &'static str> {
@@ -113,21 +92,16 @@ fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<Vec<u8>,
 fn problem_sheets(
     tera: &tera::Tera,
     course: &Course,
-    lecture: &str,
-    reports: &[&SceneReport],
+    docs: &Documents,
+    lecture: &Lecture,
     files: &mut SiteFiles,
 ) -> Result<Option<(String, Option<String>)>, RenderError> {
-    let Some(sheet) = crate::document::sheet(
-        reports
-            .iter()
-            .filter_map(|r| crate::document::problem(r))
-            .collect(),
-    ) else {
+    let Some(sheet) = &lecture.sheet else {
         return Ok(None);
     };
+    let slug = &lecture.slug;
+    let heading = &lecture.heading;
     let count = sheet.variants.len();
-    let slug = crate::scene::lecture_slug(lecture);
-    let heading = course.lecture_heading(lecture);
     let mut paths = Vec::new();
     for (kind, title) in [("student", "problem sheet"), ("key", "answer key")] {
         if kind == "key" && course.answers_private {
@@ -137,18 +111,22 @@ fn problem_sheets(
         ctx.insert("site", course);
         ctx.insert(
             "lecture",
-            &serde_json::json!({ "name": lecture, "heading": heading }),
+            &serde_json::json!({ "name": lecture.name, "heading": heading }),
         );
         ctx.insert(
             "problems",
-            &reports.iter().filter(|r| r.scene.problem.is_some()).count(),
+            &lecture
+                .pages
+                .iter()
+                .filter(|&&i| docs.is_problem(i))
+                .count(),
         );
         let mut css = problems::print_css(&course.title, &format!("{heading}: {title}"), count);
         // The student's sheet is built from statements and values alone: no answer reaches it.
         if kind == "student" {
-            ctx.insert("variants", &problems::student_sheet(&sheet)?);
+            ctx.insert("variants", &problems::student_sheet(sheet)?);
         } else {
-            let key = problems::answer_key(&sheet)?;
+            let key = problems::answer_key(sheet)?;
             if !key.shared.is_empty() {
                 css.push_str(&problems::shared_css(count));
             }
@@ -171,118 +149,117 @@ fn problem_sheets(
     Ok(Some((paths[0].clone(), paths.get(1).cloned())))
 }
 
-/// Every file of the site: index, one page per scene, its plots, two handouts per lecture, the
-/// stylesheet.
-pub fn site_files(
-    reports: &[SceneReport],
-    course: &Course,
-    template_overrides: &TemplateTexts,
-    timings: bool,
-) -> Result<SiteFiles, RenderError> {
-    let (tera, css) = templates(template_overrides)?;
-    let mut files = SiteFiles::new();
-    add(&mut files, PathBuf::from("style.css"), css.into_bytes())?;
+/// The site's HTML: index, one page per scene, its plots, two handouts per lecture, each
+/// lecture's problem sheet and key, the style sheet.
+pub struct Html;
+
+impl Renderer for Html {
+    fn render(
+        &self,
+        docs: &Documents,
+        cx: &Context,
+        out: &mut Rendered,
+    ) -> Result<(), RenderError> {
+        html(docs, cx, out)
+    }
+}
+
+fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), RenderError> {
+    let course = cx.course;
+    let files = &mut out.files;
+    let (tera, css) = templates(cx.templates)?;
+    add(files, PathBuf::from("style.css"), css.into_bytes())?;
+    for (i, file, fig) in &docs.figures {
+        let svg = plot::svg(fig).map_err(|e| e.in_scene(&docs.pages[*i].source))?;
+        add(files, PathBuf::from(file), svg.into_bytes())?;
+    }
     let mut pages: Vec<PageView> = Vec::new();
-    for (r, page) in reports.iter().zip(crate::document::pages(reports)) {
-        let view = page_view(&page, timings).map_err(|e| e.in_scene(&page.source))?;
-        for fig in &r.figures {
-            let svg = plot::svg(fig).map_err(|e| e.in_scene(&page.source))?;
-            add(
-                &mut files,
-                PathBuf::from(figure_file(r, fig)),
-                svg.into_bytes(),
-            )?;
-        }
+    for (page, file) in docs.pages.iter().zip(&docs.files) {
+        let view = page_view(page, cx.timings).map_err(|e| e.in_scene(&page.source))?;
         let mut ctx = tera::Context::new();
         ctx.insert("site", course);
         ctx.insert("page", &view);
         ctx.insert("lecture_heading", &course.lecture_heading(&view.lecture));
-        add(
-            &mut files,
-            PathBuf::from(page_file(r)),
-            render(&tera, "page.html", &ctx)?,
-        )?;
+        let bytes = render(&tera, "page.html", &ctx)?;
+        out.notes.extend(phone_scaled(page, &bytes));
+        add(files, PathBuf::from(file), bytes)?;
         pages.push(view);
     }
-    // Lectures in the course's order: as mechbook.toml lists them, the rest as they appear.
     let mut lectures: Vec<LectureView> = Vec::new();
-    for (name, idx) in &super::lectures(reports, course) {
-        let slug = crate::scene::lecture_slug(name);
-        for instructor in [false, true] {
+    for lecture in &docs.lectures {
+        let slug = &lecture.slug;
+        for handout in &lecture.handouts {
             let mut ctx = tera::Context::new();
             ctx.insert("site", course);
             ctx.insert(
                 "lecture",
-                &serde_json::json!({ "name": name, "heading": course.lecture_heading(name) }),
+                &serde_json::json!({ "name": lecture.name, "heading": lecture.heading }),
             );
-            ctx.insert("instructor", &instructor);
-            // A student's handout leaves the problems to the problem sheet.
-            let chosen: Vec<&PageView> = idx
-                .iter()
-                .filter(|&&i| instructor || reports[i].scene.problem.is_none())
-                .map(|&i| &pages[i])
-                .collect();
+            ctx.insert("instructor", &handout.instructor);
+            let chosen: Vec<&PageView> = handout.pages.iter().map(|&i| &pages[i]).collect();
             ctx.insert("pages", &chosen);
-            let kind = if instructor { "instructor" } else { "student" };
+            let kind = handout.kind();
             ctx.insert(
                 "pdf",
                 &super::pdf::ENABLED.then(|| format!("pdf/{slug}-{kind}.pdf")),
             );
-            let file = format!(
-                "handouts/{slug}-{}.html",
-                if instructor { "instructor" } else { "student" }
-            );
             add(
-                &mut files,
-                PathBuf::from(file),
+                files,
+                PathBuf::from(format!("handouts/{slug}-{kind}.html")),
                 render(&tera, "handout.html", &ctx)?,
             )?;
         }
-        let chosen: Vec<&SceneReport> = idx.iter().map(|&i| &reports[i]).collect();
-        let problems = problem_sheets(&tera, course, name, &chosen, &mut files)?;
+        let problems = problem_sheets(&tera, course, docs, lecture, files)?;
         lectures.push(LectureView {
-            name: name.clone(),
-            heading: course.lecture_heading(name),
+            name: lecture.name.clone(),
+            heading: lecture.heading.clone(),
             student: format!("handouts/{slug}-student.html"),
             instructor: format!("handouts/{slug}-instructor.html"),
             pdf: super::pdf::ENABLED
-                .then(|| super::pdf::lecture_pdfs(&slug, problems.is_some(), course)),
+                .then(|| super::pdf::lecture_pdfs(slug, problems.is_some(), course)),
             problems,
-            pages: idx
+            pages: lecture
+                .pages
                 .iter()
                 .map(|&i| {
                     Ok(PageLink {
-                        href: page_file(&reports[i]),
+                        href: docs.files[i].clone(),
                         title: pages[i].title.clone(),
                         title_html: super::author_html(&pages[i].title)?,
                         errata: pages[i].errata,
-                        problem: reports[i].scene.problem.is_some(),
+                        problem: docs.is_problem(i),
                     })
                 })
                 .collect::<Result<_, RenderError>>()?,
         });
     }
-    // Moodle's quizzes hold every variant's answers: not in a site whose answers are private.
-    for r in reports.iter().filter(|_| !course.answers_private) {
-        let solution =
-            (!course.base_url.is_empty()).then(|| format!("{}/{}", course.base_url, page_file(r)));
-        if let Some(xml) =
-            crate::document::problem(r).map(|p| super::moodle::quiz(&p, solution.as_deref()))
-        {
-            add(
-                &mut files,
-                PathBuf::from(format!("export/moodle/{}.xml", r.scene.id)),
-                xml.into_bytes(),
-            )?;
-        }
-    }
     let mut ctx = tera::Context::new();
     ctx.insert("site", course);
     ctx.insert("lectures", &lectures);
     add(
-        &mut files,
+        files,
         PathBuf::from("index.html"),
         render(&tera, "index.html", &ctx)?,
     )?;
-    Ok(files)
+    Ok(())
+}
+
+/// What the build says of a page whose formulas a phone sets smaller to fit: each such formula
+/// (its first characters) and its size, read from the page as written (`math::scaled`).
+fn phone_scaled(page: &crate::document::Page, html: &[u8]) -> Option<String> {
+    let html = String::from_utf8_lossy(html);
+    let scaled = super::math::scaled_formulas(&html);
+    if scaled.is_empty() {
+        return None;
+    }
+    let list: Vec<String> = scaled
+        .iter()
+        .map(|(percent, text)| format!("{percent} % `{text}`"))
+        .collect();
+    Some(format!(
+        "{}: on phones {} formula piece(s) are set smaller to fit their line: {}",
+        page.source.display(),
+        scaled.len(),
+        list.join(", ")
+    ))
 }

@@ -1,0 +1,59 @@
+//! The renderers' interface: each output format prints the course's documents
+//! ([`Documents`]) behind one trait, as mdBook's renderers each take one context. A new format
+//! is a file with a [`Renderer`] and a line in `RENDERERS` (`render/mod.rs`).
+
+use super::{RenderError, pdf::PdfSource};
+use crate::document::course::Documents;
+use crate::scene::Course;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// The site as relative path -> contents, sorted: what `site` writes.
+pub type SiteFiles = BTreeMap<PathBuf, Vec<u8>>;
+
+/// A user's own templates: name -> text, each replacing the default of that name.
+pub type TemplateTexts = BTreeMap<String, String>;
+
+/// Adds a file to the site; one that is already there is an error, never replaced.
+pub fn add(
+    files: &mut SiteFiles,
+    path: impl Into<PathBuf>,
+    bytes: Vec<u8>,
+) -> Result<(), RenderError> {
+    use std::collections::btree_map::Entry;
+    match files.entry(path.into()) {
+        Entry::Vacant(v) => {
+            v.insert(bytes);
+            Ok(())
+        }
+        Entry::Occupied(o) => Err(RenderError::Collision {
+            path: o.key().clone(),
+        }),
+    }
+}
+
+/// What every renderer is given besides the documents.
+pub struct Context<'a> {
+    pub course: &'a Course,
+    /// The user's own templates, by name (the HTML's).
+    pub templates: &'a TemplateTexts,
+    /// Measured seconds in the numeric tables.
+    pub timings: bool,
+}
+
+/// What the renderers made: the site's files, the documents Typst is to set (`site` typesets
+/// and caches them), and what the build should tell the user.
+#[derive(Default)]
+pub struct Rendered {
+    pub files: SiteFiles,
+    pub typeset: Vec<PdfSource>,
+    pub notes: Vec<String>,
+}
+
+/// One output format.
+pub trait Renderer: Sync {
+    /// Prints the documents into `out`. A renderer may read what those before it made (the
+    /// PDFs take the HTML's plots).
+    fn render(&self, docs: &Documents, cx: &Context, out: &mut Rendered)
+    -> Result<(), RenderError>;
+}
