@@ -5,7 +5,8 @@
 use super::latex::{Node, Tex, TexError, cells, relation_text};
 use crate::base::typst::typst_string;
 use pulldown_latex::event::{
-    Content, DimensionUnit, Font, Grouping, ScriptPosition, ScriptType, StateChange, Style, Visual,
+    Content, DelimiterSize, DimensionUnit, Font, Grouping, ScriptPosition, ScriptType, StateChange,
+    Style, Visual,
 };
 
 /// Operator names Typst's math knows by the same name; any other is `op("…")`.
@@ -158,6 +159,20 @@ fn atom(c: &Content<'static>) -> String {
         Content::BinaryOp { content, .. } | Content::Punctuation(content) => character(content),
         Content::Relation { content, .. } => {
             relation_text(&content).chars().map(character).collect()
+        }
+        // `\Bigl(`: the delimiter at LaTeX's size for it, as the pages' MathML sets it.
+        Content::Delimiter {
+            content,
+            size: Some(size),
+            ..
+        } => {
+            let em = match size {
+                DelimiterSize::Big => "1.2",
+                DelimiterSize::BIG => "1.8",
+                DelimiterSize::Bigg => "2.4",
+                DelimiterSize::BIGG => "3",
+            };
+            format!("lr({}, size: #{em}em)", character(content))
         }
         Content::Delimiter { content, .. } => character(content),
         Content::Text(_) | Content::Number(_) | Content::Function(_) => String::new(),
@@ -390,6 +405,15 @@ mod tests {
     fn t(latex: &str) -> String {
         let s = latex_to_typst(latex).unwrap_or_else(|e| panic!("{latex}: {e}"));
         s.split_whitespace().collect::<Vec<_>>().join(" ")
+    }
+
+    /// `\Bigl(` keeps LaTeX's size in the PDF (it was set at the body's size).
+    #[test]
+    fn a_sized_bracket_keeps_its_size() {
+        assert_eq!(
+            t(r"\Bigl( b \Bigr) \bigl[ c \bigr]"),
+            r"lr(\(, size: #1.8em) b lr(\), size: #1.8em) lr(\[, size: #1.2em) c lr(\], size: #1.2em)"
+        );
     }
 
     #[test]
