@@ -24,15 +24,28 @@ impl Expr {
         self.typst_in(&|_| None, Layout::Breakable)
     }
 
-    /// Typst with its fractions on the line (`a\/2`), for an integral's limits: a fraction
-    /// there is set at half the body's size.
+    /// Typst for an integral's limit: its fractions on the line (`a\/2`), where a fraction
+    /// would be set at half the body's size, and its exponents at the limit's own size (a
+    /// script's script is half the body, too small to read on paper).
     pub fn to_typst_on_the_line(&self) -> String {
-        self.typst_in(&|_| None, Layout::OnTheLine)
+        let mut s = String::new();
+        let style = Typst {
+            named: &|_| None,
+            layout: Layout::OnTheLine,
+            limit: true,
+        };
+        write(self, &mut s, Prec::Sum, &style);
+        s
     }
 
     fn typst_in(&self, named: &dyn Fn(&str) -> Option<String>, layout: Layout) -> String {
         let mut s = String::new();
-        write(self, &mut s, Prec::Sum, &Typst { named, layout });
+        let style = Typst {
+            named,
+            layout,
+            limit: false,
+        };
+        write(self, &mut s, Prec::Sum, &style);
         s
     }
 }
@@ -130,6 +143,8 @@ fn slashed(r: &Rational) -> String {
 struct Typst<'a> {
     named: &'a dyn Fn(&str) -> Option<String>,
     layout: Layout,
+    /// In an integral's limit: exponents are set in the script style (`script(2)`).
+    limit: bool,
 }
 
 impl Typst<'_> {
@@ -139,6 +154,7 @@ impl Typst<'_> {
         Typst {
             named: self.named,
             layout: Layout::OnTheLine,
+            limit: self.limit,
         }
     }
 
@@ -355,7 +371,7 @@ impl Style for Typst<'_> {
             return;
         }
         write(a, out, Prec::Power, self);
-        out.push_str("^(");
+        out.push_str(if self.limit { "^(script(" } else { "^(" });
         match b {
             // A fractional exponent on the line, as textbooks write it: x^(3/2).
             Expr::Num(r) if !r.is_integer() => {
@@ -366,7 +382,7 @@ impl Style for Typst<'_> {
             }
             _ => write(b, out, Prec::Sum, self),
         }
-        out.push(')');
+        out.push_str(if self.limit { "))" } else { ")" });
     }
     fn call(&self, n: &str, args: &[Expr], out: &mut String) {
         if n == "sqrt" && args.len() == 1 {
@@ -513,7 +529,11 @@ mod tests {
         assert_eq!(line("(a + b)/(2*c)"), "(a + b)\\/(2 c)");
         assert_eq!(line("pi*R"), "π R");
         // A rational that is a factor or a base keeps its brackets.
-        assert_eq!(line("(3/5)^(3/2)"), "(3\\/5)^(3\\/2)");
+        assert_eq!(line("(3/5)^(3/2)"), "(3\\/5)^(script(3\\/2))");
+        // An exponent in a limit at the limit's size, not half the body's (tests/course's
+        // h r²/R² was set at 50 %); elsewhere as written.
+        assert_eq!(line("h*r^2/R^2"), "h r^(script(2))\\/R^(script(2))");
+        assert_eq!(parse("r^2").unwrap().expr.to_typst(), "r^(2)");
     }
 
     /// Inside a fraction, a fraction goes on the line, as textbooks write it: Typst would set

@@ -5,6 +5,7 @@
 use super::RenderError;
 use crate::model::figure::{Figure, Legend, Mark, Scale};
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 const SIZE: (u32, u32) = (720, 440);
 const PALETTE: [RGBColor; 6] = [
@@ -83,6 +84,9 @@ pub fn svg(fig: &Figure) -> Result<String, RenderError> {
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 
+/// A y-axis label of at most this many characters is set upright.
+const UPRIGHT_LABEL: usize = 2;
+
 fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
     let ((x0, x1), (y0, y1)) = fig.bounds().ok_or("the figure has no finite points")?;
@@ -112,9 +116,14 @@ fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>>
         let xf = |v: &f64| tick(*v, xs);
         let yf = |v: &f64| tick(*v, ys);
         let decades = |(a, b): (f64, f64)| ((b - a).round() as usize + 1).clamp(2, 12);
+        // A label of a letter or two (ω) is set upright beside the axis below: turned on its
+        // side it reads as another letter.
+        let upright = fig.y_label.chars().count() <= UPRIGHT_LABEL;
         let mut mesh = chart.configure_mesh();
+        if !upright {
+            mesh.y_desc(fig.y_label.as_str());
+        }
         mesh.x_desc(fig.x_label.as_str())
-            .y_desc(fig.y_label.as_str())
             .x_label_formatter(&xf)
             .y_label_formatter(&yf)
             .label_style(("sans-serif", 13).into_font().color(&BLACK))
@@ -128,6 +137,17 @@ fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>>
             mesh.y_labels(decades(yr));
         }
         mesh.draw()?;
+        if upright {
+            let (_, rows) = chart.plotting_area().get_pixel_range();
+            root.draw(&Text::new(
+                fig.y_label.clone(),
+                (16, (rows.start + rows.end) / 2),
+                ("sans-serif", 14)
+                    .into_font()
+                    .color(&BLACK)
+                    .pos(Pos::new(HPos::Left, VPos::Center)),
+            ))?;
+        }
     }
     for s in &fig.series {
         let colour = PALETTE[s.colour % PALETTE.len()];
