@@ -62,9 +62,10 @@ fn span_notation(span: AngleSpan) -> &'static str {
 }
 
 /// `I_xy = ∫_{lo}^{hi} … f dx dy = result`: the limits outermost first, the differentials
-/// innermost first; `lhs` in the notation of [`Formula::parse`].
+/// innermost first. `lhs` is a tree, never notation text: an author's step name (`Ix`,
+/// `I1cone`) is a symbol, printed by the symbol printers on the page and in the PDF alike.
 pub(super) fn integral_formula(
-    lhs: &str,
+    lhs: Formula,
     integrand: &Expr,
     domain: &[Integral],
     result: &Expr,
@@ -74,7 +75,7 @@ pub(super) fn integral_formula(
         exprs.push(e.clone());
         format!("${}", exprs.len() - 1)
     };
-    let mut notation = format!("{lhs} = ");
+    let mut notation = String::new();
     for i in domain.iter().rev() {
         let (lo, hi) = match i {
             Integral::Poly { lo, hi, .. } => (put(lo), put(hi)),
@@ -90,7 +91,11 @@ pub(super) fn integral_formula(
         notation.push_str(&format!(" ~ d {}", put(&Expr::sym(var))));
     }
     notation.push_str(" = $1");
-    Formula::parse(&notation, &exprs)
+    Formula::Row(vec![
+        lhs,
+        Formula::Op(crate::notation::Op::Equals),
+        Formula::parse(&notation, &exprs),
+    ])
 }
 
 fn why_integrate(domain: &[Integral]) -> Prose {
@@ -210,7 +215,7 @@ fn body_part(
                 d.steps.push(Step::note(
                     &format!("{label}: {name}"),
                     integral_formula(
-                        &format!("{}_{}", &name[..1], &name[1..]),
+                        Formula::parse(&format!("{}_{}", &name[..1], &name[1..]), &[]),
                         &integrands[k],
                         &c.domain,
                         &results[k + 1],

@@ -271,7 +271,10 @@ fn derive_step(
             let over = expand_ranges(scene, d, step, over)?;
             let (value, domain) = super::integral::integral(&f, &over)?;
             *shown = Some(super::inertia::integral_formula(
-                &step.name, &f, &domain, &value,
+                Formula::Expr(Expr::sym(&step.name)),
+                &f,
+                &domain,
+                &value,
             ));
             StepResult::Expr(value)
         }

@@ -318,3 +318,34 @@ fn a_quantity_is_set_once_by_its_kind_and_only_if_catalogued() {
         matches!(unknown, Err(DeriveError::Inconsistent(m)) if m.contains("not in the catalogue"))
     );
 }
+
+/// An author's integration step is shown under its own name as a symbol, so the page's LaTeX
+/// and the PDF's Typst print it alike (`Ix` was italic "Ix" on the page and upright in the
+/// PDF; `I1cone` was a product of letters on the page).
+#[test]
+fn an_integration_steps_name_prints_alike_on_the_page_and_in_the_pdf() {
+    for (name, latex, typst) in [
+        ("Ix", "I_{x} = ", "I_(x) = "),
+        ("I1cone", "I_{1cone} = ", "I_(1 c o n e) = "),
+    ] {
+        let text = format!(
+            "id = \"t\"\ntitle = \"t\"\nnotes = {{ lecture = \"x\" }}\nsymbols = {{ M = \"mass\", R = \"radius\" }}\n\
+             [[step]]\nname = \"{name}\"\nintegrate = \"M*r\"\nover = [[\"r\", \"0\", \"R\"]]\nwhy = \"w\"\n\
+             [numeric]\nvalues = {{ M = 1.0, R = 1.0 }}\n"
+        );
+        let scene = Scene::parse(&text, Path::new("t.toml")).unwrap_or_else(|e| panic!("{e}"));
+        let report = run_scene(scene, None).unwrap();
+        let step = report
+            .derivation
+            .steps
+            .iter()
+            .find(|s| s.statement.to_latex().contains("\\int"))
+            .expect("the integral's step");
+        let (l, t) = (
+            step.statement.to_latex(),
+            step.statement.to_typst().unwrap(),
+        );
+        assert!(l.starts_with(latex), "{l}");
+        assert!(t.starts_with(typst), "{t}");
+    }
+}
