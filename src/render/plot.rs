@@ -1,5 +1,5 @@
 //! Figure -> SVG text with plotters. Log axes are drawn as linear axes over log10 of the data with
-//! `1e-k` tick labels, so one code path serves every combination of scales. The plot area is
+//! `10⁻ᵏ` tick labels, so one code path serves every combination of scales. The plot area is
 //! white with dark ink, so it reads the same on a light or a dark page and on paper.
 
 use super::RenderError;
@@ -47,15 +47,33 @@ fn padded(lo: f64, hi: f64, s: Scale) -> (f64, f64) {
 
 fn tick(v: f64, s: Scale) -> String {
     match s {
-        Scale::Log if (v - v.round()).abs() < 1e-9 => format!("1e{}", v.round() as i64),
+        // A power of ten as a textbook prints it: 10⁻³, not 1e-3.
+        Scale::Log if (v - v.round()).abs() < 1e-9 => {
+            let superscript: String = (v.round() as i64)
+                .to_string()
+                .chars()
+                .map(|c| match c {
+                    '-' => '⁻',
+                    d => SUPERSCRIPT_DIGITS[d.to_digit(10).unwrap_or(0) as usize],
+                })
+                .collect();
+            format!("10{superscript}")
+        }
         Scale::Log => String::new(),
         Scale::Linear => {
             let t = format!("{v:.3}");
             let t = t.trim_end_matches('0').trim_end_matches('.');
-            if t == "-0" { "0".into() } else { t.into() }
+            // A minus sign, not a hyphen.
+            if t == "-0" {
+                "0".into()
+            } else {
+                t.replace('-', "−")
+            }
         }
     }
 }
+
+const SUPERSCRIPT_DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
 
 /// Draws the figure; the result always starts with `<svg` and carries `<title>` and `<desc>`.
 pub fn svg(fig: &Figure) -> Result<String, RenderError> {
@@ -251,7 +269,10 @@ mod tests {
         assert!(a.contains("<desc>Falls as 1/n².</desc>"));
         // Five markers plus the legend's one.
         assert_eq!(a.matches("<circle").count(), 6);
-        assert!(a.contains("1e-4"), "log ticks are labelled by decade");
+        // Log ticks are labelled by decade, as powers of ten; a minus is a minus sign.
+        assert!(a.contains("10⁻⁴") && !a.contains("1e-4"), "{a}");
+        assert_eq!(tick(-0.25, Scale::Linear), "−0.25");
+        assert_eq!(tick(3.0, Scale::Log), "10³");
         assert!(a.contains("\nn = 10\n</text>"), "{a}");
         assert_eq!(a, svg(&fig()).unwrap());
     }
