@@ -172,7 +172,8 @@ pub(super) trait Style {
         false
     }
     /// What stands between a sum's common factor and the sum's parentheses: a space (c (a + b)).
-    fn before_factored_sum(&self, _factor: &Expr) -> &'static str {
+    /// `printed` is the factor as just written.
+    fn before_factored_sum(&self, _factor: &Expr, _printed: &str) -> &'static str {
         " "
     }
     fn list(&self, v: &[Expr], out: &mut String);
@@ -194,8 +195,10 @@ pub(super) fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
                     out.push('-');
                 }
                 if !factor.is_one() {
+                    let start = out.len();
                     write(&factor, out, Prec::Product, style);
-                    out.push_str(style.before_factored_sum(&factor));
+                    let joint = style.before_factored_sum(&factor, &out[start..]);
+                    out.push_str(joint);
                 }
                 out.push_str(style.open());
                 write(&Expr::Add(rest), out, Prec::Sum, style);

@@ -240,18 +240,14 @@ impl Style for Typst<'_> {
     /// the line may break: the bar is one piece that Typst cannot break, and with the sum's
     /// first term after it the piece may be wider than the line. (A short one, `frac(M, 12)`,
     /// keeps the plain product.)
-    fn before_factored_sum(&self, factor: &Expr) -> &'static str {
+    fn before_factored_sum(&self, factor: &Expr, printed: &str) -> &'static str {
         let barred = match factor {
             Expr::Mul(v) => !page_fraction(v).1.is_empty(),
             Expr::Pow(_, x) => matches!(x.as_ref(), Expr::Num(r) if r.is_negative()),
             _ => false,
         };
-        let long = || {
-            let mut printed = String::new();
-            write(factor, &mut printed, Prec::Product, self);
-            printed.chars().count() > LONG_FACTOR
-        };
-        if self.layout == Layout::Breakable && barred && long() {
+        let long = printed.chars().count() > LONG_FACTOR;
+        if self.layout == Layout::Breakable && barred && long {
             " dot.op "
         } else {
             " "

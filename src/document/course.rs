@@ -74,7 +74,7 @@ pub fn documents<'a>(reports: &'a [SceneReport], course: &Course) -> Documents<'
         .enumerate()
         .filter_map(|(i, r)| Some((i, problem(r)?)))
         .collect();
-    let is_problem = |i: usize| reports[i].scene.problem.is_some();
+    let is_problem = |i: usize| problems.iter().any(|(j, _)| *j == i);
     let lectures = lecture_order(reports, course)
         .into_iter()
         .map(|(name, scenes)| {

@@ -527,7 +527,8 @@ fn wide_formulas_are_broken_not_shrunk() {
         let notes: Vec<&str> = said.lines().filter(|l| l.contains("on phones")).collect();
         for note in &notes {
             // Each size stands before " % ".
-            for part in note.split(" % ").collect::<Vec<_>>().iter().rev().skip(1) {
+            let parts: Vec<&str> = note.split(" % ").collect();
+            for part in &parts[..parts.len() - 1] {
                 let p: u32 = part.rsplit(' ').next().unwrap().parse().unwrap();
                 assert!((85..100).contains(&p), "{note}");
             }
