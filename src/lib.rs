@@ -15,7 +15,9 @@
 //! - `verify`: symbolic vs numeric vs the notes' claims -> verdicts.
 //! - `pipeline`: runs the stages for one scene, and the build cache's orchestration.
 //! - `document`: the format-neutral view of a scene's page that every printer reads.
-//! - `report` (terminal, JSON) and `render` (HTML, MathML, SVG in memory): its printers.
+//! - `render`: the documents' printers, siblings behind one trait: HTML (MathML, SVG), Moodle,
+//!   the JSON report, PDF (Typst sources), all in memory.
+//! - `report`: `check`'s and `derive`'s terminal summaries and `check --json`.
 //! - `site`: the only code that writes files (the site, a new course, a blessed scene).
 //! - `serve`: the HTTP server of `mechbook serve`; it reads the written site.
 //! - `cli`: one file per command.
@@ -44,6 +46,7 @@ pub mod pipeline;
 pub mod document;
 
 pub mod render;
+
 pub mod report;
 
 pub mod site;

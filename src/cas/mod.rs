@@ -15,9 +15,10 @@ mod parse;
 mod polynomial;
 mod positive;
 mod print;
+mod print_latex;
 mod print_typst;
 mod symbol_latex;
-pub use symbol_latex::{SymbolTex, greek_letter, typeset_as};
+pub use symbol_latex::{Head, NameForm, SymbolTex, greek_letter, name_form, typeset_as};
 mod radical;
 mod rational;
 mod size;
@@ -27,7 +28,12 @@ pub use angles::{Zero, Zeros};
 pub use closed_form::NoClosedForm;
 pub use engine::{EngineError, MAX_DEGREE, MAX_TERMS};
 pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
+/// The layout decisions every printer of an expression shares (where a product's fraction bar
+/// goes, a term's sign, an index chain's axes, a sum's common factor), for the tree printer in
+/// `notation`.
+pub use factor::common_factor;
 pub use parse::{ParseError, Parsed, parse, parse_input};
+pub use print::{Prec, index_chain, page_fraction, split_sign};
 pub use radical::pull_squares;
 pub use rational::Rational;
 pub use size::ExpansionSize;

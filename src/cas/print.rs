@@ -1,11 +1,11 @@
 //! Printing an expression: one walk over the tree, shared by the plain text the parser and the
-//! engine read back and the LaTeX the pages show. The walk decides what both agree on (signs in
-//! sums, negative products, where parentheses go); a [`Style`] writes each node's own syntax.
+//! engine read back, LaTeX (`print_latex.rs`) and Typst (`print_typst.rs`). The walk decides what
+//! they agree on (signs in sums, negative products, where parentheses go); a [`Style`] writes
+//! each node's own syntax. The pages' tree (`notation/expr_tree.rs`) follows the same walk.
 
 use super::expr::Expr;
 use super::factor::common_factor;
 use super::rational::Rational;
-use super::symbol_latex::latex_symbol;
 use std::fmt;
 
 impl Expr {
@@ -20,18 +20,6 @@ impl Expr {
         write(self, &mut s, Prec::Sum, &Text { rename });
         s
     }
-
-    pub fn to_latex(&self) -> String {
-        self.to_latex_named(&|_| None)
-    }
-
-    /// LaTeX with some symbols given a symbol of their own: a claim's `inertia_tensor[0][1]`
-    /// prints as I_{xy} when `named("inertia_tensor")` is `I`.
-    pub fn to_latex_named(&self, named: &dyn Fn(&str) -> Option<&'static str>) -> String {
-        let mut s = String::new();
-        write(self, &mut s, Prec::Sum, &Latex { named });
-        s
-    }
 }
 
 impl fmt::Display for Expr {
@@ -41,7 +29,7 @@ impl fmt::Display for Expr {
 }
 
 #[derive(Clone, Copy, PartialEq, PartialOrd)]
-pub(super) enum Prec {
+pub enum Prec {
     Sum,
     Product,
     /// A factor of a product.
@@ -70,7 +58,7 @@ fn split_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
 
 /// A product as the pages set it: negative powers and the denominators of rationals below one
 /// fraction bar, the rest above it.
-pub(super) fn page_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
+pub fn page_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
     let (mut num, mut den) = (Vec::new(), Vec::new());
     for f in v {
         match f {
@@ -118,7 +106,7 @@ pub(super) fn page_factors(fs: &[Expr], times: &str, out: &mut String, style: &d
 
 /// An index chain `v[0][2]`: its base and its indices in the order written; and, when they are all
 /// 0, 1 or 2, the axes they name (`xz`).
-pub(super) fn index_chain(e: &Expr) -> (&Expr, Vec<&Expr>, Option<Vec<char>>) {
+pub fn index_chain(e: &Expr) -> (&Expr, Vec<&Expr>, Option<Vec<char>>) {
     let mut indices = Vec::new();
     let mut base = e;
     while let Expr::Index(b, i) = base {
@@ -140,7 +128,7 @@ pub(super) fn index_chain(e: &Expr) -> (&Expr, Vec<&Expr>, Option<Vec<char>>) {
 }
 
 /// A term of a sum printed with its sign: `(negative, magnitude)`.
-pub(super) fn split_sign(e: &Expr) -> (bool, Expr) {
+pub fn split_sign(e: &Expr) -> (bool, Expr) {
     match e {
         Expr::Num(r) if r.is_negative() => (true, Expr::Num(r.negated())),
         Expr::Mul(v) => match v.first() {
@@ -350,218 +338,5 @@ impl Style for Text<'_> {
         out.push('[');
         write(i, out, Prec::Sum, self);
         out.push(']');
-    }
-}
-
-/// LaTeX for the pages (converted to MathML at build time).
-struct Latex<'a> {
-    named: &'a dyn Fn(&str) -> Option<&'static str>,
-}
-
-impl Latex<'_> {
-    /// The claim language's vector and matrix functions in their usual notation: a · b, a × b,
-    /// f gᵀ, Aᵀ, 𝟙, R_z(ψ), ∂f/∂x, f|ₓ₌ᵥ. Returns false for any other call.
-    fn claim_call(&self, n: &str, args: &[Expr], out: &mut String) -> bool {
-        let put = |e: &Expr, ctx: Prec, out: &mut String| write(e, out, ctx, self);
-        match (n, args) {
-            ("dot" | "cross", [a, b]) => {
-                put(a, Prec::Factor, out);
-                out.push_str(if n == "dot" { " \\cdot " } else { " \\times " });
-                put(b, Prec::Factor, out);
-            }
-            ("outer", [a, b]) => {
-                put(a, Prec::Power, out);
-                out.push_str("\\, ");
-                put(b, Prec::Power, out);
-                out.push_str("^{T}");
-            }
-            ("transpose", [a]) => {
-                put(a, Prec::Power, out);
-                out.push_str("^{T}");
-            }
-            ("eye", []) => out.push_str("\\mathbb{1}"),
-            ("rot_x" | "rot_y" | "rot_z", [angle]) => {
-                out.push_str(&format!("R_{{{}}}\\left(", &n[4..]));
-                put(angle, Prec::Sum, out);
-                out.push_str("\\right)");
-            }
-            ("diff", [f, x]) => {
-                out.push_str("\\frac{\\partial}{\\partial ");
-                put(x, Prec::Power, out);
-                out.push('}');
-                put(f, Prec::Power, out);
-            }
-            ("subs", [f, x, v]) => {
-                out.push_str("\\left.");
-                put(f, Prec::Sum, out);
-                out.push_str("\\right|_{");
-                put(x, Prec::Sum, out);
-                out.push_str(" = ");
-                put(v, Prec::Sum, out);
-                out.push('}');
-            }
-            _ => return false,
-        }
-        true
-    }
-}
-
-impl Style for Latex<'_> {
-    fn factors_sums(&self) -> bool {
-        true
-    }
-    fn open(&self) -> &'static str {
-        "\\left("
-    }
-    fn close(&self) -> &'static str {
-        "\\right)"
-    }
-    fn symbol(&self, name: &str, out: &mut String) {
-        match (self.named)(name) {
-            Some(symbol) => out.push_str(symbol),
-            None => out.push_str(&latex_symbol(name)),
-        }
-    }
-    fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
-        let body = if r.is_integer() {
-            r.to_string()
-        } else {
-            let (num, den) = r.abs_parts();
-            format!("\\frac{{{num}}}{{{den}}}")
-        };
-        let negative = r.is_negative();
-        if negative && ctx > Prec::Sum {
-            out.push_str("\\left(");
-        }
-        if negative && !r.is_integer() {
-            out.push('-');
-        }
-        out.push_str(&body);
-        if negative && ctx > Prec::Sum {
-            out.push_str("\\right)");
-        }
-    }
-    fn product(&self, v: &[Expr], ctx: Prec, out: &mut String) {
-        let (num, den) = page_fraction(v);
-        if ctx > Prec::Product {
-            out.push_str("\\left(");
-        }
-        let write_factors = |fs: &[Expr], out: &mut String| page_factors(fs, " \\cdot ", out, self);
-        if den.is_empty() {
-            write_factors(&num, out);
-        } else {
-            out.push_str("\\frac{");
-            write_factors(&num, out);
-            out.push_str("}{");
-            write_factors(&den, out);
-            out.push('}');
-        }
-        if ctx > Prec::Product {
-            out.push_str("\\right)");
-        }
-    }
-    fn power(&self, a: &Expr, b: &Expr, _ctx: Prec, out: &mut String) {
-        if let Expr::Num(r) = b {
-            if *r == Rational::new(1, 2).unwrap() {
-                out.push_str("\\sqrt{");
-                write(a, out, Prec::Sum, self);
-                out.push('}');
-                return;
-            }
-            if r.is_negative() {
-                out.push_str("\\frac{1}{");
-                write(
-                    &Expr::pow(a.clone(), Expr::Num(r.negated())),
-                    out,
-                    Prec::Sum,
-                    self,
-                );
-                out.push('}');
-                return;
-            }
-        }
-        // sin(x)^2 prints as {\sin}^{2}(x): the braces keep the converter's MathML valid.
-        if let Expr::Call(n, args) = a
-            && (n == "sin" || n == "cos")
-        {
-            out.push_str(&format!("\\,{{\\{n}}}^{{"));
-            write(b, out, Prec::Sum, self);
-            out.push_str("}\\left(");
-            write(&args[0], out, Prec::Sum, self);
-            out.push_str("\\right)");
-            return;
-        }
-        write(a, out, Prec::Power, self);
-        out.push_str("^{");
-        write(b, out, Prec::Sum, self);
-        out.push('}');
-    }
-    fn call(&self, n: &str, args: &[Expr], out: &mut String) {
-        if n == "sqrt" && args.len() == 1 {
-            out.push_str("\\sqrt{");
-            write(&args[0], out, Prec::Sum, self);
-            out.push('}');
-            return;
-        }
-        if self.claim_call(n, args, out) {
-            return;
-        }
-        if n == "sin" || n == "cos" {
-            out.push_str(&format!("\\{n}\\left("));
-        } else if n == "acos" || n == "asin" {
-            out.push_str(&format!("\\arc{}\\left(", &n[1..]));
-        } else {
-            out.push_str(&format!("\\operatorname{{{n}}}\\left("));
-        }
-        for (i, a) in args.iter().enumerate() {
-            if i > 0 {
-                out.push_str(", ");
-            }
-            write(a, out, Prec::Sum, self);
-        }
-        out.push_str("\\right)");
-    }
-    fn list(&self, v: &[Expr], out: &mut String) {
-        let is_matrix = v.iter().all(|r| matches!(r, Expr::List(_)));
-        out.push_str("\\begin{pmatrix}");
-        for (i, row) in v.iter().enumerate() {
-            if i > 0 {
-                out.push_str(if is_matrix { " \\\\ " } else { " & " });
-            }
-            match row {
-                Expr::List(cells) if is_matrix => {
-                    for (j, c) in cells.iter().enumerate() {
-                        if j > 0 {
-                            out.push_str(" & ");
-                        }
-                        write(c, out, Prec::Sum, self);
-                    }
-                }
-                other => write(other, out, Prec::Sum, self),
-            }
-        }
-        out.push_str("\\end{pmatrix}");
-    }
-    fn index(&self, e: &Expr, out: &mut String) {
-        // v[0][2] -> v_{0 2}: one subscript for the whole chain.
-        let (base, indices, axes) = index_chain(e);
-        // A named vector or tensor takes axis letters: I_{xy}, L_{z}.
-        if let Expr::Sym(name) = base
-            && let Some(symbol) = (self.named)(name)
-            && let Some(axes) = axes
-        {
-            let axes: String = axes.into_iter().collect();
-            out.push_str(&format!("{{{symbol}}}_{{{axes}}}"));
-            return;
-        }
-        write(base, out, Prec::Power, self);
-        out.push_str("_{");
-        for (k, i) in indices.iter().enumerate() {
-            if k > 0 {
-                out.push(' ');
-            }
-            write(i, out, Prec::Sum, self);
-        }
-        out.push('}');
     }
 }

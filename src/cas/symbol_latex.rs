@@ -97,7 +97,7 @@ const GREEK: &[&str] = &[
 ];
 
 /// A symbol's name read by the conventions, for each printer to set in its own notation.
-pub(super) enum NameForm<'a> {
+pub enum NameForm<'a> {
     /// A coordinate's rate: `phi'` (the first) or `phi''` (the second, `true`).
     Rate(&'a str, bool),
     /// A name with a word after `_` (`inertia_tensor`): upright, whole.
@@ -108,7 +108,7 @@ pub(super) enum NameForm<'a> {
     Head(Head<'a>, &'a str),
 }
 
-pub(super) enum Head<'a> {
+pub enum Head<'a> {
     /// ω is written w in scene files: w1 is ω₁ ...
     Omega,
     /// ... and wd1 its rate.
@@ -119,7 +119,7 @@ pub(super) enum Head<'a> {
     Letter(&'a str),
 }
 
-pub(super) fn name_form(s: &str) -> NameForm<'_> {
+pub fn name_form(s: &str) -> NameForm<'_> {
     if let Some(base) = s.strip_suffix("''") {
         return NameForm::Rate(base, true);
     }

@@ -99,7 +99,7 @@ pub(super) fn fill_statement(statement: &str, v: &VariantCheck) -> Prose {
         .enumerate()
     {
         if k % 2 == 1 {
-            out = out.formula(Formula::author(&fill_math(part, v)));
+            out = out.formula(filled_math(part, v));
             continue;
         }
         let mut rest = part.as_str();
@@ -122,8 +122,30 @@ pub(super) fn fill_statement(statement: &str, v: &VariantCheck) -> Prose {
     out
 }
 
-/// LaTeX with each `{name}` of a value replaced by `{its LaTeX}`; other groups as written.
-fn fill_math(latex: &str, v: &VariantCheck) -> String {
+/// An author's `$…$` at a variant's values: read once, with each `{name}` of a value marked,
+/// and the values' trees put in at the marks; its source (for Moodle and `--json`) is the LaTeX
+/// with each value's LaTeX in its braces.
+fn filled_math(latex: &str, v: &VariantCheck) -> Formula {
+    use crate::notation::{Tex, latex};
+    let source = fill_math(latex, v, &mut |f| format!("{{{}}}", f.to_latex()));
+    let mut values = Vec::new();
+    let marked = fill_math(latex, v, &mut |f| {
+        values.push(f.to_tex().nodes);
+        latex::mark(values.len() - 1)
+    });
+    match Tex::read(&marked) {
+        Ok(t) => Formula::Tex(Tex {
+            source,
+            nodes: latex::fill_marks(&t.nodes, &values),
+        }),
+        // Validation has read every `$…$` of a statement already.
+        Err(_) => Formula::author(&source),
+    }
+}
+
+/// LaTeX with each `{name}` of a value replaced by `paste(its formula)`; other groups as
+/// written.
+fn fill_math(latex: &str, v: &VariantCheck, paste: &mut dyn FnMut(Formula) -> String) -> String {
     let mut out = String::new();
     let mut rest = latex;
     while let Some(open) = rest.find('{') {
@@ -134,7 +156,7 @@ fn fill_math(latex: &str, v: &VariantCheck) -> String {
             .and_then(|c| Some((c, shown(v, &after[..c])?)))
         {
             Some((close, value)) => {
-                out.push_str(&format!("{{{}}}", value.to_latex()));
+                out.push_str(&paste(value));
                 rest = &after[close + 1..];
             }
             None => {

@@ -3,6 +3,7 @@
 //! power of ten from the prefixes). Plane angle is dimensionless, as in SI.
 
 use crate::cas::{Expr, Rational};
+use crate::notation::{Formula, Op};
 use std::fmt;
 
 /// The SI base quantities, in the order of [`Dimension`]'s exponents, with their units.
@@ -237,6 +238,38 @@ pub fn unit_latex(text: &str) -> String {
     }
 }
 
+/// A unit as a formula: each symbol upright with its power, thin spaces between, one `/`.
+pub fn unit_formula(text: &str) -> Formula {
+    let side = |part: &str| -> Vec<Formula> {
+        let mut out = Vec::new();
+        for f in part
+            .split(|c: char| c.is_whitespace() || c == '*' || c == '·')
+            .filter(|f| !f.is_empty())
+        {
+            if !out.is_empty() {
+                out.push(Formula::Op(Op::Thin));
+            }
+            let (symbol, power) = split_power(f).unwrap_or((f, 1));
+            // µ (the micro sign) is set as the Greek letter mu.
+            let symbol = Formula::Upright(symbol.replace('µ', "μ"));
+            out.push(match power {
+                1 => symbol,
+                p => Formula::Sup(Box::new(symbol), Box::new(Formula::Number(p.to_string()))),
+            });
+        }
+        out
+    };
+    match text.split_once('/') {
+        Some((top, bottom)) => {
+            let mut row = side(top);
+            row.push(Formula::Op(Op::Slash));
+            row.extend(side(bottom));
+            Formula::Row(row)
+        }
+        None => Formula::Row(side(text)),
+    }
+}
+
 /// `m^2` -> (`m`, 2), `s^-1` -> (`s`, -1), `m²` -> (`m`, 2), `kg` -> (`kg`, 1).
 fn split_power(factor: &str) -> Result<(&str, i64), UnitError> {
     let bad = || UnitError::Power(factor.to_string());
@@ -465,6 +498,27 @@ pub fn measure_of(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A unit's tree is what the reader makes of its LaTeX: the key's values and the pages
+    /// set units from the tree, Moodle from the LaTeX.
+    #[test]
+    fn a_units_tree_is_its_latex_read() {
+        for unit in [
+            "kg",
+            "kg m^2",
+            "kg*m^2/s^2",
+            "m/s²",
+            "s^-1",
+            "µs",
+            "rad/s",
+            "N·m",
+            "1/s",
+        ] {
+            let tree = unit_formula(unit).to_tex().nodes;
+            let read = crate::notation::Tex::read(&unit_latex(unit)).unwrap().nodes;
+            assert_eq!(tree, read, "{unit}");
+        }
+    }
 
     fn dim(text: &str) -> String {
         Unit::parse(text).unwrap().dimension.to_string()

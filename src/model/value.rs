@@ -89,6 +89,11 @@ impl Value {
     pub fn to_latex(&self) -> String {
         self.to_expr().to_latex()
     }
+
+    /// The value as the tree the pages set.
+    pub fn to_tex(&self) -> crate::notation::Tex {
+        self.to_expr().to_tex()
+    }
 }
 
 impl Value {

@@ -41,6 +41,9 @@ pub enum Formula {
     Abs(Box<Formula>),
     /// The identity tensor 𝟙.
     Identity,
+    /// A column (one row of entries) or a matrix (rows of entries) in parentheses: numbers
+    /// computed at the scene's values.
+    Matrix(Vec<Vec<Formula>>),
     /// An operator name: `sin`, `cos`, `tan`.
     Function(String),
     /// `∑`, with its index if any.
@@ -63,6 +66,18 @@ pub struct Name {
     pub sub: Option<String>,
     pub accent: Accent,
     pub prime: bool,
+}
+
+impl Name {
+    /// A bare letter (or word set letter by letter): `lambda` is λ.
+    pub fn letter(base: &str) -> Name {
+        Name {
+            base: base.to_string(),
+            sub: None,
+            accent: Accent::None,
+            prime: false,
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -148,6 +163,36 @@ impl Formula {
         match Tex::read(latex) {
             Ok(tex) => Formula::Tex(tex),
             Err(_) => Formula::Text(latex.to_string()),
+        }
+    }
+
+    /// A computed number as written to some significant figures (`significant`): `4.6875e-6`
+    /// is 4.6875 × 10⁻⁶, `1e-4` 10⁻⁴; `NaN` and `inf` as they are.
+    pub fn decimal(s: &str) -> Formula {
+        match crate::base::format::power_of_ten(s) {
+            Some((mantissa, power)) => {
+                let ten = Formula::Sup(
+                    Box::new(Formula::Number("10".into())),
+                    Box::new(Formula::Number(power.to_string())),
+                );
+                if mantissa == "1" {
+                    ten
+                } else {
+                    Formula::Row(vec![
+                        Formula::Number(mantissa.to_string()),
+                        Formula::Op(Op::Cross),
+                        ten,
+                    ])
+                }
+            }
+            None if s
+                .trim_start_matches('-')
+                .parse::<f64>()
+                .is_ok_and(f64::is_finite) =>
+            {
+                Formula::Number(s.to_string())
+            }
+            None => Formula::Name(Name::letter(s)),
         }
     }
 

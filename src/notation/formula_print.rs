@@ -55,6 +55,17 @@ fn latex(f: &Formula, out: &mut String) {
         Formula::Bracket(a) => format!("\\left[{}\\right]", a.to_latex()),
         Formula::Abs(a) => format!("\\left|{}\\right|", a.to_latex()),
         Formula::Identity => "\\mathbb{1}".into(),
+        Formula::Matrix(rows) => format!(
+            "\\begin{{pmatrix}}{}\\end{{pmatrix}}",
+            rows.iter()
+                .map(|row| row
+                    .iter()
+                    .map(Formula::to_latex)
+                    .collect::<Vec<_>>()
+                    .join(" & "))
+                .collect::<Vec<_>>()
+                .join(" \\\\ ")
+        ),
         Formula::Function(name) => format!("\\{name}"),
         Formula::Sum(Some(i)) => format!("\\sum_{{{i}}}"),
         Formula::Sum(None) => "\\sum".into(),
@@ -211,6 +222,19 @@ fn text(f: &Formula, out: &mut String) {
             out.push(']');
         }
         Formula::Identity => out.push('𝟙'),
+        Formula::Matrix(rows) => {
+            let row = |r: &Vec<Formula>| {
+                let cells: Vec<String> = r.iter().map(Formula::to_text).collect();
+                format!("({})", cells.join(", "))
+            };
+            match rows.as_slice() {
+                [one] => out.push_str(&row(one)),
+                rows => {
+                    let rows: Vec<String> = rows.iter().map(row).collect();
+                    out.push_str(&format!("({})", rows.join(", ")));
+                }
+            }
+        }
         Formula::Abs(a) => {
             out.push('|');
             text(a, out);
@@ -269,6 +293,7 @@ fn text_operand(f: &Formula, out: &mut String) {
             | Formula::Paren(..)
             | Formula::Abs(_)
             | Formula::Bracket(_)
+            | Formula::Matrix(_)
             | Formula::Identity
             | Formula::Sqrt(_)
             | Formula::Function(_)

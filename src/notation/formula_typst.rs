@@ -74,6 +74,22 @@ fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError>
         Formula::Bracket(a) => format!("[{}]", a.to_typst()?),
         Formula::Abs(a) => format!("abs({})", a.to_typst()?),
         Formula::Identity => "bb(1)".into(),
+        Formula::Matrix(rows) => {
+            let mut cells = Vec::new();
+            for row in rows {
+                let row: Result<Vec<String>, TexError> =
+                    row.iter().map(Formula::to_typst).collect();
+                cells.push(row?.join(", "));
+            }
+            // A column is one row written down.
+            if let [one] = rows.as_slice() {
+                let column: Result<Vec<String>, TexError> =
+                    one.iter().map(Formula::to_typst).collect();
+                format!("vec({})", column?.join(", "))
+            } else {
+                format!("mat({})", cells.join("; "))
+            }
+        }
         Formula::Function(name) => format!("{name} "),
         Formula::Sum(Some(i)) => format!("sum_({})", typst_base(i)),
         Formula::Sum(None) => "sum ".into(),

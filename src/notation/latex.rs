@@ -129,6 +129,32 @@ pub fn rewrite(nodes: &[Node], f: &dyn Fn(Node) -> Node) -> Vec<Node> {
         .collect()
 }
 
+/// What marks the place of a value in LaTeX to be filled on the tree: `{\text{\u{e000}3}}` is
+/// the fourth value. (A private-use character, which no author writes.)
+pub const MARK: char = '\u{e000}';
+
+/// The LaTeX that marks the place of value `k`.
+pub fn mark(k: usize) -> String {
+    format!("{{\\text{{{MARK}{k}}}}}")
+}
+
+/// The nodes with each marked place (`mark(k)`) given `values[k]`, in the braces it stands in.
+pub fn fill_marks(nodes: &[Node], values: &[Vec<Node>]) -> Vec<Node> {
+    rewrite(nodes, &|n| match n {
+        Node::Group(Grouping::Normal, inner) => match inner.as_slice() {
+            [Node::Text(t)] if t.starts_with(MARK) => {
+                let k: Option<usize> = t[MARK.len_utf8()..].parse().ok();
+                match k.and_then(|k| values.get(k)) {
+                    Some(v) => Node::Group(Grouping::Normal, v.clone()),
+                    None => Node::Group(Grouping::Normal, inner),
+                }
+            }
+            _ => Node::Group(Grouping::Normal, inner),
+        },
+        other => other,
+    })
+}
+
 /// The nodes with every script on a bare operator name put on a group, `\cos^{2}` as
 /// `{\cos}^{2}`: pulldown-latex's writer sets the first, when an argument follows, as an
 /// `<msup>` of three children, which browsers draw as a small "cos2".
@@ -245,6 +271,15 @@ fn element(events: &mut Events<'_>, depth: usize) -> Result<Option<Node>, TexErr
             Content::Text(s) => Node::Text(s.to_string()),
             Content::Number(s) => Node::Number(s.to_string()),
             Content::Function(s) => Node::Function(s.to_string()),
+            // pulldown-latex sets `\mu` as U+00B5, the micro sign; mechbook's printers and
+            // the PDFs set the Greek letter, U+03BC, as Unicode recommends for both.
+            Content::Ordinary {
+                content: '\u{b5}',
+                stretchy,
+            } => Node::Atom(Content::Ordinary {
+                content: 'μ',
+                stretchy,
+            }),
             Content::Ordinary { content, stretchy } => {
                 Node::Atom(Content::Ordinary { content, stretchy })
             }
@@ -353,6 +388,41 @@ mod tests {
             let direct: Vec<Event> = Parser::new(latex, &storage).map(Result::unwrap).collect();
             assert_eq!(events(&Tex::read(latex).unwrap().nodes), direct, "{latex}");
         }
+    }
+
+    /// An author's `\mu` is the Greek letter that mechbook's printers and the PDFs set, not the
+    /// micro sign the parser gives.
+    #[test]
+    fn mu_is_the_greek_letter() {
+        let t = Tex::read("\\mu").unwrap();
+        assert_eq!(
+            t.nodes,
+            vec![Node::Atom(Content::Ordinary {
+                content: '\u{3bc}',
+                stretchy: false
+            })]
+        );
+    }
+
+    /// A value filled in on the tree, at its mark, is what the reader makes of the LaTeX with
+    /// the value's LaTeX pasted in its braces.
+    #[test]
+    fn a_marked_place_is_filled_with_its_value() {
+        let values = ["\\frac{3}{2}", "\\frac{\\pi}{6}", "0.25", "m_{1}"];
+        let template = format!(
+            "\\frac{}{{2}} \\sin{}^{{2}} + x_{} - {{g}} + {}^{{2}}",
+            mark(0),
+            mark(1),
+            mark(2),
+            mark(3)
+        );
+        let filled = fill_marks(
+            &Tex::read(&template).unwrap().nodes,
+            &values.map(|v| Tex::read(v).unwrap().nodes),
+        );
+        let pasted =
+            "\\frac{\\frac{3}{2}}{2} \\sin{\\frac{\\pi}{6}}^{2} + x_{0.25} - {g} + {m_{1}}^{2}";
+        assert_eq!(filled, Tex::read(pasted).unwrap().nodes);
     }
 
     /// An author's formula is stored (the build cache) as the LaTeX written, as it was when

@@ -25,7 +25,8 @@ impl Tex {
 }
 
 /// LaTeX math (as between `$` signs) in Typst's math notation.
-pub fn latex_to_typst(latex: &str) -> Result<String, TexError> {
+#[cfg(test)]
+fn latex_to_typst(latex: &str) -> Result<String, TexError> {
     Tex::read(latex)?.to_typst()
 }
 

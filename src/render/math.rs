@@ -7,14 +7,6 @@ use crate::notation::linebreak;
 use crate::notation::{self, MathmlError, Tex};
 use pulldown_latex::event::{Content, Grouping};
 
-/// The formula read by the one LaTeX reader; what cannot be read is an error naming it.
-pub fn read(latex: &str) -> Result<Tex, RenderError> {
-    Tex::read(latex).map_err(|e| RenderError::Math {
-        latex: latex.into(),
-        message: e.to_string(),
-    })
-}
-
 /// MathML for a formula or a piece of it, displayed as a block or inline. A formula that
 /// cannot be set is an error naming it (`latex`, the whole), never a silently broken page.
 fn set(latex: &str, nodes: &[Node], block: bool) -> Result<String, RenderError> {
@@ -30,21 +22,21 @@ fn set(latex: &str, nodes: &[Node], block: bool) -> Result<String, RenderError> 
 }
 
 /// MathML for one formula, displayed as a block or inline.
-pub fn mathml(latex: &str, block: bool) -> Result<String, RenderError> {
-    set(latex, &read(latex)?.nodes, block)
+pub fn mathml(tex: &Tex, block: bool) -> Result<String, RenderError> {
+    set(&tex.source, &tex.nodes, block)
 }
 
 /// The estimated width of a formula, in characters (notation/linebreak.rs).
-pub fn width_of(latex: &str) -> Result<f32, RenderError> {
-    Ok(linebreak::width(&read(latex)?.nodes))
+pub fn width(tex: &Tex) -> f32 {
+    linebreak::width(&tex.nodes)
 }
 
 /// A display formula: one block `<math>` when it fits a line; else its pieces, each an inline
 /// `<math>` in display style, in a `<div class="formula">` that the browser wraps between them.
 /// A formula wider than a phone's line is set twice, for paper and wide screens and for phones;
 /// the style sheet shows one (`.wide`, `.narrow`).
-pub fn block(latex: &str) -> Result<String, RenderError> {
-    for_both_screens(&read(latex)?, linebreak::LINE, set_block, "div")
+pub fn block(tex: &Tex) -> Result<String, RenderError> {
+    for_both_screens(tex, linebreak::LINE, set_block, "div")
 }
 
 type Setter = fn(&str, &[Vec<Node>], bool) -> Result<String, RenderError>;
@@ -153,12 +145,7 @@ fn binary(k: usize, piece: &[Node]) -> Vec<Node> {
 /// A formula within a sentence: inline `<math>` pieces separated by spaces, where the line may
 /// wrap, once it is wider than half a line. Set twice, as a display formula is, when it is
 /// wider than a phone's line.
-pub fn inline(latex: &str) -> Result<String, RenderError> {
-    inline_tex(&read(latex)?)
-}
-
-/// [`inline`], of LaTeX read already.
-pub fn inline_tex(tex: &Tex) -> Result<String, RenderError> {
+pub fn inline(tex: &Tex) -> Result<String, RenderError> {
     for_both_screens(tex, linebreak::LINE / 2.0, set_inline, "span")
 }
 
@@ -174,6 +161,15 @@ fn set_inline(latex: &str, pieces: &[Vec<Node>], phone: bool) -> Result<String, 
 mod tests {
     use super::*;
 
+    fn read(latex: &str) -> Result<Tex, crate::notation::TexError> {
+        Tex::read(latex)
+    }
+
+    /// A formula as an author writes it, read.
+    fn tex(latex: &str) -> Tex {
+        read(latex).unwrap_or_else(|e| panic!("{latex}: {e}"))
+    }
+
     #[test]
     fn the_latex_our_derivations_print_renders() {
         for latex in [
@@ -187,7 +183,7 @@ mod tests {
             "\\int dm = m",
             "{I}_{xy} = \\left.R_{z}\\left(\\psi\\right)^{T} \\mathbb{1}\\right|_{x = 0}",
         ] {
-            let m = mathml(latex, true).unwrap_or_else(|e| panic!("{e}"));
+            let m = mathml(&tex(latex), true).unwrap_or_else(|e| panic!("{e}"));
             assert!(
                 m.starts_with("<math") && m.contains("display=\"block\""),
                 "{m}"
@@ -199,20 +195,20 @@ mod tests {
     fn a_power_of_an_operator_is_set_on_a_group() {
         // `\cos^{2}` would be an <msup> of three children, a small "cos2": the reader sets
         // it as `{\cos}^{2}`, the form mechbook's printer writes.
-        let braced = mathml("M {\\cos}^{2}\\left(\\alpha\\right)", false).unwrap();
+        let braced = mathml(&tex("M {\\cos}^{2}\\left(\\alpha\\right)"), false).unwrap();
         assert!(
             braced.contains("<msup><mrow><mi>cos</mi></mrow><mrow><mn>2</mn></mrow></msup>"),
             "{braced}"
         );
         assert_eq!(
-            mathml("M \\cos^{2}\\left(\\alpha\\right)", false).unwrap(),
+            mathml(&tex("M \\cos^{2}\\left(\\alpha\\right)"), false).unwrap(),
             braced
         );
     }
 
     #[test]
     fn less_than_is_escaped() {
-        let m = mathml("I_{1} < I_{2} > I_{3}", false).unwrap();
+        let m = mathml(&tex("I_{1} < I_{2} > I_{3}"), false).unwrap();
         assert!(m.contains("<mo>&lt;</mo>") && !m.contains("<mo><"), "{m}");
         assert!(m.starts_with("<math") && m.ends_with("</math>"), "{m}");
     }
@@ -220,7 +216,7 @@ mod tests {
     #[test]
     fn a_long_formula_is_set_in_pieces_that_keep_binary_spacing() {
         let terms: Vec<String> = (0..40).map(|k| format!("a_{{{k}}}")).collect();
-        let m = block(&format!("T = {}", terms.join(" + "))).unwrap();
+        let m = block(&tex(&format!("T = {}", terms.join(" + ")))).unwrap();
         assert!(
             m.starts_with("<div class=\"formula\"><math displaystyle=\"true\""),
             "{m}"
@@ -228,14 +224,14 @@ mod tests {
         assert_eq!(m.matches("<math").count(), 41, "{m}");
         // The pieces after the first start with an empty row, so + is an infix operator.
         assert_eq!(m.matches("<mrow></mrow><mo>+</mo>").count(), 39, "{m}");
-        let short = block("T = a + b").unwrap();
+        let short = block(&tex("T = a + b")).unwrap();
         assert!(short.starts_with("<math display=\"block\""), "{short}");
     }
 
     #[test]
     fn a_formula_wider_than_a_phone_is_set_for_both_screens() {
         let terms: Vec<String> = (0..12).map(|k| format!("a_{{{k}}}")).collect();
-        let m = block(&format!("T = {}", terms.join(" + "))).unwrap();
+        let m = block(&tex(&format!("T = {}", terms.join(" + ")))).unwrap();
         // One block for paper and wide screens, pieces for phones.
         let (wide, narrow) = m.split_once("</div><div class=\"narrow\">").unwrap();
         assert!(
@@ -247,11 +243,14 @@ mod tests {
         assert_eq!(narrow.matches("<math").count(), 13, "{m}");
         // A sentence within a paragraph, likewise, in spans.
         let words = "I_{3} < I_{1}:\\;\\text{positive for some choices and negative for others}";
-        let m = inline(words).unwrap();
+        let m = inline(&tex(words)).unwrap();
         assert!(m.starts_with("<span class=\"wide\"><math"), "{m}");
         assert_eq!(m.matches("<mtext>").count(), 1 + 8, "{m}");
         // Short formulas are set once.
-        assert_eq!(block("T = a + b").unwrap().matches("<math").count(), 1);
+        assert_eq!(
+            block(&tex("T = a + b")).unwrap().matches("<math").count(),
+            1
+        );
     }
 
     /// The font sizes a setting scales its pieces to, in percent.
@@ -268,7 +267,7 @@ mod tests {
         // A matrix a little wider than a phone's line (tests/course's washer): its piece
         // `= (…)` is set smaller, to fit.
         let matrix = "I = \\begin{pmatrix}\\frac{325 M a^{2}}{1024} & -\\frac{15 M a^{2}}{64} & 0 \\\\ -\\frac{15 M a^{2}}{64} & \\frac{325 M a^{2}}{1024} & 0 \\\\ 0 & 0 & \\frac{325 M a^{2}}{512}\\end{pmatrix}";
-        let m = block(matrix).unwrap();
+        let m = block(&tex(matrix)).unwrap();
         let narrow = m.split_once("<div class=\"narrow\">").unwrap().1;
         let percent = scales(narrow);
         assert_eq!(percent.len(), 1, "{narrow}");
@@ -280,7 +279,7 @@ mod tests {
             "\\overleftrightarrow{I} = \\begin{pmatrix}\\frac{m}{12} \\left(b^{2} + c^{2}\\right) & 0 & 0 \\\\ 0 & \\frac{m}{12} \\left(a^{2} + c^{2}\\right) & 0 \\\\ 0 & 0 & \\frac{m}{12} \\left(a^{2} + b^{2}\\right)\\end{pmatrix}",
             "I_{xy} = \\int_{0}^{R}\\int_{0}^{\\frac{\\pi}{2}}\\int_{0}^{2\\pi}\\frac{3 M r^{4} \\cos\\left(\\phi\\right) \\sin\\left(\\phi\\right) \\sin\\left(\\theta\\right) \\left(-1 + \\,{\\cos}^{2}\\left(\\theta\\right)\\right)}{2 \\pi R^{3}}\\,d\\phi\\,d\\theta\\,dr = 0",
         ] {
-            let m = block(latex).unwrap();
+            let m = block(&tex(latex)).unwrap();
             assert!(m.contains("class=\"narrow\""), "{m}");
             for s in scales(&m) {
                 assert!(s >= 100.0 * linebreak::SMALLEST, "{s}: {latex}");
@@ -290,7 +289,7 @@ mod tests {
 
     #[test]
     fn attributes_of_a_sized_bracket_are_spaced() {
-        let m = mathml("\\Bigl(a + b\\Bigr) \\bigl(c\\bigr) < d", false).unwrap();
+        let m = mathml(&tex("\\Bigl(a + b\\Bigr) \\bigl(c\\bigr) < d"), false).unwrap();
         assert!(m.contains("stretchy=\"true\" minsize=\"1.8em\""), "{m}");
         assert!(m.contains("stretchy=\"true\" minsize=\"1.2em\""), "{m}");
         // No attribute value anywhere is followed directly by a letter.
@@ -304,10 +303,10 @@ mod tests {
 
     #[test]
     fn an_ampersand_is_the_character_on_the_page() {
-        let m = mathml("R \\& D", false).unwrap();
+        let m = mathml(&tex("R \\& D"), false).unwrap();
         assert!(m.contains("<mi>&amp;</mi>"), "{m}");
         // A `~` is a no-break space, not the text "&nbsp;".
-        let m = mathml("a~b", false).unwrap();
+        let m = mathml(&tex("a~b"), false).unwrap();
         assert!(
             m.contains("<mspace width=\"0.33333334em\"") && !m.contains("nbsp"),
             "{m}"
@@ -316,6 +315,6 @@ mod tests {
 
     #[test]
     fn unreadable_latex_is_an_error() {
-        assert!(mathml("\\frac{1}{", true).is_err());
+        assert!(read("\\frac{1}{").is_err());
     }
 }

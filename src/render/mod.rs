@@ -4,6 +4,7 @@
 //! in memory: no file I/O here.
 
 pub mod html;
+pub mod json;
 pub mod math;
 use crate::notation::linebreak;
 pub mod moodle;
@@ -16,7 +17,8 @@ pub use html::template_names;
 pub use renderer::{Context, Rendered, Renderer, SiteFiles, TemplateTexts};
 
 /// Every format a build writes, in order (the PDFs take the HTML's plots).
-pub const RENDERERS: &[&dyn Renderer] = &[&html::Html, &moodle::Moodle, &pdf::Pdf];
+pub const RENDERERS: &[&dyn Renderer] =
+    &[&html::Html, &moodle::Moodle, &json::JsonReport, &pdf::Pdf];
 
 /// The documents printed by every renderer.
 pub fn render(
@@ -36,6 +38,7 @@ use crate::derive::ExactBasis;
 use crate::document::{At, Link, Page, PrincipalValues};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
+use crate::notation::{Formula, Op, Tex};
 use crate::scene::Verdict;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -176,9 +179,9 @@ fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError>
     for piece in &prose.0 {
         match piece {
             Piece::Text(t) => out.push_str(&tera::escape_html(t)),
-            // An author's mathematics is set from the tree read at load, others from LaTeX.
-            Piece::Math(crate::notation::Formula::Tex(t)) => out.push_str(&math::inline_tex(t)?),
-            Piece::Math(f) => out.push_str(&math::inline(&f.to_latex())?),
+            // An author's mathematics is set from the tree read at load, mechbook's from the
+            // tree it builds.
+            Piece::Math(f) => out.push_str(&math::inline(&f.to_tex())?),
         }
     }
     Ok(out)
@@ -190,59 +193,63 @@ pub fn author_html(text: &str) -> Result<String, RenderError> {
 }
 
 fn value_math(v: &Value) -> Result<String, RenderError> {
-    math::block(&v.to_latex())
+    math::block(&v.to_tex())
 }
 
 /// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
 /// of the symbols it contains) and the number, vector or matrix as MathML.
 fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
-    let n: Vec<String> = at_entries(at)
-        .into_iter()
-        .map(|x| number_latex(x, 6))
-        .collect();
-    let latex = numbers_latex(v, &n);
-    let symbols: Vec<String> = at
-        .symbols
-        .iter()
-        .map(|(k, x)| format!("{} = {}", Expr::sym(k).to_latex(), number_latex(*x, 6)))
-        .collect();
+    let n: Vec<Formula> = at_entries(at).into_iter().map(|x| number(x, 6)).collect();
+    let symbols = at.symbols.iter().map(|(k, x)| {
+        Formula::Row(vec![
+            Formula::Expr(Expr::sym(k)),
+            Formula::Op(Op::Equals),
+            number(*x, 6),
+        ])
+    });
     Ok(format!(
         "at {}: {}",
-        math::inline(&symbols.join(",\\; "))?,
-        math::inline(&latex)?
+        math::inline(&listed(symbols).to_tex())?,
+        math::inline(&numbers_formula(v, n).to_tex())?
     ))
 }
 
-/// Numbers written out (`n`, row-major) in the shape of `v`: a number, a column or a matrix.
-pub(crate) fn numbers_latex(v: &Value, n: &[String]) -> String {
+/// Formulas one after another, set apart by a comma and a space: `a = 1,\; b = 2`.
+pub(crate) fn listed(items: impl IntoIterator<Item = Formula>) -> Formula {
+    let mut row = Vec::new();
+    for item in items {
+        if !row.is_empty() {
+            row.extend([Formula::Op(Op::Comma), Formula::Op(Op::Medium)]);
+        }
+        row.push(item);
+    }
+    Formula::Row(row)
+}
+
+/// Numbers (`n`, row-major) in the shape of `v`: a number, a column or a matrix.
+pub(crate) fn numbers_formula(v: &Value, mut n: Vec<Formula>) -> Formula {
     match v {
-        Value::Scalar(_) => n[0].clone(),
-        Value::Vector(_) => format!("\\begin{{pmatrix}}{}\\end{{pmatrix}}", n.join(" & ")),
-        Value::Matrix(_) => format!(
-            "\\begin{{pmatrix}}{}\\end{{pmatrix}}",
-            n.chunks(3)
-                .map(|row| row.join(" & "))
-                .collect::<Vec<_>>()
-                .join(" \\\\ ")
-        ),
+        Value::Scalar(_) => n.swap_remove(0),
+        Value::Vector(_) => Formula::Matrix(vec![n]),
+        Value::Matrix(_) => Formula::Matrix(n.chunks(3).map(<[Formula]>::to_vec).collect()),
     }
 }
 
-/// The derived side of a claim as LaTeX; a number the notes give roughly as a decimal
-/// (303.6246, not a fraction of 30 digits).
-fn derived_latex(v: &Value, rough: bool) -> String {
+/// The derived side of a claim; a number the notes give roughly as a decimal (303.6246, not a
+/// fraction of 30 digits).
+fn derived_tex(v: &Value, rough: bool) -> Tex {
     match v {
         Value::Scalar(e) if rough => match e.eval(&|_| None) {
-            Ok(x) => number_latex(x, 7),
-            Err(_) => v.to_latex(),
+            Ok(x) => number(x, 7).to_tex(),
+            Err(_) => v.to_tex(),
         },
-        _ => v.to_latex(),
+        _ => v.to_tex(),
     }
 }
 
-/// A computed number to `digits` significant figures, as LaTeX (4.6875 × 10⁻⁶, never e-notation).
-fn number_latex(x: f64, digits: usize) -> String {
-    crate::base::format::latex_number(&crate::base::format::significant(x, digits))
+/// A computed number to `digits` significant figures (4.6875 × 10⁻⁶, never e-notation).
+fn number(x: f64, digits: usize) -> Formula {
+    Formula::decimal(&crate::base::format::significant(x, digits))
 }
 
 /// An author's step's numeric check in one sentence (escaped for HTML).
@@ -298,7 +305,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         .map(|st| {
             Ok(StepView {
                 title: st.title.clone(),
-                math: math::block(&st.statement.to_latex())?,
+                math: math::block(&st.statement.to_tex())?,
                 why: prose_html(&st.why_cited())?,
                 at: String::new(),
                 check: st.check.as_ref().map(check_text).unwrap_or_default(),
@@ -319,19 +326,20 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         });
     }
     for sp in &page.principal_axes {
-        let dir = match &sp.basis {
-            ExactBasis::Axis(a) => {
-                format!("\\text{{ along }} {}", Value::Vector(a.clone()).to_latex())
-            }
-            ExactBasis::PlaneNormalTo(n) => format!(
-                "\\text{{, every axis }} \\perp {}",
-                Value::Vector(n.clone()).to_latex()
-            ),
-            ExactBasis::All => "\\text{, every axis}".into(),
-        };
+        let vector = |v: &[Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
+        let mut row = vec![Formula::Expr(sp.value.clone())];
+        match &sp.basis {
+            ExactBasis::Axis(a) => row.extend([Formula::Text(" along ".into()), vector(a)]),
+            ExactBasis::PlaneNormalTo(n) => row.extend([
+                Formula::Text(", every axis ".into()),
+                Formula::Op(Op::Perp),
+                vector(n),
+            ]),
+            ExactBasis::All => row.push(Formula::Text(", every axis".into())),
+        }
         results.push(StepView {
             title: format!("principal moment (multiplicity {})", sp.multiplicity),
-            math: math::block(&format!("{}{dir}", sp.value.to_latex()))?,
+            math: math::block(&Formula::Row(row).to_tex())?,
             why: String::new(),
             at: String::new(),
             check: String::new(),
@@ -357,34 +365,32 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
     let mut claims = Vec::new();
     for c in &page.claims {
         let render = |e: Option<&crate::cas::Expr>| {
-            e.map(|e| math::inline(&e.to_latex_named(&quantity_symbol)))
+            e.map(|e| math::inline(&e.to_tex_named(&quantity_symbol)))
                 .transpose()
                 .map(Option::unwrap_or_default)
         };
-        let notes_latex = c.notes.as_ref().map(|e| e.to_latex_named(&quantity_symbol));
-        let derived_latex = c
+        let notes_tex = c.notes.as_ref().map(|e| e.to_tex_named(&quantity_symbol));
+        let derived_tex = c
             .derived
             .as_ref()
-            .map(|v| derived_latex(v, c.precision.is_some()));
+            .map(|v| derived_tex(v, c.precision.is_some()));
         // Beside a claim that agrees, the derived form is shown when it says something the
         // notes' form does not and is about as short; a longer one is equal to the notes' form
         // (their difference simplifies to 0), which the page says instead. It is in
         // `check --json` either way.
-        let notes = notes_latex.as_deref().unwrap_or("");
+        let notes_width = notes_tex.as_ref().map_or(0.0, math::width);
         let agrees = c.verdict == Verdict::Agrees && c.precision.is_none();
-        let same = agrees && derived_latex.as_deref() == Some(notes);
-        let derived_tex = derived_latex.as_deref().map(math::read).transpose()?;
+        let same = agrees
+            && derived_tex.as_ref().map(|t| &t.source)
+                == Some(notes_tex.as_ref().map_or(&String::new(), |t| &t.source));
         let derived_equal = agrees
             && !same
             && match &derived_tex {
-                Some(tex) => {
-                    linebreak::width(&tex.nodes)
-                        > (2.0 * math::width_of(notes)?).max(linebreak::PHONE)
-                }
+                Some(tex) => math::width(tex) > (2.0 * notes_width).max(linebreak::PHONE),
                 None => false,
             };
         let derived = match &derived_tex {
-            Some(tex) if !derived_equal && !same => math::inline_tex(tex)?,
+            Some(tex) if !derived_equal && !same => math::inline(tex)?,
             _ => String::new(),
         };
         claims.push(ClaimView {
@@ -431,7 +437,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
                     .get(k)
                     .map_or(String::new(), |u| format!(" ({})", problems::unit_html(u)));
                 Ok((
-                    math::mathml(&Expr::sym(k).to_latex(), false)?,
+                    math::mathml(&Expr::sym(k).to_tex(), false)?,
                     v.clone(),
                     format!("{}{unit}", author_html(v)?),
                 ))
@@ -440,7 +446,9 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         definitions: page
             .definitions
             .iter()
-            .map(|(k, e)| math::inline(&format!("{} = {}", Expr::sym(k).to_latex(), e.to_latex())))
+            .map(|(k, e)| {
+                math::inline(&Formula::equation(Formula::Expr(Expr::sym(k)), e.clone()).to_tex())
+            })
             .collect::<Result<_, RenderError>>()?,
         bodies: page.bodies.clone(),
         steps,
@@ -479,24 +487,36 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
 /// well the two routes agree.
 fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
     use crate::numeric::eigen::Space;
-    let values: Vec<String> = p.exact.iter().map(|v| number_latex(*v, 6)).collect();
-    let mut latex = format!("\\{} = {}", p.letter, values.join(",\\; "));
+    let letter = Formula::Name(crate::notation::Name::letter(&p.letter));
+    let mut row = vec![
+        letter,
+        Formula::Op(Op::Equals),
+        listed(p.exact.iter().map(|v| number(*v, 6))),
+    ];
     if p.closed_form {
-        let axes: Vec<String> = p
+        let axes: Vec<Formula> = p
             .numeric
             .iter()
             .filter_map(|e| match &e.space {
-                Space::Axis(v) => Some(format!(
-                    "\\left({}, {}, {}\\right)",
-                    number_latex(v.x, 4),
-                    number_latex(v.y, 4),
-                    number_latex(v.z, 4)
+                Space::Axis(v) => Some(Formula::Paren(
+                    Box::new(Formula::Row(vec![
+                        number(v.x, 4),
+                        Formula::Op(Op::Comma),
+                        number(v.y, 4),
+                        Formula::Op(Op::Comma),
+                        number(v.z, 4),
+                    ])),
+                    true,
                 )),
                 _ => None,
             })
             .collect();
         if !axes.is_empty() {
-            latex.push_str(&format!("\\quad \\text{{axes }} {}", axes.join(",\\; ")));
+            row.extend([
+                Formula::Op(Op::Quad),
+                Formula::Text("axes ".into()),
+                listed(axes),
+            ]);
         }
     }
     let route = if p.closed_form {
@@ -508,7 +528,7 @@ fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
         at: String::new(),
         check: String::new(),
         title: "principal moments at the scene's values".into(),
-        math: math::block(&latex)?,
+        math: math::block(&Formula::Row(row).to_tex())?,
         why: tera::escape_html(&format!(
             "at {}: {route} evaluated, and the eigen-solver on the exact tensor agrees to {} (relative)",
             p.values

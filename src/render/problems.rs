@@ -9,6 +9,7 @@ use crate::document::{Problem, Sheet, Variant};
 use crate::model::catalogue::{quantity, quantity_symbol};
 use crate::model::prose::Prose;
 use crate::model::value::Value;
+use crate::notation::{Formula, Op};
 use serde::Serialize;
 
 /// Significant figures of the key's decimals.
@@ -156,20 +157,17 @@ pub fn answer_key(sheet: &Sheet) -> Result<AnswerKey, RenderError> {
 }
 
 fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, RenderError> {
-    let values: Vec<String> = v
-        .given
-        .iter()
-        .map(|g| {
-            let unit = g.unit.as_deref().map_or(String::new(), |u| {
-                format!("\\,{}", crate::model::units::unit_latex(u))
-            });
-            format!(
-                "{} = {}{unit}",
-                Expr::sym(&g.name).to_latex(),
-                g.value.to_latex()
-            )
-        })
-        .collect();
+    let values = v.given.iter().map(|g| {
+        let mut row = vec![
+            Formula::Expr(Expr::sym(&g.name)),
+            Formula::Op(Op::Equals),
+            g.value.clone(),
+        ];
+        if let Some(u) = g.unit.as_deref() {
+            row.extend([Formula::Op(Op::Thin), crate::model::units::unit_formula(u)]);
+        }
+        Formula::Row(row)
+    });
     let mut answers = Vec::new();
     for (spec, a) in p.answers.iter().zip(&v.answers) {
         let unit = spec
@@ -178,10 +176,10 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
             .map_or(String::new(), |u| format!(" {}", unit_html(&u.text)));
         answers.push(KeyAnswer {
             label: spec_label(spec)?,
-            exact: format!("{}{unit}", math::inline(&a.exact.to_latex())?),
+            exact: format!("{}{unit}", math::inline(&a.exact.to_tex())?),
             decimal: format!(
                 "{}{unit}",
-                math::inline(&decimals(&a.exact, &a.exact_numbers))?
+                math::inline(&decimals(&a.exact, &a.exact_numbers).to_tex())?
             ),
         });
     }
@@ -190,7 +188,7 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
         title: p.title.clone(),
         title_html: super::author_html(&p.title)?,
         variant: v.number,
-        values: math::inline(&values.join(",\\; "))?,
+        values: math::inline(&super::listed(values).to_tex())?,
         answers,
         page: p.page.clone(),
         checked: crate::base::format::sci(v.worst_error()),
@@ -199,12 +197,12 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
 }
 
 /// The answer's numbers to [`KEY_FIGURES`] figures, in the shape of the exact value.
-pub fn decimals(shape: &Value, numbers: &[f64]) -> String {
-    let n: Vec<String> = numbers
+pub fn decimals(shape: &Value, numbers: &[f64]) -> Formula {
+    let n: Vec<Formula> = numbers
         .iter()
-        .map(|x| crate::base::format::latex_number(&figures(*x, KEY_FIGURES)))
+        .map(|x| Formula::decimal(&figures(*x, KEY_FIGURES)))
         .collect();
-    super::numbers_latex(shape, &n)
+    super::numbers_formula(shape, n)
 }
 
 /// An answer's name in words, as a student reads it: "Moment about the axis".
@@ -236,7 +234,7 @@ fn spec_label(a: &crate::scene::Answer) -> Result<String, RenderError> {
     match (&a.label, a.bare_quantity()) {
         (Some(words), _) => super::author_html(&capitalised(words)),
         (None, Some(q)) => answer_label(q),
-        (None, None) => math::inline(&a.value.to_latex()),
+        (None, None) => math::inline(&a.value.to_tex()),
     }
 }
 
@@ -277,7 +275,7 @@ fn answer_label(name: &str) -> Result<String, RenderError> {
         _ => quantity_symbol(name),
     };
     Ok(match symbol {
-        Some(s) => format!("{words} {}", math::inline(s)?),
+        Some(s) => format!("{words} {}", math::inline(&crate::notation::symbol_tex(s))?),
         None => tera::escape_html(words),
     })
 }

@@ -10,7 +10,8 @@ use crate::verify::ClaimResult;
 use std::fmt::Write;
 
 mod json;
-pub use json::{check_json, scene_json};
+pub use crate::render::json::scene_json;
+pub use json::check_json;
 
 /// The relative difference of every variant's every answer from its numeric route.
 fn variant_errors(r: &SceneReport) -> impl Iterator<Item = f64> + '_ {
@@ -83,14 +84,14 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
                 g.line,
                 g.quantity,
                 recorded.to_text(),
-                json::derived_text(g)
+                crate::render::json::derived_text(g)
             ),
             None => format!(
                 "{src}:{}: `{}` not yet recorded (derived {}): review it, then run `mechbook \
                  check --bless`, which writes the scene's [expect]",
                 g.line,
                 g.quantity,
-                json::derived_text(g)
+                crate::render::json::derived_text(g)
             ),
         };
         failures.push(Failure {

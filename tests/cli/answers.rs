@@ -5,6 +5,7 @@
 use super::problems::numbers;
 use super::{mechbook, scratch, stderr, stdout};
 use mechbook::base::format::{figures, significant};
+use mechbook::notation::Tex;
 use mechbook::render::math::inline;
 use nalgebra::{Matrix3, Vector3};
 use serde_json::Value as Json;
@@ -101,7 +102,7 @@ fn every_key_answer_matches_a_closed_form_and_none_reaches_a_student() {
                         }
                     }
                 }
-                let exact = inline(a["latex"].as_str().unwrap()).unwrap();
+                let exact = inline(&Tex::read(a["latex"].as_str().unwrap()).unwrap()).unwrap();
                 assert!(!student.contains(&exact), "{id}: {exact} on a sheet");
             }
         }

@@ -1,7 +1,7 @@
 //! `build`: the site and the handouts, byte-identical rebuilds, atomic replacement, relative
 //! links and no build-machine paths in the output.
 
-use super::{mechbook, read_tree, scratch, stderr};
+use super::{mechbook, read_tree, scratch, stderr, stdout};
 use std::path::{Path, PathBuf};
 
 /// A scratch folder with the lectures' site built into `site/` inside it.
@@ -11,6 +11,55 @@ fn built_site(name: &str) -> (PathBuf, PathBuf) {
     let r = mechbook(&["build", "--out", out.to_str().unwrap()]);
     assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
     (dir, out)
+}
+
+/// The JSON report renderer writes each scene's page as `derive --json` prints it, without
+/// the measured seconds (so that a rebuild is byte-identical), and the lectures in order.
+#[test]
+fn the_json_report_is_each_scenes_derive_json_and_the_lectures_in_order() {
+    let (dir, out) = built_site("json-report");
+    let read = |rel: &str| -> serde_json::Value {
+        serde_json::from_slice(&std::fs::read(out.join(rel)).unwrap()).unwrap()
+    };
+    let course = read("export/json/course.json");
+    let lectures = course["lectures"].as_array().unwrap();
+    assert_eq!(lectures.len(), 2, "{course}");
+    let scenes: Vec<&str> = lectures
+        .iter()
+        .flat_map(|l| l["scenes"].as_array().unwrap())
+        .map(|s| s.as_str().unwrap())
+        .collect();
+    assert_eq!(scenes.len(), 18, "{scenes:?}");
+    assert_eq!(scenes[0], "angular-momentum");
+    for (id, file) in [
+        ("hoop", "lectures/lecture-3-4/06-hoop.toml"),
+        ("problem-box", "lectures/lecture-3-4/10-problem-box.toml"),
+    ] {
+        let r = mechbook(&["derive", file, "--json"]);
+        assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+        let mut derived: serde_json::Value = serde_json::from_str(&stdout(&r)).unwrap();
+        assert!(
+            derived["symbolic_seconds"].is_number(),
+            "derive --json keeps its timings"
+        );
+        drop_seconds(&mut derived);
+        let written = read(&format!("export/json/{id}.json"));
+        assert!(written.get("symbolic_seconds").is_none());
+        assert_eq!(written, derived, "{id}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+fn drop_seconds(j: &mut serde_json::Value) {
+    match j {
+        serde_json::Value::Object(map) => {
+            map.remove("seconds");
+            map.remove("symbolic_seconds");
+            map.values_mut().for_each(drop_seconds);
+        }
+        serde_json::Value::Array(items) => items.iter_mut().for_each(drop_seconds),
+        _ => {}
+    }
 }
 
 #[test]
@@ -48,6 +97,8 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
         "handouts/lecture-3-4-problems-student.html",
         "handouts/lecture-3-9-problems-key.html",
         "export/moodle/problem-box.xml",
+        "export/json/course.json",
+        "export/json/problem-box.json",
     ] {
         assert!(a.contains_key(f), "{f} missing: {:?}", a.keys());
     }

@@ -260,14 +260,27 @@ fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
     let run = build("1", &papers);
     assert!(run.status.success(), "{}", stderr(&run));
     // Each paper names its variant: the site, which may be published, holds no variant's
-    // answers (issue 41): no key, page or PDF, no Moodle quiz, no link to one.
+    // answers (issue 41): no key, page or PDF, no Moodle quiz, no link to one, and no JSON
+    // report of a scene with variants.
     let published = super::read_tree(&site);
-    for path in published.keys() {
+    for (path, bytes) in &published {
         assert!(
-            !path.contains("problems-key") && !path.starts_with("export"),
+            !path.contains("problems-key") && !path.starts_with("export/moodle"),
             "{path} in a site built with a roster"
         );
+        if path.starts_with("export/json/") && path != "export/json/course.json" {
+            let report: serde_json::Value = serde_json::from_slice(bytes).unwrap();
+            let variants = report["variants"].as_array().unwrap();
+            assert!(
+                variants.is_empty(),
+                "{path}: variants in a site built with a roster"
+            );
+        }
     }
+    assert!(
+        published.keys().any(|p| p.starts_with("export/json/")),
+        "the scenes without variants have their JSON reports"
+    );
     let index = String::from_utf8_lossy(&published["index.html"]).into_owned();
     assert!(!index.contains("problems-key"), "{index}");
     assert!(index.contains("problems-student"), "{index}");

@@ -4,6 +4,7 @@
 
 use super::{mechbook, scratch, stderr, stdout};
 use mechbook::base::format::{figures, significant};
+use mechbook::notation::Tex;
 use mechbook::render::math::inline;
 use nalgebra::{Matrix3, Vector3};
 use serde_json::Value as Json;
@@ -65,7 +66,7 @@ fn no_student_sheet_contains_any_answer_exact_or_decimal() {
         for other in &scenes {
             for v in other["variants"].as_array().unwrap() {
                 for (_, x) in v["values"].as_object().unwrap() {
-                    let math = inline(x["latex"].as_str().unwrap()).unwrap();
+                    let math = inline(&Tex::read(x["latex"].as_str().unwrap()).unwrap()).unwrap();
                     stripped = stripped.replace(&math, "");
                 }
             }

@@ -270,6 +270,15 @@ fn author_mathematics_is_escaped_in_moodle_and_never_markup_on_a_page() {
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     for (path, bytes) in read_tree(&site) {
+        // The JSON report is data, not markup: it keeps the author's text as written, in
+        // JSON strings, for the tools that read it.
+        if path.starts_with("export/json/") {
+            let report: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+            if path.ends_with("problem-pendulum.json") {
+                assert!(report["title"].is_string(), "{path}");
+            }
+            continue;
+        }
         let text = String::from_utf8_lossy(&bytes);
         for markup in ["<img src=x", "<script", "<b>"] {
             assert!(!text.contains(markup), "{path} holds {markup}");

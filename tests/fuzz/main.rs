@@ -391,8 +391,14 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
             };
             let rendered = mechbook::render::render(&documents, &cx)
                 .map_err(|e| format!("rendering failed: {e}"))?;
-            // Nothing an author wrote is markup on a page; every Moodle file is XML.
+            // Nothing an author wrote is markup on a page; every Moodle file is XML; every
+            // JSON report is JSON (data, holding the author's text as written).
             for (file, bytes) in &rendered.files {
+                if file.extension().is_some_and(|x| x == "json") {
+                    serde_json::from_slice::<serde_json::Value>(bytes)
+                        .map_err(|e| format!("{}: not JSON: {e}", file.display()))?;
+                    continue;
+                }
                 let text = String::from_utf8_lossy(bytes);
                 for markup in ["<script", "<img src=x", "<svg onload"] {
                     if text.contains(markup) {

@@ -9,7 +9,7 @@ use crate::derive::ExactBasis;
 use crate::document::{At, Page};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::latex_to_typst;
+use crate::notation::symbol_tex;
 use crate::render::RenderError;
 use crate::scene::{ClaimRole, Verdict};
 
@@ -188,7 +188,11 @@ fn claims(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderErr
         let notes = c
             .notes
             .as_ref()
-            .map(|e| e.to_typst_named(&|q| quantity_symbol(q).and_then(|t| latex_to_typst(t).ok())))
+            .map(|e| {
+                e.to_typst_named(&|q| {
+                    quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok())
+                })
+            })
             .unwrap_or_default();
         let derived = c.derived.as_ref().map(|v| match v {
             Value::Scalar(e) if c.precision.is_some() => {

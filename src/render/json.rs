@@ -1,0 +1,272 @@
+//! The JSON report of each page: what `derive --json` prints and what a build writes to
+//! `export/json/`, one file a scene, with the course's lectures in `export/json/course.json`.
+
+use super::RenderError;
+use super::renderer::{Context, Rendered, Renderer};
+use crate::cas::Expr;
+use crate::derive::ExactBasis;
+use crate::document::course::Documents;
+use crate::document::{Page, Quantity, Step};
+use crate::model::prose::{Piece, Prose};
+use crate::model::value::Value;
+use crate::numeric::eigen::Space;
+use serde_json::{Value as Json, json};
+
+/// Each scene's page, `export/json/<scene id>.json`, and the lectures in order,
+/// `export/json/course.json`. Measured seconds are left out unless the build shows timings, so
+/// that a build's files are the same each time.
+pub struct JsonReport;
+
+impl Renderer for JsonReport {
+    fn render(
+        &self,
+        docs: &Documents,
+        cx: &Context,
+        out: &mut Rendered,
+    ) -> Result<(), RenderError> {
+        let mut published = Vec::new();
+        for (i, page) in docs.pages.iter().enumerate() {
+            // A problem's page holds every variant's answers: none where answers are private.
+            if cx.course.answers_private && docs.is_problem(i) {
+                continue;
+            }
+            let mut j = scene_json(page);
+            if !cx.timings {
+                without_seconds(&mut j);
+            }
+            super::renderer::add(
+                &mut out.files,
+                format!("export/json/{}.json", page.id),
+                pretty(&j),
+            )?;
+            published.push(i);
+        }
+        let lectures: Vec<Json> = docs
+            .lectures
+            .iter()
+            .map(|l| {
+                json!({
+                    "lecture": l.name,
+                    "heading": l.heading,
+                    "scenes": l.pages.iter().filter(|i| published.contains(i))
+                        .map(|i| &docs.pages[*i].id).collect::<Vec<_>>(),
+                })
+            })
+            .collect();
+        let course = json!({ "title": cx.course.title, "lectures": lectures });
+        super::renderer::add(&mut out.files, "export/json/course.json", pretty(&course))
+    }
+}
+
+fn pretty(j: &Json) -> Vec<u8> {
+    let mut text = serde_json::to_string_pretty(j).expect("JSON values print");
+    text.push('\n');
+    text.into_bytes()
+}
+
+/// The report with every measured time (`seconds`, `symbolic_seconds`) taken out.
+fn without_seconds(j: &mut Json) {
+    match j {
+        Json::Object(map) => {
+            map.remove("seconds");
+            map.remove("symbolic_seconds");
+            map.values_mut().for_each(without_seconds);
+        }
+        Json::Array(items) => items.iter_mut().for_each(without_seconds),
+        _ => {}
+    }
+}
+
+/// Numbers as JSON; a non-finite value becomes null rather than invalid JSON.
+fn num(x: f64) -> Json {
+    serde_json::Number::from_f64(x)
+        .map(Json::Number)
+        .unwrap_or(Json::Null)
+}
+
+/// A quantity's entries at the scene's values, in its shape.
+fn numeric_entries(q: &Quantity) -> Json {
+    let vals: Vec<Json> = q
+        .numbers
+        .iter()
+        .map(|x| x.map(num).unwrap_or(Json::Null))
+        .collect();
+    match q.value {
+        Value::Scalar(_) => vals.into_iter().next().unwrap_or(Json::Null),
+        Value::Vector(_) => Json::Array(vals),
+        Value::Matrix(_) => Json::Array(vals.chunks(3).map(|c| Json::Array(c.to_vec())).collect()),
+    }
+}
+
+fn vec_text(v: &[crate::cas::Expr; 3]) -> String {
+    Value::Vector(v.clone()).to_text()
+}
+
+/// A step: its statement and reason, each formula printed as text and as LaTeX.
+fn step_json(st: &Step) -> Json {
+    let mut j = json!({
+        "title": st.title,
+        "text": st.statement.to_text(),
+        "latex": st.statement.to_latex(),
+        "why": st.why.to_text(),
+    });
+    if !st.key.is_empty() {
+        j["cite"] = json!(st.key);
+    }
+    if st.why.0.iter().any(|p| matches!(p, Piece::Math(_))) {
+        j["why_math"] = prose_json(&st.why);
+    }
+    j
+}
+
+/// A sentence: its words, and its formulas as text and LaTeX.
+fn prose_json(p: &Prose) -> Json {
+    p.0.iter()
+        .map(|piece| match piece {
+            Piece::Text(t) => json!({ "Text": t }),
+            Piece::Math(f) => json!({ "Math": { "text": f.to_text(), "latex": f.to_latex() } }),
+        })
+        .collect()
+}
+
+/// A recorded result's derived side as the reports print it.
+pub fn derived_text(g: &crate::verify::RegressionResult) -> String {
+    g.derived
+        .as_ref()
+        .map_or_else(|| "(not derived)".into(), Value::to_text)
+}
+
+/// One scene's page as JSON, in the shape documented in the README.
+pub fn scene_json(page: &Page) -> Json {
+    let mut quantities = serde_json::Map::new();
+    for q in &page.quantities {
+        quantities.insert(
+            q.name.clone(),
+            json!({ "exact": q.value.to_text(), "latex": q.value.to_latex(), "numeric": numeric_entries(q) }),
+        );
+    }
+    let claims: Vec<Json> = page
+        .claims
+        .iter()
+        .map(|c| {
+            json!({
+                "eq": c.eq,
+                "statement": c.statement,
+                "notes": c.notes.as_ref().map(Expr::to_text).unwrap_or_default(),
+                "derived": c.derived.as_ref().map(Value::to_text).unwrap_or_default(),
+                "verdict": c.verdict.as_str(),
+                "expected": c.expected.map(|v| v.as_str()),
+                "passed": c.passed(),
+                "differences": c.differences.iter().map(|d| d.to_text()).collect::<Vec<_>>(),
+                "problem": c.problem,
+                "precision": c.precision,
+            })
+        })
+        .collect();
+    let numeric_checks: Vec<Json> = page
+        .numeric
+        .iter()
+        .map(|q| {
+            json!({
+                "body": q.body,
+                "method": q.method,
+                "points": q.points,
+                "error": num(q.error),
+                "predicted_error": num(q.predicted_error),
+                "seconds": num(q.seconds),
+                "within_law": q.within_law,
+                "stop": q.stop,
+            })
+        })
+        .collect();
+    let principal: Vec<Json> = page
+        .principal_axes
+        .iter()
+        .map(|sp| {
+            let (kind, dir) = match &sp.basis {
+                ExactBasis::Axis(a) => ("axis", Some(vec_text(a))),
+                ExactBasis::PlaneNormalTo(n) => ("plane-normal-to", Some(vec_text(n))),
+                ExactBasis::All => ("all", None),
+            };
+            json!({
+                "value": sp.value.to_text(),
+                "numeric": sp.number.map(num).unwrap_or(Json::Null),
+                "multiplicity": sp.multiplicity,
+                "eigenspace": kind,
+                "direction": dir,
+            })
+        })
+        .collect();
+    let stages: Vec<Json> = page
+        .stages
+        .iter()
+        .map(|(st, why)| json!({ "stage": st, "ran": why.is_some(), "because": why.clone().unwrap_or_default() }))
+        .collect();
+    let cost = &page.cost;
+    json!({
+        "id": page.id,
+        "title": page.title,
+        "source": page.source.to_string_lossy(),
+        "notes": { "lecture": page.lecture, "section": page.section, "equations": page.equations },
+        "passed": page.passed,
+        "quantities": quantities,
+        "principal_axes": principal,
+        "principal_moments": page.principal_values.as_ref().map(|p| json!({
+            "values": p.exact.iter().map(|v| num(*v)).collect::<Vec<_>>(),
+            "closed_form": p.closed_form,
+            "numeric": p.numeric.iter().flat_map(|e| std::iter::repeat_n(num(e.value), e.multiplicity)).collect::<Vec<_>>(),
+            "axes": p.numeric.iter().map(|e| match &e.space {
+                Space::Axis(v) => json!({ "axis": ([v.x, v.y, v.z].map(num)) }),
+                Space::PlaneNormalTo(v) => json!({ "plane_normal_to": ([v.x, v.y, v.z].map(num)) }),
+                Space::All => json!("all"),
+            }).collect::<Vec<_>>(),
+            "error": num(p.error),
+        })),
+        "claims": claims,
+        "numeric_checks": numeric_checks,
+        "exact_vs_numeric": page.exact_vs_numeric.iter().map(|q| json!({
+            "quantity": q.name, "error": num(q.error), "passed": q.passed })).collect::<Vec<_>>(),
+        "eigen_check": page.eigen.as_ref().map(|e| json!({
+            "value_error": num(e.value_error), "axis_error": num(e.axis_error), "passed": e.passed })),
+        "regressions": page.regressions.iter().map(|g| json!({
+            "quantity": g.quantity, "recorded": g.recorded.as_ref().map(Expr::to_text), "derived": derived_text(g),  "unchanged": g.unchanged })).collect::<Vec<_>>(),
+        "variants": page.variants.iter().map(|v| json!({
+            "number": v.number,
+            "values": v.values.iter().map(|(name, e)| (name.clone(), json!({
+                "exact": e.to_text(),
+                "latex": e.to_latex(),
+                "numeric": e.eval(&|_| None).ok().map(num),
+            }))).collect::<serde_json::Map<_, _>>(),
+            "passed": v.passed(),
+            "answers": v.answers.iter().zip(&page.answers).map(|(a, spec)| json!({
+                "quantity": a.quantity,
+                "label": spec.label,
+                "unit": spec.unit.as_ref().map(|u| &u.text),
+                "exact": a.exact.to_text(),
+                "latex": a.exact.to_latex(),
+                "entries": a.exact.entries().iter().map(|e| e.to_latex()).collect::<Vec<_>>(),
+                "numeric": a.exact_numbers.iter().map(|x| num(*x)).collect::<Vec<_>>(),
+                "independent": a.numeric.iter().map(|x| num(*x)).collect::<Vec<_>>(),
+                "error": num(a.error),
+                "tolerance": num(a.tolerance),
+                "passed": a.passed(),
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+        "steps": page.steps.iter().map(step_json).collect::<Vec<_>>(),
+        "step_checks": page.step_checks.iter().map(|c| json!({
+            "step": c.step, "method": c.method, "error": num(c.error), "tolerance": num(c.tolerance),
+            "evaluations": c.evaluations, "problem": c.problem, "passed": c.passed() })).collect::<Vec<_>>(),
+        "stages": stages,
+        "symbolic_seconds": num(cost.symbolic_seconds),
+        "engine_calls": cost.engine_calls,
+        "numeric_work": cost.numeric_work,
+        "fidelity": { "name": page.fidelity.name(), "tolerance": page.fidelity.tolerance, "max_points": page.fidelity.max_points() },
+        "figures": page.figures.iter().map(|f| json!({
+            "slug": f.slug,
+            "accuracy": f.accuracy.iter().map(|a| json!({
+                "result": a.result, "method": a.method, "true_error": a.true_error.map(num),
+                "estimated_error": a.estimated_error.map(num), "cost": a.cost, "unit": a.unit,
+                "seconds": num(a.seconds) })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+    })
+}
