@@ -221,6 +221,7 @@ impl Build {
         let files = self.check_output().map_err(fail)?;
         let scenes = crate::scene::load_all(&files)
             .map_err(|errors| NotBuilt::Scenes(errors.iter().map(ToString::to_string).collect()))?;
+        super::warn(&scenes);
         if self.whole_course {
             let lectures = scenes.iter().map(|s| s.notes.lecture.as_str()).collect();
             if let Some(e) = course.unused_lecture(&lectures) {

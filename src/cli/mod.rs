@@ -156,7 +156,10 @@ fn find(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
 /// line each, and nothing is derived (bad input prints nothing on standard output).
 fn load(files: &[PathBuf]) -> Option<Vec<crate::scene::Scene>> {
     match crate::scene::load_all(files) {
-        Ok(s) => Some(s),
+        Ok(s) => {
+            warn(&s);
+            Some(s)
+        }
         Err(errors) => {
             for e in &errors {
                 eprintln!("mechbook: error: {e}");
@@ -167,6 +170,13 @@ fn load(files: &[PathBuf]) -> Option<Vec<crate::scene::Scene>> {
             );
             None
         }
+    }
+}
+
+/// The scenes' warnings on stderr, one located line each: what loads, but an author would fix.
+fn warn(scenes: &[crate::scene::Scene]) {
+    for w in scenes.iter().flat_map(|s| &s.warnings) {
+        eprintln!("mechbook: warning: {w}");
     }
 }
 

@@ -42,7 +42,8 @@ pub(super) fn page_steps(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
 }
 
 fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
-    let why = Prose::default().text(&step.why);
+    // The author's reason, its `$…$` mathematics typeset.
+    let why = crate::model::prose::author(&step.why);
     let title = match &step.eq {
         Some(eq) => format!("{} (eq {eq})", step.name),
         None => step.name.clone(),

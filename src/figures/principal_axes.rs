@@ -149,7 +149,7 @@ pub(super) fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, Fi
     let mut desc = format!(
         "Principal axes of {} through the frame origin, in an oblique view (azimuth 25°, \
          elevation 20°) at {}: {}.",
-        scene.title.to_lowercase(),
+        crate::model::prose::plain(&scene.title).to_lowercase(),
         scene
             .values
             .iter()

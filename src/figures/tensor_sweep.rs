@@ -112,7 +112,7 @@ pub(super) fn tensor_sweep(
     let desc = format!(
         "Inertia tensor entries of {} against {over} from {} to {}, at {}. Over this range {}{}. \
          Dots: {samples} values of {over} by quadrature with {}, at most {} from the exact curves.",
-        scene.title.to_lowercase(),
+        crate::model::prose::plain(&scene.title).to_lowercase(),
         trim_num(from),
         trim_num(to),
         fixed.join(", "),

@@ -68,6 +68,26 @@ pub fn author(text: &str) -> Prose {
 
 /// The text between unescaped `$` signs: text, mathematics, text, ... (`\$` a dollar sign in
 /// text). An odd count of parts means every `$` was closed.
+/// An author's text as plain Unicode, for where markup cannot go (a page's `<title>`, a link,
+/// alt text): each `$…$` as its formula's text (`$\alpha$` is α).
+pub fn plain(text: &str) -> String {
+    if !text.contains('$') {
+        return text.to_string();
+    }
+    let mut out = String::new();
+    for (k, part) in dollar_split(text).iter().enumerate() {
+        if k % 2 == 1 {
+            match crate::notation::Tex::read(part) {
+                Ok(tex) => out.push_str(&tex.to_plain()),
+                Err(_) => out.push_str(part),
+            }
+        } else {
+            out.push_str(part);
+        }
+    }
+    out
+}
+
 pub fn dollar_split(text: &str) -> Vec<String> {
     let mut parts = vec![String::new()];
     let mut chars = text.chars().peekable();

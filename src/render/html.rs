@@ -224,7 +224,7 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
                 .map(|&i| {
                     Ok(PageLink {
                         href: docs.files[i].clone(),
-                        title: pages[i].title.clone(),
+                        title: crate::model::prose::plain(&pages[i].title),
                         title_html: super::author_html(&pages[i].title)?,
                         errata: pages[i].errata,
                         problem: docs.is_problem(i),

@@ -172,6 +172,15 @@ impl RenderError {
     }
 }
 
+/// A link whose text is a page's title, the title's mathematics as plain text (a link's text
+/// in the page's navigation holds no markup).
+fn plain_link(l: &Link) -> Link {
+    Link {
+        href: l.href.clone(),
+        title: crate::model::prose::plain(&l.title),
+    }
+}
+
 /// A sentence as HTML: its text escaped, its formulas as MathML.
 fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError> {
     use crate::model::prose::Piece;
@@ -416,7 +425,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
     }
     Ok(PageView {
         id: page.id.clone(),
-        title: page.title.clone(),
+        title: crate::model::prose::plain(&page.title),
         title_html: author_html(&page.title)?,
         lecture: page.lecture.clone(),
         section: page.section.clone(),
@@ -478,8 +487,8 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             })
             .collect(),
         passed: page.passed,
-        prev: page.prev.clone(),
-        next: page.next.clone(),
+        prev: page.prev.as_ref().map(plain_link),
+        next: page.next.as_ref().map(plain_link),
     })
 }
 

@@ -60,7 +60,11 @@ pub fn quiz(problem: &Problem, solution: Option<&str>) -> String {
 }
 
 fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
-    let name = format!("{} — variant {}", problem.title, v.number);
+    let name = format!(
+        "{} — variant {}",
+        crate::model::prose::plain(&problem.title),
+        v.number
+    );
     let statement = statement_tex(&v.statement);
     let scalars: usize = v.answers.iter().map(|a| a.exact_numbers.len()).sum();
     let mut out = String::new();

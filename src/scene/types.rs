@@ -13,6 +13,9 @@ use std::path::PathBuf;
 pub struct Scene {
     pub id: String,
     pub title: String,
+    /// What the scene's author should look at but may leave: ASCII mathematics in its prose,
+    /// each at its place (`check` and `build` print them).
+    pub warnings: Vec<crate::scene::error::SceneError>,
     /// The path the scene was read from, as given (never made absolute).
     pub source: PathBuf,
     /// A hash of the file's bytes: with the fidelity and the program, the key of the build cache.

@@ -29,6 +29,33 @@ fn check_passes_on_every_lecture_scene_and_prints_the_table() {
     }
     assert!(text.contains("all as recorded"));
     assert!(text.contains("Where the notes disagree with the derivation"));
+    // The shipped lectures write their mathematics between `$` signs.
+    assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
+}
+
+/// ASCII mathematics in a claim's statement loads and checks, with a warning at its place
+/// that says how to write it.
+#[test]
+fn ascii_mathematics_in_prose_is_warned_of_at_its_line() {
+    let out = check_modified("ascii-math", |s| {
+        s.replacen(
+            r#"statement = "$I_{xx} = \\frac{2}{3} \\rho a^5 = \\frac{2}{3} m a^2$.""#,
+            "statement = \"I_xx = (2/3) rho a^5 = (2/3) m a^2.\"",
+            1,
+        )
+    });
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let err = stderr(&out);
+    let warning = err
+        .lines()
+        .find(|l| l.starts_with("mechbook: warning: "))
+        .unwrap_or_else(|| panic!("no warning: {err}"));
+    assert!(
+        warning.contains("scene.toml:43:14: field `claim[2].statement`: `I_xx` is mathematics"),
+        "{warning}"
+    );
+    assert!(warning.contains("`$I_{xx}$`"), "{warning}");
+    assert_eq!(err.matches("warning").count(), 1, "one a field: {err}");
 }
 
 #[test]

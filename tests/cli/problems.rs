@@ -71,6 +71,25 @@ fn no_student_sheet_contains_any_answer_exact_or_decimal() {
                 }
             }
         }
+        // And the statements' own mathematics (`$y$ axis`, `$\alpha = {alpha}$`), at each
+        // variant's values: the LaTeX with each value's LaTeX in its braces.
+        for (file, other) in PROBLEMS.iter().zip(&scenes) {
+            let text: toml::Value =
+                toml::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+            let statement = text["problem"]["statement"].as_str().unwrap();
+            let parts = mechbook::model::prose::dollar_split(statement);
+            for math in parts.iter().skip(1).step_by(2) {
+                for v in other["variants"].as_array().unwrap() {
+                    let mut filled = math.clone();
+                    for (name, x) in v["values"].as_object().unwrap() {
+                        let value = format!("{{{}}}", x["latex"].as_str().unwrap());
+                        filled = filled.replace(&format!("{{{name}}}"), &value);
+                    }
+                    let math = inline(&Tex::read(&filled).unwrap()).unwrap();
+                    stripped = stripped.replace(&math, "");
+                }
+            }
+        }
         assert!(
             !stripped.contains("<math"),
             "{scene}: a formula on the student sheet is not a variant's value"

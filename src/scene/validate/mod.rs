@@ -2,6 +2,7 @@
 //! each error located at its field.
 
 mod answers;
+mod ascii_math;
 mod bodies;
 mod claims;
 mod motion_plot;
@@ -97,6 +98,7 @@ impl Validator<'_> {
     pub(super) fn scene(&self, raw: RawScene) -> Result<Scene, SceneError> {
         self.names(&raw)?;
         self.prose_fields(&raw)?;
+        let warnings = self.ascii_math_warnings(&raw);
         let symbols = self.symbols(&raw)?;
         let mut allowed: BTreeSet<String> = symbols.keys().cloned().collect();
         allowed.insert("pi".into());
@@ -171,6 +173,7 @@ impl Validator<'_> {
             lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
             id: raw.id.into_inner(),
             title: raw.title.into_inner(),
+            warnings,
             source: self.loc.path.to_path_buf(),
             content_hash: crate::base::hash::content_hash(self.loc.text.as_bytes()),
             notes: NotesRef {

@@ -161,7 +161,8 @@ impl Validator<'_> {
     }
 
     /// Every prose field of the scene: the title, the symbols' meanings, the bodies' labels,
-    /// the claims' statements and the problem's statement (which alone may run over lines).
+    /// the claims' statements, the steps' reasons and the problem's statement (the statements
+    /// and reasons may run over lines).
     pub(super) fn prose_fields(&self, raw: &RawScene) -> Result<(), SceneError> {
         self.prose(&raw.title, "title", false)?;
         for (name, meaning) in &raw.symbols {
@@ -179,6 +180,11 @@ impl Validator<'_> {
                 &format!("claim[{i}].statement"),
                 true,
             )?;
+        }
+        for (i, s) in raw.steps.iter().enumerate() {
+            if let Some(why) = &s.get_ref().why {
+                self.prose(why, &format!("step[{i}].why"), true)?;
+            }
         }
         if let Some(p) = &raw.problem {
             self.prose(&p.get_ref().statement, "problem.statement", true)?;

@@ -1,0 +1,173 @@
+//! A formula tree as plain Unicode text, for where markup cannot go: a page's `<title>`, a
+//! link's text, a figure's alt text, a Moodle question's name. `$\alpha$` is α, `$r^2$` r²,
+//! `$I_{xx}$` I_xx, `$\frac{a}{b}$` a/b, `$\vec L$` L⃗.
+
+use super::latex::{Node, Tex, relation_text};
+use crate::base::format::superscript;
+use pulldown_latex::event::{Content, EnvironmentFlow, Grouping, ScriptType, Visual};
+
+impl Tex {
+    pub fn to_plain(&self) -> String {
+        let mut out = String::new();
+        row(&self.nodes, &mut out);
+        // One space where pieces meet with spaces of their own.
+        out.split_whitespace().collect::<Vec<_>>().join(" ")
+    }
+}
+
+fn row(nodes: &[Node], out: &mut String) {
+    for n in nodes {
+        node(n, out);
+    }
+}
+
+/// A piece as one item: in parentheses when it is more than one character.
+fn operand(nodes: &[Node]) -> String {
+    let mut s = String::new();
+    row(nodes, &mut s);
+    let s = s.trim().to_string();
+    if s.chars().count() > 1 {
+        format!("({s})")
+    } else {
+        s
+    }
+}
+
+fn text_of(n: &Node) -> String {
+    let mut s = String::new();
+    node(n, &mut s);
+    s.trim().to_string()
+}
+
+fn node(n: &Node, out: &mut String) {
+    match n {
+        Node::Text(t) => out.push_str(&t.replace("&nbsp;", " ")),
+        Node::Number(s) | Node::Function(s) => out.push_str(s),
+        Node::Atom(c) => match c {
+            Content::BinaryOp { content: '/', .. } => out.push('/'),
+            Content::BinaryOp { content, .. } => out.push_str(&format!(" {content} ")),
+            Content::Relation { content, .. } => {
+                out.push_str(&format!(" {} ", relation_text(content)));
+            }
+            Content::Punctuation(p) => out.push_str(&format!("{p} ")),
+            Content::Ordinary { content, .. }
+            | Content::LargeOp { content, .. }
+            | Content::Delimiter { content, .. } => out.push(*content),
+            other => out.push_str(&format!("{other:?}")),
+        },
+        Node::Group(g, inner) => {
+            let (open, close) = match g {
+                Grouping::LeftRight(open, close) => (*open, *close),
+                _ => (None, None),
+            };
+            out.extend(open);
+            row(inner, out);
+            out.extend(close);
+        }
+        Node::Visual(v, parts) => match (v, parts.as_slice()) {
+            // A space after: 2/3 m, not 2/3m.
+            (Visual::Fraction(_), [a, b]) => {
+                out.push_str(&format!(
+                    "{}/{} ",
+                    operand(std::slice::from_ref(a)),
+                    operand(std::slice::from_ref(b))
+                ));
+            }
+            (Visual::SquareRoot, [a]) => {
+                out.push_str(&format!("√{}", operand(std::slice::from_ref(a))));
+            }
+            (Visual::Root, [a, index]) => {
+                let index: String = text_of(index).chars().map(superscript).collect();
+                out.push_str(&format!("{index}√{}", operand(std::slice::from_ref(a))));
+            }
+            _ => row(parts, out),
+        },
+        Node::Script { ty, parts, .. } => {
+            let base = parts.first().map(text_of).unwrap_or_default();
+            // An accent: the base with the accent's combining mark.
+            if let (ScriptType::Superscript, Some(Node::Atom(Content::Ordinary { content, .. }))) =
+                (ty, parts.get(1))
+                && let Some(mark) = combining(*content)
+            {
+                out.push_str(&base);
+                out.push(mark);
+                return;
+            }
+            out.push_str(&base);
+            let (sub, sup) = match (ty, &parts[1..]) {
+                (ScriptType::Subscript, [s]) => (Some(s), None),
+                (ScriptType::Superscript, [s]) => (None, Some(s)),
+                (ScriptType::SubSuperscript, [s, t]) => (Some(s), Some(t)),
+                _ => (None, None),
+            };
+            if let Some(s) = sub {
+                out.push('_');
+                out.push_str(&text_of(s));
+            }
+            if let Some(s) = sup {
+                let s = text_of(s);
+                let tight: String = s.chars().filter(|c| !c.is_whitespace()).collect();
+                if tight
+                    .chars()
+                    .all(|c| c.is_ascii_digit() || c == '−' || c == '-')
+                {
+                    let s = tight;
+                    out.extend(
+                        s.chars()
+                            .map(|c| if c == '−' { '⁻' } else { superscript(c) }),
+                    );
+                } else {
+                    out.push('^');
+                    out.push_str(&operand_text(&s));
+                }
+            }
+        }
+        Node::Space(_) => out.push(' '),
+        Node::State(_) => {}
+        Node::Flow(EnvironmentFlow::Alignment) => out.push_str(", "),
+        Node::Flow(_) => out.push_str("; "),
+    }
+}
+
+fn operand_text(s: &str) -> String {
+    if s.chars().count() > 1 {
+        format!("({s})")
+    } else {
+        s.to_string()
+    }
+}
+
+/// The combining mark of an accent that pulldown-latex sets over its base.
+fn combining(accent: char) -> Option<char> {
+    Some(match accent {
+        '→' => '\u{20d7}',
+        '˙' => '\u{307}',
+        '¨' => '\u{308}',
+        '^' | 'ˆ' => '\u{302}',
+        '¯' | '‾' => '\u{304}',
+        '~' | '˜' => '\u{303}',
+        '↔' => '\u{20e1}',
+        _ => return None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plain(latex: &str) -> String {
+        Tex::read(latex).unwrap().to_plain()
+    }
+
+    #[test]
+    fn formulas_as_plain_text() {
+        assert_eq!(plain("\\alpha"), "α");
+        assert_eq!(plain("r^2 + x^{-1}"), "r² + x⁻¹");
+        assert_eq!(plain("I_{xx} = \\frac{2}{3} m a^2"), "I_xx = 2/3 ma²");
+        assert_eq!(plain("\\frac{M R^2}{2}"), "(MR²)/2");
+        assert_eq!(plain("\\sqrt{g/l}"), "√(g/l)");
+        assert_eq!(plain("\\vec L = \\dot\\theta"), "L\u{20d7} = θ\u{307}");
+        assert_eq!(plain("A^{T}, \\left(a, b\\right)"), "A^T, (a, b)");
+        assert_eq!(plain("\\mathrm{kg\\,m^2}"), "kg m²");
+    }
+}

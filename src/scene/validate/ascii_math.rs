@@ -1,0 +1,225 @@
+//! ASCII mathematics in prose: `r^2`, `omega`, `sqrt(`, `I_xx` written as text where `$…$`
+//! would typeset them. It is not an error (the text prints as written), so `check` and `build`
+//! warn at its line, once a field, with the way to write it.
+
+use super::{Validator, content_start};
+use crate::scene::error::SceneError;
+use crate::scene::raw::{RawScene, Text};
+
+/// Greek letters' names, which in prose are almost always a symbol written out.
+const GREEK: &[&str] = &[
+    "alpha", "beta", "gamma", "delta", "epsilon", "theta", "lambda", "mu", "nu", "rho", "sigma",
+    "tau", "phi", "psi", "omega", "Gamma", "Delta", "Theta", "Lambda", "Sigma", "Phi", "Psi",
+    "Omega",
+];
+
+/// The first ASCII mathematics in `text` outside its `$…$` and its backticks: its byte offset
+/// and the characters around it, as the author wrote them.
+pub fn ascii_math(text: &str) -> Option<(usize, String)> {
+    let bytes = text.as_bytes();
+    let (mut in_math, mut in_code) = (false, false);
+    let mut i = 0;
+    while i < bytes.len() {
+        let c = bytes[i];
+        match c {
+            b'\\' if bytes.get(i + 1) == Some(&b'$') => {
+                i += 2;
+                continue;
+            }
+            b'$' if !in_code => in_math = !in_math,
+            b'`' if !in_math => in_code = !in_code,
+            // A problem's `{name}`, which the variant's value replaces.
+            b'{' if !in_math && !in_code => {
+                if let Some(close) = text[i..].find('}') {
+                    i += close + 1;
+                    continue;
+                }
+            }
+            _ if in_math || in_code || !text.is_char_boundary(i) => {}
+            _ => {
+                if let Some(found) = math_at(text, i) {
+                    return Some((i, found));
+                }
+            }
+        }
+        i += 1;
+    }
+    None
+}
+
+/// ASCII mathematics starting at byte `i`, if any: the word around it.
+fn math_at(text: &str, i: usize) -> Option<String> {
+    let bytes = text.as_bytes();
+    let word_char = |b: u8| b.is_ascii_alphanumeric() || b == b'_';
+    let starts_word = i == 0 || !word_char(bytes[i - 1]);
+    let rest = &text[i..];
+    let found = if bytes[i] == b'^' {
+        // A power or a transpose: r^2, A^T, A^-1, (…)^2.
+        let before =
+            i > 0 && (bytes[i - 1].is_ascii_alphanumeric() || b")]}".contains(&bytes[i - 1]));
+        let after = bytes
+            .get(i + 1)
+            .is_some_and(|b| b.is_ascii_alphanumeric() || b"-({".contains(b));
+        before && after
+    } else if starts_word && rest.starts_with("sqrt(") {
+        true
+    } else if starts_word && bytes[i].is_ascii_alphabetic() {
+        let word: &str = &rest[..rest
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(rest.len())];
+        // A rate written with a prime: x', u'' (but not the top's).
+        let primed = word.len() == 1 && {
+            let after = &rest[word.len()..];
+            after.starts_with('\'') && !after[1..].starts_with(|c: char| c.is_ascii_alphabetic())
+        };
+        GREEK.contains(&word) || subscripted(word) || primed
+    } else {
+        false
+    };
+    found.then(|| around(text, i))
+}
+
+/// `I_xx`, `omega_z`, `delta_jk`: letters, `_`, then a letter or digit.
+fn subscripted(word: &str) -> bool {
+    word.split_once('_').is_some_and(|(head, tail)| {
+        !head.is_empty()
+            && head.chars().all(|c| c.is_ascii_alphabetic())
+            && tail
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_alphanumeric())
+    })
+}
+
+/// A first LaTeX for ASCII mathematics, for the message: Greek names as commands, a subscript
+/// in braces, `sqrt(x)` as `\sqrt{x}`.
+fn latex_for(found: &str) -> String {
+    let mut out = String::new();
+    let mut rest = found;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_alphabetic()) {
+        out.push_str(&rest[..start]);
+        rest = &rest[start..];
+        let end = rest
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(rest.len());
+        let word = &rest[..end];
+        rest = &rest[end..];
+        let (head, sub) = match word.split_once('_') {
+            Some((h, s)) if subscripted(word) => (h, Some(s)),
+            _ => (word, None),
+        };
+        if head == "sqrt" && rest.starts_with('(') {
+            let close = rest.find(')').unwrap_or(rest.len() - 1);
+            out.push_str(&format!("\\sqrt{{{}}}", &rest[1..close]));
+            rest = rest.get(close + 1..).unwrap_or("");
+            continue;
+        }
+        out.push_str(&if GREEK.contains(&head) {
+            format!("\\{head}")
+        } else {
+            head.to_string()
+        });
+        if let Some(sub) = sub {
+            out.push_str(&format!("_{{{sub}}}"));
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The run of characters without spaces around byte `i`, without the punctuation that ends a
+/// sentence or a clause.
+fn around(text: &str, i: usize) -> String {
+    let start = text[..i].rfind(char::is_whitespace).map_or(0, |s| s + 1);
+    let end = text[i..]
+        .find(char::is_whitespace)
+        .map_or(text.len(), |e| i + e);
+    text[start..end]
+        .trim_end_matches(['.', ',', ';', ':'])
+        .to_string()
+}
+
+impl Validator<'_> {
+    /// A warning for the first ASCII mathematics of a prose field, at its place.
+    fn ascii_math_in(&self, t: &Text, field: &str, out: &mut Vec<SceneError>) {
+        if let Some((at, found)) = ascii_math(t.get_ref()) {
+            out.push(self.err(
+                content_start(t) + at,
+                field,
+                format!(
+                    "`{found}` is mathematics written as text: write it in LaTeX between `$` \
+                     signs, `${}$`, so that the page and the PDF typeset it",
+                    latex_for(&found)
+                ),
+            ));
+        }
+    }
+
+    /// Warnings for the ASCII mathematics in the scene's prose: its title, its bodies' and
+    /// answers' labels, its claims' statements, its steps' reasons and its problem's statement.
+    pub(super) fn ascii_math_warnings(&self, raw: &RawScene) -> Vec<SceneError> {
+        let mut out = Vec::new();
+        self.ascii_math_in(&raw.title, "title", &mut out);
+        for (i, b) in raw.bodies.iter().enumerate() {
+            if let Some(label) = &b.get_ref().label {
+                self.ascii_math_in(label, &format!("body[{i}].label"), &mut out);
+            }
+        }
+        for (i, c) in raw.claims.iter().enumerate() {
+            let field = format!("claim[{i}].statement");
+            self.ascii_math_in(&c.get_ref().statement, &field, &mut out);
+        }
+        for (i, s) in raw.steps.iter().enumerate() {
+            if let Some(why) = &s.get_ref().why {
+                self.ascii_math_in(why, &format!("step[{i}].why"), &mut out);
+            }
+        }
+        if let Some(p) = &raw.problem {
+            let p = p.get_ref();
+            self.ascii_math_in(&p.statement, "problem.statement", &mut out);
+            for (i, a) in p.answers.get_ref().iter().enumerate() {
+                if let Some(label) = &a.get_ref().label {
+                    self.ascii_math_in(label, &format!("problem.answers[{i}].label"), &mut out);
+                }
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ascii_math;
+
+    #[test]
+    fn powers_greek_names_roots_and_subscripts_are_found_outside_dollars() {
+        let found = |t: &str| ascii_math(t).map(|(_, s)| s);
+        assert_eq!(found("L = m r^2 omega."), Some("r^2".into()));
+        assert_eq!(found("so A T A^-1 = A T A^T"), Some("A^-1".into()));
+        assert_eq!(found("tilted by theta, about x"), Some("theta".into()));
+        assert_eq!(
+            found("the period is 2 pi sqrt(l/g)"),
+            Some("sqrt(l/g)".into())
+        );
+        assert_eq!(found("I_xx = m (r^2 - x^2)"), Some("I_xx".into()));
+        assert_eq!(found("(a + b)^2 grows"), Some("b)^2".into()));
+        // Typeset, quoted as code, escaped or English: nothing.
+        assert_eq!(found("$L = m r^2 \\omega$, about $I_{xx}$"), None);
+        assert_eq!(found("the step `acc_x`, at \\$5"), None);
+        assert_eq!(found("the omegaless alphabet, a deltoid"), None);
+        assert_eq!(found("a snake_ case and x_ alone"), None);
+        assert_eq!(found("turned by {alpha} about y, mass {M_1}"), None);
+        assert_eq!(found("the tilt turns where u' = 0"), Some("u'".into()));
+        assert_eq!(found("the top's spin and a 'quoted' word"), None);
+        // Within a character of two bytes or more, nothing is looked for.
+        assert_eq!(found("kg m² about, kg·m², a ² alone"), None);
+        assert_eq!(found("µ omega"), Some("omega".into()));
+    }
+
+    #[test]
+    fn the_message_suggests_the_latex() {
+        assert_eq!(super::latex_for("omega_z^2"), "\\omega_{z}^2");
+        assert_eq!(super::latex_for("sqrt(l/g)"), "\\sqrt{l/g}");
+        assert_eq!(super::latex_for("A^T"), "A^T");
+    }
+}
