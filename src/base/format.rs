@@ -146,9 +146,37 @@ pub fn latex_number(s: &str) -> String {
     }
 }
 
+/// Text with each negative number's hyphen written as a minus sign, as a textbook sets it:
+/// `slope -0.67` is `slope −0.67`; a hyphen between words or numbers (`Dormand-Prince`, `3-4`)
+/// stays.
+pub fn minus_signs(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len());
+    for (i, &c) in chars.iter().enumerate() {
+        let before = i == 0 || chars[i - 1].is_whitespace() || "([{,;=/:".contains(chars[i - 1]);
+        let after = chars.get(i + 1).is_some_and(|n| n.is_ascii_digit())
+            || (chars.get(i + 1) == Some(&'.')
+                && chars.get(i + 2).is_some_and(|n| n.is_ascii_digit()));
+        out.push(if c == '-' && before && after {
+            '−'
+        } else {
+            c
+        });
+    }
+    out
+}
+
 #[cfg(test)]
 mod latex_number_tests {
     use super::{latex_number, sci, short, text_number};
+
+    #[test]
+    fn negative_numbers_in_text_take_a_minus_sign() {
+        assert_eq!(
+            super::minus_signs("slope -0.67, at (-1, -.5); Dormand-Prince, 3-4, x=-2"),
+            "slope −0.67, at (−1, −.5); Dormand-Prince, 3-4, x=−2"
+        );
+    }
 
     #[test]
     fn text_numbers_use_powers_of_ten() {

@@ -110,6 +110,10 @@ pub fn figures(
         plot(scene, d, fidelity, p, &mut out).map_err(|source| PlotFailure { index, source })?;
         // A plot of NaN or infinity is a failure of the inputs' precision, said here, at the
         // plot, rather than a broken picture or a renderer's error.
+        // A caption's negative numbers as a textbook sets them (−0.67, not -0.67).
+        for f in &mut out[first..] {
+            f.desc = crate::base::format::minus_signs(&f.desc);
+        }
         for f in &out[first..] {
             let finite = |(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
             if !f.series.iter().all(|s| s.points.iter().all(finite))
