@@ -137,7 +137,9 @@ mod tests {
 }
 
 /// A number as LaTeX: `4.6875e-6` as `4.6875 \times 10^{-6}`, so that no page reads an italic e
-/// and a spaced minus; other numbers as they are.
+/// and a spaced minus; other numbers as they are. The pages set numbers from
+/// `notation::Formula::decimal`; this is the tests' second route to the same tree.
+#[cfg(test)]
 pub fn latex_number(s: &str) -> String {
     match power_of_ten(s) {
         Some(("1", power)) => format!("10^{{{power}}}"),

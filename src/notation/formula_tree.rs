@@ -189,6 +189,12 @@ mod tests {
             let read = Tex::read(&latex).unwrap_or_else(|e| panic!("{latex}: {e}"));
             assert_eq!(nodes(&f), read.nodes, "{src}\n{latex}");
         }
+        // A computed number is the tree of its LaTeX (4.6875 × 10⁻⁶, never e-notation).
+        for s in ["4.6875e-6", "-1.5e+07", "1e-12", "0.25", "-3", "NaN", "inf"] {
+            let latex = crate::base::format::latex_number(s);
+            let read = Tex::read(&latex).unwrap().nodes;
+            assert_eq!(nodes(&Formula::decimal(s)), read, "{s}: {latex}");
+        }
         let f = Formula::Row(vec![
             Formula::Number("-2.25".into()),
             Formula::Text("words".into()),

@@ -25,12 +25,7 @@ fn row(nodes: &[Node], out: &mut String) {
 fn operand(nodes: &[Node]) -> String {
     let mut s = String::new();
     row(nodes, &mut s);
-    let s = s.trim().to_string();
-    if s.chars().count() > 1 {
-        format!("({s})")
-    } else {
-        s
-    }
+    operand_text(s.trim())
 }
 
 fn text_of(n: &Node) -> String {
@@ -129,6 +124,7 @@ fn node(n: &Node, out: &mut String) {
     }
 }
 
+/// Text as one item: in parentheses when it is more than one character.
 fn operand_text(s: &str) -> String {
     if s.chars().count() > 1 {
         format!("({s})")

@@ -163,26 +163,15 @@ pub fn accent(base: Vec<Node>, mark: char, stretchy: bool) -> Node {
 }
 
 /// A script put on the last node written, as LaTeX's `^{…}` and `_{…}` bind: a superscript on
-/// a subscripted base, or a subscript on a raised one, makes one node with both (`m_1^{2}`). Nothing written yet: on an empty
-/// base.
+/// a subscripted base, or a subscript on a raised one, makes one node with both (`m_1^{2}`).
+/// Nothing written yet: on an empty base. (A base that already has a script of the kind is
+/// braced first by the caller, `expr_tree::script`, as the LaTeX printer braces it.)
 pub fn attach(out: &mut Vec<Node>, ty: ScriptType, script: Vec<Node>) {
     attach_at(out, ty, ScriptPosition::Right, script);
 }
 
 pub fn attach_at(out: &mut Vec<Node>, ty: ScriptType, position: ScriptPosition, script: Vec<Node>) {
-    let mut base = out.pop().unwrap_or_else(|| group(Vec::new()));
-    // A script of the kind already there is put on the whole, in braces, as the LaTeX
-    // printer writes it (`{r_{1}}_{2}`).
-    if let Node::Script {
-        ty: had,
-        position: p,
-        ..
-    } = &base
-        && *p == position
-        && (*had == ScriptType::SubSuperscript || *had == ty)
-    {
-        base = group(vec![base]);
-    }
+    let base = out.pop().unwrap_or_else(|| group(Vec::new()));
     let node = match (base, ty) {
         (
             Node::Script {
