@@ -80,6 +80,8 @@ pub(super) fn typst_symbol(s: &str) -> String {
             };
             if tail.is_empty() {
                 head
+            } else if let Some(g) = super::symbol_latex::greek_letter(tail) {
+                format!("{head}_({g})")
             } else if tail.chars().all(|c| c.is_ascii_digit()) {
                 format!("{head}_({tail})")
             } else {

@@ -119,6 +119,11 @@ pub enum Head<'a> {
     Letter(&'a str),
 }
 
+/// A subscript that names one letter: `x` in `acc_x`, `phi` in `p_phi` (a Greek letter's name).
+pub fn is_letter_index(tail: &str) -> bool {
+    (tail.len() == 1 && tail.as_bytes()[0].is_ascii_alphabetic()) || GREEK.contains(&tail)
+}
+
 pub fn name_form(s: &str) -> NameForm<'_> {
     if let Some(base) = s.strip_suffix("''") {
         return NameForm::Rate(base, true);
@@ -128,6 +133,7 @@ pub fn name_form(s: &str) -> NameForm<'_> {
     }
     if let Some((_, tail)) = s.split_once('_')
         && !tail.chars().all(|c| c.is_ascii_digit())
+        && !is_letter_index(tail)
     {
         return NameForm::Word(s);
     }
@@ -184,6 +190,8 @@ pub(super) fn latex_symbol(s: &str) -> String {
             };
             if tail.is_empty() {
                 head
+            } else if GREEK.contains(&tail) {
+                format!("{head}_{{\\{tail}}}")
             } else {
                 format!("{head}_{{{tail}}}")
             }

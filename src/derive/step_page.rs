@@ -57,11 +57,12 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                 _ => "t",
             };
             let verdict = if *conserved {
-                format!("conserved: the Lagrangian does not depend on {of} (∂L/∂{of} = 0)")
+                "conserved: the Lagrangian does not depend on "
             } else {
-                format!("not conserved: ∂L/∂{of} is not 0")
+                "not conserved: the Lagrangian depends on "
             };
-            let why = with_reason(step, &why, Prose::default().text(&verdict));
+            let verdict = Prose::default().text(verdict).expr(&Expr::sym(of));
+            let why = with_reason(step, &why, verdict);
             vec![Step::note(&title, named(value), why)]
         }
         StepResult::Equilibria { coordinate, zeros } => zeros
@@ -90,8 +91,11 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                         }
                     };
                     let at = Prose::default()
-                        .text(&format!("about {coordinate} = "))
-                        .expr(&c.at.value)
+                        .text("about ")
+                        .formula(Formula::equation(
+                            Formula::Expr(Expr::sym(coordinate)),
+                            c.at.value.clone(),
+                        ))
                         .text(&format!(": {verdict}"));
                     let why = with_reason(step, &why, at);
                     Step::note(
@@ -134,10 +138,11 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                 let at = Prose::default()
                     .text("about ")
                     .formula(state_formula(coordinates, &c.at))
+                    .text(": the leading minors of the stiffness ")
+                    .formula(Formula::author(r"K = \partial R / \partial q"))
                     .text(&format!(
-                        ": the leading minors of the stiffness K = ∂R/∂q there; every \
-                         frequency² is positive exactly when they all are (the mass matrix \
-                         being positive definite): {verdict}"
+                        " there; every frequency² is positive exactly when they all are (the \
+                         mass matrix being positive definite): {verdict}"
                     ));
                 let mut row = Vec::new();
                 for (k, m) in c.minors.iter().enumerate() {

@@ -2,6 +2,7 @@
 //! sheet, each problem for Moodle. What each shows is decided here, once; the renderers (HTML,
 //! PDF, Moodle) print these documents and decide only how they look.
 
+use super::handout::{Part, part};
 use super::{Page, Problem, Sheet, figure_file, page_file, pages, problem, sheet};
 use crate::model::figure::Figure;
 use crate::pipeline::SceneReport;
@@ -36,12 +37,12 @@ pub struct Lecture {
     pub sheet: Option<Sheet>,
 }
 
-/// A lecture's handout: the pages it shows, in order.
+/// A lecture's handout: the part of each page it shows, in order.
 pub struct Handout {
     pub instructor: bool,
     /// A student's handout leaves the problems to the problem sheet; the instructor's shows
-    /// every page.
-    pub pages: Vec<usize>,
+    /// every page. What each part shows of its page is [`handout::part`]'s choice.
+    pub parts: Vec<Part>,
 }
 
 impl Handout {
@@ -75,15 +76,17 @@ pub fn documents<'a>(reports: &'a [SceneReport], course: &Course) -> Documents<'
         .filter_map(|(i, r)| Some((i, problem(r)?)))
         .collect();
     let is_problem = |i: usize| problems.iter().any(|(j, _)| *j == i);
+    let pages = pages(reports);
     let lectures = lecture_order(reports, course)
         .into_iter()
         .map(|(name, scenes)| {
             let handout = |instructor: bool| Handout {
                 instructor,
-                pages: scenes
+                parts: scenes
                     .iter()
                     .copied()
                     .filter(|&i| instructor || !is_problem(i))
+                    .map(|i| part(i, &pages[i], instructor))
                     .collect(),
             };
             let sheet = sheet(
@@ -104,7 +107,7 @@ pub fn documents<'a>(reports: &'a [SceneReport], course: &Course) -> Documents<'
         })
         .collect();
     Documents {
-        pages: pages(reports),
+        pages,
         files: reports.iter().map(page_file).collect(),
         figures,
         lectures,

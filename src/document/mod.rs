@@ -5,6 +5,7 @@
 //! here is printed, and there is no file I/O.
 
 pub mod course;
+pub mod handout;
 mod problems;
 mod results;
 pub mod roster;
@@ -41,6 +42,8 @@ pub struct Page {
     pub fidelity: Fidelity,
     /// Each symbol and what it stands for.
     pub symbols: Vec<(String, String)>,
+    /// Each generalised coordinate and what it measures.
+    pub coordinates: Vec<(String, String)>,
     /// The declared units of symbols and coordinates, by name, as written.
     pub units: std::collections::BTreeMap<String, String>,
     /// How the scene typesets its names (name -> LaTeX), where it says.
@@ -48,7 +51,7 @@ pub struct Page {
     /// The scene's abbreviations (`lambda = M/(2*pi*R)`), which its claims and steps use.
     pub definitions: Vec<(String, Expr)>,
     /// Each body in words: its shape, mass, rotations and shift.
-    pub bodies: Vec<String>,
+    pub bodies: Vec<Prose>,
     pub steps: Vec<Step>,
     /// Every derived quantity, in the catalogue's order.
     pub quantities: Vec<Quantity>,
@@ -91,6 +94,13 @@ pub struct Step {
     pub citation: Option<String>,
     /// For an author's step: its numeric check.
     pub check: Option<StepCheck>,
+    /// The author's step this line shows, by name; `None` for a built-in step.
+    pub author: Option<String>,
+    /// The notes' equation the author's step reproduces (its `eq`), if it names one.
+    pub eq: Option<String>,
+    /// The page's claims that are this step's `gives` (indices into `Page::claims`), on the
+    /// step's last line.
+    pub claims: Vec<usize>,
 }
 
 impl Step {
@@ -104,6 +114,20 @@ impl Step {
             }
             None => self.why.clone(),
         }
+    }
+}
+
+impl Page {
+    /// The notes' equation claim `i` is about: a `[[claim]]`'s `eq`, or the `eq` of the step
+    /// whose `gives` it is (`None` when that step names none).
+    pub fn claim_equation(&self, i: usize) -> Option<String> {
+        if self.claims[i].step.is_none() {
+            return Some(self.claims[i].eq.clone());
+        }
+        self.steps
+            .iter()
+            .find(|s| s.claims.contains(&i))
+            .and_then(|s| s.eq.clone())
     }
 }
 
@@ -158,6 +182,41 @@ pub fn figure_file(r: &SceneReport, fig: &crate::model::figure::Figure) -> Strin
 
 /// The page of one scene, linked to the scenes before and after it.
 pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneReport>) -> Page {
+    let mut page = derived_page(r, prev, next);
+    for step in &mut page.steps {
+        if let Some(form) = authors_form(step, &page.claims) {
+            step.statement = form;
+        }
+    }
+    page
+}
+
+/// A step's statement in the form its `gives` writes, where that agrees with the derivation:
+/// the author's form is the one printed (the derived form stays in the claim, for `--json`).
+fn authors_form(step: &Step, claims: &[ClaimResult]) -> Option<Formula> {
+    let gives = step.claims.iter().map(|&i| &claims[i]).find(|c| {
+        c.verdict == crate::scene::Verdict::Agrees
+            && c.problem.is_none()
+            && c.precision.is_none()
+            && c.role == crate::scene::ClaimRole::Notes
+    })?;
+    let notes = Formula::Expr(gives.notes.clone()?);
+    let Formula::Row(row) = &step.statement else {
+        return None;
+    };
+    match row.as_slice() {
+        // An equation of motion, `… = 0`.
+        [Formula::Expr(_), eq, zero @ Formula::Number(n)] if n == "0" => {
+            Some(Formula::Row(vec![notes, eq.clone(), zero.clone()]))
+        }
+        // `name = value`.
+        [name, eq, Formula::Expr(_)] => Some(Formula::Row(vec![name.clone(), eq.clone(), notes])),
+        _ => None,
+    }
+}
+
+/// The page as derived, every step in the derivation's form.
+fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneReport>) -> Page {
     let s = &r.scene;
     let link = |o: Option<&SceneReport>| {
         o.map(|o| Link {
@@ -180,6 +239,11 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
             .iter()
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect(),
+        coordinates: s
+            .coordinates
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect(),
         tex: s.tex.clone(),
         units: s
             .units
@@ -197,31 +261,51 @@ pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneRepo
             .steps
             .iter()
             .enumerate()
-            .map(|(i, st)| Step {
-                title: st.title.clone(),
-                statement: st.statement.clone(),
-                why: st.why.clone(),
-                key: st.cite.clone(),
-                citation: st.citation(&s.cite).map(str::to_string),
-                // An author's step of several lines (equilibria, modes) shows its one check
-                // under its last line.
-                check: st
+            .map(|(i, st)| {
+                let last = r
+                    .derivation
+                    .steps
+                    .get(i + 1)
+                    .and_then(|n| n.author.as_ref())
+                    != st.author.as_ref();
+                let author = st
                     .author
                     .as_ref()
-                    .filter(|name| {
-                        r.derivation
-                            .steps
-                            .get(i + 1)
-                            .and_then(|n| n.author.as_ref())
-                            != Some(*name)
-                    })
-                    .and_then(|name| {
-                        r.verification
-                            .steps
-                            .iter()
-                            .find(|c| &c.step == name)
-                            .cloned()
-                    }),
+                    .and_then(|name| s.steps.iter().position(|a| &a.name == name));
+                Step {
+                    title: st.title.clone(),
+                    statement: st.statement.clone(),
+                    why: st.why.clone(),
+                    key: st.cite.clone(),
+                    citation: st.citation(&s.cite).map(str::to_string),
+                    // An author's step of several lines (equilibria, modes) shows its one check
+                    // under its last line.
+                    check: st
+                        .author
+                        .as_ref()
+                        .filter(|name| {
+                            r.derivation
+                                .steps
+                                .get(i + 1)
+                                .and_then(|n| n.author.as_ref())
+                                != Some(*name)
+                        })
+                        .and_then(|name| {
+                            r.verification
+                                .steps
+                                .iter()
+                                .find(|c| &c.step == name)
+                                .cloned()
+                        }),
+                    author: st.author.clone(),
+                    eq: author.and_then(|k| s.steps[k].eq.clone()),
+                    claims: match author {
+                        Some(k) if last => (0..r.verification.claims.len())
+                            .filter(|&j| r.verification.claims[j].step == Some(k))
+                            .collect(),
+                        _ => Vec::new(),
+                    },
+                }
             })
             .collect(),
         quantities: results::quantities(r),
@@ -293,25 +377,29 @@ pub fn pages(reports: &[SceneReport]) -> Vec<Page> {
         .collect()
 }
 
-fn describe_body(b: &crate::scene::Body) -> String {
-    let mass = if b.subtract {
-        format!("a hole removing mass {}", Expr::negate(b.mass.clone()))
-    } else {
-        format!("mass {}", b.mass)
-    };
+/// A body in words, its mass, angles and shift typeset: "cone, mass M, rotated by θ about y".
+fn describe_body(b: &crate::scene::Body) -> Prose {
     let mut d = if b.label == b.shape.kind() {
-        format!("{}, {mass}", b.label)
+        Prose::default().text(&b.label)
     } else {
-        format!("{} ({}), {mass}", b.label, b.shape.kind())
+        Prose::default().text(&format!("{} ({})", b.label, b.shape.kind()))
+    };
+    d = if b.subtract {
+        d.text(", a hole removing mass ")
+            .expr(&Expr::negate(b.mass.clone()))
+    } else {
+        d.text(", mass ").expr(&b.mass)
     };
     for (axis, angle) in &b.rotations {
-        d.push_str(&format!(", rotated by {angle} about {}", axis.name()));
+        d = d
+            .text(", rotated by ")
+            .expr(angle)
+            .text(&format!(" about {}", axis.name()));
     }
     if b.shift.iter().any(|e| !e.is_zero()) {
-        d.push_str(&format!(
-            ", shifted by {}",
-            Value::Vector(b.shift.clone()).to_text()
-        ));
+        d = d
+            .text(", shifted by ")
+            .expr(&Value::Vector(b.shift.clone()).to_expr());
     }
     d
 }

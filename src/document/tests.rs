@@ -42,6 +42,9 @@ fn a_cited_step_gives_its_reason_after_the_citation() {
         key: "k".into(),
         citation: Some("eq (51)".into()),
         check: None,
+        author: None,
+        eq: None,
+        claims: Vec::new(),
     };
     assert_eq!(step.why_cited().to_text(), "eq (51): expand");
     let uncited = Step {

@@ -256,6 +256,18 @@ pub fn quantity_symbol(name: &str) -> Option<&'static str> {
     find(name).and_then(|q| q.symbol)
 }
 
+/// A derived quantity's heading on a page: its name in words, a Greek letter's name as the
+/// letter (`omega_squared` is "ω squared").
+pub fn heading(name: &str) -> String {
+    let words = match name {
+        quantity::OMEGA_SQUARED => "ω squared",
+        quantity::EARTH_BETA => "β of the Earth",
+        quantity::W1_SECOND_DERIVATIVE => "second derivative of ω₁",
+        _ => return name.replace('_', " "),
+    };
+    words.to_string()
+}
+
 /// What `[expect]` records of a scene: every derived result, but the intermediate integrands
 /// and positions. A scene without `[expect]` has these not yet recorded, which `check` fails on
 /// until `check --bless` writes them in.

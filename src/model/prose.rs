@@ -38,6 +38,18 @@ impl Prose {
         self
     }
 
+    /// The sentence with its first letter a capital, as a lead or a heading: "the rod's
+    /// moment" becomes "The rod's moment"; a sentence that opens with a formula is kept.
+    pub fn capitalised(mut self) -> Prose {
+        if let Some(Piece::Text(t)) = self.0.first_mut() {
+            let mut c = t.chars();
+            if let Some(f) = c.next() {
+                *t = f.to_uppercase().chain(c).collect();
+            }
+        }
+        self
+    }
+
     /// The sentence as plain text, formulas in their text form.
     pub fn to_text(&self) -> String {
         self.0

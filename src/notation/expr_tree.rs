@@ -372,7 +372,9 @@ pub fn symbol(s: &str, named: Named<'_>) -> Vec<Node> {
                 Head::Upright(u) => upright(u),
                 Head::Letter(l) => letters(l).remove(0),
             }];
-            if !tail.is_empty() {
+            if greek_letter(tail).is_some() {
+                attach(&mut out, ScriptType::Subscript, vec![ord(greek(tail))]);
+            } else if !tail.is_empty() {
                 attach(&mut out, ScriptType::Subscript, letters(tail));
             }
             out

@@ -196,8 +196,15 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
                 &serde_json::json!({ "name": lecture.name, "heading": lecture.heading }),
             );
             ctx.insert("instructor", &handout.instructor);
-            let chosen: Vec<&PageView> = handout.pages.iter().map(|&i| &pages[i]).collect();
-            ctx.insert("pages", &chosen);
+            let parts = handout
+                .parts
+                .iter()
+                .map(|p| {
+                    super::handout::part_view(p, &docs.pages[p.page], &pages[p.page])
+                        .map_err(|e| e.in_scene(&docs.pages[p.page].source))
+                })
+                .collect::<Result<Vec<_>, RenderError>>()?;
+            ctx.insert("parts", &parts);
             let kind = handout.kind();
             ctx.insert(
                 "pdf",

@@ -3,10 +3,11 @@
 //! MathML), Moodle's quizzes (`moodle.rs`) and the PDFs' markup (`pdf/`). The files are made
 //! in memory: no file I/O here.
 
+mod claim_view;
+pub mod handout;
 pub mod html;
 pub mod json;
 pub mod math;
-use crate::notation::linebreak;
 pub mod moodle;
 pub mod pdf;
 pub mod plot;
@@ -36,10 +37,8 @@ use crate::base::format::sci;
 use crate::cas::Expr;
 use crate::derive::ExactBasis;
 use crate::document::{At, Link, Page, PrincipalValues};
-use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::{Formula, Op, Tex};
-use crate::scene::Verdict;
+use crate::notation::{Formula, Op};
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -129,9 +128,18 @@ pub struct PageView {
     pub symbols: Vec<(String, String, String)>,
     /// Each abbreviation the scene defines, as MathML: `λ = M/(2πR)`.
     pub definitions: Vec<String>,
+    /// Each coordinate as MathML, and what it measures as HTML.
+    pub coordinates: Vec<(String, String)>,
+    /// Each body in words, as HTML.
     pub bodies: Vec<String>,
+    /// One per `Page::steps`.
     pub steps: Vec<StepView>,
+    /// The results the page lists: `quantities` that are results, then `principal`.
     pub results: Vec<StepView>,
+    /// One per `Page::quantities`: `None` for working quantities (an integrand, a position).
+    pub quantities: Vec<Option<StepView>>,
+    /// The exact principal axes, then the principal moments at the scene's values.
+    pub principal: Vec<StepView>,
     pub numeric: Vec<NumericRow>,
     pub claims: Vec<ClaimView>,
     pub figures: Vec<FigureView>,
@@ -244,18 +252,6 @@ pub(crate) fn numbers_formula(v: &Value, mut n: Vec<Formula>) -> Formula {
     }
 }
 
-/// The derived side of a claim; a number the notes give roughly as a decimal (303.6246, not a
-/// fraction of 30 digits).
-fn derived_tex(v: &Value, rough: bool) -> Tex {
-    match v {
-        Value::Scalar(e) if rough => match e.eval(&|_| None) {
-            Ok(x) => number(x, 7).to_tex(),
-            Err(_) => v.to_tex(),
-        },
-        _ => v.to_tex(),
-    }
-}
-
 /// A computed number to `digits` significant figures (4.6875 × 10⁻⁶, never e-notation).
 fn number(x: f64, digits: usize) -> Formula {
     Formula::decimal(&crate::base::format::significant(x, digits))
@@ -321,19 +317,23 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             })
         })
         .collect::<Result<Vec<_>, RenderError>>()?;
-    let mut results = Vec::new();
-    for q in page.quantities.iter().filter(|q| q.is_result) {
-        results.push(StepView {
-            title: q.name.replace('_', " "),
-            math: value_math(&q.value)?,
-            why: String::new(),
-            at: match &q.at {
-                Some(at) => at_numbers_html(&q.value, at)?,
-                None => String::new(),
-            },
-            check: String::new(),
+    let mut quantities = Vec::new();
+    for q in &page.quantities {
+        quantities.push(match q.is_result {
+            true => Some(StepView {
+                title: crate::model::catalogue::heading(&q.name),
+                math: value_math(&q.value)?,
+                why: String::new(),
+                at: match &q.at {
+                    Some(at) => at_numbers_html(&q.value, at)?,
+                    None => String::new(),
+                },
+                check: String::new(),
+            }),
+            false => None,
         });
     }
+    let mut principal = Vec::new();
     for sp in &page.principal_axes {
         let vector = |v: &[Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
         let mut row = vec![Formula::Expr(sp.value.clone())];
@@ -346,7 +346,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             ]),
             ExactBasis::All => row.push(Formula::Text(", every axis".into())),
         }
-        results.push(StepView {
+        principal.push(StepView {
             title: format!("principal moment (multiplicity {})", sp.multiplicity),
             math: math::block(&Formula::Row(row).to_tex())?,
             why: String::new(),
@@ -355,8 +355,14 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         });
     }
     if let Some(p) = &page.principal_values {
-        results.push(principal_values_view(p)?);
+        principal.push(principal_values_view(p)?);
     }
+    let results = quantities
+        .iter()
+        .flatten()
+        .chain(&principal)
+        .cloned()
+        .collect();
     let numeric = page
         .numeric
         .iter()
@@ -371,58 +377,11 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             seconds: timings.then(|| format!("{:.1e}", q.seconds)),
         })
         .collect();
-    let mut claims = Vec::new();
-    for c in &page.claims {
-        let render = |e: Option<&crate::cas::Expr>| {
-            e.map(|e| math::inline(&e.to_tex_named(&quantity_symbol)))
-                .transpose()
-                .map(Option::unwrap_or_default)
-        };
-        let notes_tex = c.notes.as_ref().map(|e| e.to_tex_named(&quantity_symbol));
-        let derived_tex = c
-            .derived
-            .as_ref()
-            .map(|v| derived_tex(v, c.precision.is_some()));
-        // Beside a claim that agrees, the derived form is shown when it says something the
-        // notes' form does not and is about as short; a longer one is equal to the notes' form
-        // (their difference simplifies to 0), which the page says instead. It is in
-        // `check --json` either way.
-        let notes_width = notes_tex.as_ref().map_or(0.0, math::width);
-        let agrees = c.verdict == Verdict::Agrees && c.precision.is_none();
-        let same = agrees
-            && derived_tex.as_ref().map(|t| &t.source)
-                == Some(notes_tex.as_ref().map_or(&String::new(), |t| &t.source));
-        let derived_equal = agrees
-            && !same
-            && match &derived_tex {
-                Some(tex) => math::width(tex) > (2.0 * notes_width).max(linebreak::PHONE),
-                None => false,
-            };
-        let derived = match &derived_tex {
-            Some(tex) if !derived_equal && !same => math::inline(tex)?,
-            _ => String::new(),
-        };
-        claims.push(ClaimView {
-            eq: c.eq.clone(),
-            statement: c.statement.clone(),
-            statement_html: author_html(&c.statement)?,
-            verdict: c.verdict.as_str().into(),
-            quantity: render(c.quantity.as_ref())?,
-            notes: render(c.notes.as_ref())?,
-            derived,
-            derived_equal,
-            differences: c
-                .differences
-                .iter()
-                .map(prose_html)
-                .collect::<Result<_, _>>()?,
-            precision: c.precision.clone(),
-            role: match c.role {
-                crate::scene::ClaimRole::Notes => "notes",
-                crate::scene::ClaimRole::Mistake => "mistake",
-            },
-        });
-    }
+    let claims = page
+        .claims
+        .iter()
+        .map(claim_view::claim_view)
+        .collect::<Result<_, RenderError>>()?;
     Ok(PageView {
         id: page.id.clone(),
         title: crate::model::prose::plain(&page.title),
@@ -459,9 +418,25 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
                 math::inline(&Formula::equation(Formula::Expr(Expr::sym(k)), e.clone()).to_tex())
             })
             .collect::<Result<_, RenderError>>()?,
-        bodies: page.bodies.clone(),
+        coordinates: page
+            .coordinates
+            .iter()
+            .map(|(k, v)| {
+                Ok((
+                    math::mathml(&Expr::sym(k).to_tex(), false)?,
+                    author_html(v)?,
+                ))
+            })
+            .collect::<Result<_, RenderError>>()?,
+        bodies: page
+            .bodies
+            .iter()
+            .map(prose_html)
+            .collect::<Result<_, RenderError>>()?,
         steps,
         results,
+        quantities,
+        principal,
         numeric,
         errata: page.errata,
         claims,
@@ -490,6 +465,22 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         prev: page.prev.as_ref().map(plain_link),
         next: page.next.as_ref().map(plain_link),
     })
+}
+
+/// The scene's values, `M = 1, α = 0.6`, as one formula.
+pub(crate) fn values_at(values: &[(String, f64)]) -> Formula {
+    let mut row = Vec::new();
+    for (k, (name, x)) in values.iter().enumerate() {
+        if k > 0 {
+            row.extend([Formula::Op(Op::Comma), Formula::Op(Op::Quad)]);
+        }
+        row.extend([
+            Formula::Expr(Expr::sym(name)),
+            Formula::Op(Op::Equals),
+            Formula::decimal(&x.to_string()),
+        ]);
+    }
+    Formula::Row(row)
 }
 
 /// The principal moments as numbers, with the axes when only the numerics give them, and how
@@ -538,15 +529,15 @@ fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
         check: String::new(),
         title: "principal moments at the scene's values".into(),
         math: math::block(&Formula::Row(row).to_tex())?,
-        why: tera::escape_html(&format!(
-            "at {}: {route} evaluated, and the eigen-solver on the exact tensor agrees to {} (relative)",
-            p.values
-                .iter()
-                .map(|(k, x)| format!("{k} = {x}"))
-                .collect::<Vec<_>>()
-                .join(", "),
-            sci(p.error)
-        )),
+        why: format!(
+            "at {}: {}",
+            math::inline(&values_at(&p.values).to_tex())?,
+            tera::escape_html(&format!(
+                "{route} evaluated, and the eigen-solver on the exact tensor agrees to {} \
+                 (relative)",
+                sci(p.error)
+            ))
+        ),
     })
 }
 

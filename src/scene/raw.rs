@@ -368,6 +368,9 @@ pub struct RawStep {
     pub gives: Option<Text>,
     #[serde(default)]
     pub why: Option<Text>,
+    /// How the step's name is typeset, in LaTeX: `tex = "I_p"`.
+    #[serde(default)]
+    pub tex: Option<Text>,
     #[serde(default)]
     pub eq: Option<Text>,
     #[serde(default)]

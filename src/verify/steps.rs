@@ -390,11 +390,11 @@ pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, ca
         };
         let claim = Claim {
             eq: step.eq.clone().unwrap_or_else(|| step.name.clone()),
-            statement: match step.op {
-                Operation::Lagrange { .. } => {
-                    format!("step `{}` gives {} = 0", step.name, gives.to_text())
-                }
-                _ => format!("step `{}` gives {}", step.name, gives.to_text()),
+            // The step's reason: the pages show the claim's formula beside it.
+            statement: if step.why.is_empty() {
+                "the form the notes give for this step".to_string()
+            } else {
+                step.why.clone()
             },
             quantity: Some(Expr::sym(&step.name)),
             value: Some(gives.clone()),

@@ -1,7 +1,7 @@
 //! The handouts a lecture prints: the student's marks the notes' mistakes and errata, leaves
 //! the problems to the sheet, and every page prints on the course's paper.
 
-use super::{mechbook, scratch, stderr};
+use super::{mechbook, scratch, stderr, toml_files};
 use std::path::Path;
 
 fn read(site: &Path, file: &str) -> String {
@@ -90,7 +90,7 @@ fn the_student_handout_marks_mistakes_and_errata_and_leaves_problems_to_the_shee
     assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
     let student = read(&out, "handouts/lecture-Bodies-of-revolution-student.html");
     assert!(
-        student.contains("A common mistake, not the notes' claim"),
+        student.contains("A common mistake, not the notes&#x27; claim"),
         "{student}"
     );
     assert!(student.contains("@page { size: letter; }"));
@@ -148,4 +148,162 @@ fn a_step_at_a_multiple_of_pi_over_twelve_is_worked_out_exactly() {
         step.contains("<msqrt><mrow><mn>6</mn></mrow></msqrt>"),
         "{step}"
     );
+}
+
+/// The text a reader sees in a page: its MathML, style and tags left out, entities read.
+fn visible_text(html: &str) -> String {
+    let mut out = String::new();
+    let mut rest = html;
+    while let Some(start) = rest.find('<') {
+        out.push_str(&rest[..start]);
+        rest = &rest[start..];
+        let skip_to = ["<math", "<style", "<title"]
+            .iter()
+            .zip(["</math>", "</style>", "</title>"])
+            .find(|(open, _)| rest.starts_with(**open))
+            .map(|(_, close)| close);
+        let end = match skip_to {
+            Some(close) => rest.find(close).map(|e| e + close.len()),
+            None => rest.find('>').map(|e| e + 1),
+        }
+        .unwrap_or(rest.len());
+        out.push(' ');
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out.replace("&#x27;", "'")
+        .replace("&#x2F;", "/")
+        .replace("&amp;", "&")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&quot;", "\"")
+}
+
+/// ASCII mathematics a reader would see as such: a backtick, a power, `sqrt(`, a Greek
+/// letter's name, a name with `_`, a `*` between two operands.
+fn ascii_maths(text: &str) -> Vec<String> {
+    const GREEK: &[&str] = &[
+        "alpha", "beta", "gamma", "delta", "epsilon", "eps", "theta", "lambda", "rho", "sigma",
+        "tau", "phi", "psi", "omega", "Omega", "Theta", "Phi", "Psi",
+    ];
+    let mut found = Vec::new();
+    for word in text.split_whitespace() {
+        let bare = word.trim_matches(|c: char| ",.;:()[]".contains(c));
+        let letters = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric());
+        let suspicious = word.contains('`')
+            || word.contains('^')
+            || word.contains("sqrt(")
+            || GREEK.contains(&bare.trim_end_matches(|c: char| c.is_ascii_digit()))
+            || bare
+                .split_once('_')
+                .is_some_and(|(a, b)| letters(a) && letters(b))
+            || bare
+                .split_once('*')
+                .is_some_and(|(a, b)| letters(a) && letters(b));
+        if suspicious {
+            found.push(word.to_string());
+        }
+    }
+    found
+}
+
+#[test]
+fn the_ascii_check_of_a_handout_finds_what_a_reader_would_see() {
+    let html =
+        "<p>step `Ip` gives 1/2*Mp*R^2, <math><mi>ω</mi></math> at omega, I_xx and p_phi</p>";
+    assert_eq!(
+        ascii_maths(&visible_text(html)),
+        ["`Ip`", "1/2*Mp*R^2,", "omega,", "I_xx", "p_phi"]
+    );
+    let clean = "<p>(6.4) The rod&#x27;s moment <math><msup><mi>r</mi><mn>2</mn></msup></math>, a step.</p>";
+    assert!(ascii_maths(&visible_text(clean)).is_empty());
+}
+
+/// Each student summary of a scene with steps shows them in the scene's order, each under the
+/// author's reason, with its equations of motion as equations; its headings are the author's
+/// words, never a step's name; no student handout shows a backtick or ASCII mathematics.
+#[test]
+fn the_student_summary_teaches_each_derivation_in_the_authors_order() {
+    let dir = scratch("handouts-teach");
+    for source in ["tests/course", "lectures"] {
+        let site = dir.join(source.replace('/', "-"));
+        let built = mechbook(&["build", source, "--out", site.to_str().unwrap()]);
+        assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+        let mut students = Vec::new();
+        for entry in std::fs::read_dir(site.join("handouts")).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if name.ends_with("-student.html") {
+                let html = std::fs::read_to_string(&path).unwrap();
+                let ascii = ascii_maths(&visible_text(&html));
+                assert!(ascii.is_empty(), "{source}: {name} shows {ascii:?}");
+                students.push((name, html));
+            }
+        }
+        assert!(students.len() >= 4, "{source}: {}", students.len());
+        let mut scenes_with_steps = 0;
+        let folders = std::fs::read_dir(source)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.is_dir());
+        let files = folders.flat_map(|d| toml_files(&d));
+        for file in files {
+            let scene: toml::Table = toml::from_str(&std::fs::read_to_string(&file).unwrap())
+                .unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+            let Some(steps) = scene.get("step").and_then(|s| s.as_array()) else {
+                continue;
+            };
+            if scene.contains_key("problem") {
+                continue;
+            }
+            scenes_with_steps += 1;
+            let id = scene["id"].as_str().unwrap();
+            let anchor = format!("<section class=\"problem\" id=\"{id}\">");
+            let (_, html) = students
+                .iter()
+                .find(|(_, h)| h.contains(&anchor))
+                .unwrap_or_else(|| panic!("{id}: in no student handout"));
+            let section = html.split(&anchor).nth(1).unwrap();
+            let section = section.split("</section>").next().unwrap();
+            let shown = visible_text(section);
+            // Each reason's first words, in the scene's order.
+            let mut at = 0;
+            for step in steps {
+                let name = step["name"].as_str().unwrap();
+                let why = step.get("why").and_then(|w| w.as_str()).unwrap_or_default();
+                let words: String = why
+                    .split('$')
+                    .step_by(2)
+                    .find(|t| t.trim().len() > 3)
+                    .map(|t| t.trim().chars().skip(1).take(24).collect())
+                    .unwrap_or_default();
+                if !words.is_empty() {
+                    let found = shown[at..].find(words.trim()).unwrap_or_else(|| {
+                        panic!(
+                            "{id}: step `{name}`'s reason `{words}` is not after the step before"
+                        )
+                    });
+                    at += found;
+                }
+                // No heading is a step's name.
+                for h in ["<h2>", "<h3>"] {
+                    assert!(
+                        !section.contains(&format!("{h}{name}<")),
+                        "{id}: a heading is the step name `{name}`"
+                    );
+                }
+            }
+            // An equation of motion is shown as one: `… = 0`.
+            if steps.iter().any(|s| s.get("lagrange").is_some()) {
+                assert!(
+                    section.contains("<mo>=</mo><mn>0</mn>"),
+                    "{id}: no equation of motion"
+                );
+            }
+        }
+        assert!(
+            source == "lectures" || scenes_with_steps >= 8,
+            "{source}: {scenes_with_steps}"
+        );
+    }
 }

@@ -1,37 +1,42 @@
-//! A lecture's handouts as Typst: the student's summary (setup, results, the claims that agree
-//! and the marked mistakes and errata, each with its correct form) and the instructor's worked
-//! solutions (contents, every step with its reason and check, the figures). The same choices
-//! as the HTML handouts (`templates/handout.html`), from the same [`Page`]s.
+//! A lecture's handouts as Typst: each [`Part`] of the course's documents, as the HTML
+//! handout (`templates/handout.html`) shows it. What a part holds is decided in
+//! `document::handout`: the student's summary (setup, the author's steps under their reasons,
+//! the claims that agree and the marked mistakes and errata) and the instructor's worked
+//! solutions (contents, every step with its reason and check, the results, the figures).
 
 use super::markup::{Markup, formula_and_broken, number, symbol};
 use crate::base::format::sci;
 use crate::derive::ExactBasis;
+use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
 use crate::document::{At, Page};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
 use crate::notation::symbol_tex;
 use crate::render::RenderError;
-use crate::scene::{ClaimRole, Verdict};
 
 /// The body of a handout: one section per page.
-pub fn handout(m: &mut Markup, pages: &[&Page], instructor: bool) -> Result<(), RenderError> {
-    if pages.is_empty() {
+pub fn handout(
+    m: &mut Markup,
+    parts: &[(&Part, &Page)],
+    instructor: bool,
+) -> Result<(), RenderError> {
+    if parts.is_empty() {
         m.text("This lecture's scenes are all problems: they are on its problem sheet.")
             .par();
     }
-    if instructor && pages.len() > 1 {
+    if instructor && parts.len() > 1 {
         m.raw("#outline(title: [Contents], depth: 2)\n#pagebreak(weak: true)\n");
     }
-    for page in pages {
+    for (part, page) in parts {
         m.scene_part(&page.source, page.line, |m| {
-            crate::notation::typeset_as(&page.tex, || section(m, page, instructor))
+            crate::notation::typeset_as(&page.tex, || section(m, part, page))
         })
         .map_err(|e| e.in_scene(&page.source))?;
     }
     Ok(())
 }
 
-fn section(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderError> {
+fn section(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
     m.heading(2, &page.title)?;
     if !page.section.is_empty() || !page.equations.is_empty() {
         m.raw("#text(9pt)[");
@@ -52,18 +57,19 @@ fn section(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderEr
         m.raw("]\n\n");
     }
     for b in &page.bodies {
-        m.raw("- ").text(b).line();
+        m.raw("- ").prose(b)?.line();
     }
+    setup(m, page)?;
     for (name, e) in &page.definitions {
         m.raw("- ")
             .inline(&format!("{} = {}", symbol(name), e.to_typst()))
             .line();
     }
-    if instructor {
-        steps(m, page)?;
+    for (k, step) in part.steps.iter().enumerate() {
+        shown_step(m, page, k + 1, step)?;
     }
-    results(m, page)?;
-    if instructor {
+    results(m, part, page)?;
+    if part.figures {
         for f in &page.figures {
             m.raw(&format!(
                 "\n#figure(image({}, width: 100%, alt: {}), caption: [",
@@ -73,40 +79,87 @@ fn section(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderEr
             m.text(&f.desc).raw("])\n");
         }
     }
-    claims(m, page, instructor)
+    claims(m, part, page)
 }
 
-fn steps(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
-    for (i, st) in page.steps.iter().enumerate() {
-        m.raw(&format!(
-            "\n#block(width: 100%, breakable: true)[*{}. ",
-            i + 1
-        ))
-        .text(&st.title)
-        .raw("*");
-        let (whole, broken) = formula_and_broken(&st.statement)?;
-        m.block(&whole, &broken);
-        m.raw("#text(9.5pt)[");
-        m.prose(&st.why_cited())?;
-        if let Some(c) = &st.check {
-            m.raw(" — ").text(&crate::render::check_sentence(c));
-        }
-        m.raw("]]\n");
+/// The coordinates and symbols, each with what it stands for (and its unit).
+fn setup(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
+    if page.coordinates.is_empty() && page.symbols.is_empty() {
+        return Ok(());
     }
+    m.raw("#grid(columns: (auto, 1fr), column-gutter: 1em, row-gutter: 0.5em,\n");
+    for (name, meaning) in page.coordinates.iter().chain(&page.symbols) {
+        m.raw("[").inline(&symbol(name)).raw("], [");
+        m.author(meaning)?;
+        if let Some(u) = page.units.get(name) {
+            m.text(&format!(" ({})", u.replace('*', " ")));
+        }
+        m.raw("],\n");
+    }
+    m.raw(")\n\n");
     Ok(())
 }
 
-fn results(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
-    for q in page.quantities.iter().filter(|q| q.is_result) {
+/// A step: the student's under its reason; the instructor's under its title, with its reason
+/// and numeric check below.
+fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<(), RenderError> {
+    let first = &page.steps[s.lines[0]];
+    let last = &page.steps[*s.lines.last().unwrap()];
+    m.raw(&format!("\n#block(width: 100%, breakable: true)[*{n}.* "));
+    if s.reason_first {
+        m.prose(&first.why_cited().capitalised())?;
+        m.raw("\n");
+    } else {
+        m.raw("*").text(&last.title).raw("*");
+    }
+    for (&l, at) in s.lines.iter().zip(&s.at) {
+        let (whole, broken) = formula_and_broken(&page.steps[l].statement)?;
+        m.block(&whole, &broken);
+        if let Some(q) = at.map(|q| &page.quantities[q])
+            && let Some(at) = &q.at
+        {
+            at_numbers(m, &q.value, at);
+        }
+    }
+    if !s.reason_first {
+        m.raw("#text(9.5pt)[");
+        m.prose(&last.why_cited())?;
+        if let Some(c) = last.check.as_ref().filter(|_| s.checks) {
+            m.raw(" — ").text(&crate::render::check_sentence(c));
+        }
+        m.raw("]\n");
+    }
+    for c in &s.claims {
+        match &c.mark {
+            Mark::Agrees => {
+                m.raw("#text(9.5pt)[");
+                m.text(&match page.claim_equation(c.claim) {
+                    Some(eq) => format!("As in the notes, eq. ({eq})."),
+                    None => "As in the notes.".to_string(),
+                });
+                m.raw("]\n");
+            }
+            _ => shown_claim(m, page, c)?,
+        }
+    }
+    m.raw("]\n");
+    Ok(())
+}
+
+fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
+    for q in part.results.iter().map(|&i| &page.quantities[i]) {
         m.heading(
             3,
-            &crate::render::problems::capitalised(&q.name.replace('_', " ")),
+            &crate::render::problems::capitalised(&crate::model::catalogue::heading(&q.name)),
         )?;
         let value = q.value.to_expr();
         m.block(&value.to_typst(), &value.to_typst_breakable());
         if let Some(at) = &q.at {
             at_numbers(m, &q.value, at);
         }
+    }
+    if !part.principal {
+        return Ok(());
     }
     for sp in &page.principal_axes {
         m.heading(
@@ -132,13 +185,12 @@ fn results(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
         let values: Vec<String> = p.exact.iter().map(|v| number(*v, 6)).collect();
         let line = format!("{} = {}", symbol(&p.letter), values.join("\\, thin "));
         m.block(&line, &line);
-        m.raw("#text(9.5pt)[").text(&format!(
-            "at {}: the eigen-solver on the exact tensor agrees to {} (relative)",
-            p.values
-                .iter()
-                .map(|(k, x)| format!("{k} = {x}"))
-                .collect::<Vec<_>>()
-                .join(", "),
+        m.raw("#text(9.5pt)[").text("at ");
+        m.inline(&super::markup::formula(&crate::render::values_at(
+            &p.values,
+        ))?);
+        m.text(&format!(
+            ": the eigen-solver on the exact tensor agrees to {} (relative)",
             sci(p.error)
         ));
         m.raw("]\n");
@@ -179,22 +231,49 @@ pub fn numbers_typst(v: &Value, n: &[String]) -> String {
     }
 }
 
-fn claims(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderError> {
-    if page.claims.is_empty() {
+fn claims(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
+    if part.claims.is_empty() {
         return Ok(());
     }
     m.heading(3, "The notes claim")?;
-    for c in &page.claims {
-        let notes = c
-            .notes
-            .as_ref()
-            .map(|e| {
-                e.to_typst_named(&|q| {
-                    quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok())
-                })
-            })
-            .unwrap_or_default();
-        let derived = c.derived.as_ref().map(|v| match v {
+    for c in &part.claims {
+        m.raw("- ");
+        shown_claim(m, page, c)?;
+    }
+    Ok(())
+}
+
+/// A claim: in a list, with its verdict for the instructor, or boxed with both forms.
+fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), RenderError> {
+    let c = &page.claims[shown.claim];
+    let Mark::Boxed {
+        heading,
+        wrong,
+        right,
+        verdict,
+    } = &shown.mark
+    else {
+        if let Some(eq) = page.claim_equation(shown.claim) {
+            m.text(&format!("({eq}) "));
+        }
+        m.author(&c.statement)?;
+        if shown.mark == Mark::Verdict {
+            m.text(&format!(" — {}", c.verdict.as_str()));
+        }
+        m.line();
+        return Ok(());
+    };
+    let notes = c
+        .notes
+        .as_ref()
+        .map(|e| {
+            e.to_typst_named(&|q| quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok()))
+        })
+        .unwrap_or_default();
+    let (derived, derived_broken) = c
+        .derived
+        .as_ref()
+        .map(|v| match v {
             Value::Scalar(e) if c.precision.is_some() => {
                 let x = e
                     .eval(&|_| None)
@@ -205,43 +284,21 @@ fn claims(m: &mut Markup, page: &Page, instructor: bool) -> Result<(), RenderErr
                 let e = v.to_expr();
                 (e.to_typst(), e.to_typst_breakable())
             }
-        });
-        let (derived, derived_broken) = derived.unwrap_or_default();
-        let mistake = c.role == ClaimRole::Mistake;
-        let disagrees = c.verdict == Verdict::Disagrees;
-        if !instructor && !mistake && !disagrees && c.verdict != Verdict::Agrees {
-            continue;
-        }
-        m.raw("- ");
-        if mistake || disagrees {
-            let head = match (mistake, instructor) {
-                (true, false) => "A common mistake, not the notes' claim".to_string(),
-                (true, true) => "A common mistake".to_string(),
-                (false, false) => format!("Erratum: eq. ({}) of the notes is wrong", c.eq),
-                (false, true) => format!("Erratum, eq. ({})", c.eq),
-            };
-            m.raw("#block(stroke: 0.6pt, inset: 6pt, radius: 2pt, breakable: false)[*")
-                .text(&head)
-                .raw("* \\\n");
-            m.author(&c.statement)?;
-            m.raw(" \\\n")
-                .text(if mistake {
-                    "The mistaken form: "
-                } else {
-                    "The notes: "
-                })
-                .block(&notes, &notes)
-                .text(if instructor { "Derived: " } else { "Correct: " })
-                .block(&derived, &derived_broken)
-                .raw("]\n");
-        } else {
-            m.text(&format!("({}) ", c.eq));
-            m.author(&c.statement)?;
-            if instructor {
-                m.text(&format!(" — {}", c.verdict.as_str()));
-            }
-            m.line();
-        }
+        })
+        .unwrap_or_default();
+    m.raw("#block(stroke: 0.6pt, inset: 6pt, radius: 2pt, breakable: false)[*")
+        .text(heading)
+        .raw("*");
+    if *verdict {
+        m.text(&format!(" — {}", c.verdict.as_str()));
     }
+    m.raw(" \\\n");
+    m.author(&c.statement)?;
+    m.raw(" \\\n")
+        .text(&format!("{wrong}: "))
+        .block(&notes, &notes)
+        .text(&format!("{right}: "))
+        .block(&derived, &derived_broken)
+        .raw("]\n");
     Ok(())
 }

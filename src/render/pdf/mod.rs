@@ -106,13 +106,17 @@ pub fn site_documents(
                 right,
             ));
             m.heading(1, &title)?;
-            let shown: Vec<&crate::document::Page> =
-                handout.pages.iter().map(|&i| &docs.pages[i]).collect();
-            handout::handout(&mut m, &shown, instructor)?;
+            let parts: Vec<(&crate::document::handout::Part, &crate::document::Page)> = handout
+                .parts
+                .iter()
+                .map(|p| (p, &docs.pages[p.page]))
+                .collect();
+            handout::handout(&mut m, &parts, instructor)?;
             let images = if instructor {
-                shown
+                parts
                     .iter()
-                    .flat_map(|p| &p.figures)
+                    .filter(|(part, _)| part.figures)
+                    .flat_map(|(_, p)| &p.figures)
                     .filter_map(|f| {
                         let bytes = site.get(std::path::Path::new(&f.file))?;
                         Some((f.file.clone(), bytes.clone()))

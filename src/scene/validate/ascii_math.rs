@@ -63,20 +63,69 @@ fn math_at(text: &str, i: usize) -> Option<String> {
         before && after
     } else if starts_word && rest.starts_with("sqrt(") {
         true
-    } else if starts_word && bytes[i].is_ascii_alphabetic() {
+    } else if starts_word && bytes[i].is_ascii_alphanumeric() {
         let word: &str = &rest[..rest
             .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
             .unwrap_or(rest.len())];
+        let after = &rest[word.len()..];
         // A rate written with a prime: x', u'' (but not the top's).
-        let primed = word.len() == 1 && {
-            let after = &rest[word.len()..];
-            after.starts_with('\'') && !after[1..].starts_with(|c: char| c.is_ascii_alphabetic())
-        };
-        GREEK.contains(&word) || subscripted(word) || primed
+        let primed = word.len() == 1
+            && after.starts_with('\'')
+            && !after[1..].starts_with(|c: char| c.is_ascii_alphabetic());
+        // `phi1`, `w3`: a Greek name or a small letter with a number for its index.
+        let stem = word.trim_end_matches(|c: char| c.is_ascii_digit());
+        let indexed = stem.len() < word.len()
+            && (GREEK.contains(&stem)
+                || (stem.len() == 1 && stem.as_bytes()[0].is_ascii_lowercase()));
+        if let Some(len) = operation(word, after) {
+            return Some(text[i..i + word.len() + len].to_string());
+        }
+        GREEK.contains(&word) || subscripted(word) || primed || indexed
     } else {
         false
     };
     found.then(|| around(text, i))
+}
+
+/// `T - V`, `x = 1`, `L/2`, `1/w3`: a letter or a number, an operator, and another, where
+/// one side of a `/` is a number. The length of what follows `word`, if it is one.
+fn operation(word: &str, after: &str) -> Option<usize> {
+    let operand = |w: &str| {
+        (w.len() == 1 && w.as_bytes()[0].is_ascii_alphabetic())
+            || (!w.is_empty() && w.bytes().all(|b| b.is_ascii_digit()))
+    };
+    let next = |rest: &str| -> String {
+        rest.chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let ends = |rest: &str, w: &str| {
+        rest[w.len()..]
+            .chars()
+            .next()
+            .is_none_or(|c| c.is_whitespace() || ",.;:)".contains(c))
+    };
+    if !operand(word) {
+        return None;
+    }
+    if let Some(rest) = [" - ", " + ", " = "]
+        .iter()
+        .find_map(|op| after.strip_prefix(op))
+    {
+        let w = next(rest);
+        let letter = |w: &str| w.bytes().any(|b| b.is_ascii_alphabetic());
+        return (operand(&w) && ends(rest, &w) && (letter(word) || letter(&w)))
+            .then_some(3 + w.len());
+    }
+    if let Some(rest) = after.strip_prefix('/') {
+        let w = next(rest);
+        let number = |w: &str| !w.is_empty() && w.bytes().all(|b| b.is_ascii_digit());
+        let short = w.len() <= 3 && w.starts_with(|c: char| c.is_ascii_alphabetic());
+        let letter = word.len() == 1 && word.as_bytes()[0].is_ascii_alphabetic();
+        return ((number(word) && short) || (number(&w) && letter && ends(rest, &w)))
+            .then_some(1 + w.len());
+    }
+    None
 }
 
 /// `I_xx`, `omega_z`, `delta_jk`: letters, `_`, then a letter or digit.
@@ -104,8 +153,11 @@ fn latex_for(found: &str) -> String {
             .unwrap_or(rest.len());
         let word = &rest[..end];
         rest = &rest[end..];
+        let stem = word.trim_end_matches(|c: char| c.is_ascii_digit());
         let (head, sub) = match word.split_once('_') {
             Some((h, s)) if subscripted(word) => (h, Some(s)),
+            // `phi1`, `w3`: the number as an index.
+            _ if !stem.is_empty() && stem.len() < word.len() => (stem, Some(&word[stem.len()..])),
             _ => (word, None),
         };
         if head == "sqrt" && rest.starts_with('(') {
@@ -165,6 +217,12 @@ impl Validator<'_> {
                 self.ascii_math_in(label, &format!("body[{i}].label"), &mut out);
             }
         }
+        for (table, names) in [("symbols", &raw.symbols), ("coordinates", &raw.coordinates)] {
+            for (name, meaning) in names {
+                let field = format!("{table}.{}", name.get_ref());
+                self.ascii_math_in(&crate::scene::raw::meaning_of(meaning), &field, &mut out);
+            }
+        }
         for (i, c) in raw.claims.iter().enumerate() {
             let field = format!("claim[{i}].statement");
             self.ascii_math_in(&c.get_ref().statement, &field, &mut out);
@@ -194,7 +252,8 @@ mod tests {
     #[test]
     fn powers_greek_names_roots_and_subscripts_are_found_outside_dollars() {
         let found = |t: &str| ascii_math(t).map(|(_, s)| s);
-        assert_eq!(found("L = m r^2 omega."), Some("r^2".into()));
+        assert_eq!(found("L = m r^2 omega."), Some("L = m".into()));
+        assert_eq!(found("then m r^2 omega."), Some("r^2".into()));
         assert_eq!(found("so A T A^-1 = A T A^T"), Some("A^-1".into()));
         assert_eq!(found("tilted by theta, about x"), Some("theta".into()));
         assert_eq!(
@@ -202,7 +261,8 @@ mod tests {
             Some("sqrt(l/g)".into())
         );
         assert_eq!(found("I_xx = m (r^2 - x^2)"), Some("I_xx".into()));
-        assert_eq!(found("(a + b)^2 grows"), Some("b)^2".into()));
+        assert_eq!(found("(a + b)^2 grows"), Some("a + b".into()));
+        assert_eq!(found("(ab)^2 grows"), Some("(ab)^2".into()));
         // Typeset, quoted as code, escaped or English: nothing.
         assert_eq!(found("$L = m r^2 \\omega$, about $I_{xx}$"), None);
         assert_eq!(found("the step `acc_x`, at \\$5"), None);
@@ -214,6 +274,21 @@ mod tests {
         // Within a character of two bytes or more, nothing is looked for.
         assert_eq!(found("kg m² about, kg·m², a ² alone"), None);
         assert_eq!(found("µ omega"), Some("omega".into()));
+    }
+
+    #[test]
+    fn indexed_names_and_operations_between_letters_are_found() {
+        let found = |t: &str| ascii_math(t).map(|(_, s)| s);
+        assert_eq!(found("the equations of phi1 and phi2"), Some("phi1".into()));
+        assert_eq!(found("a top spinning at w3"), Some("w3".into()));
+        assert_eq!(found("T - V, as always"), Some("T - V".into()));
+        assert_eq!(found("where x = 0."), Some("x = 0".into()));
+        assert_eq!(found("the centre at L/2 below"), Some("L/2".into()));
+        assert_eq!(found("small, as 1/w3 is"), Some("1/w3".into()));
+        // English, units and paper sizes: nothing.
+        assert_eq!(found("A4 paper, a step, and/or 9.81 m/s"), None);
+        assert_eq!(found("a - as in a dash - here"), None);
+        assert_eq!(found("lecture 3/4, in 2 - 3 weeks"), None);
     }
 
     #[test]

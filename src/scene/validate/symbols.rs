@@ -66,18 +66,30 @@ impl Validator<'_> {
         Ok(out)
     }
 
-    /// How symbols and coordinates are typeset (`{ meaning = "...", tex = "\\Omega" }`): LaTeX
-    /// that the pages' reader can set, without `$` signs.
+    /// How symbols, coordinates and steps are typeset (`{ meaning = "...", tex = "\\Omega" }`,
+    /// a step's `tex = "I_p"`): LaTeX that the pages' reader can set, without `$` signs.
     pub(super) fn typesetting(
         &self,
         raw: &RawScene,
     ) -> Result<BTreeMap<String, String>, SceneError> {
         let mut out = BTreeMap::new();
-        for (table, kind) in [(&raw.symbols, "symbols"), (&raw.coordinates, "coordinates")] {
-            for (name, meaning) in table {
-                let Some(tex) = tex_of(meaning) else {
-                    continue;
-                };
+        let steps = raw.steps.iter().enumerate().filter_map(|(i, s)| {
+            let s = s.get_ref();
+            Some((s.name.get_ref(), s.tex.as_ref()?, format!("step[{i}]")))
+        });
+        let names = [(&raw.symbols, "symbols"), (&raw.coordinates, "coordinates")]
+            .into_iter()
+            .flat_map(|(table, kind)| {
+                table.iter().filter_map(move |(name, meaning)| {
+                    Some((
+                        name.get_ref(),
+                        tex_of(meaning)?,
+                        format!("{kind}.{}", name.get_ref()),
+                    ))
+                })
+            });
+        {
+            for (name, tex, field) in names.chain(steps) {
                 let problem = if tex.get_ref().contains('$') {
                     Some("it is LaTeX already: leave out the `$` signs".to_string())
                 } else {
@@ -86,11 +98,11 @@ impl Validator<'_> {
                 if let Some(why) = problem {
                     return Err(self.err(
                         tex.span().start + 1,
-                        &format!("{kind}.{}.tex", name.get_ref()),
+                        &format!("{field}.tex"),
                         format!("`{}` cannot be typeset: {why}", tex.get_ref()),
                     ));
                 }
-                out.insert(name.get_ref().clone(), tex.get_ref().trim().to_string());
+                out.insert(name.clone(), tex.get_ref().trim().to_string());
             }
         }
         Ok(out)

@@ -1,0 +1,244 @@
+//! What each handout shows of a scene's page, decided once for the HTML handout and the PDF.
+//!
+//! The student's summary teaches the derivation: the scene's setup, then the author's steps in
+//! their order, each under its reason with its result typeset and the notes' form beside it
+//! where the notes give one; a scene without steps (a body's tensor and axes) shows its results.
+//! Claims that agree are listed; a mistake or an erratum is marked with its correct form. The
+//! instructor's worked solutions keep everything: every step with its numeric check, every
+//! result, the figures, every claim with its verdict.
+
+use super::Page;
+use crate::scene::{ClaimRole, Verdict};
+
+/// One scene's part of a handout (`page` indexes the course's pages).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Part {
+    pub page: usize,
+    /// The steps shown, in the scene's order.
+    pub steps: Vec<ShownStep>,
+    /// The derived quantities shown as results (indices into `Page::quantities`).
+    pub results: Vec<usize>,
+    /// The exact principal axes and the principal moments at the scene's values.
+    pub principal: bool,
+    pub figures: bool,
+    /// The claims shown after the derivation.
+    pub claims: Vec<ShownClaim>,
+}
+
+/// A step as a handout shows it: one or more lines of the page's steps (an author's step of
+/// several results, equilibria or modes, is one step with a line each).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShownStep {
+    /// Indices into `Page::steps`, in order.
+    pub lines: Vec<usize>,
+    /// The student's handout leads with the author's reason; the instructor's with the step's
+    /// title, its reason under the formula.
+    pub reason_first: bool,
+    /// Each line's numeric check.
+    pub checks: bool,
+    /// The line's value at the scene's numbers (an index into `Page::quantities`), where it has one.
+    pub at: Vec<Option<usize>>,
+    /// The notes' claims on this step (its `gives`), each with how it is marked.
+    pub claims: Vec<ShownClaim>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShownClaim {
+    /// An index into `Page::claims`.
+    pub claim: usize,
+    pub mark: Mark,
+}
+
+/// How a claim is shown.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Mark {
+    /// A claim that agrees, in a list of them.
+    Agrees,
+    /// The instructor's: the claim with its verdict.
+    Verdict,
+    /// A box with a heading, the claim, the mistaken form and the right one.
+    Boxed {
+        heading: String,
+        /// "The mistaken form" or "The notes".
+        wrong: &'static str,
+        /// "Correct" for the student, "Derived" for the instructor.
+        right: &'static str,
+        /// The instructor's box gives the verdict too.
+        verdict: bool,
+    },
+}
+
+/// What the handout shows of `page` (the course's page `index`).
+pub fn part(index: usize, page: &Page, instructor: bool) -> Part {
+    if instructor {
+        return Part {
+            page: index,
+            steps: groups(page, |_| true)
+                .into_iter()
+                .flat_map(|lines| {
+                    let at = values_at(page, &lines);
+                    lines.into_iter().zip(at).map(|(line, at)| ShownStep {
+                        lines: vec![line],
+                        reason_first: false,
+                        checks: true,
+                        at: vec![at],
+                        claims: Vec::new(),
+                    })
+                })
+                .collect(),
+            results: results(page),
+            principal: true,
+            figures: true,
+            claims: (0..page.claims.len())
+                .filter_map(|i| shown_claim(page, i, true))
+                .collect(),
+        };
+    }
+    let authored = page.steps.iter().any(|s| s.author.is_some());
+    let on_steps: Vec<usize> = page.steps.iter().flat_map(|s| s.claims.clone()).collect();
+    Part {
+        page: index,
+        steps: groups(page, |s| s.author.is_some())
+            .into_iter()
+            .map(|lines| student_step(page, lines))
+            .collect(),
+        // A scene with steps shows a body's quantities only where a step uses them.
+        results: if authored { Vec::new() } else { results(page) },
+        principal: !authored,
+        figures: false,
+        claims: (0..page.claims.len())
+            .filter(|i| !on_steps.contains(i))
+            .filter_map(|i| shown_claim(page, i, false))
+            .collect(),
+    }
+}
+
+/// The results a page lists: every derived quantity but the working ones and the author's
+/// steps' own values (which their steps show).
+fn results(page: &Page) -> Vec<usize> {
+    let steps: Vec<&str> = page
+        .steps
+        .iter()
+        .filter_map(|s| s.author.as_deref())
+        .collect();
+    page.quantities
+        .iter()
+        .enumerate()
+        .filter(|(_, q)| q.is_result && !is_step_value(&q.name, &steps))
+        .map(|(i, _)| i)
+        .collect()
+}
+
+/// Whether `name` is a step's value: its own name, or `step_k` of a step of several results.
+fn is_step_value(name: &str, steps: &[&str]) -> bool {
+    steps.iter().any(|s| {
+        name == *s
+            || name
+                .strip_prefix(s)
+                .and_then(|r| r.strip_prefix('_'))
+                .is_some_and(|k| k.parse::<usize>().is_ok())
+    })
+}
+
+/// The page's steps that `keep` keeps, consecutive lines of one author's step together.
+fn groups(page: &Page, keep: impl Fn(&super::Step) -> bool) -> Vec<Vec<usize>> {
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    for (i, s) in page.steps.iter().enumerate().filter(|(_, s)| keep(s)) {
+        let joins = out.last().is_some_and(|g| {
+            let last = &page.steps[*g.last().unwrap()];
+            g.last() == Some(&(i - 1)) && last.author.is_some() && last.author == s.author
+        });
+        if joins {
+            out.last_mut().unwrap().push(i);
+        } else {
+            out.push(vec![i]);
+        }
+    }
+    out
+}
+
+/// Each line's value at the scene's numbers: the quantity of an author's step's name (of a
+/// step of several results, `name_k`), where the numbers say something the exact form does not.
+fn values_at(page: &Page, lines: &[usize]) -> Vec<Option<usize>> {
+    let Some(author) = page.steps[lines[0]].author.as_deref() else {
+        return vec![None; lines.len()];
+    };
+    (0..lines.len())
+        .map(|k| {
+            let name = if lines.len() == 1 {
+                author.to_string()
+            } else {
+                crate::scene::mode_name(author, k)
+            };
+            page.quantities
+                .iter()
+                .position(|q| q.name == name && q.at.is_some())
+        })
+        .collect()
+}
+
+fn student_step(page: &Page, lines: Vec<usize>) -> ShownStep {
+    let at = values_at(page, &lines);
+    let claims = lines
+        .iter()
+        .flat_map(|&l| page.steps[l].claims.clone())
+        .filter_map(|i| shown_claim(page, i, false))
+        .collect();
+    ShownStep {
+        lines,
+        reason_first: true,
+        checks: false,
+        at,
+        claims,
+    }
+}
+
+/// How claim `i` is shown, or `None` when the student's handout leaves it out (a claim not
+/// yet reviewed, or one whose check has a problem).
+fn shown_claim(page: &Page, i: usize, instructor: bool) -> Option<ShownClaim> {
+    let c = &page.claims[i];
+    let mistake = c.role == ClaimRole::Mistake;
+    let erratum = c.verdict == Verdict::Disagrees;
+    let eq = page.claim_equation(i);
+    let mark = if mistake || erratum {
+        let heading = match (mistake, instructor, &eq) {
+            (true, false, _) => "A common mistake, not the notes' claim".to_string(),
+            (true, true, _) => "A common mistake".to_string(),
+            (false, false, Some(eq)) => format!("Erratum: eq. ({eq}) of the notes is wrong"),
+            (false, false, None) => "Erratum: the notes are wrong here".to_string(),
+            (false, true, Some(eq)) => format!("Erratum, eq. ({eq})"),
+            (false, true, None) => "Erratum".to_string(),
+        };
+        Mark::Boxed {
+            heading,
+            wrong: if mistake {
+                "The mistaken form"
+            } else {
+                "The notes"
+            },
+            right: if instructor { "Derived" } else { "Correct" },
+            verdict: instructor,
+        }
+    } else if instructor {
+        Mark::Verdict
+    } else if c.verdict == Verdict::Agrees {
+        Mark::Agrees
+    } else {
+        return None;
+    };
+    Some(ShownClaim { claim: i, mark })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_value_is_its_name_or_a_numbered_result() {
+        let steps = ["rest", "Omega"];
+        assert!(is_step_value("rest_2", &steps));
+        assert!(is_step_value("Omega", &steps));
+        assert!(!is_step_value("Omega_min", &steps));
+        assert!(!is_step_value("inertia_tensor", &steps));
+    }
+}

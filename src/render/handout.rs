@@ -1,0 +1,141 @@
+//! A handout's parts as the HTML template shows them: each [`Part`] of the course's documents
+//! read off its page's view. What a part shows is decided in `document::handout`; this only
+//! looks the pieces up.
+
+use super::{ClaimView, PageView, RenderError, StepView, prose_html};
+use crate::document::Page;
+use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
+use serde::Serialize;
+
+#[derive(Serialize)]
+pub struct PartView<'a> {
+    pub page: &'a PageView,
+    pub steps: Vec<ShownStepView>,
+    pub results: Vec<&'a StepView>,
+    pub principal: &'a [StepView],
+    pub figures: bool,
+    pub claims: Vec<ShownClaimView<'a>>,
+}
+
+#[derive(Serialize)]
+pub struct ShownStepView {
+    /// The author's reason as a lead, its first letter a capital (the student's handout).
+    pub reason: Option<String>,
+    /// The step's title, and its reason under the formula (the instructor's handout).
+    pub title: Option<String>,
+    pub why: Option<String>,
+    /// Each line's formula, and its value at the scene's numbers as HTML (empty where it has
+    /// none).
+    pub lines: Vec<(String, String)>,
+    pub check: String,
+    pub claims: Vec<ShownClaimView<'static>>,
+}
+
+#[derive(Serialize)]
+pub struct ShownClaimView<'a> {
+    pub claim: std::borrow::Cow<'a, ClaimView>,
+    /// `agrees`, `verdict` or `boxed`.
+    pub mark: &'static str,
+    pub heading: String,
+    pub wrong: &'static str,
+    pub right: &'static str,
+    pub verdict: bool,
+    /// The notes' equation, where the claim names one.
+    pub eq: Option<String>,
+}
+
+/// The part `part` of `page`, from its view.
+pub fn part_view<'a>(
+    part: &Part,
+    page: &Page,
+    view: &'a PageView,
+) -> Result<PartView<'a>, RenderError> {
+    Ok(PartView {
+        page: view,
+        steps: part
+            .steps
+            .iter()
+            .map(|s| step_view(s, page, view))
+            .collect::<Result<_, _>>()?,
+        results: part
+            .results
+            .iter()
+            .filter_map(|&i| view.quantities[i].as_ref())
+            .collect(),
+        principal: if part.principal { &view.principal } else { &[] },
+        figures: part.figures,
+        claims: part
+            .claims
+            .iter()
+            .map(|c| claim_view(c, page, view))
+            .collect(),
+    })
+}
+
+fn step_view(s: &ShownStep, page: &Page, view: &PageView) -> Result<ShownStepView, RenderError> {
+    let first = &page.steps[s.lines[0]];
+    let last = &view.steps[*s.lines.last().unwrap()];
+    let (reason, title, why) = if s.reason_first {
+        let reason = match first.why.is_empty() {
+            true => None,
+            false => Some(prose_html(&first.why_cited().capitalised())?),
+        };
+        (reason, None, None)
+    } else {
+        (None, Some(last.title.clone()), Some(last.why.clone()))
+    };
+    Ok(ShownStepView {
+        reason,
+        title,
+        why,
+        lines: s
+            .lines
+            .iter()
+            .zip(&s.at)
+            .map(|(&l, q)| {
+                let at = q
+                    .and_then(|q| view.quantities[q].as_ref())
+                    .map_or(String::new(), |v| v.at.clone());
+                (view.steps[l].math.clone(), at)
+            })
+            .collect(),
+        check: if s.checks {
+            last.check.clone()
+        } else {
+            String::new()
+        },
+        claims: s
+            .claims
+            .iter()
+            .map(|c| {
+                let v = claim_view(c, page, view);
+                ShownClaimView {
+                    claim: std::borrow::Cow::Owned(v.claim.into_owned()),
+                    ..v
+                }
+            })
+            .collect(),
+    })
+}
+
+fn claim_view<'a>(c: &ShownClaim, page: &Page, view: &'a PageView) -> ShownClaimView<'a> {
+    let (mark, heading, wrong, right, verdict) = match &c.mark {
+        Mark::Agrees => ("agrees", String::new(), "", "", false),
+        Mark::Verdict => ("verdict", String::new(), "", "", true),
+        Mark::Boxed {
+            heading,
+            wrong,
+            right,
+            verdict,
+        } => ("boxed", heading.clone(), *wrong, *right, *verdict),
+    };
+    ShownClaimView {
+        claim: std::borrow::Cow::Borrowed(&view.claims[c.claim]),
+        mark,
+        heading,
+        wrong,
+        right,
+        verdict,
+        eq: page.claim_equation(c.claim),
+    }
+}
