@@ -10,7 +10,7 @@ use serde::Serialize;
 #[derive(Serialize)]
 pub struct PartView<'a> {
     pub page: &'a PageView,
-    pub steps: Vec<ShownStepView>,
+    pub steps: Vec<ShownStepView<'a>>,
     pub results: Vec<&'a StepView>,
     pub principal: &'a [StepView],
     pub figures: bool,
@@ -18,7 +18,7 @@ pub struct PartView<'a> {
 }
 
 #[derive(Serialize)]
-pub struct ShownStepView {
+pub struct ShownStepView<'a> {
     /// The author's reason as a lead, its first letter a capital (the student's handout).
     pub reason: Option<String>,
     /// The step's title, and its reason under the formula (the instructor's handout).
@@ -28,12 +28,12 @@ pub struct ShownStepView {
     /// none).
     pub lines: Vec<(String, String)>,
     pub check: String,
-    pub claims: Vec<ShownClaimView<'static>>,
+    pub claims: Vec<ShownClaimView<'a>>,
 }
 
 #[derive(Serialize)]
 pub struct ShownClaimView<'a> {
-    pub claim: std::borrow::Cow<'a, ClaimView>,
+    pub claim: &'a ClaimView,
     /// `agrees`, `verdict` or `boxed`.
     pub mark: &'static str,
     pub heading: String,
@@ -72,7 +72,11 @@ pub fn part_view<'a>(
     })
 }
 
-fn step_view(s: &ShownStep, page: &Page, view: &PageView) -> Result<ShownStepView, RenderError> {
+fn step_view<'a>(
+    s: &ShownStep,
+    page: &Page,
+    view: &'a PageView,
+) -> Result<ShownStepView<'a>, RenderError> {
     let first = &page.steps[s.lines[0]];
     let last = &view.steps[*s.lines.last().unwrap()];
     let (reason, title, why) = if s.reason_first {
@@ -104,17 +108,7 @@ fn step_view(s: &ShownStep, page: &Page, view: &PageView) -> Result<ShownStepVie
         } else {
             String::new()
         },
-        claims: s
-            .claims
-            .iter()
-            .map(|c| {
-                let v = claim_view(c, page, view);
-                ShownClaimView {
-                    claim: std::borrow::Cow::Owned(v.claim.into_owned()),
-                    ..v
-                }
-            })
-            .collect(),
+        claims: s.claims.iter().map(|c| claim_view(c, page, view)).collect(),
     })
 }
 
@@ -130,7 +124,7 @@ fn claim_view<'a>(c: &ShownClaim, page: &Page, view: &'a PageView) -> ShownClaim
         } => ("boxed", heading.clone(), *wrong, *right, *verdict),
     };
     ShownClaimView {
-        claim: std::borrow::Cow::Borrowed(&view.claims[c.claim]),
+        claim: &view.claims[c.claim],
         mark,
         heading,
         wrong,
