@@ -200,7 +200,7 @@ impl Expr {
         out
     }
 
-    fn walk(&self, f: &mut dyn FnMut(&Expr)) {
+    pub(super) fn walk(&self, f: &mut dyn FnMut(&Expr)) {
         f(self);
         match self {
             Expr::Num(_) | Expr::Sym(_) => {}

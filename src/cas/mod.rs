@@ -14,6 +14,7 @@ mod factor;
 mod parse;
 mod polynomial;
 mod positive;
+mod present;
 mod print;
 mod print_latex;
 mod print_typst;
@@ -270,7 +271,7 @@ fn worker() -> &'static Sender<Job> {
 }
 
 /// Runs `f` on the worker and returns its result. A panic inside the engine becomes an error.
-fn run<T: Send + 'static>(
+pub(crate) fn run<T: Send + 'static>(
     f: impl FnOnce() -> Result<T, EngineError> + Send + 'static,
 ) -> Result<T, CasError> {
     let (tx, rx) = channel();
@@ -366,6 +367,22 @@ pub fn is_zero_over_positive(
 pub fn roots_over_positive(e: &Expr) -> Result<Expr, CasError> {
     let e = e.clone();
     run(move || positive::roots_over_positive(&e, &|_| true))
+}
+
+/// Each expression in the form a textbook prints (see `present.rs`), proven equal to it by the
+/// engine with every symbol but the `signed` ones positive; an expression with no shorter
+/// proven form is returned as it is.
+pub fn present_all(
+    exprs: Vec<Expr>,
+    signed: std::collections::BTreeSet<String>,
+) -> Result<Vec<Expr>, CasError> {
+    run(move || {
+        let positive = |s: &str| !signed.contains(s);
+        exprs
+            .iter()
+            .map(|e| present::present(e, &positive))
+            .collect()
+    })
 }
 
 /// The expanded numerator and denominator of each rational function.

@@ -4,7 +4,7 @@
 
 use super::engine::{self, EngineError};
 use super::expr::Expr;
-use super::radical::pull_squares;
+use super::radical::{is_positive, pull_squares};
 
 /// `e` with every square root's radicand factored over the rationals and its square factors
 /// taken out. A radicand that is not a rational function (a root inside a root, a sine) stays.
@@ -44,10 +44,30 @@ pub fn roots_over_positive(e: &Expr, positive: &dyn Fn(&str) -> bool) -> Result<
 /// Whether `e` is identically zero once its roots are taken over positive symbols. Each root
 /// left is then named, so that fractions over the same √X combine as fractions over a symbol.
 pub fn is_zero(e: &Expr, positive: &dyn Fn(&str) -> bool) -> Result<bool, EngineError> {
-    let e = roots_over_positive(e, positive)?;
+    let e = roots_over_positive(&inverse_roots(e, positive), positive)?;
     let mut roots = Vec::new();
     let named = name_roots(&e, &mut roots)?;
     Ok(!roots.is_empty() && engine::is_zero(&named)? || engine::is_zero(&e)?)
+}
+
+/// `e` with each negative root of a positive quotient written as the root of its inverse,
+/// 1/√(3g/(2L)) as √(2L/(3g)), so that both name one radicand.
+pub(super) fn inverse_roots(e: &Expr, positive: &dyn Fn(&str) -> bool) -> Expr {
+    let walk = |xs: &[Expr]| xs.iter().map(|x| inverse_roots(x, positive)).collect();
+    match e {
+        Expr::Pow(b, k)
+            if matches!(k.as_ref(), Expr::Num(r) if r.is_negative() && !r.is_integer())
+                && is_positive(b, positive) =>
+        {
+            let inverse = Expr::pow(inverse_roots(b, positive), Expr::int(-1));
+            Expr::pow(inverse, Expr::negate((**k).clone()))
+        }
+        Expr::Pow(b, k) => Expr::pow(inverse_roots(b, positive), (**k).clone()),
+        Expr::Add(v) => Expr::add(walk(v)),
+        Expr::Mul(v) => Expr::mul(walk(v)),
+        Expr::Call(f, args) => Expr::Call(f.clone(), walk(args)),
+        other => other.clone(),
+    }
 }
 
 /// `e` with each fractional power replaced by a name of its own, the same power of the same

@@ -157,14 +157,16 @@ impl Style for Latex<'_> {
             format!("\\frac{{{num}}}{{{den}}}")
         };
         let negative = r.is_negative();
-        if negative && ctx > Prec::Sum {
+        // A fraction under a power is bracketed: (8661249/1159339)^{3/2}.
+        let bracket = negative && ctx > Prec::Sum || !r.is_integer() && ctx == Prec::Power;
+        if bracket {
             out.push_str("\\left(");
         }
         if negative && !r.is_integer() {
             out.push('-');
         }
         out.push_str(&body);
-        if negative && ctx > Prec::Sum {
+        if bracket {
             out.push_str("\\right)");
         }
     }

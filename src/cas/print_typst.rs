@@ -280,14 +280,17 @@ impl Style for Typst<'_> {
             format!("frac({num}, {den})")
         };
         let negative = r.is_negative();
-        if negative && ctx > Prec::Sum {
+        // A fraction under a power is bracketed: (8661249/1159339)^(3/2).
+        let stacked = self.layout != Layout::OnTheLine && !r.is_integer();
+        let bracket = negative && ctx > Prec::Sum || stacked && ctx == Prec::Power;
+        if bracket {
             out.push('(');
         }
         if negative {
             out.push('-');
         }
         out.push_str(&body);
-        if negative && ctx > Prec::Sum {
+        if bracket {
             out.push(')');
         }
     }

@@ -92,7 +92,7 @@ fn root_of(base: &Expr, positive: &dyn Fn(&str) -> bool) -> Expr {
 
 /// Whether `e` is positive wherever the symbols for which `positive` holds are: built from
 /// positive numbers and those symbols by sums, products and powers.
-fn is_positive(e: &Expr, positive: &dyn Fn(&str) -> bool) -> bool {
+pub(super) fn is_positive(e: &Expr, positive: &dyn Fn(&str) -> bool) -> bool {
     match e {
         Expr::Num(r) => !r.is_negative() && !r.is_zero(),
         Expr::Sym(s) => positive(s),

@@ -167,6 +167,10 @@ pub struct Derivation {
     /// The results of the author's own steps, by the step's name.
     #[serde(default)]
     pub named: BTreeMap<String, steps::StepResult>,
+    /// The printed form of each step whose result a textbook writes otherwise (see
+    /// `cas::present_all`), by the step's name; its check compares it with `named`.
+    #[serde(default)]
+    pub printed: BTreeMap<String, steps::StepResult>,
 }
 
 impl Derivation {

@@ -76,6 +76,25 @@ pub enum Stable {
 }
 
 impl StepResult {
+    /// Every expression the page prints, for the presentation pass to rewrite in place.
+    pub fn printed_mut(&mut self) -> Vec<&mut Expr> {
+        match self {
+            StepResult::Expr(e) | StepResult::Conserved { value: e, .. } => vec![e],
+            StepResult::Equations(eqs) | StepResult::Solution(eqs) => {
+                eqs.iter_mut().map(|(_, e)| e).collect()
+            }
+            StepResult::Modes(v) | StepResult::Roots(v) => v.iter_mut().collect(),
+            StepResult::Equilibria { zeros, .. } => {
+                zeros.iter_mut().map(|z| &mut z.value).collect()
+            }
+            StepResult::Stability { cases, .. } => cases
+                .iter_mut()
+                .filter_map(|c| c.omega_squared.as_mut())
+                .collect(),
+            StepResult::RestStates { .. } | StepResult::RestStability { .. } => Vec::new(),
+        }
+    }
+
     /// The one expression a later step may use by this step's name.
     pub fn scalar(&self) -> Option<&Expr> {
         match self {

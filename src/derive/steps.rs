@@ -209,14 +209,37 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         // A statement other than `name = result`: an integral shown with its limits.
         let mut shown: Option<Formula> = None;
         let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
-        let mut steps = page_steps(step, &result);
+        let printed = printed_form(scene, &result).map_err(|e| locate(step, e))?;
+        let mut steps = page_steps(step, printed.as_ref().unwrap_or(&result));
         if let (Some(formula), [only]) = (shown, &mut steps[..]) {
             only.statement = formula;
         }
         d.steps.extend(steps);
+        if let Some(printed) = printed {
+            d.printed.insert(step.name.clone(), printed);
+        }
         d.named.insert(step.name.clone(), result);
     }
     Ok(())
+}
+
+/// The result in the forms a textbook prints (`cas::present_all`), where any differs from the
+/// exact result; the step's check compares the two at random points.
+fn printed_form(scene: &Scene, result: &StepResult) -> Result<Option<StepResult>, DeriveError> {
+    let mut printed = result.clone();
+    let exact: Vec<Expr> = printed
+        .printed_mut()
+        .into_iter()
+        .map(|e| e.clone())
+        .collect();
+    let forms = cas::present_all(exact.clone(), scene.signed_names())?;
+    if forms == exact {
+        return Ok(None);
+    }
+    for (slot, form) in printed.printed_mut().into_iter().zip(forms) {
+        *slot = form;
+    }
+    Ok(Some(printed))
 }
 
 /// The most time a scene's own steps may take to derive, checked before each step: a course's

@@ -143,7 +143,9 @@ impl Walk<'_> {
             inner.push(bin(MINUS));
         }
         inner.push(body);
-        wrap(r.is_negative() && ctx > Prec::Sum, inner, out);
+        // A fraction under a power is bracketed: (8661249/1159339)^{3/2}.
+        let bracket = r.is_negative() && ctx > Prec::Sum || !r.is_integer() && ctx == Prec::Power;
+        wrap(bracket, inner, out);
     }
 
     fn product(&self, v: &[Expr], ctx: Prec, out: &mut Vec<Node>) {

@@ -256,6 +256,18 @@ pub enum Shape {
 }
 
 impl Scene {
+    /// The names that take either sign: the coordinates, their rates and accelerations, and the
+    /// time. Every other symbol of a scene is a mass, a length or a constant, taken positive.
+    pub fn signed_names(&self) -> BTreeSet<String> {
+        let mut out: BTreeSet<String> = self
+            .coordinates
+            .keys()
+            .flat_map(|q| [q.clone(), format!("{q}'"), format!("{q}''")])
+            .collect();
+        out.insert("t".into());
+        out
+    }
+
     /// The fidelity a run uses: the command line's (`--fidelity`), else the scene's own, else
     /// standard. The one place this rule is written.
     pub fn fidelity_given(&self, command_line: Option<Fidelity>) -> Fidelity {

@@ -555,6 +555,8 @@ pub use steps::StepCheck;
 #[cfg(test)]
 mod answer_routes_tests;
 #[cfg(test)]
+mod printed_tests;
+#[cfg(test)]
 mod steps_tests;
 #[cfg(test)]
 mod tests;

@@ -23,16 +23,9 @@ pub(super) const NUMERICALLY_ZERO: f64 = 1e-9;
 /// defined.
 pub(super) const DOMAIN_TRIES: usize = 20;
 
-/// The names that take either sign: the coordinates, their rates and accelerations, and the
-/// time. Every other symbol of a scene is a mass, a length or a constant, taken positive.
+/// The names that take either sign (see [`Scene::signed_names`]).
 pub(super) fn signed_names(scene: &Scene) -> BTreeSet<String> {
-    let mut out: BTreeSet<String> = scene
-        .coordinates
-        .keys()
-        .flat_map(|q| [q.clone(), format!("{q}'"), format!("{q}''")])
-        .collect();
-    out.insert("t".into());
-    out
+    scene.signed_names()
 }
 
 /// Whether each difference vanishes at [`CONFIRMATION_POINTS`] random points. The `signed`

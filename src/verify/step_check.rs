@@ -11,6 +11,12 @@ use std::collections::BTreeMap;
 pub enum CheckError {
     #[error(transparent)]
     Eval(#[from] crate::cas::EvalError),
+    #[error(
+        "the printed form of the step's result {number} differs from its exact result at random \
+         points: a fault in mechbook's presentation pass, please report it (`--json` keeps the \
+         exact form)"
+    )]
+    PrintedDiffers { number: usize },
     #[error("`{expression}` is {value} on the way: the check cannot compare it")]
     Undefined { expression: String, value: f64 },
     #[error(

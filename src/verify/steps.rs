@@ -92,7 +92,41 @@ pub fn check_step(scene: &Scene, d: &Derivation, i: usize) -> StepCheck {
     if let Err(problem) = route(scene, d, step, seed, &mut check) {
         check.problem = Some(problem.to_string());
     }
+    if let Err(problem) = printed_check(scene, d, step, seed, &mut check) {
+        check.problem.get_or_insert(problem.to_string());
+    }
     check
+}
+
+/// The printed form of a step's result (see `cas::present_all`, where the engine proved it
+/// equal) against the exact result at random points, the coordinates of either sign.
+fn printed_check(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    seed: u64,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    let (Some(printed), Some(exact)) = (d.printed.get(&step.name), d.named.get(&step.name)) else {
+        return Ok(());
+    };
+    let (mut printed, mut exact) = (printed.clone(), exact.clone());
+    let exact: Vec<Expr> = exact.printed_mut().into_iter().map(|e| e.clone()).collect();
+    let diffs: Vec<Expr> = printed
+        .printed_mut()
+        .into_iter()
+        .zip(&exact)
+        .map(|(p, e)| Expr::minus(p.clone(), e.clone()))
+        .collect();
+    let agree = numerically_zero(&diffs, &exact, seed, &signed_names(scene))?;
+    check.evaluations += (CONFIRMATION_POINTS * 2 * diffs.len()) as u64;
+    check.method.push_str(&format!(
+        "; its printed form against its exact result at {CONFIRMATION_POINTS} random points"
+    ));
+    match agree.iter().position(|&zero| !zero) {
+        Some(k) => Err(CheckError::PrintedDiffers { number: k + 1 }),
+        None => Ok(()),
+    }
 }
 
 /// A step's check before its route has run: no method, no error, no work.
