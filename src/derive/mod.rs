@@ -51,6 +51,10 @@ pub struct Step {
     /// The author's `[[step]]` this shows, by name; `None` for a built-in step.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub author: Option<String>,
+    /// The exact result as derived, where `statement` prints it in another form (see
+    /// `cas::present_all`): kept for `--json`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exact: Option<Formula>,
 }
 
 /// A step's reason, with the citation key a scene may map to its notes' equations.
@@ -103,6 +107,7 @@ impl Step {
             why: why.prose,
             cite: why.key.to_string(),
             author: None,
+            exact: None,
         }
     }
 

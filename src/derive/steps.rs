@@ -211,6 +211,13 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
         let printed = printed_form(scene, &result).map_err(|e| locate(step, e))?;
         let mut steps = page_steps(step, printed.as_ref().unwrap_or(&result));
+        if printed.is_some() {
+            for (shown, exact) in steps.iter_mut().zip(page_steps(step, &result)) {
+                if shown.statement != exact.statement {
+                    shown.exact = Some(exact.statement);
+                }
+            }
+        }
         if let (Some(formula), [only]) = (shown, &mut steps[..]) {
             only.statement = formula;
         }

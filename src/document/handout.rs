@@ -8,6 +8,8 @@
 //! result, the figures, every claim with its verdict.
 
 use super::Page;
+use crate::cas::{Expr, Rational};
+use crate::notation::{Formula, Op};
 use crate::scene::{ClaimRole, Verdict};
 
 /// One scene's part of a handout (`page` indexes the course's pages).
@@ -40,6 +42,10 @@ pub struct ShownStep {
     pub at: Vec<Option<usize>>,
     /// The notes' claims on this step (its `gives`), each with how it is marked.
     pub claims: Vec<ShownClaim>,
+    /// The student's form of a line whose exact value is a number no student reads (radicals
+    /// of rationals of many digits): `name ≈ 0.583422` to the figures of the values beside
+    /// every step. The instructor's handout and `--json` keep the exact form.
+    pub approx: Vec<Option<Formula>>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -83,6 +89,7 @@ pub fn part(index: usize, page: &Page, instructor: bool) -> Part {
                         checks: true,
                         at: vec![at],
                         claims: Vec::new(),
+                        approx: vec![None],
                     })
                 })
                 .collect(),
@@ -184,13 +191,62 @@ fn student_step(page: &Page, lines: Vec<usize>) -> ShownStep {
         .flat_map(|&l| page.steps[l].claims.clone())
         .filter_map(|i| shown_claim(page, i, false))
         .collect();
+    let approx = lines
+        .iter()
+        .map(|&l| decimal_form(&page.steps[l].statement))
+        .collect();
     ShownStep {
         lines,
         reason_first: true,
         checks: false,
         at,
         claims,
+        approx,
     }
+}
+
+/// The digits beyond which a rational in an exact number is too long to read.
+const LONG_RATIONAL: i128 = 1_000_000;
+
+/// Significant figures of a number printed for one too long to read exactly: those of the
+/// values at the scene's numbers.
+const DECIMAL_FIGURES: usize = 6;
+
+fn has_long_rational(e: &Expr) -> bool {
+    let limit = Rational::int(LONG_RATIONAL);
+    match e {
+        Expr::Num(r) => {
+            let (n, d) = r.abs_parts();
+            n >= limit || d >= limit
+        }
+        Expr::Add(v) | Expr::Mul(v) | Expr::Call(_, v) | Expr::List(v) => {
+            v.iter().any(has_long_rational)
+        }
+        Expr::Pow(b, k) | Expr::Index(b, k) => has_long_rational(b) || has_long_rational(k),
+        Expr::Sym(_) => false,
+    }
+}
+
+/// `name ≈ x` for `name = v` where v is a number with no symbol whose rationals run to more
+/// than six digits (the trigonometric roots of a cubic at an author's numbers).
+fn decimal_form(statement: &Formula) -> Option<Formula> {
+    let Formula::Row(items) = statement else {
+        return None;
+    };
+    let [lhs, Formula::Op(Op::Equals), Formula::Expr(v)] = items.as_slice() else {
+        return None;
+    };
+    if v.symbols().iter().any(|s| s != "pi") || matches!(v, Expr::Num(_)) {
+        return None;
+    }
+    let x = v.eval(&|_| None).ok()?;
+    (has_long_rational(v) && x.is_finite()).then(|| {
+        Formula::Row(vec![
+            lhs.clone(),
+            Formula::Op(Op::Approx),
+            Formula::decimal(&crate::base::format::significant(x, DECIMAL_FIGURES)),
+        ])
+    })
 }
 
 /// How claim `i` is shown, or `None` when the student's handout leaves it out (a claim not

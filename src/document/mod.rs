@@ -101,6 +101,8 @@ pub struct Step {
     /// The page's claims that are this step's `gives` (indices into `Page::claims`), on the
     /// step's last line.
     pub claims: Vec<usize>,
+    /// The exact result as derived, where `statement` prints it in a textbook's form.
+    pub exact: Option<Formula>,
 }
 
 impl Step {
@@ -275,6 +277,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
                 Step {
                     title: st.title.clone(),
                     statement: st.statement.clone(),
+                    exact: st.exact.clone(),
                     why: st.why.clone(),
                     key: st.cite.clone(),
                     citation: st.citation(&s.cite).map(str::to_string),

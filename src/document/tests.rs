@@ -45,6 +45,7 @@ fn a_cited_step_gives_its_reason_after_the_citation() {
         author: None,
         eq: None,
         claims: Vec::new(),
+        exact: None,
     };
     assert_eq!(step.why_cited().to_text(), "eq (51): expand");
     let uncited = Step {

@@ -59,7 +59,27 @@ pub fn mathml(nodes: &[Node], block: bool) -> Result<String, MathmlError> {
     let out = out.replace("<mtable", "<mtable displaystyle=\"true\"");
     // Only mathematics reaches the page: the writer copies an operator's name as it is.
     let safe = safe_mathml(&escape_bare_ampersands(&out)).map_err(MathmlError::Unsafe)?;
-    Ok(space_attributes(&safe))
+    Ok(with_alttext(
+        &space_attributes(&safe),
+        &super::spoken::spoken(&nodes),
+    ))
+}
+
+/// The `<math>` element with its spoken form as `alttext`, for a screen reader that does not
+/// read MathML.
+fn with_alttext(mathml: &str, spoken: &str) -> String {
+    let escaped = spoken
+        .replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;");
+    // After the writer's own attributes, at the end of the start tag.
+    match mathml.find('>') {
+        Some(end) if mathml.starts_with("<math") => {
+            format!("{} alttext=\"{escaped}\"{}", &mathml[..end], &mathml[end..])
+        }
+        _ => mathml.to_string(),
+    }
 }
 
 /// The nodes with the parser's `&nbsp;` text (a `~` or `\ `) as a space: the writer escapes

@@ -14,6 +14,7 @@ pub mod linebreak;
 mod linebreak_tests;
 pub mod mathml;
 mod product_cut;
+mod spoken;
 mod tex_text;
 mod tree;
 pub mod typst;

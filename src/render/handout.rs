@@ -96,13 +96,19 @@ fn step_view<'a>(
             .lines
             .iter()
             .zip(&s.at)
-            .map(|(&l, q)| {
+            .zip(&s.approx)
+            .map(|((&l, q), approx)| {
                 let at = q
                     .and_then(|q| view.quantities[q].as_ref())
                     .map_or(String::new(), |v| v.at.clone());
-                (view.steps[l].math.clone(), at)
+                // A number no student reads exactly is shown to six figures.
+                let math = match approx {
+                    Some(f) => super::math::block(&f.to_tex())?,
+                    None => view.steps[l].math.clone(),
+                };
+                Ok((math, at))
             })
-            .collect(),
+            .collect::<Result<_, RenderError>>()?,
         check: if s.checks {
             last.check.clone()
         } else {

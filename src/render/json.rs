@@ -113,6 +113,10 @@ fn step_json(st: &Step) -> Json {
     if !st.key.is_empty() {
         j["cite"] = json!(st.key);
     }
+    // The exact result as derived, where the statement prints it in a textbook's form.
+    if let Some(exact) = &st.exact {
+        j["exact"] = json!({ "text": exact.to_text(), "latex": exact.to_latex() });
+    }
     if st.why.0.iter().any(|p| matches!(p, Piece::Math(_))) {
         j["why_math"] = prose_json(&st.why);
     }

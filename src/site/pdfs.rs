@@ -143,9 +143,10 @@ mod tests {
     fn a_document_typst_cannot_set_is_named_and_the_others_are_still_made() {
         let made = typeset_all(
             &[
-                source("pdf/a.pdf", "Hello"),
+                // A title, as PDF/UA-1 asks of every document.
+                source("pdf/a.pdf", "#set document(title: \"A\")\nHello"),
                 source("pdf/b.pdf", "#panic(\"broken\")"),
-                source("pdf/c.pdf", "World"),
+                source("pdf/c.pdf", "#set document(title: \"C\")\nWorld"),
             ],
             None,
             "test",

@@ -146,7 +146,7 @@ fn build_writes_the_site_and_rebuilds_it_identically() {
 fn pages_carry_math_errata_and_the_numeric_table() {
     let (dir, out) = built_site("pages");
     let hoop = std::fs::read_to_string(out.join("hoop.html")).unwrap();
-    assert!(hoop.contains("<math display=\"block\">") && !hoop.contains("<merror"));
+    assert!(hoop.contains("<math display=\"block\" alttext=\"") && !hoop.contains("<merror"));
     assert!(hoop.contains("Erratum, eq. (39)") && hoop.contains("Erratum, eq. (36)"));
     assert!(hoop.contains("periodic-trapezoid"));
     assert!(!hoop.contains("<script"));

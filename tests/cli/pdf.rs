@@ -658,3 +658,99 @@ fn each_handouts_html_and_pdf_show_the_same_sections() {
     }
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// A PDF string as text: UTF-16 after its byte-order mark, else PDFDocEncoding (ASCII here).
+fn pdf_text(bytes: &[u8]) -> String {
+    match bytes.strip_prefix(&[0xfe, 0xff]) {
+        Some(utf16) => {
+            let units: Vec<u16> = utf16
+                .chunks(2)
+                .map(|c| u16::from_be_bytes([c[0], *c.get(1).unwrap_or(&0)]))
+                .collect();
+            String::from_utf16_lossy(&units)
+        }
+        None => String::from_utf8_lossy(bytes).into_owned(),
+    }
+}
+
+/// The alternative text of each formula in a PDF's structure tree (`None` where a formula has
+/// none), read with lopdf.
+fn formula_alts(pdf: &Path) -> Vec<Option<String>> {
+    let doc = lopdf::Document::load(pdf).unwrap_or_else(|e| panic!("{}: {e}", pdf.display()));
+    doc.objects
+        .values()
+        .filter_map(|o| o.as_dict().ok())
+        .filter(|d| matches!(d.get(b"S"), Ok(lopdf::Object::Name(n)) if n == b"Formula"))
+        .map(|d| match d.get(b"Alt") {
+            Ok(lopdf::Object::String(s, _)) => Some(pdf_text(s)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn every_formula_in_the_pdfs_is_tagged_with_its_spoken_form() {
+    if !poppler() {
+        return;
+    }
+    let dir = scratch("pdf-alt");
+    let site = dir.join("site");
+    let run = mechbook(&[
+        "build",
+        "lectures",
+        "--no-cache",
+        "--out",
+        site.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let mut formulas = 0;
+    let mut pdfs = 0;
+    for entry in std::fs::read_dir(site.join("pdf")).unwrap() {
+        let pdf = entry.unwrap().path();
+        let info = tool("pdfinfo", &[pdf.to_str().unwrap()]);
+        assert!(
+            info.contains("Tagged:          yes"),
+            "{}: {info}",
+            pdf.display()
+        );
+        // PDF/UA-1, declared in the document's metadata.
+        let bytes = std::fs::read(&pdf).unwrap();
+        assert!(
+            bytes
+                .windows(14)
+                .any(|w| w == b"pdfuaid:part>1" || w == b"pdfuaid:part=\""),
+            "{}: no PDF/UA identification",
+            pdf.display()
+        );
+        let alts = formula_alts(&pdf);
+        assert!(!alts.is_empty(), "{}: no formula tagged", pdf.display());
+        for alt in &alts {
+            let alt = alt.as_deref().unwrap_or("");
+            assert!(
+                !alt.trim().is_empty(),
+                "{}: a formula without alt text",
+                pdf.display()
+            );
+            // Words, not Typst or LaTeX.
+            assert!(
+                !alt.contains('\\') && !alt.contains("frac(") && !alt.contains('$'),
+                "{}: {alt}",
+                pdf.display()
+            );
+        }
+        formulas += alts.len();
+        pdfs += 1;
+    }
+    assert_eq!(pdfs, 8);
+    // The summary of lecture 3/9 says Euler's equations in words.
+    let summary = formula_alts(&site.join("pdf").join("lecture-3-9-student.pdf"));
+    assert!(
+        summary
+            .iter()
+            .flatten()
+            .any(|a| a.contains("omega") && a.contains("equals")),
+        "{summary:?}"
+    );
+    eprintln!("{formulas} formulas in {pdfs} PDFs, each with its spoken form");
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -4,7 +4,9 @@
 //! the claims that agree and the marked mistakes and errata) and the instructor's worked
 //! solutions (contents, every step with its reason and check, the results, the figures).
 
-use super::markup::{Markup, formula_and_broken, number, symbol};
+use super::markup::{
+    Markup, formula_and_broken, number, said_equation, said_number, said_symbol, symbol,
+};
 use crate::base::format::sci;
 use crate::derive::ExactBasis;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
@@ -62,7 +64,10 @@ fn section(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
     setup(m, page)?;
     for (name, e) in &page.definitions {
         m.raw("- ")
-            .inline(&format!("{} = {}", symbol(name), e.to_typst()))
+            .inline(
+                &format!("{} = {}", symbol(name), e.to_typst()),
+                &said_equation(name, &e.to_tex().spoken()),
+            )
             .line();
     }
     for (k, step) in part.steps.iter().enumerate() {
@@ -89,7 +94,9 @@ fn setup(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
     }
     m.raw("#grid(columns: (auto, 1fr), column-gutter: 1em, row-gutter: 0.5em,\n");
     for (name, meaning) in page.coordinates.iter().chain(&page.symbols) {
-        m.raw("[").inline(&symbol(name)).raw("], [");
+        m.raw("[")
+            .inline(&symbol(name), &said_symbol(name))
+            .raw("], [");
         m.author(meaning)?;
         if let Some(u) = page.units.get(name) {
             m.text(&format!(" ({})", u.replace('*', " ")));
@@ -112,9 +119,11 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
     } else {
         m.raw("*").text(&last.title).raw("*");
     }
-    for (&l, at) in s.lines.iter().zip(&s.at) {
-        let (whole, broken) = formula_and_broken(&page.steps[l].statement)?;
-        m.block(&whole, &broken);
+    for ((&l, at), approx) in s.lines.iter().zip(&s.at).zip(&s.approx) {
+        // A number no student reads exactly is shown to six figures.
+        let statement = approx.as_ref().unwrap_or(&page.steps[l].statement);
+        let (whole, broken) = formula_and_broken(statement)?;
+        m.block(&whole, &broken, &statement.to_tex().spoken());
         if let Some(q) = at.map(|q| &page.quantities[q])
             && let Some(at) = &q.at
         {
@@ -153,7 +162,11 @@ fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
             &crate::render::problems::capitalised(&crate::model::catalogue::heading(&q.name)),
         )?;
         let value = q.value.to_expr();
-        m.block(&value.to_typst(), &value.to_typst_breakable());
+        m.block(
+            &value.to_typst(),
+            &value.to_typst_breakable(),
+            &value.to_tex().spoken(),
+        );
         if let Some(at) = &q.at {
             at_numbers(m, &q.value, at);
         }
@@ -166,29 +179,37 @@ fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
             3,
             &format!("Principal moment (multiplicity {})", sp.multiplicity),
         )?;
-        let dir = match &sp.basis {
-            ExactBasis::Axis(a) => format!(
-                "quad \"along\" {}",
-                Value::Vector(a.clone()).to_expr().to_typst()
+        let vector = |v: &[crate::cas::Expr; 3]| Value::Vector(v.clone()).to_expr();
+        let (dir, said) = match &sp.basis {
+            ExactBasis::Axis(a) => (
+                format!("quad \"along\" {}", vector(a).to_typst()),
+                format!("along {}", vector(a).to_tex().spoken()),
             ),
-            ExactBasis::PlaneNormalTo(n) => format!(
-                "quad \"every axis\" perp {}",
-                Value::Vector(n.clone()).to_expr().to_typst()
+            ExactBasis::PlaneNormalTo(n) => (
+                format!("quad \"every axis\" perp {}", vector(n).to_typst()),
+                format!(
+                    "every axis perpendicular to {}",
+                    vector(n).to_tex().spoken()
+                ),
             ),
-            ExactBasis::All => "quad \"every axis\"".into(),
+            ExactBasis::All => ("quad \"every axis\"".into(), "every axis".into()),
         };
         let line = format!("{} {dir}", sp.value.to_typst());
-        m.block(&line, &line);
+        m.block(
+            &line,
+            &line,
+            &format!("{}, {said}", sp.value.to_tex().spoken()),
+        );
     }
     if let Some(p) = &page.principal_values {
         m.heading(3, "Principal moments at the scene's values")?;
         let values: Vec<String> = p.exact.iter().map(|v| number(*v, 6)).collect();
         let line = format!("{} = {}", symbol(&p.letter), values.join("\\, thin "));
-        m.block(&line, &line);
+        let said: Vec<String> = p.exact.iter().map(|v| said_number(*v, 6)).collect();
+        m.block(&line, &line, &said_equation(&p.letter, &said.join(", ")));
         m.raw("#text(9.5pt)[").text("at ");
-        m.inline(&super::markup::formula(&crate::render::values_at(
-            &p.values,
-        ))?);
+        let values = crate::render::values_at(&p.values);
+        m.inline(&super::markup::formula(&values)?, &values.to_tex().spoken());
         m.text(&format!(
             ": the eigen-solver on the exact tensor agrees to {} (relative)",
             sci(p.error)
@@ -209,10 +230,19 @@ fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
         .iter()
         .map(|(k, x)| format!("{} = {}", symbol(k), number(*x, 6)))
         .collect();
+    let said_symbols: Vec<String> = at
+        .symbols
+        .iter()
+        .map(|(k, x)| said_equation(k, &said_number(*x, 6)))
+        .collect();
+    let said_values: Vec<String> = crate::render::at_entries(at)
+        .into_iter()
+        .map(|x| said_number(x, 6))
+        .collect();
     m.text("at ")
-        .inline(&symbols.join("\\, thin "))
+        .inline(&symbols.join("\\, thin "), &said_symbols.join(", "))
         .text(": ")
-        .display(&numbers_typst(v, &n))
+        .display(&numbers_typst(v, &n), &said_values.join(", "))
         .par();
 }
 
@@ -263,26 +293,27 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
         m.line();
         return Ok(());
     };
-    let notes = c
+    let (notes, said_notes) = c
         .notes
         .as_ref()
         .map(|e| {
-            e.to_typst_named(&|q| quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok()))
+            let typst = e.to_typst_named(&|q| {
+                quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok())
+            });
+            (typst, e.to_tex_named(&quantity_symbol).spoken())
         })
         .unwrap_or_default();
-    let (derived, derived_broken) = c
+    let (derived, derived_broken, said_derived) = c
         .derived
         .as_ref()
         .map(|v| match v {
-            Value::Scalar(e) if c.precision.is_some() => {
-                let x = e
-                    .eval(&|_| None)
-                    .map_or_else(|_| e.to_typst(), |x| number(x, 7));
-                (x.clone(), x)
-            }
+            Value::Scalar(e) if c.precision.is_some() => match e.eval(&|_| None) {
+                Ok(x) => (number(x, 7), number(x, 7), said_number(x, 7)),
+                Err(_) => (e.to_typst(), e.to_typst(), e.to_tex().spoken()),
+            },
             _ => {
                 let e = v.to_expr();
-                (e.to_typst(), e.to_typst_breakable())
+                (e.to_typst(), e.to_typst_breakable(), e.to_tex().spoken())
             }
         })
         .unwrap_or_default();
@@ -296,9 +327,9 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
     m.author(&c.statement)?;
     m.raw(" \\\n")
         .text(&format!("{wrong}: "))
-        .block(&notes, &notes)
+        .block(&notes, &notes, &said_notes)
         .text(&format!("{right}: "))
-        .block(&derived, &derived_broken)
+        .block(&derived, &derived_broken, &said_derived)
         .raw("]\n");
     Ok(())
 }

@@ -71,10 +71,12 @@ impl Markup {
         self
     }
 
-    /// A formula in the line. One with a fraction is set in the display style (`tall`, in the
-    /// preamble): in the text style a fraction's indices are half the body's size, too small
-    /// to read on paper.
-    pub fn inline(&mut self, typst_math: &str) -> &mut Self {
+    /// A formula in the line, with its spoken form (`alt`) as the PDF's alternative
+    /// description. One with a fraction is set in the display style (`tall`, in the preamble):
+    /// in the text style a fraction's indices are half the body's size, too small to read on
+    /// paper.
+    pub fn inline(&mut self, typst_math: &str, alt: &str) -> &mut Self {
+        self.alt(alt);
         let tall = typst_math.contains("frac(") && !typst_math.starts_with("display(");
         if tall {
             self.text.push_str("#tall($display(");
@@ -86,26 +88,38 @@ impl Markup {
             self.text.push_str(typst_math);
             self.text.push('$');
         }
+        self.text.push_str("]#[]");
         self
     }
 
     /// A formula in the line, set at its full size (a matrix or a column, which the line would
     /// shrink).
-    pub fn display(&mut self, typst_math: &str) -> &mut Self {
-        self.inline(&format!("display({typst_math})"))
+    pub fn display(&mut self, typst_math: &str, alt: &str) -> &mut Self {
+        self.inline(&format!("display({typst_math})"), alt)
     }
 
     /// A formula on a line of its own, centred; one wider than the line is broken after its
     /// relations and operators, with a hanging indent, as a typesetter would (`fit`, in the
     /// preamble): Typst breaks a line of inline mathematics there, inside parentheses too.
     /// `broken` is the same formula printed to be broken (`to_typst_breakable`).
-    pub fn block(&mut self, whole: &str, broken: &str) -> &mut Self {
+    pub fn block(&mut self, whole: &str, broken: &str, alt: &str) -> &mut Self {
+        self.text.push('\n');
+        self.alt(alt);
         self.text.push_str("\n#fit($ ");
         self.text.push_str(whole);
         self.text.push_str(" $, $display(");
         self.text.push_str(broken);
-        self.text.push_str(")$)\n");
+        self.text.push_str(")$)\n]\n");
         self
+    }
+
+    /// Opens a scope whose equations carry `alt` as their alternative description (a tagged
+    /// PDF's, which PDF/UA-1 asks of every formula); the caller closes it with `]`.
+    fn alt(&mut self, alt: &str) {
+        self.text.push_str("#[#set math.equation(alt: ");
+        self.text.push_str(&typst_string(alt));
+        // The semicolon ends the rule: what follows is markup again.
+        self.text.push_str(");");
     }
 
     /// A sentence: its text as text, its formulas printed from their trees.
@@ -113,7 +127,7 @@ impl Markup {
         for piece in &prose.0 {
             match piece {
                 Piece::Text(t) => self.text(t),
-                Piece::Math(f) => self.inline(&formula(f)?),
+                Piece::Math(f) => self.inline(&formula(f)?, &f.to_tex().spoken()),
             };
         }
         Ok(self)
@@ -158,6 +172,26 @@ fn math_error(f: &Formula, e: crate::notation::TexError) -> RenderError {
         latex: f.to_latex(),
         message: e.to_string(),
     }
+}
+
+/// A symbol's name in words.
+pub fn said_symbol(name: &str) -> String {
+    Expr::sym(name).to_tex().spoken()
+}
+
+/// `name = value` in words.
+pub fn said_equation(name: &str, value: &str) -> String {
+    format!("{} equals {value}", said_symbol(name))
+}
+
+/// A computed number in words, as [`number`] sets it: "4.6875 times 10 to the power minus 6".
+pub fn said_number(x: f64, digits: usize) -> String {
+    let s = crate::base::format::significant(x, digits);
+    let words = match crate::base::format::power_of_ten(&s) {
+        Some((mantissa, power)) => format!("{mantissa} times 10 to the power {power}"),
+        None => s,
+    };
+    words.replace('-', "minus ")
 }
 
 /// A symbol's name in Typst's math.

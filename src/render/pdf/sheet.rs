@@ -3,7 +3,7 @@
 //! Each sheet variant starts a page and names itself at the top of its pages; a student's
 //! paper (from a roster) has their name and ID at the top of every page.
 
-use super::markup::{Markup, formula, symbol};
+use super::markup::{Markup, formula, said_equation, symbol};
 use crate::document::{Problem, Sheet, Variant};
 use crate::render::RenderError;
 use crate::render::problems::{KEY_FIGURES, answer_words, capitalised};
@@ -50,6 +50,13 @@ fn start_variant(
     right
 }
 
+/// A sheet's headings start at level 1, as a tagged PDF's must (PDF/UA-1), set at the sizes of
+/// a handout's levels 2 and 3: a problem's heading, and a key's problem under its variant.
+fn sheet_headings(m: &mut Markup) {
+    m.raw("#show heading.where(level: 1): set text(12.5pt)\n");
+    m.raw("#show heading.where(level: 2): set text(10.5pt)\n");
+}
+
 /// Closes the block [`start_variant`] opened.
 fn end_variant(m: &mut Markup) {
     m.raw("\n]\n");
@@ -63,6 +70,7 @@ pub fn student_sheet(
     sheet: &Sheet,
     which: &[(usize, Option<&Student>)],
 ) -> Result<(), RenderError> {
+    sheet_headings(m);
     for (i, (k, student)) in which.iter().enumerate() {
         start_variant(m, head, sheet, (i, *k, *student));
         match student {
@@ -91,7 +99,7 @@ pub fn student_sheet(
 }
 
 fn problem(m: &mut Markup, number: usize, p: &Problem, v: &Variant) -> Result<(), RenderError> {
-    m.raw("\n#block(breakable: false)[\n#heading(level: 2)[")
+    m.raw("\n#block(breakable: false)[\n#heading(level: 1)[")
         .text(&format!("Problem {number}: "));
     m.author(&p.title)?;
     m.raw("]\n");
@@ -111,9 +119,10 @@ pub fn key(
     // The site's key answers a problem with fewer variants than the sheet once, in a section
     // of its own, as the HTML key does (the sheet's choice, `document::Sheet::shared`); a
     // student's key answers their own variant where it is asked.
+    sheet_headings(m);
     let whole_sheet = which.iter().all(|(_, student)| student.is_none());
     if whole_sheet && !sheet.shared.is_empty() {
-        m.raw("\n#heading(level: 2)[")
+        m.raw("\n#heading(level: 1)[")
             .text(SHARED)
             .raw("]\n#text(9pt)[")
             .text("Each of their variants is answered once here, and each sheet variant says which one it uses.")
@@ -130,7 +139,7 @@ pub fn key(
     }
     for (i, (k, student)) in which.iter().enumerate() {
         let right = start_variant(m, head, sheet, (i, *k, *student));
-        m.raw("\n#heading(level: 2)[").text(&right).raw("]\n");
+        m.raw("\n#heading(level: 1)[").text(&right).raw("]\n");
         for sp in &sheet.variants[*k].problems {
             let (n, p) = sheet.problem(sp.problem);
             let v = &p.variants[sp.variant];
@@ -163,7 +172,7 @@ fn shared_pointer(
     p: &Problem,
     v: &Variant,
 ) -> Result<(), RenderError> {
-    m.raw("\n#heading(level: 3)[")
+    m.raw("\n#heading(level: 2)[")
         .text(&format!("Problem {number}: "));
     m.author(&p.title)?;
     m.raw("]\n").text(&format!(
@@ -175,10 +184,10 @@ fn shared_pointer(
 }
 
 fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Result<(), RenderError> {
-    m.raw("\n#heading(level: 3)[").text(&format!("{heading}: "));
+    m.raw("\n#heading(level: 2)[").text(&format!("{heading}: "));
     m.author(&p.title)?;
     m.raw("]\n");
-    let given: Vec<String> = v
+    let given: Vec<(String, String)> = v
         .given
         .iter()
         .map(|g| {
@@ -186,15 +195,17 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
                 .unit
                 .as_deref()
                 .map_or(String::new(), |u| format!(" thin {}", unit_typst(u)));
-            Ok(format!(
-                "{} = {}{unit}",
-                symbol(&g.name),
-                formula(&g.value)?
-            ))
+            let said_unit = g.unit.as_deref().map_or(String::new(), said_unit);
+            let typst = format!("{} = {}{unit}", symbol(&g.name), formula(&g.value)?);
+            let said = said_equation(&g.name, &g.value.to_tex().spoken());
+            Ok((typst, format!("{said}{said_unit}")))
         })
         .collect::<Result<_, RenderError>>()?;
     if !given.is_empty() {
-        m.text("Given: ").inline(&given.join("\\, quad ")).par();
+        let (typst, said): (Vec<String>, Vec<String>) = given.into_iter().unzip();
+        m.text("Given: ")
+            .inline(&typst.join("\\, quad "), &said.join(", "))
+            .par();
     }
     m.raw("#table(columns: (auto, 1fr, auto), stroke: 0.4pt, inset: 5pt, [*Answer*], [*Exact*], [*Decimal*],\n");
     for (spec, a) in p.answers.iter().zip(&v.answers) {
@@ -211,16 +222,28 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
                 m.text(answer_words(q));
             }
             (None, None) => {
-                m.inline(&spec.value.to_typst());
+                m.inline(&spec.value.to_typst(), &spec.value.to_tex().spoken());
             }
         }
+        let said_unit = spec
+            .unit
+            .as_ref()
+            .map_or(String::new(), |u| said_unit(&u.text));
+        let exact = a.exact.to_expr();
+        let numbers = decimals(&a.exact_numbers);
         m.raw("], [")
-            .display(&format!("{}{unit}", a.exact.to_expr().to_typst()))
+            .display(
+                &format!("{}{unit}", exact.to_typst()),
+                &format!("{}{said_unit}", exact.to_tex().spoken()),
+            )
             .raw("], [")
-            .display(&format!(
-                "{}{unit}",
-                super::handout::numbers_typst(&a.exact, &decimals(&a.exact_numbers))
-            ))
+            .display(
+                &format!(
+                    "{}{unit}",
+                    super::handout::numbers_typst(&a.exact, &numbers)
+                ),
+                &format!("{}{said_unit}", numbers.join(", ")),
+            )
             .raw("],\n");
     }
     m.raw(")\n");
@@ -252,6 +275,17 @@ pub fn decimals(numbers: &[f64]) -> Vec<String> {
 
 /// A unit in Typst's math, upright: `kg m^2/s` as kg m²/s, each power raised after the text
 /// before it.
+/// A unit in words, after its number: " m per s squared".
+fn said_unit(text: &str) -> String {
+    let words = text
+        .replace('*', " ")
+        .replace('/', " per ")
+        .replace("^2", " squared")
+        .replace("^3", " cubed")
+        .replace('^', " to the power ");
+    format!(" {words}")
+}
+
 pub fn unit_typst(text: &str) -> String {
     let text = text.replace('*', " ");
     let mut out = String::new();

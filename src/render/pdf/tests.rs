@@ -34,6 +34,7 @@ fn media_box(pdf: &[u8]) -> String {
 fn an_authors_text_is_text_however_it_reads_as_markup() {
     let title = "A *bold* _claim_ // #let x = 1 <label> @ref [x] \\ $";
     let out = typeset(&doc(Paper::A4, |m| {
+        m.heading(1, "Notes").unwrap();
         m.text(title);
         m.heading(2, "The $\\beta$ of a top, #1").unwrap();
     }))
@@ -46,7 +47,7 @@ fn an_authors_text_is_text_however_it_reads_as_markup() {
 fn a_formula_wider_than_the_paper_is_broken_onto_it_and_text_past_the_edge_is_found() {
     let long = vec!["a"; 160].join(" + ");
     let fitted = typeset(&doc(Paper::A4, |m| {
-        m.block(&long, &long);
+        m.block(&long, &long, "a plus a and so on");
     }))
     .unwrap();
     assert!(fitted.past_the_edge.is_empty());
@@ -54,7 +55,9 @@ fn a_formula_wider_than_the_paper_is_broken_onto_it_and_text_past_the_edge_is_fo
     // scene whose part it is in is named.
     let unbroken = typeset(&doc(Paper::A4, |m| {
         m.scene_part(std::path::Path::new("x.toml"), 7, |m| {
-            m.raw("#block(width: 400mm)[$ ").raw(&long).raw(" $]");
+            m.raw("#block(width: 400mm)[#set math.equation(alt: \"a sum\");$ ")
+                .raw(&long)
+                .raw(" $]");
         });
     }))
     .unwrap();
@@ -74,7 +77,8 @@ fn a_character_no_font_has_is_named() {
 #[test]
 fn the_same_markup_gives_the_same_bytes_on_the_courses_paper() {
     let a4 = doc(Paper::A4, |m| {
-        m.text("Hello ").inline("frac(1, 12) m a^(2)");
+        m.text("Hello ")
+            .inline("frac(1, 12) m a^(2)", "1 over 12 m a squared");
     });
     let (one, two) = (typeset(&a4).unwrap(), typeset(&a4).unwrap());
     assert_eq!(one.pdf, two.pdf);
@@ -132,9 +136,9 @@ fn every_kind_of_name_a_scene_may_write_is_typeset() {
     let out = typeset(&doc(Paper::A4, |m| {
         for name in names {
             let e = crate::cas::Expr::sym(name);
-            m.inline(&e.to_typst());
+            m.inline(&e.to_typst(), &e.to_tex().spoken());
             let rate = crate::cas::Expr::sym(&format!("{name}'"));
-            m.inline(&rate.to_typst());
+            m.inline(&rate.to_typst(), &rate.to_tex().spoken());
         }
     }));
     assert!(
@@ -231,7 +235,7 @@ fn every_element_the_reader_reads_is_typeset() {
             .unwrap_or_else(|e| panic!("{form}: {e}"));
         let typst = tex.to_typst().unwrap_or_else(|e| panic!("{form}: {e}"));
         let out = typeset(&doc(Paper::A4, |m| {
-            m.inline(&typst);
+            m.inline(&typst, &tex.spoken());
         }));
         let out = out.unwrap_or_else(|e| panic!("{form} as {typst}: {e}"));
         assert!(

@@ -170,14 +170,42 @@ fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
             scene,
         )
     })?;
+    // Tagged for PDF/UA-1: a reader's assistive technology gets the structure, the language
+    // and each formula's spoken form (its alternative description).
+    let standards = typst_pdf::PdfStandards::new(&[typst_pdf::PdfStandard::Ua_1])
+        .map_err(|e| fail(vec![e.message().to_string()], None))?;
     let options = typst_pdf::PdfOptions {
         ident: Smart::Custom(source.path.clone()),
         creator: Smart::Custom(Some("mechbook (Typst)".into())),
         timestamp: None,
+        standards,
         ..Default::default()
     };
-    let pdf = typst_pdf::pdf(&document, &options)
-        .map_err(|errors| fail(errors.iter().map(|e| e.message.to_string()).collect(), None))?;
+    let pdf = match typst_pdf::pdf(&document, &options) {
+        Ok(pdf) => pdf,
+        // A character no font has (a student's name in another script) cannot be set as
+        // PDF/UA-1 asks: the PDF is still tagged, without the claim, and the character is
+        // named in a warning below.
+        Err(errors)
+            if errors
+                .iter()
+                .all(|e| e.message.contains("could not be displayed with font")) =>
+        {
+            let tagged = typst_pdf::PdfOptions {
+                standards: typst_pdf::PdfStandards::default(),
+                ..options
+            };
+            typst_pdf::pdf(&document, &tagged).map_err(|errors| {
+                fail(errors.iter().map(|e| e.message.to_string()).collect(), None)
+            })?
+        }
+        Err(errors) => {
+            return Err(fail(
+                errors.iter().map(|e| e.message.to_string()).collect(),
+                None,
+            ));
+        }
+    };
     // A character no font has is set as the font's "notdef": found in the laid-out pages, not
     // in Typst's warnings' wording.
     let mut missing = missing_glyphs_in(&document);
