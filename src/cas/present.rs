@@ -1,14 +1,16 @@
 //! The form a textbook prints: a pass between an exact result and the printers. It never changes
-//! a value: a candidate form is kept only when it prints shorter (or, for the tidied form, no
-//! longer) and the engine proves it equal to the result with every symbol but the signed ones
-//! positive; the step checks then compare the two at random points.
+//! a value: a candidate form is kept only when the engine proves it equal to the result with
+//! every symbol but the signed ones positive, and the step checks then compare the two at random
+//! points.
 //!
 //! The tidied form (`tidy`) is a rewrite of our own tree: c − c·cos²x as c·sin²x, a negative
 //! root of a quotient as the root of its inverse (2π/√(3g/2L) as 2π√(2L/3g)), √X/X as 1/√X, a
 //! power of a sum with a common factor split ((a − a cos θ)² as a²(1 − cos θ)²), a sum over a
 //! common denominator written over it once, a sum led by a positive term and a negative product
-//! with its sign taken into a difference. The engine's candidates are the result cancelled,
-//! factored, and its roots' radicands factored.
+//! with its sign taken into a difference. It is kept when it prints at most a tenth longer. The
+//! engine's candidates (the result cancelled, factored, its roots' radicands factored, divided
+//! out in a cosine, its terms grouped by their constants) are kept when they print at least a
+//! tenth shorter, so that a form is not traded for another of the same length.
 
 use super::engine::{self, EngineError};
 use super::expr::Expr;
@@ -27,11 +29,12 @@ pub fn present(e: &Expr, positive: Positive) -> Result<Expr, EngineError> {
     }
     let original = size(e);
     let mut candidates = vec![(tidy(e, positive), true)];
+    let (simplified, factored) = (engine::simplify(e), engine::factor(e));
     let engine_forms = [
-        engine::simplify(e),
-        engine::factor(e),
-        engine::simplify(e).and_then(|s| positive::roots_over_positive(&s, positive)),
-        engine::factor(e).and_then(|f| positive::roots_over_positive(&f, positive)),
+        simplified.clone(),
+        factored.clone(),
+        simplified.and_then(|s| positive::roots_over_positive(&s, positive)),
+        factored.and_then(|f| positive::roots_over_positive(&f, positive)),
         radicands_factored(e),
         apart(e, false),
         apart(e, true),
@@ -48,9 +51,7 @@ pub fn present(e: &Expr, positive: Positive) -> Result<Expr, EngineError> {
         .filter(|(c, _)| c != e)
         .map(|(c, tidied)| (size(&c), c, tidied))
         // The tidied form is what a physicist writes, kept even a little longer: a²(1 − cos θ)²
-        // for (a − a cos θ)².
-        // The engine's forms are taken where they are clearly shorter: (18135u − …)/50 is not
-        // worth 3627u/10 − ….
+        // for (a − a cos θ)². The engine's forms are taken where they are clearly shorter.
         .filter(|(n, _, tidied)| {
             if *tidied {
                 *n <= original + original / 10 + 2
@@ -72,7 +73,7 @@ pub fn present(e: &Expr, positive: Positive) -> Result<Expr, EngineError> {
 }
 
 /// The length of the LaTeX a page sets, without spaces and `\left`/`\right`.
-pub fn size(e: &Expr) -> usize {
+fn size(e: &Expr) -> usize {
     let latex = e.to_latex().replace("\\left", "").replace("\\right", "");
     latex.chars().filter(|c| !c.is_whitespace()).count()
 }
