@@ -200,7 +200,8 @@ impl Expr {
         out
     }
 
-    pub(super) fn walk(&self, f: &mut dyn FnMut(&Expr)) {
+    /// Visits the expression and every sub-expression, parents first.
+    pub fn walk(&self, f: &mut dyn FnMut(&Expr)) {
         f(self);
         match self {
             Expr::Num(_) | Expr::Sym(_) => {}

@@ -214,17 +214,14 @@ const DECIMAL_FIGURES: usize = 6;
 
 fn has_long_rational(e: &Expr) -> bool {
     let limit = Rational::int(LONG_RATIONAL);
-    match e {
-        Expr::Num(r) => {
+    let mut long = false;
+    e.walk(&mut |x| {
+        if let Expr::Num(r) = x {
             let (n, d) = r.abs_parts();
-            n >= limit || d >= limit
+            long |= n >= limit || d >= limit;
         }
-        Expr::Add(v) | Expr::Mul(v) | Expr::Call(_, v) | Expr::List(v) => {
-            v.iter().any(has_long_rational)
-        }
-        Expr::Pow(b, k) | Expr::Index(b, k) => has_long_rational(b) || has_long_rational(k),
-        Expr::Sym(_) => false,
-    }
+    });
+    long
 }
 
 /// `name ≈ x` for `name = v` where v is a number with no symbol whose rationals run to more

@@ -33,6 +33,13 @@ fn measured(latex: &str) -> usize {
         .count()
 }
 
+/// Whether any sub-expression of `e` (itself too) satisfies `at`.
+fn anywhere(e: &Expr, at: impl Fn(&Expr) -> bool) -> bool {
+    let mut found = false;
+    e.walk(&mut |x| found |= at(x));
+    found
+}
+
 /// A sum that holds ±1 beside a square of a sine or a cosine: 1 − cos²θ, −1 + cos²θ.
 fn has_one_minus_square(e: &Expr) -> bool {
     let square = |t: &Expr| {
@@ -45,7 +52,7 @@ fn has_one_minus_square(e: &Expr) -> bool {
                 && matches!(b.as_ref(), Expr::Call(n, _) if n == "sin" || n == "cos"))
         })
     };
-    let here = match e {
+    anywhere(e, |x| match x {
         Expr::Add(terms) => {
             terms
                 .iter()
@@ -53,16 +60,7 @@ fn has_one_minus_square(e: &Expr) -> bool {
                 && terms.iter().any(square)
         }
         _ => false,
-    };
-    here || children(e).iter().any(has_one_minus_square)
-}
-
-fn children(e: &Expr) -> Vec<Expr> {
-    match e {
-        Expr::Add(v) | Expr::Mul(v) | Expr::Call(_, v) | Expr::List(v) => v.clone(),
-        Expr::Pow(b, k) => vec![(**b).clone(), (**k).clone()],
-        _ => Vec::new(),
-    }
+    })
 }
 
 /// A negative fractional power of a quotient: 2π/√(3g/(2L)), (3g/(2L))^(−1/2).
@@ -77,9 +75,11 @@ fn has_negative_root_of_quotient(e: &Expr) -> bool {
         _ => false,
     }
     };
-    let here = matches!(e, Expr::Pow(b, k)
-        if matches!(k.as_ref(), Expr::Num(r) if r.is_negative() && !r.is_integer()) && quotient(b));
-    here || children(e).iter().any(has_negative_root_of_quotient)
+    anywhere(e, |x| {
+        matches!(x, Expr::Pow(b, k)
+            if matches!(k.as_ref(), Expr::Num(r) if r.is_negative() && !r.is_integer())
+                && quotient(b))
+    })
 }
 
 /// The factors of a product above and below its fraction bar, integer powers of products
@@ -107,14 +107,15 @@ fn sides(e: &Expr, sign: i64, up: &mut Vec<Expr>, down: &mut Vec<Expr>) {
 /// A factor above a fraction bar that is also below it, in any product of the expression
 /// (roots' radicands too): a mass that divides out.
 fn cancelling_factor(e: &Expr) -> Option<Expr> {
-    if let Expr::Mul(_) | Expr::Pow(..) = e {
-        let (mut up, mut down) = (Vec::new(), Vec::new());
-        sides(e, 1, &mut up, &mut down);
-        if let Some(f) = up.iter().find(|f| down.contains(f)) {
-            return Some(f.clone());
+    let mut found = None;
+    e.walk(&mut |x| {
+        if found.is_none() && matches!(x, Expr::Mul(_) | Expr::Pow(..)) {
+            let (mut up, mut down) = (Vec::new(), Vec::new());
+            sides(x, 1, &mut up, &mut down);
+            found = up.into_iter().find(|f| down.contains(f));
         }
-    }
-    children(e).iter().find_map(cancelling_factor)
+    });
+    found
 }
 
 /// (scene file, step, result index, the form a textbook prints).
