@@ -257,7 +257,8 @@ impl Style for Latex<'_> {
         out.push_str("\\begin{pmatrix}");
         for (i, row) in v.iter().enumerate() {
             if i > 0 {
-                out.push_str(if is_matrix { " \\\\ " } else { " & " });
+                // A vector is a column, as a textbook sets it.
+                out.push_str(" \\\\ ");
             }
             match row {
                 Expr::List(cells) if is_matrix => {

@@ -424,7 +424,8 @@ impl Style for Typst<'_> {
         out.push_str("mat(");
         for (i, row) in v.iter().enumerate() {
             if i > 0 {
-                out.push_str(if is_matrix { "; " } else { ", " });
+                // A vector is a column, as a textbook sets it.
+                out.push_str("; ");
             }
             match row {
                 Expr::List(cells) if is_matrix => {
@@ -489,7 +490,7 @@ mod tests {
     #[test]
     fn a_vector_as_a_tuple_where_a_formula_must_break() {
         let e = parse("[a + b, c]").unwrap().expr;
-        assert_eq!(e.to_typst(), "mat(a + b, c)");
+        assert_eq!(e.to_typst(), "mat(a + b; c)");
         assert_eq!(e.to_typst_breakable(), "(a + b, c)");
         // A root of a sum opens into a power, a root of a product does not.
         let root = parse("sqrt(m*(a + b))").unwrap().expr;
@@ -550,6 +551,6 @@ mod tests {
     #[test]
     fn matrices_and_vectors() {
         assert_eq!(typst("[[1, 0], [0, 1]]"), "mat(1, 0; 0, 1)");
-        assert_eq!(typst("[a, b, c]"), "mat(a, b, c)");
+        assert_eq!(typst("[a, b, c]"), "mat(a; b; c)");
     }
 }

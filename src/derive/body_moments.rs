@@ -85,16 +85,17 @@ pub fn moments_from_bodies(d: &mut Derivation) -> Result<(), DeriveError> {
         Step::note(
             "The bodies' own moments",
             Formula::parse("I_1 = $0, quad I_2 = $1, quad I_3 = $2", &values),
-            "inertia = \"principal\": the body turns about its centre of mass, where its tensor \
-             is diagonal; I1, I2 and I3 are its moments about x, y and z, and every result above \
-             takes them",
+            "the moments are the bodies' own: the body turns about its centre of mass, where its \
+             tensor is diagonal; $I_1$, $I_2$ and $I_3$ are its moments about $x$, $y$ and $z$, \
+             and every result above takes them",
         )
     } else {
         Step::note(
             "The bodies' own moments",
             Formula::parse("I_1 = I_2 = $0, quad I_3 = $1", &values),
-            "inertia = \"principal\": the free top is the scene's body, turning about its centre \
-             of mass; its moments come from the tensor there, and every result above takes them",
+            "the moments are the bodies' own: the free top is the scene's body, turning about its \
+             centre of mass; its moments come from the tensor there, and every result above takes \
+             them",
         )
     });
     let put = |e: &Expr| {

@@ -83,11 +83,11 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         "The polar moment from the dynamical ellipticity",
         "C",
         &Value::Scalar(c_of_h.clone()),
-        "H = (C − A)/C solved for C",
+        "$H = (C - A)/C$ solved for $C$",
     ));
     let beta = cas::simplify(&Expr::over(Expr::minus(c_of_h.clone(), a.clone()), a))?;
     d.steps.push(Step::equation(
-        "β for an oblate Earth",
+        "$\\beta$ for an oblate Earth",
         "beta = (C - A)/A",
         &Value::Scalar(beta.clone()),
         cited(
@@ -107,10 +107,10 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     number_step(
         d,
         quantity::EARTH_BETA,
-        "β from the measured H",
+        "$\\beta$ from the measured $H$",
         "beta",
         beta_value.clone(),
-        "H = 3.2737949×10⁻³ (IERS Conventions 2010, Table 1.1, via REFERENCE.md)",
+        "$H = 3.2737949 \\times 10^{-3}$ (IERS Conventions 2010, Table 1.1, via REFERENCE.md)",
     )?;
     // The body-frame wobble has angular frequency βω3 (eq 69), so its period is 2π/(βω3); with
     // ω3 = 2π per sidereal day that is 1/β sidereal days.
@@ -121,7 +121,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         "Euler period in sidereal days",
         "P // rm(sidereal) ~ rm(day)",
         sidereal.clone(),
-        "P = 2π/(βω3) with ω3 = 2π per sidereal day",
+        "$P = 2\\pi/(\\beta\\omega_3)$ with $\\omega_3 = 2\\pi$ per sidereal day",
     )?;
     let year = rat(TROPICAL_YEAR_DAYS);
     let solar_per_sidereal = Expr::over(year.clone(), Expr::add(vec![year, Expr::int(1)]));
@@ -152,10 +152,10 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
     number_step(
         d,
         quantity::BULGE_KM,
-        "Equatorial bulge a − c in km",
+        "Equatorial bulge $a - c$ in km",
         "a - c",
         bulge,
-        "a − c = a f with WGS84 a = 6378.137 km, 1/f = 298.257",
+        "$a - c = af$ with the WGS84 $a = 6378.137$ km and $1/f = 298.257$",
     )?;
     number_step(
         d,
@@ -163,7 +163,7 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         "Bulge as a fraction of the radius",
         "(a - c) // a",
         cas::simplify(&flattening)?,
-        "(a − c)/a is the flattening f",
+        "$(a - c)/a$ is the flattening $f$",
     )?;
     Ok(())
 }

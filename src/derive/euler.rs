@@ -56,16 +56,16 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         &l,
         cited(
             "principal-frame-momentum",
-            "the tensor is diagonal in the principal frame, so L_j = I_j ω_j (no sum)",
+            "the tensor is diagonal in the principal frame, so $L_j = I_j \\omega_j$ (no sum)",
         ),
     ));
     let br = simplify_vec(&mat_vec(&inertia, &wd))?;
     let body_rate = Value::Vector(br.clone());
     d.steps.push(Step::equation(
-        "Rate of L relative to the body",
+        "Rate of $\\vec L$ relative to the body",
         "((d vec(L))/(dt))|_body",
         &body_rate,
-        "the principal moments are constant in the body frame, so only ω changes",
+        "the principal moments are constant in the body frame, so only $\\vec\\omega$ changes",
     ));
     let g = simplify_vec(&cross(&w, &lv))?;
     let gyroscopic = Value::Vector(g.clone());
@@ -73,7 +73,7 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         "Turning of the body frame",
         "vec(omega) × vec(L)",
         &gyroscopic,
-        "(ω × L)_i = ε_ijk ω_j L_k",
+        "$(\\vec\\omega \\times \\vec L)_i = \\epsilon_{ijk}\\,\\omega_j L_k$",
     ));
     let lhs = simplify_value(&Value::Vector(add_vec(&br, &g)))?;
     d.steps.push(Step::equation(
@@ -82,7 +82,7 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         &lhs,
         cited(
             "euler-equations",
-            "this sum is the rate of L in space, which equals the torque N; \
+            "this sum is the rate of $\\vec L$ in space, which equals the torque $\\vec N$; \
          component by component these are Euler's equations",
         ),
     ));
@@ -91,15 +91,15 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         "The body-frame rate, solved from (60)",
         "((d vec(L))/(dt))|_body",
         &body_rate_of_momentum,
-        "N − ω × L: the torque minus the turning of the frame, not ε_ijk ω_j L_k alone",
+        "$\\vec N - \\vec\\omega \\times \\vec L$: the torque minus the turning of the frame, not $\\epsilon_{ijk}\\,\\omega_j L_k$ alone",
     ));
     d.steps.push(Step::equation(
         "Steady rotation without torque",
         "vec(omega) × vec(L)",
         &factored(&gyroscopic)?,
-        "with N = 0 a constant ω needs ω × L = 0; with distinct moments each component vanishes \
-         only if a product ω_j ω_k does, so two components of ω are zero: ω lies along a \
-         principal axis",
+        "with $\\vec N = 0$ a constant $\\vec\\omega$ needs $\\vec\\omega \\times \\vec L = 0$; with \
+         distinct moments each component vanishes only if a product $\\omega_j \\omega_k$ does, so \
+         two components of $\\vec\\omega$ are zero: $\\vec\\omega$ lies along a principal axis",
     ));
     d.set(quantity::PRINCIPAL_MOMENTUM, l.clone())?;
     d.set(quantity::GYROSCOPIC_TERM, gyroscopic.clone())?;
@@ -112,7 +112,7 @@ pub fn euler_equations(d: &mut Derivation) -> Result<(), DeriveError> {
         &factored(&rates)?,
         cited(
             "torque-free-rates",
-            "Euler's equations with N = 0, each divided by its moment",
+            "Euler's equations with $\\vec N = 0$, each divided by its moment",
         ),
     ));
     d.set(quantity::TORQUE_FREE_RATES, rates)?;

@@ -42,12 +42,12 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let r = simplify_vec(&torque_free_rates(&i, &w))?;
     let rates = Value::Vector(r.clone());
     d.steps.push(Step::equation(
-        "Euler's equations with I2 = I1 and N = 0",
+        "Euler's equations with $I_2 = I_1$ and $\\vec N = 0$",
         "dot(vec(omega))",
         &factored(&rates)?,
         cited(
             "symmetric-rates",
-            "Euler's equations solved for the rates; the third vanishes, so ω3 is constant",
+            "Euler's equations solved for the rates; the third vanishes, so $\\omega_3$ is constant",
         ),
     ));
     // β = (I3 − I1)/I1 turns the rates into −βω3ω2 and βω3ω1, eqs (67)–(68).
@@ -63,7 +63,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         ));
     }
     d.steps.push(Step::note(
-        "With β = (I3 − I1)/I1",
+        "With $\\beta = (I_3 - I_1)/I_1$",
         Formula::parse(
             "dot(omega_1) = -beta ~ omega_3 ~ omega_2, quad dot(omega_2) = beta ~ omega_3 ~ omega_1",
             &[],
@@ -75,15 +75,15 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     ));
     let second = scalar(rate_along(&r[0], &r)?)?;
     d.steps.push(Step::equation(
-        "Second derivative of ω1",
+        "Second derivative of $\\omega_1$",
         "ddot(omega_1)",
         &factored(&Value::Scalar(second.clone()))?,
         cited(
             "symmetric-oscillator",
             Prose::default()
-                .text("differentiate dω1/dt along the motion and use dω2/dt; this is ")
+                .words("differentiate $\\dot\\omega_1$ along the motion and use $\\dot\\omega_2$; this is ")
                 .math("-beta^2 omega_3^2 ~ omega_1")
-                .text(", a harmonic oscillator of angular frequency βω3"),
+                .words(", a harmonic oscillator of angular frequency $\\beta\\omega_3$"),
         ),
     ));
     d.set(quantity::W1_SECOND_DERIVATIVE, Value::Scalar(second))?;
@@ -121,8 +121,8 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "The solution, substituted",
         "I dot(vec(omega)) + vec(omega) × I vec(omega)",
         &residual,
-        "ω1 = A cos(βω3 t + θ), ω2 = A sin(βω3 t + θ), ω3 constant: the residual of Euler's \
-         equations reduces to zero",
+        "$\\omega_1 = A\\cos(\\beta\\omega_3 t + \\theta)$, $\\omega_2 = A\\sin(\\beta\\omega_3 t + \\theta)$, \
+         $\\omega_3$ constant: the residual of Euler's equations reduces to zero",
     ));
     d.set(
         quantity::SYMMETRIC_SOLUTION,
@@ -132,14 +132,14 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
 
     let omega_squared = scalar(dot(&solution, &solution))?;
     d.steps.push(Step::equation(
-        "Magnitude of ω",
+        "Magnitude of $\\vec\\omega$",
         "omega^2",
         &Value::Scalar(omega_squared.clone()),
         cited(
             "symmetric-omega-constant",
             Prose::default()
                 .math("sin^2 + cos^2 = 1")
-                .text(", so ω is constant"),
+                .words(", so $\\omega$ is constant"),
         ),
     ));
     d.set(
@@ -160,10 +160,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     );
     let precession = scalar(turning)?;
     d.steps.push(Step::equation(
-        "Precession of ω about the symmetry axis",
+        "Precession of $\\vec\\omega$ about the symmetry axis",
         "(omega_1 dot(omega_2) - omega_2 dot(omega_1))/(omega_1^2 + omega_2^2)",
         &Value::Scalar(precession.clone()),
-        "the angle of (ω1, ω2) in the body advances at βω3: the body cone",
+        "the angle of $(\\omega_1, \\omega_2)$ in the body advances at $\\beta\\omega_3$: the body cone",
     ));
     d.set(quantity::PRECESSION_RATE, Value::Scalar(precession))?;
 
@@ -198,7 +198,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         &Value::Scalar(body_tan2.clone()),
         Prose::default()
             .math("alpha_b")
-            .text(" is the angle between ω and the symmetry axis: ")
+            .words(" is the angle between $\\vec\\omega$ and the symmetry axis: ")
             .math("tan alpha_b = A/omega_3"),
     ));
     let space_cos2 = scalar(Expr::over(
@@ -213,17 +213,17 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
             "space-cone",
             Prose::default()
                 .math("alpha_s")
-                .text(" is the angle between ω and the fixed L, ")
+                .words(" is the angle between $\\vec\\omega$ and the fixed $\\vec L$, ")
                 .math("cos alpha_s = (vec(omega) · vec(L))/(omega L) = (2T)/(omega L)"),
         ),
     ));
     let tilt_tan2 = scalar(tan_squared_from_axis(&l))?;
     d.steps.push(Step::equation(
-        "Tilt of L from the symmetry axis",
+        "Tilt of $\\vec L$ from the symmetry axis",
         "tan^2 theta_L",
         &Value::Scalar(tilt_tan2.clone()),
-        "(I1/I3)² tan² α_b: L leans further from the axis than ω when I3 < I1, less when I3 > I1; \
-         ω, L and the axis lie in one plane",
+        "$(I_1/I_3)^2 \\tan^2\\alpha_b$: $\\vec L$ leans further from the axis than $\\vec\\omega$ when \
+         $I_3 < I_1$, less when $I_3 > I_1$; $\\vec\\omega$, $\\vec L$ and the axis lie in one plane",
     ));
     d.set(quantity::BODY_CONE_TAN_SQUARED, Value::Scalar(body_tan2))?;
     d.set(quantity::SPACE_CONE_COS_SQUARED, Value::Scalar(space_cos2))?;
@@ -246,8 +246,8 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "Which cone is wider",
         "(2T)^2 - omega_3^2 L^2",
         &Value::Scalar(in_tan),
-        "with A = τω3, τ = tan α_b: α_b > α_s exactly when this is positive, since \
-         cos α_s = 2T/(ωL) and cos α_b = ω3/ω",
+        "with $A = \\tau\\omega_3$, $\\tau = \\tan\\alpha_b$: $\\alpha_b > \\alpha_s$ exactly when this is \
+         positive, since $\\cos\\alpha_s = 2T/(\\omega L)$ and $\\cos\\alpha_b = \\omega_3/\\omega$",
     ));
     let oblate = sign_over_positive(
         &cone_order.substitute(&|n| (n == "I3").then(|| Expr::add(vec![s("I1"), s("p")]))),
@@ -265,9 +265,10 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
             ),
             &[],
         ),
-        "the sign of (2T)² − ω3²L² over all positive I1, p, A, ω3: a disc-shaped (oblate) top, \
-         I3 > I1, always has α_b > α_s; a cigar-shaped (prolate) one, I3 < I1, has α_b < α_s \
-         only when 2 I3 < I1 (1 − tan² α_b)",
+        "the sign of $(2T)^2 - \\omega_3^2 L^2$ over all positive $I_1$, $p$, $A$, $\\omega_3$: a \
+         disc-shaped (oblate) top, $I_3 > I_1$, always has $\\alpha_b > \\alpha_s$; a cigar-shaped \
+         (prolate) one, $I_3 < I_1$, has $\\alpha_b < \\alpha_s$ only when \
+         $2I_3 < I_1(1 - \\tan^2\\alpha_b)$",
     ));
     d.set(quantity::CONE_ORDER, Value::Scalar(cone_order))?;
     Ok(())

@@ -104,7 +104,7 @@ fn why_integrate(domain: &[Integral]) -> Prose {
     let mut why = String::from("expand, then ");
     if trig {
         why.push_str(
-            "integrate each cosᵖ·sinᵠ monomial over its period by the beta-function formula",
+            "integrate each monomial $\\cos^p \\sin^q$ over its period by the beta-function formula",
         );
     }
     if trig && poly {
@@ -113,7 +113,7 @@ fn why_integrate(domain: &[Integral]) -> Prose {
     if poly {
         why.push_str("integrate the polynomial term by term");
     }
-    describe(Prose::default().text(&format!("{why} (")), domain).text(")")
+    describe(Prose::default().words(&format!("{why} (")), domain).text(")")
 }
 
 /// What one body contributes: its mass, tensor about the frame origin and first moment ∫x dm.
@@ -261,7 +261,7 @@ pub fn derive_tensor(
         if parts.len() > 1 {
             "the sum of the parts' tensors about the same origin"
         } else {
-            "the integrals above, assembled; I is symmetric"
+            "the integrals above, assembled; $\\overleftrightarrow{I}$ is symmetric"
         },
     ));
     d.set(quantity::INERTIA_TENSOR, tensor)?;
@@ -337,7 +337,10 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
         "Tensor about the centre of mass, by direct integration",
         "I_cm",
         &about_cm,
-        format!("the same integrals with r measured from {r}"),
+        format!(
+            "the same integrals with $\\vec r$ measured from $\\vec{{{}}}$",
+            r.replace("_cm", "_{\\mathrm{cm}}")
+        ),
     ));
     // Route 2: the theorem, I_cm + M(d²𝟙 − ddᵀ) with d = R.
     let shift_term = mat_scale(&mass, &inertia_kernel(&centre));
@@ -361,11 +364,14 @@ pub fn derive_parallel_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Der
             "the parallel-axis theorem does not reproduce the direct tensor".into(),
         ));
     }
-    d.steps.push(Step::note(
-        "Both routes agree",
-        Formula::parse(&format!("{parallel_axis} - ten(I) = 0"), &[]),
-        "every entry of the difference simplifies to zero",
-    ));
+    d.steps.push(
+        Step::note(
+            "Both routes agree",
+            Formula::parse(&format!("{parallel_axis} - ten(I) = 0"), &[]),
+            "every entry of the difference simplifies to zero",
+        )
+        .second_route(),
+    );
     d.set(quantity::INERTIA_CM, about_cm)?;
     Ok(())
 }

@@ -37,12 +37,10 @@ fn two_routes(
 ) -> Result<(), DeriveError> {
     if let Some((direct, what, why)) = direct {
         let direct = simplify_value(&direct)?;
-        d.steps.push(Step::equation(
-            &format!("{what}, from the definition"),
-            what,
-            &direct,
-            why,
-        ));
+        d.steps.push(
+            Step::equation(&format!("{what}, from the definition"), what, &direct, why)
+                .second_route(),
+        );
         if !values_equal(&direct, &from_tensor)? {
             return Err(DeriveError::Inconsistent(format!(
                 "{name}: the definition and the tensor route differ"
@@ -131,7 +129,7 @@ pub fn moment_about_axis(scene: &Scene, d: &mut Derivation) -> Result<(), Derive
     let n = scene.axis.clone().expect("validated: axis is given");
     let moment = cas::simplify(&dot(&n, &mat_vec(&tensor(d)?, &n)))?;
     d.steps.push(Step::equation(
-        "Moment of inertia about the axis n",
+        "Moment of inertia about the axis $\\hat n$",
         "I_n",
         &Value::Scalar(moment.clone()),
         cited(
@@ -173,7 +171,7 @@ pub fn gyration(d: &mut Derivation) -> Result<(), DeriveError> {
     let mass = d.scalar(quantity::MASS)?.clone();
     let r0 = Expr::pow(cas::simplify(&Expr::over(moment, mass))?, Expr::rat(1, 2));
     d.steps.push(Step::equation(
-        "Radius of gyration about n",
+        "Radius of gyration about $\\hat n$",
         "R_0",
         &Value::Scalar(r0.clone()),
         cited("gyration", Prose::default().math("R_0^2 = I_n/M")),

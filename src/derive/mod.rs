@@ -15,6 +15,7 @@ mod integral;
 mod kinematics;
 pub mod lagrangian;
 pub mod poinsot;
+pub mod present;
 mod principal;
 pub mod rest_states;
 pub mod series;
@@ -55,6 +56,10 @@ pub struct Step {
     /// `cas::present_all`): kept for `--json`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub exact: Option<Formula>,
+    /// A step that checks an earlier one by another route (the definition against the tensor):
+    /// the instructor's handout shows it, the student's leaves it out.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub second_route: bool,
 }
 
 /// A step's reason, with the citation key a scene may map to its notes' equations.
@@ -74,9 +79,10 @@ impl From<Prose> for Why {
     }
 }
 
+/// A built-in reason as text, its mathematics in `$…$` as an author's is.
 impl From<&str> for Why {
     fn from(text: &str) -> Why {
-        Why::from(Prose::default().text(text))
+        Why::from(crate::model::prose::author(text))
     }
 }
 
@@ -108,6 +114,15 @@ impl Step {
             cite: why.key.to_string(),
             author: None,
             exact: None,
+            second_route: false,
+        }
+    }
+
+    /// The step as a second route to an earlier one.
+    pub fn second_route(self) -> Step {
+        Step {
+            second_route: true,
+            ..self
         }
     }
 
@@ -329,6 +344,7 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     if plan.runs(Stage::EarthPrecession) {
         earth::earth_precession(&mut d)?;
     }
+    present::present_builtin_steps(&mut d)?;
     if plan.runs(Stage::Steps) {
         steps::derive_steps(scene, &mut d)?;
     }

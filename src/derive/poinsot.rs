@@ -71,7 +71,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         Expr::mul(vec![c2.clone(), two_t.clone()]),
     )?;
     d.steps.push(Step::equation(
-        "The point ρ = ω/√(2T) lies on the inertia ellipsoid",
+        "The point $\\vec\\rho = \\vec\\omega/\\sqrt{2T}$ lies on the inertia ellipsoid",
         "F(vec(rho)) = vec(rho)^T I vec(rho)",
         &Value::Scalar(f),
         cited(
@@ -103,7 +103,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     }
     let gradient = scalar(d, quantity::GRADIENT_FACTOR_SQUARED, factors[0].clone())?;
     d.steps.push(Step::equation(
-        "The normal to the ellipsoid is along L",
+        "The normal to the ellipsoid is along $\\vec L$",
         "((nabla_rho F)/vec(L))^2",
         &Value::Scalar(gradient),
         cited(
@@ -130,7 +130,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
             "invariable-plane",
             Prose::default()
                 .math("(vec(rho) · vec(L))/L = (vec(omega) · vec(L))/(L sqrt(2T)) = sqrt(2T)/L")
-                .text(", constant because T and L are"),
+                .words(", constant because $T$ and $L$ are"),
         ),
     ));
 
@@ -172,13 +172,13 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
     )?;
     d.steps.push(Step::equation(
-        "How far L² is from 2T I_k",
+        "How far $L^2$ is from $2T I_k$",
         "L^2 - 2T I_k",
         &Value::Vector([gap[0].clone(), gap[1].clone(), gap[2].clone()]),
         Prose::default()
-            .text("entry k is ")
+            .words("entry $k$ is ")
             .math("sum_i I_i big(I_i - I_k) omega_i^2")
-            .text(": non-negative when I_k is the smallest moment and non-positive when it is the largest, so ")
+            .words(": non-negative when $I_k$ is the smallest moment and non-positive when it is the largest, so ")
             .math("2T ~ I_min <= L^2 <= 2T ~ I_max")
             .text(" (eq 85)"),
     ));
@@ -215,13 +215,13 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "c_a ~ c_b",
         &factored(&Value::Vector(product.clone()))?,
         Prose::default()
-            .text("near axis k the sphere and the ellipsoid meet where ")
+            .words("near axis $k$ the sphere and the ellipsoid meet where ")
             .math("c_a L_a^2 + c_b L_b^2 = L^2 - 2T ~ I_k")
             .text(" with ")
             .math("c_i = 1 - I_k/I_i")
-            .text(": entry k is ")
+            .words(": entry $k$ is ")
             .math("c_a c_b")
-            .text(", positive for an ellipse (the polhode closes around axis k) and negative for a hyperbola (it does not)"),
+            .words(", positive for an ellipse (the polhode closes around axis $k$) and negative for a hyperbola (it does not)"),
     ));
     d.set(
         quantity::POLHODE_CONIC_PRODUCT,
@@ -261,7 +261,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
             .math("L_2^2")
             .text(" terms cancel and ")
             .math("c_1 L_1^2 + c_3 L_3^2 = 0")
-            .text(": two planes through axis 2, real when I2 lies between I1 and I3"),
+            .words(": two planes through axis 2, real when $I_2$ lies between $I_1$ and $I_3$"),
     ));
     d.set(quantity::SEPARATRIX_SLOPE_SQUARED, Value::Scalar(slope))?;
     Ok(())

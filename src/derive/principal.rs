@@ -156,24 +156,20 @@ fn cubic_roots(tensor: &Mat3, positive: &dyn Fn(&str) -> bool) -> Result<CubicRo
     })
 }
 
-/// The eigenvalue's letter on a page, as text and as a symbol name: λ, or μ where a rod's or a
+/// The eigenvalue's letter on a page, as a symbol name: `lambda`, or `mu` where a rod's or a
 /// hoop's line density is λ already (so that no letter means two things on one page).
-pub fn eigenvalue_letter(scene: &Scene) -> (&'static str, &'static str) {
+pub fn eigenvalue_letter(scene: &Scene) -> &'static str {
     let line_density = scene
         .bodies
         .iter()
         .any(|b| matches!(b.shape, Shape::Rod { .. } | Shape::Hoop { .. }));
-    if line_density {
-        ("μ", "mu")
-    } else {
-        ("λ", "lambda")
-    }
+    if line_density { "mu" } else { "lambda" }
 }
 
 pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     let positive_set = positive_symbols(scene);
     let positive = |s: &str| positive_set.contains(s);
-    let (ev, ev_name) = eigenvalue_letter(scene);
+    let ev_name = eigenvalue_letter(scene);
     let tensor = d.matrix(quantity::INERTIA_TENSOR)?.clone();
     let lambda = Expr::sym(LAMBDA);
     let characteristic = cas::simplify(&det(&shifted(&tensor, &lambda)))?;
@@ -239,18 +235,18 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
                 Some(Value::Vector(a.clone()).to_expr()),
                 cited(
                     "principal-axis",
-                    format!("the cross product of two independent rows of I − {ev}𝟙 spans its null space"),
+                    format!("the cross product of two independent rows of $\\overleftrightarrow{{I}} - \\{ev_name}\\mathbb{{1}}$ spans its null space"),
                 ),
             ),
             ExactBasis::PlaneNormalTo(n) => (
                 "\"every axis\" perp $1",
                 Some(Value::Vector(n.clone()).to_expr()),
-                format!("a double root: I − {ev}𝟙 has rank 1, so its null space is the plane normal to its one independent row").as_str().into(),
+                format!("a double root: $\\overleftrightarrow{{I}} - \\{ev_name}\\mathbb{{1}}$ has rank 1, so its null space is the plane normal to its one independent row").as_str().into(),
             ),
             ExactBasis::All => (
                 "\"every axis\"",
                 None,
-                "a triple root: I is a multiple of the identity".into(),
+                "a triple root: $\\overleftrightarrow{I}$ is a multiple of the identity".into(),
             ),
         };
         d.steps.push(Step::note(
@@ -302,7 +298,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
                 ),
                 &[c.centre.clone(), two_rho, c.cos_phi.clone()],
             ),
-            format!("three real roots (I is symmetric): depress the cubic by {ev} = t + tr I/3 to t³ + pt + q, then t = 2ρ cos θ with ρ = √(−p/3) turns it into cos 3θ = −q/(2ρ³) (Viète)").as_str(),
+            format!("three real roots ($\\overleftrightarrow{{I}}$ is symmetric): depress the cubic by $\\{ev_name} = t + \\operatorname{{tr}} \\overleftrightarrow{{I}}/3$ to $t^3 + pt + q$, then $t = 2\\rho\\cos\\theta$ with $\\rho = \\sqrt{{-p/3}}$ turns it into $\\cos 3\\theta = -q/(2\\rho^3)$ (Viète)").as_str(),
         ));
         Some(c)
     } else {

@@ -95,7 +95,7 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
         &factored(&rates)?,
         cited(
             "stability-rates",
-            "Euler's equations with N = 0, solved for the rates",
+            "Euler's equations with $\\vec N = 0$, solved for the rates",
         ),
     ));
     let name = |k: usize| format!("w{}", k + 1);
@@ -136,8 +136,9 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
                 &shown,
             ),
             format!(
-                "ω = ω{} e{} plus small ω{ta}, ω{tb}: keep first-order terms; dω{}/dt ∝ ω{ta}ω{tb} \
-                 is second order and dropped",
+                "$\\vec\\omega = \\omega_{} \\hat e_{}$ plus small $\\omega_{ta}$, $\\omega_{tb}$: keep \
+                 first-order terms; $\\dot\\omega_{}$, of order $\\omega_{ta}\\omega_{tb}$, is second \
+                 order and dropped",
                 k + 1,
                 k + 1,
                 k + 1
@@ -157,9 +158,10 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
             {
                 let ratio = factored(&Value::Scalar(ratio[k].clone()))?;
                 Prose::default()
-                    .text(&format!(
-                        "ω{ta} = a cos(Ωt + θ), ω{tb} = b sin(Ωt + θ) solve the pair when Ω² = \
-                         −(product of the two coefficients); then "
+                    .words(&format!(
+                        "$\\omega_{ta} = a\\cos(\\Omega t + \\theta)$, \
+                         $\\omega_{tb} = b\\sin(\\Omega t + \\theta)$ solve the pair when \
+                         $\\Omega^2$ is minus the product of the two coefficients; then "
                     ))
                     .formula(Formula::parse("(a/b)^2 = $0", &[ratio.to_expr()]))
             },
@@ -172,13 +174,20 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
     d.set(quantity::AMPLITUDE_RATIO_SQUARED, Value::Vector(ratio))?;
 
     let (stability, by_order) = classify(&omega_sq, "Ω²")?;
+    // `I2` as LaTeX, `I_2`, for the titles and reasons.
+    let tex = |label: &str| label.replace('I', "I_");
     for (order, signs) in by_order {
         let label = |k: usize| format!("I{}", order[k] + 1);
         let verdicts: Vec<String> = (0..3)
             .map(|axis| format!("axis {} {}", axis + 1, words(signs[axis])))
             .collect();
         d.steps.push(Step::note(
-            &format!("{} < {} < {}", label(0), label(1), label(2)),
+            &format!(
+                "${} < {} < {}$",
+                tex(&label(0)),
+                tex(&label(1)),
+                tex(&label(2))
+            ),
             Formula::parse(
                 &format!(
                     "{} < {} < {}: ~~ \"{}\"",
@@ -190,11 +199,12 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
                 &[],
             ),
             format!(
-                "{} = s, {} = s + p, {} = s + p + q with s, p, q > 0: each Ω_k² then has terms of \
-                 one sign (Ω² > 0: oscillation, stable; Ω² < 0: exponential growth, unstable)",
-                label(0),
-                label(1),
-                label(2)
+                "${} = s$, ${} = s + p$, ${} = s + p + q$ with $s, p, q > 0$: each $\\Omega_k^2$ then \
+                 has terms of one sign ($\\Omega^2 > 0$: oscillation, stable; $\\Omega^2 < 0$: \
+                 exponential growth, unstable)",
+                tex(&label(0)),
+                tex(&label(1)),
+                tex(&label(2))
             ),
         ));
     }

@@ -141,7 +141,7 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                     .text(": the leading minors of the stiffness ")
                     .formula(Formula::author(r"K = \partial R / \partial q"))
                     .text(&format!(
-                        " there; every frequency² is positive exactly when they all are (the \
+                        " there; every squared frequency is positive exactly when they all are (the \
                          mass matrix being positive definite): {verdict}"
                     ));
                 let mut row = Vec::new();

@@ -103,14 +103,35 @@ pub fn part(index: usize, page: &Page, instructor: bool) -> Part {
     }
     let authored = page.steps.iter().any(|s| s.author.is_some());
     let on_steps: Vec<usize> = page.steps.iter().flat_map(|s| s.claims.clone()).collect();
-    Part {
-        page: index,
-        steps: groups(page, |s| s.author.is_some())
+    // A scene with the author's steps shows those (a body's quantities only where a step uses
+    // them); a scene of the notes' own derivation shows its built-in steps, under their titles
+    // with their reasons; a scene with neither (a body's tensor and axes) lists its results.
+    let steps: Vec<ShownStep> = if authored {
+        groups(page, |s| s.author.is_some())
             .into_iter()
             .map(|lines| student_step(page, lines))
-            .collect(),
-        // A scene with steps shows a body's quantities only where a step uses them.
-        results: if authored { Vec::new() } else { results(page) },
+            .collect()
+    } else {
+        (0..page.steps.len())
+            .filter(|&line| !page.steps[line].second_route)
+            .map(|line| ShownStep {
+                lines: vec![line],
+                reason_first: false,
+                checks: false,
+                at: vec![None],
+                claims: Vec::new(),
+                approx: vec![None],
+            })
+            .collect()
+    };
+    Part {
+        page: index,
+        results: if steps.is_empty() {
+            results(page)
+        } else {
+            Vec::new()
+        },
+        steps,
         principal: !authored,
         figures: false,
         claims: (0..page.claims.len())

@@ -103,6 +103,9 @@ pub struct Step {
     pub claims: Vec<usize>,
     /// The exact result as derived, where `statement` prints it in a textbook's form.
     pub exact: Option<Formula>,
+    /// A built-in step that checks an earlier one by another route: the student's handout
+    /// leaves it out.
+    pub second_route: bool,
 }
 
 impl Step {
@@ -278,28 +281,39 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
                     title: st.title.clone(),
                     statement: st.statement.clone(),
                     exact: st.exact.clone(),
+                    second_route: st.second_route,
                     why: st.why.clone(),
                     key: st.cite.clone(),
                     citation: st.citation(&s.cite).map(str::to_string),
                     // An author's step of several lines (equilibria, modes) shows its one check
                     // under its last line.
-                    check: st
-                        .author
-                        .as_ref()
-                        .filter(|name| {
-                            r.derivation
-                                .steps
-                                .get(i + 1)
-                                .and_then(|n| n.author.as_ref())
-                                != Some(*name)
-                        })
-                        .and_then(|name| {
-                            r.verification
-                                .steps
-                                .iter()
-                                .find(|c| &c.step == name)
-                                .cloned()
-                        }),
+                    check: if st.author.is_none() {
+                        // A built-in step's check is of its printed form, in the steps' order.
+                        let k = r.derivation.steps[..i]
+                            .iter()
+                            .filter(|s| s.author.is_none() && s.exact.is_some())
+                            .count();
+                        st.exact
+                            .as_ref()
+                            .and_then(|_| r.verification.printed.get(k).cloned())
+                    } else {
+                        st.author
+                            .as_ref()
+                            .filter(|name| {
+                                r.derivation
+                                    .steps
+                                    .get(i + 1)
+                                    .and_then(|n| n.author.as_ref())
+                                    != Some(*name)
+                            })
+                            .and_then(|name| {
+                                r.verification
+                                    .steps
+                                    .iter()
+                                    .find(|c| &c.step == name)
+                                    .cloned()
+                            })
+                    },
                     author: st.author.clone(),
                     eq: author.and_then(|k| s.steps[k].eq.clone()),
                     claims: match author {

@@ -46,6 +46,7 @@ fn a_cited_step_gives_its_reason_after_the_citation() {
         eq: None,
         claims: Vec::new(),
         exact: None,
+        second_route: false,
     };
     assert_eq!(step.why_cited().to_text(), "eq (51): expand");
     let uncited = Step {

@@ -260,12 +260,17 @@ pub fn quantity_symbol(name: &str) -> Option<&'static str> {
 /// letter (`omega_squared` is "ω squared").
 pub fn heading(name: &str) -> String {
     let words = match name {
-        quantity::OMEGA_SQUARED => "ω squared",
-        quantity::EARTH_BETA => "β of the Earth",
-        quantity::W1_SECOND_DERIVATIVE => "second derivative of ω₁",
-        _ => return name.replace('_', " "),
+        quantity::OMEGA_SQUARED => "ω squared".to_string(),
+        quantity::EARTH_BETA => "β of the Earth".to_string(),
+        quantity::W1_SECOND_DERIVATIVE => "Second derivative of ω₁".to_string(),
+        _ => name.replace('_', " "),
     };
-    words.to_string()
+    // A heading opens with a capital; a Greek letter is a symbol and keeps its case (ω is not Ω).
+    let mut c = words.chars();
+    match c.next() {
+        Some(f) if f.is_ascii_lowercase() => f.to_ascii_uppercase().to_string() + c.as_str(),
+        _ => words,
+    }
 }
 
 /// What `[expect]` records of a scene: every derived result, but the intermediate integrands

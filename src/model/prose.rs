@@ -23,6 +23,12 @@ impl Prose {
         self
     }
 
+    /// Text with its mathematics in `$…$`, read as an author's is.
+    pub fn words(mut self, s: &str) -> Prose {
+        self.0.extend(author(s).0);
+        self
+    }
+
     /// A formula in the notation of [`Formula::parse`].
     pub fn math(self, notation: &str) -> Prose {
         self.formula(Formula::parse(notation, &[]))

@@ -282,7 +282,8 @@ impl Walk<'_> {
                 })
                 .collect()
         } else {
-            vec![v.iter().map(|c| self.nodes(c, Prec::Sum)).collect()]
+            // A vector is a column, as a textbook sets it.
+            v.iter().map(|c| vec![self.nodes(c, Prec::Sum)]).collect()
         };
         pmatrix(rows)
     }

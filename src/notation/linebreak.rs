@@ -115,7 +115,8 @@ fn openable_bracket(n: &Node, cell: f32) -> Option<&[Node]> {
 }
 
 /// Where a segment can open: a parenthesised sum or list (with its power, if any), a fraction
-/// or root with a long part, or a one-row matrix (a vector). Returns the widest such node's index.
+/// or root with a long part, or a vector (a one-row or one-column matrix). Returns the widest
+/// such node's index.
 fn opening(seg: &[Node], cell: f32) -> Option<usize> {
     let mut best: Option<(usize, f32)> = None;
     for (i, n) in seg.iter().enumerate() {
@@ -128,7 +129,7 @@ fn opening(seg: &[Node], cell: f32) -> Option<usize> {
                 if let Some(inner) = openable_bracket(n, cell) {
                     width(inner)
                 } else if let Some((_, body)) = matrix(n)
-                    && cells(body).len() == 1
+                    && vector_entries(body).is_some()
                 {
                     table_width(body, true)
                 } else {
@@ -272,8 +273,12 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
             (inner.clone(), Some((*ty, *position, parts[1..].to_vec())))
         }
         Node::Group(_, inner) => match matrix(node) {
-            // A vector (a one-row matrix) as a tuple: its entries separated by commas.
-            Some((_, body)) => (comma_separated(cells(body).remove(0)), None),
+            // A vector (a one-row or one-column matrix) as a tuple: its entries separated by
+            // commas.
+            Some((_, body)) => match vector_entries(body) {
+                Some(entries) => (comma_separated(entries), None),
+                None => (inner.clone(), None),
+            },
             None => (inner.clone(), None),
         },
         _ => return vec![seg],
@@ -348,6 +353,7 @@ fn stack_cells(nodes: Vec<Node>, limit: f32, room: f32) -> Vec<Node> {
         .map(|n| {
             if let Some((kind, body)) = matrix(&n)
                 && cells(body).len() > 1
+                && vector_entries(body).is_none()
             {
                 let rows = cells(body);
                 // The columns share a line, less room for a name and an equals sign.
@@ -398,6 +404,18 @@ fn new_line() -> Node {
         spacing: None,
         horizontal_lines: Box::new([]),
     })
+}
+
+/// A vector's entries: those of a one-row matrix, or of a one-column one (a column vector,
+/// which a phone's line takes as a tuple that can wrap).
+fn vector_entries(body: &[Node]) -> Option<Vec<Vec<Node>>> {
+    let mut rows = cells(body);
+    if rows.len() == 1 {
+        return Some(rows.remove(0));
+    }
+    rows.iter()
+        .all(|r| r.len() == 1)
+        .then(|| rows.into_iter().map(|mut r| r.remove(0)).collect())
 }
 
 /// ((a, b), (c, d)): a matrix as the tuple of its rows, in brackets that open when wide.

@@ -51,6 +51,19 @@ fn node(n: &Node, out: &mut Vec<String>) {
             say(inner, out);
             out.extend(close.map(|c| delimiter(c, false)));
         }
+        // A column vector's entries are read as a list: "x, y, z", not as a matrix's rows.
+        Node::Group(_, inner)
+            if !inner
+                .iter()
+                .any(|n| matches!(n, Node::Flow(EnvironmentFlow::Alignment))) =>
+        {
+            for n in inner {
+                match n {
+                    Node::Flow(_) => out.push(",".into()),
+                    other => node(other, out),
+                }
+            }
+        }
         Node::Group(_, inner) => say(inner, out),
         Node::Visual(Visual::Fraction(_), parts) if parts.len() == 2 => {
             let (top, long_top) = part(&parts[0]);
@@ -146,6 +159,7 @@ fn accent(c: char) -> Option<&'static str> {
         '˙' | '\u{307}' => "dot",
         '¨' | '\u{308}' => "double dot",
         '→' | '\u{20d7}' => "vector",
+        '↔' | '\u{20e1}' => "tensor",
         '^' | '\u{302}' | 'ˆ' => "hat",
         '~' | '\u{303}' | '˜' => "tilde",
         '¯' | '\u{304}' | '‾' => "bar",
@@ -302,6 +316,15 @@ mod tests {
             "cosine open paren theta close paren"
         );
         assert_eq!(said(r"A^{T}"), "A transpose");
+        assert_eq!(said(r"\overleftrightarrow{I}"), "I tensor");
+        assert_eq!(
+            said(r"\begin{pmatrix}x \\ y\end{pmatrix}"),
+            "open paren x , y close paren"
+        );
+        assert_eq!(
+            said(r"\begin{pmatrix}a & b \\ c & d\end{pmatrix}"),
+            "open paren a , b ; c , d close paren"
+        );
         assert_eq!(
             said(r"\int_{0}^{L} s \, d s"),
             "the integral from 0 to L of s d s"

@@ -34,17 +34,22 @@ pub(super) fn claim_view(c: &crate::verify::ClaimResult) -> Result<ClaimView, Re
             Some(tex) => math::width(tex) > (2.0 * notes_width).max(linebreak::PHONE),
             None => false,
         };
-    let derived = match &derived_tex {
+    let mut derived = match &derived_tex {
         Some(tex) if !derived_equal && !same => math::inline(tex)?,
         _ => String::new(),
     };
+    let mut notes = render(c.notes.as_ref())?;
+    if let Some((said, found)) = c.sign_words() {
+        notes = tera::escape_html(said);
+        derived = tera::escape_html(found);
+    }
     Ok(ClaimView {
         eq: c.eq.clone(),
         statement: c.statement.clone(),
         statement_html: author_html(&c.statement)?,
         verdict: c.verdict.as_str().into(),
         quantity: render(c.quantity.as_ref())?,
-        notes: render(c.notes.as_ref())?,
+        notes,
         derived,
         derived_equal,
         differences: c

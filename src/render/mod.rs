@@ -309,7 +309,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         .iter()
         .map(|st| {
             Ok(StepView {
-                title: st.title.clone(),
+                title: author_html(&st.title)?,
                 math: math::block(&st.statement.to_tex())?,
                 why: prose_html(&st.why_cited())?,
                 at: String::new(),
@@ -347,7 +347,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             ExactBasis::All => row.push(Formula::Text(", every axis".into())),
         }
         principal.push(StepView {
-            title: format!("principal moment (multiplicity {})", sp.multiplicity),
+            title: format!("Principal moment (multiplicity {})", sp.multiplicity),
             math: math::block(&Formula::Row(row).to_tex())?,
             why: String::new(),
             at: String::new(),
@@ -527,7 +527,7 @@ fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
     Ok(StepView {
         at: String::new(),
         check: String::new(),
-        title: "principal moments at the scene's values".into(),
+        title: "Principal moments at the scene's values".into(),
         math: math::block(&Formula::Row(row).to_tex())?,
         why: format!(
             "at {}: {}",

@@ -352,7 +352,7 @@ pub fn derivation_text(page: &Page) -> String {
             out,
             "\n{:>2}. {}\n    {}\n    because: {}",
             i + 1,
-            step.title,
+            crate::model::prose::plain(&step.title),
             step.statement.to_text(),
             step.why_cited()
         );

@@ -74,6 +74,28 @@ impl ClaimResult {
     pub fn passed(&self) -> bool {
         self.expected == Some(self.verdict) && self.problem.is_none()
     }
+
+    /// A claim on a sign (`sign(…)` is 1, −1, or 0 where it takes both): the notes' side and the
+    /// derived one in words, as a reader says them, where ±1 would mean nothing.
+    pub fn sign_words(&self) -> Option<(&'static str, &'static str)> {
+        let (Some(Expr::Call(f, _)), Some(notes), Some(Value::Scalar(derived))) =
+            (&self.quantity, &self.notes, &self.derived)
+        else {
+            return None;
+        };
+        let words = |e: &Expr| {
+            let Expr::Num(r) = e else { return None };
+            [
+                (1, "positive for every choice"),
+                (-1, "negative for every choice"),
+                (0, "positive for some choices and negative for others"),
+            ]
+            .into_iter()
+            .find(|(k, _)| *r == crate::cas::Rational::int(*k))
+            .map(|(_, w)| w)
+        };
+        (f == "sign").then_some((words(notes)?, words(derived)?))
+    }
 }
 
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
@@ -125,6 +147,9 @@ pub struct Verification {
     /// Each of the author's steps against its numeric route.
     #[serde(default)]
     pub steps: Vec<StepCheck>,
+    /// Each built-in step printed in another form than derived, against its exact result.
+    #[serde(default)]
+    pub printed: Vec<StepCheck>,
     /// A problem's variants against those `check --bless` pinned.
     #[serde(default)]
     pub pin: Option<variants::Pin>,
@@ -163,6 +188,7 @@ impl Verification {
             && self.within_law.iter().all(|w| *w)
             && self.variants.iter().all(variants::VariantCheck::passed)
             && self.steps.iter().all(StepCheck::passed)
+            && self.printed.iter().all(StepCheck::passed)
     }
 }
 
@@ -519,6 +545,7 @@ pub fn verify_numeric(
     if plan.runs(Stage::Steps) {
         v.steps = steps::check_steps(scene, d, deadline);
     }
+    v.printed = printed::check_printed_forms(d, scene.seed.wrapping_add(999));
     if let Some(n) = numeric {
         v.within_law = n.runs.iter().map(within_law).collect();
         v.quantities = check_quantities(scene, d, n)?;
@@ -537,6 +564,7 @@ mod free_top;
 mod integral;
 mod motion;
 mod principal;
+mod printed;
 mod rest;
 mod rest_states;
 mod rounding;

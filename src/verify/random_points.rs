@@ -28,17 +28,32 @@ pub(super) fn signed_names(scene: &Scene) -> BTreeSet<String> {
     scene.signed_names()
 }
 
-/// Whether each difference vanishes at [`CONFIRMATION_POINTS`] random points. The `signed`
-/// names are drawn with either sign (the first point positive, the second negative, the rest
-/// at random), so that |p| is not taken for p.
+/// Whether each difference vanishes at [`CONFIRMATION_POINTS`] random points (see
+/// [`largest_differences`]).
 pub(super) fn numerically_zero(
     diffs: &[Expr],
     scale: &[Expr],
     seed: u64,
     signed: &BTreeSet<String>,
 ) -> Result<Vec<bool>, EvalError> {
+    Ok(largest_differences(diffs, scale, seed, signed)?
+        .into_iter()
+        .map(|d| d <= NUMERICALLY_ZERO)
+        .collect())
+}
+
+/// Each difference's largest size, relative to its scale (at least 1), at [`CONFIRMATION_POINTS`]
+/// random points: zero within [`NUMERICALLY_ZERO`]. The `signed`
+/// names are drawn with either sign (the first point positive, the second negative, the rest
+/// at random), so that |p| is not taken for p.
+pub(super) fn largest_differences(
+    diffs: &[Expr],
+    scale: &[Expr],
+    seed: u64,
+    signed: &BTreeSet<String>,
+) -> Result<Vec<f64>, EvalError> {
     let mut rng = Rng::new(seed);
-    let mut zero = vec![true; diffs.len()];
+    let mut largest = vec![0.0f64; diffs.len()];
     let mut names: Vec<String> = diffs
         .iter()
         .chain(scale)
@@ -49,7 +64,7 @@ pub(super) fn numerically_zero(
     // A point where an entry is undefined (the square root of a negative number at random
     // values) says nothing of it: more points are drawn, until each entry has been tested at
     // CONFIRMATION_POINTS points or DOMAIN_TRIES times that many were drawn. An entry defined
-    // nowhere keeps `true`: the symbolic test decides it, or conflicts with it.
+    // nowhere keeps 0: the symbolic test decides it, or conflicts with it.
     let mut tested = vec![0usize; diffs.len()];
     for k in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
         if tested.iter().all(|&n| n >= CONFIRMATION_POINTS) {
@@ -79,10 +94,8 @@ pub(super) fn numerically_zero(
                 continue;
             }
             tested[j] += 1;
-            if v.abs() > NUMERICALLY_ZERO * s {
-                zero[j] = false;
-            }
+            largest[j] = largest[j].max(v.abs() / s);
         }
     }
-    Ok(zero)
+    Ok(largest)
 }

@@ -153,10 +153,24 @@ fn pages_carry_math_errata_and_the_numeric_table() {
     let student = std::fs::read_to_string(out.join("handouts/lecture-3-4-student.html")).unwrap();
     let instructor =
         std::fs::read_to_string(out.join("handouts/lecture-3-4-instructor.html")).unwrap();
-    // The student's summary has no worked steps, and shows each erratum as one, corrected.
+    // The student's summary shows the derivation's steps, without their numeric checks or the
+    // second routes that check them, and shows each erratum as one, corrected.
+    assert!(student.contains("class=\"steps\""), "the derivation");
     assert!(
-        !student.contains("class=\"steps\""),
-        "the student handout shows solutions"
+        !student.contains("numeric check") && !student.contains("from the definition"),
+        "the student handout shows the checks"
+    );
+    assert!(
+        instructor.contains("from the definition"),
+        "the second route"
+    );
+    // A claim on a sign says it in words, never ±1.
+    let tops = std::fs::read_to_string(out.join("handouts/lecture-3-9-student.html")).unwrap();
+    assert!(
+        tops.contains(
+            "<dd>The notes: negative for every choice</dd><dd>Correct: positive for every choice</dd>"
+        ),
+        "the cone order's erratum"
     );
     assert!(student.contains("Erratum: eq. (39) of the notes is wrong"));
     assert!(instructor.contains("class=\"steps\"") && instructor.contains("erratum"));

@@ -66,7 +66,7 @@ fn irreducible_cubics_show_their_moments_in_json_and_on_the_page() {
             );
         }
         let page = std::fs::read_to_string(site.join(format!("{id}.html"))).unwrap();
-        assert!(page.contains("principal moments at the scene"), "{id}");
+        assert!(page.contains("Principal moments at the scene"), "{id}");
         for want in &expected {
             let shown = format!("<mn>{}</mn>", mechbook::base::format::significant(*want, 6));
             assert!(page.contains(&shown), "{id}: {shown} not on the page");

@@ -180,7 +180,8 @@ fn visible_text(html: &str) -> String {
 }
 
 /// ASCII mathematics a reader would see as such: a backtick, a power, `sqrt(`, a Greek
-/// letter's name, a name with `_`, a `*` between two operands.
+/// letter's name, a name with `_`, a `*` between two operands; and mathematics written in
+/// Unicode text, untypeset: a Greek letter, a superscript, a letter and a digit (`I3`).
 fn ascii_maths(text: &str) -> Vec<String> {
     const GREEK: &[&str] = &[
         "alpha", "beta", "gamma", "delta", "epsilon", "eps", "theta", "lambda", "rho", "sigma",
@@ -190,7 +191,9 @@ fn ascii_maths(text: &str) -> Vec<String> {
     for word in text.split_whitespace() {
         let bare = word.trim_matches(|c: char| ",.;:()[]".contains(c));
         let letters = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric());
+        // A backslash is LaTeX that was not read.
         let suspicious = word.contains('`')
+            || word.contains('\\')
             || word.contains('^')
             || word.contains("sqrt(")
             || GREEK.contains(&bare.trim_end_matches(|c: char| c.is_ascii_digit()))
@@ -199,12 +202,31 @@ fn ascii_maths(text: &str) -> Vec<String> {
                 .is_some_and(|(a, b)| letters(a) && letters(b))
             || bare
                 .split_once('*')
-                .is_some_and(|(a, b)| letters(a) && letters(b));
+                .is_some_and(|(a, b)| letters(a) && letters(b))
+            // Mathematics in Unicode text is not typeset either: ω1, βω3, L², I3; a unit (m/s²),
+            // a number (4.1×10⁻¹⁶) and a paper size (A4) are text.
+            || word.chars().any(|c| ('\u{0391}'..='\u{03c9}').contains(&c))
+            || (bare.chars().any(|c| "²³".contains(c))
+                && !is_unit(bare)
+                && !bare.starts_with(|c: char| c.is_ascii_digit()))
+            || {
+                let b = bare.as_bytes();
+                b.len() == 2
+                    && b[0].is_ascii_alphabetic()
+                    && b[1].is_ascii_digit()
+                    && !["A4", "A5"].contains(&bare)
+            };
         if suspicious {
             found.push(word.to_string());
         }
     }
     found
+}
+
+/// A unit as the pages print it: kg m², m/s², each piece a unit's symbol and its power.
+fn is_unit(word: &str) -> bool {
+    word.split('/')
+        .all(|u| ["kg", "m", "s", "N", "J", "rad"].contains(&u.trim_end_matches(['²', '³'])))
 }
 
 #[test]
@@ -214,6 +236,11 @@ fn the_ascii_check_of_a_handout_finds_what_a_reader_would_see() {
     assert_eq!(
         ascii_maths(&visible_text(html)),
         ["`Ip`", "1/2*Mp*R^2,", "omega,", "I_xx", "p_phi"]
+    );
+    let unicode = "<p>so ω3 is constant, βω3, L², and I3 &gt; I1 (in kg m² and m/s², A4)</p>";
+    assert_eq!(
+        ascii_maths(&visible_text(unicode)),
+        ["ω3", "βω3,", "L²,", "I3", "I1"]
     );
     let clean = "<p>(6.4) The rod&#x27;s moment <math><msup><mi>r</mi><mn>2</mn></msup></math>, a step.</p>";
     assert!(ascii_maths(&visible_text(clean)).is_empty());

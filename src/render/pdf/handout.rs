@@ -7,6 +7,7 @@
 use super::markup::{
     Markup, formula_and_broken, number, said_equation, said_number, said_symbol, symbol,
 };
+use super::sheet::said_unit;
 use crate::base::format::sci;
 use crate::derive::ExactBasis;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
@@ -99,7 +100,10 @@ fn setup(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
             .raw("], [");
         m.author(meaning)?;
         if let Some(u) = page.units.get(name) {
-            m.text(&format!(" ({})", u.replace('*', " ")));
+            // Typeset as the pages and the sheets set units: kg m², not kg m^2.
+            m.text(" (")
+                .inline(&super::sheet::unit_typst(u), said_unit(u).trim())
+                .text(")");
         }
         m.raw("],\n");
     }
@@ -117,7 +121,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
         m.prose(&first.why_cited().capitalised())?;
         m.raw("\n");
     } else {
-        m.raw("*").text(&last.title).raw("*");
+        m.raw("*").author(&last.title)?.raw("*");
     }
     for ((&l, at), approx) in s.lines.iter().zip(&s.at).zip(&s.approx) {
         // A number no student reads exactly is shown to six figures.
@@ -157,10 +161,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
 
 fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
     for q in part.results.iter().map(|&i| &page.quantities[i]) {
-        m.heading(
-            3,
-            &crate::render::problems::capitalised(&crate::model::catalogue::heading(&q.name)),
-        )?;
+        m.heading(3, &crate::model::catalogue::heading(&q.name))?;
         let value = q.value.to_expr();
         m.block(
             &value.to_typst(),
@@ -325,8 +326,14 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
     }
     m.raw(" \\\n");
     m.author(&c.statement)?;
-    m.raw(" \\\n")
-        .text(&format!("{wrong}: "))
+    m.raw(" \\\n");
+    if let Some((said, found)) = c.sign_words() {
+        // A sign in words: "negative for every choice", not −1.
+        m.text(&format!("{wrong}: {said}. {right}: {found}."))
+            .raw("]\n");
+        return Ok(());
+    }
+    m.text(&format!("{wrong}: "))
         .block(&notes, &notes, &said_notes)
         .text(&format!("{right}: "))
         .block(&derived, &derived_broken, &said_derived)

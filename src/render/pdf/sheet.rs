@@ -273,10 +273,8 @@ pub fn decimals(numbers: &[f64]) -> Vec<String> {
         .collect()
 }
 
-/// A unit in Typst's math, upright: `kg m^2/s` as kg m²/s, each power raised after the text
-/// before it.
 /// A unit in words, after its number: " m per s squared".
-fn said_unit(text: &str) -> String {
+pub(super) fn said_unit(text: &str) -> String {
     let words = text
         .replace('*', " ")
         .replace('/', " per ")
@@ -286,6 +284,8 @@ fn said_unit(text: &str) -> String {
     format!(" {words}")
 }
 
+/// A unit in Typst's math, upright: `kg m^2/s` as kg m²/s, each power raised after the text
+/// before it.
 pub fn unit_typst(text: &str) -> String {
     let text = text.replace('*', " ");
     let mut out = String::new();
