@@ -226,6 +226,17 @@ pub(super) fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
             }
         }
         Expr::Pow(a, b) => style.power(a, b, ctx, out),
+        // The pages write a · b and a × b between their operands: a factor of a product takes
+        // parentheses, B (A · C), never B A · C.
+        Expr::Call(n, args)
+            if style.factors_sums()
+                && ctx >= Prec::Factor
+                && matches!(n.as_str(), "dot" | "cross") =>
+        {
+            out.push_str(style.open());
+            style.call(n, args, out);
+            out.push_str(style.close());
+        }
         Expr::Call(n, args) => style.call(n, args, out),
         Expr::List(v) => style.list(v, out),
         Expr::Index(..) => style.index(e, out),

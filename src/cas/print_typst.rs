@@ -549,6 +549,18 @@ mod tests {
     }
 
     #[test]
+    fn a_dot_or_cross_product_as_a_factor_takes_parentheses() {
+        assert_eq!(typst("B*dot(A, C)"), "B (A dot.op C)");
+        assert_eq!(typst("dot(A, C) + 1"), "A dot.op C + 1");
+        let tex = parse("B*cross(A, C)").unwrap().expr.to_tex();
+        assert!(
+            tex.source.contains("\\left(A \\times C\\right)"),
+            "{}",
+            tex.source
+        );
+    }
+
+    #[test]
     fn matrices_and_vectors() {
         assert_eq!(typst("[[1, 0], [0, 1]]"), "mat(1, 0; 0, 1)");
         assert_eq!(typst("[a, b, c]"), "mat(a; b; c)");

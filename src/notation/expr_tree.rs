@@ -125,6 +125,10 @@ impl Walk<'_> {
                 wrap(ctx > Prec::Sum, inner, out);
             }
             Expr::Pow(a, b) => self.power(a, b, out),
+            // a · b and a × b as a factor of a product take parentheses: B (A · C), never B A · C.
+            Expr::Call(n, _) if ctx >= Prec::Factor && matches!(n.as_str(), "dot" | "cross") => {
+                out.push(parens(self.nodes(e, Prec::Sum)));
+            }
             Expr::Call(n, args) => self.call(n, args, out),
             Expr::List(v) => out.push(self.list(v)),
             Expr::Index(..) => self.index(e, out),

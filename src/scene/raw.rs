@@ -16,7 +16,7 @@ pub struct RawScene {
     #[serde(default)]
     pub symbols: BTreeMap<Spanned<String>, Spanned<RawMeaning>>,
     #[serde(default)]
-    pub definitions: BTreeMap<Spanned<String>, Text>,
+    pub definitions: BTreeMap<Spanned<String>, Spanned<RawDefinition>>,
     #[serde(default)]
     pub vectors: BTreeMap<Spanned<String>, Spanned<Vec<Text>>>,
     #[serde(default)]
@@ -77,6 +77,64 @@ pub fn tex_of(m: &Spanned<RawMeaning>) -> Option<&Text> {
     match m.get_ref() {
         RawMeaning::Words(_) => None,
         RawMeaning::WithUnit { tex, .. } => tex.as_ref(),
+    }
+}
+
+/// A definition: its expression, or `{ be = "...", tex = "\\omega_1(t)" }` to set its name.
+pub enum RawDefinition {
+    Expr(String),
+    WithTex { be: Text, tex: Option<Text> },
+}
+
+/// A definition's expression, located: the string itself, or the table's `be`.
+pub fn definition_of(d: &Spanned<RawDefinition>) -> Text {
+    match d.get_ref() {
+        RawDefinition::Expr(e) => Spanned::new(d.span(), e.clone()),
+        RawDefinition::WithTex { be, .. } => be.clone(),
+    }
+}
+
+/// How a definition's name is typeset, if its table says.
+pub fn definition_tex(d: &Spanned<RawDefinition>) -> Option<&Text> {
+    match d.get_ref() {
+        RawDefinition::Expr(_) => None,
+        RawDefinition::WithTex { tex, .. } => tex.as_ref(),
+    }
+}
+
+impl<'de> Deserialize<'de> for RawDefinition {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visit;
+        impl<'de> serde::de::Visitor<'de> for Visit {
+            type Value = RawDefinition;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an expression, or { be = \"...\", tex = \"...\" }")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<RawDefinition, E> {
+                Ok(RawDefinition::Expr(v.to_string()))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut m: A,
+            ) -> Result<RawDefinition, A::Error> {
+                let (mut be, mut tex) = (None, None);
+                while let Some(key) = m.next_key::<String>()? {
+                    match key.as_str() {
+                        "be" if be.is_none() => be = Some(m.next_value()?),
+                        "tex" if tex.is_none() => tex = Some(m.next_value()?),
+                        "be" | "tex" => {
+                            return Err(serde::de::Error::custom(format!("`{key}` given twice")));
+                        }
+                        other => {
+                            return Err(serde::de::Error::unknown_field(other, &["be", "tex"]));
+                        }
+                    }
+                }
+                let be = be.ok_or_else(|| serde::de::Error::missing_field("be"))?;
+                Ok(RawDefinition::WithTex { be, tex })
+            }
+        }
+        d.deserialize_any(Visit)
     }
 }
 

@@ -114,3 +114,24 @@ fn a_definition_of_degree_seven_loads() {
     let e = parse(&too_much).unwrap_err();
     assert!(e.message.contains("beyond the engine's budget"), "{e}");
 }
+
+/// A definition's table sets how its name is typeset; a `tex` that cannot be set is refused at
+/// its line, as a symbol's is.
+#[test]
+fn a_definition_may_say_how_its_name_is_typeset() {
+    let with = |def: &str| {
+        MINIMAL.replace(
+            "a = \"side\" }",
+            &format!("a = \"side\", t = \"time\" }}\n[definitions]\n{def}"),
+        )
+    };
+    let s = parse(&with(r#"w1s = { be = "a*cos(t)", tex = "\\omega_1" }"#)).unwrap();
+    assert!(s.definitions.contains_key("w1s"));
+    assert_eq!(s.tex.get("w1s").map(String::as_str), Some("\\omega_1"));
+    let plain = parse(&with(r#"w1s = "a*cos(t)""#)).unwrap();
+    assert!(!plain.tex.contains_key("w1s"));
+    let e = parse(&with(r#"w1s = { be = "a*cos(t)", tex = "\\frac{1" }"#)).unwrap_err();
+    assert!(e.message.contains("cannot be typeset"), "{e}");
+    let e = parse(&with(r#"w1s = { tex = "\\omega_1" }"#)).unwrap_err();
+    assert!(e.message.contains("be"), "{e}");
+}

@@ -6,7 +6,7 @@ use super::{RESERVED, Validator, is_identifier};
 use crate::cas::Expr;
 use crate::model::catalogue::{CATALOGUE, is_quantity};
 use crate::scene::error::SceneError;
-use crate::scene::raw::{RawScene, meaning_of, tex_of, unit_of};
+use crate::scene::raw::{RawScene, definition_of, definition_tex, meaning_of, tex_of, unit_of};
 use crate::scene::types::Body;
 use crate::scene::validate::CLAIM_FUNCTIONS;
 use std::collections::{BTreeMap, BTreeSet};
@@ -66,8 +66,9 @@ impl Validator<'_> {
         Ok(out)
     }
 
-    /// How symbols, coordinates and steps are typeset (`{ meaning = "...", tex = "\\Omega" }`,
-    /// a step's `tex = "I_p"`): LaTeX that the pages' reader can set, without `$` signs.
+    /// How symbols, coordinates, steps and definitions are typeset (`{ meaning = "...", tex =
+    /// "\\Omega" }`, a step's `tex = "I_p"`, `{ be = "...", tex = "\\omega_1" }`): LaTeX that the
+    /// pages' reader can set, without `$` signs.
     pub(super) fn typesetting(
         &self,
         raw: &RawScene,
@@ -88,8 +89,15 @@ impl Validator<'_> {
                     ))
                 })
             });
+        let definitions = raw.definitions.iter().filter_map(|(name, d)| {
+            Some((
+                name.get_ref(),
+                definition_tex(d)?,
+                format!("definitions.{}", name.get_ref()),
+            ))
+        });
         {
-            for (name, tex, field) in names.chain(steps) {
+            for (name, tex, field) in names.chain(steps).chain(definitions) {
                 let problem = if tex.get_ref().contains('$') {
                     Some("it is LaTeX already: leave out the `$` signs".to_string())
                 } else {
@@ -130,7 +138,7 @@ impl Validator<'_> {
             scope.extend(variables.iter().cloned());
             definitions.insert(
                 n.clone(),
-                self.definition_expr(value, &format!("definitions.{n}"), &scope)?,
+                self.definition_expr(&definition_of(value), &format!("definitions.{n}"), &scope)?,
             );
             claim_names.insert(n.clone());
         }
