@@ -30,6 +30,23 @@ pub fn present(e: &Expr, positive: Positive) -> Result<Expr, EngineError> {
     let original = size(e);
     let mut candidates = vec![(tidy(e, positive), true)];
     let (simplified, factored) = (engine::simplify(e), engine::factor(e));
+    // A series as its leading term times 1 + …, from the result or its factored form: the
+    // form a textbook prints, taken first even where its fractions make it a little longer.
+    for form in [Some(e.clone()), factored.clone().ok()]
+        .into_iter()
+        .flatten()
+    {
+        if let Some(series) = leading_term(&form).map(|s| tidy(&s, positive))
+            && size(&series) * 2 <= original * 3
+            && positive::is_zero(
+                &Expr::add(vec![series.clone(), Expr::negate(e.clone())]),
+                positive,
+            )
+            .unwrap_or(false)
+        {
+            return Ok(series);
+        }
+    }
     let engine_forms = [
         simplified.clone(),
         factored.clone(),
@@ -82,6 +99,75 @@ fn has_list(e: &Expr) -> bool {
     let mut found = false;
     e.walk(&mut |x| found |= matches!(x, Expr::List(_) | Expr::Index(..)));
     found
+}
+
+/// c(k + b xⁿ + d xᵐ …) as c k (1 + (b/k) xⁿ + (d/k) xᵐ …): a power series in one symbol led by
+/// its constant term k, as a textbook writes 2π√(l/g)(1 + a²/16 + 11a⁴/3072). Only a product
+/// of symbols with such a sum of three or more terms is touched.
+fn leading_term(e: &Expr) -> Option<Expr> {
+    let Expr::Mul(factors) = e else {
+        return None;
+    };
+    let at = factors.iter().position(|f| matches!(f, Expr::Add(_)))?;
+    // A leading term with a symbol in it (2π√(l/g)), not a number taken out of a polynomial.
+    if !factors
+        .iter()
+        .enumerate()
+        .any(|(i, f)| i != at && !matches!(f, Expr::Num(_)))
+    {
+        return None;
+    }
+    let Expr::Add(terms) = &factors[at] else {
+        return None;
+    };
+    let constant = terms.iter().find_map(|t| match t {
+        Expr::Num(k) if !k.is_zero() && *k != Rational::ONE => Some(k.clone()),
+        _ => None,
+    })?;
+    // Every other term a number times a positive power of one symbol.
+    let power_of = |t: &Expr| -> Option<String> {
+        let parts = match t {
+            Expr::Mul(v) => v.as_slice(),
+            other => std::slice::from_ref(other),
+        };
+        let mut symbol = None;
+        for f in parts {
+            match f {
+                Expr::Num(_) => {}
+                Expr::Sym(s) if symbol.is_none() => symbol = Some(s.clone()),
+                Expr::Pow(b, k) if symbol.is_none() => match (b.as_ref(), k.as_ref()) {
+                    (Expr::Sym(s), Expr::Num(k)) if k.is_integer() && !k.is_negative() => {
+                        symbol = Some(s.clone())
+                    }
+                    _ => return None,
+                },
+                _ => return None,
+            }
+        }
+        symbol
+    };
+    let others: Vec<&Expr> = terms
+        .iter()
+        .filter(|t| !matches!(t, Expr::Num(_)))
+        .collect();
+    if others.len() < 2 || others.len() + 1 != terms.len() {
+        return None;
+    }
+    let first = power_of(others[0])?;
+    if !others.iter().all(|t| power_of(t).as_ref() == Some(&first)) {
+        return None;
+    }
+    let inverse = Expr::Num(constant.recip()?);
+    let mut series = vec![Expr::int(1)];
+    series.extend(
+        others
+            .iter()
+            .map(|t| Expr::mul(vec![inverse.clone(), (*t).clone()])),
+    );
+    let mut out: Vec<Expr> = factors.clone();
+    out[at] = Expr::Add(series);
+    out.push(Expr::Num(constant));
+    Some(Expr::mul(out))
 }
 
 /// The tree rewrites, bottom up.
@@ -562,6 +648,11 @@ mod tests {
             (
                 "(I3^2*w3^2 - I3^2*w3^2*cos(theta) + 2*g*I1*l*M*cos(theta) + 2*g*I1*l*M*cos(theta)^2)/(2*I1 + 2*I1*cos(theta))",
                 "1/2*I3^2*w3^2*(1 - cos(theta))/(I1*(cos(theta) + 1)) + g*l*M*cos(theta)",
+            ),
+            // A series in the amplitude, as its leading term times 1 + …
+            (
+                "1/1536*pi*(g*l)^(1/2)*(3072 + 192*a^2 + 11*a^4)/g",
+                "2*pi*(g*l)^(1/2)*(1 + 1/16*a^2 + 11/3072*a^4)/g",
             ),
             // Decimals' fractions stay term by term: no number is taken out of the sum.
             (
