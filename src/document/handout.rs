@@ -2,7 +2,10 @@
 //!
 //! The student's summary teaches the derivation: the scene's setup, then the author's steps in
 //! their order, each under its reason with its result typeset and the notes' form beside it
-//! where the notes give one; a scene without steps (a body's tensor and axes) shows its results.
+//! where the notes give one; a scene of the notes' own derivation (the lectures) shows its
+//! built-in steps under their titles and reasons, without their numeric checks and without the
+//! steps that only check another by a second route; a scene with no step at all shows its
+//! results.
 //! Claims that agree are listed; a mistake or an erratum is marked with its correct form. The
 //! instructor's worked solutions keep everything: every step with its numeric check, every
 //! result, the figures, every claim with its verdict.
