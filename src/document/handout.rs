@@ -86,14 +86,10 @@ pub fn part(index: usize, page: &Page, instructor: bool) -> Part {
                 .into_iter()
                 .flat_map(|lines| {
                     let at = values_at(page, &lines);
-                    lines.into_iter().zip(at).map(|(line, at)| ShownStep {
-                        lines: vec![line],
-                        reason_first: false,
-                        checks: true,
-                        at: vec![at],
-                        claims: Vec::new(),
-                        approx: vec![None],
-                    })
+                    lines
+                        .into_iter()
+                        .zip(at)
+                        .map(|(line, at)| titled_line(line, true, at))
                 })
                 .collect(),
             results: results(page),
@@ -117,14 +113,7 @@ pub fn part(index: usize, page: &Page, instructor: bool) -> Part {
     } else {
         (0..page.steps.len())
             .filter(|&line| !page.steps[line].second_route)
-            .map(|line| ShownStep {
-                lines: vec![line],
-                reason_first: false,
-                checks: false,
-                at: vec![None],
-                claims: Vec::new(),
-                approx: vec![None],
-            })
+            .map(|line| titled_line(line, false, None))
             .collect()
     };
     Part {
@@ -158,6 +147,19 @@ fn results(page: &Page) -> Vec<usize> {
         .filter(|(_, q)| q.is_result && !is_step_value(&q.name, &steps))
         .map(|(i, _)| i)
         .collect()
+}
+
+/// One line of the page's steps under its title, its reason below, as the worked solutions
+/// show every step and the student's summary a built-in one.
+fn titled_line(line: usize, checks: bool, at: Option<usize>) -> ShownStep {
+    ShownStep {
+        lines: vec![line],
+        reason_first: false,
+        checks,
+        at: vec![at],
+        claims: Vec::new(),
+        approx: vec![None],
+    }
 }
 
 /// Whether `name` is a step's value: its own name, or `step_k` of a step of several results.
