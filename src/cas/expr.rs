@@ -75,6 +75,22 @@ impl Expr {
         matches!(self, Expr::Num(r) if *r == Rational::ONE)
     }
 
+    /// A number as its author wrote it (`9.81`, `0.0000729`), kept for the printers: a symbol
+    /// named by its digits, which no scene name can be. No engine and no evaluation sees one.
+    pub fn numeral(digits: &str) -> Expr {
+        debug_assert!(digits.starts_with(|c: char| c.is_ascii_digit()));
+        Expr::Sym(digits.to_string())
+    }
+
+    /// A number, or a [`Expr::numeral`]: a factor that takes a `⋅` after another (`3 ⋅ 9.81`).
+    pub fn is_number_like(&self) -> bool {
+        match self {
+            Expr::Num(_) => true,
+            Expr::Sym(s) => s.starts_with(|c: char| c.is_ascii_digit()),
+            _ => false,
+        }
+    }
+
     /// Sum with light folding: flattens nested sums, drops zeros.
     pub fn add(terms: Vec<Expr>) -> Expr {
         let mut out = Vec::new();

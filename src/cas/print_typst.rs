@@ -63,6 +63,7 @@ pub(super) fn typst_symbol(s: &str) -> String {
             if second { "dot.double" } else { "dot" },
             typst_symbol(base)
         ),
+        NameForm::Numeral(digits) => digits.to_string(),
         NameForm::Word(w) => format!("upright({})", typst_string(w)),
         NameForm::Inertia(axes) => {
             let axes: Vec<String> = axes.chars().map(String::from).collect();

@@ -98,6 +98,8 @@ const GREEK: &[&str] = &[
 
 /// A symbol's name read by the conventions, for each printer to set in its own notation.
 pub enum NameForm<'a> {
+    /// A number as its author wrote it ([`super::Expr::numeral`]): `9.81`.
+    Numeral(&'a str),
     /// A coordinate's rate: `phi'` (the first) or `phi''` (the second, `true`).
     Rate(&'a str, bool),
     /// A name with a word after `_` (`inertia_tensor`): upright, whole.
@@ -125,6 +127,9 @@ pub fn is_letter_index(tail: &str) -> bool {
 }
 
 pub fn name_form(s: &str) -> NameForm<'_> {
+    if s.starts_with(|c: char| c.is_ascii_digit()) {
+        return NameForm::Numeral(s);
+    }
     if let Some(base) = s.strip_suffix("''") {
         return NameForm::Rate(base, true);
     }
@@ -178,6 +183,7 @@ pub(super) fn latex_symbol(s: &str) -> String {
             if second { "ddot" } else { "dot" },
             latex_symbol(base)
         ),
+        NameForm::Numeral(digits) => digits.to_string(),
         NameForm::Word(w) => format!("\\mathrm{{{}}}", w.replace('_', "\\_")),
         NameForm::Inertia(axes) => format!("I_{{{axes}}}"),
         NameForm::Head(head, tail) => {

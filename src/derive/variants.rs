@@ -174,12 +174,7 @@ pub fn exact_answers(
         let name = &answer.written;
         // The roots were ordered at the scene's values; a variant orders its own.
         if answer.bare_quantity() == Some(quantity::PRINCIPAL_MOMENTS) {
-            row.sort_by(|a, b| {
-                let (x, y) = (a.eval(&|_| None), b.eval(&|_| None));
-                x.unwrap_or(f64::NAN)
-                    .total_cmp(&y.unwrap_or(f64::NAN))
-                    .then_with(|| a.to_text().cmp(&b.to_text()))
-            });
+            ascending(&mut row, &|_| None);
         }
         out.push(ExactAnswer {
             quantity: name.clone(),
@@ -187,6 +182,131 @@ pub fn exact_answers(
         });
     }
     Ok(out)
+}
+
+/// Entries in ascending order of their values (`at` gives a symbol's), ties by their text.
+fn ascending(row: &mut [Expr], at: &dyn Fn(&str) -> Option<f64>) {
+    row.sort_by(|a, b| {
+        let (x, y) = (a.eval(at), b.eval(at));
+        x.unwrap_or(f64::NAN)
+            .total_cmp(&y.unwrap_or(f64::NAN))
+            .then_with(|| a.to_text().cmp(&b.to_text()))
+    });
+}
+
+/// Each answer of `problem` at `variant` as the key shows it where it uses a value the author
+/// wrote as a decimal: that value kept as written, the others put in exactly, so the key reads
+/// 2π/√(3 ⋅ 9.81) where the exact value is 20π/(3√327) (g = 9.81 read as 981/100). `None` for
+/// an answer that uses no such value: its exact value is the one shown.
+pub fn shown_answers(
+    general: &[Value],
+    problem: &Problem,
+    variant: &Variant,
+) -> Result<Vec<Option<Value>>, DeriveError> {
+    let written: BTreeMap<&str, (crate::cas::Rational, String)> = variant
+        .decimal
+        .iter()
+        .filter_map(|name| match variant.values.get(name) {
+            Some(Expr::Num(r)) => {
+                let digits = crate::scene::terminating_decimal(&r.abs())?;
+                Some((name.as_str(), (r.clone(), digits)))
+            }
+            _ => None,
+        })
+        .collect();
+    let mut pending: Vec<(usize, Vec<Expr>)> = Vec::new();
+    for (i, general) in general.iter().enumerate() {
+        let row: Vec<Expr> = general
+            .entries()
+            .iter()
+            .map(|e| {
+                special_angles(&e.substitute(&|s| {
+                    if written.contains_key(s) {
+                        None
+                    } else {
+                        variant.values.get(s).cloned()
+                    }
+                }))
+            })
+            .collect();
+        let uses = row
+            .iter()
+            .any(|e| e.symbols().iter().any(|s| written.contains_key(s.as_str())));
+        if uses {
+            pending.push((i, row));
+        }
+    }
+    let mut out = vec![None; general.len()];
+    if pending.is_empty() {
+        return Ok(out);
+    }
+    let signed = written
+        .iter()
+        .filter(|(_, (r, _))| r.is_negative())
+        .map(|(name, _)| name.to_string())
+        .collect();
+    let flat: Vec<Expr> = pending.iter().flat_map(|(_, row)| row.clone()).collect();
+    let mut presented = cas::present_all(cas::simplify_all(flat)?, signed)?.into_iter();
+    let at = |s: &str| written.get(s).map(|(r, _)| r.to_f64());
+    for (i, row) in pending {
+        let mut row: Vec<Expr> = presented.by_ref().take(row.len()).collect();
+        if problem.answers[i].bare_quantity() == Some(quantity::PRINCIPAL_MOMENTS) {
+            ascending(&mut row, &at);
+        }
+        let row: Vec<Expr> = row
+            .iter()
+            .map(|e| {
+                numerals_first(&e.substitute(&|s| {
+                    let (r, digits) = written.get(s)?;
+                    let numeral = Expr::numeral(digits);
+                    Some(if r.is_negative() {
+                        Expr::mul(vec![Expr::int(-1), numeral])
+                    } else {
+                        numeral
+                    })
+                }))
+            })
+            .collect();
+        out[i] = Some(general[i].with_entries(&row));
+    }
+    Ok(out)
+}
+
+/// More digits than a reader takes in at a glance: the numerator or denominator of a number
+/// in `e` is over [`READABLE_DIGITS`] digits (a cubic's root at the author's values, a
+/// nine-digit rational under a radical).
+pub fn has_long_number(e: &Expr) -> bool {
+    match e {
+        Expr::Num(r) => {
+            let (n, d) = r.abs_parts();
+            n.to_string().len() > READABLE_DIGITS || d.to_string().len() > READABLE_DIGITS
+        }
+        Expr::Sym(_) => false,
+        Expr::Add(v) | Expr::Mul(v) | Expr::List(v) | Expr::Call(_, v) => {
+            v.iter().any(has_long_number)
+        }
+        Expr::Pow(a, b) | Expr::Index(a, b) => has_long_number(a) || has_long_number(b),
+    }
+}
+
+/// The most digits of a number an exact answer in the key may have (999999/1000000 is read).
+pub const READABLE_DIGITS: usize = 6;
+
+/// Each product's numerals just after its number: 3 ⋅ 9.81 M, not 3M ⋅ 9.81.
+fn numerals_first(e: &Expr) -> Expr {
+    match e {
+        Expr::Mul(v) => {
+            let v: Vec<Expr> = v.iter().map(numerals_first).collect();
+            let (mut front, back): (Vec<Expr>, Vec<Expr>) =
+                v.into_iter().partition(Expr::is_number_like);
+            front.extend(back);
+            Expr::Mul(front)
+        }
+        Expr::Add(v) => Expr::Add(v.iter().map(numerals_first).collect()),
+        Expr::Pow(a, b) => Expr::Pow(Box::new(numerals_first(a)), Box::new(numerals_first(b))),
+        Expr::Call(n, v) => Expr::Call(n.clone(), v.iter().map(numerals_first).collect()),
+        other => other.clone(),
+    }
 }
 
 /// Why answer `name` was not derived: the principal moments of an irreducible cubic have no

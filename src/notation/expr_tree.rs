@@ -175,7 +175,7 @@ impl Walk<'_> {
             Prec::Power
         };
         for (i, f) in fs.iter().enumerate() {
-            if i > 0 && matches!(f, Expr::Num(_)) {
+            if i > 0 && f.is_number_like() {
                 out.push(bin('⋅'));
             }
             self.write(f, ctx, &mut out);
@@ -365,6 +365,7 @@ pub fn symbol(s: &str, named: Named<'_>) -> Vec<Node> {
                 false,
             )]
         }
+        NameForm::Numeral(digits) => vec![num(digits)],
         NameForm::Word(w) => vec![upright(w)],
         NameForm::Inertia(axes) => {
             let mut out = vec![ord('I')];

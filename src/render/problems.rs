@@ -15,6 +15,10 @@ use serde::Serialize;
 /// Significant figures of the key's decimals.
 pub const KEY_FIGURES: usize = 4;
 
+/// The figures of an exact answer too long to read (`AnswerCheck::rounded`), in the key's exact
+/// column: more than the decimal column's, so a grader can tell a rounding slip from an error.
+pub const ROUNDED_FIGURES: usize = 6;
+
 #[derive(Debug, Clone, Serialize)]
 pub struct SheetVariant<P> {
     pub number: usize,
@@ -176,10 +180,15 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
             .map_or(String::new(), |u| format!(" {}", unit_html(&u.text)));
         answers.push(KeyAnswer {
             label: spec_label(spec)?,
-            exact: format!("{}{unit}", math::inline(&a.exact.to_tex())?),
+            exact: if a.rounded {
+                let rounded = decimals(&a.exact, &a.exact_numbers, ROUNDED_FIGURES);
+                format!("≈ {}{unit}", math::inline(&rounded.to_tex())?)
+            } else {
+                format!("{}{unit}", math::inline(&a.shown_or_exact().to_tex())?)
+            },
             decimal: format!(
                 "{}{unit}",
-                math::inline(&decimals(&a.exact, &a.exact_numbers).to_tex())?
+                math::inline(&decimals(&a.exact, &a.exact_numbers, KEY_FIGURES).to_tex())?
             ),
         });
     }
@@ -196,11 +205,11 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
     })
 }
 
-/// The answer's numbers to [`KEY_FIGURES`] figures, in the shape of the exact value.
-pub fn decimals(shape: &Value, numbers: &[f64]) -> Formula {
+/// The answer's numbers to `digits` figures, in the shape of the exact value.
+pub fn decimals(shape: &Value, numbers: &[f64], digits: usize) -> Formula {
     let n: Vec<Formula> = numbers
         .iter()
-        .map(|x| Formula::decimal(&figures(*x, KEY_FIGURES)))
+        .map(|x| Formula::decimal(&figures(*x, digits)))
         .collect();
     super::numbers_formula(shape, n)
 }

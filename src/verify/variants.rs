@@ -9,7 +9,7 @@ use super::principal::PRINCIPAL_AGREEMENT;
 use crate::base::float::max_relative_error;
 use crate::cas::Expr;
 use crate::cas::Rational;
-use crate::derive::variants::{exact_answers, general_answers};
+use crate::derive::variants::{exact_answers, general_answers, has_long_number, shown_answers};
 use crate::derive::{Derivation, DeriveError};
 use crate::model::catalogue::quantity;
 use crate::model::value::Value;
@@ -38,6 +38,16 @@ pub struct AnswerCheck {
     /// The answer as the author wrote it: a quantity's name or an expression.
     pub quantity: String,
     pub exact: Value,
+    /// The exact answer as the key shows it, where it uses a value the author wrote as a
+    /// decimal: that value as written (`derive::variants::shown_answers`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shown: Option<Value>,
+    /// The shown form has a number of more digits than a reader takes in
+    /// (`derive::variants::has_long_number`): the key gives the answer to
+    /// `render::problems::ROUNDED_FIGURES` figures in its exact column, and `--json` the exact
+    /// value.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub rounded: bool,
     /// The exact answer's entries in f64, and the numeric route's.
     pub exact_numbers: Vec<f64>,
     pub numeric: Vec<f64>,
@@ -46,6 +56,11 @@ pub struct AnswerCheck {
 }
 
 impl AnswerCheck {
+    /// The value the key prints in its exact column.
+    pub fn shown_or_exact(&self) -> &Value {
+        self.shown.as_ref().unwrap_or(&self.exact)
+    }
+
     pub fn passed(&self) -> bool {
         self.error <= self.tolerance
     }
@@ -181,11 +196,14 @@ pub fn check_variants(
         };
         deadline.check().map_err(|e| fail(e.into()))?;
         let exact = exact_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
+        let shown = shown_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
         let numbers = v.numbers_within_a_turn(&angles);
         let agree = |name: &str| agreement(scene, name, &numbers);
         let mut routes = AnswerRoutes::new(scene, d, &numbers, &agree);
         let mut answers = Vec::new();
-        for ((answer, a), scale) in problem.answers.iter().zip(exact).zip(&scales) {
+        for (((answer, a), scale), shown) in
+            problem.answers.iter().zip(exact).zip(&scales).zip(shown)
+        {
             let (numeric, tolerance) = match answer.bare_quantity() {
                 Some(q) => (
                     routes.routes.answer(q).map_err(|e| fail(e.into()))?,
@@ -207,10 +225,18 @@ pub fn check_variants(
                 .map(|e| e.eval(&|_| None).unwrap_or(f64::NAN))
                 .collect();
             let error = max_relative_error(&numeric, &exact_numbers);
+            let rounded = shown
+                .as_ref()
+                .unwrap_or(&a.value)
+                .entries()
+                .iter()
+                .any(has_long_number);
             answers.push(AnswerCheck {
                 tolerance,
                 quantity: a.quantity,
                 exact: a.value,
+                shown,
+                rounded,
                 exact_numbers,
                 numeric,
                 // NaN (an answer with no number) fails every comparison: count it as infinite.
@@ -367,6 +393,74 @@ require = ["I3 != I1", "w3 != 0"]
             let checks = check_variants(&scene, &wrong, problem, &Deadline::checks()).unwrap();
             assert!(checks.iter().all(|v| !v.passed()), "{wrong_rate}");
         }
+    }
+
+    /// g written 9.81 stays 9.81 in the key's form of the answer (2π√(L/9.81), not 20π/(3√327)),
+    /// with the same value as the exact answer; an answer of seven-digit numbers is rounded.
+    #[test]
+    fn the_keys_form_keeps_the_authors_decimals_and_rounds_long_numbers() {
+        const SWING: &str = r#"
+id = "s"
+title = "s"
+notes = { lecture = "x" }
+[symbols]
+L = { meaning = "length", unit = "m" }
+g = { meaning = "gravity", unit = "m/s^2" }
+k = { meaning = "a number" }
+[numeric]
+values = { L = 1.0, g = 9.81, k = 2.0 }
+[[step]]
+name = "T"
+be = "2*pi*sqrt(2*L/(3*g))"
+why = "the period"
+[problem]
+statement = "A rod {L}, {g}, {k}."
+answers = [
+  { value = "T", unit = "s" },
+  { value = "sqrt(k)*L" },
+  { value = "sqrt(k)" },
+]
+[variants]
+count = 4
+seed = 1
+L = ["1/2", "3/4"]
+k = ["1234567/89", "2"]
+"#;
+        let scene = Scene::parse(SWING, Path::new("s.toml")).unwrap();
+        let report = run_scene(scene, None).unwrap();
+        let checks = &report.verification.variants;
+        assert!(checks.iter().all(VariantCheck::passed), "{checks:#?}");
+        // A numeral read back as the number its digits say.
+        let read_back = |e: &Expr| {
+            e.substitute(&|s| {
+                s.starts_with(|c: char| c.is_ascii_digit())
+                    .then(|| parse(s).unwrap().expr)
+            })
+            .eval(&|_| None)
+            .unwrap()
+        };
+        let (mut rounded, mut exact) = (0, 0);
+        for v in checks {
+            let period = &v.answers[0];
+            let shown = period.shown.as_ref().expect("g is a decimal").entries()[0].clone();
+            assert!(
+                shown.symbols().contains(&"9.81".to_string()),
+                "{}",
+                shown.to_text()
+            );
+            assert!(!shown.to_text().contains("327"), "{}", shown.to_text());
+            let relative = (read_back(&shown) / period.exact_numbers[0] - 1.0).abs();
+            assert!(relative < 1e-15, "{} {relative}", shown.to_text());
+            assert!(!period.rounded);
+            // sqrt(k) uses no decimal: its exact value is the one shown.
+            assert!(v.answers[2].shown.is_none());
+            let long = v.values.iter().any(|(n, e)| n == "k" && e.to_text() != "2");
+            for a in &v.answers[1..] {
+                assert_eq!(a.rounded, long, "{}", a.exact.to_expr().to_text());
+                if a.rounded { rounded += 1 } else { exact += 1 }
+            }
+        }
+        assert!(rounded > 0 && exact > 0, "{rounded} {exact}");
     }
 
     /// Past the scene's budget a sheet is refused at the variant it reached, with the reason.

@@ -233,6 +233,15 @@ fn a_symbol_is_typeset_as_its_scene_says_on_the_page_and_the_key() {
         "{ours}"
     );
     assert!(!ours.contains("<mi>w</mi>"), "{ours}");
+    // g, written 9.81, stays 9.81 in the key's exact column: 2π/√(3 ⋅ 9.81), not 20π/(3√327).
+    let period = &key[key
+        .find("Period of small oscillations")
+        .expect("the period")..];
+    let exact = &period[..period.find("</td>").unwrap()];
+    assert!(
+        exact.contains("<mo>⋅</mo><mn>9.81</mn>") && !exact.contains("327"),
+        "{exact}"
+    );
     // Other scenes are not touched: the pendulum's own names are as before.
     assert!(read("problem-pendulum.html").contains("<mi>M</mi>"));
     // A scene with a radius R calls its centre of mass R⃗_cm, not R⃗.

@@ -6,7 +6,7 @@
 use super::markup::{Markup, formula, said_equation, symbol};
 use crate::document::{Problem, Sheet, Variant};
 use crate::render::RenderError;
-use crate::render::problems::{KEY_FIGURES, answer_words, capitalised};
+use crate::render::problems::{KEY_FIGURES, ROUNDED_FIGURES, answer_words, capitalised};
 
 use crate::scene::roster::Student;
 
@@ -229,14 +229,25 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
             .unit
             .as_ref()
             .map_or(String::new(), |u| said_unit(&u.text));
-        let exact = a.exact.to_expr();
-        let numbers = decimals(&a.exact_numbers);
-        m.raw("], [")
-            .display(
+        let exact = a.shown_or_exact().to_expr();
+        let numbers = decimals(&a.exact_numbers, KEY_FIGURES);
+        m.raw("], [");
+        if a.rounded {
+            let rounded = decimals(&a.exact_numbers, ROUNDED_FIGURES);
+            m.display(
+                &format!(
+                    "approx {}{unit}",
+                    super::handout::numbers_typst(&a.exact, &rounded)
+                ),
+                &format!("about {}{said_unit}", rounded.join(", ")),
+            );
+        } else {
+            m.display(
                 &format!("{}{unit}", exact.to_typst()),
                 &format!("{}{said_unit}", exact.to_tex().spoken()),
-            )
-            .raw("], [")
+            );
+        }
+        m.raw("], [")
             .display(
                 &format!(
                     "{}{unit}",
@@ -255,15 +266,15 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
     Ok(())
 }
 
-/// The answer's numbers to the key's figures, in Typst's math.
-pub fn decimals(numbers: &[f64]) -> Vec<String> {
+/// The answer's numbers to `digits` figures, in Typst's math.
+pub fn decimals(numbers: &[f64], digits: usize) -> Vec<String> {
     numbers
         .iter()
         .map(|x| {
             if !x.is_finite() {
                 return crate::base::typst::typst_string(&x.to_string());
             }
-            let s = crate::base::format::figures(*x, KEY_FIGURES);
+            let s = crate::base::format::figures(*x, digits);
             match crate::base::format::power_of_ten(&s) {
                 Some((mantissa, power)) => format!("{mantissa} times 10^({power})"),
                 None => s,
