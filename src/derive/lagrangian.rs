@@ -252,7 +252,10 @@ pub fn energy(
 }
 
 /// The static equation of one coordinate (every rate and acceleration 0) and its zeros.
-pub fn equilibria(eqs: &[(String, Expr)]) -> Result<(String, Vec<cas::Zero>), DeriveError> {
+pub fn equilibria(
+    eqs: &[(String, Expr)],
+    values: &BTreeMap<String, f64>,
+) -> Result<Equilibria, DeriveError> {
     let [(q, r)] = eqs else {
         return Err(DeriveError::NotDerivable(format!(
             "`equilibria` takes the equation of one coordinate for now; these are {}",
@@ -260,31 +263,111 @@ pub fn equilibria(eqs: &[(String, Expr)]) -> Result<(String, Vec<cas::Zero>), De
         )));
     };
     let at_rest = at_rest(r, q);
-    let found = cas::zeros(&cas::simplify(&at_rest)?, q)?;
-    if let Some(f) = found.unsolved.first() {
-        return Err(DeriveError::NotDerivable(format!(
-            "the static equation has the factor {} = 0, whose solutions have no closed form here \
-             (a polynomial of degree at most 2 in `{q}`, in sin({q}) or in cos({q}))",
-            f.to_text()
-        )));
+    let mut found = cas::zeros(&cas::simplify(&at_rest)?, q)?;
+    // A cubic or quartic factor of a polynomial: its roots real at the scene's values, in the
+    // closed form `solve` gives (r³ = p: r = ∛p).
+    for f in std::mem::take(&mut found.unsolved) {
+        let closed = match f.symbols().iter().any(|s| s == q) && !has_call_of(&f, q) {
+            true => cas::closed_form_roots(&f, q, values)?.ok(),
+            false => None,
+        };
+        match closed {
+            // Every symbol positive first (√(p²/4) = p/2), then simplified: ∛p, not ∛(p/2 + p/2).
+            Some(roots) => found.zeros.extend(
+                cas::simplify_all(
+                    roots
+                        .iter()
+                        .map(|e| cas::pull_squares(e, &|_| true))
+                        .collect(),
+                )?
+                .into_iter()
+                .map(|value| cas::Zero { value, trig: None }),
+            ),
+            None => {
+                return Err(DeriveError::NotDerivable(format!(
+                    "the static equation has the factor {} = 0, whose solutions have no closed \
+                     form here (a polynomial of degree at most 4 in `{q}`, or of degree 2 in \
+                     sin({q}) or cos({q}))",
+                    f.to_text()
+                )));
+            }
+        }
     }
-    if found.zeros.is_empty() {
+    // A root that is real for no positive values (√(−3r₀²)) is no state of rest: set aside,
+    // named. One real for some values only (arccos(I₃ω₃/√(MglI₁) − 1)) stays.
+    let mut zeros = Vec::new();
+    let mut excluded = Vec::new();
+    for z in found.zeros {
+        if never_real(&z.value) {
+            excluded.push(z);
+        } else {
+            zeros.push(z);
+        }
+    }
+    if zeros.is_empty() {
+        let besides = match excluded.is_empty() {
+            true => String::new(),
+            false => " (its roots are real for no values of the symbols)".to_string(),
+        };
         return Err(DeriveError::NotDerivable(format!(
-            "the static equation {} = 0 has no solution: there is no equilibrium",
+            "the static equation {} = 0 has no real solution{besides}: there is no equilibrium",
             at_rest.to_text()
         )));
     }
     // Every symbol of a scene is positive: √(4 b a²) = 2 a √b.
     let positive = |e: &Expr| cas::pull_squares(e, &|_| true);
-    let zeros = found
-        .zeros
+    let zeros = zeros
         .into_iter()
         .map(|z| cas::Zero {
             value: positive(&z.value),
             trig: z.trig.map(|(c, s)| (positive(&c), positive(&s))),
         })
         .collect();
-    Ok((q.clone(), zeros))
+    Ok(Equilibria {
+        coordinate: q.clone(),
+        zeros,
+        excluded: excluded.into_iter().map(|z| z.value).collect(),
+    })
+}
+
+/// The states of rest of one coordinate, and the roots of its static equation that are not
+/// real at the scene's values.
+pub struct Equilibria {
+    pub coordinate: String,
+    pub zeros: Vec<cas::Zero>,
+    pub excluded: Vec<Expr>,
+}
+
+/// Whether `e` has an even root of a quantity negative for every positive value of its
+/// symbols (√(−3r₀²)): it is real for none.
+fn never_real(e: &Expr) -> bool {
+    let mut radicands = Vec::new();
+    e.walk(&mut |x| {
+        if let Expr::Pow(b, k) = x
+            && let Expr::Num(k) = k.as_ref()
+            && k.abs_parts()
+                .1
+                .to_string()
+                .parse::<u64>()
+                .is_ok_and(|d| d % 2 == 0)
+        {
+            radicands.push((**b).clone());
+        }
+    });
+    // A sign the test cannot decide keeps the root.
+    !radicands.is_empty()
+        && super::sign::signs_over_positive(&radicands)
+            .is_ok_and(|signs| signs.contains(&super::sign::Sign::Negative))
+}
+
+/// Whether `q` appears inside a function call of `e` (sin q): not a polynomial in it.
+fn has_call_of(e: &Expr, q: &str) -> bool {
+    match e {
+        Expr::Call(_, args) => args.iter().any(|a| a.symbols().iter().any(|s| s == q)),
+        Expr::Add(v) | Expr::Mul(v) | Expr::List(v) => v.iter().any(|x| has_call_of(x, q)),
+        Expr::Pow(a, b) | Expr::Index(a, b) => has_call_of(a, q) || has_call_of(b, q),
+        Expr::Num(_) | Expr::Sym(_) => false,
+    }
 }
 
 /// The squared frequency of small oscillations about each equilibrium, k/m with k = ∂R/∂q and

@@ -65,17 +65,43 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
             let why = with_reason(step, &why, verdict);
             vec![Step::note(&title, named(value), why)]
         }
-        StepResult::Equilibria { coordinate, zeros } => zeros
-            .iter()
-            .enumerate()
-            .map(|(k, z)| {
-                Step::note(
-                    &format!("{title}: equilibrium {}", k + 1),
-                    Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
-                    why.clone(),
-                )
-            })
-            .collect(),
+        StepResult::Equilibria {
+            coordinate,
+            zeros,
+            excluded,
+        } => {
+            // The roots set aside, named after the last state of rest.
+            let mut last_why = why.clone();
+            if !excluded.is_empty() {
+                let mut set_aside = Prose::default();
+                for (k, e) in excluded.iter().enumerate() {
+                    if k > 0 {
+                        set_aside = set_aside.text(", ");
+                    }
+                    set_aside = set_aside.formula(Formula::equation(
+                        Formula::Expr(Expr::sym(coordinate)),
+                        e.clone(),
+                    ));
+                }
+                let said = if excluded.len() == 1 { "is" } else { "are" };
+                set_aside = set_aside.text(&format!(
+                    " {said} real for no values of the symbols: no state of rest"
+                ));
+                last_why = with_reason(step, &why, set_aside);
+            }
+            let n = zeros.len();
+            zeros
+                .iter()
+                .enumerate()
+                .map(|(k, z)| {
+                    Step::note(
+                        &format!("{title}: equilibrium {}", k + 1),
+                        Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
+                        if k + 1 == n { last_why.clone() } else { why.clone() },
+                    )
+                })
+                .collect()
+        }
         StepResult::Stability { coordinate, cases } => {
             let omega2 = Formula::Expr(Expr::pow(Expr::sym("Omega"), Expr::int(2)));
             cases

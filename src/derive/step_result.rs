@@ -26,6 +26,9 @@ pub enum StepResult {
     Equilibria {
         coordinate: String,
         zeros: Vec<cas::Zero>,
+        /// The static equation's roots that are not real at the scene's values, set aside.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        excluded: Vec<Expr>,
     },
     /// About each equilibrium, the squared frequency of small oscillations and its sign.
     Stability {

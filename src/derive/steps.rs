@@ -327,8 +327,12 @@ fn derive_step(
                     states,
                 });
             }
-            let (coordinate, zeros) = equilibria(eqs)?;
-            StepResult::Equilibria { coordinate, zeros }
+            let found = equilibria(eqs, &scene.values)?;
+            StepResult::Equilibria {
+                coordinate: found.coordinate,
+                zeros: found.zeros,
+                excluded: found.excluded,
+            }
         }
         Operation::Stability { of } => {
             if let Some(StepResult::RestStates {
@@ -342,7 +346,10 @@ fn derive_step(
                     cases: super::rest_states::rest_stability(eqs, coordinates, states)?,
                 });
             }
-            let Some(StepResult::Equilibria { coordinate, zeros }) = d.named.get(of) else {
+            let Some(StepResult::Equilibria {
+                coordinate, zeros, ..
+            }) = d.named.get(of)
+            else {
                 return Err(DeriveError::Inconsistent(format!(
                     "step `{of}` was validated as earlier equilibria"
                 )));

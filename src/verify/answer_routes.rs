@@ -5,7 +5,7 @@
 //! `solve`: Newton's method on the equation), and the symbols by the variant's values.
 
 use super::integral::{QUADRATURE_AGREEMENT, quadrature};
-use super::motion::{PERIOD_AGREEMENT, measured_period};
+use super::motion::{MODES_AGREEMENT, PERIOD_AGREEMENT, measured_period, numeric_modes};
 use super::step_check::CheckError;
 use super::steps::{equations_of, solvable_of};
 use crate::cas::Expr;
@@ -153,6 +153,23 @@ impl<'a> AnswerRoutes<'a> {
             .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
         match &step.op {
             Operation::Be(e) => self.expression(e),
+            // A mode of n ≥ 2 coordinates (`Omega_2`): the k-th slowest √λ of M⁻¹K at the
+            // variant's numbers, as the step's own check finds them.
+            Operation::Frequency { of } if name != step.name => {
+                let k = name
+                    .strip_prefix(&format!("{}_", step.name))
+                    .and_then(|k| k.parse::<usize>().ok())
+                    .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
+                let modes = numeric_modes(equations_of(self.d, of)?, self.numbers)?;
+                let value = *k
+                    .checked_sub(1)
+                    .and_then(|i| modes.get(i))
+                    .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
+                Ok(Routed {
+                    value,
+                    tolerance: MODES_AGREEMENT,
+                })
+            }
             Operation::Frequency { of } => {
                 let Some(Operation::Linearise { of: motion, about }) =
                     scene.steps.iter().find(|s| &s.name == of).map(|s| &s.op)

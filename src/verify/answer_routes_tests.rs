@@ -132,3 +132,34 @@ fn an_angle_between_vectors_is_worked_from_the_quadrature_tensor() {
         assert!(angle.exact_numbers[0] > 0.0 && angle.exact_numbers[0] < 1.6);
     }
 }
+
+#[test]
+fn each_normal_mode_is_graded_by_the_eigenvalues_of_m_inverse_k_and_a_wrong_one_fails() {
+    let r = report("06-normal-modes.toml");
+    let variants = &r.verification.variants;
+    assert_eq!(variants.len(), 4);
+    for v in variants {
+        assert!(v.passed(), "variant {}: {:?}", v.number, v.answers);
+        // √((2 ∓ √2) g/l), by the textbook, at the variant's l: both routes land on it.
+        let l = v
+            .values
+            .iter()
+            .find(|(n, _)| n == "l")
+            .unwrap()
+            .1
+            .eval(&|_| None)
+            .unwrap();
+        for (a, sign) in v.answers.iter().zip([-1.0, 1.0]) {
+            let textbook = ((2.0 + sign * 2f64.sqrt()) * 9.81 / l).sqrt();
+            assert!((a.numeric[0] / textbook - 1.0).abs() < 1e-12, "{a:?}");
+            assert!((a.exact_numbers[0] / textbook - 1.0).abs() < 1e-15, "{a:?}");
+        }
+    }
+    // Two independent pendulums' frequencies, √(g/l) and √(3g/l), in place of the coupled ones.
+    let wrong = StepResult::Modes(vec![
+        parse("sqrt(g/l)").unwrap().expr,
+        parse("sqrt(3*g/l)").unwrap().expr,
+    ]);
+    let passed = with_wrong_step(&r, "Omega", wrong);
+    assert!(passed.iter().all(|p| !p), "{passed:?}");
+}

@@ -333,7 +333,7 @@ pub(super) fn measured_period(
 /// The engine's normal-mode frequencies against the eigenvalues of M⁻¹K by nalgebra's Schur
 /// decomposition: backward stable, so for modes a few percent apart they agree to about 1e-13;
 /// a wrong root is off by order one.
-const MODES_AGREEMENT: f64 = 1e-9;
+pub(super) const MODES_AGREEMENT: f64 = 1e-9;
 
 /// A `frequency` step of n ≥ 2 coordinates: its modes at the scene's values against √λ for
 /// the eigenvalues λ of M⁻¹K, M and K read off the linear equations numerically.
@@ -347,11 +347,32 @@ pub(super) fn modes_check(
                     values (M, K read off the linear equations; nalgebra's Schur decomposition)"
         .into();
     check.tolerance = MODES_AGREEMENT;
+    let n = linear.len();
+    check.evaluations = (n * (2 * n + 1)) as u64;
+    let numeric = numeric_modes(linear, &scene.values)?;
+    for (w, exact) in numeric.iter().zip(modes) {
+        let x = at(exact, &scene.values)?;
+        let error = (x - w).abs() / w.abs();
+        check.error = check
+            .error
+            .max(if error.is_nan() { f64::INFINITY } else { error });
+    }
+    Ok(())
+}
+
+/// The normal-mode frequencies of linear equations of n coordinates at `params`, slowest first:
+/// √λ for the eigenvalues λ of M⁻¹K, M and K read off the equations by their change from one
+/// unit of each acceleration and coordinate, λ by nalgebra's Schur decomposition (NaN for a λ
+/// that is not real). No engine: the route a mode's answer and the step's check both take.
+pub(super) fn numeric_modes(
+    linear: &[(String, Expr)],
+    params: &BTreeMap<String, f64>,
+) -> Result<Vec<f64>, CheckError> {
     let coords: Vec<&String> = linear.iter().map(|(q, _)| q).collect();
     let n = coords.len();
     // The equations are affine in the state: a column is the change from one unit of one name.
     let residuals = |name: Option<String>| -> Result<Vec<f64>, CheckError> {
-        let mut p = state(&scene.values, &coords, &vec![0.0; 2 * n], &vec![0.0; n]);
+        let mut p = state(params, &coords, &vec![0.0; 2 * n], &vec![0.0; n]);
         if let Some(name) = name {
             p.insert(name, 1.0);
         }
@@ -372,7 +393,6 @@ pub(super) fn modes_check(
             k[(i, j)] = rk[i] - base[i];
         }
     }
-    check.evaluations = (n * (2 * n + 1)) as u64;
     let a = m.lu().solve(&k).ok_or(CheckError::Singular)?;
     let mut numeric: Vec<f64> = crate::base::float::complex_eigenvalues(a)
         .ok_or(CheckError::NoEigenvalues)?
@@ -386,12 +406,5 @@ pub(super) fn modes_check(
         })
         .collect();
     numeric.sort_by(f64::total_cmp);
-    for (w, exact) in numeric.iter().zip(modes) {
-        let x = at(exact, &scene.values)?;
-        let error = (x - w).abs() / w.abs();
-        check.error = check
-            .error
-            .max(if error.is_nan() { f64::INFINITY } else { error });
-    }
-    Ok(())
+    Ok(numeric)
 }

@@ -276,7 +276,12 @@ fn route(
             let x0 = at(&expand_names(scene, d, step, about)?, &scene.values)?;
             remainder_check(scene, &f, s, var, x0, *order, check)?;
         }
-        (Operation::Equilibria { of }, StepResult::Equilibria { coordinate, zeros }) => {
+        (
+            Operation::Equilibria { of },
+            StepResult::Equilibria {
+                coordinate, zeros, ..
+            },
+        ) => {
             let r = single_equation(d, of, coordinate)?;
             equilibria_check(scene, r, coordinate, zeros, check)?;
         }

@@ -866,3 +866,82 @@ fn double_pendulum_states_of_rest() {
         "{verdict:?}"
     );
 }
+
+/// A radial motion whose static equation is r³ = r₀³ (k(r₀³/r³ − 1) = 0): only the real root is
+/// a state of rest, the two complex ones are set aside by name, and stability goes on; with p
+/// for r₀³ the cubic is solved in closed form, r = ∛p. Each agrees with its numeric check, and
+/// Ω² = 3k/(m r) at the state of rest with the textbook's.
+#[test]
+fn only_real_states_of_rest_and_a_cubic_in_closed_form() {
+    use crate::cas::Expr;
+    use crate::derive::steps::StepResult;
+    let scene = |potential: &str, symbol: &str, value: &str| {
+        format!(
+            r#"
+id = "orbit"
+title = "A radial motion"
+notes = {{ lecture = "x" }}
+symbols = {{ m = "mass", k = "force", {symbol} = "a constant" }}
+[coordinates]
+r = "radius"
+[[step]]
+name = "Lag"
+be = "m*r'^2/2 - k*({potential} + r)"
+why = "the radial Lagrangian"
+[[step]]
+name = "eom"
+lagrange = "Lag"
+why = "motion"
+[[step]]
+name = "rest"
+equilibria = "eom"
+why = "states of rest"
+[[step]]
+name = "st"
+stability = "rest"
+why = "stability"
+[numeric]
+values = {{ m = 1.0, k = 2.0, {symbol} = {value} }}
+"#
+        )
+    };
+    for (text, radius) in [
+        (scene("r0^3/(2*r^2)", "r0", "1.5"), 1.5f64),
+        (scene("p/(2*r^2)", "p", "3.375"), 1.5f64),
+    ] {
+        let r = run(&text);
+        assert!(
+            r.verification.steps.iter().all(|c| c.passed()),
+            "{:?}",
+            r.verification.steps
+        );
+        let StepResult::Equilibria {
+            zeros, excluded, ..
+        } = &r.derivation.named["rest"]
+        else {
+            panic!("{:?}", r.derivation.named["rest"])
+        };
+        let at = |e: &Expr| e.eval(&|s| r.scene.values.get(s).copied()).unwrap();
+        assert_eq!(zeros.len(), 1, "{zeros:?}");
+        assert!((at(&zeros[0].value) - radius).abs() < 1e-12);
+        let StepResult::Stability { cases, .. } = &r.derivation.named["st"] else {
+            panic!()
+        };
+        let w2 = at(cases[0].omega_squared.as_ref().unwrap());
+        assert!((w2 - 3.0 * 2.0 / radius).abs() < 1e-12, "{w2}");
+        if text.contains("r0") {
+            // The quadratic factor r² + r r₀ + r₀²: both roots named, neither real.
+            assert_eq!(excluded.len(), 2, "{excluded:?}");
+            assert!(excluded.iter().all(|e| at(e).is_nan()), "{excluded:?}");
+            let page = &r
+                .derivation
+                .steps
+                .iter()
+                .find(|s| s.title.contains("equilibrium 1"));
+            let why = format!("{:?}", page.unwrap().why);
+            assert!(why.contains("real for no values of the symbols"), "{why}");
+        } else {
+            assert_eq!(zeros[0].value.to_text(), "p^(1/3)");
+        }
+    }
+}

@@ -58,6 +58,11 @@ fn expected(id: &str, x: &BTreeMap<String, f64>) -> Vec<Vec<f64>> {
         "problem-centre-of-mass" => vec![vec![
             100.0 * (g("m") * g("H") / 2.0 + g("k") * (g("H") + g("h") / 4.0)) / (g("m") + g("k")),
         ]],
+        // The double pendulum's modes, √((2 ∓ √2) g/l), slowest first.
+        "problem-normal-modes" => [-1.0, 1.0]
+            .iter()
+            .map(|s| vec![((2.0 + s * 2f64.sqrt()) * g("g") / g("l")).sqrt()])
+            .collect(),
         other => panic!("no closed form for {other}"),
     }
 }
@@ -65,7 +70,7 @@ fn expected(id: &str, x: &BTreeMap<String, f64>) -> Vec<Vec<f64>> {
 #[test]
 fn every_key_answer_matches_a_closed_form_and_none_reaches_a_student() {
     let scenes = checked();
-    assert_eq!(scenes.len(), 5);
+    assert_eq!(scenes.len(), 6);
     let dir = scratch("answers-site");
     let site = dir.join("site");
     let built = mechbook(&["build", COURSE, "--out", site.to_str().unwrap()]);
