@@ -158,13 +158,62 @@ pub fn normal_modes(
         }
     }
     let characteristic = cas::simplify(&determinant(&entries, n))?;
-    let roots = cas::roots(&characteristic, LAMBDA)?;
-    if let Some((factor, _)) = roots.unsolved.first() {
-        return Err(DeriveError::NotDerivable(format!(
-            "det(K - lambda M) has the factor {} of degree three or more: no closed form for \
-             its frequencies",
-            factor.to_text()
-        )));
+    let mut roots = cas::roots(&characteristic, LAMBDA)?;
+    // A cubic or quartic factor (the 3- and 4-link pendulums): its roots in the closed form
+    // `solve` gives, real at the scene's values as a conservative system's λ all are.
+    for (factor, multiplicity) in std::mem::take(&mut roots.unsolved) {
+        let said = || {
+            factor
+                .substitute(&|s| (s == LAMBDA).then(|| Expr::sym("lambda")))
+                .to_text()
+        };
+        let closed = match cas::closed_form_roots(&factor, LAMBDA, values) {
+            // Ferrari's form of a quartic in symbols can pass the engine's budget (the 4-link
+            // pendulum): say so, with the frequencies at the scene's values.
+            Err(cas::CasError {
+                reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { .. }),
+            }) => {
+                let terms = cas::coefficients(&factor, LAMBDA)?;
+                let at = numeric_roots(&terms, values)
+                    .map(|r| format!("; at the scene's values lambda is {r}"))
+                    .unwrap_or_default();
+                return Err(DeriveError::NotDerivable(format!(
+                    "det(K - lambda M) has the factor {} in lambda, whose closed form is beyond \
+                     the engine's budget{at}",
+                    said()
+                )));
+            }
+            other => other?,
+        };
+        match closed {
+            Ok(found) => {
+                let found = cas::simplify_all(
+                    found
+                        .iter()
+                        .map(|e| cas::pull_squares(e, &|_| true))
+                        .collect(),
+                )?;
+                roots
+                    .roots
+                    .extend(found.into_iter().map(|root| (root, multiplicity)));
+            }
+            Err(cas::NoClosedForm::Degree(degree)) => {
+                return Err(DeriveError::NotDerivable(format!(
+                    "det(K - lambda M) has the factor {} of degree {degree} in lambda: the \
+                     frequencies have closed forms up to degree four",
+                    said()
+                )));
+            }
+            Err(cas::NoClosedForm::NoValue(part)) => {
+                return Err(DeriveError::NotDerivable(format!(
+                    "det(K - lambda M) has the factor {} in lambda, whose closed form depends on \
+                     the sign of {}, which has no value at the scene's values: give each of its \
+                     names a value in [numeric]",
+                    said(),
+                    part.to_text()
+                )));
+            }
+        }
     }
     let mut modes = Vec::new();
     for (root, multiplicity) in roots.roots {
@@ -405,4 +454,57 @@ pub fn stability(
         }
     }
     Ok(out)
+}
+
+/// The roots of a polynomial at the scene's values, as text: the eigenvalues of its companion
+/// matrix, or Aberth's roots. `None` when a coefficient has no value there.
+pub(super) fn numeric_roots(
+    terms: &[(u32, Expr)],
+    values: &BTreeMap<String, f64>,
+) -> Option<String> {
+    let degree = terms.iter().map(|(k, _)| *k as usize).max()?;
+    let mut c = vec![0.0; degree + 1];
+    for (k, coeff) in terms {
+        c[*k as usize] = crate::model::value::eval_at(coeff, values).ok()?;
+    }
+    let lead = *c.last()?;
+    if lead == 0.0 || !c.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    // x^n = −Σ c_k/c_n x^k: the companion matrix's eigenvalues are the roots.
+    let companion = nalgebra::DMatrix::from_fn(degree, degree, |i, j| {
+        if j == degree - 1 {
+            -c[i] / lead
+        } else if i == j + 1 {
+            1.0
+        } else {
+            0.0
+        }
+    });
+    // Where the Schur form does not settle (equal moduli: r⁶ − 2 s⁶), Aberth's iteration does.
+    let roots = crate::base::float::complex_eigenvalues(companion)
+        .or_else(|| crate::base::float::polynomial_roots(&c))?;
+    let mut roots: Vec<(f64, f64)> = roots.iter().map(|z| (z.re, z.im)).collect();
+    roots.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let scale = roots
+        .iter()
+        .map(|(re, im)| re.hypot(*im))
+        .fold(1.0, f64::max);
+    Some(
+        roots
+            .iter()
+            .map(|&(re, im)| {
+                if im.abs() <= 1e-12 * scale {
+                    format!("{re:.6}")
+                } else {
+                    format!(
+                        "{re:.6} {} {:.6}i",
+                        if im < 0.0 { "-" } else { "+" },
+                        im.abs()
+                    )
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(", "),
+    )
 }

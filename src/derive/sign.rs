@@ -45,6 +45,20 @@ fn term_sign(t: &Expr) -> Option<i8> {
     }
 }
 
+/// The sign of a product of non-zero numbers, symbols, and powers of products of them, if `e`
+/// is one: every symbol is positive, so each such power is.
+fn positive_product(e: &Expr) -> Option<i8> {
+    match e {
+        Expr::Num(r) if !r.is_zero() => Some(if r.is_positive() { 1 } else { -1 }),
+        Expr::Sym(_) => Some(1),
+        Expr::Pow(b, _) if positive_product(b) == Some(1) => Some(1),
+        Expr::Mul(f) => f
+            .iter()
+            .try_fold(1i8, |s, x| positive_product(x).map(|y| s * y)),
+        _ => None,
+    }
+}
+
 /// The common sign of every term, if there is one.
 fn uniform_sign(poly: &Expr) -> Option<i8> {
     let terms: Vec<Expr> = match poly {
@@ -59,11 +73,30 @@ fn uniform_sign(poly: &Expr) -> Option<i8> {
 
 /// The sign of each expression over all positive values of its symbols.
 pub fn signs_over_positive(exprs: &[Expr]) -> Result<Vec<Sign>, DeriveError> {
-    let fractions = cas::fraction_all(exprs.to_vec())?;
+    // A product of positive factors and powers of them is positive as written: 3k/(m∛p), whose
+    // fractional power the engine's rational functions do not take.
+    let plain: Vec<Option<i8>> = exprs.iter().map(positive_product).collect();
+    let rest: Vec<Expr> = exprs
+        .iter()
+        .zip(&plain)
+        .filter(|(_, s)| s.is_none())
+        .map(|(e, _)| e.clone())
+        .collect();
+    let mut fractions = cas::fraction_all(rest)?.into_iter();
     exprs
         .iter()
-        .zip(fractions)
-        .map(|(e, (num, den))| {
+        .zip(plain)
+        .map(|(e, plain)| {
+            if let Some(s) = plain {
+                return Ok(if s > 0 {
+                    Sign::Positive
+                } else {
+                    Sign::Negative
+                });
+            }
+            let (num, den) = fractions.next().ok_or_else(|| {
+                DeriveError::Inconsistent("a fraction for each expression".into())
+            })?;
             if num.is_zero() {
                 return Ok(Sign::NotFixed);
             }
@@ -147,5 +180,9 @@ mod tests {
         // Semi-definite: never negative, zero at p = q. Neither proof applies, so it is refused.
         assert!(sign("(p - q)^2").is_err());
         assert!(sign("sqrt(p) - q").is_err());
+        // Powers of positive products, fractional ones too, without the engine.
+        assert_eq!(sign("3*p^(-1/3)*k/m").unwrap(), Sign::Positive);
+        assert_eq!(sign("-2*(a*b)^(1/3)/c").unwrap(), Sign::Negative);
+        assert_eq!(sign("(a - b)^(1/3)").ok(), None);
     }
 }

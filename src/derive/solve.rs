@@ -71,7 +71,7 @@ fn no_closed_form(
     why: cas::NoClosedForm,
 ) -> Result<DeriveError, DeriveError> {
     let terms = cas::coefficients(factor, unknown)?;
-    let numeric = numeric_roots(&terms, values)
+    let numeric = super::lagrangian::numeric_roots(&terms, values)
         .map(|r| format!("; at the scene's values its roots are {r}"))
         .unwrap_or_default();
     Ok(DeriveError::NotDerivable(match why {
@@ -88,56 +88,6 @@ fn no_closed_form(
             part.to_text()
         ),
     }))
-}
-
-/// The roots of a polynomial at the scene's values, as text: the eigenvalues of its companion
-/// matrix, or Aberth's roots. `None` when a coefficient has no value there.
-fn numeric_roots(terms: &[(u32, Expr)], values: &BTreeMap<String, f64>) -> Option<String> {
-    let degree = terms.iter().map(|(k, _)| *k as usize).max()?;
-    let mut c = vec![0.0; degree + 1];
-    for (k, coeff) in terms {
-        c[*k as usize] = crate::model::value::eval_at(coeff, values).ok()?;
-    }
-    let lead = *c.last()?;
-    if lead == 0.0 || !c.iter().all(|v| v.is_finite()) {
-        return None;
-    }
-    // x^n = −Σ c_k/c_n x^k: the companion matrix's eigenvalues are the roots.
-    let companion = nalgebra::DMatrix::from_fn(degree, degree, |i, j| {
-        if j == degree - 1 {
-            -c[i] / lead
-        } else if i == j + 1 {
-            1.0
-        } else {
-            0.0
-        }
-    });
-    // Where the Schur form does not settle (equal moduli: r⁶ − 2 s⁶), Aberth's iteration does.
-    let roots = crate::base::float::complex_eigenvalues(companion)
-        .or_else(|| crate::base::float::polynomial_roots(&c))?;
-    let mut roots: Vec<(f64, f64)> = roots.iter().map(|z| (z.re, z.im)).collect();
-    roots.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    let scale = roots
-        .iter()
-        .map(|(re, im)| re.hypot(*im))
-        .fold(1.0, f64::max);
-    Some(
-        roots
-            .iter()
-            .map(|&(re, im)| {
-                if im.abs() <= 1e-12 * scale {
-                    format!("{re:.6}")
-                } else {
-                    format!(
-                        "{re:.6} {} {:.6}i",
-                        if im < 0.0 { "-" } else { "+" },
-                        im.abs()
-                    )
-                }
-            })
-            .collect::<Vec<_>>()
-            .join(", "),
-    )
 }
 
 /// `e` with each function call (sin θ, cos θ) that does not hold the unknown replaced by a
