@@ -1047,3 +1047,61 @@ values = {{ m = 1.0, l = 1.0, g = 9.81 }}
     );
     assert!(!message.contains("lambda__"), "{message}");
 }
+
+/// A claim may name a coordinate and its rates: p = M L² φ'/3 agrees, a sign slip in the
+/// generalised force disagrees, each at random values of φ and φ' as well as by the engine.
+#[test]
+fn a_claim_names_a_coordinate_and_its_rate() {
+    let text = r#"
+id = "cl"
+title = "claims on a coordinate"
+notes = { lecture = "x" }
+symbols = { M = "mass", L = "length", g = "gravity" }
+
+[coordinates]
+phi = "angle"
+
+[[step]]
+name = "Lag"
+be = "M*L^2*phi'^2/6 + M*g*L/2*cos(phi)"
+why = "$T - V$"
+
+[[step]]
+name = "p"
+differentiate = "Lag"
+by = "phi'"
+why = "momentum"
+
+[[step]]
+name = "F"
+differentiate = "Lag"
+by = "phi"
+why = "generalised force"
+
+[[claim]]
+eq = "1"
+statement = "the momentum"
+quantity = "p"
+value = "M*L^2*phi'/3"
+expect = "agrees"
+
+[[claim]]
+eq = "2"
+statement = "the generalised force, with a sign slip"
+quantity = "F"
+value = "M*g*L/2*sin(phi)"
+expect = "disagrees"
+
+[numeric]
+values = { M = 2.0, L = 1.5, g = 9.81 }
+"#;
+    let r = run(text);
+    let verdicts: Vec<Verdict> = r.verification.claims.iter().map(|c| c.verdict).collect();
+    assert_eq!(
+        verdicts,
+        [Verdict::Agrees, Verdict::Disagrees],
+        "{:?}",
+        r.verification.claims
+    );
+    assert!(r.verification.claims.iter().all(|c| c.problem.is_none()));
+}

@@ -130,7 +130,15 @@ impl Validator<'_> {
         let steps = self.steps(&raw, &claim_names, &coordinates)?;
         // A claim may name a step's result.
         claim_names.extend(steps.iter().flat_map(|s| s.names_given(coordinates.len())));
-        let claims = self.claims(&raw, &claim_names)?;
+        // A claim may also name a coordinate and its rates (p = M L² φ'/3): it is checked at
+        // random values of them, as a step's `gives` is. An answer, one number, may not.
+        let mut with_coordinates = claim_names.clone();
+        with_coordinates.extend(
+            coordinates
+                .keys()
+                .flat_map(|q| [q.clone(), format!("{q}'"), format!("{q}''")]),
+        );
+        let claims = self.claims(&raw, &with_coordinates)?;
         let wants = self.wants(&raw)?;
         // Values before plots: a free-body plot's inertia and omega may be expressions.
         let values = self.values(&raw, &symbols, &bodies, omega.iter().chain(axis.iter()))?;
