@@ -68,7 +68,12 @@ impl Scene {
             let offset = e.span().map(|s| s.start).unwrap_or(0);
             toml_error(&loc, offset, e.message())
         })?;
-        Validator { loc: &loc }.scene(raw)
+        let declared = raw.symbols.keys().map(|k| k.get_ref().clone()).collect();
+        Validator {
+            loc: &loc,
+            declared,
+        }
+        .scene(raw)
     }
 }
 

@@ -1105,3 +1105,41 @@ values = { M = 2.0, L = 1.5, g = 9.81 }
     );
     assert!(r.verification.claims.iter().all(|c| c.problem.is_none()));
 }
+
+/// An `integrate` step may run over a symbol declared for it (x, the distance along the rod):
+/// ∫₀ᴸ (M/L) x² dx = M L²/3 agrees, by the engine and by quadrature, and M L²/2 does not; a
+/// definition's name is still refused as a variable.
+#[test]
+fn an_integral_runs_over_a_declared_symbol() {
+    let scene = |gives: &str| {
+        format!(
+            r#"
+id = "int"
+title = "An integral over a declared symbol"
+notes = {{ lecture = "x" }}
+symbols = {{ M = "mass", L = "length", x = "distance along the rod" }}
+[[step]]
+name = "I"
+integrate = "M/L*x^2"
+over = [["x", "0", "L"]]
+why = "the rod's moment about its end"
+gives = "{gives}"
+[numeric]
+values = {{ M = 2.0, L = 1.5 }}
+"#
+        )
+    };
+    let right = run(&scene("M*L^2/3"));
+    assert!(right.verification.steps.iter().all(|c| c.passed()));
+    assert_eq!(verdicts(&right)[0].1, Verdict::Agrees);
+    let wrong = run(&scene("M*L^2/2"));
+    assert_eq!(verdicts(&wrong)[0].1, Verdict::Disagrees);
+    let defined = scene("M*L^2/3")
+        .replace(", x = \"distance along the rod\" }", " }")
+        .replace("[[step]]", "[definitions]\nx = \"L/2\"\n[[step]]");
+    let e = Scene::parse(&defined, Path::new("p.toml")).unwrap_err();
+    assert!(
+        e.to_string().contains("cannot be an integration variable"),
+        "{e}"
+    );
+}

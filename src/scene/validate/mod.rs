@@ -75,6 +75,8 @@ pub const MAX_NAME: usize = 64;
 
 pub(super) struct Validator<'a> {
     pub(super) loc: &'a Locator<'a>,
+    /// The names the author declared in [symbols]: an `integrate` step may run over one.
+    pub(super) declared: BTreeSet<String>,
 }
 
 /// The byte offset of a string's first character inside its quotes.

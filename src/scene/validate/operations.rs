@@ -423,13 +423,17 @@ impl Validator<'_> {
                 return Err(self.err(range.span().start, &key, "a range is [variable, from, to]"));
             };
             let v = var.get_ref();
-            if !super::is_identifier(v) || scope.contains(v) || vars.contains(v) {
+            // A symbol declared for it (x, "distance along the rod", with its unit) is bound by
+            // the integral: the result does not depend on it.
+            let taken = scope.contains(v) && !self.declared.contains(v);
+            if !super::is_identifier(v) || taken || vars.contains(v) {
                 return Err(self.err(
                     content_start(var),
                     &key,
                     format!(
-                        "`{v}` cannot be an integration variable: it needs a name of its own, not \
-                         a symbol, coordinate or step of this scene, nor another range's"
+                        "`{v}` cannot be an integration variable: it needs a name of its own or \
+                         one declared in [symbols], not a definition, coordinate or step of this \
+                         scene, nor another range's"
                     ),
                 ));
             }
