@@ -284,7 +284,7 @@ fn check_claim(
         }
     };
     if let Some(figures) = claim.figures {
-        match rounded_agreement(&derived, &notes, figures) {
+        match rounded_agreement(&derived, &notes, figures, &scene.values) {
             Ok((agrees, detail)) => {
                 r.verdict = if agrees {
                     Verdict::Agrees

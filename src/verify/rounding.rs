@@ -3,6 +3,7 @@
 use crate::base::format::{significant, text_number};
 use crate::cas::EvalError;
 use crate::model::value::Value;
+use std::collections::BTreeMap;
 
 /// `x` rounded to `figures` significant figures.
 pub fn round_to_figures(x: f64, figures: u32) -> f64 {
@@ -29,16 +30,20 @@ pub(super) enum NotANumber {
     },
 }
 
-/// Do two numbers agree at the precision the notes give? Both sides must be numbers.
+/// Do two numbers agree at the precision the notes give? Both sides must be numbers once the
+/// scene's `[numeric]` values are put in (a period of 2.0 s "about 2 s" at L = 1.5 m).
 pub(super) fn rounded_agreement(
     derived: &Value,
     notes: &Value,
     figures: u32,
+    values: &BTreeMap<String, f64>,
 ) -> Result<(bool, String), NotANumber> {
-    let number = |v: &Value, side: &'static str| -> Result<f64, NotANumber> {
+    let mut used = false;
+    let mut number = |v: &Value, side: &'static str| -> Result<f64, NotANumber> {
         match v {
             Value::Scalar(e) => e
-                .eval(&|_| None)
+                .eval(&|s| values.get(s).copied())
+                .inspect(|_| used |= e.symbols().iter().any(|s| values.contains_key(s)))
                 .map_err(|error| NotANumber::Eval { side, error }),
             other => Err(NotANumber::Kind {
                 side,
@@ -47,6 +52,7 @@ pub(super) fn rounded_agreement(
         }
     };
     let (d, n) = (number(derived, "derived")?, number(notes, "notes'")?);
+    let at = if used { " at the scene's values" } else { "" };
     let (rd, rn) = (round_to_figures(d, figures), round_to_figures(n, figures));
     // Both rounded the same way (a scaling by 10^k and back): equal decimals differ by a few
     // ulps at most, unequal ones by at least a unit in the last figure kept, 10^-figures of
@@ -58,7 +64,7 @@ pub(super) fn rounded_agreement(
     Ok((
         agrees,
         format!(
-            "{} rounds to {} at {figures} significant {unit}; the notes give {}",
+            "{}{at} rounds to {} at {figures} significant {unit}; the notes give {}",
             text_number(&significant(d, 7)),
             text_number(&format!("{rd}")),
             text_number(&format!("{n}"))

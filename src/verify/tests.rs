@@ -1,5 +1,6 @@
 use crate::pipeline::run_scene;
 use crate::scene::{Scene, Verdict};
+use std::collections::BTreeMap;
 use std::path::Path;
 
 const SCENE: &str = r#"
@@ -122,16 +123,20 @@ fn rounded_claims_tell_apart_every_figure_they_state() {
     let value = |t: &str| Value::Scalar(parse(t).unwrap().expr);
     // 14 figures that differ in the last: 1e-13 apart, which a fixed 1e-12 called equal.
     let derived = value("12345678901234/10000000000000");
-    let (agrees, _) = rounded_agreement(&derived, &value("1.2345678901235"), 14).unwrap();
+    let (agrees, _) =
+        rounded_agreement(&derived, &value("1.2345678901235"), 14, &BTreeMap::new()).unwrap();
     assert!(!agrees);
-    let (agrees, _) = rounded_agreement(&derived, &value("1.2345678901234"), 14).unwrap();
+    let (agrees, _) =
+        rounded_agreement(&derived, &value("1.2345678901234"), 14, &BTreeMap::new()).unwrap();
     assert!(agrees);
     // At 3 figures the same two agree, and so does a value that rounds the same way.
-    let (agrees, why) = rounded_agreement(&derived, &value("1.23"), 3).unwrap();
+    let (agrees, why) = rounded_agreement(&derived, &value("1.23"), 3, &BTreeMap::new()).unwrap();
     assert!(agrees, "{why}");
-    let (agrees, _) = rounded_agreement(&value("2/3"), &value("0.6667"), 4).unwrap();
+    let (agrees, _) =
+        rounded_agreement(&value("2/3"), &value("0.6667"), 4, &BTreeMap::new()).unwrap();
     assert!(agrees);
-    let (agrees, _) = rounded_agreement(&value("2/3"), &value("0.6666"), 4).unwrap();
+    let (agrees, _) =
+        rounded_agreement(&value("2/3"), &value("0.6666"), 4, &BTreeMap::new()).unwrap();
     assert!(!agrees);
 }
 
@@ -155,4 +160,64 @@ fn a_pin_names_the_sheets_that_differ() {
         ..same
     };
     assert!(!unrecorded.unchanged());
+}
+
+/// A claim given to figures is evaluated at the scene's [numeric] values: the rod's period of
+/// 2.006 s is "about 2 s" at one figure, not "about 3 s", and the page says at which values.
+#[test]
+fn a_rough_claim_is_read_at_the_scenes_values() {
+    let text = r#"
+id = "fig"
+title = "a rough claim"
+notes = { lecture = "x" }
+symbols = { M = "mass", L = "length", g = "gravity" }
+
+[coordinates]
+phi = "angle"
+
+[[step]]
+name = "Lag"
+be = "M*L^2*phi'^2/6 + M*g*L/2*cos(phi)"
+why = "$T - V$"
+
+[[step]]
+name = "eom"
+lagrange = "Lag"
+why = "motion"
+
+[[step]]
+name = "small"
+linearise = "eom"
+about = { phi = "0" }
+why = "small"
+
+[[step]]
+name = "Omega"
+frequency = "small"
+why = "frequency"
+
+[[claim]]
+eq = "1"
+statement = "the period is about 2 s"
+quantity = "2*pi/Omega"
+value = "2"
+figures = 1
+expect = "agrees"
+
+[numeric]
+values = { M = 2.0, L = 1.5, g = 9.81 }
+"#;
+    let r = run_scene(Scene::parse(text, Path::new("p.toml")).unwrap(), None).unwrap();
+    let claim = &r.verification.claims[0];
+    assert_eq!(claim.verdict, Verdict::Agrees, "{claim:?}");
+    let precision = claim.precision.as_deref().unwrap_or_default();
+    assert!(
+        precision.contains("2.006") && precision.contains("at the scene's values"),
+        "{precision}"
+    );
+    let three = text
+        .replace("value = \"2\"", "value = \"3\"")
+        .replace("\"agrees\"", "\"disagrees\"");
+    let r = run_scene(Scene::parse(&three, Path::new("p.toml")).unwrap(), None).unwrap();
+    assert_eq!(r.verification.claims[0].verdict, Verdict::Disagrees);
 }
