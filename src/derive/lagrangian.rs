@@ -167,7 +167,7 @@ pub fn normal_modes(
                 .substitute(&|s| (s == LAMBDA).then(|| Expr::sym("lambda")))
                 .to_text()
         };
-        let closed = match cas::closed_form_roots(&factor, LAMBDA, values) {
+        let closed = match closed_roots(&factor, LAMBDA, values) {
             // Ferrari's form of a quartic in symbols can pass the engine's budget (the 4-link
             // pendulum): say so, with the frequencies at the scene's values.
             Err(cas::CasError {
@@ -186,17 +186,9 @@ pub fn normal_modes(
             other => other?,
         };
         match closed {
-            Ok(found) => {
-                let found = cas::simplify_all(
-                    found
-                        .iter()
-                        .map(|e| cas::pull_squares(e, &|_| true))
-                        .collect(),
-                )?;
-                roots
-                    .roots
-                    .extend(found.into_iter().map(|root| (root, multiplicity)));
-            }
+            Ok(found) => roots
+                .roots
+                .extend(found.into_iter().map(|root| (root, multiplicity))),
             Err(cas::NoClosedForm::Degree(degree)) => {
                 return Err(DeriveError::NotDerivable(format!(
                     "det(K - lambda M) has the factor {} of degree {degree} in lambda: the \
@@ -316,21 +308,17 @@ pub fn equilibria(
     // A cubic or quartic factor of a polynomial: its roots real at the scene's values, in the
     // closed form `solve` gives (r³ = p: r = ∛p).
     for f in std::mem::take(&mut found.unsolved) {
-        let closed = match f.symbols().iter().any(|s| s == q) && !has_call_of(&f, q) {
-            true => cas::closed_form_roots(&f, q, values)?.ok(),
-            false => None,
+        let polynomial = f.symbols().iter().any(|s| s == q) && !has_call_of(&f, q);
+        let closed = if polynomial {
+            closed_roots(&f, q, values)?.ok()
+        } else {
+            None
         };
         match closed {
-            // Every symbol positive first (√(p²/4) = p/2), then simplified: ∛p, not ∛(p/2 + p/2).
             Some(roots) => found.zeros.extend(
-                cas::simplify_all(
-                    roots
-                        .iter()
-                        .map(|e| cas::pull_squares(e, &|_| true))
-                        .collect(),
-                )?
-                .into_iter()
-                .map(|value| cas::Zero { value, trig: None }),
+                roots
+                    .into_iter()
+                    .map(|value| cas::Zero { value, trig: None }),
             ),
             None => {
                 return Err(DeriveError::NotDerivable(format!(
@@ -387,6 +375,24 @@ pub struct Equilibria {
     pub excluded: Vec<Expr>,
 }
 
+/// The real roots at `values` of a cubic or quartic factor in `var`, in the closed form `solve`
+/// gives: every symbol positive first (√(p²/4) = p/2), then simplified (∛p, not ∛(p/2 + p/2)).
+fn closed_roots(
+    factor: &Expr,
+    var: &str,
+    values: &BTreeMap<String, f64>,
+) -> Result<Result<Vec<Expr>, cas::NoClosedForm>, cas::CasError> {
+    Ok(match cas::closed_form_roots(factor, var, values)? {
+        Ok(found) => Ok(cas::simplify_all(
+            found
+                .iter()
+                .map(|e| cas::pull_squares(e, &|_| true))
+                .collect(),
+        )?),
+        Err(why) => Err(why),
+    })
+}
+
 /// Whether `e` has an even root of a quantity negative for every positive value of its
 /// symbols (√(−3r₀²)): it is real for none.
 fn never_real(e: &Expr) -> bool {
@@ -394,11 +400,7 @@ fn never_real(e: &Expr) -> bool {
     e.walk(&mut |x| {
         if let Expr::Pow(b, k) = x
             && let Expr::Num(k) = k.as_ref()
-            && k.abs_parts()
-                .1
-                .to_string()
-                .parse::<u64>()
-                .is_ok_and(|d| d % 2 == 0)
+            && k.to_i64_pair().is_some_and(|(_, d)| d % 2 == 0)
         {
             radicands.push((**b).clone());
         }

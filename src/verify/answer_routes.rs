@@ -13,7 +13,7 @@ use crate::derive::Derivation;
 use crate::derive::steps::{equation_with, expand_names, expand_ranges};
 use crate::derive::variants::{placeholder_of, resolve_expr};
 use crate::numeric::answers::{RouteError, Routes};
-use crate::scene::{Operation, Scene, step_named};
+use crate::scene::{Operation, Scene, mode_name, step_named};
 use std::collections::BTreeMap;
 
 /// How closely Newton's method must put a root back: it converges quadratically to rounding,
@@ -156,14 +156,10 @@ impl<'a> AnswerRoutes<'a> {
             // A mode of n ≥ 2 coordinates (`Omega_2`): the k-th slowest √λ of M⁻¹K at the
             // variant's numbers, as the step's own check finds them.
             Operation::Frequency { of } if name != step.name => {
-                let k = name
-                    .strip_prefix(&format!("{}_", step.name))
-                    .and_then(|k| k.parse::<usize>().ok())
-                    .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
                 let modes = numeric_modes(equations_of(self.d, of)?, self.numbers)?;
-                let value = *k
-                    .checked_sub(1)
-                    .and_then(|i| modes.get(i))
+                let value = *(0..modes.len())
+                    .position(|k| mode_name(&step.name, k) == name)
+                    .and_then(|k| modes.get(k))
                     .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
                 Ok(Routed {
                     value,
