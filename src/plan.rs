@@ -90,6 +90,7 @@ impl Plan {
                     std::iter::once(of).chain(set.values()).collect()
                 }
                 crate::scene::Operation::Lagrange { .. }
+                | crate::scene::Operation::Routh { .. }
                 | crate::scene::Operation::Frequency { .. }
                 | crate::scene::Operation::Solve { .. }
                 | crate::scene::Operation::Momentum { .. }

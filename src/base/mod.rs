@@ -5,6 +5,7 @@ pub mod format;
 pub mod hash;
 pub mod markup;
 pub mod natural;
+pub mod pencil;
 pub mod rng;
 pub mod suggest;
 pub mod typst;

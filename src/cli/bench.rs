@@ -45,6 +45,15 @@ pub struct BenchArgs {
     /// tests/course/dynamics): each scene derived, then each step checked on its numeric route.
     #[arg(long)]
     pub steps_only: Option<PathBuf>,
+    /// Measure only the n-link pendulum, n = 1 to 6 (Lagrangian, equations, linearisation,
+    /// normal modes): mechbook's whole process against SymPy's LagrangesMethod and linearize,
+    /// each tool's modes checked against the eigenvalues of M⁻¹K. SymPy runs under --python;
+    /// `bash docs/bench/links.sh` makes one with SymPy and runs this.
+    #[arg(long)]
+    pub links_only: bool,
+    /// The Python, with SymPy, that --links-only runs.
+    #[arg(long, default_value = "python3", requires = "links_only")]
+    pub python: PathBuf,
 }
 
 /// The box problem of the variant benchmark; `{count}` is replaced by the number of variants.
@@ -193,7 +202,22 @@ pub fn run(args: BenchArgs) -> Result<ExitCode> {
         repeats,
         variants_only,
         steps_only,
+        links_only,
+        python,
     } = args;
+    if links_only {
+        let tty = std::io::stderr().is_terminal();
+        let md = super::bench_links::links_bench(&python, repeats as usize, |line| {
+            if tty {
+                eprint!("\r\x1b[2Kbench: {line}");
+            }
+        })?;
+        if tty {
+            eprint!("\r\x1b[2K");
+        }
+        std::io::stdout().write_all(md.as_bytes())?;
+        return Ok(ExitCode::SUCCESS);
+    }
     if let Some(n) = variants_only {
         std::io::stdout().write_all(variants_bench(n as usize)?.as_bytes())?;
         return Ok(ExitCode::SUCCESS);

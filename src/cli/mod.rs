@@ -2,6 +2,7 @@
 //! doc comments are the help text.
 
 mod bench;
+mod bench_links;
 mod build;
 mod check;
 mod completions;

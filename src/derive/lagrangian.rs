@@ -124,107 +124,6 @@ pub fn frequency(eqs: &[(String, Expr)]) -> Result<Expr, DeriveError> {
     Ok(cas::simplify(&omega)?)
 }
 
-/// The most coordinates whose normal modes are found exactly: det(K − λM) has degree n, and
-/// the engine solves its factors up to degree two.
-pub const MAX_MODES: usize = 4;
-
-/// The normal-mode angular frequencies of n ≥ 2 linear equations M q'' + K (q − q₀) = 0: each
-/// √λ for the roots λ of det(K − λM) = 0, ordered by their value at `values`.
-pub fn normal_modes(
-    eqs: &[(String, Expr)],
-    values: &BTreeMap<String, f64>,
-) -> Result<Vec<Expr>, DeriveError> {
-    let n = eqs.len();
-    if n > MAX_MODES {
-        return Err(DeriveError::NotDerivable(format!(
-            "{n} coordinates: normal modes are found exactly for at most {MAX_MODES}"
-        )));
-    }
-    let coords: Vec<&String> = eqs.iter().map(|(q, _)| q).collect();
-    let lambda = Expr::sym(LAMBDA);
-    let mut entries = Vec::new();
-    for (_, r) in eqs {
-        for q in &coords {
-            let damping = cas::simplify(&r.diff(&format!("{q}'"))?)?;
-            if !damping.is_zero() {
-                return Err(DeriveError::NotDerivable(format!(
-                    "the equations have a term in `{q}'` ({}): a damped or driven motion has \
-                     no normal modes",
-                    damping.to_text()
-                )));
-            }
-            let (m, k) = (r.diff(&format!("{q}''"))?, r.diff(q)?);
-            entries.push(Expr::minus(k, Expr::mul(vec![lambda.clone(), m])));
-        }
-    }
-    let characteristic = cas::simplify(&determinant(&entries, n))?;
-    let mut roots = cas::roots(&characteristic, LAMBDA)?;
-    // A cubic or quartic factor (the 3- and 4-link pendulums): its roots in the closed form
-    // `solve` gives, real at the scene's values as a conservative system's λ all are.
-    for (factor, multiplicity) in std::mem::take(&mut roots.unsolved) {
-        let said = || {
-            factor
-                .substitute(&|s| (s == LAMBDA).then(|| Expr::sym("lambda")))
-                .to_text()
-        };
-        let closed = match closed_roots(&factor, LAMBDA, values) {
-            // Ferrari's form of a quartic in symbols can pass the engine's budget (the 4-link
-            // pendulum): say so, with the frequencies at the scene's values.
-            Err(cas::CasError {
-                reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { .. }),
-            }) => {
-                let terms = cas::coefficients(&factor, LAMBDA)?;
-                let at = numeric_roots(&terms, values)
-                    .map(|r| format!("; at the scene's values lambda is {r}"))
-                    .unwrap_or_default();
-                return Err(DeriveError::NotDerivable(format!(
-                    "det(K - lambda M) has the factor {} in lambda, whose closed form is beyond \
-                     the engine's budget{at}",
-                    said()
-                )));
-            }
-            other => other?,
-        };
-        match closed {
-            Ok(found) => roots
-                .roots
-                .extend(found.into_iter().map(|root| (root, multiplicity))),
-            Err(cas::NoClosedForm::Degree(degree)) => {
-                return Err(DeriveError::NotDerivable(format!(
-                    "det(K - lambda M) has the factor {} of degree {degree} in lambda: the \
-                     frequencies have closed forms up to degree four",
-                    said()
-                )));
-            }
-            Err(cas::NoClosedForm::NoValue(part)) => {
-                return Err(DeriveError::NotDerivable(format!(
-                    "det(K - lambda M) has the factor {} in lambda, whose closed form depends on \
-                     the sign of {}, which has no value at the scene's values: give each of its \
-                     names a value in [numeric]",
-                    said(),
-                    part.to_text()
-                )));
-            }
-        }
-    }
-    let mut modes = Vec::new();
-    for (root, multiplicity) in roots.roots {
-        // Every symbol of a scene is positive: √(8 g² l²) = 2√2 g l.
-        let root = cas::pull_squares(&cas::simplify(&root)?, &|_| true);
-        let omega = cas::simplify(&Expr::pow(root, Expr::rat(1, 2)))?;
-        modes.extend(std::iter::repeat_n(omega, multiplicity as usize));
-    }
-    if modes.len() != n {
-        return Err(DeriveError::NotDerivable(format!(
-            "det(K - lambda M) has {} roots, not {n}: the equations are degenerate (a \
-             coordinate without inertia)",
-            modes.len()
-        )));
-    }
-    sort_by_value(&mut modes, values);
-    Ok(modes)
-}
-
 /// Values in the order of their numbers at `values` (one without a number, last).
 pub fn sort_by_value(exprs: &mut [Expr], values: &BTreeMap<String, f64>) {
     let at = |e: &Expr| crate::model::value::eval_at(e, values).unwrap_or(f64::NAN);
@@ -247,9 +146,6 @@ pub fn simplify_two(a: Expr, b: Expr) -> Result<(Expr, Expr), DeriveError> {
         )),
     }
 }
-
-/// The root variable of the characteristic polynomial: a name no scene can write.
-const LAMBDA: &str = "lambda__";
 
 /// The determinant of an n×n matrix (row-major), by expansion along the first row; n ≤ 4.
 pub(super) fn determinant(m: &[Expr], n: usize) -> Expr {
@@ -377,7 +273,7 @@ pub struct Equilibria {
 
 /// The real roots at `values` of a cubic or quartic factor in `var`, in the closed form `solve`
 /// gives: every symbol positive first (√(p²/4) = p/2), then simplified (∛p, not ∛(p/2 + p/2)).
-fn closed_roots(
+pub(super) fn closed_roots(
     factor: &Expr,
     var: &str,
     values: &BTreeMap<String, f64>,
@@ -412,7 +308,7 @@ fn never_real(e: &Expr) -> bool {
 }
 
 /// Whether `q` appears inside a function call of `e` (sin q): not a polynomial in it.
-fn has_call_of(e: &Expr, q: &str) -> bool {
+pub(super) fn has_call_of(e: &Expr, q: &str) -> bool {
     match e {
         Expr::Call(_, args) => args.iter().any(|a| a.symbols().iter().any(|s| s == q)),
         Expr::Add(v) | Expr::Mul(v) | Expr::List(v) => v.iter().any(|x| has_call_of(x, q)),

@@ -7,6 +7,7 @@
 pub mod algebra;
 pub mod bodies;
 mod body_moments;
+pub mod constraints;
 pub mod earth;
 pub mod euler;
 pub mod free_top;
@@ -14,10 +15,12 @@ mod inertia;
 mod integral;
 mod kinematics;
 pub mod lagrangian;
+pub mod modes;
 pub mod poinsot;
 pub mod present;
 mod principal;
 pub mod rest_states;
+pub mod routh;
 pub mod series;
 pub mod sign;
 mod solve;
@@ -194,6 +197,28 @@ pub struct Derivation {
 }
 
 impl Derivation {
+    /// The names of results that are numbers at the scene's values, with no exact form for a
+    /// later step or a claim (`Omega_5` of a 6-coordinate `frequency`), and the step of each.
+    pub fn numeric_names(&self) -> BTreeMap<String, String> {
+        let mut out = BTreeMap::new();
+        for (step, r) in &self.named {
+            if let steps::StepResult::NumericModes { frequencies, .. } = r {
+                for k in 0..frequencies.len() {
+                    out.insert(crate::scene::mode_name(step, k), step.clone());
+                }
+            }
+        }
+        out
+    }
+
+    /// The first name in `e` whose result is numeric only, and its step.
+    pub fn numeric_name_in(&self, e: &Expr) -> Option<(String, String)> {
+        let names = self.numeric_names();
+        e.symbols()
+            .into_iter()
+            .find_map(|s| names.get(&s).map(|step| (s.clone(), step.clone())))
+    }
+
     /// Records a derived quantity: one in the catalogue, of its kind, and written once (two
     /// stages that wrote one name used to keep the last silently).
     fn set(&mut self, name: &str, value: Value) -> Result<(), DeriveError> {

@@ -16,6 +16,11 @@ pub fn solve(
     values: &BTreeMap<String, f64>,
 ) -> Result<Vec<Expr>, DeriveError> {
     let (_, r) = equation_with(eqs, unknown)?;
+    // An angle inside sin and cos (a ladder's force, zero where 3 cos θ = 2 cos θ₀): the zeros
+    // of each factor in sin θ alone or cos θ alone, as `equilibria` finds them.
+    if super::lagrangian::has_call_of(r, unknown) {
+        return trigonometric(r, unknown, values);
+    }
     let slope = r.diff(unknown)?;
     if !cas::simplify(&slope.diff(unknown)?)?.is_zero() {
         // sin θ and cos θ are parameters here: named, so the engine solves a plain polynomial.
@@ -61,6 +66,37 @@ pub fn solve(
     }
     let rest = r.substitute(&|s| (s == unknown).then(|| Expr::int(0)));
     Ok(vec![cas::simplify(&Expr::negate(Expr::over(rest, slope)))?])
+}
+
+/// The zeros in `unknown` of R, an expression in sin and cos of it: each factor's in closed
+/// form (q = 0 and π, ±acos c, asin s and π − asin s), ordered by their values at `values`.
+fn trigonometric(
+    r: &Expr,
+    unknown: &str,
+    values: &BTreeMap<String, f64>,
+) -> Result<Vec<Expr>, DeriveError> {
+    let found = cas::zeros(&cas::simplify(r)?, unknown)?;
+    if let Some(f) = found.unsolved.first() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the equation has the factor {} = 0, whose solutions in `{unknown}` have no closed \
+             form here (a polynomial of degree at most 2 in sin({unknown}) or cos({unknown}))",
+            f.to_text()
+        )));
+    }
+    let mut roots: Vec<Expr> = Vec::new();
+    for z in found.zeros {
+        let root = cas::simplify(&cas::pull_squares(&z.value, &|_| true))?;
+        if !roots.contains(&root) {
+            roots.push(root);
+        }
+    }
+    if roots.is_empty() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the equation has no solution in `{unknown}`"
+        )));
+    }
+    super::lagrangian::sort_by_value(&mut roots, values);
+    Ok(roots)
 }
 
 /// Why a factor has no closed form here, with its roots at the scene's values when it has them.

@@ -331,14 +331,9 @@ fn nutation_turns_at_the_cubics_roots() {
     let eqs = r.derivation.named["eom"].equations().unwrap();
     let names: Vec<String> = ["theta", "phi", "psi"].map(String::from).to_vec();
     let coords: Vec<&String> = names.iter().collect();
-    let run = ode::dormand_prince(
-        &|_, y: &[f64]| motion::rates(eqs, &vals, &coords, y),
-        &y0,
-        3.0,
-        1e-11,
-        1_000_000,
-    )
-    .unwrap();
+    let system = motion::MotionSystem::new(eqs, &vals, &coords, &[]).unwrap();
+    let run =
+        ode::dormand_prince(&|_, y: &[f64]| system.rates(y), &y0, 3.0, 1e-11, 1_000_000).unwrap();
     let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut turns = 0;
     for pair in run.states.windows(2) {

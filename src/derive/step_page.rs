@@ -222,11 +222,44 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
                 )
             })
             .collect(),
+        // Ω_k ≈ its value: no closed form, so a number, with the reason beside it.
+        StepResult::NumericModes {
+            frequencies,
+            reason,
+        } => frequencies
+            .iter()
+            .enumerate()
+            .map(|(k, w)| {
+                let mut added = Prose::default().text(
+                    "at the scene's values, the eigenvalues of K and M by Sturm bisection: ",
+                );
+                added.0.extend(reason.0.iter().cloned());
+                Step::note(
+                    &format!("{title}: normal mode {}", k + 1),
+                    Formula::Row(vec![
+                        Formula::Expr(Expr::sym(&mode_name(&step.name, k))),
+                        Formula::Op(crate::notation::Op::Approx),
+                        Formula::Number(crate::base::format::significant(*w, 6)),
+                    ]),
+                    with_reason(step, &why, added),
+                )
+            })
+            .collect(),
         StepResult::Equations(eqs) => eqs
             .iter()
             .map(|(q, e)| {
+                let constraint = match &step.op {
+                    Operation::Lagrange { constraints, .. } => {
+                        constraints.iter().any(|(lambda, _)| lambda == q)
+                    }
+                    _ => false,
+                };
+                let what = match constraint {
+                    true => format!("the constraint of the multiplier {q}, differentiated twice"),
+                    false => format!("the equation of motion of {q}"),
+                };
                 Step::note(
-                    &format!("{title}: the equation of motion of {q}"),
+                    &format!("{title}: {what}"),
                     Formula::Row(vec![
                         Formula::Expr(e.clone()),
                         Formula::Op(crate::notation::Op::Equals),

@@ -17,6 +17,12 @@ pub enum StepResult {
     /// The normal-mode angular frequencies of n ≥ 2 coordinates, slowest first at the scene's
     /// values.
     Modes(Vec<Expr>),
+    /// The normal-mode angular frequencies at the scene's values, slowest first, where they
+    /// have no closed form, and why.
+    NumericModes {
+        frequencies: Vec<f64>,
+        reason: crate::model::prose::Prose,
+    },
     /// Every root of a `solve` that has more than one, in order of their values at the
     /// scene's values.
     Roots(Vec<Expr>),
@@ -94,7 +100,9 @@ impl StepResult {
                 .iter_mut()
                 .filter_map(|c| c.omega_squared.as_mut())
                 .collect(),
-            StepResult::RestStates { .. } | StepResult::RestStability { .. } => Vec::new(),
+            StepResult::NumericModes { .. }
+            | StepResult::RestStates { .. }
+            | StepResult::RestStability { .. } => Vec::new(),
         }
     }
 
@@ -104,6 +112,7 @@ impl StepResult {
             StepResult::Expr(e) | StepResult::Conserved { value: e, .. } => Some(e),
             StepResult::Equations(_)
             | StepResult::Modes(_)
+            | StepResult::NumericModes { .. }
             | StepResult::Roots(_)
             | StepResult::Solution(_)
             | StepResult::Equilibria { .. }

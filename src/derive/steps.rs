@@ -3,10 +3,12 @@
 //! mechanics is in `lagrangian.rs`; the numeric check of each step in `verify/steps.rs`.
 
 use super::algebra::{Env, Value, evaluate};
+use super::constraints::with_multipliers;
 use super::lagrangian::{
-    energy, equilibria, euler_lagrange, frequency, linearise, momentum, normal_modes, simplify_two,
-    stability, time_derivative,
+    energy, equilibria, euler_lagrange, frequency, linearise, momentum, simplify_two, stability,
+    time_derivative,
 };
+use super::modes::{Modes, normal_modes};
 use super::sign::{Sign, signs_over_positive};
 pub use super::solve::equation_with;
 use super::solve::{solve, solve_system};
@@ -73,6 +75,13 @@ pub fn expand_names(
     step: &AuthorStep,
     e: &Expr,
 ) -> Result<Expr, StepError> {
+    if let Some((name, of)) = d.numeric_name_in(e) {
+        return Err(StepError::Operation {
+            step: step.name.clone(),
+            line: step.line,
+            message: numeric_only(&name, &of),
+        });
+    }
     match evaluate(e, &env(scene, d)) {
         Ok(Value::Scalar(x)) => Ok(x),
         Ok(other) => Err(StepError::NotScalar {
@@ -86,6 +95,15 @@ pub fn expand_names(
             message: e.to_string(),
         }),
     }
+}
+
+/// Why a name whose result is a number only cannot be used as an expression.
+pub fn numeric_only(name: &str, step: &str) -> String {
+    format!(
+        "`{name}` has no exact form: step `{step}` found its modes as numbers at the scene's \
+         values (the page says why), and a later step, a claim or a graded answer needs an exact \
+         form"
+    )
 }
 
 /// `of` with each name of `set` replaced by its expression (names of earlier steps put in
@@ -190,6 +208,25 @@ fn equations<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)], De
         })
 }
 
+/// The equations of `of`, each a coordinate's: equations that carry a constraint's
+/// multiplier are refused (its motion is the coordinates' that remain once it is eliminated).
+fn free_equations<'a>(
+    scene: &Scene,
+    d: &'a Derivation,
+    of: &str,
+    op: &str,
+) -> Result<&'a [(String, Expr)], DeriveError> {
+    let eqs = equations(d, of)?;
+    if let Some((lambda, _)) = eqs.iter().find(|(q, _)| !scene.coordinates.contains_key(q)) {
+        return Err(DeriveError::NotDerivable(format!(
+            "the equations of `{of}` carry the multiplier `{lambda}` of a constraint: `{op}` \
+             takes the equations of independent coordinates, so write the Lagrangian in \
+             coordinates the constraint leaves free and take `{op}` of those"
+        )));
+    }
+    Ok(eqs)
+}
+
 /// Derives every step in order, each simplified by the engine, and writes its page steps.
 pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     let start = std::time::Instant::now();
@@ -274,11 +311,12 @@ fn derive_step(
             };
             StepResult::Expr(cas::simplify(&raw)?)
         }
-        Operation::Lagrange { of } => {
-            simplified(euler_lagrange(scalar(d, of)?, &scene.coordinates)?)?
+        Operation::Lagrange { of, constraints } => {
+            let eqs = euler_lagrange(scalar(d, of)?, &scene.coordinates)?;
+            simplified(with_multipliers(eqs, constraints, &scene.coordinates)?)?
         }
         Operation::Linearise { of, about } => {
-            let eqs = equations(d, of)?;
+            let eqs = free_equations(scene, d, of, "linearise")?;
             let (rest, linear) = linearise(eqs, about, &scene.coordinates)?;
             // A state of rest leaves nothing over: else it is not an equilibrium.
             let left = cas::simplify_all(rest)?;
@@ -294,7 +332,16 @@ fn derive_step(
         }
         Operation::Frequency { of } => match equations(d, of)? {
             eqs @ [_] => StepResult::Expr(frequency(eqs)?),
-            eqs => StepResult::Modes(normal_modes(eqs, &scene.values)?),
+            eqs => match normal_modes(eqs, &scene.values)? {
+                Modes::Exact(modes) => StepResult::Modes(modes),
+                Modes::Numeric {
+                    frequencies,
+                    reason,
+                } => StepResult::NumericModes {
+                    frequencies,
+                    reason,
+                },
+            },
         },
         Operation::Integrate { of, over } => {
             let f = expand_names(scene, d, step, of)?;
@@ -319,7 +366,7 @@ fn derive_step(
             StepResult::Expr(super::series::series(&f, var, &x0, *order)?)
         }
         Operation::Equilibria { of } => {
-            let eqs = equations(d, of)?;
+            let eqs = free_equations(scene, d, of, "equilibria")?;
             if eqs.len() > 1 {
                 let (coordinates, states) = super::rest_states::rest_states(eqs)?;
                 return Ok(StepResult::RestStates {
@@ -377,6 +424,9 @@ fn derive_step(
                 coordinate: coordinate.clone(),
                 cases,
             }
+        }
+        Operation::Routh { of, cyclic } => {
+            StepResult::Expr(super::routh::routhian(scalar(d, of)?, cyclic)?)
         }
         Operation::Momentum { of, coordinate } => {
             let (p, force) = momentum(scalar(d, of)?, coordinate)?;

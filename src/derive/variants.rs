@@ -101,6 +101,11 @@ pub fn general_answer(
         return Ok(d.quantities.get(q).ok_or_else(|| missing(d, q))?.clone());
     }
     let resolved = resolve(scene, answer)?;
+    if let Some((name, step)) = d.numeric_name_in(&resolved.entries()[0]) {
+        return Err(DeriveError::NotDerivable(super::steps::numeric_only(
+            &name, &step,
+        )));
+    }
     let failed = std::cell::RefCell::new(None);
     let filled = resolved.entries()[0].substitute(&|s| {
         if let Some((q, k)) = placeholder_of(s) {

@@ -7,7 +7,7 @@ use crate::base::format::{sci, short};
 use crate::derive::Derivation;
 use crate::derive::steps::StepResult;
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Series};
-use crate::numeric::motion::{MOTION_STEPS, MOTION_TOLERANCE, rates, start};
+use crate::numeric::motion::{MOTION_STEPS, MOTION_TOLERANCE, MotionSystem, split_rows, start};
 use crate::numeric::ode::dormand_prince;
 use crate::scene::Scene;
 use std::collections::BTreeMap;
@@ -32,12 +32,14 @@ fn equations<'a>(
 /// `tol`, and the right-hand sides it took.
 fn sampled(
     eqs: &[(String, crate::cas::Expr)],
+    coordinates: &BTreeMap<String, String>,
     params: &BTreeMap<String, f64>,
     t_end: f64,
     tol: f64,
 ) -> Result<(Vec<Vec<f64>>, u64), FigureError> {
-    let coords: Vec<&String> = eqs.iter().map(|(q, _)| q).collect();
-    let rhs = |_t: f64, y: &[f64]| rates(eqs, params, &coords, y);
+    let (coords, multipliers) = split_rows(eqs, coordinates);
+    let system = MotionSystem::new(eqs, params, &coords, &multipliers)?;
+    let rhs = |_t: f64, y: &[f64]| system.rates(y);
     let mut y = start(params, &coords);
     let mut out = vec![y.clone()];
     let mut evaluations = 0;
@@ -60,12 +62,19 @@ pub(super) fn motion(
     t_end: f64,
 ) -> Result<Figure, FigureError> {
     let full = equations(d, step)?;
-    let n = full.len();
+    // A constraint's row (under its multiplier's name) is no coordinate to plot.
+    let n = split_rows(full, &scene.coordinates).0.len();
     let mut params = scene.values.clone();
     params.extend(from.iter().map(|(k, v)| (k.clone(), *v)));
-    let (states, cost) = sampled(full, &params, t_end, MOTION_TOLERANCE)?;
+    let (states, cost) = sampled(full, &scene.coordinates, &params, t_end, MOTION_TOLERANCE)?;
     // The same motion at a hundredth of the tolerance: their difference estimates the error.
-    let (finer, _) = sampled(full, &params, t_end, MOTION_TOLERANCE / 100.0)?;
+    let (finer, _) = sampled(
+        full,
+        &scene.coordinates,
+        &params,
+        t_end,
+        MOTION_TOLERANCE / 100.0,
+    )?;
     let size = states
         .iter()
         .flat_map(|y| y[..n].iter())
@@ -79,7 +88,7 @@ pub(super) fn motion(
         / size;
     let time = |j: usize| t_end * j as f64 / SAMPLES as f64;
     let mut series = Vec::new();
-    for (k, (q, _)) in full.iter().enumerate() {
+    for (k, (q, _)) in full.iter().take(n).enumerate() {
         series.push(Series {
             name: format!("{q} ({step})"),
             mark: Mark::Line,
@@ -94,7 +103,7 @@ pub(super) fn motion(
     let mut apart = String::new();
     if let Some(linear) = linear {
         let eqs = equations(d, linear)?;
-        let (lin, _) = sampled(eqs, &params, t_end, MOTION_TOLERANCE)?;
+        let (lin, _) = sampled(eqs, &scene.coordinates, &params, t_end, MOTION_TOLERANCE)?;
         let mut gap = 0.0f64;
         for (k, (q, _)) in eqs.iter().enumerate() {
             let Some(kf) = full.iter().position(|(p, _)| p == q) else {

@@ -4,6 +4,7 @@
 
 pub mod answers;
 pub mod body;
+pub mod compiled;
 pub mod eigen;
 pub mod elliptic;
 pub mod free_body;

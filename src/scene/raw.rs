@@ -377,6 +377,19 @@ pub struct RawStep {
     pub by: Option<Text>,
     #[serde(default)]
     pub lagrange: Option<Text>,
+    /// The Routhian of the named Lagrangian, each cyclic coordinate's rate replaced by its
+    /// conserved momentum (`cyclic`).
+    #[serde(default)]
+    pub routh: Option<Text>,
+    /// For `routh`: each cyclic coordinate and the symbol, declared in [symbols], of its
+    /// conserved momentum (`cyclic = { phi = "p" }`).
+    #[serde(default)]
+    pub cyclic: BTreeMap<Spanned<String>, Text>,
+    /// For `lagrange`: each holonomic constraint f(q) = 0 under the name of its multiplier λ,
+    /// a symbol declared in [symbols] (`T = "l - x1 - x2"`); the generalised constraint force on
+    /// q is λ ∂f/∂q.
+    #[serde(default)]
+    pub constraints: BTreeMap<Spanned<String>, Text>,
     #[serde(default)]
     pub linearise: Option<Text>,
     /// For `linearise`: the state about which, by coordinate (unnamed ones about 0).

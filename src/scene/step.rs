@@ -34,9 +34,9 @@ impl AuthorStep {
         if matches!(self.op, Operation::Frequency { .. }) && coordinates >= 2 {
             names.extend((0..coordinates).map(|k| mode_name(&self.name, k)));
         }
-        // A `solve` with several roots or unknowns names them `x_1`, `x_2`, ... (at most four).
+        // A `solve` with several roots or unknowns names them `x_1`, `x_2`, ...
         if matches!(self.op, Operation::Solve { .. }) {
-            names.extend((0..4).map(|k| mode_name(&self.name, k)));
+            names.extend((0..MAX_UNKNOWNS).map(|k| mode_name(&self.name, k)));
         }
         // Each state of rest `rest_1`, ..., and its Ω² under the `stability` step's name.
         if matches!(
@@ -48,6 +48,10 @@ impl AuthorStep {
         names
     }
 }
+
+/// The most unknowns of one `solve` (the two coordinates and multipliers of a ladder, and
+/// one more), and of the roots it names: `x_1` to `x_6`.
+pub const MAX_UNKNOWNS: usize = 6;
 
 /// The most states of rest (and their Ω²) a step names for later steps and claims.
 pub const MAX_NAMED_STATES: usize = 8;
@@ -65,8 +69,20 @@ pub enum Operation {
     Be(Expr),
     /// A partial derivative; by `t`, the total time derivative through the coordinates.
     Differentiate { of: Expr, by: String },
-    /// The Euler–Lagrange equation of each coordinate, from the named Lagrangian.
-    Lagrange { of: String },
+    /// The Euler–Lagrange equation of each coordinate, from the named Lagrangian, with each
+    /// constraint's multiplier λ: d/dt ∂L/∂q' − ∂L/∂q − Σ λ ∂f/∂q = 0, and each constraint
+    /// f(q) = 0 differentiated twice, an equation under its multiplier's name.
+    Lagrange {
+        of: String,
+        constraints: Vec<(String, Expr)>,
+    },
+    /// Routh's procedure on the named Lagrangian: R = L − Σ p φ' with each cyclic coordinate φ's
+    /// rate solved from p = ∂L/∂φ', its conserved momentum p a symbol.
+    Routh {
+        of: String,
+        /// Each cyclic coordinate and its momentum's symbol.
+        cyclic: Vec<(String, String)>,
+    },
     /// The named equations of motion to first order about a state at rest (each coordinate's
     /// value there; 0 when not named).
     Linearise {
@@ -112,6 +128,7 @@ impl Operation {
             Operation::Be(_) => "be",
             Operation::Differentiate { .. } => "differentiate",
             Operation::Lagrange { .. } => "lagrange",
+            Operation::Routh { .. } => "routh",
             Operation::Linearise { .. } => "linearise",
             Operation::Frequency { .. } => "frequency",
             Operation::Substitute { .. } => "substitute",

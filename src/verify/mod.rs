@@ -9,8 +9,8 @@ use crate::cas::EvalError;
 use crate::cas::{self, Expr};
 use crate::derive::algebra::{Env, Value, evaluate};
 use crate::derive::{Derivation, simplify_value};
+use crate::model::catalogue::Stage;
 use crate::model::catalogue::quantity;
-use crate::model::catalogue::{Stage, recorded_names};
 use crate::model::prose::Prose;
 use crate::model::value::vector_at;
 use crate::numeric::NumericReport;
@@ -222,6 +222,16 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
     let env = claim_env(scene, d);
     let mut out = Vec::new();
     for (i, claim) in scene.claims.iter().enumerate() {
+        let numeric = [&claim.quantity, &claim.value]
+            .into_iter()
+            .flatten()
+            .find_map(|e| d.numeric_name_in(e));
+        if let Some((name, step)) = numeric {
+            let mut r = unchecked(claim);
+            r.problem = Some(crate::derive::steps::numeric_only(&name, &step));
+            out.push(r);
+            continue;
+        }
         // An engine failure on one claim is that claim's problem, located at its line; the
         // other claims are still checked.
         out.push(check_claim(scene, &env, i, claim).unwrap_or_else(|e| {
@@ -393,52 +403,6 @@ fn check_claim(
     Ok(r)
 }
 
-pub fn check_regressions(
-    scene: &Scene,
-    d: &Derivation,
-) -> Result<Vec<RegressionResult>, cas::CasError> {
-    let env = claim_env(scene, d);
-    let mut out = Vec::new();
-    if scene.expect.is_empty() {
-        // Nothing recorded yet: each result fails until it is reviewed, as an unrecorded
-        // claim does.
-        for name in recorded_names() {
-            if let Some(v) = d.quantities.get(name) {
-                out.push(RegressionResult {
-                    quantity: name.to_string(),
-                    recorded: None,
-                    line: scene.id_at.0,
-                    derived: Some(v.clone()),
-                    unchanged: false,
-                });
-            }
-        }
-        return Ok(out);
-    }
-    for (name, recorded) in &scene.expect {
-        let derived = d.quantities.get(name);
-        let recorded_value = evaluate(recorded, &env);
-        let unchanged = match (derived, &recorded_value) {
-            (Some(a), Ok(b)) if std::mem::discriminant(a) == std::mem::discriminant(b) => {
-                crate::derive::values_equal(a, b)?
-            }
-            _ => false,
-        };
-        out.push(RegressionResult {
-            quantity: name.clone(),
-            recorded: Some(recorded.clone()),
-            line: scene
-                .expect_lines
-                .get(name)
-                .copied()
-                .unwrap_or(scene.id_at.0),
-            derived: derived.cloned(),
-            unchanged,
-        });
-    }
-    Ok(out)
-}
-
 /// Whether a quadrature run stayed within its law.
 pub fn within_law(run: &QuadratureRun) -> bool {
     match run.method {
@@ -563,17 +527,21 @@ pub mod dimensions;
 mod free_top;
 mod integral;
 mod motion;
+pub mod n_link;
 mod principal;
 mod printed;
+mod regressions;
 mod rest;
 mod rest_states;
 mod rounding;
+mod routh;
 mod series;
 mod solve;
 mod step_check;
 pub mod steps;
 pub mod variants;
 pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
+pub use regressions::check_regressions;
 pub use rounding::round_to_figures;
 use rounding::rounded_agreement;
 mod random_points;
@@ -582,6 +550,8 @@ pub use steps::StepCheck;
 
 #[cfg(test)]
 mod answer_routes_tests;
+#[cfg(test)]
+mod constraints_tests;
 #[cfg(test)]
 mod printed_tests;
 #[cfg(test)]

@@ -3,11 +3,15 @@
 //! the full ones near rest, and the measured period against 2π/Ω.
 
 use super::CONFIRMATION_POINTS;
-use super::step_check::{CheckError, H, StepCheck, at, finite_at, random_point};
+use super::step_check::{CheckError, H, StepCheck, at, random_point};
 use crate::base::format::{sci, short};
 use crate::base::rng::Rng;
 use crate::cas::Expr;
-use crate::numeric::motion::{MOTION_STEPS, MOTION_TOLERANCE, rates, state};
+use crate::derive::constraints::is_velocity_constraint;
+use crate::numeric::compiled::Program;
+use crate::numeric::motion::{
+    MOTION_STEPS, MOTION_TOLERANCE, MotionSystem, split_rows, state, state_slots,
+};
 use crate::numeric::ode::dormand_prince;
 use crate::scene::{AuthorStep, Scene};
 use std::collections::BTreeMap;
@@ -15,44 +19,106 @@ use std::collections::BTreeMap;
 /// The energy function may drift this much, relative to its size, over an integration at
 /// [`MOTION_TOLERANCE`]: Dormand–Prince keeps the local error to the tolerance, so the drift
 /// over a few hundred steps stays near 1e-8; a wrong equation of motion drifts by order one.
-const ENERGY_AGREEMENT: f64 = 1e-6;
+pub(super) const ENERGY_AGREEMENT: f64 = 1e-6;
 /// The integrated motion's length, in the scene's unit of time.
-const MOTION_TIME: f64 = 10.0;
+pub(super) const MOTION_TIME: f64 = 10.0;
 
 /// The motion of a Lagrangian's equations, integrated from a step's start at the scene's values.
-struct Integrated<'a> {
+pub(super) struct Integrated<'a> {
     /// The scene's values with the start's.
-    params: BTreeMap<String, f64>,
+    pub(super) params: BTreeMap<String, f64>,
     /// The coordinates that have an equation (a constraint may have eliminated others).
-    coords: Vec<&'a String>,
+    pub(super) coords: Vec<&'a String>,
     /// Each state: the coordinates, then their rates.
-    states: Vec<Vec<f64>>,
-    evaluations: u64,
+    pub(super) states: Vec<Vec<f64>>,
+    pub(super) evaluations: u64,
+}
+
+/// An expression of the state compiled once for every state of a motion, and its source for
+/// the message when its value is not finite.
+pub(super) struct OnMotion<'e> {
+    /// The rates and accelerations (slots n on) vary alone in a momentum's differences.
+    compiled: Program,
+    source: &'e Expr,
+}
+
+impl OnMotion<'_> {
+    fn finite(&self, v: f64) -> Result<f64, CheckError> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(CheckError::Undefined {
+                expression: self.source.to_text(),
+                value: v,
+            })
+        }
+    }
 }
 
 impl Integrated<'_> {
-    /// The names at state `y`, accelerations 0 (a momentum or energy has none).
-    fn at_rest_accel(&self, y: &[f64]) -> BTreeMap<String, f64> {
-        state(&self.params, &self.coords, y, &vec![0.0; self.coords.len()])
+    /// `e` with the scene's values and the start's put in, the state's names left to fill.
+    pub(super) fn compile<'e>(&self, e: &'e Expr) -> Result<OnMotion<'e>, CheckError> {
+        let slots = state_slots(&self.coords);
+        Ok(OnMotion {
+            compiled: Program::new(&[e], &slots, &self.params, self.coords.len())?,
+            source: e,
+        })
     }
 
-    /// ∂L/∂q'_k at state y by a central difference of L itself.
-    fn momentum(&self, lagrangian: &Expr, y: &[f64], k: usize) -> Result<f64, CheckError> {
+    /// The slots of state `y`, accelerations 0 (a momentum or energy has none).
+    fn slots(&self, y: &[f64]) -> Vec<f64> {
+        let mut x = y.to_vec();
+        x.resize(3 * self.coords.len(), 0.0);
+        x
+    }
+
+    /// `f` at state `y`; an infinite or undefined value is an error: a check that compared it
+    /// would see inf − inf as NaN, which every `max` passes over, and agree "to 0".
+    pub(super) fn value(&self, f: &OnMotion, y: &[f64]) -> Result<f64, CheckError> {
+        f.finite(f.compiled.eval(&self.slots(y), &mut Vec::new())[0])
+    }
+
+    /// ∂L/∂q'_k at state x by a central difference of L itself, `registers` holding L at a
+    /// state with x's coordinates.
+    fn momentum_at(
+        &self,
+        lagrangian: &OnMotion,
+        x: &mut [f64],
+        registers: &mut [f64],
+        k: usize,
+    ) -> Result<f64, CheckError> {
         let n = self.coords.len();
-        let h = H * y[n + k].abs().max(1.0);
-        let (mut up, mut down) = (y.to_vec(), y.to_vec());
-        up[n + k] += h;
-        down[n + k] -= h;
-        let l = |y: &[f64]| finite_at(lagrangian, &self.at_rest_accel(y));
-        Ok((l(&up)? - l(&down)?) / (2.0 * h))
+        let rate = x[n + k];
+        let h = H * rate.abs().max(1.0);
+        x[n + k] = rate + h;
+        let up = lagrangian.finite(lagrangian.compiled.eval_varying(x, registers)[0])?;
+        x[n + k] = rate - h;
+        let down = lagrangian.finite(lagrangian.compiled.eval_varying(x, registers)[0])?;
+        x[n + k] = rate;
+        Ok((up - down) / (2.0 * h))
+    }
+
+    /// ∂L/∂q'_k at state y.
+    pub(super) fn momentum(
+        &self,
+        lagrangian: &OnMotion,
+        y: &[f64],
+        k: usize,
+    ) -> Result<f64, CheckError> {
+        let mut x = self.slots(y);
+        let mut registers = Vec::new();
+        lagrangian.compiled.eval(&x, &mut registers);
+        self.momentum_at(lagrangian, &mut x, &mut registers, k)
     }
 
     /// The energy function Σ q'·∂L/∂q' − L at state y, its momenta by differences.
-    fn energy(&self, lagrangian: &Expr, y: &[f64]) -> Result<f64, CheckError> {
+    fn energy(&self, lagrangian: &OnMotion, y: &[f64]) -> Result<f64, CheckError> {
         let n = self.coords.len();
-        let mut e = -finite_at(lagrangian, &self.at_rest_accel(y))?;
+        let mut x = self.slots(y);
+        let mut registers = Vec::new();
+        let mut e = -lagrangian.finite(lagrangian.compiled.eval(&x, &mut registers)[0])?;
         for k in 0..n {
-            e += y[n + k] * self.momentum(lagrangian, y, k)?;
+            e += y[n + k] * self.momentum_at(lagrangian, &mut x, &mut registers, k)?;
         }
         Ok(e)
     }
@@ -61,22 +127,25 @@ impl Integrated<'_> {
 /// Integrates the equations of motion (each residual is linear in the accelerations: solved at
 /// every evaluation) from the step's start (each coordinate [`DEFAULT_START`] and at rest where
 /// it says nothing) for [`MOTION_TIME`].
-fn integrate<'a>(
+pub(super) fn integrate<'a>(
     scene: &Scene,
     step: &AuthorStep,
     lagrangian: &Expr,
     eqs: &'a [(String, Expr)],
+    constraints: &[(String, Expr)],
 ) -> Result<Integrated<'a>, CheckError> {
     if lagrangian.symbols().iter().any(|s| s == "t") {
         return Err(CheckError::TimeDependent);
     }
-    let coords: Vec<&String> = eqs.iter().map(|(q, _)| q).collect();
+    let (coords, multipliers) = split_rows(eqs, &scene.coordinates);
     let mut params: BTreeMap<String, f64> = scene.values.clone();
     for (k, v) in &step.start {
         params.insert(k.clone(), *v);
     }
     let start = crate::numeric::motion::start(&params, &coords);
-    let rhs = |_t: f64, y: &[f64]| rates(eqs, &params, &coords, y);
+    on_constraints(&coords, &scene.coordinates, &params, &start, constraints)?;
+    let system = MotionSystem::new(eqs, &params, &coords, &multipliers)?;
+    let rhs = |_t: f64, y: &[f64]| system.rates(y);
     let run = dormand_prince(&rhs, &start, MOTION_TIME, MOTION_TOLERANCE, MOTION_STEPS)?;
     // A start at rest in an equilibrium never moves: every conservation law holds trivially.
     let moved = run.states.iter().any(|(_, y)| {
@@ -98,6 +167,55 @@ fn integrate<'a>(
     })
 }
 
+/// How far a start may be off a constraint, relative to the coordinates' and rates' sizes:
+/// the integration keeps f'' = 0, so an offset at the start stays, and grows with time.
+const ON_CONSTRAINT: f64 = 1e-9;
+
+/// The start (coordinates, then rates) satisfies each constraint f = 0, and, for one on the
+/// coordinates alone, moves along it (f' = ∇f · q' = 0, by a central difference along q').
+fn on_constraints(
+    coords: &[&String],
+    coordinates: &BTreeMap<String, String>,
+    params: &BTreeMap<String, f64>,
+    start: &[f64],
+    constraints: &[(String, Expr)],
+) -> Result<(), CheckError> {
+    let n = coords.len();
+    let slots = state_slots(coords);
+    let (q, rates) = start.split_at(n);
+    let size = |v: &[f64]| v.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let h = 1e-6 / size(rates);
+    for (lambda, f) in constraints {
+        let program = Program::new(&[f], &slots, params, usize::MAX)?;
+        let at = |shift: f64| {
+            let mut x: Vec<f64> = (0..n).map(|k| q[k] + shift * rates[k]).collect();
+            x.extend(rates);
+            x.resize(3 * n, 0.0);
+            program.eval(&x, &mut Vec::new())[0]
+        };
+        let velocity = is_velocity_constraint(f, coordinates);
+        let value = at(0.0);
+        let rate = (at(h) - at(-h)) / (2.0 * h);
+        // NaN is off too.
+        let off = |v: f64, scale: f64| v.is_nan() || v.abs() > ON_CONSTRAINT * scale;
+        let what = if off(value, if velocity { size(rates) } else { size(q) }) {
+            Some(("value", value))
+        } else if !velocity && off(rate, size(q) * size(rates) * 1e3) {
+            Some(("rate of change", rate))
+        } else {
+            None
+        };
+        if let Some((what, value)) = what {
+            return Err(CheckError::OffConstraint {
+                multiplier: lambda.clone(),
+                what,
+                value,
+            });
+        }
+    }
+    Ok(())
+}
+
 /// The drift of the energy function along the integrated motion of a `lagrange` step's
 /// equations, relative to the size of the energy and the Lagrangian.
 pub(super) fn energy_check(
@@ -105,26 +223,54 @@ pub(super) fn energy_check(
     step: &AuthorStep,
     lagrangian: &Expr,
     eqs: &[(String, Expr)],
+    constraints: &[(String, Expr)],
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
     check.method = format!(
         "the energy Σ q'·∂L/∂q' − L along the motion integrated from the start for t = \
-         {MOTION_TIME} (Dormand–Prince, tolerance {})",
-        short(MOTION_TOLERANCE)
+         {MOTION_TIME} (Dormand–Prince, tolerance {}){}",
+        short(MOTION_TOLERANCE),
+        if constraints.is_empty() {
+            ""
+        } else {
+            ", and each constraint f(q) along it, relative to the coordinates' size (the \
+             accelerations and multipliers solved together at every step)"
+        }
     );
     check.tolerance = ENERGY_AGREEMENT;
-    let m = integrate(scene, step, lagrangian, eqs)?;
+    let m = integrate(scene, step, lagrangian, eqs, constraints)?;
     let n = m.coords.len() as u64;
-    let e0 = m.energy(lagrangian, &m.states[0])?;
+    let l = m.compile(lagrangian)?;
+    let e0 = m.energy(&l, &m.states[0])?;
     let mut scale = e0.abs();
     let mut drift: f64 = 0.0;
     for y in &m.states {
-        let e = m.energy(lagrangian, y)?;
-        scale = scale.max(finite_at(lagrangian, &m.at_rest_accel(y))?.abs());
+        let e = m.energy(&l, y)?;
+        scale = scale.max(m.value(&l, y)?.abs());
         drift = drift.max((e - e0).abs());
     }
     check.evaluations = m.evaluations + m.states.len() as u64 * (2 * n + 1);
     check.error = drift / scale.max(f64::MIN_POSITIVE);
+    // The constraints are kept only through f'' = 0 (g' = 0 for one on the velocities): the
+    // integration's errors move f itself, relative to the coordinates' size (the rates').
+    let n = m.coords.len();
+    let size = |part: std::ops::Range<usize>| {
+        m.states
+            .iter()
+            .flat_map(|y| y[part.clone()].iter())
+            .fold(f64::MIN_POSITIVE, |s, x| s.max(x.abs()))
+    };
+    for (_, f) in constraints {
+        let size = match is_velocity_constraint(f, &scene.coordinates) {
+            true => size(n..2 * n),
+            false => size(0..n),
+        };
+        let f = m.compile(f)?;
+        for y in &m.states {
+            check.error = check.error.max(m.value(&f, y)?.abs() / size);
+        }
+        check.evaluations += m.states.len() as u64;
+    }
     Ok(())
 }
 
@@ -149,23 +295,23 @@ pub(super) fn conserved_check(
 ) -> Result<(), CheckError> {
     let eqs = crate::derive::lagrangian::euler_lagrange(lagrangian, &scene.coordinates)?;
     check.tolerance = ENERGY_AGREEMENT;
-    let m = integrate(scene, step, lagrangian, &eqs)?;
+    let m = integrate(scene, step, lagrangian, &eqs, &[])?;
+    let l = m.compile(lagrangian)?;
     let reference = |y: &[f64]| match what {
         Conserved::Momentum(q) => match m.coords.iter().position(|c| *c == q) {
-            Some(k) => m.momentum(lagrangian, y, k),
+            Some(k) => m.momentum(&l, y, k),
             // A coordinate the Lagrangian does not depend on has no momentum: 0.
             None => Ok(0.0),
         },
-        Conserved::Energy => m.energy(lagrangian, y),
+        Conserved::Energy => m.energy(&l, y),
     };
-    let v0 = finite_at(value, &m.at_rest_accel(&m.states[0]))?;
+    let exact = m.compile(value)?;
+    let v0 = m.value(&exact, &m.states[0])?;
     let (mut scale, mut mismatch, mut drift) = (v0.abs(), 0.0f64, 0.0f64);
     for y in &m.states {
-        let v = finite_at(value, &m.at_rest_accel(y))?;
+        let v = m.value(&exact, y)?;
         let r = reference(y)?;
-        scale = scale
-            .max(r.abs())
-            .max(finite_at(lagrangian, &m.at_rest_accel(y))?.abs());
+        scale = scale.max(r.abs()).max(m.value(&l, y)?.abs());
         mismatch = mismatch.max((v - r).abs());
         drift = drift.max((v - v0).abs());
     }
@@ -288,7 +434,8 @@ pub(super) fn measured_period(
         Some(e) => at(e, params)?,
         None => 0.0,
     };
-    let rhs = |_t: f64, y: &[f64]| rates(full, params, &coords, y);
+    let system = MotionSystem::new(full, params, &coords, &[])?;
+    let rhs = |_t: f64, y: &[f64]| system.rates(y);
     let run = dormand_prince(
         &rhs,
         &[q0 + PERIOD_AMPLITUDE, 0.0],
@@ -343,6 +490,21 @@ pub(super) fn modes_check(
     modes: &[Expr],
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
+    let derived = modes
+        .iter()
+        .map(|e| at(e, &scene.values))
+        .collect::<Result<Vec<f64>, CheckError>>()?;
+    modes_agreement(scene, linear, &derived, check)
+}
+
+/// The frequencies a step found at the scene's values (exact ones evaluated, or the Sturm
+/// bisection's) against √λ of M⁻¹K by the Schur decomposition.
+pub(super) fn modes_agreement(
+    scene: &Scene,
+    linear: &[(String, Expr)],
+    derived: &[f64],
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
     check.method = "each frequency against √λ for the eigenvalues λ of M⁻¹K at the scene's \
                     values (M, K read off the linear equations; nalgebra's Schur decomposition)"
         .into();
@@ -350,8 +512,10 @@ pub(super) fn modes_check(
     let n = linear.len();
     check.evaluations = (n * (2 * n + 1)) as u64;
     let numeric = numeric_modes(linear, &scene.values)?;
-    for (w, exact) in numeric.iter().zip(modes) {
-        let x = at(exact, &scene.values)?;
+    if numeric.len() != derived.len() {
+        check.error = f64::INFINITY;
+    }
+    for (w, x) in numeric.iter().zip(derived) {
         let error = (x - w).abs() / w.abs();
         check.error = check
             .error

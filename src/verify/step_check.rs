@@ -80,6 +80,17 @@ pub enum CheckError {
     )]
     TimeDependent,
     #[error(
+        "the step's start is off the constraint of `{multiplier}`: its {what} is {value:e} there, \
+         not 0; give a `start` whose coordinates satisfy every constraint and whose rates move \
+         along them"
+    )]
+    OffConstraint {
+        multiplier: String,
+        /// "value" or "rate of change".
+        what: &'static str,
+        value: f64,
+    },
+    #[error(
         "the motion started off rest did not cross rest twice in three periods: it does not oscillate there"
     )]
     NoOscillation,
@@ -136,18 +147,4 @@ pub(super) fn random_point(exprs: &[&Expr], rng: &mut Rng) -> BTreeMap<String, f
 
 pub(super) fn at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
     Ok(e.eval(&|s| point.get(s).copied().filter(|_| s != "pi"))?)
-}
-
-/// `e` at `point`, where an infinite or undefined value is an error: a check that compared it
-/// would see inf − inf as NaN, which every `max` passes over, and agree "to 0".
-pub(super) fn finite_at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
-    let v = at(e, point)?;
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(CheckError::Undefined {
-            expression: e.to_text(),
-            value: v,
-        })
-    }
 }

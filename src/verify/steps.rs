@@ -7,7 +7,8 @@
 use super::budget::Deadline;
 use super::integral::quadrature_check;
 use super::motion::{
-    Conserved, conserved_check, energy_check, linear_check, modes_check, period_check,
+    Conserved, conserved_check, energy_check, linear_check, modes_agreement, modes_check,
+    period_check,
 };
 use super::rest::{equilibria_check, stability_check};
 use super::rest_states::{rest_stability_check, states_check};
@@ -244,8 +245,12 @@ fn route(
                 });
             }
         }
-        (Operation::Lagrange { of }, StepResult::Equations(eqs)) => {
-            energy_check(scene, step, scalar_of(d, of)?, eqs, check)?;
+        (Operation::Lagrange { of, constraints }, StepResult::Equations(eqs)) => {
+            energy_check(scene, step, scalar_of(d, of)?, eqs, constraints, check)?;
+        }
+        (Operation::Routh { of, cyclic }, StepResult::Expr(routhian)) => {
+            let lagrangian = scalar_of(d, of)?;
+            super::routh::routh_check(scene, step, lagrangian, routhian, cyclic, check)?;
         }
         (
             Operation::Momentum { of, .. } | Operation::Energy { of },
@@ -299,6 +304,9 @@ fn route(
         }
         (Operation::Frequency { of }, StepResult::Modes(modes)) => {
             modes_check(scene, equations_of(d, of)?, modes, check)?;
+        }
+        (Operation::Frequency { of }, StepResult::NumericModes { frequencies, .. }) => {
+            modes_agreement(scene, equations_of(d, of)?, frequencies, check)?;
         }
         (Operation::Linearise { of, about }, StepResult::Equations(linear)) => {
             linear_check(scene, equations_of(d, of)?, linear, about, seed, check)?;
@@ -445,9 +453,15 @@ pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, ca
         let mut r = match d.named.get(&step.name) {
             Some(StepResult::Equations(eqs)) => same_equation(scene, d, step, &claim, eqs, gives)?,
             Some(
-                several @ (StepResult::Modes(_) | StepResult::Roots(_) | StepResult::Solution(_)),
+                several @ (StepResult::Modes(_)
+                | StepResult::NumericModes { .. }
+                | StepResult::Roots(_)
+                | StepResult::Solution(_)),
             ) => {
-                let n = several.values(&step.name).len();
+                let n = match several {
+                    StepResult::NumericModes { frequencies, .. } => frequencies.len(),
+                    _ => several.values(&step.name).len(),
+                };
                 let mut r = unchecked(&claim);
                 r.problem = Some(format!(
                     "this step gives {n} values, named {}_1 to {}_{n}: state each in a claim on \

@@ -5,17 +5,18 @@ use super::{Validator, content_start};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawStep, RawUnknowns, Text};
-use crate::scene::step::Operation;
+use crate::scene::step::{MAX_UNKNOWNS, Operation};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The operations a step may name, one per step, in the order the error lists them, and
 /// whether this step gives each: the one list of them.
-fn operations(s: &RawStep) -> [(&'static str, bool); 13] {
+fn operations(s: &RawStep) -> [(&'static str, bool); 14] {
     [
         ("be", s.be.is_some()),
         ("differentiate", s.differentiate.is_some()),
         ("substitute", s.substitute.is_some()),
         ("lagrange", s.lagrange.is_some()),
+        ("routh", s.routh.is_some()),
         ("momentum", s.momentum.is_some()),
         ("energy", s.energy.is_some()),
         ("linearise", s.linearise.is_some()),
@@ -30,8 +31,6 @@ fn operations(s: &RawStep) -> [(&'static str, bool); 13] {
 
 /// The highest order of a `series`: each order is one more derivative of the expression.
 const MAX_ORDER: i64 = 6;
-/// The most unknowns of one `solve`: its results are named `x_1` to `x_4`, as its roots are.
-const MAX_UNKNOWNS: usize = 4;
 
 /// What an earlier step holds, for the operations that take a step by name.
 #[derive(Clone, Copy, PartialEq)]
@@ -106,6 +105,12 @@ impl Validator<'_> {
         } else if let Some(of) = &s.lagrange {
             Operation::Lagrange {
                 of: self.lagrangian(of, field, "lagrange", earlier, coordinates)?,
+                constraints: self.constraints(s, field, scope, coordinates)?,
+            }
+        } else if let Some(of) = &s.routh {
+            Operation::Routh {
+                of: self.lagrangian(of, field, "routh", earlier, coordinates)?,
+                cyclic: self.cyclic(s, offset, field, coordinates)?,
             }
         } else if let Some(of) = &s.linearise {
             self.earlier(of, field, "linearise", Holds::Motion, earlier)?;
@@ -377,6 +382,19 @@ impl Validator<'_> {
             ));
         }
         stray(
+            !s.cyclic.is_empty(),
+            is(&["routh"]),
+            "cyclic",
+            "`cyclic` names the cyclic coordinates of a `routh` step; this step has none",
+        )?;
+        stray(
+            !s.constraints.is_empty(),
+            is(&["lagrange"]),
+            "constraints",
+            "`constraints` gives the constraints of a `lagrange` step, each under its multiplier's \
+             name; this step has none",
+        )?;
+        stray(
             s.of.is_some(),
             is(&["momentum"]),
             "of",
@@ -384,10 +402,10 @@ impl Validator<'_> {
         )?;
         stray(
             !s.start.is_empty(),
-            is(&["lagrange", "momentum", "energy"]),
+            is(&["lagrange", "routh", "momentum", "energy"]),
             "start",
-            "`start` is the initial state of the motion a `lagrange`, `momentum` or `energy` \
-             step's numeric check integrates; this step has none",
+            "`start` is the initial state of the motion a `lagrange`, `routh`, `momentum` or \
+             `energy` step's numeric check integrates; this step has none",
         )?;
         Ok(op)
     }

@@ -1,0 +1,191 @@
+//! `mechbook bench --links-only`: the n-link pendulum (n = 1 to 6) from its Lagrangian to its
+//! normal modes, mechbook's whole process against SymPy's LagrangesMethod and linearize in the
+//! same run, and each one's modes against the eigenvalues of the textbook's M⁻¹K.
+
+use crate::verify::n_link::{n_link_scene, textbook_modes};
+use anyhow::{Context, Result, bail};
+use std::fmt::Write;
+use std::path::Path;
+use std::process::Command;
+use std::time::Instant;
+
+/// The SymPy side, run by the caller's Python (docs/bench/n_link_sympy.py).
+const SYMPY_SCRIPT: &str = include_str!("../../docs/bench/n_link_sympy.py");
+
+/// The largest n measured: SymPy takes about 7 s at 6 on this kind of machine.
+pub const MAX_LINKS: usize = 6;
+
+/// The modes mechbook derives for the scene, at its values.
+fn mechbook_modes(file: &Path) -> Result<Vec<f64>> {
+    use crate::derive::steps::StepResult;
+    let scene = crate::scene::Scene::from_file(file)?;
+    let r = crate::pipeline::run_scene(scene, None)?;
+    if let Some(failed) = r.verification.steps.iter().find(|c| !c.passed()) {
+        bail!("a step's numeric check failed: {failed:?}");
+    }
+    let at =
+        |e: &crate::cas::Expr| -> Result<f64> { Ok(e.eval(&|s| r.scene.values.get(s).copied())?) };
+    match r.derivation.named.get("Omega") {
+        Some(StepResult::Expr(e)) => Ok(vec![at(e)?]),
+        Some(StepResult::Modes(modes)) => modes.iter().map(at).collect(),
+        Some(StepResult::NumericModes { frequencies, .. }) => Ok(frequencies.clone()),
+        other => bail!("the frequency step gave {other:?}"),
+    }
+}
+
+/// The largest relative difference between two lists of frequencies (∞ when their lengths
+/// differ).
+fn worst(a: &[f64], b: &[f64]) -> f64 {
+    if a.len() != b.len() {
+        return f64::INFINITY;
+    }
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| ((x - y) / y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// One SymPy run: its whole process's seconds, the mechanics' own, and its frequencies.
+struct SympyRun {
+    seconds: f64,
+    mechanics: f64,
+    frequencies: Vec<f64>,
+}
+
+fn sympy_run(python: &Path, script: &Path, n: usize) -> Result<SympyRun> {
+    let start = Instant::now();
+    let out = Command::new(python)
+        .arg(script)
+        .arg(n.to_string())
+        .output()
+        .with_context(|| format!("cannot run {}", python.display()))?;
+    let seconds = start.elapsed().as_secs_f64();
+    if !out.status.success() {
+        let err = String::from_utf8_lossy(&out.stderr);
+        bail!("{}", err.lines().last().unwrap_or("failed").trim());
+    }
+    let line: serde_json::Value = serde_json::from_slice(&out.stdout)?;
+    let number = |k: &str| line[k].as_f64().context("SymPy's line lacks a number");
+    Ok(SympyRun {
+        seconds,
+        mechanics: number("mechanics_seconds")?,
+        frequencies: line["frequencies"]
+            .as_array()
+            .context("SymPy's line lacks its frequencies")?
+            .iter()
+            .filter_map(|v| v.as_f64())
+            .collect(),
+    })
+}
+
+/// mechbook's whole process (`mechbook derive`, a fresh cache each run): its fastest seconds.
+fn mechbook_run(file: &Path, cache: &Path, repeats: usize) -> Result<f64> {
+    let exe = std::env::current_exe()?;
+    let mut fastest = f64::INFINITY;
+    for run in 0..repeats {
+        let fresh = cache.join(run.to_string());
+        let start = Instant::now();
+        let out = Command::new(&exe)
+            .arg("derive")
+            .arg(file)
+            .env("SYMBOLICA_HIDE_BANNER", "1")
+            .env("XDG_CACHE_HOME", &fresh)
+            .output()
+            .context("cannot run mechbook derive")?;
+        fastest = fastest.min(start.elapsed().as_secs_f64());
+        if !out.status.success() {
+            bail!(
+                "mechbook derive {} failed: {}",
+                file.display(),
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        let _ = std::fs::remove_dir_all(&fresh);
+    }
+    Ok(fastest)
+}
+
+/// The report: per n, each tool's fastest whole process of `repeats`, SymPy's mechanics alone,
+/// the ratio, and each tool's worst difference from the textbook's M⁻¹K.
+pub fn links_bench(
+    python: &Path,
+    repeats: usize,
+    mut progress: impl FnMut(&str),
+) -> Result<String> {
+    let dir = std::env::temp_dir().join(format!("mechbook-bench-links-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let result = measure(python, repeats, &dir, &mut progress);
+    let _ = std::fs::remove_dir_all(&dir);
+    result
+}
+
+fn measure(
+    python: &Path,
+    repeats: usize,
+    dir: &Path,
+    progress: &mut impl FnMut(&str),
+) -> Result<String> {
+    let script = dir.join("n_link_sympy.py");
+    std::fs::write(&script, SYMPY_SCRIPT)?;
+    let mut md = format!(
+        "\n## The n-link pendulum against SymPy\n\nLagrangian, equations of motion, linearisation \
+         about rest and normal modes at m = 1, l = 1, g = 9.81, fastest of {repeats}. mechbook: \
+         the whole process `mechbook derive` (start-up, derivation, every step's numeric check), \
+         a fresh cache each run. SymPy: `{}` running docs/bench/n_link_sympy.py \
+         (physics.mechanics: LagrangesMethod, linearize with A_and_B, mpmath's eigenvalues), \
+         the whole process and the mechanics alone. Each tool's modes against √λ of the \
+         textbook's M⁻¹K (nalgebra).\n\n| n | mechbook | SymPy whole | SymPy mechanics | \
+         whole / whole | mechanics / whole | mechbook vs M⁻¹K | SymPy vs M⁻¹K |\n\
+         |---|---|---|---|---|---|---|---|\n",
+        python.display()
+    );
+    let mut sympy_missing = None;
+    for n in 1..=MAX_LINKS {
+        progress(&format!("{n}-link pendulum"));
+        let file = dir.join(format!("links-{n}.toml"));
+        std::fs::write(&file, n_link_scene(n))?;
+        let ours = mechbook_run(&file, &dir.join("cache"), repeats)?;
+        let reference = textbook_modes(n);
+        let ours_error = worst(&mechbook_modes(&file)?, &reference);
+        let mut sympy: Option<SympyRun> = None;
+        if sympy_missing.is_none() {
+            for _ in 0..repeats {
+                match sympy_run(python, &script, n) {
+                    Ok(run) => {
+                        if sympy.as_ref().is_none_or(|best| run.seconds < best.seconds) {
+                            sympy = Some(run);
+                        }
+                    }
+                    Err(e) => {
+                        sympy_missing = Some(e.to_string());
+                        break;
+                    }
+                }
+            }
+        }
+        let (whole, mechanics, ratio, ratio_mechanics, theirs) = match &sympy {
+            Some(s) => (
+                format!("{:.3} s", s.seconds),
+                format!("{:.3} s", s.mechanics),
+                format!("{:.0}×", s.seconds / ours),
+                format!("{:.0}×", s.mechanics / ours),
+                crate::base::format::sci(worst(&s.frequencies, &reference)),
+            ),
+            None => ("—".into(), "—".into(), "—".into(), "—".into(), "—".into()),
+        };
+        let _ = writeln!(
+            md,
+            "| {n} | {:.3} s | {whole} | {mechanics} | {ratio} | {ratio_mechanics} | {} | {theirs} |",
+            ours,
+            crate::base::format::sci(ours_error),
+        );
+    }
+    if let Some(why) = sympy_missing {
+        let _ = writeln!(
+            md,
+            "\nSymPy did not run ({why}): `bash docs/bench/links.sh` makes a Python with SymPy \
+             1.14.0 and passes it as `--python`."
+        );
+    }
+    Ok(md)
+}
