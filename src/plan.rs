@@ -98,7 +98,7 @@ impl Plan {
                 | crate::scene::Operation::Equilibria { .. }
                 | crate::scene::Operation::Stability { .. } => vec![],
             };
-            for e in exprs.into_iter().chain(s.gives.iter()) {
+            for e in exprs.into_iter().chain(s.gives.iter()).chain(&s.gives_each) {
                 for name in referenced_quantities(e) {
                     if let Some(st) = stage_for_quantity(&name) {
                         wanted.push((st, format!("step `{}` uses `{name}`", s.name)));

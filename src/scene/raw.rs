@@ -363,6 +363,43 @@ pub enum RawUnknowns {
     Many(Vec<String>),
 }
 
+/// A step's `gives`: the notes' form of its result, or of each of several results in order.
+#[derive(Deserialize)]
+#[serde(
+    untagged,
+    expecting = "`gives` takes the notes' form of the step's result, or a list of them, one per \
+                 result of a step that gives several (modes, roots, unknowns)"
+)]
+pub enum RawGives {
+    One(String),
+    Many(Vec<String>),
+}
+
+impl RawStep {
+    /// A single `gives`, as text at its place in the file.
+    pub fn single_gives(&self) -> Option<Text> {
+        let g = self.gives.as_ref()?;
+        match g.get_ref() {
+            RawGives::One(text) => Some(Spanned::new(g.span(), text.clone())),
+            RawGives::Many(_) => None,
+        }
+    }
+
+    /// A list `gives`, each entry at the list's place in the file.
+    pub fn listed_gives(&self) -> Vec<Text> {
+        match self.gives.as_ref() {
+            Some(g) => match g.get_ref() {
+                RawGives::Many(list) => list
+                    .iter()
+                    .map(|text| Spanned::new(g.span(), text.clone()))
+                    .collect(),
+                RawGives::One(_) => Vec::new(),
+            },
+            None => Vec::new(),
+        }
+    }
+}
+
 /// One step of an author's derivation: a name, one operation, and optionally the notes' form
 /// of its result (`gives`), checked like a claim.
 #[derive(Deserialize)]
@@ -436,7 +473,7 @@ pub struct RawStep {
     #[serde(default)]
     pub start: BTreeMap<Spanned<String>, Spanned<f64>>,
     #[serde(default)]
-    pub gives: Option<Text>,
+    pub gives: Option<Spanned<RawGives>>,
     #[serde(default)]
     pub why: Option<Text>,
     /// How the step's name is typeset, in LaTeX: `tex = "I_p"`.

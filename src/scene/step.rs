@@ -17,6 +17,9 @@ pub struct AuthorStep {
     /// The notes' form of the result: an expression, or for an equation its residual
     /// (`lhs - rhs`); agrees when it is the same (an equation, up to a non-zero factor).
     pub gives: Option<Expr>,
+    /// The notes' form of each result of a step that gives several (`Omega_1`, `Omega_2`, …),
+    /// in order: a list `gives`.
+    pub gives_each: Vec<Expr>,
     pub expect: Option<Verdict>,
     pub role: ClaimRole,
     /// For `lagrange`, `momentum` and `energy`: the state their numeric check integrates from,

@@ -483,7 +483,7 @@ pub fn verify_symbolic(
         Vec::new()
     };
     if plan.runs(Stage::Steps) {
-        claims.extend(steps::check_gives(scene, d)?);
+        claims.extend(gives::check_gives(scene, d)?);
     }
     let regressions = if plan.runs(Stage::Regression) {
         check_regressions(scene, d)?
@@ -525,6 +525,7 @@ mod body_moments;
 pub mod budget;
 pub mod dimensions;
 mod free_top;
+mod gives;
 mod integral;
 mod motion;
 pub mod n_link;

@@ -17,18 +17,17 @@ use super::solve::{roots_check, system_check};
 pub use super::step_check::{CheckError, StepCheck};
 use super::step_check::{H, at, random_point};
 use super::{
-    CONFIRMATION_POINTS, ClaimResult, DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, check_claim,
-    claim_env, numerically_zero, signed_names, unchecked,
+    CONFIRMATION_POINTS, DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, numerically_zero,
+    signed_names,
 };
 use crate::base::rng::Rng;
-use crate::cas::{self, Expr};
+use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::steps::{
     StepResult, equation_with, equilibria_source, expand_names, expand_ranges, replacements,
     substituted_equations,
 };
-use crate::model::prose::Prose;
-use crate::scene::{AuthorStep, Claim, Operation, Scene, Verdict};
+use crate::scene::{AuthorStep, Operation, Scene};
 use std::collections::BTreeMap;
 
 /// Central differences with Richardson extrapolation err by O(h⁴) in truncation and about
@@ -424,147 +423,4 @@ fn single_equation<'a>(d: &'a Derivation, of: &str, q: &str) -> Result<&'a Expr,
         .find(|(c, _)| c == q)
         .map(|(_, e)| e)
         .ok_or(CheckError::NotDerived)
-}
-
-/// Each step's `gives`, as a claim of the notes: the same expression, or for equations of
-/// motion the same equation up to a non-zero constant factor.
-pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, cas::CasError> {
-    let env = claim_env(scene, d);
-    let mut out = Vec::new();
-    for (i, step) in scene.steps.iter().enumerate() {
-        let Some(gives) = &step.gives else {
-            continue;
-        };
-        let claim = Claim {
-            eq: step.eq.clone().unwrap_or_else(|| step.name.clone()),
-            // The step's reason: the pages show the claim's formula beside it.
-            statement: if step.why.is_empty() {
-                "the form the notes give for this step".to_string()
-            } else {
-                step.why.clone()
-            },
-            quantity: Some(Expr::sym(&step.name)),
-            value: Some(gives.clone()),
-            figures: None,
-            expect: step.expect,
-            role: step.role,
-            line: step.line,
-        };
-        let mut r = match d.named.get(&step.name) {
-            Some(StepResult::Equations(eqs)) => same_equation(scene, d, step, &claim, eqs, gives)?,
-            Some(
-                several @ (StepResult::Modes(_)
-                | StepResult::NumericModes { .. }
-                | StepResult::Roots(_)
-                | StepResult::Solution(_)),
-            ) => {
-                let n = match several {
-                    StepResult::NumericModes { frequencies, .. } => frequencies.len(),
-                    _ => several.values(&step.name).len(),
-                };
-                let mut r = unchecked(&claim);
-                r.problem = Some(format!(
-                    "this step gives {n} values, named {}_1 to {}_{n}: state each in a claim on \
-                     its name instead of `gives`",
-                    step.name, step.name,
-                ));
-                r
-            }
-            _ => check_claim(scene, &env, 10_000 + i, &claim)?,
-        };
-        r.step = Some(i);
-        out.push(r);
-    }
-    Ok(out)
-}
-
-/// An equation of motion against the notes' form: the notes' residual g equals c·r for the
-/// derived residual r and a constant c ≠ 0, where c is the ratio of their coefficients of the
-/// first acceleration.
-fn same_equation(
-    scene: &Scene,
-    d: &Derivation,
-    step: &AuthorStep,
-    claim: &Claim,
-    eqs: &[(String, Expr)],
-    gives: &Expr,
-) -> Result<ClaimResult, cas::CasError> {
-    let mut r = unchecked(claim);
-    let [(q, residual)] = eqs else {
-        r.problem = Some(format!(
-            "`gives` states one equation; this step derives {} (one per coordinate): compare \
-             them with claims",
-            eqs.len()
-        ));
-        return Ok(r);
-    };
-    r.derived = Some(crate::model::value::Value::Scalar(residual.clone()));
-    let notes = match expand_names(scene, d, step, gives) {
-        Ok(x) => x,
-        Err(e) => {
-            r.problem = Some(e.to_string());
-            return Ok(r);
-        }
-    };
-    let accel = format!("{q}''");
-    let ratio = (|| {
-        let num = notes.diff(&accel).ok()?;
-        let den = residual.diff(&accel).ok()?;
-        Some(Expr::over(num, den))
-    })();
-    let Some(ratio) = ratio else {
-        r.problem = Some("cannot differentiate the equations by the acceleration".into());
-        return Ok(r);
-    };
-    let ratio = cas::simplify(&ratio)?;
-    let state_free = !ratio
-        .symbols()
-        .iter()
-        .any(|s| s == "t" || s == q || *s == format!("{q}'") || *s == accel);
-    let difference = Expr::minus(
-        notes.clone(),
-        Expr::mul(vec![ratio.clone(), residual.clone()]),
-    );
-    let symbolic = state_free && !ratio.is_zero() && cas::is_zero_all(vec![difference.clone()])?[0];
-    let scale = Expr::add(vec![notes.clone(), residual.clone()]);
-    let numeric = numerically_zero(
-        &[difference],
-        &[scale],
-        scene.seed.wrapping_add(20_000),
-        &signed_names(scene),
-    )
-    .map(|z| z[0] && state_free && !ratio.is_zero());
-    match numeric {
-        Ok(n) if n != symbolic => {
-            r.verdict = Verdict::Undecided;
-            r.differences.push(
-                format!(
-                    "the symbolic test says the equations are {}, the test at \
-                     {CONFIRMATION_POINTS} random points says {}; check this step by hand",
-                    if symbolic { "the same" } else { "different" },
-                    if n { "the same" } else { "different" }
-                )
-                .into(),
-            );
-            return Ok(r);
-        }
-        Ok(_) => {}
-        Err(e) => r.problem = Some(format!("cannot evaluate at random points: {e}")),
-    }
-    r.verdict = if symbolic {
-        Verdict::Agrees
-    } else {
-        Verdict::Disagrees
-    };
-    if !symbolic {
-        r.differences.push(
-            Prose::default()
-                .text("derived ")
-                .expr(residual)
-                .text(" = 0, notes ")
-                .expr(&cas::simplify(&notes)?)
-                .text(" = 0: not one a constant multiple of the other"),
-        );
-    }
-    Ok(r)
 }

@@ -1127,3 +1127,61 @@ values = {{ M = 2.0, L = 1.5 }}
         "{e}"
     );
 }
+
+/// `gives` as a list on a step with several results: the double pendulum's two modes, each
+/// entry a claim on `Omega_1`, `Omega_2` in order. The textbook's √((2 ∓ √2) g/l) agree; the
+/// uncoupled √(g/l), √(3g/l) disagree, each at the step's line; a list of three is a problem
+/// that says so; a list on a step with one result is refused where it is written.
+#[test]
+fn a_list_gives_states_each_result_of_a_step() {
+    let text = super::n_link::n_link_scene(2).replace(
+        "why = \"the normal modes\"",
+        "why = \"the normal modes\"\ngives = [\"sqrt((2 - sqrt(2))*g/l)\", \"sqrt((2 + sqrt(2))*g/l)\"]",
+    );
+    let verdicts = |text: &str| -> Vec<(Verdict, usize, Option<String>)> {
+        run(text)
+            .verification
+            .claims
+            .iter()
+            .map(|c| (c.verdict, c.line, c.problem.clone()))
+            .collect()
+    };
+    let line = text
+        .lines()
+        .position(|l| l.starts_with("frequency ="))
+        .unwrap()
+        - 1;
+    let right = verdicts(&text);
+    assert_eq!(right.len(), 2, "{right:?}");
+    assert!(
+        right
+            .iter()
+            .all(|(v, l, _)| *v == Verdict::Agrees && *l == line),
+        "{right:?} {line}"
+    );
+    let wrong = text
+        .replace("sqrt((2 - sqrt(2))*g/l)", "sqrt(g/l)")
+        .replace("sqrt((2 + sqrt(2))*g/l)", "sqrt(3*g/l)");
+    assert!(
+        verdicts(&wrong)
+            .iter()
+            .all(|(v, _, _)| *v == Verdict::Disagrees)
+    );
+    let three = text.replace(
+        "\"sqrt((2 + sqrt(2))*g/l)\"]",
+        "\"sqrt((2 + sqrt(2))*g/l)\", \"g\"]",
+    );
+    let problems = verdicts(&three);
+    assert!(
+        problems
+            .iter()
+            .all(|(_, _, p)| p.as_deref().is_some_and(|p| p.contains("lists 3 forms"))),
+        "{problems:?}"
+    );
+    let on_one = text.replace(
+        "why = \"$T - V$\"",
+        "why = \"$T - V$\"\ngives = [\"1\", \"2\"]",
+    );
+    let e = Scene::parse(&on_one, Path::new("p.toml")).unwrap_err();
+    assert!(e.message.contains("a list in `gives`"), "{e}");
+}

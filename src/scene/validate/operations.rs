@@ -370,7 +370,7 @@ impl Validator<'_> {
         // then a claim with a problem that says to use the modes' names.)
         if let (true, Some(g)) = (is(&["equilibria", "stability"]), &s.gives) {
             return Err(self.err(
-                content_start(g),
+                g.span().start,
                 &format!("{field}.gives"),
                 format!(
                     "`gives` states one result, and `{}` finds one per state of rest: leave \

@@ -117,7 +117,7 @@ impl Validator<'_> {
             };
             // An equation `gives` is compared as an equation of motion; on a step that gives an
             // expression it would be read as `lhs - rhs` and compared with the expression.
-            if let Some(g) = &s.get_ref().gives
+            if let Some(g) = &s.get_ref().single_gives()
                 && g.get_ref().contains('=')
                 && !matches!(holds, Holds::Motion | Holds::Linear)
             {
@@ -173,10 +173,30 @@ impl Validator<'_> {
             }
             start.insert(k.get_ref().clone(), *v.get_ref());
         }
-        let gives = match &s.gives {
+        let gives = match &s.single_gives() {
             None => None,
             Some(g) => Some(self.gives(g, &format!("{field}.gives"), scope)?),
         };
+        let listed = s.listed_gives();
+        if let Some(first) = listed.first()
+            && !matches!(op, Operation::Frequency { .. } | Operation::Solve { .. })
+        {
+            return Err(self.err(
+                first.span().start,
+                &format!("{field}.gives"),
+                format!(
+                    "a list in `gives` is for a step with several results (the modes of \
+                     `frequency`, the roots or unknowns of `solve`); `{}` gives one: write its \
+                     form alone",
+                    op.name()
+                ),
+            ));
+        }
+        let gives_each = listed
+            .iter()
+            .enumerate()
+            .map(|(k, g)| self.claim_expr(g, &format!("{field}.gives[{k}]"), scope))
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(AuthorStep {
             name: name.clone(),
             why: s
@@ -190,6 +210,7 @@ impl Validator<'_> {
                 .map(|e| self.equation_number(e, field))
                 .transpose()?,
             gives,
+            gives_each,
             expect: self.verdict(s.expect.as_ref(), field)?,
             role: self.role(s.role.as_ref(), field)?,
             start,
