@@ -213,6 +213,14 @@ impl Derivation {
 
     /// The first name in `e` whose result is numeric only, and its step.
     pub fn numeric_name_in(&self, e: &Expr) -> Option<(String, String)> {
+        // Most derivations have no numeric modes: nothing to look up.
+        if !self
+            .named
+            .values()
+            .any(|r| matches!(r, steps::StepResult::NumericModes { .. }))
+        {
+            return None;
+        }
         let names = self.numeric_names();
         e.symbols()
             .into_iter()

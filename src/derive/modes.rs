@@ -5,6 +5,7 @@
 
 use super::DeriveError;
 use super::lagrangian::{closed_roots, sort_by_value};
+use super::step_result::StepResult;
 use crate::base::pencil::symmetric_pencil_eigenvalues;
 use crate::cas::{self, Expr};
 use crate::model::prose::Prose;
@@ -14,28 +15,17 @@ use std::collections::BTreeMap;
 /// The root variable of the characteristic polynomial: a name no scene can write.
 const LAMBDA: &str = "lambda__";
 
-/// The frequencies a `frequency` step of several coordinates found.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Modes {
-    /// Each √λ in closed form, slowest first at the scene's values.
-    Exact(Vec<Expr>),
-    /// Each √λ at the scene's values, slowest first, and why there is no closed form.
-    Numeric {
-        frequencies: Vec<f64>,
-        reason: Prose,
-    },
-}
-
 /// The most coordinates whose det(K − λM) is expanded in symbols: its degree is n, `solve`'s
 /// closed forms stop at four, and the expansion has n! terms.
 pub const MAX_EXACT_MODES: usize = 4;
 
 /// The normal-mode angular frequencies of n ≥ 2 linear equations M q'' + K (q − q₀) = 0: each
-/// √λ for the roots λ of det(K − λM) = 0, ordered by their value at `values`.
+/// √λ for the roots λ of det(K − λM) = 0, ordered by their value at `values`: in closed form
+/// (`StepResult::Modes`), or at the scene's values with the reason (`NumericModes`).
 pub fn normal_modes(
     eqs: &[(String, Expr)],
     values: &BTreeMap<String, f64>,
-) -> Result<Modes, DeriveError> {
+) -> Result<StepResult, DeriveError> {
     let n = eqs.len();
     let (mass, stiffness) = matrices(eqs)?;
     if n > MAX_EXACT_MODES {
@@ -114,7 +104,7 @@ pub fn normal_modes(
         )));
     }
     sort_by_value(&mut modes, values);
-    Ok(Modes::Exact(modes))
+    Ok(StepResult::Modes(modes))
 }
 
 /// M = ∂R/∂q'' and K = ∂R/∂q of the linear residuals R, row-major; a term in a rate is
@@ -146,7 +136,7 @@ fn numeric_modes(
     n: usize,
     values: &BTreeMap<String, f64>,
     reason: Prose,
-) -> Result<Modes, DeriveError> {
+) -> Result<StepResult, DeriveError> {
     let said = reason.to_text();
     let at = |entries: &[Expr]| -> Result<nalgebra::DMatrix<f64>, DeriveError> {
         let mut out = Vec::with_capacity(entries.len());
@@ -178,7 +168,7 @@ fn numeric_modes(
         }
         frequencies.push(lambda.sqrt());
     }
-    Ok(Modes::Numeric {
+    Ok(StepResult::NumericModes {
         frequencies,
         reason,
     })

@@ -106,6 +106,15 @@ impl StepResult {
         }
     }
 
+    /// How many results the step gives: one per name in [`StepResult::values`], and one per
+    /// numeric mode (which has no exact value to name).
+    pub fn count(&self, name: &str) -> usize {
+        match self {
+            StepResult::NumericModes { frequencies, .. } => frequencies.len(),
+            _ => self.values(name).len(),
+        }
+    }
+
     /// The one expression a later step may use by this step's name.
     pub fn scalar(&self) -> Option<&Expr> {
         match self {

@@ -8,7 +8,7 @@ use super::lagrangian::{
     energy, equilibria, euler_lagrange, frequency, linearise, momentum, simplify_two, stability,
     time_derivative,
 };
-use super::modes::{Modes, normal_modes};
+use super::modes::normal_modes;
 use super::sign::{Sign, signs_over_positive};
 pub use super::solve::equation_with;
 use super::solve::{solve, solve_system};
@@ -332,16 +332,7 @@ fn derive_step(
         }
         Operation::Frequency { of } => match equations(d, of)? {
             eqs @ [_] => StepResult::Expr(frequency(eqs)?),
-            eqs => match normal_modes(eqs, &scene.values)? {
-                Modes::Exact(modes) => StepResult::Modes(modes),
-                Modes::Numeric {
-                    frequencies,
-                    reason,
-                } => StepResult::NumericModes {
-                    frequencies,
-                    reason,
-                },
-            },
+            eqs => normal_modes(eqs, &scene.values)?,
         },
         Operation::Integrate { of, over } => {
             let f = expand_names(scene, d, step, of)?;

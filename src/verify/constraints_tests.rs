@@ -21,6 +21,23 @@ fn run(text: &str) -> SceneReport {
     run_scene(Scene::parse(text, Path::new("p.toml")).unwrap(), None).unwrap()
 }
 
+/// Every step passes its numeric route and every claim (and `gives`) agrees.
+fn all_pass_and_agree(r: &SceneReport) {
+    assert!(
+        r.verification.steps.iter().all(|c| c.passed()),
+        "{:?}",
+        r.verification.steps
+    );
+    assert!(
+        r.verification
+            .claims
+            .iter()
+            .all(|c| c.verdict == Verdict::Agrees),
+        "{:?}",
+        r.verification.claims
+    );
+}
+
 fn blank() -> StepCheck {
     StepCheck {
         step: "eom".into(),
@@ -54,19 +71,7 @@ fn value(r: &SceneReport, name: &str, at: &[(&str, f64)]) -> f64 {
 fn the_atwood_machines_tension_is_its_multiplier() {
     let text = course("13-atwood.toml");
     let r = run(&text);
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
-    assert!(
-        r.verification
-            .claims
-            .iter()
-            .all(|c| c.verdict == Verdict::Agrees),
-        "{:?}",
-        r.verification.claims
-    );
+    all_pass_and_agree(&r);
     let tension = value(&r, "acc_3", &[]);
     assert!(
         (tension - 2.0 * 2.0 * 1.0 * 9.81 / 3.0).abs() < 1e-12,
@@ -124,19 +129,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
 #[test]
 fn the_ladder_leaves_the_wall_where_its_multiplier_vanishes() {
     let r = run(&course("14-ladder.toml"));
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
-    assert!(
-        r.verification
-            .claims
-            .iter()
-            .all(|c| c.verdict == Verdict::Agrees),
-        "{:?}",
-        r.verification.claims
-    );
+    all_pass_and_agree(&r);
     let leaves = value(&r, "leave_3", &[]);
     let (g, l, theta0) = (9.81, 1.0, 0.3f64);
     assert!((leaves - (2.0 * theta0.cos() / 3.0).acos()).abs() < 1e-14);

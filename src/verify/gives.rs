@@ -45,10 +45,7 @@ pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, ca
                 | StepResult::Roots(_)
                 | StepResult::Solution(_)),
             ) => {
-                let n = match several {
-                    StepResult::NumericModes { frequencies, .. } => frequencies.len(),
-                    _ => several.values(&step.name).len(),
-                };
+                let n = several.count(&step.name);
                 let mut r = unchecked(&claim);
                 r.problem = Some(format!(
                     "this step gives {n} values, named {}_1 to {}_{n}: state each in a claim on \
@@ -74,11 +71,8 @@ fn check_gives_each(
     i: usize,
 ) -> Result<Vec<ClaimResult>, cas::CasError> {
     let step = &scene.steps[i];
-    let count = match d.named.get(&step.name) {
-        Some(StepResult::NumericModes { frequencies, .. }) => frequencies.len(),
-        Some(r) => r.values(&step.name).len(),
-        None => 0,
-    };
+    let count = d.named.get(&step.name).map_or(0, |r| r.count(&step.name));
+    let numeric = d.numeric_names();
     let mut out = Vec::new();
     for (k, value) in step.gives_each.iter().enumerate() {
         let name = crate::scene::mode_name(&step.name, k);
@@ -99,7 +93,6 @@ fn check_gives_each(
             role: step.role,
             line: step.line,
         };
-        let numeric = d.numeric_names();
         let mut r = if step.gives_each.len() != count {
             let mut r = unchecked(&claim);
             r.problem = Some(format!(
