@@ -47,6 +47,16 @@ pub enum EngineError {
         if text.len() > 200 { format!("{}… ({} characters)", text.chars().take(120).collect::<String>(), text.len()) } else { text.clone() }
     )]
     Unreadable { text: String },
+    #[error(
+        "0/0 where a value was put in: the expression has no value there, only a limit, which a \
+         `series` step about that value with `order = 0` takes"
+    )]
+    ZeroOverZero,
+    #[error(
+        "a division by zero where a value was put in: the expression has a pole there, with no \
+         finite value"
+    )]
+    DivisionByZero,
     #[error("unexpected name `{name}` in the engine's output `{text}`")]
     UnexpectedNameIn { name: String, text: String },
     #[error("zero denominator")]
@@ -155,6 +165,13 @@ fn large_number(r: &Rational) -> Atom {
 
 fn from_text(text: &str) -> Result<Expr, EngineError> {
     let text = strip_ansi(text);
+    // The engine's indeterminate (0/0) and complex infinity (x/0).
+    if text.contains('¿') {
+        return Err(EngineError::ZeroOverZero);
+    }
+    if text.contains('⧞') {
+        return Err(EngineError::DivisionByZero);
+    }
     let parsed = parse(&text).map_err(|_| EngineError::Unreadable { text: text.clone() })?;
     if let Some((name, _)) = parsed.symbols.iter().find(|(s, _)| !s.starts_with(PREFIX)) {
         return Err(EngineError::UnexpectedNameIn {

@@ -89,3 +89,67 @@ fn linear_in_rates(
     }
     Ok(())
 }
+
+/// Whether the velocity constraint q' = Σ_j a_j(q) q_j' (`rate` replaced by `value`) fails to
+/// integrate to a relation among the coordinates: the form ω = dq − Σ a_j dq_j has
+/// ω ∧ dω ≠ 0 (Frobenius). A rolling disk's x' = r q3' cos q1 does not integrate; a wheel's
+/// θ' = x'/R does. A replacement that is not linear in the rates, or has a term free of them,
+/// is not a velocity constraint: `false`.
+pub fn does_not_integrate(
+    rate: &str,
+    value: &Expr,
+    coordinates: &BTreeMap<String, String>,
+) -> Result<bool, DeriveError> {
+    let Some(q) = rate
+        .strip_suffix('\'')
+        .filter(|q| coordinates.contains_key(*q))
+    else {
+        return Ok(false);
+    };
+    let names: Vec<&String> = coordinates.keys().collect();
+    // ω's component on each coordinate: 1 on q, −∂value/∂q_j' on each.
+    let mut omega = Vec::new();
+    for c in &names {
+        let a = value.diff(&format!("{c}'"))?;
+        let own = if c.as_str() == q {
+            Expr::int(1)
+        } else {
+            Expr::int(0)
+        };
+        omega.push(Expr::minus(own, a));
+    }
+    let omega = cas::simplify_all(omega)?;
+    let rates_of = |e: &Expr| {
+        e.symbols().iter().any(|s| {
+            s.strip_suffix('\'')
+                .is_some_and(|c| coordinates.contains_key(c))
+        })
+    };
+    // Linear in the rates with no free term: value = Σ a_j q_j'.
+    let rebuilt = Expr::add(
+        names
+            .iter()
+            .zip(&omega)
+            .filter(|(c, _)| c.as_str() != q)
+            .map(|(c, w)| Expr::mul(vec![Expr::negate(w.clone()), Expr::sym(&format!("{c}'"))]))
+            .collect(),
+    );
+    if omega.iter().any(rates_of) || !cas::simplify(&Expr::minus(value.clone(), rebuilt))?.is_zero()
+    {
+        return Ok(false);
+    }
+    let d = |k: usize, j: usize| omega[k].diff(names[j]);
+    let mut wedges = Vec::new();
+    for i in 0..names.len() {
+        for j in i + 1..names.len() {
+            for l in j + 1..names.len() {
+                wedges.push(Expr::add(vec![
+                    Expr::mul(vec![omega[i].clone(), Expr::minus(d(l, j)?, d(j, l)?)]),
+                    Expr::mul(vec![omega[j].clone(), Expr::minus(d(i, l)?, d(l, i)?)]),
+                    Expr::mul(vec![omega[l].clone(), Expr::minus(d(j, i)?, d(i, j)?)]),
+                ]));
+            }
+        }
+    }
+    Ok(cas::simplify_all(wedges)?.iter().any(|w| !w.is_zero()))
+}

@@ -291,7 +291,7 @@ pub(super) fn closed_roots(
 
 /// Whether `e` has an even root of a quantity negative for every positive value of its
 /// symbols (√(−3r₀²)): it is real for none.
-fn never_real(e: &Expr) -> bool {
+pub(super) fn never_real(e: &Expr) -> bool {
     let mut radicands = Vec::new();
     e.walk(&mut |x| {
         if let Expr::Pow(b, k) = x

@@ -28,6 +28,7 @@ pub mod stability;
 mod step_page;
 mod step_result;
 pub mod steps;
+mod undefined;
 pub mod variants;
 
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};

@@ -29,19 +29,32 @@ pub fn put_state(e: &Expr, coordinates: &[String], state: &[Zero]) -> Expr {
         .fold(e.clone(), |e, (q, z)| z.put_into(&e, q))
 }
 
-/// Every state of rest of the equations of several coordinates, each a zero per coordinate in
-/// the equations' order.
-pub fn rest_states(eqs: &[(String, Expr)]) -> Result<(Vec<String>, Vec<Vec<Zero>>), DeriveError> {
+/// The states of rest of several coordinates: a zero per coordinate in the equations' order,
+/// and the roots set aside as real for no values of the symbols (coordinate, root).
+#[derive(Debug)]
+pub struct RestStates {
+    pub coordinates: Vec<String>,
+    pub states: Vec<Vec<Zero>>,
+    pub excluded: Vec<(String, Expr)>,
+}
+
+/// Every state of rest of the equations of several coordinates.
+pub fn rest_states(eqs: &[(String, Expr)]) -> Result<RestStates, DeriveError> {
     let coordinates: Vec<String> = eqs.iter().map(|(q, _)| q.clone()).collect();
     let statics: Vec<Expr> = eqs
         .iter()
         .map(|(_, r)| static_form(r, &coordinates))
         .collect();
-    let found = solve_static(statics, &coordinates)?;
+    let mut excluded = Vec::new();
+    let found = solve_static(statics, &coordinates, &mut excluded)?;
     if found.is_empty() {
-        return Err(DeriveError::NotDerivable(
-            "the static equations have no common solution: there is no equilibrium".into(),
-        ));
+        let besides = match excluded.is_empty() {
+            true => "",
+            false => " (the roots set aside are real for no values of the symbols)",
+        };
+        return Err(DeriveError::NotDerivable(format!(
+            "the static equations have no common real solution{besides}: there is no equilibrium"
+        )));
     }
     if found.len() > MAX_STATES {
         return Err(DeriveError::NotDerivable(format!(
@@ -66,12 +79,21 @@ pub fn rest_states(eqs: &[(String, Expr)]) -> Result<(Vec<String>, Vec<Vec<Zero>
                 .collect::<Result<Vec<Zero>, _>>()
         })
         .collect::<Result<_, _>>()?;
-    Ok((coordinates, states))
+    Ok(RestStates {
+        coordinates,
+        states,
+        excluded,
+    })
 }
 
 /// The common zeros of `eqs` in the coordinates `free`: an equation in one of them alone gives
-/// its zeros, each put into the others, which are solved in turn.
-fn solve_static(eqs: Vec<Expr>, free: &[String]) -> Result<Vec<Vec<(String, Zero)>>, DeriveError> {
+/// its zeros, each put into the others, which are solved in turn. A zero real for no positive
+/// values of the symbols (r = √(−r₀²)) is no state of rest: set aside in `excluded`.
+fn solve_static(
+    eqs: Vec<Expr>,
+    free: &[String],
+    excluded: &mut Vec<(String, Expr)>,
+) -> Result<Vec<Vec<(String, Zero)>>, DeriveError> {
     let eqs: Vec<Expr> = cas::simplify_all(eqs)?
         .into_iter()
         .filter(|e| !e.is_zero())
@@ -133,6 +155,10 @@ fn solve_static(eqs: Vec<Expr>, free: &[String]) -> Result<Vec<Vec<(String, Zero
     let rest_free: Vec<String> = free.iter().filter(|p| **p != q).cloned().collect();
     let mut states = Vec::new();
     for z in found.zeros {
+        if super::lagrangian::never_real(&z.value) {
+            excluded.push((q.clone(), z.value));
+            continue;
+        }
         let positive = |e: &Expr| cas::pull_squares(e, &|_| true);
         let z = Zero {
             value: positive(&z.value),
@@ -144,7 +170,7 @@ fn solve_static(eqs: Vec<Expr>, free: &[String]) -> Result<Vec<Vec<(String, Zero
             .filter(|(j, _)| *j != k)
             .map(|(_, e)| z.put_into(e, &q))
             .collect();
-        for mut state in solve_static(others, &rest_free)? {
+        for mut state in solve_static(others, &rest_free, excluded)? {
             state.insert(0, (q.clone(), z.clone()));
             states.push(state);
         }

@@ -1,6 +1,6 @@
 //! States of rest of several coordinates: coupled linear springs (one state, by Cramer's rule),
 //! static equations that leave a coordinate free, coupled non-linear ones, and a rotating
-//! frame whose Coriolis terms K alone cannot judge.
+//! frame whose Coriolis terms K alone cannot judge; roots real for no values set aside.
 
 use super::DeriveError;
 use super::rest_states::{rest_stability, rest_states};
@@ -29,7 +29,8 @@ fn coupled_springs_have_one_stable_state() {
         ("x", "m*x'' + 2*k*x - k*y - F"),
         ("y", "m*y'' + 2*k*y - k*x"),
     ]);
-    let (coordinates, states) = rest_states(&e).unwrap();
+    let found = rest_states(&e).unwrap();
+    let (coordinates, states) = (found.coordinates, found.states);
     assert_eq!(states.len(), 1);
     let at = |ex: &crate::cas::Expr| {
         ex.eval(&|s| match s {
@@ -60,6 +61,28 @@ fn what_equilibria_of_several_coordinates_refuses() {
         ("x", "m*x'' - 2*m*W*y' - m*W^2*x + k*x"),
         ("y", "m*y'' + 2*m*W*x' - m*W^2*y + k*y"),
     ]);
-    let (coordinates, states) = rest_states(&rotating).unwrap();
+    let found = rest_states(&rotating).unwrap();
+    let (coordinates, states) = (found.coordinates, found.states);
     assert!(message(rest_stability(&rotating, &coordinates, &states)).contains("gyroscopic"));
+}
+
+/// A radial equation k r (r² + r₀²) = 0 beside a spring in z: r = 0 is the one state of rest
+/// (with z = h); r = ±√(−r₀²) are real for no positive r₀, set aside and named, not states.
+/// With only such roots there is no equilibrium, and the error says why.
+#[test]
+fn roots_real_for_no_values_are_set_aside() {
+    let e = eqs(&[
+        ("r", "m*r'' + k*r^3 + k*r0^2*r"),
+        ("z", "m*z'' + c*(z - h)"),
+    ]);
+    let found = rest_states(&e).unwrap();
+    assert_eq!(found.states.len(), 1, "{found:?}");
+    assert!(found.states[0][0].value.is_zero());
+    assert_eq!(found.states[0][1].value, parse("h").unwrap().expr);
+    assert_eq!(found.excluded.len(), 2, "{found:?}");
+    assert!(found.excluded.iter().all(|(q, _)| q == "r"));
+    let none = eqs(&[("r", "m*r'' + k*r^2 + k*r0^2"), ("z", "m*z'' + c*(z - h)")]);
+    let m = message(rest_states(&none));
+    assert!(m.contains("no common real solution"), "{m}");
+    assert!(m.contains("real for no values"), "{m}");
 }

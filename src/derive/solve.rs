@@ -1,7 +1,8 @@
 //! `solve`: the one equation of a step that contains the unknown, solved exactly: linear, or
 //! every root of its polynomial factors up to degree two and of quartics in u², and the real
 //! roots of cubic and quartic factors in closed form; several unknowns, the linear system of the
-//! equations that contain them (Cramer's rule).
+//! equations that contain them (unknowns with numeric coefficients eliminated past four, then
+//! Cramer's rule).
 
 use super::DeriveError;
 use crate::cas::{self, Expr};
@@ -204,34 +205,102 @@ pub fn solve_system(
             }
         )));
     }
-    let n = unknowns.len();
-    // R_i = Σ_j a_ij u_j + b_i: the slopes must not hold an unknown.
-    let mut slopes = Vec::new();
-    let mut curvatures = Vec::new();
-    for (_, r) in &with {
-        for u in unknowns {
-            let a = r.diff(u)?;
-            for v in unknowns {
-                curvatures.push(a.diff(v)?);
-            }
-            slopes.push(a);
-        }
-    }
-    let curvatures = cas::simplify_all(curvatures)?;
-    if let Some(k) = curvatures.iter().position(|c| !c.is_zero()) {
-        let (q, _) = with[k / (n * n)];
+    let rows: Vec<Expr> = with.iter().map(|(_, r)| r.clone()).collect();
+    if let Some(k) = nonlinear_row(&rows, unknowns)? {
+        let (q, _) = with[k];
         return Err(DeriveError::NotDerivable(format!(
             "the equation of {q} is not linear in {}: `solve` of several unknowns takes a \
              linear system; solve for one unknown at a time instead",
             unknowns.join(", ")
         )));
     }
+    // Past four unknowns Cramer's rule grows as n!: first take out each unknown that some
+    // equation holds with a numeric coefficient (a rolling constraint's x'', a multiplier's
+    // ±1), then solve what is left by Cramer's rule and substitute back.
+    let (rows, rest, eliminated) = eliminate_numeric_pivots(rows, unknowns.to_vec())?;
+    let mut known: BTreeMap<String, Expr> =
+        rest.iter().cloned().zip(cramer(&rows, &rest)?).collect();
+    for (u, e) in eliminated.into_iter().rev() {
+        let value = cas::simplify(&e.substitute(&|s| known.get(s).cloned()))?;
+        known.insert(u, value);
+    }
+    Ok(unknowns
+        .iter()
+        .map(|u| (u.clone(), known[u].clone()))
+        .collect())
+}
+
+/// The first row that is not linear in the unknowns (a slope that holds one).
+fn nonlinear_row(rows: &[Expr], unknowns: &[String]) -> Result<Option<usize>, DeriveError> {
+    let n = unknowns.len();
+    let mut curvatures = Vec::new();
+    for r in rows {
+        for u in unknowns {
+            let a = r.diff(u)?;
+            for v in unknowns {
+                curvatures.push(a.diff(v)?);
+            }
+        }
+    }
+    let curvatures = cas::simplify_all(curvatures)?;
+    Ok(curvatures
+        .iter()
+        .position(|c| !c.is_zero())
+        .map(|k| k / (n * n)))
+}
+
+/// While more than four unknowns remain, solve the first equation that holds an unknown with a
+/// numeric coefficient for it and substitute it into the others: the equations left, their
+/// unknowns, and each eliminated unknown's value in terms of those after it.
+#[allow(clippy::type_complexity)]
+fn eliminate_numeric_pivots(
+    mut rows: Vec<Expr>,
+    mut unknowns: Vec<String>,
+) -> Result<(Vec<Expr>, Vec<String>, Vec<(String, Expr)>), DeriveError> {
+    let mut eliminated = Vec::new();
+    while unknowns.len() > 4 {
+        let mut pivot = None;
+        'search: for (i, r) in rows.iter().enumerate() {
+            for (j, u) in unknowns.iter().enumerate() {
+                let slope = cas::simplify(&r.diff(u)?)?;
+                if matches!(slope, Expr::Num(_)) && !slope.is_zero() {
+                    pivot = Some((i, j, slope));
+                    break 'search;
+                }
+            }
+        }
+        let Some((i, j, slope)) = pivot else {
+            break;
+        };
+        let row = rows.remove(i);
+        let u = unknowns.remove(j);
+        // R = c u + rest, so u = u − R/c.
+        let value = cas::simplify(&Expr::minus(Expr::sym(&u), Expr::over(row, slope)))?;
+        rows = cas::simplify_all(
+            rows.iter()
+                .map(|r| r.substitute(&|s| (s == u).then(|| value.clone())))
+                .collect(),
+        )?;
+        eliminated.push((u, value));
+    }
+    Ok((rows, unknowns, eliminated))
+}
+
+/// The linear system R_i = Σ_j a_ij u_j + b_i = 0 by Cramer's rule: each unknown's value.
+fn cramer(rows: &[Expr], unknowns: &[String]) -> Result<Vec<Expr>, DeriveError> {
+    let n = unknowns.len();
+    let mut slopes = Vec::new();
+    for r in rows {
+        for u in unknowns {
+            slopes.push(r.diff(u)?);
+        }
+    }
     let a: Vec<Expr> = cas::simplify_all(slopes)?;
     let zero_unknowns =
         |e: &Expr| e.substitute(&|s| unknowns.contains(&s.to_string()).then(|| Expr::int(0)));
-    let minus_b: Vec<Expr> = with
+    let minus_b: Vec<Expr> = rows
         .iter()
-        .map(|(_, r)| Expr::negate(zero_unknowns(r)))
+        .map(|r| Expr::negate(zero_unknowns(r)))
         .collect();
     let matrix: Vec<Vec<Expr>> = (0..n).map(|i| a[i * n..(i + 1) * n].to_vec()).collect();
     let det = cas::simplify(&determinant(&matrix))?;
@@ -255,14 +324,10 @@ pub fn solve_system(
             Expr::over(determinant(&replaced), det.clone())
         })
         .collect();
-    Ok(unknowns
-        .iter()
-        .cloned()
-        .zip(cas::simplify_all(numerators)?)
-        .collect())
+    Ok(cas::simplify_all(numerators)?)
 }
 
-/// The determinant by expansion along the first row (at most 4 × 4).
+/// The determinant by expansion along the first row (at most 4 × 4 after elimination).
 fn determinant(m: &[Vec<Expr>]) -> Expr {
     if m.len() == 1 {
         return m[0][0].clone();

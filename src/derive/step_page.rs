@@ -71,24 +71,11 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
             excluded,
         } => {
             // The roots set aside, named after the last state of rest.
-            let mut last_why = why.clone();
-            if !excluded.is_empty() {
-                let mut set_aside = Prose::default();
-                for (k, e) in excluded.iter().enumerate() {
-                    if k > 0 {
-                        set_aside = set_aside.text(", ");
-                    }
-                    set_aside = set_aside.formula(Formula::equation(
-                        Formula::Expr(Expr::sym(coordinate)),
-                        e.clone(),
-                    ));
-                }
-                let said = if excluded.len() == 1 { "is" } else { "are" };
-                set_aside = set_aside.text(&format!(
-                    " {said} real for no values of the symbols: no state of rest"
-                ));
-                last_why = with_reason(step, &why, set_aside);
-            }
+            let pairs: Vec<(String, Expr)> = excluded
+                .iter()
+                .map(|e| (coordinate.clone(), e.clone()))
+                .collect();
+            let last_why = with_set_aside(step, &why, &pairs);
             let n = zeros.len();
             zeros
                 .iter()
@@ -142,17 +129,22 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
         StepResult::RestStates {
             coordinates,
             states,
-        } => states
-            .iter()
-            .enumerate()
-            .map(|(k, state)| {
-                Step::note(
-                    &format!("{title}: equilibrium {}", k + 1),
-                    state_formula(coordinates, state),
-                    why.clone(),
-                )
-            })
-            .collect(),
+            excluded,
+        } => {
+            let last_why = with_set_aside(step, &why, excluded);
+            let n = states.len();
+            states
+                .iter()
+                .enumerate()
+                .map(|(k, state)| {
+                    Step::note(
+                        &format!("{title}: equilibrium {}", k + 1),
+                        state_formula(coordinates, state),
+                        if k + 1 == n { last_why.clone() } else { why.clone() },
+                    )
+                })
+                .collect()
+        }
         StepResult::RestStability { coordinates, cases } => cases
             .iter()
             .map(|c| {
@@ -270,4 +262,24 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
             })
             .collect(),
     }
+}
+
+/// The step's reason, and after it the roots set aside as real for no values of the symbols
+/// (q = √(−3r₀²)), when there are any.
+fn with_set_aside(step: &AuthorStep, why: &Prose, excluded: &[(String, Expr)]) -> Prose {
+    if excluded.is_empty() {
+        return why.clone();
+    }
+    let mut set_aside = Prose::default();
+    for (k, (q, e)) in excluded.iter().enumerate() {
+        if k > 0 {
+            set_aside = set_aside.text(", ");
+        }
+        set_aside = set_aside.formula(Formula::equation(Formula::Expr(Expr::sym(q)), e.clone()));
+    }
+    let said = if excluded.len() == 1 { "is" } else { "are" };
+    set_aside = set_aside.text(&format!(
+        " {said} real for no values of the symbols: no state of rest"
+    ));
+    with_reason(step, why, set_aside)
 }

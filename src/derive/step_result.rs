@@ -45,6 +45,10 @@ pub enum StepResult {
     RestStates {
         coordinates: Vec<String>,
         states: Vec<Vec<cas::Zero>>,
+        /// Roots of the static equations real for no values of the symbols, set aside:
+        /// (coordinate, root).
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        excluded: Vec<(String, Expr)>,
     },
     /// About each of those states, its stiffness and whether it is stable.
     RestStability {

@@ -161,6 +161,94 @@ fn scalar<'a>(d: &'a Derivation, of: &str) -> Result<&'a Expr, DeriveError> {
     })
 }
 
+/// A Lagrangian built (through `be`, `differentiate` and `substitute` steps) from a
+/// substitution of a velocity constraint that does not integrate gives equations that are not
+/// the motion's (SymPy's rolling-disc example by Lagrange's method is one such): refused, with
+/// the constraint's right place, on the `lagrange` step.
+fn refuse_substituted_rolling(scene: &Scene, d: &Derivation, of: &str) -> Result<(), DeriveError> {
+    let mut pending = vec![of.to_string()];
+    let mut seen = std::collections::BTreeSet::new();
+    while let Some(name) = pending.pop() {
+        if !seen.insert(name.clone()) {
+            continue;
+        }
+        let Some(step) = scene.steps.iter().find(|s| s.name == name) else {
+            continue;
+        };
+        let used = match &step.op {
+            Operation::Be(e) | Operation::Differentiate { of: e, .. } => e,
+            Operation::Substitute { of: e, set } => {
+                for (rate, value) in replacements(scene, d, step, set)? {
+                    if super::constraints::does_not_integrate(&rate, &value, &scene.coordinates)? {
+                        return Err(DeriveError::NotDerivable(format!(
+                            "its Lagrangian comes from step `{}` (line {}), which puts in {rate} = {}, \
+                             a velocity constraint that does not integrate to a relation among the \
+                             coordinates: Lagrange's equations of the substituted L are not the \
+                             motion's. Take L before the substitution and write the constraint on \
+                             this step, `constraints = {{ lam = \"{rate} - ({})\" }}`, with `lam` \
+                             a symbol declared in [symbols] (docs/scenes.md, `lagrange` with \
+                             constraints)",
+                            step.name,
+                            step.line,
+                            value.to_text(),
+                            value.to_text()
+                        )));
+                    }
+                }
+                e
+            }
+            _ => continue,
+        };
+        pending.extend(used.symbols());
+    }
+    Ok(())
+}
+
+/// A substitution that puts in a value where `f` has none: 0/0, with the `series` step that
+/// takes its limit, or a pole.
+fn refuse_no_value(
+    f: &Expr,
+    of: &Expr,
+    set: &BTreeMap<String, Expr>,
+    values: &BTreeMap<String, Expr>,
+) -> Result<(), DeriveError> {
+    let Some(found) = super::undefined::vanishing_divisor(f, values)? else {
+        return Ok(());
+    };
+    let at = set
+        .iter()
+        .map(|(name, e)| format!("{name} = {}", e.to_text()))
+        .collect::<Vec<_>>()
+        .join(", ");
+    if set.is_empty() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the divisor {} of `{}` is 0 as written, so the expression has no value (0/0 or a \
+             pole): write the value or limit you mean",
+            found.divisor.to_text(),
+            of.to_text()
+        )));
+    }
+    Err(DeriveError::NotDerivable(if found.zero_over_zero {
+        let (name, e) = set.iter().next().expect("a substitution names a value");
+        format!(
+            "at {at}, `{}` is 0/0: its divisor {} and the rest of its product both vanish, so \
+             it has no value there, only a limit; take the limit with a `series` step, \
+             `series = \"{}\"`, `about = {{ {name} = \"{}\" }}`, `order = 0`",
+            of.to_text(),
+            found.divisor.to_text(),
+            of.to_text(),
+            e.to_text()
+        )
+    } else {
+        format!(
+            "at {at}, the divisor {} of `{}` vanishes and the rest of its product does not: \
+             the expression has a pole there, with no finite value",
+            found.divisor.to_text(),
+            of.to_text()
+        )
+    }))
+}
+
 /// Equations with each residual simplified (in one call to the engine), their names kept.
 fn simplified(eqs: Vec<(String, Expr)>) -> Result<StepResult, DeriveError> {
     let (names, exprs): (Vec<String>, Vec<Expr>) = eqs.into_iter().unzip();
@@ -300,6 +388,7 @@ fn derive_step(
     Ok(match &step.op {
         Operation::Be(e) => {
             let x = expand_names(scene, d, step, e).map_err(DeriveError::Step)?;
+            refuse_no_value(&x, e, &BTreeMap::new(), &BTreeMap::new())?;
             StepResult::Expr(cas::simplify(&x)?)
         }
         Operation::Differentiate { of, by } => {
@@ -312,6 +401,7 @@ fn derive_step(
             StepResult::Expr(cas::simplify(&raw)?)
         }
         Operation::Lagrange { of, constraints } => {
+            refuse_substituted_rolling(scene, d, of)?;
             let eqs = euler_lagrange(scalar(d, of)?, &scene.coordinates)?;
             simplified(with_multipliers(eqs, constraints, &scene.coordinates)?)?
         }
@@ -359,10 +449,11 @@ fn derive_step(
         Operation::Equilibria { of } => {
             let eqs = free_equations(scene, d, of, "equilibria")?;
             if eqs.len() > 1 {
-                let (coordinates, states) = super::rest_states::rest_states(eqs)?;
+                let found = super::rest_states::rest_states(eqs)?;
                 return Ok(StepResult::RestStates {
-                    coordinates,
-                    states,
+                    coordinates: found.coordinates,
+                    states: found.states,
+                    excluded: found.excluded,
                 });
             }
             let found = equilibria(eqs, &scene.values)?;
@@ -376,6 +467,7 @@ fn derive_step(
             if let Some(StepResult::RestStates {
                 coordinates,
                 states,
+                ..
             }) = d.named.get(of)
             {
                 let eqs = equations(d, equilibria_source(scene, of).unwrap_or(""))?;
@@ -432,6 +524,9 @@ fn derive_step(
             // conserved rate put in.
             Some(eqs) => {
                 let values = replacements(scene, d, step, set)?;
+                for (_, e) in eqs {
+                    refuse_no_value(e, of, set, &values)?;
+                }
                 simplified(
                     eqs.iter()
                         .map(|(q, e)| (q.clone(), e.substitute(&|s| values.get(s).cloned())))
@@ -439,6 +534,8 @@ fn derive_step(
                 )?
             }
             None => {
+                let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
+                refuse_no_value(&f, of, set, &replacements(scene, d, step, set)?)?;
                 let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
                 StepResult::Expr(cas::simplify(&raw)?)
             }

@@ -52,9 +52,9 @@ impl AuthorStep {
     }
 }
 
-/// The most unknowns of one `solve` (the two coordinates and multipliers of a ladder, and
-/// one more), and of the roots it names: `x_1` to `x_6`.
-pub const MAX_UNKNOWNS: usize = 6;
+/// The most unknowns of one `solve` (a rolling disk's five coordinates and two multipliers,
+/// and one more), and of the roots it names: `x_1` to `x_8`.
+pub const MAX_UNKNOWNS: usize = 8;
 
 /// The most states of rest (and their Ω²) a step names for later steps and claims.
 pub const MAX_NAMED_STATES: usize = 8;

@@ -556,6 +556,10 @@ mod constraints_tests;
 #[cfg(test)]
 mod printed_tests;
 #[cfg(test)]
+mod rolling_tests;
+#[cfg(test)]
 mod steps_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod undefined_tests;

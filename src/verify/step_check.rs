@@ -66,6 +66,11 @@ pub enum CheckError {
         "the expression or its series is not a finite number at {at:e} (at the scene's values)"
     )]
     NotFinite { at: f64 },
+    #[error(
+        "the expression as written, or the result, has a finite value at none of the random \
+         points (0/0 or a pole where the replacement puts it)"
+    )]
+    NoValue,
     #[error("the equations cannot be solved for the accelerations here (a singular mass matrix)")]
     Singular,
     #[error("the eigenvalues of the linear equations did not converge")]

@@ -339,6 +339,7 @@ fn route(
             );
             check.tolerance = NUMERICALLY_ZERO;
             let mut rng = Rng::new(seed);
+            let mut valued = 0;
             for _ in 0..CONFIRMATION_POINTS {
                 let exprs: Vec<&Expr> = pairs
                     .iter()
@@ -356,11 +357,18 @@ fn route(
                 for (f, r) in &pairs {
                     let (a, b) = (at(f, &replaced)?, at(r, &point)?);
                     check.evaluations += 2;
-                    check.error = check
-                        .error
-                        .max((a - b).abs() / a.abs().max(b.abs()).max(1.0));
+                    // A point outside a root's domain (√ of a negative) tells nothing.
+                    if a.is_finite() && b.is_finite() {
+                        valued += 1;
+                        check.error = check
+                            .error
+                            .max((a - b).abs() / a.abs().max(b.abs()).max(1.0));
+                    }
                 }
                 check.evaluations += values.len() as u64;
+            }
+            if valued == 0 {
+                return Err(CheckError::NoValue);
             }
         }
         (Operation::Solve { of, unknowns }, StepResult::Expr(_) | StepResult::Roots(_)) => {
