@@ -24,6 +24,7 @@ mod radical;
 mod rational;
 mod size;
 mod trig;
+mod trig_pairs;
 
 pub use angles::{Zero, Zeros};
 pub use closed_form::NoClosedForm;

@@ -290,7 +290,7 @@ fn key(term: &Expr) -> (Rational, Vec<String>) {
 }
 
 fn tidy_product(factors: Vec<Expr>) -> Expr {
-    let factors = match Expr::mul(factors) {
+    let factors = match Expr::mul(super::trig_pairs::pythagorean_pairs(factors)) {
         Expr::Mul(f) => f,
         other => return other,
     };
