@@ -19,6 +19,7 @@ pub mod modes;
 pub mod poinsot;
 pub mod present;
 mod principal;
+mod quotient_rule;
 pub mod rest_states;
 pub mod routh;
 pub mod series;

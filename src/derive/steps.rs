@@ -393,12 +393,26 @@ fn derive_step(
         }
         Operation::Differentiate { of, by } => {
             let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
-            let raw = if by == "t" {
-                time_derivative(&f, &scene.coordinates)?
-            } else {
-                f.diff(by)?
+            let derivative = |f: &Expr| -> Result<Expr, DeriveError> {
+                Ok(if by == "t" {
+                    time_derivative(f, &scene.coordinates)?
+                } else {
+                    f.diff(by)?
+                })
             };
-            StepResult::Expr(cas::simplify(&raw)?)
+            match cas::simplify(&derivative(&f)?) {
+                Ok(r) => StepResult::Expr(r),
+                // A rational function's expanded denominator, squared by the quotient rule,
+                // is past the budget (an effective potential's second derivative): the
+                // quotient rule over the factored denominator, which grows by its factors only.
+                Err(cas::CasError {
+                    reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { .. }),
+                }) => StepResult::Expr(super::quotient_rule::derivative_of_quotient(
+                    &f,
+                    &derivative,
+                )?),
+                Err(e) => return Err(e.into()),
+            }
         }
         Operation::Lagrange { of, constraints } => {
             refuse_substituted_rolling(scene, d, of)?;

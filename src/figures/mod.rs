@@ -7,6 +7,7 @@ mod axis_spins;
 mod cones;
 pub mod convergence;
 mod drift;
+mod expression;
 mod flip;
 mod frame;
 mod herpolhode;
@@ -54,6 +55,13 @@ pub enum FigureError {
     NoWobble,
     #[error("a motion plot draws equations, and step `{step}` gives none")]
     NoEquations { step: String },
+    #[error("step `{step}` gives no single expression to draw")]
+    NotAnExpression { step: String },
+    #[error(
+        "`{name}` in step `{step}` has no value: give it one in the plot's `at = {{ {name} = … }}` \
+         or under [numeric] values"
+    )]
+    NoValueAt { step: String, name: String },
     #[error("the motion could not be integrated: {0}")]
     Motion(#[from] crate::numeric::ode::OdeError),
     #[error(
@@ -201,6 +209,22 @@ fn plot(
                 start,
                 *t,
             )?),
+            PlotRequest::Expression {
+                step,
+                over,
+                from,
+                to,
+                samples,
+                at,
+            } => out.push(expression::expression(
+                scene,
+                d,
+                step,
+                over,
+                (*from, *to),
+                *samples,
+                at,
+            )?),
         }
         // Two plots of one kind in a scene get distinct file names.
         let last = out.len() - 1;
@@ -273,6 +297,8 @@ fn trim_num(x: f64) -> String {
     }
 }
 
+#[cfg(test)]
+mod expression_tests;
 #[cfg(test)]
 mod free_body_tests;
 #[cfg(test)]

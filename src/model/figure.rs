@@ -31,6 +31,7 @@ pub enum Scale {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Legend {
     UpperRight,
+    UpperLeft,
     MiddleRight,
     LowerRight,
     LowerLeft,

@@ -212,6 +212,7 @@ fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>>
             .configure_series_labels()
             .position(match fig.legend {
                 Legend::UpperRight => SeriesLabelPosition::UpperRight,
+                Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
                 Legend::MiddleRight => SeriesLabelPosition::MiddleRight,
                 Legend::LowerRight => SeriesLabelPosition::LowerRight,
                 Legend::LowerLeft => SeriesLabelPosition::LowerLeft,

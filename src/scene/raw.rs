@@ -524,7 +524,8 @@ pub struct RawNumeric {
 #[serde(deny_unknown_fields)]
 pub struct RawPlot {
     pub kind: Text,
-    /// For `tensor-sweep`: the symbol on the x axis, its range and the numeric sample count.
+    /// For `tensor-sweep` and `expression`: the name on the x axis, its range and the numeric
+    /// sample count.
     pub over: Option<Text>,
     pub range: Option<Spanned<Vec<Text>>>,
     pub samples: Option<Spanned<i64>>,
@@ -535,9 +536,13 @@ pub struct RawPlot {
     pub omega: Option<Spanned<toml::Value>>,
     pub t: Option<Spanned<f64>>,
     /// For `motion`: the step of equations of motion drawn, the linear ones drawn beside it,
-    /// and the state both start from.
+    /// and the state both start from. For `expression`: the step whose result is drawn.
     pub step: Option<Text>,
     pub linear: Option<Text>,
     #[serde(default)]
     pub start: BTreeMap<Spanned<String>, Spanned<f64>>,
+    /// For `expression`: values of the names the step's result holds besides `over` that have
+    /// none under `[numeric]` (a rate, a coordinate).
+    #[serde(default)]
+    pub at: BTreeMap<Spanned<String>, Spanned<f64>>,
 }

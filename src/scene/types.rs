@@ -477,6 +477,16 @@ pub enum PlotRequest {
         start: BTreeMap<String, f64>,
         t: f64,
     },
+    /// A step's expression against a coordinate or a symbol (an effective potential against
+    /// its angle): the exact result as a curve, with a second route at sample values.
+    Expression {
+        step: String,
+        over: String,
+        from: f64,
+        to: f64,
+        samples: usize,
+        at: BTreeMap<String, f64>,
+    },
 }
 
 /// A free-body plot's principal moments: given, or those of the scene's own bodies about their
@@ -547,6 +557,7 @@ impl PlotRequest {
         "cones",
         "integrator-pareto",
         "motion",
+        "expression",
     ];
 
     pub fn kind(&self) -> &'static str {
@@ -556,6 +567,7 @@ impl PlotRequest {
             PlotRequest::PrincipalAxes => "principal-axes",
             PlotRequest::FreeBody { kind, .. } => kind.name(),
             PlotRequest::Motion { .. } => "motion",
+            PlotRequest::Expression { .. } => "expression",
         }
     }
 
@@ -572,6 +584,7 @@ impl PlotRequest {
                 inertia: FreeInertia::Given(_),
                 ..
             } | PlotRequest::Motion { .. }
+                | PlotRequest::Expression { .. }
         )
     }
 }

@@ -552,6 +552,8 @@ pub use steps::StepCheck;
 #[cfg(test)]
 mod answer_routes_tests;
 #[cfg(test)]
+mod budget_tests;
+#[cfg(test)]
 mod constraints_tests;
 #[cfg(test)]
 mod printed_tests;

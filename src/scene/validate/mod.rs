@@ -5,6 +5,7 @@ mod answers;
 mod ascii_math;
 mod bodies;
 mod claims;
+mod expression_plot;
 mod lagrange;
 mod motion_plot;
 mod operations;

@@ -38,7 +38,7 @@ impl Validator<'_> {
             return Err(self.err(
                 start,
                 field,
-                "`over`, `range` and `samples` belong to a tensor-sweep",
+                "`over`, `range` and `samples` belong to a tensor-sweep or an expression plot",
             ));
         }
         if rp.inertia.is_some() || rp.omega.is_some() {

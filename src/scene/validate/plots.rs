@@ -32,10 +32,17 @@ impl Validator<'_> {
         let mut plots = Vec::new();
         for (i, p) in raw.plots.iter().enumerate() {
             let field = format!("plot[{i}]");
-            plots.push(if p.get_ref().kind.get_ref() == "motion" {
-                self.motion_plot(p, &field, steps, coordinates)?
-            } else {
-                self.plot(p, &field, symbols, values)?
+            if p.get_ref().kind.get_ref() != "expression" && !p.get_ref().at.is_empty() {
+                return Err(self.err(
+                    p.span().start,
+                    &format!("{field}.at"),
+                    "`at` belongs to an expression plot",
+                ));
+            }
+            plots.push(match p.get_ref().kind.get_ref().as_str() {
+                "motion" => self.motion_plot(p, &field, steps, coordinates)?,
+                "expression" => self.expression_plot(p, &field, steps, symbols, coordinates)?,
+                _ => self.plot(p, &field, symbols, values)?,
             });
         }
         Ok(plots)
@@ -54,7 +61,8 @@ impl Validator<'_> {
             return Err(self.err(
                 start,
                 field,
-                "`step`, `linear` and `start` belong to a motion plot",
+                "`step`, `linear` and `start` belong to a motion plot (and `step` to an expression \
+                 plot)",
             ));
         }
         let sweep_fields = rp.over.is_some() || rp.range.is_some() || rp.samples.is_some();
@@ -161,52 +169,12 @@ impl Validator<'_> {
                         format!("`{}` is not a declared symbol", over.get_ref()),
                     ));
                 }
-                let range = rp.range.as_ref().ok_or_else(|| {
-                    self.err(
-                        start,
-                        &format!("{field}.range"),
-                        "a tensor-sweep needs `range = [from, to]`",
-                    )
-                })?;
-                let ends: Vec<f64> = range
-                    .get_ref()
-                    .iter()
-                    .enumerate()
-                    .map(|(i, t)| {
-                        let f = format!("{field}.range[{i}]");
-                        let e = self.expr_str(
-                            t.get_ref(),
-                            content_start(t),
-                            &f,
-                            &BTreeSet::from(["pi".to_string()]),
-                        )?;
-                        e.eval(&|_| None)
-                            .map_err(|m| self.err(content_start(t), &f, m.to_string()))
-                    })
-                    .collect::<Result<_, _>>()?;
-                if ends.len() != 2 || !ends.iter().all(|x| x.is_finite()) || ends[0] >= ends[1] {
-                    return Err(self.err(
-                        range.span().start,
-                        &format!("{field}.range"),
-                        "expected two numbers [from, to] with from < to",
-                    ));
-                }
-                let samples = rp.samples.as_ref().map_or(Ok(7), |n| {
-                    usize::try_from(*n.get_ref())
-                        .ok()
-                        .filter(|k| (2..=1000).contains(k))
-                        .ok_or_else(|| {
-                            self.err(
-                                n.span().start,
-                                &format!("{field}.samples"),
-                                "samples is a whole number from 2 to 1000",
-                            )
-                        })
-                })?;
+                let (from, to) = self.plot_range(p, field, "a tensor-sweep")?;
+                let samples = self.plot_samples(p, field, 7)?;
                 PlotRequest::TensorSweep {
                     over: over.get_ref().clone(),
-                    from: ends[0],
-                    to: ends[1],
+                    from,
+                    to,
                     samples,
                 }
             }
@@ -238,6 +206,67 @@ impl Validator<'_> {
             ));
         }
         Ok(request)
+    }
+
+    /// A plot's `range = [from, to]`: two expressions of numbers and π, from < to.
+    pub(super) fn plot_range(
+        &self,
+        p: &Spanned<RawPlot>,
+        field: &str,
+        what: &str,
+    ) -> Result<(f64, f64), SceneError> {
+        let range = p.get_ref().range.as_ref().ok_or_else(|| {
+            self.err(
+                p.span().start,
+                &format!("{field}.range"),
+                format!("{what} needs `range = [from, to]`"),
+            )
+        })?;
+        let ends: Vec<f64> = range
+            .get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let f = format!("{field}.range[{i}]");
+                let e = self.expr_str(
+                    t.get_ref(),
+                    content_start(t),
+                    &f,
+                    &BTreeSet::from(["pi".to_string()]),
+                )?;
+                e.eval(&|_| None)
+                    .map_err(|m| self.err(content_start(t), &f, m.to_string()))
+            })
+            .collect::<Result<_, _>>()?;
+        if ends.len() != 2 || !ends.iter().all(|x| x.is_finite()) || ends[0] >= ends[1] {
+            return Err(self.err(
+                range.span().start,
+                &format!("{field}.range"),
+                "expected two numbers [from, to] with from < to",
+            ));
+        }
+        Ok((ends[0], ends[1]))
+    }
+
+    /// A plot's `samples`: 2 to 1000, `default` when not given.
+    pub(super) fn plot_samples(
+        &self,
+        p: &Spanned<RawPlot>,
+        field: &str,
+        default: usize,
+    ) -> Result<usize, SceneError> {
+        p.get_ref().samples.as_ref().map_or(Ok(default), |n| {
+            usize::try_from(*n.get_ref())
+                .ok()
+                .filter(|k| (2..=1000).contains(k))
+                .ok_or_else(|| {
+                    self.err(
+                        n.span().start,
+                        &format!("{field}.samples"),
+                        "samples is a whole number from 2 to 1000",
+                    )
+                })
+        })
     }
 
     /// A free-body plot's `inertia` or `omega`: three numbers, or expressions of the scene's
