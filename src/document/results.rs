@@ -58,18 +58,26 @@ pub struct PrincipalValues {
 /// motion are steps, not values).
 pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
     let values = &r.scene.values;
-    // Each normal mode under its own name, `Omega_1`, `Omega_2`, as the page states them.
+    // Each normal mode under its own name, `Omega_1`, `Omega_2`, as the page states them; a
+    // step's result in the form its derivation prints (the textbook's, proven equal), its
+    // numbers from the exact result.
     let named = r.derivation.named.iter().flat_map(|(name, s)| {
-        s.values(name)
+        let printed = r.derivation.printed.get(name).map(|p| p.values(name));
+        let exact = s.values(name);
+        let shown = printed
+            .filter(|p| p.len() == exact.len())
+            .unwrap_or_else(|| exact.clone());
+        exact
             .into_iter()
-            .map(|(name, e)| (name, Value::Scalar(e)))
+            .zip(shown)
+            .map(|((name, e), (_, p))| (name, Value::Scalar(e), Value::Scalar(p)))
     });
     r.derivation
         .quantities
         .iter()
-        .map(|(name, v)| (name.clone(), v.clone()))
+        .map(|(name, v)| (name.clone(), v.clone(), v.clone()))
         .chain(named)
-        .map(|(name, v)| Quantity {
+        .map(|(name, v, shown)| Quantity {
             name: name.clone(),
             numbers: v
                 .entries()
@@ -77,14 +85,14 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
                 .map(|e| eval_at(e, values).ok())
                 .collect(),
             at: at_numbers(&v, values),
-            value: v,
+            value: shown,
             is_result: name != quantity::INTEGRAND && name != quantity::POSITION,
         })
         .collect()
 }
 
-/// The value at the scene's numbers: none when it is a number or a bare symbol already, or a
-/// symbol in it has no value.
+/// The value at the scene's numbers: none when it is a number or a bare symbol already, a
+/// symbol in it has no value, or it is not a finite real number there.
 fn at_numbers(v: &Value, values: &crate::model::value::Values) -> Option<At> {
     // π is a number, not one of the scene's symbols.
     let symbols: std::collections::BTreeSet<String> = v
@@ -94,6 +102,11 @@ fn at_numbers(v: &Value, values: &crate::model::value::Values) -> Option<At> {
         .filter(|s| values.contains_key(s))
         .collect();
     let numbers = v.numbers_at(values).ok()?;
+    // A state of rest that is not real at these values (an arccos past ±1) has no number to
+    // show: NaN would be printed.
+    if numbers.iter().any(|x| !x.is_finite()) {
+        return None;
+    }
     let plain = v
         .entries()
         .iter()

@@ -136,3 +136,34 @@ fn a_statement_takes_each_value_as_a_formula() {
         .collect();
     assert_eq!(formulas, vec![&Piece::Math(Formula::Expr(Expr::int(3)))]);
 }
+
+/// A step's result in Results is the form its derivation prints (the heavy top's Ω as
+/// √(I₃²ω₃² − 4 g I₁ l M)/(2 I₁), not the engine's expanded root), its number taken from the
+/// exact result; a state of rest that is not real at the scene's values shows no number (NaN
+/// was printed).
+#[test]
+fn results_show_the_printed_form_and_no_number_where_none_is_real() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/course/dynamics/04-heavy-top.toml");
+    let scene = crate::scene::load_all(&[path]).unwrap().remove(0);
+    let r = crate::pipeline::run_scene(scene, None).unwrap();
+    let quantities = results::quantities(&r);
+    let omega = quantities.iter().find(|q| q.name == "Omega").unwrap();
+    let printed = r.derivation.printed["Omega"].scalar().unwrap();
+    let exact = r.derivation.named["Omega"].scalar().unwrap();
+    assert_ne!(printed, exact);
+    assert_eq!(
+        omega.value,
+        crate::model::value::Value::Scalar(printed.clone())
+    );
+    let at = |e: &crate::cas::Expr| crate::model::value::eval_at(e, &r.scene.values).unwrap();
+    assert_eq!(omega.numbers, vec![Some(at(exact))]);
+    assert!((at(printed) - at(exact)).abs() < 1e-12 * at(exact));
+    let rest = quantities.iter().find(|q| q.name == "rest_2").unwrap();
+    assert!(
+        rest.numbers[0].is_some_and(f64::is_nan),
+        "{:?}",
+        rest.numbers
+    );
+    assert!(rest.at.is_none());
+}
