@@ -61,7 +61,13 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
     // Each normal mode under its own name, `Omega_1`, `Omega_2`, as the page states them; a
     // step's result in the form its derivation prints (the textbook's, proven equal), its
     // numbers from the exact result.
-    let named = r.derivation.named.iter().flat_map(|(name, s)| {
+    // In the derivation's order, as the page derives them (not alphabetically).
+    let in_order = r
+        .scene
+        .steps
+        .iter()
+        .filter_map(|step| r.derivation.named.get_key_value(&step.name));
+    let named = in_order.flat_map(|(name, s)| {
         let printed = r.derivation.printed.get(name).map(|p| p.values(name));
         let exact = s.values(name);
         let shown = printed

@@ -137,12 +137,13 @@ fn a_statement_takes_each_value_as_a_formula() {
     assert_eq!(formulas, vec![&Piece::Math(Formula::Expr(Expr::int(3)))]);
 }
 
-/// A step's result in Results is the form its derivation prints (the heavy top's Ω as
+/// Results follow the derivation's order, and a step's result is the form its derivation
+/// prints (the heavy top's Ω as
 /// √(I₃²ω₃² − 4 g I₁ l M)/(2 I₁), not the engine's expanded root), its number taken from the
 /// exact result; a state of rest that is not real at the scene's values shows no number (NaN
 /// was printed).
 #[test]
-fn results_show_the_printed_form_and_no_number_where_none_is_real() {
+fn results_follow_the_derivation_in_its_printed_form_and_no_number_where_none_is_real() {
     let path =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/course/dynamics/04-heavy-top.toml");
     let scene = crate::scene::load_all(&[path]).unwrap().remove(0);
@@ -159,6 +160,19 @@ fn results_show_the_printed_form_and_no_number_where_none_is_real() {
     let at = |e: &crate::cas::Expr| crate::model::value::eval_at(e, &r.scene.values).unwrap();
     assert_eq!(omega.numbers, vec![Some(at(exact))]);
     assert!((at(printed) - at(exact)).abs() < 1e-12 * at(exact));
+    // In the derivation's order: each step's result after the steps before it (alphabetically
+    // `E` came first and `Lag` second).
+    let position = |name: &str| quantities.iter().position(|q| q.name == name);
+    let order: Vec<usize> = r
+        .scene
+        .steps
+        .iter()
+        .filter_map(|s| position(&s.name))
+        .collect();
+    assert!(
+        order.len() > 5 && order.windows(2).all(|w| w[0] < w[1]),
+        "{order:?}"
+    );
     let rest = quantities.iter().find(|q| q.name == "rest_2").unwrap();
     assert!(
         rest.numbers[0].is_some_and(f64::is_nan),
