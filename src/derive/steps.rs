@@ -204,51 +204,6 @@ fn refuse_substituted_rolling(scene: &Scene, d: &Derivation, of: &str) -> Result
     Ok(())
 }
 
-/// A substitution that puts in a value where `f` has none: 0/0, with the `series` step that
-/// takes its limit, or a pole.
-fn refuse_no_value(
-    f: &Expr,
-    of: &Expr,
-    set: &BTreeMap<String, Expr>,
-    values: &BTreeMap<String, Expr>,
-) -> Result<(), DeriveError> {
-    let Some(found) = super::undefined::vanishing_divisor(f, values)? else {
-        return Ok(());
-    };
-    let at = set
-        .iter()
-        .map(|(name, e)| format!("{name} = {}", e.to_text()))
-        .collect::<Vec<_>>()
-        .join(", ");
-    if set.is_empty() {
-        return Err(DeriveError::NotDerivable(format!(
-            "the divisor {} of `{}` is 0 as written, so the expression has no value (0/0 or a \
-             pole): write the value or limit you mean",
-            found.divisor.to_text(),
-            of.to_text()
-        )));
-    }
-    Err(DeriveError::NotDerivable(if found.zero_over_zero {
-        let (name, e) = set.iter().next().expect("a substitution names a value");
-        format!(
-            "at {at}, `{}` is 0/0: its divisor {} and the rest of its product both vanish, so \
-             it has no value there, only a limit; take the limit with a `series` step, \
-             `series = \"{}\"`, `about = {{ {name} = \"{}\" }}`, `order = 0`",
-            of.to_text(),
-            found.divisor.to_text(),
-            of.to_text(),
-            e.to_text()
-        )
-    } else {
-        format!(
-            "at {at}, the divisor {} of `{}` vanishes and the rest of its product does not: \
-             the expression has a pole there, with no finite value",
-            found.divisor.to_text(),
-            of.to_text()
-        )
-    }))
-}
-
 /// Equations with each residual simplified (in one call to the engine), their names kept.
 fn simplified(eqs: Vec<(String, Expr)>) -> Result<StepResult, DeriveError> {
     let (names, exprs): (Vec<String>, Vec<Expr>) = eqs.into_iter().unzip();
@@ -388,7 +343,7 @@ fn derive_step(
     Ok(match &step.op {
         Operation::Be(e) => {
             let x = expand_names(scene, d, step, e).map_err(DeriveError::Step)?;
-            refuse_no_value(&x, e, &BTreeMap::new(), &BTreeMap::new())?;
+            super::undefined::refuse_no_value(&x, e, &BTreeMap::new(), &BTreeMap::new())?;
             StepResult::Expr(cas::simplify(&x)?)
         }
         Operation::Differentiate { of, by } => {
@@ -539,7 +494,7 @@ fn derive_step(
             Some(eqs) => {
                 let values = replacements(scene, d, step, set)?;
                 for (_, e) in eqs {
-                    refuse_no_value(e, of, set, &values)?;
+                    super::undefined::refuse_no_value(e, of, set, &values)?;
                 }
                 simplified(
                     eqs.iter()
@@ -549,7 +504,12 @@ fn derive_step(
             }
             None => {
                 let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
-                refuse_no_value(&f, of, set, &replacements(scene, d, step, set)?)?;
+                super::undefined::refuse_no_value(
+                    &f,
+                    of,
+                    set,
+                    &replacements(scene, d, step, set)?,
+                )?;
                 let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
                 StepResult::Expr(cas::simplify(&raw)?)
             }

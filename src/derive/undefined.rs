@@ -1,6 +1,7 @@
 //! Where a `substitute` step puts in a value at which its expression has no value: a divisor
 //! that vanishes there, with the rest of its product (0/0, whose limit a `series` step takes)
-//! or without it (a pole). Found before the engine, which would fold sin(0)/0 to 0.
+//! or without it (a pole), and the error that names it. Found before the engine, which would
+//! fold sin(0)/0 to 0.
 
 use super::DeriveError;
 use crate::cas::{self, Expr};
@@ -67,4 +68,49 @@ fn near_zero_somewhere(e: &Expr) -> bool {
             .map(|k| 0.4 + k as f64 / 7.0)
     });
     !matches!(value, Ok(v) if v.abs() > 1e-9)
+}
+
+/// A substitution that puts in a value where `f` has none: 0/0, with the `series` step that
+/// takes its limit, or a pole.
+pub fn refuse_no_value(
+    f: &Expr,
+    of: &Expr,
+    set: &BTreeMap<String, Expr>,
+    values: &BTreeMap<String, Expr>,
+) -> Result<(), DeriveError> {
+    let Some(found) = vanishing_divisor(f, values)? else {
+        return Ok(());
+    };
+    let at = set
+        .iter()
+        .map(|(name, e)| format!("{name} = {}", e.to_text()))
+        .collect::<Vec<_>>()
+        .join(", ");
+    if set.is_empty() {
+        return Err(DeriveError::NotDerivable(format!(
+            "the divisor {} of `{}` is 0 as written, so the expression has no value (0/0 or a \
+             pole): write the value or limit you mean",
+            found.divisor.to_text(),
+            of.to_text()
+        )));
+    }
+    Err(DeriveError::NotDerivable(if found.zero_over_zero {
+        let (name, e) = set.iter().next().expect("a substitution names a value");
+        format!(
+            "at {at}, `{}` is 0/0: its divisor {} and the rest of its product both vanish, so \
+             it has no value there, only a limit; take the limit with a `series` step, \
+             `series = \"{}\"`, `about = {{ {name} = \"{}\" }}`, `order = 0`",
+            of.to_text(),
+            found.divisor.to_text(),
+            of.to_text(),
+            e.to_text()
+        )
+    } else {
+        format!(
+            "at {at}, the divisor {} of `{}` vanishes and the rest of its product does not: \
+             the expression has a pole there, with no finite value",
+            found.divisor.to_text(),
+            of.to_text()
+        )
+    }))
 }
