@@ -503,15 +503,12 @@ fn derive_step(
                 )?
             }
             None => {
+                // The names expanded and the replacements found once, for the refusal and
+                // the result (what `substituted` does).
                 let f = expand_names(scene, d, step, of).map_err(DeriveError::Step)?;
-                super::undefined::refuse_no_value(
-                    &f,
-                    of,
-                    set,
-                    &replacements(scene, d, step, set)?,
-                )?;
-                let raw = substituted(scene, d, step, of, set).map_err(DeriveError::Step)?;
-                StepResult::Expr(cas::simplify(&raw)?)
+                let values = replacements(scene, d, step, set)?;
+                super::undefined::refuse_no_value(&f, of, set, &values)?;
+                StepResult::Expr(cas::simplify(&f.substitute(&|s| values.get(s).cloned()))?)
             }
         },
         Operation::Solve { of, unknowns } => {

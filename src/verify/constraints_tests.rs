@@ -38,6 +38,16 @@ fn all_pass_and_agree(r: &SceneReport) {
     );
 }
 
+/// Why a step's numeric check could not run, or "".
+fn problem_of(r: &SceneReport, step: &str) -> String {
+    r.verification
+        .steps
+        .iter()
+        .find(|c| c.step == step)
+        .and_then(|c| c.problem.clone())
+        .unwrap_or_default()
+}
+
 fn blank() -> StepCheck {
     StepCheck {
         step: "eom".into(),
@@ -50,7 +60,8 @@ fn blank() -> StepCheck {
     }
 }
 
-fn value(r: &SceneReport, name: &str, at: &[(&str, f64)]) -> f64 {
+/// A step's value (`acc_3` among them) at a state, the scene's values for the rest.
+pub(super) fn value(r: &SceneReport, name: &str, at: &[(&str, f64)]) -> f64 {
     let d = crate::derive::variants::step_values(&r.derivation);
     d[name]
         .eval(&|s| {
@@ -108,13 +119,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
         "start = { x1 = 0.4, x2 = 0.5 }",
     );
     let r = run(&slack);
-    let eom = r
-        .verification
-        .steps
-        .iter()
-        .find(|c| c.step == "eom")
-        .unwrap();
-    let problem = eom.problem.as_deref().unwrap_or_default();
+    let problem = problem_of(&r, "eom");
     assert!(
         problem.contains("off the constraint of `T`") && problem.contains("its value is"),
         "{problem}"
@@ -330,17 +335,7 @@ values = { m = 2.0, I = 0.3 }
         "{end:?}"
     );
     let sliding = text.replace("\"x'\" = 1.5,", "\"x'\" = 1.5, \"y'\" = 0.1,");
-    let r = super::super::pipeline::run_scene(
-        Scene::parse(&sliding, Path::new("p.toml")).unwrap(),
-        None,
-    )
-    .unwrap();
-    let eom = r
-        .verification
-        .steps
-        .iter()
-        .find(|c| c.step == "eom")
-        .unwrap();
-    let problem = eom.problem.as_deref().unwrap_or_default();
+    let r = self::run(&sliding);
+    let problem = problem_of(&r, "eom");
     assert!(problem.contains("off the constraint of `F`"), "{problem}");
 }

@@ -18,7 +18,6 @@ fn run(text: &str) -> SceneReport {
 /// mechbook's q1'', q2'', q3'' (the solve step's 3rd to 5th unknowns) at a SymPy state
 /// (q1, q2, q3, q1', q2', q3'), the contact point at the origin moving with the rim.
 fn accelerations(r: &SceneReport, s: &[f64]) -> Vec<f64> {
-    let values = crate::derive::variants::step_values(&r.derivation);
     let radius = r.scene.values["r"];
     let at = [
         ("x", 0.0),
@@ -34,16 +33,7 @@ fn accelerations(r: &SceneReport, s: &[f64]) -> Vec<f64> {
     ];
     ["acc_3", "acc_4", "acc_5"]
         .iter()
-        .map(|k| {
-            values[*k]
-                .eval(&|n| {
-                    at.iter()
-                        .find(|(a, _)| *a == n)
-                        .map(|(_, v)| *v)
-                        .or_else(|| r.scene.values.get(n).copied())
-                })
-                .unwrap()
-        })
+        .map(|k| super::constraints_tests::value(r, k, &at))
         .collect()
 }
 
