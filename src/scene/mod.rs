@@ -7,6 +7,7 @@
 mod course;
 mod error;
 mod load;
+pub mod operations;
 mod raw;
 pub mod roster;
 mod step;

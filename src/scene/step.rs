@@ -1,6 +1,7 @@
 //! A step of the author's own derivation, as validated: its name, its one operation and the
 //! notes' form of its result.
 
+use super::operations::{OperationKind, Several, operation_kind};
 use super::verdict::{ClaimRole, Verdict};
 use crate::cas::Expr;
 use std::collections::BTreeMap;
@@ -33,22 +34,18 @@ impl AuthorStep {
     /// coordinates its modes `Omega_1` ... `Omega_n`, one per coordinate, for a `solve` its
     /// roots or unknowns when it has several, and for `equilibria` and `stability` each state.
     pub fn names_given(&self, coordinates: usize) -> Vec<String> {
-        let mut names = vec![self.name.clone()];
-        if matches!(self.op, Operation::Frequency { .. }) && coordinates >= 2 {
-            names.extend((0..coordinates).map(|k| mode_name(&self.name, k)));
-        }
-        // A `solve` with several roots or unknowns names them `x_1`, `x_2`, ...
-        if matches!(self.op, Operation::Solve { .. }) {
-            names.extend((0..MAX_UNKNOWNS).map(|k| mode_name(&self.name, k)));
-        }
-        // Each state of rest `rest_1`, ..., and its Ω² under the `stability` step's name.
-        if matches!(
-            self.op,
-            Operation::Equilibria { .. } | Operation::Stability { .. }
-        ) {
-            names.extend((0..MAX_NAMED_STATES).map(|k| mode_name(&self.name, k)));
-        }
-        names
+        let more = match self.op.kind().several {
+            Several::None => 0,
+            Several::Modes if coordinates >= 2 => coordinates,
+            Several::Modes => 0,
+            // A `solve` with several roots or unknowns names them `x_1`, `x_2`, ...
+            Several::Roots => MAX_UNKNOWNS,
+            // Each state of rest `rest_1`, ..., and its Ω² under the `stability` step's name.
+            Several::States => MAX_NAMED_STATES,
+        };
+        std::iter::once(self.name.clone())
+            .chain((0..more).map(|k| mode_name(&self.name, k)))
+            .collect()
     }
 }
 
@@ -126,6 +123,11 @@ pub enum Operation {
 }
 
 impl Operation {
+    /// The operation's row in the table of operations.
+    pub fn kind(&self) -> &'static OperationKind {
+        operation_kind(self.name()).expect("every operation has a row in the table")
+    }
+
     pub fn name(&self) -> &'static str {
         match self {
             Operation::Be(_) => "be",

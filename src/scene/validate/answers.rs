@@ -17,13 +17,7 @@ use toml::Spanned;
 /// as written, its names by their own routes), `frequency` of one coordinate (the period of the
 /// integrated motion), `solve` (Newton's method on the equation) and `integrate` (quadrature).
 pub fn step_has_route(op: &Operation) -> bool {
-    matches!(
-        op,
-        Operation::Be(_)
-            | Operation::Frequency { .. }
-            | Operation::Solve { .. }
-            | Operation::Integrate { .. }
-    )
+    op.kind().graded
 }
 
 /// The largest relative tolerance a quiz answer may have: 50%.

@@ -2,10 +2,11 @@
 //! operation on the scene's names, its coordinates (with their rates `q'`, `q''` and the time
 //! `t`) and the steps before it, so a step can only use what comes earlier: no cycle.
 
-use super::operations::Holds;
+use super::operation::StepContext;
 use super::{Validator, content_start, is_identifier};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
+use crate::scene::operations::{Holds, Several};
 use crate::scene::raw::{RawScene, RawStep, Text};
 use crate::scene::step::{AuthorStep, Operation};
 use std::collections::{BTreeMap, BTreeSet};
@@ -104,16 +105,17 @@ impl Validator<'_> {
                 &earlier,
                 coordinates,
             )?;
-            let holds = match &step.op {
-                Operation::Lagrange { .. } => Holds::Motion,
+            let holds = match (step.op.kind().holds, &step.op) {
                 // Equations with names replaced are still equations of their kind.
-                Operation::Substitute {
-                    of: crate::cas::Expr::Sym(n),
-                    ..
-                } if matches!(earlier.get(n), Some(Holds::Motion | Holds::Linear)) => earlier[n],
-                Operation::Linearise { .. } => Holds::Linear,
-                Operation::Equilibria { .. } => Holds::Equilibria,
-                _ => Holds::Expression,
+                (
+                    Holds::Operand,
+                    Operation::Substitute {
+                        of: crate::cas::Expr::Sym(n),
+                        ..
+                    },
+                ) if matches!(earlier.get(n), Some(Holds::Motion | Holds::Linear)) => earlier[n],
+                (Holds::Operand, _) => Holds::Expression,
+                (holds, _) => holds,
             };
             // An equation `gives` is compared as an equation of motion; on a step that gives an
             // expression it would be read as `lhs - rhs` and compared with the expression.
@@ -160,7 +162,16 @@ impl Validator<'_> {
                 ),
             ));
         }
-        let op = self.operation(s, offset, field, scope, earlier, coordinates)?;
+        let op = self.operation(
+            s,
+            &StepContext {
+                offset,
+                field,
+                scope,
+                earlier,
+                coordinates,
+            },
+        )?;
         let mut start = BTreeMap::new();
         for (k, v) in &s.start {
             if !scope.contains(k.get_ref()) || !v.get_ref().is_finite() {
@@ -179,7 +190,7 @@ impl Validator<'_> {
         };
         let listed = s.listed_gives();
         if let Some(first) = listed.first()
-            && !matches!(op, Operation::Frequency { .. } | Operation::Solve { .. })
+            && !matches!(op.kind().several, Several::Modes | Several::Roots)
         {
             return Err(self.err(
                 first.span().start,
@@ -259,6 +270,7 @@ impl Validator<'_> {
             Holds::Motion => "equations of motion (from `lagrange`)",
             Holds::Linear => "linear equations of motion (from `linearise`)",
             Holds::Equilibria => "states of rest (from `equilibria`)",
+            Holds::Operand => unreachable!("a step's holding is resolved from its operand's"),
         };
         let name = of.get_ref();
         let message = match earlier.get(name) {

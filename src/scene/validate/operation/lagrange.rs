@@ -1,64 +1,13 @@
-//! The fields of the Lagrangian steps beyond the operation: a `lagrange` step's constraints,
-//! each under its multiplier's name, and a `routh` step's cyclic coordinates, each with its
-//! momentum's symbol.
+//! `lagrange = "Lag"`, `constraints = { T = "l - x1 - x2" }`: the Euler–Lagrange equations of
+//! the named Lagrangian, with each constraint under its multiplier's name.
 
-use super::{Validator, content_start};
+use super::{StepContext, Validator, content_start};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
 use crate::scene::raw::RawStep;
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 
 impl Validator<'_> {
-    /// A `routh` step's cyclic coordinates, each with its momentum's symbol, declared in
-    /// [symbols] and not a coordinate.
-    pub(super) fn cyclic(
-        &self,
-        s: &RawStep,
-        offset: usize,
-        field: &str,
-        coordinates: &BTreeMap<String, String>,
-    ) -> Result<Vec<(String, String)>, SceneError> {
-        if s.cyclic.is_empty() {
-            return Err(self.err(
-                offset,
-                field,
-                "`routh` needs `cyclic`: each cyclic coordinate and the symbol of its conserved \
-                 momentum, such as cyclic = { phi = \"p\" }",
-            ));
-        }
-        let mut out = Vec::new();
-        for (q, p) in &s.cyclic {
-            let key = format!("{field}.cyclic.{}", q.get_ref());
-            if !coordinates.contains_key(q.get_ref()) {
-                return Err(self.err(
-                    q.span().start,
-                    &key,
-                    format!(
-                        "`{}` is not a coordinate (the coordinates are {})",
-                        q.get_ref(),
-                        coordinates.keys().cloned().collect::<Vec<_>>().join(", ")
-                    ),
-                ));
-            }
-            if !self.declared.contains(p.get_ref()) || coordinates.contains_key(p.get_ref()) {
-                return Err(self.err(
-                    content_start(p),
-                    &key,
-                    format!(
-                        "the momentum `{}` is not a symbol: declare it under [symbols] with its \
-                         meaning and unit (`{} = {{ meaning = \"angular momentum about the \
-                         axis\", unit = \"kg m^2/s\" }}`); a value under [numeric] is the \
-                         one later steps' checks use",
-                        p.get_ref(),
-                        p.get_ref()
-                    ),
-                ));
-            }
-            out.push((q.get_ref().clone(), p.get_ref().clone()));
-        }
-        Ok(out)
-    }
-
     /// A `lagrange` step's constraints: each multiplier a symbol declared in [symbols] and
     /// used nowhere else in them, each constraint an expression of the coordinates, their rates
     /// (a velocity constraint, linear in them: the derivation checks) and the scene's symbols;
@@ -66,10 +15,9 @@ impl Validator<'_> {
     pub(super) fn constraints(
         &self,
         s: &RawStep,
-        field: &str,
-        scope: &BTreeSet<String>,
-        coordinates: &BTreeMap<String, String>,
+        cx: &StepContext,
     ) -> Result<Vec<(String, Expr)>, SceneError> {
+        let (field, scope, coordinates) = (cx.field, cx.scope, cx.coordinates);
         let multipliers: BTreeSet<&String> = s.constraints.keys().map(|k| k.get_ref()).collect();
         let mut out = Vec::new();
         for (name, text) in &s.constraints {

@@ -1,0 +1,57 @@
+//! `routh = "Lag"`, `cyclic = { phi = "p" }`: Routh's procedure, each cyclic coordinate's rate
+//! replaced by its conserved momentum.
+
+use super::{StepContext, Validator, content_start};
+use crate::scene::error::SceneError;
+use crate::scene::raw::RawStep;
+
+impl Validator<'_> {
+    /// A `routh` step's cyclic coordinates, each with its momentum's symbol, declared in
+    /// [symbols] and not a coordinate.
+    pub(super) fn cyclic(
+        &self,
+        s: &RawStep,
+        cx: &StepContext,
+    ) -> Result<Vec<(String, String)>, SceneError> {
+        let (offset, field, coordinates) = (cx.offset, cx.field, cx.coordinates);
+        if s.cyclic.is_empty() {
+            return Err(self.err(
+                offset,
+                field,
+                "`routh` needs `cyclic`: each cyclic coordinate and the symbol of its conserved \
+                 momentum, such as cyclic = { phi = \"p\" }",
+            ));
+        }
+        let mut out = Vec::new();
+        for (q, p) in &s.cyclic {
+            let key = format!("{field}.cyclic.{}", q.get_ref());
+            if !coordinates.contains_key(q.get_ref()) {
+                return Err(self.err(
+                    q.span().start,
+                    &key,
+                    format!(
+                        "`{}` is not a coordinate (the coordinates are {})",
+                        q.get_ref(),
+                        coordinates.keys().cloned().collect::<Vec<_>>().join(", ")
+                    ),
+                ));
+            }
+            if !self.declared.contains(p.get_ref()) || coordinates.contains_key(p.get_ref()) {
+                return Err(self.err(
+                    content_start(p),
+                    &key,
+                    format!(
+                        "the momentum `{}` is not a symbol: declare it under [symbols] with its \
+                         meaning and unit (`{} = {{ meaning = \"angular momentum about the \
+                         axis\", unit = \"kg m^2/s\" }}`); a value under [numeric] is the \
+                         one later steps' checks use",
+                        p.get_ref(),
+                        p.get_ref()
+                    ),
+                ));
+            }
+            out.push((q.get_ref().clone(), p.get_ref().clone()));
+        }
+        Ok(out)
+    }
+}
