@@ -51,6 +51,11 @@ pub struct BenchArgs {
     /// `bash docs/bench/links.sh` makes one with SymPy and runs this.
     #[arg(long)]
     pub links_only: bool,
+    /// Measure only a course at a term's scale (such as tests/course): `check`, `build
+    /// --no-cache`, the same with a roster of 25 students, a build after one scene's edit, and
+    /// 10,000 variants of a nearly symmetric top; each a child process, with its peak memory.
+    #[arg(long)]
+    pub course_only: Option<PathBuf>,
     /// The Python, with SymPy, that --links-only runs.
     #[arg(long, default_value = "python3", requires = "links_only")]
     pub python: PathBuf,
@@ -203,20 +208,18 @@ pub fn run(args: BenchArgs) -> Result<ExitCode> {
         variants_only,
         steps_only,
         links_only,
+        course_only,
         python,
     } = args;
+    if let Some(course) = course_only {
+        return print_part(|p| {
+            super::bench_course::course_bench(&course, repeats as usize, &mut |l: &str| p(l))
+        });
+    }
     if links_only {
-        let tty = std::io::stderr().is_terminal();
-        let md = super::bench_links::links_bench(&python, repeats as usize, |line| {
-            if tty {
-                eprint!("\r\x1b[2Kbench: {line}");
-            }
-        })?;
-        if tty {
-            eprint!("\r\x1b[2K");
-        }
-        std::io::stdout().write_all(md.as_bytes())?;
-        return Ok(ExitCode::SUCCESS);
+        return print_part(|p| {
+            super::bench_links::links_bench(&python, repeats as usize, |l: &str| p(l))
+        });
     }
     if let Some(n) = variants_only {
         std::io::stdout().write_all(variants_bench(n as usize)?.as_bytes())?;
@@ -253,6 +256,22 @@ pub fn run(args: BenchArgs) -> Result<ExitCode> {
         );
     }
     std::io::stdout().write_all(bench.markdown.as_bytes())?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Runs one part of the bench with its progress on a terminal's last line, then prints its
+/// Markdown.
+fn print_part(part: impl FnOnce(&mut dyn FnMut(&str)) -> Result<String>) -> Result<ExitCode> {
+    let tty = std::io::stderr().is_terminal();
+    let md = part(&mut |line: &str| {
+        if tty {
+            eprint!("\r\x1b[2Kbench: {line}");
+        }
+    })?;
+    if tty {
+        eprint!("\r\x1b[2K");
+    }
+    std::io::stdout().write_all(md.as_bytes())?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -2,6 +2,7 @@
 //! doc comments are the help text.
 
 mod bench;
+mod bench_course;
 mod bench_links;
 mod build;
 mod check;
@@ -110,14 +111,24 @@ fn parse_fidelity(s: &str) -> Result<Fidelity, FidelityError> {
 /// Parses the command line and runs it. Usage errors exit with 2 (clap's convention).
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
-    match run(cli) {
+    let code = match run(cli) {
         Ok(code) => code,
         Err(e) => {
             eprintln!("mechbook: error: {}", one_line(&e));
             ExitCode::from(1)
         }
+    };
+    // `bench --course-only` reads each child's own peak from its last line.
+    if std::env::var_os(PEAK_MEMORY_ENV).is_some()
+        && let Some(m) = peak_memory_mib()
+    {
+        eprintln!("mechbook: peak memory {m:.1} MiB");
     }
+    code
 }
+
+/// Set in a child's environment by `bench`: the child prints its peak memory as it exits.
+pub const PEAK_MEMORY_ENV: &str = "MECHBOOK_PRINT_PEAK_MEMORY";
 
 /// An error and its causes on one line, `a: b: c`, each said once: many of our errors already
 /// name their cause ("cannot write x: No space left on device"), which a plain `{:#}` would

@@ -17,8 +17,21 @@ pub struct Typeset {
     pub failed: Vec<String>,
 }
 
+/// How many documents are typeset at once: Typst does not touch the engine, so each core takes
+/// one.
+#[cfg(feature = "pdf")]
+fn workers() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_WORKERS))
+}
+
+/// Each worker holds a document's layout in memory: two keep a course's build near one's peak.
+#[cfg(feature = "pdf")]
+const MAX_WORKERS: usize = 2;
+
 /// Typesets `sources`, under `prefix` in the cache's names (`site`, `papers`); `progress` is
-/// told of each document before it is made (done, total, path).
+/// told of each document before it is made (done, total, path). The documents not in the cache
+/// are typeset on one thread per core; the files, warnings and failures come in the sources'
+/// order whatever the threads' order, so a build's output and messages do not depend on it.
 #[cfg(feature = "pdf")]
 pub fn typeset_all(
     sources: &[PdfSource],
@@ -26,22 +39,22 @@ pub fn typeset_all(
     prefix: &str,
     progress: &mut dyn FnMut(usize, usize, &str),
 ) -> Typeset {
-    let mut out = Typeset::default();
-    for (i, s) in sources.iter().enumerate() {
-        progress(i, sources.len(), &s.path);
-        let name = format!(
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let name = |s: &PdfSource| {
+        format!(
             "{prefix}-{}",
             s.path.trim_end_matches(".pdf").replace('/', "-")
-        );
-        let inputs = inputs_hash(s);
+        )
+    };
+    let mut out = Typeset::default();
+    // From the cache first, in order; the rest are typeset below.
+    let mut made: Vec<Option<Made>> = Vec::with_capacity(sources.len());
+    for s in sources {
+        let mut from_cache = None;
         if let Some(cache) = cache {
             use super::cache::Lookup;
-            match cache.load_pdf(&name, inputs) {
-                Lookup::Hit(pdf) => {
-                    out.files.push((PathBuf::from(&s.path), pdf));
-                    out.from_cache += 1;
-                    continue;
-                }
+            match cache.load_pdf(&name(s), inputs_hash(s)) {
+                Lookup::Hit(pdf) => from_cache = Some(pdf),
                 Lookup::Miss => {}
                 Lookup::Damaged(path, why) => out.warnings.push(format!(
                     "the cache entry {} is damaged ({why}): {} was typeset again",
@@ -50,9 +63,44 @@ pub fn typeset_all(
                 )),
             }
         }
-        let done = match crate::render::pdf::typeset::typeset(s) {
-            Ok(done) => done,
-            Err(e) => {
+        made.push(from_cache.map(Made::Cached));
+    }
+    let todo: Vec<usize> = (0..sources.len()).filter(|&i| made[i].is_none()).collect();
+    // The workers take the next document and say when they start and finish it; this thread
+    // tells `progress`, which need not be shared between threads.
+    let next = AtomicUsize::new(0);
+    let (tell, told) = std::sync::mpsc::channel();
+    std::thread::scope(|scope| {
+        for _ in 0..workers().min(todo.len()) {
+            let tell = tell.clone();
+            let (next, todo) = (&next, &todo);
+            scope.spawn(move || {
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(&i) = todo.get(k) else { break };
+                    let _ = tell.send(Worker::Starts(k, i));
+                    let done = crate::render::pdf::typeset::typeset(&sources[i]);
+                    let _ = tell.send(Worker::Made(i, Box::new(done)));
+                }
+            });
+        }
+        drop(tell);
+        for message in told {
+            match message {
+                Worker::Starts(k, i) => progress(k, todo.len(), &sources[i].path),
+                Worker::Made(i, done) => made[i] = Some(Made::Typeset(*done)),
+            }
+        }
+    });
+    for (s, m) in sources.iter().zip(made) {
+        let done = match m.expect("every document is made or from the cache") {
+            Made::Cached(pdf) => {
+                out.files.push((PathBuf::from(&s.path), pdf));
+                out.from_cache += 1;
+                continue;
+            }
+            Made::Typeset(Ok(done)) => done,
+            Made::Typeset(Err(e)) => {
                 // The error names the document.
                 out.failed.push(e.to_string());
                 continue;
@@ -89,13 +137,32 @@ pub fn typeset_all(
         if done.missing_glyphs.is_empty()
             && done.past_the_edge.is_empty()
             && let Some(cache) = cache
-            && let Err(e) = cache.store_pdf(&name, inputs, &done.pdf)
+            && let Err(e) = cache.store_pdf(&name(s), inputs_hash(s), &done.pdf)
         {
             out.warnings.push(format!("the cache is not updated: {e}"));
         }
         out.files.push((PathBuf::from(&s.path), done.pdf));
     }
     out
+}
+
+#[cfg(feature = "pdf")]
+type Typesetting =
+    Result<crate::render::pdf::typeset::Typeset, crate::render::pdf::typeset::TypesetError>;
+
+/// A document's PDF from the cache, or as Typst made it.
+#[cfg(feature = "pdf")]
+enum Made {
+    Cached(Vec<u8>),
+    Typeset(Typesetting),
+}
+
+/// What a typesetting worker tells the thread that started it: the k-th document to typeset
+/// (the i-th source) starts, or is made.
+#[cfg(feature = "pdf")]
+enum Worker {
+    Starts(usize, usize),
+    Made(usize, Box<Typesetting>),
 }
 
 /// Without the feature `pdf` there is nothing to typeset.
@@ -194,5 +261,47 @@ mod tests {
             e.starts_with("pdf/d.pdf: Typst cannot typeset it: panicked with: three"),
             "{e}"
         );
+    }
+
+    /// On two workers a long document first finishes after the short ones behind it: the
+    /// files still come in the sources' order, each the bytes a one-at-a-time typesetting
+    /// makes, and `progress` hears of each document once.
+    #[test]
+    fn documents_typeset_at_once_come_out_in_order_with_the_same_bytes() {
+        let long = format!(
+            "#set document(title: \"Long\")\n{}",
+            "A line of the long document.\n\n".repeat(2000)
+        );
+        let mut sources = vec![source("pdf/0.pdf", &long)];
+        for k in 1..6 {
+            sources.push(source(
+                &format!("pdf/{k}.pdf"),
+                &format!("#set document(title: \"{k}\")\nShort {k}"),
+            ));
+        }
+        let mut told = Vec::new();
+        let made = typeset_all(&sources, None, "test", &mut |_, total, path| {
+            told.push((total, path.to_string()));
+        });
+        let paths: Vec<String> = made
+            .files
+            .iter()
+            .map(|(p, _)| p.display().to_string())
+            .collect();
+        let wanted: Vec<String> = sources.iter().map(|s| s.path.clone()).collect();
+        assert_eq!(paths, wanted);
+        told.sort();
+        assert_eq!(
+            told,
+            wanted.iter().map(|p| (6, p.clone())).collect::<Vec<_>>()
+        );
+        for (s, (_, pdf)) in sources.iter().zip(&made.files) {
+            let alone = crate::render::pdf::typeset::typeset(s).unwrap().pdf;
+            assert!(
+                alone == *pdf,
+                "{} differs from its one-at-a-time bytes",
+                s.path
+            );
+        }
     }
 }

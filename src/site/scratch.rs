@@ -52,3 +52,8 @@ pub fn remove_file(path: &Path) {
 pub fn remove(dir: &Path) {
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Writes a file of the bench's own (a roster, a scene) into its scratch folder.
+pub fn write_file(path: &Path, text: &str) -> std::io::Result<()> {
+    std::fs::write(path, text)
+}

@@ -1,0 +1,179 @@
+//! `mechbook bench --course-only DIR`: a course at the scale a term needs, timed as a user runs
+//! it: `check`, `build --no-cache`, the same with a roster of 25 students, a build after one
+//! scene's edit, and 10,000 variants of a nearly symmetric top (I₃ = I₁(1 + 10⁻⁵)). Each is a
+//! child process timed from outside, with the peak memory it prints as it exits.
+
+use crate::site::scratch;
+use anyhow::{Context, Result, bail};
+use std::fmt::Write;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+/// A free top within 10⁻⁵ of symmetric, at 10,000 spins: the precession route's worst case.
+const NEAR_SYMMETRIC_TOP: &str = r#"
+id = "near-symmetric-top"
+title = "A nearly symmetric free top"
+notes = { lecture = "bench" }
+[symbols]
+I1 = { meaning = "transverse moment", unit = "kg m^2" }
+I3 = { meaning = "axial moment", unit = "kg m^2" }
+w1 = { meaning = "rate", unit = "rad/s" }
+w2 = { meaning = "rate", unit = "rad/s" }
+w3 = { meaning = "spin", unit = "rad/s" }
+A = { meaning = "amplitude", unit = "rad/s" }
+t = { meaning = "time", unit = "s" }
+theta = { meaning = "phase", unit = "rad" }
+[outputs]
+want = ["symmetric_top"]
+[problem]
+statement = "A free top has I1 = {I1}, I3 = {I3} and spin {w3}."
+answers = ["precession_rate"]
+[variants]
+count = 10000
+seed = 3
+I1 = ["1"]
+I3 = ["100001/100000"]
+w3 = { from = "-60", to = "60", step = "1/100" }
+require = ["w3 != 0"]
+"#;
+
+/// The students of the roster row: 25, as a class.
+const STUDENTS: usize = 25;
+
+/// One child run: its wall-clock seconds and its peak resident memory in MiB.
+struct Run {
+    seconds: f64,
+    peak_mib: f64,
+}
+
+/// Runs `mechbook ARGS` in `dir` with its own cache folder, timed from outside; its peak memory
+/// is the one it prints as it exits (Linux's VmHWM), asked for by `PEAK_MEMORY_ENV`.
+fn child(args: &[&str], dir: &Path) -> Result<Run> {
+    let exe = std::env::current_exe()?;
+    let start = Instant::now();
+    let out = Command::new(exe)
+        .args(args)
+        .current_dir(dir)
+        .env("SYMBOLICA_HIDE_BANNER", "1")
+        .env("XDG_CACHE_HOME", dir.join("xdg"))
+        .env(super::PEAK_MEMORY_ENV, "1")
+        .stdout(Stdio::null())
+        .output()
+        .context("cannot run mechbook")?;
+    let seconds = start.elapsed().as_secs_f64();
+    let err = String::from_utf8_lossy(&out.stderr);
+    // `check` exits 1 when a claim disagrees; the bench times it all the same.
+    if out.status.code().is_none_or(|c| c > 1) {
+        bail!("mechbook {} failed: {err}", args.join(" "));
+    }
+    let peak_mib = err
+        .rsplit("mechbook: peak memory ")
+        .next()
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(f64::NAN);
+    Ok(Run { seconds, peak_mib })
+}
+
+/// The fastest and the median of `repeats` runs, and the largest peak.
+fn timed(repeats: usize, mut one: impl FnMut() -> Result<Run>) -> Result<(f64, f64, f64)> {
+    let mut runs = Vec::new();
+    for _ in 0..repeats.max(1) {
+        runs.push(one()?);
+    }
+    let mut secs: Vec<f64> = runs.iter().map(|r| r.seconds).collect();
+    secs.sort_by(f64::total_cmp);
+    let peak = runs.iter().map(|r| r.peak_mib).fold(0.0, f64::max);
+    Ok((secs[0], secs[secs.len() / 2], peak))
+}
+
+/// Each row of the course's table, measured on a copy of `course`.
+pub fn course_bench(
+    course: &Path,
+    repeats: usize,
+    progress: &mut impl FnMut(&str),
+) -> Result<String> {
+    let dir = scratch::folder("bench-course")?;
+    let result = (|| {
+        let scenes = dir.join("course");
+        scratch::copy_tree(course, &scenes)?;
+        let roster = dir.join("students.csv");
+        let mut csv = String::from("name,id\n");
+        for k in 1..=STUDENTS {
+            let _ = writeln!(csv, "Student {k},{}", 1000 + k);
+        }
+        scratch::write_file(&roster, &csv)?;
+        let top = dir.join("near-symmetric-top.toml");
+        scratch::write_file(&top, NEAR_SYMMETRIC_TOP)?;
+        let count = crate::scene::find_scenes(std::slice::from_ref(&scenes))?.len();
+        let (site, papers, cache) = ("site", "papers", "cache");
+        let mut rows: Vec<(String, (f64, f64, f64))> = Vec::new();
+        let mut row = |name: String, args: &[&str]| -> Result<()> {
+            progress(&name);
+            let t = timed(repeats, || child(args, &dir))?;
+            rows.push((name, t));
+            Ok(())
+        };
+        row(
+            format!("`check` of the {count} scenes"),
+            &["check", "course"],
+        )?;
+        row(
+            "`build --no-cache`".into(),
+            &["build", "course", "--no-cache", "--out", site],
+        )?;
+        row(
+            format!("`build --no-cache --roster` ({STUDENTS} students)"),
+            &[
+                "build",
+                "course",
+                "--no-cache",
+                "--out",
+                site,
+                "--roster",
+                "students.csv",
+                "--papers",
+                papers,
+            ],
+        )?;
+        // Its results and variants recorded first, as an author's scene has them.
+        child(&["check", "--bless", "near-symmetric-top.toml"], &dir)?;
+        row(
+            "`check` of 10,000 variants of a top with I₃ = I₁(1 + 10⁻⁵)".into(),
+            &["check", "near-symmetric-top.toml"],
+        )?;
+        // The cache primed, then the last scene in name order edited before each build.
+        progress("one scene edited");
+        child(&["build", "course", "--out", site, "--cache", cache], &dir)?;
+        let edited = crate::scene::find_scenes(std::slice::from_ref(&scenes))?
+            .pop()
+            .context("no scene to edit")?;
+        let mut edits = 0;
+        let t = timed(repeats, || {
+            edits += 1;
+            scratch::append_line(&edited, &format!("# bench edit {edits}"))?;
+            child(&["build", "course", "--out", site, "--cache", cache], &dir)
+        })?;
+        rows.push((
+            format!(
+                "`build` after one scene's edit ({} of {count} from the cache)",
+                count - 1
+            ),
+            t,
+        ));
+        let mut md = format!(
+            "## A course\n\nEach row is a separate `mechbook` process on a copy of `{}` ({count} \
+             scenes), timed from outside (start-up included); {repeats} run(s) each. Peak memory \
+             is the one each process prints as it exits (Linux's VmHWM).\n\n\
+             | what | fastest s | median s | peak MiB |\n|---|---|---|---|\n",
+            course.display()
+        );
+        for (name, (fastest, median, peak)) in &rows {
+            let _ = writeln!(md, "| {name} | {fastest:.2} | {median:.2} | {peak:.0} |");
+        }
+        Ok(md)
+    })();
+    scratch::remove(&dir);
+    result
+}
