@@ -11,6 +11,11 @@ use crate::pipeline::SceneReport;
 #[derive(Debug, Clone)]
 pub struct Quantity {
     pub name: String,
+    /// For a result of the author's steps, what the page calls it: the step's name, a mode's
+    /// (`Omega_1`), or the unknown a `solve` found (`x1''`, not `acc_1`); printed as `symbol =
+    /// value` under no heading of its own. `None` for the catalogue's quantities, which the
+    /// page heads with their names in words ("Inertia tensor").
+    pub symbol: Option<Expr>,
     pub value: Value,
     /// Each entry at the scene's values, row-major (`None` where a symbol has no value).
     pub numbers: Vec<Option<f64>>,
@@ -73,18 +78,49 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
         let shown = printed
             .filter(|p| p.len() == exact.len())
             .unwrap_or_else(|| exact.clone());
+        // What each result is called where the derivation states it, by the result's name: a
+        // solution's unknown, a state of rest's coordinate, the squared frequency Ω_k² about
+        // the k-th state.
+        use crate::derive::steps::StepResult;
+        use crate::scene::mode_name;
+        let symbols: std::collections::BTreeMap<String, Expr> = match s {
+            StepResult::Solution(pairs) => pairs
+                .iter()
+                .enumerate()
+                .map(|(k, (u, _))| (mode_name(name, k), Expr::sym(u)))
+                .collect(),
+            StepResult::Equilibria {
+                coordinate, zeros, ..
+            } => (0..zeros.len())
+                .map(|k| (mode_name(name, k), Expr::sym(coordinate)))
+                .collect(),
+            StepResult::Stability { cases, .. } => (0..cases.len())
+                .map(|k| {
+                    let omega = Expr::sym(&mode_name("Omega", k));
+                    (mode_name(name, k), Expr::pow(omega, Expr::int(2)))
+                })
+                .collect(),
+            _ => Default::default(),
+        };
         exact
             .into_iter()
             .zip(shown)
-            .map(|((name, e), (_, p))| (name, Value::Scalar(e), Value::Scalar(p)))
+            .map(move |((name, e), (_, p))| {
+                let symbol = symbols
+                    .get(&name)
+                    .cloned()
+                    .unwrap_or_else(|| Expr::sym(&name));
+                (name, Some(symbol), Value::Scalar(e), Value::Scalar(p))
+            })
     });
     r.derivation
         .quantities
         .iter()
-        .map(|(name, v)| (name.clone(), v.clone(), v.clone()))
+        .map(|(name, v)| (name.clone(), None, v.clone(), v.clone()))
         .chain(named)
-        .map(|(name, v, shown)| Quantity {
+        .map(|(name, symbol, v, shown)| Quantity {
             name: name.clone(),
+            symbol,
             numbers: v
                 .entries()
                 .iter()

@@ -181,3 +181,31 @@ fn results_follow_the_derivation_in_its_printed_form_and_no_number_where_none_is
     );
     assert!(rest.at.is_none());
 }
+
+/// A step's result is named as its derivation states it, never by the step's internal name: a
+/// solution by its unknown (ẍ₁, not `acc_1`), a state of rest by its coordinate, the squared
+/// frequency about the k-th state as Ω_k²; a catalogue quantity keeps its name in words.
+#[test]
+fn results_are_named_as_the_derivation_states_them() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let run = |file: &str| {
+        let scene = crate::scene::load_all(&[root.join(file)])
+            .unwrap()
+            .remove(0);
+        crate::pipeline::run_scene(scene, None).unwrap()
+    };
+    let symbol_of = |r: &crate::pipeline::SceneReport, name: &str| {
+        let q = results::quantities(r);
+        let q = q.iter().find(|q| q.name == name).unwrap();
+        q.symbol.as_ref().map(|s| s.to_text())
+    };
+    let atwood = run("tests/course/dynamics/13-atwood.toml");
+    assert_eq!(symbol_of(&atwood, "acc_1").as_deref(), Some("x1''"));
+    assert_eq!(symbol_of(&atwood, "acc_3").as_deref(), Some("T"));
+    assert_eq!(symbol_of(&atwood, "Lag").as_deref(), Some("Lag"));
+    let hoop = run("tests/course/dynamics/05-bead-on-hoop.toml");
+    assert_eq!(symbol_of(&hoop, "rest_3").as_deref(), Some("theta"));
+    assert_eq!(symbol_of(&hoop, "stable_2").as_deref(), Some("Omega_2^2"));
+    let box123 = run("tests/course/bodies/01-box-123.toml");
+    assert_eq!(symbol_of(&box123, "inertia_tensor"), None);
+}

@@ -209,6 +209,20 @@ pub fn author_html(text: &str) -> Result<String, RenderError> {
     prose_html(&crate::model::prose::author(text))
 }
 
+/// A result's heading: a catalogue quantity's name in words; none for a step's result, whose
+/// equation names it (`ẍ₁ = …`).
+pub fn result_heading(q: &crate::document::Quantity) -> String {
+    match q.symbol {
+        Some(_) => String::new(),
+        None => crate::model::catalogue::heading(&q.name),
+    }
+}
+
+/// A step's result as the page states it: `symbol = value`.
+pub fn result_equation(symbol: &Expr, value: &Value) -> Formula {
+    Formula::equation(Formula::Expr(symbol.clone()), value.to_expr())
+}
+
 fn value_math(v: &Value) -> Result<String, RenderError> {
     math::block(&v.to_tex())
 }
@@ -321,8 +335,11 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
     for q in &page.quantities {
         quantities.push(match q.is_result {
             true => Some(StepView {
-                title: crate::model::catalogue::heading(&q.name),
-                math: value_math(&q.value)?,
+                title: result_heading(q),
+                math: match &q.symbol {
+                    Some(symbol) => math::block(&result_equation(symbol, &q.value).to_tex())?,
+                    None => value_math(&q.value)?,
+                },
                 why: String::new(),
                 at: match &q.at {
                     Some(at) => at_numbers_html(&q.value, at)?,

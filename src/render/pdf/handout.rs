@@ -161,13 +161,23 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
 
 fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
     for q in part.results.iter().map(|&i| &page.quantities[i]) {
-        m.heading(3, &crate::model::catalogue::heading(&q.name))?;
-        let value = q.value.to_expr();
-        m.block(
-            &value.to_typst(),
-            &value.to_typst_breakable(),
-            &value.to_tex().spoken(),
-        );
+        match &q.symbol {
+            // A step's result, named by its own equation (`ẍ₁ = …`).
+            Some(symbol) => {
+                let statement = crate::render::result_equation(symbol, &q.value);
+                let (whole, broken) = formula_and_broken(&statement)?;
+                m.block(&whole, &broken, &statement.to_tex().spoken());
+            }
+            None => {
+                m.heading(3, &crate::render::result_heading(q))?;
+                let value = q.value.to_expr();
+                m.block(
+                    &value.to_typst(),
+                    &value.to_typst_breakable(),
+                    &value.to_tex().spoken(),
+                );
+            }
+        }
         if let Some(at) = &q.at {
             at_numbers(m, &q.value, at);
         }
