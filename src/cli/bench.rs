@@ -394,13 +394,15 @@ fn child_build(args: &[&str]) -> Result<(f64, f64)> {
     Ok((seconds, peak))
 }
 
-struct Timing {
-    fastest: f64,
-    median: f64,
-    peak: f64,
+/// The fastest and the median of several runs, and the largest peak memory.
+pub(super) struct Timing {
+    pub fastest: f64,
+    pub median: f64,
+    pub peak: f64,
 }
 
-fn timed(repeats: usize, mut one: impl FnMut() -> Result<(f64, f64)>) -> Result<Timing> {
+/// Runs `one` (seconds, peak MiB) `repeats` times.
+pub(super) fn timed(repeats: usize, mut one: impl FnMut() -> Result<(f64, f64)>) -> Result<Timing> {
     let mut runs = Vec::new();
     for _ in 0..repeats.max(1) {
         runs.push(one()?);

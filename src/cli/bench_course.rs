@@ -3,6 +3,7 @@
 //! scene's edit, and 10,000 variants of a nearly symmetric top (I₃ = I₁(1 + 10⁻⁵)). Each is a
 //! child process timed from outside, with the peak memory it prints as it exits.
 
+use super::bench::{Timing, timed};
 use crate::site::scratch;
 use anyhow::{Context, Result, bail};
 use std::fmt::Write;
@@ -41,15 +42,10 @@ require = ["w3 != 0"]
 /// The students of the roster row: 25, as a class.
 const STUDENTS: usize = 25;
 
-/// One child run: its wall-clock seconds and its peak resident memory in MiB.
-struct Run {
-    seconds: f64,
-    peak_mib: f64,
-}
-
-/// Runs `mechbook ARGS` in `dir` with its own cache folder, timed from outside; its peak memory
-/// is the one it prints as it exits (Linux's VmHWM), asked for by `PEAK_MEMORY_ENV`.
-fn child(args: &[&str], dir: &Path) -> Result<Run> {
+/// Runs `mechbook ARGS` in `dir` with its own cache folder: its wall-clock seconds, timed from
+/// outside, and the peak memory in MiB it prints as it exits (Linux's VmHWM), asked for by
+/// `PEAK_MEMORY_ENV`.
+fn child(args: &[&str], dir: &Path) -> Result<(f64, f64)> {
     let exe = std::env::current_exe()?;
     let start = Instant::now();
     let out = Command::new(exe)
@@ -73,19 +69,7 @@ fn child(args: &[&str], dir: &Path) -> Result<Run> {
         .and_then(|s| s.split_whitespace().next())
         .and_then(|s| s.parse().ok())
         .unwrap_or(f64::NAN);
-    Ok(Run { seconds, peak_mib })
-}
-
-/// The fastest and the median of `repeats` runs, and the largest peak.
-fn timed(repeats: usize, mut one: impl FnMut() -> Result<Run>) -> Result<(f64, f64, f64)> {
-    let mut runs = Vec::new();
-    for _ in 0..repeats.max(1) {
-        runs.push(one()?);
-    }
-    let mut secs: Vec<f64> = runs.iter().map(|r| r.seconds).collect();
-    secs.sort_by(f64::total_cmp);
-    let peak = runs.iter().map(|r| r.peak_mib).fold(0.0, f64::max);
-    Ok((secs[0], secs[secs.len() / 2], peak))
+    Ok((seconds, peak_mib))
 }
 
 /// Each row of the course's table, measured on a copy of `course`.
@@ -108,7 +92,7 @@ pub fn course_bench(
         scratch::write_file(&top, NEAR_SYMMETRIC_TOP)?;
         let count = crate::scene::find_scenes(std::slice::from_ref(&scenes))?.len();
         let (site, papers, cache) = ("site", "papers", "cache");
-        let mut rows: Vec<(String, (f64, f64, f64))> = Vec::new();
+        let mut rows: Vec<(String, Timing)> = Vec::new();
         let mut row = |name: String, args: &[&str]| -> Result<()> {
             progress(&name);
             let t = timed(repeats, || child(args, &dir))?;
@@ -169,8 +153,12 @@ pub fn course_bench(
              | what | fastest s | median s | peak MiB |\n|---|---|---|---|\n",
             course.display()
         );
-        for (name, (fastest, median, peak)) in &rows {
-            let _ = writeln!(md, "| {name} | {fastest:.2} | {median:.2} | {peak:.0} |");
+        for (name, t) in &rows {
+            let _ = writeln!(
+                md,
+                "| {name} | {:.2} | {:.2} | {:.0} |",
+                t.fastest, t.median, t.peak
+            );
         }
         Ok(md)
     })();
