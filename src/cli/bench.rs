@@ -9,6 +9,7 @@
 //! `measure` only measures; `run` prints the report and, with `--out`, hands it and its SVGs to
 //! `site` to write.
 
+use super::bench_timing::{Timing, timed};
 use crate::base::format::sci;
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::Figure;
@@ -392,28 +393,6 @@ fn child_build(args: &[&str]) -> Result<(f64, f64)> {
         .and_then(|s| s.parse().ok())
         .unwrap_or(f64::NAN);
     Ok((seconds, peak))
-}
-
-/// The fastest and the median of several runs, and the largest peak memory.
-pub(super) struct Timing {
-    pub fastest: f64,
-    pub median: f64,
-    pub peak: f64,
-}
-
-/// Runs `one` (seconds, peak MiB) `repeats` times.
-pub(super) fn timed(repeats: usize, mut one: impl FnMut() -> Result<(f64, f64)>) -> Result<Timing> {
-    let mut runs = Vec::new();
-    for _ in 0..repeats.max(1) {
-        runs.push(one()?);
-    }
-    let mut secs: Vec<f64> = runs.iter().map(|r| r.0).collect();
-    secs.sort_by(f64::total_cmp);
-    Ok(Timing {
-        fastest: secs[0],
-        median: secs[secs.len() / 2],
-        peak: runs.iter().map(|r| r.1).fold(0.0, f64::max),
-    })
 }
 
 /// Whole-site builds of a copy of `lectures`, each in a fresh child process.

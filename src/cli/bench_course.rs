@@ -3,7 +3,7 @@
 //! scene's edit, and 10,000 variants of a nearly symmetric top (I₃ = I₁(1 + 10⁻⁵)). Each is a
 //! child process timed from outside, with the peak memory it prints as it exits.
 
-use super::bench::{Timing, timed};
+use super::bench_timing::{Timing, timed};
 use crate::site::scratch;
 use anyhow::{Context, Result, bail};
 use std::fmt::Write;

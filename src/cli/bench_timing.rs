@@ -1,0 +1,26 @@
+//! The fastest, median and peak memory of repeated benchmark runs, shared by the
+//! lecture bench and the course bench.
+
+use anyhow::Result;
+
+/// The fastest and the median of several runs, and the largest peak memory.
+pub(super) struct Timing {
+    pub fastest: f64,
+    pub median: f64,
+    pub peak: f64,
+}
+
+/// Runs `one` (seconds, peak MiB) `repeats` times.
+pub(super) fn timed(repeats: usize, mut one: impl FnMut() -> Result<(f64, f64)>) -> Result<Timing> {
+    let mut runs = Vec::new();
+    for _ in 0..repeats.max(1) {
+        runs.push(one()?);
+    }
+    let mut secs: Vec<f64> = runs.iter().map(|r| r.0).collect();
+    secs.sort_by(f64::total_cmp);
+    Ok(Timing {
+        fastest: secs[0],
+        median: secs[secs.len() / 2],
+        peak: runs.iter().map(|r| r.1).fold(0.0, f64::max),
+    })
+}
