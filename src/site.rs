@@ -108,14 +108,7 @@ pub fn write_site(out: &Path, files: &SiteFiles) -> Result<(), SiteError> {
         }
     }
     check_output(out, &[])?;
-    let name = out
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "site".into());
-    let parent = out
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
+    let (parent, name) = parent_and_name(out);
     std::fs::create_dir_all(parent).map_err(io(parent))?;
     remove_stale(parent, &name);
     let staging = parent.join(format!(".{name}.building-{}", std::process::id()));
@@ -208,6 +201,27 @@ fn two_renames(a: &Path, b: &Path) -> std::io::Result<()> {
 
 /// Removes `.NAME.building-PID` and `.NAME.previous-PID` folders whose process is gone: what a
 /// killed build leaves. Only folders that carry the marker, or are empty, are removed.
+/// The folder holding `out` (`.` for a bare name) and `out`'s own name, beside which a build
+/// stages the site.
+fn parent_and_name(out: &Path) -> (&Path, String) {
+    let name = out
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "site".into());
+    let parent = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    (parent, name)
+}
+
+/// Removes what a stopped build of `out` left beside it (its staging folder), once that
+/// build's process has ended: `serve` stops a build whose PDFs a later edit makes stale.
+pub fn remove_leftovers(out: &Path) {
+    let (parent, name) = parent_and_name(out);
+    remove_stale(parent, &name);
+}
+
 fn remove_stale(parent: &Path, name: &str) {
     let Ok(entries) = std::fs::read_dir(parent) else {
         return;

@@ -16,11 +16,19 @@ pub(super) fn timed(repeats: usize, mut one: impl FnMut() -> Result<(f64, f64)>)
     for _ in 0..repeats.max(1) {
         runs.push(one()?);
     }
-    let mut secs: Vec<f64> = runs.iter().map(|r| r.0).collect();
-    secs.sort_by(f64::total_cmp);
-    Ok(Timing {
-        fastest: secs[0],
-        median: secs[secs.len() / 2],
-        peak: runs.iter().map(|r| r.1).fold(0.0, f64::max),
-    })
+    Ok(Timing::of(&runs))
+}
+
+impl Timing {
+    /// The fastest and median seconds and the largest peak of (seconds, peak MiB) runs; at
+    /// least one.
+    pub(super) fn of(runs: &[(f64, f64)]) -> Timing {
+        let mut secs: Vec<f64> = runs.iter().map(|r| r.0).collect();
+        secs.sort_by(f64::total_cmp);
+        Timing {
+            fastest: secs[0],
+            median: secs[secs.len() / 2],
+            peak: runs.iter().map(|r| r.1).fold(f64::NAN, f64::max),
+        }
+    }
 }

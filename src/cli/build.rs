@@ -53,6 +53,10 @@ pub struct BuildArgs {
     /// process, so that it never holds the engine, and reads what happened here.
     #[arg(long, hide = true)]
     pub status_file: Option<PathBuf>,
+    /// Write the site with the PDFs the cache has, and leave the rest (and a roster's papers)
+    /// to the next build: `serve` reloads the page first, and runs the full build after it.
+    #[arg(long, hide = true)]
+    pub pdfs_later: bool,
 }
 
 impl BuildArgs {
@@ -92,6 +96,9 @@ pub struct Outcome {
     pub written: bool,
     /// Why it was not (located messages), or the checks that failed in the site it wrote.
     pub problems: Vec<String>,
+    /// With `--pdfs-later`: the site's PDFs left out, for the full build to typeset.
+    #[serde(default)]
+    pub pdfs_pending: Vec<String>,
 }
 
 impl Outcome {
@@ -100,10 +107,12 @@ impl Outcome {
             Ok(built) => Outcome {
                 written: true,
                 problems: built.failures.clone(),
+                pdfs_pending: built.pdfs_pending.clone(),
             },
             Err(not_built) => Outcome {
                 written: false,
                 problems: not_built.messages(),
+                pdfs_pending: Vec::new(),
             },
         }
     }
@@ -125,6 +134,7 @@ pub struct Build {
     cache: Option<Cache>,
     /// The roster, the papers' folder and the seed, with `--roster`.
     roster: Option<(crate::scene::roster::Roster, PathBuf, u64)>,
+    pdfs_later: bool,
 }
 
 /// What one build did.
@@ -132,6 +142,8 @@ pub struct Built {
     pub summary: String,
     /// The checks that failed: the site was written, and they are listed here.
     pub failures: Vec<String>,
+    /// With `--pdfs-later`: the site's PDFs not in the cache, left out of it.
+    pub pdfs_pending: Vec<String>,
 }
 
 /// Why a build wrote nothing; the scene messages are located (file:line:column).
@@ -169,6 +181,7 @@ impl Build {
             papers,
             seed,
             status_file: _,
+            pdfs_later,
         } = args;
         if roster.is_some() && !crate::render::pdf::ENABLED {
             anyhow::bail!(
@@ -203,6 +216,7 @@ impl Build {
             fidelity,
             cache: (!no_cache).then(|| Cache::new(&cache)),
             roster,
+            pdfs_later,
         })
     }
 
@@ -255,7 +269,12 @@ impl Build {
         };
         let rendered = crate::render::render(&documents, &cx).map_err(|e| fail(e.into()))?;
         let mut site = rendered.files;
-        let pdfs = typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site");
+        let pdfs = if self.pdfs_later {
+            crate::site::pdfs::from_cache_only(&rendered.typeset, self.cache.as_ref(), "site")
+        } else {
+            typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site")
+        };
+        let pdfs_pending = pdfs.pending;
         let mut warnings = pdfs.warnings;
         // A document Typst cannot set fails the build, but the HTML site and the other PDFs
         // are still written.
@@ -263,7 +282,7 @@ impl Build {
         let (typeset, pdf_cached) = (pdfs.files.len() - pdfs.from_cache, pdfs.from_cache);
         site.extend(pdfs.files);
         let papers = match &self.roster {
-            Some((roster, dir, seed)) => {
+            Some((roster, dir, seed)) if !self.pdfs_later => {
                 let (sources, csv) =
                     crate::render::pdf::roster_documents(&documents, &course, roster, *seed)
                         .map_err(|e| fail(e.into()))?;
@@ -274,7 +293,7 @@ impl Build {
                 files.insert(PathBuf::from("variants.csv"), csv);
                 Some((dir, files, roster.students.len()))
             }
-            None => None,
+            _ => None,
         };
         for n in &rendered.notes {
             eprintln!("mechbook: note: {n}");
@@ -297,7 +316,12 @@ impl Build {
             .map(|f| f.text)
             .collect();
         let failed = reports.iter().filter(|r| !r.passed()).count();
-        let pdf = if crate::render::pdf::ENABLED {
+        let pdf = if crate::render::pdf::ENABLED && self.pdfs_later {
+            format!(
+                ", {pdf_cached} PDFs from the cache ({} left to typeset next)",
+                pdfs_pending.len()
+            )
+        } else if crate::render::pdf::ENABLED {
             format!(
                 ", {} PDFs ({typeset} typeset, {pdf_cached} from the cache)",
                 typeset + pdf_cached
@@ -334,7 +358,11 @@ impl Build {
             )
         };
         failures.extend(failed_documents);
-        Ok(Built { summary, failures })
+        Ok(Built {
+            summary,
+            failures,
+            pdfs_pending,
+        })
     }
 
     /// Refuses an output folder that a build must not replace (one with other content, or

@@ -25,12 +25,16 @@ pub struct ServeArgs {
 /// What wakes the build loop.
 enum Wake {
     Changed(notify::Result<notify::Event>),
+    /// The full build that typesets a site's PDFs has finished (its number, and what it did).
+    PdfsMade(u64, Outcome),
     Stop,
 }
 
 /// Edits that arrive within this of each other make one build: an editor's save is several
-/// events (write, rename, chmod), and "save all" touches several files.
-const SETTLE: Duration = Duration::from_millis(100);
+/// events (write, rename, chmod) within a millisecond or two, and "save all" touches several
+/// files. It is part of every reload's wait; an event later than this starts a build of its
+/// own after this one.
+const SETTLE: Duration = Duration::from_millis(30);
 
 pub fn run(args: ServeArgs) -> Result<ExitCode> {
     let build = Build::new(args.build.clone())?;
@@ -47,8 +51,16 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     // The port first: a taken one is said at once, before any build.
     let server = Server::start(build.out(), args.port, on_interrupt)?;
     let builder = ChildBuild::new(&args.build, build.out())?;
-    let first = builder.run();
-    server.built(first.written, first.problems);
+    // Each edit's page first, from a build that leaves the PDFs not in the cache to a full
+    // build after it; that one is stopped by the next edit.
+    let needs_papers = args.build.roster.is_some();
+    let mut runs = 0u64;
+    let first = builder.run(true);
+    let follow = pdfs_follow(&first, needs_papers);
+    server.built(first.written, first.problems, first.pdfs_pending);
+    let mut pdfs = follow
+        .then(|| start_pdfs(&builder, &mut runs, &wake))
+        .flatten();
     let url = format!("http://{}/", server.addr());
     eprintln!(
         "mechbook: serving {url} from {} (Ctrl-C to stop); watching {}",
@@ -63,8 +75,11 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     if args.open {
         open_in_browser(&url);
     }
-    let mut watcher = notify::recommended_watcher(move |event| {
-        let _ = wake.send(Wake::Changed(event));
+    let mut watcher = notify::recommended_watcher({
+        let wake = wake.clone();
+        move |event| {
+            let _ = wake.send(Wake::Changed(event));
+        }
     })
     .context("cannot watch the files for changes")?;
     let watched = build.watched();
@@ -79,6 +94,20 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
             Ok(Wake::Changed(Ok(event))) => event,
             Ok(Wake::Changed(Err(e))) => {
                 eprintln!("mechbook: warning: watching: {e}");
+                continue;
+            }
+            Ok(Wake::PdfsMade(run, outcome)) => {
+                if pdfs.as_ref().is_some_and(|p| p.run == run) {
+                    let made = pdfs.take().map(|p| p.started.elapsed());
+                    server.built(outcome.written, outcome.problems, Vec::new());
+                    if let Some(made) = made {
+                        eprintln!(
+                            "mechbook: the PDFs are ready, {} ms after the page; {} open page(s) told to reload",
+                            made.as_millis(),
+                            server.listeners()
+                        );
+                    }
+                }
                 continue;
             }
             Ok(Wake::Stop) | Err(_) => break,
@@ -123,15 +152,31 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
                 eprintln!("mechbook: warning: cannot watch {}: {e}", target.display());
             }
         }
-        let outcome = builder.run();
+        // The last edit's PDFs are out of date: this build's full build makes them.
+        if let Some(p) = pdfs.take() {
+            p.cancel();
+        }
+        let outcome = builder.run(true);
         if !outcome.written {
             eprintln!("mechbook: still serving the last good site, with the error on every page");
         }
-        server.built(outcome.written, outcome.problems);
+        let follow = pdfs_follow(&outcome, needs_papers);
+        server.built(outcome.written, outcome.problems, outcome.pdfs_pending);
         eprintln!(
             "mechbook: {} ms from the change to telling {} open page(s) to reload",
             seen.elapsed().as_millis(),
             server.listeners()
+        );
+        pdfs = follow
+            .then(|| start_pdfs(&builder, &mut runs, &wake))
+            .flatten();
+    }
+    if let Some(p) = pdfs.take() {
+        p.cancel();
+        eprintln!(
+            "mechbook: stopped before the last edit's PDFs were typeset: {} lacks them until \
+             `mechbook build` (or serve) runs again",
+            build.out().display()
         );
     }
     eprintln!("mechbook: stopping");
@@ -140,6 +185,57 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// Whether a page-first build is followed by the full one: it wrote the site and left PDFs
+/// (or a roster's papers) out of it.
+fn pdfs_follow(outcome: &Outcome, needs_papers: bool) -> bool {
+    let follow = outcome.written && (!outcome.pdfs_pending.is_empty() || needs_papers);
+    if follow {
+        eprintln!(
+            "mechbook: the page first; then {} PDF(s){}",
+            outcome.pdfs_pending.len(),
+            if needs_papers { " and the papers" } else { "" }
+        );
+    }
+    follow
+}
+
+/// Starts the full build that typesets the PDFs a page-first build left out.
+fn start_pdfs(builder: &ChildBuild, runs: &mut u64, wake: &mpsc::Sender<Wake>) -> Option<PdfBuild> {
+    *runs += 1;
+    builder
+        .start_full(*runs, wake.clone())
+        .map_err(|e| eprintln!("mechbook: warning: cannot start the build of the PDFs: {e:#}"))
+        .ok()
+}
+
+/// The full build after a page-first one: it takes the scenes from the cache and typesets the
+/// PDFs. A thread waits for it and tells the build loop.
+struct PdfBuild {
+    run: u64,
+    out: PathBuf,
+    started: Instant,
+    child: std::sync::Arc<std::sync::Mutex<std::process::Child>>,
+    waiter: std::thread::JoinHandle<()>,
+}
+
+impl PdfBuild {
+    /// Stops the build, if it is still running: a later edit's build replaces it. The site is
+    /// written whole or not at all, so a stopped build leaves the page-first site as it was.
+    fn cancel(self) {
+        {
+            let mut child = self.child.lock().unwrap_or_else(|p| p.into_inner());
+            if matches!(child.try_wait(), Ok(None)) {
+                let _ = child.kill();
+            }
+        }
+        let _ = self.waiter.join();
+        crate::site::remove_leftovers(&self.out);
+    }
+}
+
+/// How often the waiter looks whether the full build has finished.
+const POLL: Duration = Duration::from_millis(10);
+
 /// Each build runs as a child process, `mechbook build` with serve's options, so that this
 /// process never holds the engine: `check`, `derive` and another `build` wait at most for one
 /// rebuild. The cache makes a rebuild cheap: only the edited scenes are derived.
@@ -147,7 +243,10 @@ struct ChildBuild {
     exe: PathBuf,
     args: Vec<std::ffi::OsString>,
     status: PathBuf,
+    /// The full build's report, apart: it runs while the next page-first build may start.
+    full_status: PathBuf,
     scratch: PathBuf,
+    out: PathBuf,
 }
 
 impl ChildBuild {
@@ -159,35 +258,96 @@ impl ChildBuild {
             exe,
             args: args.command_line(out),
             status: scratch.join("status.json"),
+            full_status: scratch.join("status-full.json"),
             scratch,
+            out: out.to_path_buf(),
         })
     }
 
-    /// One build; its own messages go to this terminal as it prints them.
-    fn run(&self) -> Outcome {
-        crate::site::scratch::remove_file(&self.status);
-        let ran = std::process::Command::new(&self.exe)
-            .args(&self.args)
+    fn command(&self, status: &Path) -> std::process::Command {
+        crate::site::scratch::remove_file(status);
+        let mut c = std::process::Command::new(&self.exe);
+        c.args(&self.args)
             .arg("--status-file")
-            .arg(&self.status)
-            .stdin(std::process::Stdio::null())
-            .status();
-        let report = std::fs::read(&self.status)
-            .ok()
-            .and_then(|bytes| serde_json::from_slice::<Outcome>(&bytes).ok());
-        match (ran, report) {
-            (_, Some(outcome)) => outcome,
-            (Ok(status), None) => Outcome {
-                written: false,
-                problems: vec![format!(
-                    "the build stopped ({status}) without saying why: see serve's terminal"
-                )],
-            },
-            (Err(e), None) => Outcome {
-                written: false,
-                problems: vec![format!("cannot run {}: {e}", self.exe.display())],
-            },
+            .arg(status)
+            .stdin(std::process::Stdio::null());
+        c
+    }
+
+    /// One build, page first (`--pdfs-later`) or whole; its own messages go to this terminal
+    /// as it prints them.
+    fn run(&self, pdfs_later: bool) -> Outcome {
+        let mut command = self.command(&self.status);
+        if pdfs_later {
+            command.arg("--pdfs-later");
         }
+        outcome(command.status(), &self.status, &self.exe)
+    }
+
+    /// The whole build, started: a thread waits for it and sends its outcome as `run`.
+    fn start_full(&self, run: u64, wake: mpsc::Sender<Wake>) -> Result<PdfBuild> {
+        let mut child = self
+            .command(&self.full_status)
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .with_context(|| format!("cannot run {}", self.exe.display()))?;
+        // Its notes are the page-first build's, said already; the rest (typesetting's
+        // warnings and errors, the summary) go on to this terminal.
+        if let Some(err) = child.stderr.take() {
+            std::thread::spawn(move || {
+                use std::io::BufRead;
+                for line in std::io::BufReader::new(err).lines().map_while(Result::ok) {
+                    if !line.starts_with("mechbook: note: ") {
+                        eprintln!("{line}");
+                    }
+                }
+            });
+        }
+        let child = std::sync::Arc::new(std::sync::Mutex::new(child));
+        let (status, exe) = (self.full_status.clone(), self.exe.clone());
+        let waiter = std::thread::spawn({
+            let child = child.clone();
+            move || {
+                let ended = loop {
+                    let polled = child.lock().unwrap_or_else(|p| p.into_inner()).try_wait();
+                    match polled {
+                        Ok(None) => std::thread::sleep(POLL),
+                        Ok(Some(s)) => break Ok(s),
+                        Err(e) => break Err(e),
+                    }
+                };
+                let _ = wake.send(Wake::PdfsMade(run, outcome(ended, &status, &exe)));
+            }
+        });
+        Ok(PdfBuild {
+            run,
+            out: self.out.clone(),
+            started: Instant::now(),
+            child,
+            waiter,
+        })
+    }
+}
+
+/// What a child build did: its report, or why there is none.
+fn outcome(ran: std::io::Result<std::process::ExitStatus>, status: &Path, exe: &Path) -> Outcome {
+    let report = std::fs::read(status)
+        .ok()
+        .and_then(|bytes| serde_json::from_slice::<Outcome>(&bytes).ok());
+    match (ran, report) {
+        (_, Some(outcome)) => outcome,
+        (Ok(status), None) => Outcome {
+            written: false,
+            problems: vec![format!(
+                "the build stopped ({status}) without saying why: see serve's terminal"
+            )],
+            pdfs_pending: Vec::new(),
+        },
+        (Err(e), None) => Outcome {
+            written: false,
+            problems: vec![format!("cannot run {}: {e}", exe.display())],
+            pdfs_pending: Vec::new(),
+        },
     }
 }
 

@@ -39,6 +39,8 @@ struct Status {
     generation: u64,
     written: bool,
     problems: Vec<String>,
+    /// The site's PDFs a build after this one is typesetting (paths inside the site).
+    pdfs_pending: Vec<String>,
 }
 
 struct Shared {
@@ -131,14 +133,16 @@ impl Server {
         self.addr
     }
 
-    /// A build has finished: whether it wrote the site, and what went wrong (why it did not,
-    /// or the checks that failed). Open pages reload.
-    pub fn built(&self, written: bool, problems: Vec<String>) {
+    /// A build has finished: whether it wrote the site, what went wrong (why it did not, or
+    /// the checks that failed), and the PDFs left out of it for the next build to typeset.
+    /// Open pages reload.
+    pub fn built(&self, written: bool, problems: Vec<String>, pdfs_pending: Vec<String>) {
         let generation = {
             let mut s = self.shared.status.lock().unwrap_or_else(|p| p.into_inner());
             s.generation += 1;
             s.written = written;
             s.problems = problems;
+            s.pdfs_pending = pdfs_pending;
             s.generation
         };
         self.shared.changes.send_replace(Some(generation));
@@ -238,6 +242,12 @@ async fn file(State(shared): State<Arc<Shared>>, headers: HeaderMap, uri: Uri) -
                 page::no_site_page(&status.problems, status.generation).into_bytes(),
             );
         }
+        Err(_) if is_pending(&status.pdfs_pending, &rel) => {
+            return html(
+                StatusCode::SERVICE_UNAVAILABLE,
+                page::pdf_pending_page(uri.path(), status.generation).into_bytes(),
+            );
+        }
         Err(_) => {
             return plain(
                 StatusCode::NOT_FOUND,
@@ -251,10 +261,18 @@ async fn file(State(shared): State<Arc<Shared>>, headers: HeaderMap, uri: Uri) -
         if !status.problems.is_empty() {
             extra.push_str(&page::error_box(&status.problems, status.written));
         }
+        if !status.pdfs_pending.is_empty() {
+            extra.push_str(&page::pdfs_pending_note(status.pdfs_pending.len()));
+        }
         extra.push_str(&page::reload_snippet(status.generation));
         return html(StatusCode::OK, page::inject(&bytes, &extra));
     }
     respond(StatusCode::OK, kind, bytes)
+}
+
+/// Whether `rel` is one of the PDFs being typeset.
+fn is_pending(pending: &[String], rel: &Path) -> bool {
+    pending.iter().any(|p| Path::new(p) == rel)
 }
 
 /// A file of the site by its path inside it, never through a link that leads out of it.

@@ -31,6 +31,29 @@ pub fn error_box(messages: &[String], written: bool) -> String {
     html
 }
 
+/// A note at the foot of the page while its build's PDFs are being typeset: the page itself
+/// is up to date, and reloads again when they are ready.
+pub fn pdfs_pending_note(count: usize) -> String {
+    let what = if count == 1 {
+        "1 PDF is".to_owned()
+    } else {
+        format!("{count} PDFs are")
+    };
+    format!(
+        "<div id=\"mechbook-serve-pdfs\" role=\"status\" style=\"position:fixed;bottom:0;right:0;z-index:2147483647;margin:0;padding:.4em 1em;background:#f4f8ff;color:#12325a;border:1px solid #8aa8d0;font:13px/1.4 system-ui,sans-serif\">mechbook: this page is up to date; {what} being typeset, and the page reloads when they are ready.</div>"
+    )
+}
+
+/// The page served for a PDF that a build is still typesetting: it shows the PDF when it is
+/// ready.
+pub fn pdf_pending_page(url_path: &str, generation: u64) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>mechbook: typesetting</title></head><body><p>mechbook is typesetting {}; this page shows it when it is ready.</p>{}</body></html>\n",
+        tera::escape_html(url_path),
+        reload_snippet(generation)
+    )
+}
+
 /// `page` with `extra` inserted before its last `</body>` (or at its end).
 pub fn inject(page: &[u8], extra: &str) -> Vec<u8> {
     let at = page

@@ -15,6 +15,8 @@ pub struct Typeset {
     pub warnings: Vec<String>,
     /// The documents Typst could not typeset, each with why: the rest are still written.
     pub failed: Vec<String>,
+    /// The documents left to a later build ([`from_cache_only`]): not in the cache.
+    pub pending: Vec<String>,
 }
 
 /// How many documents are typeset at once: Typst does not touch the engine, so each core takes
@@ -40,31 +42,9 @@ pub fn typeset_all(
     progress: &mut dyn FnMut(usize, usize, &str),
 ) -> Typeset {
     use std::sync::atomic::{AtomicUsize, Ordering};
-    let name = |s: &PdfSource| {
-        format!(
-            "{prefix}-{}",
-            s.path.trim_end_matches(".pdf").replace('/', "-")
-        )
-    };
     let mut out = Typeset::default();
     // From the cache first, in order; the rest are typeset below.
-    let mut made: Vec<Option<Made>> = Vec::with_capacity(sources.len());
-    for s in sources {
-        let mut from_cache = None;
-        if let Some(cache) = cache {
-            use super::cache::Lookup;
-            match cache.load_pdf(&name(s), inputs_hash(s)) {
-                Lookup::Hit(pdf) => from_cache = Some(pdf),
-                Lookup::Miss => {}
-                Lookup::Damaged(path, why) => out.warnings.push(format!(
-                    "the cache entry {} is damaged ({why}): {} was typeset again",
-                    path.display(),
-                    s.path
-                )),
-            }
-        }
-        made.push(from_cache.map(Made::Cached));
-    }
+    let mut made = from_cache(sources, cache, prefix, &mut out);
     let todo: Vec<usize> = (0..sources.len()).filter(|&i| made[i].is_none()).collect();
     // The workers take the next document and say when they start and finish it; this thread
     // tells `progress`, which need not be shared between threads.
@@ -137,13 +117,70 @@ pub fn typeset_all(
         if done.missing_glyphs.is_empty()
             && done.past_the_edge.is_empty()
             && let Some(cache) = cache
-            && let Err(e) = cache.store_pdf(&name(s), inputs_hash(s), &done.pdf)
+            && let Err(e) = cache.store_pdf(&cache_name(prefix, s), inputs_hash(s), &done.pdf)
         {
             out.warnings.push(format!("the cache is not updated: {e}"));
         }
         out.files.push((PathBuf::from(&s.path), done.pdf));
     }
     out
+}
+
+/// The documents of `sources` that the cache has, and nothing typeset: the rest are named in
+/// `pending`, for a later build to typeset (`serve` reloads the page first, and its PDFs
+/// follow).
+#[cfg(feature = "pdf")]
+pub fn from_cache_only(sources: &[PdfSource], cache: Option<&Cache>, prefix: &str) -> Typeset {
+    let mut out = Typeset::default();
+    let made = from_cache(sources, cache, prefix, &mut out);
+    for (s, m) in sources.iter().zip(made) {
+        match m {
+            Some(Made::Cached(pdf)) => {
+                out.files.push((PathBuf::from(&s.path), pdf));
+                out.from_cache += 1;
+            }
+            _ => out.pending.push(s.path.clone()),
+        }
+    }
+    out
+}
+
+/// The name of a document's entry in the cache.
+#[cfg(feature = "pdf")]
+fn cache_name(prefix: &str, s: &PdfSource) -> String {
+    format!(
+        "{prefix}-{}",
+        s.path.trim_end_matches(".pdf").replace('/', "-")
+    )
+}
+
+/// Each document's PDF from the cache, in the sources' order, or `None` to typeset it; a
+/// damaged entry is said in `out`'s warnings.
+#[cfg(feature = "pdf")]
+fn from_cache(
+    sources: &[PdfSource],
+    cache: Option<&Cache>,
+    prefix: &str,
+    out: &mut Typeset,
+) -> Vec<Option<Made>> {
+    let mut made: Vec<Option<Made>> = Vec::with_capacity(sources.len());
+    for s in sources {
+        let mut from_cache = None;
+        if let Some(cache) = cache {
+            use super::cache::Lookup;
+            match cache.load_pdf(&cache_name(prefix, s), inputs_hash(s)) {
+                Lookup::Hit(pdf) => from_cache = Some(pdf),
+                Lookup::Miss => {}
+                Lookup::Damaged(path, why) => out.warnings.push(format!(
+                    "the cache entry {} is damaged ({why}): {} was typeset again",
+                    path.display(),
+                    s.path
+                )),
+            }
+        }
+        made.push(from_cache.map(Made::Cached));
+    }
+    made
 }
 
 #[cfg(feature = "pdf")]
@@ -173,6 +210,12 @@ pub fn typeset_all(
     _: &str,
     _: &mut dyn FnMut(usize, usize, &str),
 ) -> Typeset {
+    Typeset::default()
+}
+
+/// Without the feature `pdf` there is nothing to typeset.
+#[cfg(not(feature = "pdf"))]
+pub fn from_cache_only(_: &[PdfSource], _: Option<&Cache>, _: &str) -> Typeset {
     Typeset::default()
 }
 

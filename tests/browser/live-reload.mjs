@@ -1,5 +1,6 @@
 // `mechbook serve` in a real browser: a page open in headless Chromium reloads by itself when a
-// scene is saved, shows a broken scene's error at its top, and comes back when it is fixed.
+// scene is saved (before its PDFs, which it says are being typeset, and reloads again for),
+// shows a broken scene's error at its top, and comes back when it is fixed.
 // Prints the time from saving the scene to the reloaded page showing the change.
 // Usage: node live-reload.mjs MECHBOOK WORK_DIR [SCREENSHOT_PREFIX]
 //   (playwright-core must be resolvable; see .ci/run). Exits 1 on any failure.
@@ -50,6 +51,18 @@ try {
     } catch {
       fail(`trial ${trial}: the page did not reload with "${title}" within 2 s`);
     }
+  }
+  // The page comes before its PDFs: it says they are being typeset, and reloads again when
+  // they are ready.
+  writeFileSync(scene, original.replace("A book as a uniform box", "A book and its PDFs"));
+  try {
+    await page.waitForFunction(() => document.title.startsWith("A book and its PDFs") &&
+                                     document.querySelector("#mechbook-serve-pdfs"),
+                               null, { timeout: 5000, polling: 10 });
+    if (shots) await page.screenshot({ path: `${shots}-pdfs.png` });
+    await page.waitForSelector("#mechbook-serve-pdfs", { state: "detached", timeout: 60000 });
+  } catch {
+    fail("the page did not say that its PDFs were being typeset, then reload when they were");
   }
   // A broken scene: the error appears in the open page, over the last good site.
   writeFileSync(scene, original.replace('value = "m*(h^2 + d^2)/3"', 'value = "m*(h^2 + 2d^2)/3"'));

@@ -125,6 +125,25 @@ fn serve_with(course: &Path, args: &[&str], env: &[(&str, &Path)]) -> Serving {
     Serving { child, port, lines }
 }
 
+/// Waits for serve to print a line holding `what`; the lines before it.
+fn said(s: &Serving, what: &str) -> Vec<String> {
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let mut seen = Vec::new();
+    loop {
+        let line = s
+            .lines
+            .recv_timeout(deadline.saturating_duration_since(Instant::now()))
+            .unwrap_or_else(|_| panic!("serve never said {what:?}: {seen:#?}"));
+        if line.contains(what) {
+            return seen;
+        }
+        seen.push(line);
+    }
+}
+
+/// What serve prints when the PDFs a page-first build left out are made.
+const PDFS_READY: &str = "the PDFs are ready";
+
 fn interrupt(child: &mut Child) -> Option<i32> {
     Command::new("kill")
         .args(["-INT", &child.id().to_string()])
@@ -146,6 +165,8 @@ fn serve_rebuilds_on_edit_shows_errors_in_the_page_and_stops_on_ctrl_c() {
     let (dir, course) = new_course("serve");
     let mut s = serve(&course);
     let port = s.port;
+    // The page first, then its PDFs: the site is whole after both.
+    said(&s, PDFS_READY);
 
     // The served pages are build's bytes, with only the reload script added.
     let site = read_tree(&course.join("site"));
@@ -263,6 +284,61 @@ fn serve_rebuilds_on_edit_shows_errors_in_the_page_and_stops_on_ctrl_c() {
         .filter(|n| n.contains(".building-") || n.contains(".previous-"))
         .collect();
     assert!(leftovers.is_empty(), "{leftovers:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A save reloads the page from a build that leaves the PDFs not in the cache to the full
+/// build after it; then the site is byte for byte what `mechbook build` writes.
+#[test]
+fn serve_reloads_the_page_first_and_its_pdfs_follow_as_build_makes_them() {
+    let (dir, course) = new_course("serve-pdfs-later");
+    let s = serve(&course);
+    // The first build's page, then its PDFs (said before the address, which `serve` read).
+    said(&s, PDFS_READY);
+    let built = |name: &str| {
+        let out = dir.join(name);
+        let run = Command::new(env!("CARGO_BIN_EXE_mechbook"))
+            .args(["build", "--no-cache", "--out", out.to_str().unwrap()])
+            .current_dir(&course)
+            .output()
+            .unwrap();
+        assert_eq!(run.status.code(), Some(0), "{}", super::stderr(&run));
+        read_tree(&out)
+    };
+    let served = read_tree(&course.join("site"));
+    assert_eq!(served.keys().filter(|p| p.ends_with(".pdf")).count(), 4);
+    assert!(served == built("built"), "serve's site is not build's");
+
+    // An edit of a title the PDFs show: the page reloads first, then two PDFs follow.
+    let scene = course.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    std::fs::write(
+        &scene,
+        text.replace("A book as a uniform box", "A paperback as a box"),
+    )
+    .unwrap();
+    let log = said(&s, PDFS_READY);
+    let page_first = log
+        .iter()
+        .position(|l| l.contains("the page first; then"))
+        .unwrap_or_else(|| panic!("{log:#?}"));
+    let reload = log
+        .iter()
+        .position(|l| l.contains("ms from the change to telling"))
+        .unwrap_or_else(|| panic!("{log:#?}"));
+    assert!(page_first < reload, "{log:#?}");
+    assert!(
+        log[page_first].contains("then 2 PDF(s)"),
+        "the lecture's student and instructor handouts: {log:#?}"
+    );
+    let served = read_tree(&course.join("site"));
+    assert!(
+        served == built("built-after-edit"),
+        "serve's site after the edit is not build's"
+    );
+    assert!(page(s.port, "/book.html").contains("A paperback as a box"));
+    assert!(!page(s.port, "/book.html").contains("mechbook-serve-pdfs"));
+    drop(s);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
