@@ -3,6 +3,7 @@
 pub mod float;
 pub mod format;
 pub mod hash;
+pub mod in_order;
 pub mod markup;
 pub mod natural;
 pub mod pencil;

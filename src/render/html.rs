@@ -173,15 +173,21 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
         let svg = plot::svg(fig).map_err(|e| e.in_scene(&docs.pages[*i].source))?;
         add(files, PathBuf::from(file), svg.into_bytes())?;
     }
-    let mut pages: Vec<PageView> = Vec::new();
-    for (page, file) in docs.pages.iter().zip(&docs.files) {
+    // Each page on its own, on both cores; added in the pages' order.
+    let made = crate::base::in_order::map_in_order(&docs.pages, |page| {
         let view = page_view(page, cx.timings).map_err(|e| e.in_scene(&page.source))?;
         let mut ctx = tera::Context::new();
         ctx.insert("site", course);
         ctx.insert("page", &view);
         ctx.insert("lecture_heading", &course.lecture_heading(&view.lecture));
         let bytes = render(&tera, "page.html", &ctx)?;
-        out.notes.extend(phone_scaled(page, &bytes));
+        let note = phone_scaled(page, &bytes);
+        Ok::<_, RenderError>((view, bytes, note))
+    });
+    let mut pages: Vec<PageView> = Vec::new();
+    for (made, file) in made.into_iter().zip(&docs.files) {
+        let (view, bytes, note) = made?;
+        out.notes.extend(note);
         add(files, PathBuf::from(file), bytes)?;
         pages.push(view);
     }

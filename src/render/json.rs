@@ -24,22 +24,24 @@ impl Renderer for JsonReport {
         cx: &Context,
         out: &mut Rendered,
     ) -> Result<(), RenderError> {
-        let mut published = Vec::new();
-        for (i, page) in docs.pages.iter().enumerate() {
-            // A problem's page holds every variant's answers: none where answers are private.
-            if cx.course.answers_private && docs.is_problem(i) {
-                continue;
-            }
-            let mut j = scene_json(page);
+        // A problem's page holds every variant's answers: none where answers are private.
+        let published: Vec<usize> = (0..docs.pages.len())
+            .filter(|&i| !(cx.course.answers_private && docs.is_problem(i)))
+            .collect();
+        // Each page's file on both cores, added in the pages' order.
+        let files = crate::base::in_order::map_in_order(&published, |&i| {
+            let mut j = scene_json(&docs.pages[i]);
             if !cx.timings {
                 without_seconds(&mut j);
             }
+            pretty(&j)
+        });
+        for (&i, bytes) in published.iter().zip(files) {
             super::renderer::add(
                 &mut out.files,
-                format!("export/json/{}.json", page.id),
-                pretty(&j),
+                format!("export/json/{}.json", docs.pages[i].id),
+                bytes,
             )?;
-            published.push(i);
         }
         let lectures: Vec<Json> = docs
             .lectures

@@ -83,73 +83,89 @@ pub fn site_documents(
     course: &Course,
     site: &SiteFiles,
 ) -> Result<Vec<PdfSource>, RenderError> {
+    // Each lecture's documents on both cores, in the lectures' order.
+    let made = crate::base::in_order::map_in_order(&docs.lectures, |lecture| {
+        lecture_documents(docs, course, site, lecture)
+    });
     let mut out = Vec::new();
-    for lecture in &docs.lectures {
-        let heading = &lecture.heading;
-        let sheet = &lecture.sheet;
-        let paths = lecture_pdfs(&lecture.slug, sheet.is_some(), course);
-        for handout in &lecture.handouts {
-            let instructor = handout.instructor;
-            let (title, right, path) = if instructor {
-                (
-                    format!("{heading}: worked solutions and errata"),
-                    "Instructor",
-                    &paths.instructor,
-                )
-            } else {
-                (format!("{heading}: summary"), "Student", &paths.student)
-            };
-            let mut m = Markup::new(preamble(
-                course,
-                &title,
-                &course_head(course, heading),
-                right,
-            ));
-            m.heading(1, &title)?;
-            let parts: Vec<(&crate::document::handout::Part, &crate::document::Page)> = handout
-                .parts
+    for m in made {
+        out.extend(m?);
+    }
+    Ok(out)
+}
+
+/// A lecture's handouts, problem sheet and key.
+fn lecture_documents(
+    docs: &Documents,
+    course: &Course,
+    site: &SiteFiles,
+    lecture: &crate::document::course::Lecture,
+) -> Result<Vec<PdfSource>, RenderError> {
+    let mut out = Vec::new();
+    let heading = &lecture.heading;
+    let sheet = &lecture.sheet;
+    let paths = lecture_pdfs(&lecture.slug, sheet.is_some(), course);
+    for handout in &lecture.handouts {
+        let instructor = handout.instructor;
+        let (title, right, path) = if instructor {
+            (
+                format!("{heading}: worked solutions and errata"),
+                "Instructor",
+                &paths.instructor,
+            )
+        } else {
+            (format!("{heading}: summary"), "Student", &paths.student)
+        };
+        let mut m = Markup::new(preamble(
+            course,
+            &title,
+            &course_head(course, heading),
+            right,
+        ));
+        m.heading(1, &title)?;
+        let parts: Vec<(&crate::document::handout::Part, &crate::document::Page)> = handout
+            .parts
+            .iter()
+            .map(|p| (p, &docs.pages[p.page]))
+            .collect();
+        handout::handout(&mut m, &parts, instructor)?;
+        let images = if instructor {
+            parts
                 .iter()
-                .map(|p| (p, &docs.pages[p.page]))
-                .collect();
-            handout::handout(&mut m, &parts, instructor)?;
-            let images = if instructor {
-                parts
-                    .iter()
-                    .filter(|(part, _)| part.figures)
-                    .flat_map(|(_, p)| &p.figures)
-                    .filter_map(|f| {
-                        let bytes = site.get(std::path::Path::new(&f.file))?;
-                        Some((f.file.clone(), bytes.clone()))
-                    })
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            out.push(m.source(path, images));
-        }
-        if let (Some(sheet), Some((student, key))) = (sheet, &paths.problems) {
-            let all: Vec<(usize, Option<&Student>)> =
-                (0..sheet.variants.len()).map(|k| (k, None)).collect();
-            let head = format!("{} · {heading}: problem sheet", course.title);
-            let mut m = Markup::new(preamble(
-                course,
-                &format!("{heading}: problem sheet"),
-                &head,
-                "",
-            ));
-            sheet::student_sheet(&mut m, &head, sheet, &all)?;
-            out.push(m.source(student, Vec::new()));
-            let head = format!("{} · {heading}: answer key", course.title);
-            let mut m = Markup::new(preamble(
-                course,
-                &format!("{heading}: answer key"),
-                &head,
-                "",
-            ));
-            sheet::key(&mut m, &head, sheet, &all)?;
-            if let Some(key) = key {
-                out.push(m.source(key, Vec::new()));
-            }
+                .filter(|(part, _)| part.figures)
+                .flat_map(|(_, p)| &p.figures)
+                .filter_map(|f| {
+                    let bytes = site.get(std::path::Path::new(&f.file))?;
+                    Some((f.file.clone(), bytes.clone()))
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        out.push(m.source(path, images));
+    }
+    if let (Some(sheet), Some((student, key))) = (sheet, &paths.problems) {
+        let all: Vec<(usize, Option<&Student>)> =
+            (0..sheet.variants.len()).map(|k| (k, None)).collect();
+        let head = format!("{} · {heading}: problem sheet", course.title);
+        let mut m = Markup::new(preamble(
+            course,
+            &format!("{heading}: problem sheet"),
+            &head,
+            "",
+        ));
+        sheet::student_sheet(&mut m, &head, sheet, &all)?;
+        out.push(m.source(student, Vec::new()));
+        let head = format!("{} · {heading}: answer key", course.title);
+        let mut m = Markup::new(preamble(
+            course,
+            &format!("{heading}: answer key"),
+            &head,
+            "",
+        ));
+        sheet::key(&mut m, &head, sheet, &all)?;
+        if let Some(key) = key {
+            out.push(m.source(key, Vec::new()));
         }
     }
     Ok(out)
