@@ -33,6 +33,25 @@ const browser = await launch();
 const scene = join(course, "lectures/lecture-1/01-book.toml");
 const original = readFileSync(scene, "utf8");
 const times = [];
+// Each save reloads the page twice: first the page, then again when its PDFs are ready. The
+// page has settled when it carries no note of PDFs being typeset: no reload is then due.
+const settled = (page) =>
+  page.waitForFunction(() => document.readyState === "complete" &&
+                             !document.querySelector("#mechbook-serve-pdfs"),
+                       null, { timeout: 60000, polling: 10 });
+// Marks the page (a reload clears the mark); a reload that lands meanwhile is waited out.
+const mark = async (page) => {
+  for (let tries = 0; tries < 10; tries++) {
+    try {
+      await page.evaluate(() => { window.mechbookMarker = true; });
+      return;
+    } catch {
+      await page.waitForLoadState("load");
+      await settled(page);
+    }
+  }
+  throw new Error("the page kept reloading: it could not be marked");
+};
 try {
   const page = await browser.newPage();
   const errors = [];
@@ -41,7 +60,8 @@ try {
   for (let trial = 1; trial <= 5; trial++) {
     const title = `A book, edit ${trial}`;
     // Set in this page only: a reload clears it, so its absence proves the page reloaded.
-    await page.evaluate(() => { window.mechbookMarker = true; });
+    await settled(page);
+    await mark(page);
     const saved = performance.now();
     writeFileSync(scene, original.replace("A book as a uniform box", title));
     try {
@@ -54,6 +74,7 @@ try {
   }
   // The page comes before its PDFs: it says they are being typeset, and reloads again when
   // they are ready.
+  await settled(page);
   writeFileSync(scene, original.replace("A book as a uniform box", "A book and its PDFs"));
   try {
     await page.waitForFunction(() => document.title.startsWith("A book and its PDFs") &&
