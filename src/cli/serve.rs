@@ -55,7 +55,7 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     // build after it; that one is stopped by the next edit.
     let needs_papers = args.build.roster.is_some();
     let mut runs = 0u64;
-    let first = builder.run(true);
+    let first = builder.run_page_first();
     let follow = pdfs_follow(&first, needs_papers);
     server.built(first.written, first.problems, first.pdfs_pending);
     let mut pdfs = follow
@@ -156,7 +156,7 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
         if let Some(p) = pdfs.take() {
             p.cancel();
         }
-        let outcome = builder.run(true);
+        let outcome = builder.run_page_first();
         if !outcome.written {
             eprintln!("mechbook: still serving the last good site, with the error on every page");
         }
@@ -274,14 +274,11 @@ impl ChildBuild {
         c
     }
 
-    /// One build, page first (`--pdfs-later`) or whole; its own messages go to this terminal
-    /// as it prints them.
-    fn run(&self, pdfs_later: bool) -> Outcome {
-        let mut command = self.command(&self.status);
-        if pdfs_later {
-            command.arg("--pdfs-later");
-        }
-        outcome(command.status(), &self.status, &self.exe)
+    /// One page-first build (`--pdfs-later`); its own messages go to this terminal as it
+    /// prints them.
+    fn run_page_first(&self) -> Outcome {
+        let ran = self.command(&self.status).arg("--pdfs-later").status();
+        outcome(ran, &self.status, &self.exe)
     }
 
     /// The whole build, started: a thread waits for it and sends its outcome as `run`.
