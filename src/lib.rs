@@ -13,6 +13,8 @@
 //!   solution): numbers with their error and cost.
 //! - `figures`: one file per plot kind, data -> `Figure` with captions written from the data.
 //! - `verify`: symbolic vs numeric vs the notes' claims -> verdicts.
+//! - `steps`: the author's step operations, one file each: its exact rule beside its numeric
+//!   route, on the mechanics of `derive` and the checks of `verify`.
 //! - `pipeline`: runs the stages for one scene, and the build cache's orchestration.
 //! - `document`: the format-neutral view of a scene's page that every printer reads.
 //! - `render`: the documents' printers, siblings behind one trait: HTML (MathML, SVG), Moodle,
@@ -40,6 +42,8 @@ pub mod numeric;
 pub mod figures;
 
 pub mod verify;
+
+pub mod steps;
 
 pub mod pipeline;
 

@@ -111,7 +111,14 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
         plot: None,
         source: Box::new(source),
     };
-    let derivation = derive::derive(scene, plan).map_err(|e| {
+    // The built-in derivation, then the author's own steps on it.
+    let derivation = derive::derive(scene, plan).and_then(|mut d| {
+        if plan.runs(Stage::Steps) {
+            crate::steps::derive_steps(scene, &mut d)?;
+        }
+        Ok(d)
+    });
+    let derivation = derivation.map_err(|e| {
         // An author's step is located at its own line.
         let at = match &e {
             derive::DeriveError::Step(s) => (s.line(), 1),
@@ -345,10 +352,12 @@ pub fn run_scene_with(
         derivation,
         numeric.as_ref(),
         &plan,
-        &deadline,
         &mut verification,
     )
     .map_err(|e| fail(e.into()))?;
+    if plan.runs(Stage::Steps) {
+        verification.steps = crate::steps::check_steps(&scene, derivation, &deadline);
+    }
     if let Some(problem) = &scene.problem {
         verification.variants =
             verify::variants::check_variants(&scene, derivation, problem, &deadline)

@@ -19,6 +19,7 @@ const LAYERS: &[&[&str]] = &[
     &["derive", "numeric"],
     &["figures"],
     &["verify"],
+    &["steps"],
     &["pipeline"],
     &["document"],
     &["render"],

@@ -170,7 +170,7 @@ pub fn steps_bench(folder: &Path) -> Result<String> {
         totals.0 += derive;
         for (i, step) in scene.steps.iter().enumerate() {
             let start = Instant::now();
-            let check = crate::verify::steps::check_step(&scene, &symbolic.derivation, i);
+            let check = crate::steps::check_step(&scene, &symbolic.derivation, i);
             let seconds = start.elapsed().as_secs_f64();
             totals.1 += seconds;
             totals.2 += check.evaluations;

@@ -17,7 +17,7 @@ pub const MAX_LINKS: usize = 6;
 
 /// The modes mechbook derives for the scene, at its values.
 fn mechbook_modes(file: &Path) -> Result<Vec<f64>> {
-    use crate::derive::steps::StepResult;
+    use crate::derive::step_names::StepResult;
     let scene = crate::scene::Scene::from_file(file)?;
     let r = crate::pipeline::run_scene(scene, None)?;
     if let Some(failed) = r.verification.steps.iter().find(|c| !c.passed()) {

@@ -64,7 +64,7 @@ fn span_notation(span: AngleSpan) -> &'static str {
 /// `I_xy = ∫_{lo}^{hi} … f dx dy = result`: the limits outermost first, the differentials
 /// innermost first. `lhs` is a tree, never notation text: an author's step name (`Ix`,
 /// `I1cone`) is a symbol, printed by the symbol printers on the page and in the PDF alike.
-pub(super) fn integral_formula(
+pub(crate) fn integral_formula(
     lhs: Formula,
     integrand: &Expr,
     domain: &[Integral],

@@ -11,25 +11,24 @@ pub mod constraints;
 pub mod earth;
 pub mod euler;
 pub mod free_top;
-mod inertia;
-mod integral;
+pub(crate) mod inertia;
+pub(crate) mod integral;
 mod kinematics;
 pub mod lagrangian;
 pub mod modes;
 pub mod poinsot;
 pub mod present;
 mod principal;
-mod quotient_rule;
+pub(crate) mod quotient_rule;
 pub mod rest_states;
 pub mod routh;
 pub mod series;
 pub mod sign;
-mod solve;
+pub(crate) mod solve;
 pub mod stability;
-mod step_page;
+pub mod step_names;
 mod step_result;
-pub mod steps;
-mod undefined;
+pub(crate) mod undefined;
 pub mod variants;
 
 pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
@@ -153,13 +152,13 @@ pub enum DeriveError {
     Eval(#[from] EvalError),
     #[error(transparent)]
     Diff(#[from] DiffError),
-    /// Why an author's step cannot be derived, in words (wrapped in [`steps::StepError`] with
+    /// Why an author's step cannot be derived, in words (wrapped in [`step_names::StepError`] with
     /// the step's name and line).
     #[error("{0}")]
     NotDerivable(String),
     /// An author's step that could not be derived, at its line.
     #[error(transparent)]
-    Step(#[from] steps::StepError),
+    Step(#[from] step_names::StepError),
     /// A stage read a quantity that an earlier stage should have set: a bug in the plan.
     #[error("internal inconsistency: quantity `{0}` was not derived")]
     Missing(&'static str),
@@ -191,11 +190,11 @@ pub struct Derivation {
     pub eigen: Option<ExactEigen>,
     /// The results of the author's own steps, by the step's name.
     #[serde(default)]
-    pub named: BTreeMap<String, steps::StepResult>,
+    pub named: BTreeMap<String, step_names::StepResult>,
     /// The printed form of each step whose result a textbook writes otherwise (see
     /// `cas::present_all`), by the step's name; its check compares it with `named`.
     #[serde(default)]
-    pub printed: BTreeMap<String, steps::StepResult>,
+    pub printed: BTreeMap<String, step_names::StepResult>,
 }
 
 impl Derivation {
@@ -204,7 +203,7 @@ impl Derivation {
     pub fn numeric_names(&self) -> BTreeMap<String, String> {
         let mut out = BTreeMap::new();
         for (step, r) in &self.named {
-            if let steps::StepResult::NumericModes { frequencies, .. } = r {
+            if let step_names::StepResult::NumericModes { frequencies, .. } = r {
                 for k in 0..frequencies.len() {
                     out.insert(crate::scene::mode_name(step, k), step.clone());
                 }
@@ -219,7 +218,7 @@ impl Derivation {
         if !self
             .named
             .values()
-            .any(|r| matches!(r, steps::StepResult::NumericModes { .. }))
+            .any(|r| matches!(r, step_names::StepResult::NumericModes { .. }))
         {
             return None;
         }
@@ -380,9 +379,6 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
         earth::earth_precession(&mut d)?;
     }
     present::present_builtin_steps(&mut d)?;
-    if plan.runs(Stage::Steps) {
-        steps::derive_steps(scene, &mut d)?;
-    }
     Ok(d)
 }
 

@@ -241,7 +241,7 @@ fn a_linear_system_by_cramers_rule() {
 /// form for equal masses and lengths at several states, and the check that puts them back.
 #[test]
 fn double_pendulum_accelerations() {
-    use crate::derive::steps::StepResult;
+    use crate::derive::step_names::StepResult;
     let text = std::fs::read_to_string("tests/course/dynamics/03-double-pendulum.toml").unwrap();
     let r = run_scene(Scene::parse(&text, Path::new("d.toml")).unwrap(), None).unwrap();
     let StepResult::Solution(solution) = &r.derivation.named["acc"] else {
@@ -294,7 +294,7 @@ fn double_pendulum_accelerations() {
 /// the cubic Hermite interpolant at the zero of θ'.
 #[test]
 fn nutation_turns_at_the_cubics_roots() {
-    use crate::derive::steps::StepResult;
+    use crate::derive::step_names::StepResult;
     use crate::numeric::{motion, ode};
     let text = std::fs::read_to_string("tests/course/dynamics/11-nutation.toml").unwrap();
     let scene = Scene::parse(&text, Path::new("n.toml")).unwrap();

@@ -102,7 +102,7 @@ pub fn general_answer(
     }
     let resolved = resolve(scene, answer)?;
     if let Some((name, step)) = d.numeric_name_in(&resolved.entries()[0]) {
-        return Err(DeriveError::NotDerivable(super::steps::numeric_only(
+        return Err(DeriveError::NotDerivable(super::step_names::numeric_only(
             &name, &step,
         )));
     }

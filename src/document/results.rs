@@ -81,7 +81,7 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
         // What each result is called where the derivation states it, by the result's name: a
         // solution's unknown, a state of rest's coordinate, the squared frequency Ω_k² about
         // the k-th state.
-        use crate::derive::steps::StepResult;
+        use crate::derive::step_names::StepResult;
         use crate::scene::mode_name;
         let symbols: std::collections::BTreeMap<String, Expr> = match s {
             StepResult::Solution(pairs) => pairs

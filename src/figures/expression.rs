@@ -6,7 +6,7 @@ use super::{CURVE_POINTS, FigureError, trim_num};
 use crate::base::format::sci;
 use crate::cas::Expr;
 use crate::derive::Derivation;
-use crate::derive::steps::{expand_names, substituted};
+use crate::derive::step_names::{expand_names, substituted};
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
 use crate::scene::{Operation, Scene};
 use std::collections::BTreeMap;

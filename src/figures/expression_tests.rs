@@ -4,7 +4,7 @@
 //! checked where they are written.
 
 use crate::cas::parse;
-use crate::derive::steps::StepResult;
+use crate::derive::step_names::StepResult;
 use crate::model::fidelity::Fidelity;
 use crate::pipeline::{SceneReport, run_scene};
 use crate::scene::Scene;

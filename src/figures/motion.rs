@@ -5,7 +5,7 @@ use super::FigureError;
 use super::frame::fig;
 use crate::base::format::{sci, short};
 use crate::derive::Derivation;
-use crate::derive::steps::StepResult;
+use crate::derive::step_names::StepResult;
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Series};
 use crate::numeric::motion::{MOTION_STEPS, MOTION_TOLERANCE, MotionSystem, split_rows, start};
 use crate::numeric::ode::dormand_prince;

@@ -1,8 +1,9 @@
 //! The step operations as data: one row per operation, with the fields it takes besides its own
 //! key, what it holds for later steps, the names it gives besides its own, and whether an answer
 //! can grade it. The validator, the scope of later steps, the graded answers and the list of
-//! fields in an error all read this table; a new operation is one row here and its own file
-//! under `validate/operation/`, `derive/` and `verify/`.
+//! fields in an error all read this table; a new operation is one row here, its validation
+//! under `validate/operation/`, and its exact rule beside its numeric route in one file under
+//! `src/steps/`.
 
 /// What a step holds for the steps after it, which decides the operations that can take it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -7,10 +7,10 @@
 use super::integral::{QUADRATURE_AGREEMENT, quadrature};
 use super::motion::{MODES_AGREEMENT, PERIOD_AGREEMENT, measured_period, numeric_modes};
 use super::step_check::CheckError;
-use super::steps::{equations_of, solvable_of};
+use super::step_check::{equations_of, solvable_of};
 use crate::cas::Expr;
 use crate::derive::Derivation;
-use crate::derive::steps::{equation_with, expand_names, expand_ranges};
+use crate::derive::step_names::{equation_with, expand_names, expand_ranges};
 use crate::derive::variants::{placeholder_of, resolve_expr};
 use crate::numeric::answers::{RouteError, Routes};
 use crate::scene::{Operation, Scene, mode_name, step_named};

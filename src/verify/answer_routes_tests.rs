@@ -3,7 +3,7 @@
 
 use super::variants::check_variants;
 use crate::cas::parse;
-use crate::derive::steps::StepResult;
+use crate::derive::step_names::StepResult;
 use crate::pipeline::{SceneReport, run_scene};
 use crate::scene::Scene;
 use std::path::Path;

@@ -8,7 +8,7 @@
 use super::motion::energy_check;
 use super::step_check::StepCheck;
 use crate::cas::Expr;
-use crate::derive::steps::StepResult;
+use crate::derive::step_names::StepResult;
 use crate::pipeline::{SceneReport, run_scene};
 use crate::scene::{Operation, Scene, Verdict};
 use std::path::Path;

@@ -7,7 +7,7 @@ use super::claim_env;
 use crate::cas::{Expr, Rational};
 use crate::derive::Derivation;
 use crate::derive::algebra::evaluate;
-use crate::derive::steps::{StepResult, expand_names};
+use crate::derive::step_names::{StepResult, expand_names};
 use crate::derive::variants::{general_answer, step_values};
 use crate::model::units::{Dimension, DimensionError, Measure, measure_of};
 use crate::model::value::Value;

@@ -8,7 +8,7 @@ use super::{
 };
 use crate::cas::{self, Expr};
 use crate::derive::Derivation;
-use crate::derive::steps::{StepResult, expand_names};
+use crate::derive::step_names::{StepResult, expand_names};
 use crate::model::prose::Prose;
 use crate::scene::{AuthorStep, Claim, Scene, Verdict};
 
@@ -104,7 +104,7 @@ fn check_gives_each(
             r
         } else if let Some(of) = numeric.get(&name) {
             let mut r = unchecked(&claim);
-            r.problem = Some(crate::derive::steps::numeric_only(&name, of));
+            r.problem = Some(crate::derive::step_names::numeric_only(&name, of));
             r
         } else {
             check_claim(scene, env, 20_000 + 100 * i + k, &claim)?

@@ -13,10 +13,10 @@ use std::collections::BTreeMap;
 const POINTS: usize = 24;
 /// Rounding over 24³ weighted terms of size about 1 stays near 1e-13; a wrong factor or limit
 /// is off by order one.
-pub(super) const QUADRATURE_AGREEMENT: f64 = 1e-10;
+pub(crate) const QUADRATURE_AGREEMENT: f64 = 1e-10;
 
 /// The exact integral at the scene's values against the quadrature of the integrand.
-pub(super) fn quadrature_check(
+pub(crate) fn quadrature_check(
     values: &BTreeMap<String, f64>,
     f: &Expr,
     over: &[(String, Expr, Expr)],
@@ -37,7 +37,7 @@ pub(super) fn quadrature_check(
 
 /// The integral at `values` by the same nested rule, with its evaluations: the numeric value
 /// of an `integrate` step where a problem's answer uses it.
-pub(super) fn quadrature(
+pub(crate) fn quadrature(
     values: &BTreeMap<String, f64>,
     f: &Expr,
     over: &[(String, Expr, Expr)],

@@ -39,7 +39,7 @@ pub fn exact_vs_numeric(scene: &Scene) -> f64 {
 /// A Monte Carlo estimate further than this many standard errors from the exact value fails.
 pub const MONTE_CARLO_SIGMAS: f64 = 5.0;
 /// Random points at which each symbolic verdict is confirmed.
-const CONFIRMATION_POINTS: usize = 3;
+pub(crate) const CONFIRMATION_POINTS: usize = 3;
 
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct ClaimResult {
@@ -228,7 +228,7 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
             .find_map(|e| d.numeric_name_in(e));
         if let Some((name, step)) = numeric {
             let mut r = unchecked(claim);
-            r.problem = Some(crate::derive::steps::numeric_only(&name, &step));
+            r.problem = Some(crate::derive::step_names::numeric_only(&name, &step));
             out.push(r);
             continue;
         }
@@ -500,14 +500,10 @@ pub fn verify_numeric(
     d: &Derivation,
     numeric: Option<&NumericReport>,
     plan: &crate::plan::Plan,
-    deadline: &budget::Deadline,
     v: &mut Verification,
 ) -> Result<(), EvalError> {
     if plan.runs(Stage::Principal) {
         v.principal = principal_values(scene, d)?;
-    }
-    if plan.runs(Stage::Steps) {
-        v.steps = steps::check_steps(scene, d, deadline);
     }
     v.printed = printed::check_printed_forms(d, scene.seed.wrapping_add(999));
     if let Some(n) = numeric {
@@ -526,28 +522,27 @@ pub mod budget;
 pub mod dimensions;
 mod free_top;
 mod gives;
-mod integral;
-mod motion;
+pub(crate) mod integral;
+pub(crate) mod motion;
 pub mod n_link;
 mod principal;
 mod printed;
 mod regressions;
-mod rest;
-mod rest_states;
+pub(crate) mod rest;
+pub(crate) mod rest_states;
 mod rounding;
-mod routh;
-mod series;
-mod solve;
-mod step_check;
-pub mod steps;
+pub(crate) mod routh;
+pub(crate) mod series;
+pub(crate) mod solve;
+pub(crate) mod step_check;
 pub mod variants;
 pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
 pub use regressions::check_regressions;
 pub use rounding::round_to_figures;
 use rounding::rounded_agreement;
-mod random_points;
-use random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, numerically_zero, signed_names};
-pub use steps::StepCheck;
+pub(crate) mod random_points;
+use random_points::{NUMERICALLY_ZERO, SAMPLE_FROM, numerically_zero, signed_names};
+pub use step_check::StepCheck;
 
 #[cfg(test)]
 mod answer_routes_tests;
@@ -559,8 +554,6 @@ mod constraints_tests;
 mod printed_tests;
 #[cfg(test)]
 mod rolling_tests;
-#[cfg(test)]
-mod steps_tests;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]

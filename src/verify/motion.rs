@@ -19,12 +19,12 @@ use std::collections::BTreeMap;
 /// The energy function may drift this much, relative to its size, over an integration at
 /// [`MOTION_TOLERANCE`]: Dormand–Prince keeps the local error to the tolerance, so the drift
 /// over a few hundred steps stays near 1e-8; a wrong equation of motion drifts by order one.
-pub(super) const ENERGY_AGREEMENT: f64 = 1e-6;
+pub(crate) const ENERGY_AGREEMENT: f64 = 1e-6;
 /// The integrated motion's length, in the scene's unit of time.
-pub(super) const MOTION_TIME: f64 = 10.0;
+pub(crate) const MOTION_TIME: f64 = 10.0;
 
 /// The motion of a Lagrangian's equations, integrated from a step's start at the scene's values.
-pub(super) struct Integrated<'a> {
+pub(crate) struct Integrated<'a> {
     /// The scene's values with the start's.
     pub(super) params: BTreeMap<String, f64>,
     /// The coordinates that have an equation (a constraint may have eliminated others).
@@ -36,7 +36,7 @@ pub(super) struct Integrated<'a> {
 
 /// An expression of the state compiled once for every state of a motion, and its source for
 /// the message when its value is not finite.
-pub(super) struct OnMotion<'e> {
+pub(crate) struct OnMotion<'e> {
     /// The rates and accelerations (slots n on) vary alone in a momentum's differences.
     compiled: Program,
     source: &'e Expr,
@@ -127,7 +127,7 @@ impl Integrated<'_> {
 /// Integrates the equations of motion (each residual is linear in the accelerations: solved at
 /// every evaluation) from the step's start (each coordinate [`DEFAULT_START`] and at rest where
 /// it says nothing) for [`MOTION_TIME`].
-pub(super) fn integrate<'a>(
+pub(crate) fn integrate<'a>(
     scene: &Scene,
     step: &AuthorStep,
     lagrangian: &Expr,
@@ -218,7 +218,7 @@ fn on_constraints(
 
 /// The drift of the energy function along the integrated motion of a `lagrange` step's
 /// equations, relative to the size of the energy and the Lagrangian.
-pub(super) fn energy_check(
+pub(crate) fn energy_check(
     scene: &Scene,
     step: &AuthorStep,
     lagrangian: &Expr,
@@ -275,7 +275,7 @@ pub(super) fn energy_check(
 }
 
 /// Which conserved-or-not quantity a step states.
-pub(super) enum Conserved<'a> {
+pub(crate) enum Conserved<'a> {
     /// The momentum of this coordinate.
     Momentum(&'a str),
     Energy,
@@ -284,7 +284,7 @@ pub(super) enum Conserved<'a> {
 /// A `momentum` or `energy` step along the motion of its Lagrangian's equations: at every state
 /// its exact value against differences of L (the momentum ∂L/∂q', or Σ q'·∂L/∂q' − L), and, if
 /// the step says it is conserved, its drift from the start.
-pub(super) fn conserved_check(
+pub(crate) fn conserved_check(
     scene: &Scene,
     step: &AuthorStep,
     lagrangian: &Expr,
@@ -350,10 +350,10 @@ const LINEAR_AGREEMENT: f64 = 1e-1;
 /// The start's distance from rest for the measured period: its relative error from 2π/Ω is
 /// O(amplitude²) (1/16 of it for a pendulum), far below this.
 const PERIOD_AMPLITUDE: f64 = 1e-2;
-pub(super) const PERIOD_AGREEMENT: f64 = 1e-3;
+pub(crate) const PERIOD_AGREEMENT: f64 = 1e-3;
 
 /// The full and linear equations at random states near rest, at [`AMPLITUDE`].
-pub(super) fn linear_check(
+pub(crate) fn linear_check(
     scene: &Scene,
     full: &[(String, Expr)],
     linear: &[(String, Expr)],
@@ -395,7 +395,7 @@ pub(super) fn linear_check(
 /// The period of the full motion started [`PERIOD_AMPLITUDE`] from rest, measured between
 /// upward crossings of rest (each found on the cubic through the two steps around it), against
 /// 2π/Ω at the scene's values.
-pub(super) fn period_check(
+pub(crate) fn period_check(
     scene: &Scene,
     full: &[(String, Expr)],
     about: &BTreeMap<String, Expr>,
@@ -420,7 +420,7 @@ pub(super) fn period_check(
 /// from its state of rest `about` and integrated for three periods of the `expected` length:
 /// the mean time between upward crossings of the state of rest. With the right-hand sides
 /// evaluated (twice a step: the rates and the crossings' Hermite slopes).
-pub(super) fn measured_period(
+pub(crate) fn measured_period(
     full: &[(String, Expr)],
     about: &BTreeMap<String, Expr>,
     params: &BTreeMap<String, f64>,
@@ -480,11 +480,11 @@ pub(super) fn measured_period(
 /// The engine's normal-mode frequencies against the eigenvalues of M⁻¹K by nalgebra's Schur
 /// decomposition: backward stable, so for modes a few percent apart they agree to about 1e-13;
 /// a wrong root is off by order one.
-pub(super) const MODES_AGREEMENT: f64 = 1e-9;
+pub(crate) const MODES_AGREEMENT: f64 = 1e-9;
 
 /// A `frequency` step of n ≥ 2 coordinates: its modes at the scene's values against √λ for
 /// the eigenvalues λ of M⁻¹K, M and K read off the linear equations numerically.
-pub(super) fn modes_check(
+pub(crate) fn modes_check(
     scene: &Scene,
     linear: &[(String, Expr)],
     modes: &[Expr],
@@ -499,7 +499,7 @@ pub(super) fn modes_check(
 
 /// The frequencies a step found at the scene's values (exact ones evaluated, or the Sturm
 /// bisection's) against √λ of M⁻¹K by the Schur decomposition.
-pub(super) fn modes_agreement(
+pub(crate) fn modes_agreement(
     scene: &Scene,
     linear: &[(String, Expr)],
     derived: &[f64],
@@ -528,7 +528,7 @@ pub(super) fn modes_agreement(
 /// √λ for the eigenvalues λ of M⁻¹K, M and K read off the equations by their change from one
 /// unit of each acceleration and coordinate, λ by nalgebra's Schur decomposition (NaN for a λ
 /// that is not real). No engine: the route a mode's answer and the step's check both take.
-pub(super) fn numeric_modes(
+pub(crate) fn numeric_modes(
     linear: &[(String, Expr)],
     params: &BTreeMap<String, f64>,
 ) -> Result<Vec<f64>, CheckError> {

@@ -329,14 +329,14 @@ fn a_printed_form_that_is_not_the_result_fails_the_check() {
     let scene = Scene::parse(&text, Path::new("pendulum.toml")).unwrap();
     let mut report = run_scene(scene.clone(), None).unwrap();
     let i = scene.steps.iter().position(|s| s.name == "period").unwrap();
-    let good = super::steps::check_step(&scene, &report.derivation, i);
+    let good = crate::steps::check_step(&scene, &report.derivation, i);
     assert_eq!(good.problem, None);
     assert!(good.method.contains("printed form"), "{}", good.method);
     // 2π√(3L/(2g)) for 2π√(2L/(3g)): the same shape, another value.
     let wrong = crate::cas::parse("2*pi*(3*L/(2*g))^(1/2)").unwrap().expr;
     let printed = report.derivation.printed.get_mut("period").unwrap();
     *printed.printed_mut()[0] = wrong;
-    let bad = super::steps::check_step(&scene, &report.derivation, i);
+    let bad = crate::steps::check_step(&scene, &report.derivation, i);
     assert!(
         bad.problem
             .as_deref()

@@ -10,27 +10,27 @@ use std::collections::{BTreeMap, BTreeSet};
 /// Where the random points of [`numerically_zero`] lie: every symbol in [0.4, 1.4), positive
 /// and away from 0, where a mass or a moment in a denominator vanishes, and within a factor
 /// 3.5 of the others, so that no term of a degree-30 expression over- or underflows.
-pub(super) const SAMPLE_FROM: f64 = 0.4;
+pub(crate) const SAMPLE_FROM: f64 = 0.4;
 
 /// A difference below this, relative to its scale (at least 1), counts as zero at a random
 /// point. The expressions are sums of at most the engine's 20,000 terms of size about 1 there,
 /// so rounding leaves at most about 20,000 · 2.2e-16 ≈ 4.4e-12; a nonzero difference of
 /// rationals and roots of small numbers is far above 1e-9 at a random point. The margin of
 /// 200 covers cancellation among the terms.
-pub(super) const NUMERICALLY_ZERO: f64 = 1e-9;
+pub(crate) const NUMERICALLY_ZERO: f64 = 1e-9;
 
 /// Random points drawn per point tested, at most, to find points where an expression is
 /// defined.
-pub(super) const DOMAIN_TRIES: usize = 20;
+pub(crate) const DOMAIN_TRIES: usize = 20;
 
 /// The names that take either sign (see [`Scene::signed_names`]).
-pub(super) fn signed_names(scene: &Scene) -> BTreeSet<String> {
+pub(crate) fn signed_names(scene: &Scene) -> BTreeSet<String> {
     scene.signed_names()
 }
 
 /// Whether each difference vanishes at [`CONFIRMATION_POINTS`] random points (see
 /// [`largest_differences`]).
-pub(super) fn numerically_zero(
+pub(crate) fn numerically_zero(
     diffs: &[Expr],
     scale: &[Expr],
     seed: u64,
@@ -46,7 +46,7 @@ pub(super) fn numerically_zero(
 /// random points: zero within [`NUMERICALLY_ZERO`]. The `signed`
 /// names are drawn with either sign (the first point positive, the second negative, the rest
 /// at random), so that |p| is not taken for p.
-pub(super) fn largest_differences(
+pub(crate) fn largest_differences(
     diffs: &[Expr],
     scale: &[Expr],
     seed: u64,

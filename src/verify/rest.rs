@@ -4,7 +4,7 @@
 
 use super::step_check::{CheckError, H, StepCheck, at};
 use crate::cas::{Expr, Zero};
-use crate::derive::steps::{Stability, Stable};
+use crate::derive::step_names::{Stability, Stable};
 use crate::scene::Scene;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -49,7 +49,7 @@ fn apart(a: f64, b: f64) -> f64 {
 
 /// Each exact equilibrium at the scene's values: the equation vanishes there, its cosine and
 /// sine are the angle's, and for an angle the scan of one turn finds the same zeros, no more.
-pub(super) fn equilibria_check(
+pub(crate) fn equilibria_check(
     scene: &Scene,
     r: &Expr,
     q: &str,
@@ -150,7 +150,7 @@ pub(super) fn equilibria_check(
 
 /// Each equilibrium's Ω² at the scene's values against k/m by differences: k a central
 /// difference (Richardson-extrapolated) of the static equation, m its change with q''.
-pub(super) fn stability_check(
+pub(crate) fn stability_check(
     scene: &Scene,
     r: &Expr,
     q: &str,

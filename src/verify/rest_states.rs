@@ -6,7 +6,7 @@
 
 use super::step_check::{CheckError, H, StepCheck, at};
 use crate::cas::{Expr, Zero};
-use crate::derive::steps::{Stable, StateStability};
+use crate::derive::step_names::{Stable, StateStability};
 use crate::scene::Scene;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -78,7 +78,7 @@ fn apart(a: &[f64], b: &[f64], angles: bool) -> f64 {
 
 /// Each exact state at the scene's values, put back; for angles, the states Newton finds from a
 /// grid over the torus against them.
-pub(super) fn states_check(
+pub(crate) fn states_check(
     scene: &Scene,
     eqs: &[(String, Expr)],
     states: &[Vec<Zero>],
@@ -167,7 +167,7 @@ pub(super) fn states_check(
 
 /// About each state real at the scene's values: K by central differences (Richardson) against
 /// the exact stiffness, and the eigenvalues of M⁻¹K against the verdict.
-pub(super) fn rest_stability_check(
+pub(crate) fn rest_stability_check(
     scene: &Scene,
     eqs: &[(String, Expr)],
     cases: &[StateStability],

@@ -11,7 +11,7 @@ use crate::numeric::compiled::Program;
 use crate::numeric::motion::{MOTION_TOLERANCE, state_slots};
 use crate::scene::{AuthorStep, Scene};
 
-pub(super) fn routh_check(
+pub(crate) fn routh_check(
     scene: &Scene,
     step: &AuthorStep,
     lagrangian: &Expr,

@@ -16,7 +16,7 @@ const ORDER_SLACK: f64 = 0.3;
 const ROUNDING: f64 = 1e-12;
 
 /// The remainder of `series` against `f` at four steps from x0, and its observed order.
-pub(super) fn remainder_check(
+pub(crate) fn remainder_check(
     scene: &Scene,
     f: &Expr,
     series: &Expr,

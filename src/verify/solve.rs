@@ -21,7 +21,7 @@ fn points(scene: &Scene, exprs: &[&Expr], seed: u64) -> Vec<BTreeMap<String, f64
 
 /// Each root of one unknown put back into its equation: the residual relative to the
 /// equation's size with the unknown at 0.
-pub(super) fn roots_check(
+pub(crate) fn roots_check(
     scene: &Scene,
     eqs: &[(String, Expr)],
     roots: &[&Expr],
@@ -68,7 +68,7 @@ pub(super) fn roots_check(
 /// The values of several unknowns put back into every equation together: each residual
 /// relative to the sum of the sizes of its terms' parts (the equation with the unknowns at 0,
 /// and each unknown's term).
-pub(super) fn system_check(
+pub(crate) fn system_check(
     scene: &Scene,
     eqs: &[(String, Expr)],
     solution: &[(String, Expr)],

@@ -4,6 +4,8 @@
 use super::SAMPLE_FROM;
 use crate::base::rng::Rng;
 use crate::cas::Expr;
+use crate::derive::Derivation;
+use crate::derive::step_names::StepResult;
 use std::collections::BTreeMap;
 
 /// Why a step's numeric route could not run.
@@ -25,7 +27,7 @@ pub enum CheckError {
     )]
     NoPointInDomain { tries: usize },
     #[error(transparent)]
-    Step(#[from] crate::derive::steps::StepError),
+    Step(#[from] crate::derive::step_names::StepError),
     #[error(transparent)]
     Motion(#[from] crate::numeric::ode::OdeError),
     #[error(transparent)]
@@ -136,10 +138,10 @@ impl StepCheck {
 }
 
 /// The step of the central differences that check a derivative, a momentum or a curvature.
-pub(super) const H: f64 = 1e-3;
+pub(crate) const H: f64 = 1e-3;
 
 /// Every symbol of the expressions at a random value in [0.4, 1.4) (π is π).
-pub(super) fn random_point(exprs: &[&Expr], rng: &mut Rng) -> BTreeMap<String, f64> {
+pub(crate) fn random_point(exprs: &[&Expr], rng: &mut Rng) -> BTreeMap<String, f64> {
     let mut names: Vec<String> = exprs.iter().flat_map(|e| e.symbols()).collect();
     names.sort();
     names.dedup();
@@ -150,6 +152,28 @@ pub(super) fn random_point(exprs: &[&Expr], rng: &mut Rng) -> BTreeMap<String, f
         .collect()
 }
 
-pub(super) fn at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
+pub(crate) fn at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
     Ok(e.eval(&|s| point.get(s).copied().filter(|_| s != "pi"))?)
+}
+
+/// The equations of the named step.
+pub(crate) fn equations_of<'a>(
+    d: &'a Derivation,
+    of: &str,
+) -> Result<&'a [(String, Expr)], CheckError> {
+    d.named
+        .get(of)
+        .and_then(StepResult::equations)
+        .ok_or(CheckError::NotDerived)
+}
+
+/// What a `solve` step took from the named step: its equations, or its expression as e = 0.
+pub(crate) fn solvable_of<'a>(
+    d: &'a Derivation,
+    of: &str,
+) -> Result<std::borrow::Cow<'a, [(String, Expr)]>, CheckError> {
+    d.named
+        .get(of)
+        .and_then(|r| r.solvable(of))
+        .ok_or(CheckError::NotDerived)
 }

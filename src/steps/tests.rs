@@ -1,11 +1,11 @@
 //! The author's steps: each `gives` in an equivalent form agrees and in a wrong one disagrees at
 //! its own line; each numeric route passes a right result and fails a wrong one.
 
-use super::motion::*;
-use super::steps::*;
+use super::*;
 use crate::cas::parse;
 use crate::pipeline::{SceneReport, run_scene};
 use crate::scene::{Scene, Verdict};
+use crate::verify::motion::*;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -169,7 +169,7 @@ fn steps_past_the_scenes_budget_fail_at_their_lines() {
         "Ip*phi'",
         "sqrt(3*g/(2*L))",
     ));
-    let spent = super::budget::Deadline::after(std::time::Duration::ZERO);
+    let spent = crate::verify::budget::Deadline::after(std::time::Duration::ZERO);
     let checks = check_steps(&r.scene, &r.derivation, &spent);
     assert_eq!(checks.len(), 6);
     for (c, step) in checks.iter().zip(&r.scene.steps) {
@@ -181,7 +181,11 @@ fn steps_past_the_scenes_budget_fail_at_their_lines() {
             "{problem}"
         );
     }
-    let in_time = check_steps(&r.scene, &r.derivation, &super::budget::Deadline::checks());
+    let in_time = check_steps(
+        &r.scene,
+        &r.derivation,
+        &crate::verify::budget::Deadline::checks(),
+    );
     assert!(in_time.iter().all(StepCheck::passed), "{in_time:?}");
 }
 
@@ -273,7 +277,7 @@ fn a_constraint_substituted_and_an_equation_solved() {
     // The independent route: a at the scene's values from the textbook formula for a solid
     // cylinder, (2/3) g sin α.
     let named = &r.derivation.named["a"];
-    let crate::derive::steps::StepResult::Expr(e) = named else {
+    let crate::derive::step_names::StepResult::Expr(e) = named else {
         panic!("{named:?}")
     };
     let value = e.eval(&|s| r.scene.values.get(s).copied()).unwrap();
@@ -321,7 +325,7 @@ fn heavy_top_momenta_and_energy() {
         r.verification.steps
     );
     let conserved = |name: &str| match &r.derivation.named[name] {
-        crate::derive::steps::StepResult::Conserved { conserved, .. } => *conserved,
+        crate::derive::step_names::StepResult::Conserved { conserved, .. } => *conserved,
         other => panic!("{other:?}"),
     };
     assert!(conserved("p_psi") && conserved("p_phi") && conserved("E"));
@@ -345,13 +349,14 @@ fn heavy_top_momenta_and_energy() {
     assert!((scalar_at(&r, "p_psi", &state) - i3 * spin).abs() < 1e-12);
     // The sleeping top (Goldstein 5.7): upright is stable while I3² w3² > 4 I1 M g l, its
     // Ω² = (I3² w3² − 4 I1 M g l)/(4 I1²); the pair of tilted states is not real at w3 = 30.
-    let crate::derive::steps::StepResult::Stability { cases, .. } = &r.derivation.named["upright"]
+    let crate::derive::step_names::StepResult::Stability { cases, .. } =
+        &r.derivation.named["upright"]
     else {
         panic!()
     };
     let upright = &cases[0];
     assert_eq!(upright.at.value, crate::cas::Expr::int(0));
-    assert_eq!(upright.verdict, crate::derive::steps::Stable::Where);
+    assert_eq!(upright.verdict, crate::derive::step_names::Stable::Where);
     let w3 = 30.0;
     let textbook = ((i3 * w3).powi(2) - 4.0 * i1 * mgl) / (4.0 * i1 * i1);
     let exact = upright.omega_squared.as_ref().unwrap();
@@ -380,7 +385,8 @@ fn heavy_top_momenta_and_energy() {
 
     // The tilt's momentum said to be conserved: it drifts by order one along the motion.
     let step = r.scene.steps.iter().find(|s| s.name == "p_theta").unwrap();
-    let Some(crate::derive::steps::StepResult::Expr(lag)) = r.derivation.named.get("Lag") else {
+    let Some(crate::derive::step_names::StepResult::Expr(lag)) = r.derivation.named.get("Lag")
+    else {
         panic!()
     };
     let value = r.derivation.named["p_theta"].scalar().unwrap();
@@ -409,7 +415,7 @@ fn double_pendulum_modes() {
         "{:?}",
         r.verification.steps
     );
-    let crate::derive::steps::StepResult::Modes(modes) = &r.derivation.named["Omega"] else {
+    let crate::derive::step_names::StepResult::Modes(modes) = &r.derivation.named["Omega"] else {
         panic!("{:?}", r.derivation.named["Omega"])
     };
     let (g, l) = (9.81f64, 1.0);
@@ -432,7 +438,8 @@ fn double_pendulum_modes() {
         .map(|c| c.verdict)
         .collect();
     assert!(verdicts.contains(&Verdict::Disagrees), "{verdicts:?}");
-    let Some(crate::derive::steps::StepResult::Equations(linear)) = r.derivation.named.get("small")
+    let Some(crate::derive::step_names::StepResult::Equations(linear)) =
+        r.derivation.named.get("small")
     else {
         panic!()
     };
@@ -448,7 +455,7 @@ fn double_pendulum_modes() {
 /// set missing one fails.
 #[test]
 fn bead_on_hoop_equilibria_and_stability() {
-    use crate::derive::steps::{Stable, StepResult};
+    use crate::derive::step_names::{Stable, StepResult};
     let r = course_scene("05-bead-on-hoop.toml", "w = 6.0", "w = 6.0");
     assert!(
         r.verification.steps.iter().all(|c| c.passed()),
@@ -519,8 +526,13 @@ fn bead_on_hoop_equilibria_and_stability() {
         panic!()
     };
     let mut check = blank();
-    let missing =
-        super::rest::equilibria_check(&r.scene, &eqs[0].1, "theta", &zeros[..2], &mut check);
+    let missing = crate::verify::rest::equilibria_check(
+        &r.scene,
+        &eqs[0].1,
+        "theta",
+        &zeros[..2],
+        &mut check,
+    );
     assert!(
         matches!(missing, Err(CheckError::MissedZero { .. })),
         "{missing:?}"
@@ -532,7 +544,7 @@ fn bead_on_hoop_equilibria_and_stability() {
 /// leading term disagrees at its line; the remainder check fails a series missing a term.
 #[test]
 fn gyroscope_series_and_roots() {
-    use crate::derive::steps::StepResult;
+    use crate::derive::step_names::StepResult;
     let r = course_scene("06-gyroscope.toml", "order = 1", "order = 1");
     assert!(
         r.verification.steps.iter().all(|c| c.passed()),
@@ -579,9 +591,9 @@ fn gyroscope_series_and_roots() {
     let crate::scene::Operation::Series { of, .. } = &step.op else {
         panic!()
     };
-    let f = crate::derive::steps::expand_names(&r.scene, &r.derivation, step, of).unwrap();
+    let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
     let mut check = blank();
-    super::series::remainder_check(
+    crate::verify::series::remainder_check(
         &r.scene,
         &f,
         &crate::cas::Expr::int(0),
@@ -645,9 +657,9 @@ fn paraboloid_by_integration() {
     let crate::scene::Operation::Integrate { of, over } = &step.op else {
         panic!()
     };
-    let f = crate::derive::steps::expand_names(&r.scene, &r.derivation, step, of).unwrap();
+    let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
     let mut check = blank();
-    super::integral::quadrature_check(
+    crate::verify::integral::quadrature_check(
         &r.scene.values,
         &f,
         over,
@@ -784,7 +796,7 @@ fn sleeping_cone_takes_its_moments_from_its_body() {
 /// derived.
 #[test]
 fn the_system_check_fails_a_wrong_solution() {
-    use crate::derive::steps::StepResult;
+    use crate::derive::step_names::StepResult;
     let r = course_scene("03-double-pendulum.toml", "Lag", "Lag");
     let StepResult::Solution(solution) = &r.derivation.named["acc"] else {
         panic!()
@@ -794,14 +806,14 @@ fn the_system_check_fails_a_wrong_solution() {
         other => panic!("{other:?}"),
     };
     let mut right = blank();
-    super::solve::system_check(&r.scene, &eqs, solution, 7, &mut right).unwrap();
+    crate::verify::solve::system_check(&r.scene, &eqs, solution, 7, &mut right).unwrap();
     assert!(right.passed(), "{right:?}");
     let swapped = vec![
         (solution[0].0.clone(), solution[1].1.clone()),
         (solution[1].0.clone(), solution[0].1.clone()),
     ];
     let mut wrong = blank();
-    super::solve::system_check(&r.scene, &eqs, &swapped, 7, &mut wrong).unwrap();
+    crate::verify::solve::system_check(&r.scene, &eqs, &swapped, 7, &mut wrong).unwrap();
     assert!(!wrong.passed(), "{wrong:?}");
 }
 
@@ -810,7 +822,7 @@ fn the_system_check_fails_a_wrong_solution() {
 /// the torus fails a set missing a state, and the eigenvalue check fails a wrong verdict.
 #[test]
 fn double_pendulum_states_of_rest() {
-    use crate::derive::steps::{Stable, StepResult};
+    use crate::derive::step_names::{Stable, StepResult};
     let r = course_scene("03-double-pendulum.toml", "m = ", "m = ");
     assert!(
         r.verification.steps.iter().all(|c| c.passed()),
@@ -852,7 +864,7 @@ fn double_pendulum_states_of_rest() {
         panic!()
     };
     let mut check = blank();
-    let missing = super::rest_states::states_check(&r.scene, eqs, &states[..3], &mut check);
+    let missing = crate::verify::rest_states::states_check(&r.scene, eqs, &states[..3], &mut check);
     assert!(
         matches!(missing, Err(CheckError::MissedState { .. })),
         "{missing:?}"
@@ -860,7 +872,8 @@ fn double_pendulum_states_of_rest() {
     let mut wrong = cases.to_vec();
     wrong[1].verdict = Stable::Always;
     let mut check = blank();
-    let verdict = super::rest_states::rest_stability_check(&r.scene, eqs, &wrong, &mut check);
+    let verdict =
+        crate::verify::rest_states::rest_stability_check(&r.scene, eqs, &wrong, &mut check);
     assert!(
         matches!(verdict, Err(CheckError::WrongStateVerdict { .. })),
         "{verdict:?}"
@@ -874,7 +887,7 @@ fn double_pendulum_states_of_rest() {
 #[test]
 fn only_real_states_of_rest_and_a_cubic_in_closed_form() {
     use crate::cas::Expr;
-    use crate::derive::steps::StepResult;
+    use crate::derive::step_names::StepResult;
     let scene = |potential: &str, symbol: &str, value: &str| {
         format!(
             r#"
@@ -944,7 +957,7 @@ values = {{ m = 1.0, k = 2.0, {symbol} = {value} }}
         // Ω² = 3k/(m r) is positive for every positive value, ∛p among them.
         assert_eq!(
             cases[0].verdict,
-            crate::derive::steps::Stable::Always,
+            crate::derive::step_names::Stable::Always,
             "{:?}",
             cases[0].omega_squared
         );
@@ -962,8 +975,8 @@ values = {{ m = 1.0, k = 2.0, {symbol} = {value} }}
 /// a numeric mode moved by one part in 10⁶.
 #[test]
 fn the_n_link_pendulums_modes_agree_with_m_inverse_k() {
-    use super::n_link::{n_link_scene as links, textbook_modes};
-    use crate::derive::steps::StepResult;
+    use crate::derive::step_names::StepResult;
+    use crate::verify::n_link::{n_link_scene as links, textbook_modes};
     for n in 1..=6 {
         let r = run(&links(n));
         assert!(
@@ -1024,7 +1037,7 @@ fn the_n_link_pendulums_modes_agree_with_m_inverse_k() {
                 unreachable!()
             };
             frequencies[2] *= 1.0 + 1e-6;
-            let checks = check_steps(&r.scene, &d, &super::budget::Deadline::checks());
+            let checks = check_steps(&r.scene, &d, &crate::verify::budget::Deadline::checks());
             let omega = checks.last().unwrap();
             assert!(!omega.passed(), "{omega:?}");
             assert!(omega.error > 5e-7, "{omega:?}");
@@ -1134,7 +1147,7 @@ values = {{ M = 2.0, L = 1.5 }}
 /// that says so; a list on a step with one result is refused where it is written.
 #[test]
 fn a_list_gives_states_each_result_of_a_step() {
-    let text = super::n_link::n_link_scene(2).replace(
+    let text = crate::verify::n_link::n_link_scene(2).replace(
         "why = \"the normal modes\"",
         "why = \"the normal modes\"\ngives = [\"sqrt((2 - sqrt(2))*g/l)\", \"sqrt((2 + sqrt(2))*g/l)\"]",
     );

@@ -1,9 +1,9 @@
 //! How an author's step shows on the page: `name = result`, each equation of motion `… = 0`,
 //! each state of rest and each mode, with the author's reason and what the derivation adds.
 
-use super::Step;
-use super::step_result::{Stable, StepResult};
 use crate::cas::Expr;
+use crate::derive::Step;
+use crate::derive::step_names::{Stable, StepResult};
 use crate::model::prose::Prose;
 use crate::notation::Formula;
 use crate::scene::{AuthorStep, Operation, mode_name};

@@ -1,0 +1,37 @@
+//! `energy = "Lag"`: the energy function Σ q'·∂L/∂q' − L, conserved when ∂L/∂t is identically 0.
+//!
+//! - Exact rule: `derive/lagrangian.rs`.
+//! - Numeric route: the motion of L integrated, the energy's drift watched (`verify/motion.rs`).
+
+use super::{Context, conserved, scalar, scalar_of};
+use crate::derive::DeriveError;
+use crate::derive::lagrangian::energy;
+use crate::derive::step_names::StepResult;
+use crate::verify::motion::{Conserved, conserved_check};
+use crate::verify::step_check::{CheckError, StepCheck};
+
+pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
+    let (e, rate) = energy(scalar(cx.d, of)?, &cx.scene.coordinates)?;
+    conserved(e, rate)
+}
+
+pub(super) fn check(
+    cx: Context,
+    of: &str,
+    result: &StepResult,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    let StepResult::Conserved { value, conserved } = result else {
+        return Err(CheckError::NotDerived);
+    };
+    let lagrangian = scalar_of(cx.d, of)?;
+    conserved_check(
+        cx.scene,
+        cx.step,
+        lagrangian,
+        value,
+        *conserved,
+        Conserved::Energy,
+        check,
+    )
+}

@@ -1,0 +1,57 @@
+//! `linearise = "eom"`, `about = { theta = "0" }`: the equations of motion to first order about
+//! a state of rest.
+//!
+//! - Exact rule: `derive/lagrangian.rs`; a state that leaves anything over is not at rest and
+//!   is refused.
+//! - Numeric route: the full equations against the linear ones at random states near the
+//!   state of rest (`verify/motion.rs`).
+
+use super::{Context, free_equations, simplified};
+use crate::cas::{self, Expr};
+use crate::derive::DeriveError;
+use crate::derive::lagrangian::linearise;
+use crate::derive::step_names::StepResult;
+use crate::verify::motion::linear_check;
+use crate::verify::step_check::{CheckError, StepCheck, equations_of};
+use std::collections::BTreeMap;
+
+pub(super) fn derive(
+    cx: Context,
+    of: &str,
+    about: &BTreeMap<String, Expr>,
+) -> Result<StepResult, DeriveError> {
+    let eqs = free_equations(cx.scene, cx.d, of, "linearise")?;
+    let (rest, linear) = linearise(eqs, about, &cx.scene.coordinates)?;
+    // A state of rest leaves nothing over: else it is not an equilibrium.
+    let left = cas::simplify_all(rest)?;
+    if let Some((k, r)) = left.iter().enumerate().find(|(_, r)| !r.is_zero()) {
+        return Err(DeriveError::NotDerivable(format!(
+            "the state given by `about` is not at rest: the equation of `{}` leaves {} there, \
+             not 0; give an equilibrium",
+            eqs[k].0,
+            r.to_text()
+        )));
+    }
+    simplified(linear)
+}
+
+pub(super) fn check(
+    cx: Context,
+    of: &str,
+    about: &BTreeMap<String, Expr>,
+    result: &StepResult,
+    seed: u64,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    let StepResult::Equations(linear) = result else {
+        return Err(CheckError::NotDerived);
+    };
+    linear_check(
+        cx.scene,
+        equations_of(cx.d, of)?,
+        linear,
+        about,
+        seed,
+        check,
+    )
+}

@@ -1,0 +1,350 @@
+//! The author's step operations, one file per operation: its exact rule (`derive`) beside its
+//! numeric route (`check`), which does not go through the engine. The table of operations
+//! (name, fields, what each holds and gives) is `scene/operations.rs`; each operation's fields
+//! are validated in `scene/validate/operation/`; how a result shows on the page is `page.rs`.
+//! A step's `gives` is a claim of the notes, checked in `verify/gives.rs`.
+//!
+//! This stage runs after the built-in derivation and checks (`derive`, `verify`), whose
+//! mechanics the operations share, and before the pipeline hands the scene on.
+
+mod be;
+mod differentiate;
+mod energy;
+mod equilibria;
+mod frequency;
+mod integrate;
+mod lagrange;
+mod linearise;
+mod momentum;
+mod page;
+mod routh;
+mod series;
+mod solve;
+mod stability;
+mod substitute;
+
+use crate::cas::{self, Expr};
+use crate::derive::lagrangian::simplify_two;
+use crate::derive::step_names::{StepError, StepResult};
+use crate::derive::{Derivation, DeriveError};
+use crate::notation::Formula;
+use crate::scene::{AuthorStep, Operation, Scene};
+use crate::verify::CONFIRMATION_POINTS;
+use crate::verify::budget::Deadline;
+use crate::verify::random_points::{numerically_zero, signed_names};
+use crate::verify::step_check::equations_of;
+pub use crate::verify::step_check::{CheckError, StepCheck};
+
+/// The step at hand: its scene, the derivation up to it, and the step.
+#[derive(Clone, Copy)]
+struct Context<'a> {
+    scene: &'a Scene,
+    d: &'a Derivation,
+    step: &'a AuthorStep,
+}
+
+/// Derives every step in order, each simplified by the engine, and writes its page steps.
+pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
+    let start = std::time::Instant::now();
+    for step in &scene.steps {
+        // Each step is within the engine's budget; the scene as a whole within this one.
+        if start.elapsed() > STEPS_TIME_BUDGET {
+            return Err(locate(
+                step,
+                DeriveError::NotDerivable(format!(
+                    "the scene's steps before this one took {:.0} s, past the {} s a scene's \
+                     derivation may take: split the scene",
+                    start.elapsed().as_secs_f64(),
+                    STEPS_TIME_BUDGET.as_secs()
+                )),
+            ));
+        }
+        // A statement other than `name = result`: an integral shown with its limits.
+        let mut shown: Option<Formula> = None;
+        let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
+        let printed = printed_form(scene, &result).map_err(|e| locate(step, e))?;
+        let mut steps = page::page_steps(step, printed.as_ref().unwrap_or(&result));
+        if printed.is_some() {
+            for (shown, exact) in steps.iter_mut().zip(page::page_steps(step, &result)) {
+                if shown.statement != exact.statement {
+                    shown.exact = Some(exact.statement);
+                }
+            }
+        }
+        if let (Some(formula), [only]) = (shown, &mut steps[..]) {
+            only.statement = formula;
+        }
+        d.steps.extend(steps);
+        if let Some(printed) = printed {
+            d.printed.insert(step.name.clone(), printed);
+        }
+        d.named.insert(step.name.clone(), result);
+    }
+    Ok(())
+}
+
+/// The result in the forms a textbook prints (`cas::present_all`), where any differs from the
+/// exact result; the step's check compares the two at random points.
+fn printed_form(scene: &Scene, result: &StepResult) -> Result<Option<StepResult>, DeriveError> {
+    let mut printed = result.clone();
+    let exact: Vec<Expr> = printed
+        .printed_mut()
+        .into_iter()
+        .map(|e| e.clone())
+        .collect();
+    let forms = cas::present_all(exact.clone(), scene.signed_names())?;
+    if forms == exact {
+        return Ok(None);
+    }
+    for (slot, form) in printed.printed_mut().into_iter().zip(forms) {
+        *slot = form;
+    }
+    Ok(Some(printed))
+}
+
+/// The most time a scene's own steps may take to derive, checked before each step: a course's
+/// scenes take milliseconds to a few seconds.
+pub const STEPS_TIME_BUDGET: std::time::Duration = std::time::Duration::from_secs(120);
+
+/// One step's result, derived by its operation's exact rule (its errors located by the
+/// caller); `shown` takes a statement other than `name = result` (an integral with its limits).
+fn derive_step(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    shown: &mut Option<Formula>,
+) -> Result<StepResult, DeriveError> {
+    let cx = Context { scene, d, step };
+    match &step.op {
+        Operation::Be(e) => be::derive(cx, e),
+        Operation::Differentiate { of, by } => differentiate::derive(cx, of, by),
+        Operation::Substitute { of, set } => substitute::derive(cx, of, set),
+        Operation::Lagrange { of, constraints } => lagrange::derive(cx, of, constraints),
+        Operation::Routh { of, cyclic } => routh::derive(cx, of, cyclic),
+        Operation::Momentum { of, coordinate } => momentum::derive(cx, of, coordinate),
+        Operation::Energy { of } => energy::derive(cx, of),
+        Operation::Linearise { of, about } => linearise::derive(cx, of, about),
+        Operation::Frequency { of } => frequency::derive(cx, of),
+        Operation::Solve { of, unknowns } => solve::derive(cx, of, unknowns),
+        Operation::Series {
+            of,
+            var,
+            about,
+            order,
+        } => series::derive(cx, of, var, about, *order),
+        Operation::Integrate { of, over } => integrate::derive(cx, of, over, shown),
+        Operation::Equilibria { of } => equilibria::derive(cx, of),
+        Operation::Stability { of } => stability::derive(cx, of),
+    }
+}
+
+/// An error of a step, at the step's line; an expansion over the engine's budget says what to
+/// do about a step, not about a body.
+fn locate(step: &AuthorStep, e: DeriveError) -> DeriveError {
+    let message = match &e {
+        DeriveError::Step(_) | DeriveError::Inconsistent(_) | DeriveError::Missing(_) => {
+            return e;
+        }
+        DeriveError::Cas(cas::CasError {
+            reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { degree, terms }),
+        }) => format!(
+            "its expressions would expand to degree {degree} with {terms:.0e} terms, beyond the \
+             engine's budget: split the step into smaller ones, or give a part a name of its \
+             own under [definitions]"
+        ),
+        other => other.to_string(),
+    };
+    DeriveError::Step(StepError::Operation {
+        step: step.name.clone(),
+        line: step.line,
+        message,
+    })
+}
+
+/// A momentum or energy, conserved when the force on it (∂L/∂q, or ∂L/∂t) is identically 0.
+fn conserved(value: Expr, force: Expr) -> Result<StepResult, DeriveError> {
+    let (value, force) = simplify_two(value, force)?;
+    Ok(StepResult::Conserved {
+        value,
+        conserved: force.is_zero(),
+    })
+}
+
+/// The expression a validated earlier step holds.
+fn scalar<'a>(d: &'a Derivation, of: &str) -> Result<&'a Expr, DeriveError> {
+    d.named.get(of).and_then(StepResult::scalar).ok_or_else(|| {
+        DeriveError::Inconsistent(format!(
+            "step `{of}` was validated as an earlier scalar step"
+        ))
+    })
+}
+
+/// Equations with each residual simplified (in one call to the engine), their names kept.
+fn simplified(eqs: Vec<(String, Expr)>) -> Result<StepResult, DeriveError> {
+    let (names, exprs): (Vec<String>, Vec<Expr>) = eqs.into_iter().unzip();
+    let exprs = cas::simplify_all(exprs)?;
+    Ok(StepResult::Equations(
+        names.into_iter().zip(exprs).collect(),
+    ))
+}
+
+/// The equations a validated earlier step holds.
+fn equations<'a>(d: &'a Derivation, of: &str) -> Result<&'a [(String, Expr)], DeriveError> {
+    d.named
+        .get(of)
+        .and_then(StepResult::equations)
+        .ok_or_else(|| {
+            DeriveError::Inconsistent(format!(
+                "step `{of}` was validated as earlier equations of motion"
+            ))
+        })
+}
+
+/// The equations of `of`, each a coordinate's: equations that carry a constraint's
+/// multiplier are refused (its motion is the coordinates' that remain once it is eliminated).
+fn free_equations<'a>(
+    scene: &Scene,
+    d: &'a Derivation,
+    of: &str,
+    op: &str,
+) -> Result<&'a [(String, Expr)], DeriveError> {
+    let eqs = equations(d, of)?;
+    if let Some((lambda, _)) = eqs.iter().find(|(q, _)| !scene.coordinates.contains_key(q)) {
+        return Err(DeriveError::NotDerivable(format!(
+            "the equations of `{of}` carry the multiplier `{lambda}` of a constraint: `{op}` \
+             takes the equations of independent coordinates, so write the Lagrangian in \
+             coordinates the constraint leaves free and take `{op}` of those"
+        )));
+    }
+    Ok(eqs)
+}
+
+/// Each step's numeric check, in order; those after the deadline are not checked, and say so.
+pub fn check_steps(scene: &Scene, d: &Derivation, deadline: &Deadline) -> Vec<StepCheck> {
+    (0..scene.steps.len())
+        .map(|i| match deadline.check() {
+            Ok(()) => check_step(scene, d, i),
+            Err(over) => StepCheck {
+                problem: Some(CheckError::from(over).to_string()),
+                ..not_yet_checked(&scene.steps[i])
+            },
+        })
+        .collect()
+}
+
+/// The numeric check of step `i` (each step draws its random points from its own seed).
+pub fn check_step(scene: &Scene, d: &Derivation, i: usize) -> StepCheck {
+    let step = &scene.steps[i];
+    let mut check = not_yet_checked(step);
+    let seed = scene.seed.wrapping_add(1000 + i as u64);
+    if let Err(problem) = route(scene, d, step, seed, &mut check) {
+        check.problem = Some(problem.to_string());
+    }
+    if let Err(problem) = printed_check(scene, d, step, seed, &mut check) {
+        check.problem.get_or_insert(problem.to_string());
+    }
+    check
+}
+
+/// The printed form of a step's result (see `cas::present_all`, where the engine proved it
+/// equal) against the exact result at random points, the coordinates of either sign.
+fn printed_check(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    seed: u64,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    let (Some(printed), Some(exact)) = (d.printed.get(&step.name), d.named.get(&step.name)) else {
+        return Ok(());
+    };
+    let (mut printed, mut exact) = (printed.clone(), exact.clone());
+    let exact: Vec<Expr> = exact.printed_mut().into_iter().map(|e| e.clone()).collect();
+    let diffs: Vec<Expr> = printed
+        .printed_mut()
+        .into_iter()
+        .zip(&exact)
+        .map(|(p, e)| Expr::minus(p.clone(), e.clone()))
+        .collect();
+    let agree = numerically_zero(&diffs, &exact, seed, &signed_names(scene))?;
+    check.evaluations += (CONFIRMATION_POINTS * 2 * diffs.len()) as u64;
+    check.method.push_str(&format!(
+        "; its printed form against its exact result at {CONFIRMATION_POINTS} random points"
+    ));
+    match agree.iter().position(|&zero| !zero) {
+        Some(k) => Err(CheckError::PrintedDiffers { number: k + 1 }),
+        None => Ok(()),
+    }
+}
+
+/// A step's check before its route has run: no method, no error, no work.
+fn not_yet_checked(step: &AuthorStep) -> StepCheck {
+    StepCheck {
+        step: step.name.clone(),
+        line: step.line,
+        method: String::new(),
+        error: 0.0,
+        tolerance: 0.0,
+        evaluations: 0,
+        problem: None,
+    }
+}
+
+/// Step `i`'s numeric route, by its operation.
+fn route(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    seed: u64,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    let result = d.named.get(&step.name).ok_or(CheckError::NotDerived)?;
+    let cx = Context { scene, d, step };
+    match &step.op {
+        Operation::Be(e) => be::check(cx, e, result, seed, check),
+        Operation::Differentiate { of, by } => {
+            differentiate::check(cx, of, by, result, seed, check)
+        }
+        Operation::Substitute { of, set } => substitute::check(cx, of, set, result, seed, check),
+        Operation::Lagrange { of, constraints } => {
+            lagrange::check(cx, of, constraints, result, check)
+        }
+        Operation::Routh { of, cyclic } => routh::check(cx, of, cyclic, result, check),
+        Operation::Momentum { of, coordinate } => {
+            momentum::check(cx, of, coordinate, result, check)
+        }
+        Operation::Energy { of } => energy::check(cx, of, result, check),
+        Operation::Linearise { of, about } => linearise::check(cx, of, about, result, seed, check),
+        Operation::Frequency { of } => frequency::check(cx, of, result, check),
+        Operation::Solve { of, unknowns } => solve::check(cx, of, unknowns, result, seed, check),
+        Operation::Series {
+            of,
+            var,
+            about,
+            order,
+        } => series::check(cx, of, var, about, *order, result, check),
+        Operation::Integrate { of, over } => integrate::check(cx, of, over, result, check),
+        Operation::Equilibria { of } => equilibria::check(cx, of, result, check),
+        Operation::Stability { of } => stability::check(cx, of, result, check),
+    }
+}
+
+/// The expression of the named step (a Lagrangian).
+fn scalar_of<'a>(d: &'a Derivation, of: &str) -> Result<&'a Expr, CheckError> {
+    d.named
+        .get(of)
+        .and_then(StepResult::scalar)
+        .ok_or(CheckError::NotDerived)
+}
+
+/// The equation of motion of `q` in the named step.
+fn single_equation<'a>(d: &'a Derivation, of: &str, q: &str) -> Result<&'a Expr, CheckError> {
+    equations_of(d, of)?
+        .iter()
+        .find(|(c, _)| c == q)
+        .map(|(_, e)| e)
+        .ok_or(CheckError::NotDerived)
+}
+
+#[cfg(test)]
+mod tests;

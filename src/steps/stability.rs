@@ -1,0 +1,83 @@
+//! `stability = "rest"`: about each state of rest, Ω² and the verdict (stable always, never, or
+//! where a condition holds).
+//!
+//! - Exact rule: one coordinate, Ω² from the linearised equation and its sign over positive
+//!   symbols (`derive/lagrangian.rs`, `derive/sign.rs`); several, the eigenvalues of M⁻¹K
+//!   (`derive/rest_states.rs`).
+//! - Numeric route: Ω² against central differences of the equation at each state
+//!   (`verify/rest.rs`); several, the stiffness by central differences and the eigenvalues of
+//!   M⁻¹K against the verdict (`verify/rest_states.rs`).
+
+use super::{Context, equations, single_equation};
+use crate::derive::DeriveError;
+use crate::derive::lagrangian::stability;
+use crate::derive::sign::{Sign, signs_over_positive};
+use crate::derive::step_names::{Stability, Stable, StepResult, equilibria_source};
+use crate::verify::rest::stability_check;
+use crate::verify::rest_states::rest_stability_check;
+use crate::verify::step_check::{CheckError, StepCheck, equations_of};
+
+pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
+    let (scene, d) = (cx.scene, cx.d);
+    if let Some(StepResult::RestStates {
+        coordinates,
+        states,
+        ..
+    }) = d.named.get(of)
+    {
+        let eqs = equations(d, equilibria_source(scene, of).unwrap_or(""))?;
+        return Ok(StepResult::RestStability {
+            coordinates: coordinates.clone(),
+            cases: crate::derive::rest_states::rest_stability(eqs, coordinates, states)?,
+        });
+    }
+    let Some(StepResult::Equilibria {
+        coordinate, zeros, ..
+    }) = d.named.get(of)
+    else {
+        return Err(DeriveError::Inconsistent(format!(
+            "step `{of}` was validated as earlier equilibria"
+        )));
+    };
+    let eqs = equations(d, equilibria_source(scene, of).unwrap_or(""))?;
+    let cases = zeros
+        .iter()
+        .zip(stability(eqs, zeros)?)
+        .map(|(z, w2)| Stability {
+            at: z.clone(),
+            // A sign the rational test cannot decide (a root in Ω²) leaves the condition.
+            verdict: match &w2 {
+                None => Stable::Unknown,
+                Some(w2) => match signs_over_positive(std::slice::from_ref(w2)) {
+                    Ok(s) if s[0] == Sign::Positive => Stable::Always,
+                    Ok(s) if s[0] == Sign::Negative => Stable::Never,
+                    _ => Stable::Where,
+                },
+            },
+            omega_squared: w2,
+        })
+        .collect();
+    Ok(StepResult::Stability {
+        coordinate: coordinate.clone(),
+        cases,
+    })
+}
+
+pub(super) fn check(
+    cx: Context,
+    of: &str,
+    result: &StepResult,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    let motion = equilibria_source(cx.scene, of).ok_or(CheckError::NotDerived)?;
+    match result {
+        StepResult::Stability { coordinate, cases } => {
+            let r = single_equation(cx.d, motion, coordinate)?;
+            stability_check(cx.scene, r, coordinate, cases, check)
+        }
+        StepResult::RestStability { cases, .. } => {
+            rest_stability_check(cx.scene, equations_of(cx.d, motion)?, cases, check)
+        }
+        _ => Err(CheckError::NotDerived),
+    }
+}
