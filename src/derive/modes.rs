@@ -137,13 +137,47 @@ fn numeric_modes(
     values: &BTreeMap<String, f64>,
     reason: Prose,
 ) -> Result<StepResult, DeriveError> {
-    let said = reason.to_text();
+    let frequencies = pencil_frequencies(mass, stiffness, n, values, &reason.to_text(), "scene")?;
+    Ok(StepResult::NumericModes {
+        frequencies,
+        reason,
+    })
+}
+
+/// The frequencies of linear equations at `values` (a variant's), slowest first, as
+/// [`normal_modes`] finds them where they have no closed form: what a graded answer on such a
+/// mode takes at each variant.
+pub fn frequencies_at(
+    eqs: &[(String, Expr)],
+    values: &BTreeMap<String, f64>,
+) -> Result<Vec<f64>, DeriveError> {
+    let (mass, stiffness) = matrices(eqs)?;
+    pencil_frequencies(
+        &mass,
+        &stiffness,
+        eqs.len(),
+        values,
+        "the modes have no closed form",
+        "variant",
+    )
+}
+
+/// √λ for the eigenvalues of the pencil (K, M) at `values`, the `whose` (scene's or
+/// variant's) values; `said` is why they are numbers, for the errors.
+fn pencil_frequencies(
+    mass: &[Expr],
+    stiffness: &[Expr],
+    n: usize,
+    values: &BTreeMap<String, f64>,
+    said: &str,
+    whose: &str,
+) -> Result<Vec<f64>, DeriveError> {
     let at = |entries: &[Expr]| -> Result<nalgebra::DMatrix<f64>, DeriveError> {
         let mut out = Vec::with_capacity(entries.len());
         for e in entries {
             out.push(eval_at(e, values).map_err(|err| {
                 DeriveError::NotDerivable(format!(
-                    "{said}, so the modes are found at the scene's values; but {err}: give \
+                    "{said}, so the modes are found at the {whose}'s values; but {err}: give \
                      each name a value in [numeric]"
                 ))
             })?);
@@ -153,7 +187,7 @@ fn numeric_modes(
     let (m, k) = (at(mass)?, at(stiffness)?);
     let lambdas = symmetric_pencil_eigenvalues(&k, &m).map_err(|e| {
         DeriveError::NotDerivable(format!(
-            "{said}, so the modes are found at the scene's values, as the eigenvalues of K \
+            "{said}, so the modes are found at the {whose}'s values, as the eigenvalues of K \
              and M; but there {e}: the equations must come from `lagrange`"
         ))
     })?;
@@ -161,15 +195,12 @@ fn numeric_modes(
     for (k, lambda) in lambdas.iter().enumerate() {
         if *lambda <= 0.0 {
             return Err(DeriveError::NotDerivable(format!(
-                "at the scene's values, mode {} has lambda = {lambda:.6}, not positive: the \
+                "at the {whose}'s values, mode {} has lambda = {lambda:.6}, not positive: the \
                  state of `linearise` is not stable, so it has no normal mode there",
                 k + 1
             )));
         }
         frequencies.push(lambda.sqrt());
     }
-    Ok(StepResult::NumericModes {
-        frequencies,
-        reason,
-    })
+    Ok(frequencies)
 }

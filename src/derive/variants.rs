@@ -100,12 +100,9 @@ pub fn general_answer(
     if let Some(q) = answer.bare_quantity() {
         return Ok(d.quantities.get(q).ok_or_else(|| missing(d, q))?.clone());
     }
+    // A mode with no closed form stays a name here: each variant puts in its own value
+    // (`with_numeric_modes`).
     let resolved = resolve(scene, answer)?;
-    if let Some((name, step)) = d.numeric_name_in(&resolved.entries()[0]) {
-        return Err(DeriveError::NotDerivable(super::step_names::numeric_only(
-            &name, &step,
-        )));
-    }
     let failed = std::cell::RefCell::new(None);
     let filled = resolved.entries()[0].substitute(&|s| {
         if let Some((q, k)) = placeholder_of(s) {
@@ -138,8 +135,69 @@ pub fn general_answers(
         .collect()
 }
 
+/// The general answers with each mode that has no closed form (`Omega_5` of a 6-link
+/// `frequency`) put in as its value at `variant`'s values: √λ of the pencil (K, M) of the
+/// step's linear equations there, by Sturm bisection (`modes::frequencies_at`), as the
+/// shortest decimal that reads back to that double, so the key shows it as ≈ its value. The
+/// answer's second route is nalgebra's Schur decomposition of M⁻¹K
+/// (`verify/answer_routes.rs`).
+pub fn with_numeric_modes<'a>(
+    scene: &Scene,
+    d: &Derivation,
+    general: &'a [Value],
+    variant: &Variant,
+) -> Result<std::borrow::Cow<'a, [Value]>, DeriveError> {
+    let names = d.numeric_names();
+    let named: std::collections::BTreeSet<String> = general
+        .iter()
+        .flat_map(|g| g.entries())
+        .flat_map(|e| e.symbols())
+        .filter(|s| names.contains_key(s))
+        .collect();
+    if named.is_empty() {
+        return Ok(std::borrow::Cow::Borrowed(general));
+    }
+    let numbers = variant.numbers();
+    let mut values: BTreeMap<String, Expr> = BTreeMap::new();
+    for step in named.iter().map(|n| &names[n]) {
+        let linear = scene
+            .steps
+            .iter()
+            .find_map(|s| match &s.op {
+                crate::scene::Operation::Frequency { of } if &s.name == step => d.named.get(of),
+                _ => None,
+            })
+            .and_then(super::step_names::StepResult::equations)
+            .ok_or_else(|| {
+                DeriveError::Inconsistent(format!("step `{step}` has no linear equations"))
+            })?;
+        for (k, w) in super::modes::frequencies_at(linear, &numbers)?
+            .into_iter()
+            .enumerate()
+        {
+            let exact = cas::Rational::parse_decimal(&format!("{w:e}")).ok_or_else(|| {
+                DeriveError::Inconsistent(format!("the frequency {w} is not a finite number"))
+            })?;
+            values.insert(crate::scene::mode_name(step, k), Expr::Num(exact));
+        }
+    }
+    Ok(std::borrow::Cow::Owned(
+        general
+            .iter()
+            .map(|g| {
+                let entries: Vec<Expr> = g
+                    .entries()
+                    .iter()
+                    .map(|e| e.substitute(&|s| values.get(s).cloned()))
+                    .collect();
+                g.with_entries(&entries)
+            })
+            .collect(),
+    ))
+}
+
 /// Every answer of `problem` at `variant`, in the order the problem lists them, from their
-/// [`general_answers`].
+/// [`general_answers`] (with [`with_numeric_modes`] put in).
 pub fn exact_answers(
     general: &[Value],
     problem: &Problem,

@@ -1007,7 +1007,7 @@ fn the_n_link_pendulums_modes_agree_with_m_inverse_k() {
             assert!((x / w - 1.0).abs() < 1e-12, "{n}: {x} {w}");
         }
         if n == 5 {
-            // A name with no exact form is refused by a later step, a claim and an answer.
+            // A name with no exact form is refused by a later step and a claim.
             let text = links(5);
             let later = format!("{text}\n[[step]]\nname = \"T1\"\nbe = \"2*pi/Omega_1\"\n");
             let scene = Scene::parse(&later, Path::new("p.toml")).unwrap();
@@ -1019,16 +1019,46 @@ fn the_n_link_pendulums_modes_agree_with_m_inverse_k() {
             let r = run(&claim);
             let problem = r.verification.claims[0].problem.clone().unwrap();
             assert!(problem.contains("`Omega_1` has no exact form"), "{problem}");
+            // A graded answer takes each variant's own modes: Sturm bisection of (K, M) at its
+            // values, checked by the Schur route, and here against the textbook's M⁻¹K, whose
+            // modes scale as √(g/l).
             let graded = text
                 .replace("id = \"links-5\"", "id = \"problem-links\"")
                 .replace(
                     "symbols = { m = \"mass of each bob\", l = \"length of each link\", g = \"gravitational acceleration\" }",
                     "[symbols]\nm = { meaning = \"mass\", unit = \"kg\" }\nl = { meaning = \"length\", unit = \"m\" }\ng = { meaning = \"gravity\", unit = \"m/s^2\" }\n",
                 )
-                + "\n[problem]\nstatement = \"Find it.\"\nanswers = [{ value = \"Omega_1\", unit = \"rad/s\" }]\n[variants]\ncount = 2\nl = [\"1/2\", \"3/2\", \"2\"]\n";
+                + "\n[problem]\nstatement = \"Find them.\"\nanswers = [{ value = \"Omega_1\", unit = \"rad/s\" }, { value = \"Omega_5/Omega_1\" }]\n[variants]\ncount = 3\nl = [\"1/2\", \"3/2\", \"2\"]\n";
             let scene = Scene::parse(&graded, Path::new("p.toml")).unwrap();
-            let message = run_scene(scene, None).err().unwrap().to_string();
-            assert!(message.contains("`Omega_1` has no exact form"), "{message}");
+            let r = run_scene(scene, None).unwrap();
+            assert_eq!(r.verification.variants.len(), 3);
+            for v in &r.verification.variants {
+                let l = v
+                    .values
+                    .iter()
+                    .find(|(k, _)| k == "l")
+                    .unwrap()
+                    .1
+                    .eval(&|_| None)
+                    .unwrap();
+                let (slow, ratio) = (&v.answers[0], &v.answers[1]);
+                assert!(slow.passed() && ratio.passed(), "{v:?}");
+                assert!(
+                    slow.rounded,
+                    "a numeric mode is shown as ≈ its value: {slow:?}"
+                );
+                let want = want[0] / l.sqrt();
+                assert!(
+                    (slow.exact_numbers[0] / want - 1.0).abs() < 1e-12,
+                    "{l}: {slow:?}"
+                );
+                assert!((slow.numeric[0] / want - 1.0).abs() < 1e-9, "{l}: {slow:?}");
+                let want_ratio = textbook_modes(5)[4] / textbook_modes(5)[0];
+                assert!(
+                    (ratio.exact_numbers[0] / want_ratio - 1.0).abs() < 1e-12,
+                    "{ratio:?}"
+                );
+            }
         }
         if n == 6 {
             let mut d = r.derivation.clone();

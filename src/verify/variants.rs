@@ -9,7 +9,9 @@ use super::principal::PRINCIPAL_AGREEMENT;
 use crate::base::float::max_relative_error;
 use crate::cas::Expr;
 use crate::cas::Rational;
-use crate::derive::variants::{exact_answers, general_answers, has_long_number, shown_answers};
+use crate::derive::variants::{
+    exact_answers, general_answers, has_long_number, shown_answers, with_numeric_modes,
+};
 use crate::derive::{Derivation, DeriveError};
 use crate::model::catalogue::quantity;
 use crate::model::value::Value;
@@ -48,6 +50,10 @@ pub struct AnswerCheck {
     /// value.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub rounded: bool,
+    /// The answer names a mode with no closed form (`Omega_5` of six links): its "exact" value
+    /// is the variant's by Sturm bisection (`derive::variants::with_numeric_modes`), a number.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub numeric_mode: bool,
     /// The exact answer's entries in f64, and the numeric route's.
     pub exact_numbers: Vec<f64>,
     pub numeric: Vec<f64>,
@@ -195,14 +201,25 @@ pub fn check_variants(
             source,
         };
         deadline.check().map_err(|e| fail(e.into()))?;
+        let by_numbers = with_numeric_modes(scene, d, &general, v).map_err(|e| fail(e.into()))?;
+        let numeric_modes: Vec<bool> = general
+            .iter()
+            .map(|g| g.entries().iter().any(|e| d.numeric_name_in(e).is_some()))
+            .collect();
+        let general = by_numbers;
         let exact = exact_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
         let shown = shown_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
         let numbers = v.numbers_within_a_turn(&angles);
         let agree = |name: &str| agreement(scene, name, &numbers);
         let mut routes = AnswerRoutes::new(scene, d, &numbers, &agree);
         let mut answers = Vec::new();
-        for (((answer, a), scale), shown) in
-            problem.answers.iter().zip(exact).zip(&scales).zip(shown)
+        for ((((answer, a), scale), shown), numeric_mode) in problem
+            .answers
+            .iter()
+            .zip(exact)
+            .zip(&scales)
+            .zip(shown)
+            .zip(numeric_modes)
         {
             let (numeric, tolerance) = match answer.bare_quantity() {
                 Some(q) => (
@@ -237,6 +254,7 @@ pub fn check_variants(
                 exact: a.value,
                 shown,
                 rounded,
+                numeric_mode,
                 exact_numbers,
                 numeric,
                 // NaN (an answer with no number) fails every comparison: count it as infinite.

@@ -203,11 +203,15 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
         .collect::<Result<_, RenderError>>()?;
     if !given.is_empty() {
         let (typst, said): (Vec<String>, Vec<String>) = given.into_iter().unzip();
-        m.text("Given: ")
+        // Kept on the page of the table that follows, as the heading is kept with it.
+        m.raw("#block(sticky: true)[")
+            .text("Given: ")
             .inline(&typst.join("\\, quad "), &said.join(", "))
-            .par();
+            .raw("]\n");
     }
-    m.raw("#table(columns: (auto, 1fr, auto), stroke: 0.4pt, inset: 5pt, [*Answer*], [*Exact*], [*Decimal*],\n");
+    // A header row, which Typst keeps with the first row (never alone at a page's foot) and
+    // tags as the table's header.
+    m.raw("#table(columns: (auto, 1fr, auto), stroke: 0.4pt, inset: 5pt, table.header([*Answer*], [*Exact*], [*Decimal*]),\n");
     for (spec, a) in p.answers.iter().zip(&v.answers) {
         let unit = spec
             .unit
