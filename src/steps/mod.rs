@@ -63,9 +63,9 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         let mut shown: Option<Formula> = None;
         let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
         let printed = printed_form(scene, &result).map_err(|e| locate(step, e))?;
-        let mut steps = page::page_steps(step, printed.as_ref().unwrap_or(&result));
+        let mut steps = page::page_steps(scene, step, printed.as_ref().unwrap_or(&result));
         if printed.is_some() {
-            for (shown, exact) in steps.iter_mut().zip(page::page_steps(step, &result)) {
+            for (shown, exact) in steps.iter_mut().zip(page::page_steps(scene, step, &result)) {
                 if shown.statement != exact.statement {
                     shown.exact = Some(exact.statement);
                 }

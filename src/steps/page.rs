@@ -6,7 +6,7 @@ use crate::derive::Step;
 use crate::derive::step_names::{Stable, StepResult};
 use crate::model::prose::Prose;
 use crate::notation::Formula;
-use crate::scene::{AuthorStep, Operation, mode_name};
+use crate::scene::{AuthorStep, Operation, Scene, mode_name};
 
 /// A state of rest of several coordinates: q1 = v1, q2 = v2, …
 fn state_formula(coordinates: &[String], state: &[crate::cas::Zero]) -> Formula {
@@ -33,15 +33,35 @@ fn with_reason(step: &AuthorStep, why: &Prose, added: Prose) -> Prose {
 }
 
 /// A step as the page shows it: `name = result`, or each equation of motion `… = 0`.
-pub(super) fn page_steps(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
-    let mut steps = page_statements(step, result);
+pub(super) fn page_steps(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec<Step> {
+    let mut steps = page_statements(scene, step, result);
     for s in &mut steps {
         s.author = Some(step.name.clone());
     }
     steps
 }
 
-fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
+/// A name as the page typesets it, for a title (`$\phi_{1}$`, the scene's own LaTeX where it
+/// gives one): a title is the author's kind of text, its mathematics read by every renderer.
+fn typeset(scene: &Scene, name: &str) -> String {
+    let own = scene
+        .tex
+        .iter()
+        .map(|(k, latex)| {
+            let tex = crate::cas::SymbolTex {
+                latex: latex.clone(),
+                typst: String::new(),
+            };
+            (k.clone(), tex)
+        })
+        .collect();
+    format!(
+        "${}$",
+        crate::cas::typeset_as(own, || Expr::sym(name).to_latex())
+    )
+}
+
+fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec<Step> {
     // The author's reason, its `$…$` mathematics typeset.
     let why = crate::model::prose::author(&step.why);
     let title = match &step.eq {
@@ -190,8 +210,9 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
             .map(|(k, (unknown, value))| {
                 Step::note(
                     &format!(
-                        "{title}: {}, the value of {unknown}",
-                        mode_name(&step.name, k)
+                        "{title}: {}, the value of {}",
+                        mode_name(&step.name, k),
+                        typeset(scene, unknown)
                     ),
                     Formula::equation(Formula::Expr(Expr::sym(unknown)), value.clone()),
                     why.clone(),
@@ -240,15 +261,29 @@ fn page_statements(step: &AuthorStep, result: &StepResult) -> Vec<Step> {
         StepResult::Equations(eqs) => eqs
             .iter()
             .map(|(q, e)| {
+                // A constraint on the coordinates is differentiated twice to reach the
+                // accelerations, one on the rates (rolling) once.
                 let constraint = match &step.op {
-                    Operation::Lagrange { constraints, .. } => {
-                        constraints.iter().any(|(lambda, _)| lambda == q)
-                    }
-                    _ => false,
+                    Operation::Lagrange { constraints, .. } => constraints
+                        .iter()
+                        .find(|(lambda, _)| lambda == q)
+                        .map(|(_, f)| {
+                            crate::derive::constraints::is_velocity_constraint(
+                                f,
+                                &scene.coordinates,
+                            )
+                        }),
+                    _ => None,
                 };
+                let q = typeset(scene, q);
                 let what = match constraint {
-                    true => format!("the constraint of the multiplier {q}, differentiated twice"),
-                    false => format!("the equation of motion of {q}"),
+                    Some(false) => {
+                        format!("the constraint of the multiplier {q}, differentiated twice")
+                    }
+                    Some(true) => {
+                        format!("the constraint of the multiplier {q}, differentiated once")
+                    }
+                    None => format!("the equation of motion of {q}"),
                 };
                 Step::note(
                     &format!("{title}: {what}"),

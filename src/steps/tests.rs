@@ -1228,3 +1228,47 @@ fn a_list_gives_states_each_result_of_a_step() {
     let e = Scene::parse(&on_one, Path::new("p.toml")).unwrap_err();
     assert!(e.message.contains("a list in `gives`"), "{e}");
 }
+
+/// A step's titles name coordinates, multipliers and unknowns as the page typesets them (a
+/// title's `$…$` is read by every renderer), not by their names in the scene: the rolling
+/// disk's equations of motion of q₁ and its friction constraints, differentiated once (they
+/// are on the rates); the Atwood machine's tension, differentiated twice.
+#[test]
+fn step_titles_typeset_coordinates_and_say_how_a_constraint_is_differentiated() {
+    let disk = run(&std::fs::read_to_string("tests/course/dynamics/16-rolling-disk.toml").unwrap());
+    let titles: Vec<&str> = disk
+        .derivation
+        .steps
+        .iter()
+        .map(|s| s.title.as_str())
+        .collect();
+    assert!(
+        titles.contains(&"eom: the equation of motion of $q_{1}$"),
+        "{titles:?}"
+    );
+    assert!(titles.iter().all(|t| !t.contains("of q1")), "{titles:?}");
+    let once: Vec<&&str> = titles
+        .iter()
+        .filter(|t| t.contains("the constraint of the multiplier"))
+        .collect();
+    assert_eq!(once.len(), 2, "{titles:?}");
+    assert!(
+        once.iter().all(|t| t.ends_with("differentiated once")),
+        "{once:?}"
+    );
+    let atwood = run(&std::fs::read_to_string("tests/course/dynamics/13-atwood.toml").unwrap());
+    let twice = atwood
+        .derivation
+        .steps
+        .iter()
+        .find(|s| s.title.contains("the constraint of the multiplier"))
+        .unwrap();
+    assert!(
+        twice.title.ends_with("differentiated twice"),
+        "{}",
+        twice.title
+    );
+    // The page reads the title's mathematics: no dollar sign reaches it.
+    let plain = crate::model::prose::plain(&titles[titles.len() - 1]);
+    assert!(!plain.contains('$'), "{plain}");
+}
