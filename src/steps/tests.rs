@@ -1269,6 +1269,6 @@ fn step_titles_typeset_coordinates_and_say_how_a_constraint_is_differentiated() 
         twice.title
     );
     // The page reads the title's mathematics: no dollar sign reaches it.
-    let plain = crate::model::prose::plain(&titles[titles.len() - 1]);
+    let plain = crate::model::prose::plain(titles[titles.len() - 1]);
     assert!(!plain.contains('$'), "{plain}");
 }
