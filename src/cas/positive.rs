@@ -47,7 +47,46 @@ pub fn is_zero(e: &Expr, positive: &dyn Fn(&str) -> bool) -> Result<bool, Engine
     let e = roots_over_positive(&inverse_roots(e, positive), positive)?;
     let mut roots = Vec::new();
     let named = name_roots(&e, &mut roots)?;
-    Ok(!roots.is_empty() && engine::is_zero(&named)? || engine::is_zero(&e)?)
+    if !roots.is_empty() && engine::is_zero(&named)? || engine::is_zero(&e)? {
+        return Ok(true);
+    }
+    // A fractional power of a product, each factor's own power: (g M m/p²)^(4/3) as
+    // g^(4/3) M^(4/3) m^(4/3) p^(−8/3), which the engine combines with M g/∛(p²/(g M m)).
+    Ok(!roots.is_empty() && engine::is_zero(&powers_of_factors(&e, positive))?)
+}
+
+/// `e` with each fractional power of a product of positive symbols, positive numbers and
+/// powers of them written as the product of each factor's power, (x^a y)^q = x^(a q) y^q: true
+/// when every symbol is positive, as a scene's are.
+fn powers_of_factors(e: &Expr, positive: &dyn Fn(&str) -> bool) -> Expr {
+    let walk = |xs: &[Expr]| xs.iter().map(|x| powers_of_factors(x, positive)).collect();
+    match e {
+        Expr::Pow(b, q) if matches!(q.as_ref(), Expr::Num(r) if !r.is_integer()) => {
+            let b = powers_of_factors(b, positive);
+            spread(&b, q, positive).map_or_else(|| Expr::pow(b, (**q).clone()), Expr::mul)
+        }
+        Expr::Pow(b, k) => Expr::pow(powers_of_factors(b, positive), (**k).clone()),
+        Expr::Add(v) => Expr::add(walk(v)),
+        Expr::Mul(v) => Expr::mul(walk(v)),
+        Expr::Call(f, args) => Expr::Call(f.clone(), walk(args)),
+        other => other.clone(),
+    }
+}
+
+/// `b^q` as a product of each positive factor's own power, if `b` is such a product.
+fn spread(b: &Expr, q: &Expr, positive: &dyn Fn(&str) -> bool) -> Option<Vec<Expr>> {
+    match b {
+        Expr::Sym(s) if positive(s) => Some(vec![Expr::pow(b.clone(), q.clone())]),
+        Expr::Num(r) if r.is_positive() => Some(vec![Expr::pow(b.clone(), q.clone())]),
+        Expr::Pow(x, k) if matches!(k.as_ref(), Expr::Num(_)) => {
+            spread(x, &Expr::mul(vec![(**k).clone(), q.clone()]), positive)
+        }
+        Expr::Mul(v) => {
+            let parts: Option<Vec<Vec<Expr>>> = v.iter().map(|f| spread(f, q, positive)).collect();
+            Some(parts?.concat())
+        }
+        _ => None,
+    }
 }
 
 /// `e` with each negative root of a positive quotient written as the root of its inverse,

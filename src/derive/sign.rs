@@ -45,12 +45,18 @@ fn term_sign(t: &Expr) -> Option<i8> {
     }
 }
 
-/// The sign of a product of non-zero numbers, symbols, and powers of products of them, if `e`
-/// is one: every symbol is positive, so each such power is.
+/// The sign of a product of non-zero numbers, symbols, powers of products of them and sums of
+/// positive such terms, if `e` is one: every symbol is positive, so each such power and sum is
+/// (3 p² (g M m/p²)^(4/3)/(m (M + m)), whose fractional power the engine's rational functions
+/// do not take).
 fn positive_product(e: &Expr) -> Option<i8> {
     match e {
         Expr::Num(r) if !r.is_zero() => Some(if r.is_positive() { 1 } else { -1 }),
         Expr::Sym(_) => Some(1),
+        Expr::Add(v) => v
+            .iter()
+            .all(|x| positive_product(x) == Some(1))
+            .then_some(1),
         Expr::Pow(b, _) if positive_product(b) == Some(1) => Some(1),
         Expr::Mul(f) => f
             .iter()

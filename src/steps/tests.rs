@@ -1272,3 +1272,42 @@ fn step_titles_typeset_coordinates_and_say_how_a_constraint_is_differentiated() 
     let plain = crate::model::prose::plain(titles[titles.len() - 1]);
     assert!(!plain.contains('$'), "{plain}");
 }
+
+/// A cube root over positive symbols: the puck's steady circle r = ∛(p²/(m M g)) (a cubic with
+/// one real root), its Ω² = 3 p² (g M m/p²)^(4/3)/(m (M + m)) decided stable for all values,
+/// and the textbook's 3 M g/((m + M) r) agreeing with it once each fractional power of a
+/// product is taken factor by factor; a wrong coefficient disagrees.
+#[test]
+fn a_cube_root_over_positive_symbols_agrees_and_its_square_frequency_is_positive() {
+    use crate::derive::step_names::{Stable, StepResult};
+    let text =
+        std::fs::read_to_string("tests/course/dynamics/17-puck-and-hanging-mass.toml").unwrap();
+    let r = run(&text);
+    let StepResult::Stability { cases, .. } = &r.derivation.named["wobble"] else {
+        panic!("{:?}", r.derivation.named["wobble"])
+    };
+    assert_eq!(cases.len(), 1);
+    assert_eq!(cases[0].verdict, Stable::Always);
+    let claim = |statement: &str| {
+        r.verification
+            .claims
+            .iter()
+            .find(|c| c.statement.contains(statement))
+            .unwrap()
+            .verdict
+    };
+    assert_eq!(claim("radius of the steady circle"), Verdict::Agrees);
+    assert_eq!(claim("squared frequency"), Verdict::Agrees);
+    let wrong = run(&text.replace(
+        "value = \"3*M*g/((m + M)*circle_1)\"",
+        "value = \"2*M*g/((m + M)*circle_1)\"",
+    ));
+    let verdict = wrong
+        .verification
+        .claims
+        .iter()
+        .find(|c| c.statement.contains("squared frequency"))
+        .unwrap()
+        .verdict;
+    assert_eq!(verdict, Verdict::Disagrees);
+}
