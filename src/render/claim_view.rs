@@ -58,6 +58,12 @@ pub(super) fn claim_view(c: &crate::verify::ClaimResult) -> Result<ClaimView, Re
             .map(prose_html)
             .collect::<Result<_, _>>()?,
         precision: c.precision.clone(),
+        positive: c
+            .positive
+            .iter()
+            .map(|n| math::inline(&crate::cas::Expr::sym(n).to_tex()))
+            .collect::<Result<Vec<_>, _>>()?
+            .join(", "),
         role: match c.role {
             crate::scene::ClaimRole::Notes => "notes",
             crate::scene::ClaimRole::Mistake => "mistake",

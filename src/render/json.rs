@@ -155,7 +155,7 @@ pub fn scene_json(page: &Page) -> Json {
         .claims
         .iter()
         .map(|c| {
-            json!({
+            let mut claim = json!({
                 "eq": c.eq,
                 "statement": c.statement,
                 "notes": c.notes.as_ref().map(Expr::to_text).unwrap_or_default(),
@@ -166,7 +166,12 @@ pub fn scene_json(page: &Page) -> Json {
                 "differences": c.differences.iter().map(|d| d.to_text()).collect::<Vec<_>>(),
                 "problem": c.problem,
                 "precision": c.precision,
-            })
+            });
+            // The symbols an agreement takes to be positive, where it rests on that.
+            if !c.positive.is_empty() {
+                claim["positive"] = json!(c.positive);
+            }
+            claim
         })
         .collect();
     let numeric_checks: Vec<Json> = page

@@ -72,6 +72,9 @@ pub struct ClaimView {
     pub differences: Vec<String>,
     /// For a number the notes give roughly: how it was rounded to compare.
     pub precision: Option<String>,
+    /// The symbols an agreement takes to be positive, as MathML, `, ` between them; empty
+    /// where it rests on no such assumption.
+    pub positive: String,
     /// `notes` or `mistake`.
     pub role: &'static str,
 }

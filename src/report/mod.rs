@@ -445,6 +445,9 @@ pub fn derivation_text(page: &Page) -> String {
                 c.verdict.as_str(),
                 c.statement
             );
+            if !c.positive.is_empty() {
+                let _ = writeln!(out, "        for positive {}", c.positive.join(", "));
+            }
             for d in &c.differences {
                 let _ = writeln!(out, "        {d}");
             }

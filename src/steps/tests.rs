@@ -1298,6 +1298,18 @@ fn a_cube_root_over_positive_symbols_agrees_and_its_square_frequency_is_positive
     };
     assert_eq!(claim("radius of the steady circle"), Verdict::Agrees);
     assert_eq!(claim("squared frequency"), Verdict::Agrees);
+    // The agreement that rests on positive symbols says which; the Routhian's does not.
+    let positive = |statement: &str| {
+        r.verification
+            .claims
+            .iter()
+            .find(|c| c.statement.contains(statement))
+            .unwrap()
+            .positive
+            .clone()
+    };
+    assert_eq!(positive("squared frequency"), ["M", "g", "m", "p"]);
+    assert!(positive("is cyclic").is_empty());
     let wrong = run(&text.replace(
         "value = \"3*M*g/((m + M)*circle_1)\"",
         "value = \"2*M*g/((m + M)*circle_1)\"",

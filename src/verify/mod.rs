@@ -68,6 +68,10 @@ pub struct ClaimResult {
     /// Why its two sides differ in dimension, where they do (a scene with units).
     #[serde(default)]
     pub dimension: Option<String>,
+    /// The symbols whose positivity the agreement rests on (√(g²) = g, (x y)^(1/3) = ∛x ∛y),
+    /// where the engine's test alone did not decide it; said beside the verdict.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub positive: Vec<String>,
 }
 
 impl ClaimResult {
@@ -263,6 +267,7 @@ fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
         line: claim.line,
         step: None,
         dimension: None,
+        positive: Vec::new(),
     }
 }
 
@@ -347,9 +352,19 @@ fn check_claim(
                     retry.iter().map(|&k| diffs[k].clone()).collect(),
                     signed.clone(),
                 )?;
+                let mut positive = std::collections::BTreeSet::new();
                 for (k, zero) in retry.into_iter().zip(again) {
                     symbolic[k] |= zero;
+                    if zero {
+                        positive.extend(
+                            diffs[k]
+                                .symbols()
+                                .into_iter()
+                                .filter(|s| s != "pi" && !signed.contains(s)),
+                        );
+                    }
                 }
+                r.positive = positive.into_iter().collect();
             }
             // The two tests contradict each other: report both and decide nothing. The
             // engine may have missed an identity (a "non-zero" that is zero), or the random

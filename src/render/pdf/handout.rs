@@ -147,9 +147,16 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
             Mark::Agrees => {
                 m.raw("#text(9.5pt)[");
                 m.text(&match page.claim_equation(c.claim) {
-                    Some(eq) => format!("As in the notes, eq. ({eq})."),
-                    None => "As in the notes.".to_string(),
+                    Some(eq) => format!("As in the notes, eq. ({eq})"),
+                    None => "As in the notes".to_string(),
                 });
+                // The symbols whose positivity the agreement rests on.
+                for (k, name) in page.claims[c.claim].positive.iter().enumerate() {
+                    m.text(if k == 0 { ", for positive " } else { ", " });
+                    let e = crate::cas::Expr::sym(name);
+                    m.inline(&e.to_typst(), &e.to_tex().spoken());
+                }
+                m.text(".");
                 m.raw("]\n");
             }
             _ => shown_claim(m, page, c)?,
