@@ -195,18 +195,18 @@ pub fn check_variants(
         }
         scales.push(scale.map_or(1.0, |s| s.to_f64()));
     }
+    // Which answers name a mode with no closed form: the same for every variant.
+    let numeric_modes: Vec<bool> = general
+        .iter()
+        .map(|g| g.entries().iter().any(|e| d.numeric_name_in(e).is_some()))
+        .collect();
     for v in &problem.variants {
         let fail = |source: VariantFailure| VariantError {
             number: v.number,
             source,
         };
         deadline.check().map_err(|e| fail(e.into()))?;
-        let by_numbers = with_numeric_modes(scene, d, &general, v).map_err(|e| fail(e.into()))?;
-        let numeric_modes: Vec<bool> = general
-            .iter()
-            .map(|g| g.entries().iter().any(|e| d.numeric_name_in(e).is_some()))
-            .collect();
-        let general = by_numbers;
+        let general = with_numeric_modes(scene, d, &general, v).map_err(|e| fail(e.into()))?;
         let exact = exact_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
         let shown = shown_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
         let numbers = v.numbers_within_a_turn(&angles);
@@ -219,7 +219,7 @@ pub fn check_variants(
             .zip(exact)
             .zip(&scales)
             .zip(shown)
-            .zip(numeric_modes)
+            .zip(numeric_modes.iter().copied())
         {
             let (numeric, tolerance) = match answer.bare_quantity() {
                 Some(q) => (
