@@ -13,6 +13,7 @@ use crate::numeric::{self, NumericReport};
 use crate::plan::Plan;
 use crate::scene::Scene;
 use crate::verify::{self, Verification};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -200,6 +201,53 @@ impl ResultStore for NoStore {
     }
 }
 
+/// What a store gave back for a scene: its whole report, or what is left to run (with its
+/// stored symbolic results, when it had them).
+// One per scene, moved once: the size of either variant costs nothing.
+#[allow(clippy::large_enum_variant)]
+enum Lookup {
+    Done(SceneReport),
+    Run(Scene, Option<Symbolic>),
+}
+
+/// A scene's stored results: its whole report at `fid`, else its symbolic results.
+fn look_up<S: ResultStore>(
+    store: &S,
+    scene: Scene,
+    fid: &Fidelity,
+    warnings: &mut Vec<S::Warning>,
+) -> Lookup {
+    if let Some(bytes) = store.get(&scene, Some(fid), warnings) {
+        match from_cache(scene.clone(), &bytes) {
+            Some(r) => return Lookup::Done(r),
+            None => warnings.push(store.unreadable(&scene, Some(fid))),
+        }
+    }
+    let symbolic = match store.get(&scene, None, warnings) {
+        Some(bytes) => match serde_json::from_slice(&bytes) {
+            Ok(s) => Some(s),
+            Err(_) => {
+                warnings.push(store.unreadable(&scene, None));
+                None
+            }
+        },
+        None => None,
+    };
+    Lookup::Run(scene, symbolic)
+}
+
+/// Keeps what a run computed: the whole report, and the symbolic results when they are new.
+fn store_report<S: ResultStore>(store: &S, r: &SceneReport, warnings: &mut Vec<S::Warning>) {
+    let mut stored = store.put(&r.scene, Some(&r.fidelity), &to_cache(r));
+    if r.from_cache == FromCache::Nothing && stored.is_ok() {
+        let symbolic = serde_json::to_vec(&symbolic_part(r)).expect("a report serializes");
+        stored = store.put(&r.scene, None, &symbolic);
+    }
+    if let Err(w) = stored {
+        warnings.push(w);
+    }
+}
+
 /// One scene through `store`: its whole report when stored for this fidelity, else its stored
 /// symbolic results with only the numeric stage run again, else everything; what is new is
 /// stored. Comes back with the report and what the store had to say.
@@ -210,37 +258,18 @@ pub fn run_scene_stored<S: ResultStore>(
 ) -> Result<(SceneReport, Vec<S::Warning>), RunError> {
     let fid = scene.fidelity_given(fidelity);
     let mut warnings = Vec::new();
-    if let Some(bytes) = store.get(&scene, Some(&fid), &mut warnings) {
-        match from_cache(scene.clone(), &bytes) {
-            Some(r) => return Ok((r, warnings)),
-            None => warnings.push(store.unreadable(&scene, Some(&fid))),
-        }
-    }
-    let symbolic = match store.get(&scene, None, &mut warnings) {
-        Some(bytes) => match serde_json::from_slice(&bytes) {
-            Ok(s) => Some(s),
-            Err(_) => {
-                warnings.push(store.unreadable(&scene, None));
-                None
-            }
-        },
-        None => None,
+    let (scene, symbolic) = match look_up(store, scene, &fid, &mut warnings) {
+        Lookup::Done(r) => return Ok((r, warnings)),
+        Lookup::Run(scene, symbolic) => (scene, symbolic),
     };
-    let r = run_scene_with(scene, Some(fid), symbolic)?;
-    let mut stored = store.put(&r.scene, Some(&fid), &to_cache(&r));
-    if r.from_cache == FromCache::Nothing && stored.is_ok() {
-        let symbolic = serde_json::to_vec(&symbolic_part(&r)).expect("a report serializes");
-        stored = store.put(&r.scene, None, &symbolic);
-    }
-    if let Err(w) = stored {
-        warnings.push(w);
-    }
+    let r = numeric_stage(derived(scene, symbolic)?, Some(fid))?;
+    store_report(store, &r, &mut warnings);
     Ok((r, warnings))
 }
 
 /// What a run of many scenes tells as it goes, for the command line to show.
 pub enum Progress<'a> {
-    /// `done` of `total` scenes are finished; `id` is next.
+    /// `done` of `total` scenes are started; `id` is next.
     Starting {
         done: usize,
         total: usize,
@@ -253,6 +282,11 @@ pub enum Progress<'a> {
 }
 
 /// Every scene through `store`, in order: the reports, and the errors of those that failed.
+///
+/// Both cores work: while the engine derives a scene on this thread, a second thread checks
+/// the scene before it numerically (the numeric routes call the engine seldom, through its one
+/// worker). Each scene's report, warnings and error are told in the scenes' order, whichever
+/// thread finished first, so the output is that of a run on one thread.
 pub fn run_all<S: ResultStore>(
     scenes: Vec<Scene>,
     fidelity: Option<Fidelity>,
@@ -260,29 +294,110 @@ pub fn run_all<S: ResultStore>(
     tell: &mut dyn FnMut(Progress),
 ) -> (Vec<SceneReport>, Vec<String>) {
     let total = scenes.len();
-    let (mut reports, mut failed) = (Vec::new(), Vec::new());
-    for (done, scene) in scenes.into_iter().enumerate() {
-        tell(Progress::Starting {
-            done,
-            total,
-            id: &scene.id,
-        });
-        match run_scene_stored(store, scene, fidelity) {
-            Ok((r, warnings)) => {
-                for w in warnings {
-                    tell(Progress::Warning(w.to_string()));
+    let mut told = InOrder::default();
+    std::thread::scope(|scope| {
+        // One scene waits while another is checked: the derivations held stay few.
+        let (check, to_check) = std::sync::mpsc::sync_channel::<(usize, Derived)>(1);
+        let (give_back, checked) = std::sync::mpsc::channel();
+        scope.spawn(move || {
+            for (i, d) in to_check {
+                let fid = Some(d.scene.fidelity_given(fidelity));
+                if give_back.send((i, numeric_stage(d, fid))).is_err() {
+                    break;
                 }
-                reports.push(r);
             }
-            Err(e) => {
-                let message = e.to_string();
-                tell(Progress::Failed(message.clone()));
-                failed.push(message);
+        });
+        let mut derived_scenes = Vec::new();
+        for (i, scene) in scenes.into_iter().enumerate() {
+            tell(Progress::Starting {
+                done: i,
+                total,
+                id: &scene.id,
+            });
+            let fid = scene.fidelity_given(fidelity);
+            let mut warnings = Vec::new();
+            let outcome = match look_up(store, scene, &fid, &mut warnings) {
+                Lookup::Done(r) => Some(Ok(r)),
+                Lookup::Run(scene, symbolic) => match derived(scene, symbolic) {
+                    Ok(d) => {
+                        check.send((i, d)).expect("the numeric thread runs");
+                        derived_scenes.push(i);
+                        None
+                    }
+                    Err(e) => Some(Err(e)),
+                },
+            };
+            told.warnings.insert(i, warnings);
+            if let Some(outcome) = outcome {
+                told.outcomes.insert(i, outcome);
             }
+            for (j, r) in checked.try_iter() {
+                told.outcomes.insert(j, r);
+            }
+            told.tell_ready(store, tell);
+        }
+        drop(check);
+        for (j, r) in checked {
+            told.outcomes.insert(j, r);
+        }
+        told.tell_ready(store, tell);
+    });
+    tell(Progress::Finished);
+    (told.reports, told.failed)
+}
+
+/// Outcomes that came back out of order, told and kept in the scenes' order.
+struct InOrder<W> {
+    next: usize,
+    warnings: BTreeMap<usize, Vec<W>>,
+    outcomes: BTreeMap<usize, Result<SceneReport, RunError>>,
+    reports: Vec<SceneReport>,
+    failed: Vec<String>,
+}
+
+impl<W> Default for InOrder<W> {
+    fn default() -> Self {
+        InOrder {
+            next: 0,
+            warnings: BTreeMap::new(),
+            outcomes: BTreeMap::new(),
+            reports: Vec::new(),
+            failed: Vec::new(),
         }
     }
-    tell(Progress::Finished);
-    (reports, failed)
+}
+
+impl<W: std::fmt::Display> InOrder<W> {
+    /// Stores and tells each outcome whose scenes before it are all told.
+    fn tell_ready<S: ResultStore<Warning = W>>(
+        &mut self,
+        store: &S,
+        tell: &mut dyn FnMut(Progress),
+    ) {
+        while let Some(outcome) = self.outcomes.remove(&self.next) {
+            let mut warnings = self.warnings.remove(&self.next).unwrap_or_default();
+            match outcome {
+                Ok(r) => {
+                    if r.from_cache != FromCache::Everything {
+                        store_report(store, &r, &mut warnings);
+                    }
+                    for w in warnings {
+                        tell(Progress::Warning(w.to_string()));
+                    }
+                    self.reports.push(r);
+                }
+                Err(e) => {
+                    for w in warnings {
+                        tell(Progress::Warning(w.to_string()));
+                    }
+                    let message = e.to_string();
+                    tell(Progress::Failed(message.clone()));
+                    self.failed.push(message);
+                }
+            }
+            self.next += 1;
+        }
+    }
 }
 
 /// Runs one scene. `fidelity` (from the command line) overrides the scene's own setting.
@@ -296,19 +411,49 @@ pub fn run_scene_with(
     fidelity: Option<Fidelity>,
     symbolic: Option<Symbolic>,
 ) -> Result<SceneReport, RunError> {
+    numeric_stage(derived(scene, symbolic)?, fidelity)
+}
+
+/// A scene with its symbolic stage done: what the numeric stage starts from.
+struct Derived {
+    scene: Scene,
+    plan: Plan,
+    symbolic: Symbolic,
+    from_cache: FromCache,
+    /// The symbolic stage's wall time (zero when it came from the cache).
+    seconds: f64,
+}
+
+/// The symbolic stage of `scene`, unless `symbolic` gives its results.
+fn derived(scene: Scene, symbolic: Option<Symbolic>) -> Result<Derived, RunError> {
+    let start = Instant::now();
+    let plan = Plan::for_scene(&scene);
+    let (symbolic, from_cache) = match symbolic {
+        Some(s) => (s, FromCache::Symbolic),
+        None => (symbolic_stage(&scene, &plan)?, FromCache::Nothing),
+    };
+    Ok(Derived {
+        scene,
+        plan,
+        symbolic,
+        from_cache,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The numeric stage: quadrature, figures, the numeric routes of claims, steps and variants.
+/// `fidelity` (from the command line) overrides the scene's own setting.
+fn numeric_stage(d: Derived, fidelity: Option<Fidelity>) -> Result<SceneReport, RunError> {
+    let Derived {
+        scene,
+        plan,
+        symbolic,
+        from_cache,
+        seconds: symbolic_wall,
+    } = d;
     let fidelity = scene.fidelity_given(fidelity);
     let start = Instant::now();
     let work_before = numeric::Work::so_far();
-    let plan = Plan::for_scene(&scene);
-    let from_cache = if symbolic.is_some() {
-        FromCache::Symbolic
-    } else {
-        FromCache::Nothing
-    };
-    let symbolic = match symbolic {
-        Some(s) => s,
-        None => symbolic_stage(&scene, &plan)?,
-    };
     let fail = |source: StageError| RunError {
         path: scene.source.clone(),
         id: scene.id.clone(),
@@ -375,7 +520,7 @@ pub fn run_scene_with(
         symbolic_seconds: symbolic.seconds,
         engine_calls: symbolic.engine_calls,
         numeric_work: numeric::Work::since(work_before),
-        seconds: start.elapsed().as_secs_f64(),
+        seconds: symbolic_wall + start.elapsed().as_secs_f64(),
         from_cache,
     })
 }
@@ -449,7 +594,7 @@ pub fn from_cache(scene: Scene, bytes: &[u8]) -> Option<SceneReport> {
 
 #[cfg(test)]
 mod tests {
-    use super::{FromCache, ResultStore, run_scene_stored};
+    use super::{FromCache, Progress, ResultStore, run_all, run_scene_stored};
     use crate::model::fidelity::Fidelity;
     use crate::scene::Scene;
     use std::cell::RefCell;
@@ -515,5 +660,100 @@ mod tests {
         let (rerun, w) = run_scene_stored(&store, hoop(), draft).unwrap();
         assert_eq!(w.len(), 1, "{w:?}");
         assert_eq!(rerun.from_cache, FromCache::Symbolic);
+    }
+
+    fn lecture(path: &str) -> Scene {
+        let path = format!("{}/lectures/{path}", env!("CARGO_MANIFEST_DIR"));
+        Scene::parse(
+            &std::fs::read_to_string(&path).unwrap(),
+            std::path::Path::new(&path),
+        )
+        .unwrap()
+    }
+
+    /// A scene whose step is beyond the engine's budget: it fails in its symbolic stage.
+    fn too_big() -> Scene {
+        let text = "id = \"big\"\ntitle = \"Too big\"\nnotes = { lecture = \"6\" }\n\
+                    symbols = { x = \"one\", y = \"other\" }\n[[step]]\nname = \"P\"\n\
+                    be = \"(x + y)^40\"\n[numeric]\nvalues = { x = 1.0, y = 2.0 }\n";
+        Scene::parse(text, std::path::Path::new("big.toml")).unwrap()
+    }
+
+    /// A run of many scenes on two threads gives each scene's report, warning and error in the
+    /// scenes' order, the same as running them one by one; one scene's failure stops no other.
+    #[test]
+    fn many_scenes_on_two_threads_come_back_in_order_as_one_by_one() {
+        let scenes = || {
+            vec![
+                // The slowest numeric stage first: the scenes behind it finish their symbolic
+                // stage before it is checked.
+                lecture("lecture-3-9/03-asymmetric-top.toml"),
+                hoop(),
+                too_big(),
+                lecture("lecture-3-4/05-cube-corner.toml"),
+                lecture("lecture-3-9/02-symmetric-top.toml"),
+            ]
+        };
+        let draft = Some(Fidelity::DRAFT);
+        let one_by_one: Vec<_> = scenes()
+            .into_iter()
+            .map(|s| run_scene_stored(&Memory::default(), s, draft).map(|(r, _)| r))
+            .collect();
+        // One stored report damaged: its warning is told in its place.
+        let store = Memory::default();
+        store
+            .0
+            .borrow_mut()
+            .insert(key(&hoop(), Some(&Fidelity::DRAFT)), b"not json".to_vec());
+        let mut told = Vec::new();
+        let (reports, failed) = run_all(scenes(), draft, &store, &mut |p| match p {
+            Progress::Warning(w) => told.push(format!("warning {w}")),
+            Progress::Failed(e) => told.push(format!("failed {}", e.split(':').next().unwrap())),
+            Progress::Starting { .. } | Progress::Finished => {}
+        });
+        assert_eq!(
+            told,
+            [
+                "warning unreadable (\"hoop\", \"draft\")".to_string(),
+                "failed big.toml".into()
+            ]
+        );
+        assert_eq!(failed.len(), 1);
+        let ids: Vec<_> = reports.iter().map(|r| r.scene.id.as_str()).collect();
+        let expected: Vec<_> = one_by_one
+            .iter()
+            .flatten()
+            .map(|r| r.scene.id.as_str())
+            .collect();
+        assert_eq!(ids, expected);
+        assert!(one_by_one[2].is_err());
+        for (r, alone) in reports.iter().zip(one_by_one.iter().flatten()) {
+            // What was computed, less the times it took.
+            fn timeless(v: &mut serde_json::Value) {
+                match v {
+                    serde_json::Value::Object(o) => {
+                        o.remove("seconds");
+                        o.values_mut().for_each(timeless);
+                    }
+                    serde_json::Value::Array(a) => a.iter_mut().for_each(timeless),
+                    _ => {}
+                }
+            }
+            let json = |r: &super::SceneReport| {
+                let mut v =
+                    serde_json::to_value((&r.derivation, &r.verification, &r.figures)).unwrap();
+                timeless(&mut v);
+                v
+            };
+            assert!(json(r) == json(alone), "{} differs", r.scene.id);
+            assert_eq!(r.engine_calls, alone.engine_calls, "{}", r.scene.id);
+            assert_eq!(
+                r.numeric_work.rhs_evaluations, alone.numeric_work.rhs_evaluations,
+                "{}",
+                r.scene.id
+            );
+        }
+        // Each report was stored, whole and symbolic.
+        assert_eq!(store.0.borrow().len(), 2 * reports.len());
     }
 }

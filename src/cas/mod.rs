@@ -46,7 +46,6 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Sender, channel};
 use std::time::Instant;
 
@@ -199,8 +198,12 @@ fn engine_message(log: &str, panic: Option<&str>) -> String {
 }
 
 static WORKER: OnceLock<Sender<Job>> = OnceLock::new();
-static BUSY_NANOS: AtomicU64 = AtomicU64::new(0);
-static CALLS: AtomicU64 = AtomicU64::new(0);
+
+thread_local! {
+    /// The engine's time and calls asked for by this thread: a scene's symbolic stage counts
+    /// its own, while another thread checks the scene before it numerically.
+    static ASKED: std::cell::Cell<(u64, u64)> = const { std::cell::Cell::new((0, 0)) };
+}
 
 /// The per-user lock file that serialises mechbook processes: `mechbook/symbolica.lock` in the
 /// user's cache folder (`$XDG_CACHE_HOME`, else `$HOME/.cache`). That is where Symbolica keeps
@@ -278,7 +281,7 @@ pub(crate) fn run<T: Send + 'static>(
     let (tx, rx) = channel();
     let job: Job = Box::new(move |refusal| {
         if let Some(e) = refusal {
-            let _ = tx.send((Ok(Err(e.clone())), String::new()));
+            let _ = tx.send((Ok(Err(e.clone())), String::new(), 0));
             return;
         }
         let start = Instant::now();
@@ -286,14 +289,19 @@ pub(crate) fn run<T: Send + 'static>(
         let result = catch_unwind(AssertUnwindSafe(f))
             .map(|r| r.map_err(|e| CasError::from(CasFailure::Engine(e))));
         let log = ENGINE_LOG.with(|l| std::mem::take(&mut *l.borrow_mut()));
-        BUSY_NANOS.fetch_add(start.elapsed().as_nanos() as u64, Ordering::Relaxed);
-        CALLS.fetch_add(1, Ordering::Relaxed);
-        let _ = tx.send((result, log));
+        let _ = tx.send((result, log, start.elapsed().as_nanos() as u64));
     });
     worker()
         .send(job)
         .map_err(|_| CasError::from(CasFailure::Stopped))?;
-    match rx.recv() {
+    let answer = rx.recv().map(|(result, log, nanos)| {
+        ASKED.with(|a| {
+            let (busy, calls) = a.get();
+            a.set((busy + nanos, calls + 1));
+        });
+        (result, log)
+    });
+    match answer {
         // A warning means the result is not to be trusted (infinity, a failed conversion).
         Ok((Ok(Ok(_)), log)) if !log.trim().is_empty() => {
             Err(CasFailure::Reported(engine_message(&log, None)).into())
@@ -310,12 +318,11 @@ pub(crate) fn run<T: Send + 'static>(
     }
 }
 
-/// Engine time and call count so far in this process: the cost of the symbolic stage.
+/// Engine time and call count so far asked for by the calling thread: the cost of the
+/// symbolic stage.
 pub fn stats() -> (f64, u64) {
-    (
-        BUSY_NANOS.load(Ordering::Relaxed) as f64 * 1e-9,
-        CALLS.load(Ordering::Relaxed),
-    )
+    let (busy, calls) = ASKED.with(|a| a.get());
+    (busy as f64 * 1e-9, calls)
 }
 
 /// Expands and normalises each expression to a canonical sum of terms, with the sine and
