@@ -86,6 +86,32 @@ fn expected(id: &str, x: &BTreeMap<String, f64>) -> Vec<Vec<f64>> {
             w.sort_by(f64::total_cmp);
             vec![vec![w[0]], vec![w[n - 1] / w[0]]]
         }
+        // A solid ball: I = 2MR²/5 rolls down at 5g sin α/7.
+        "problem-rolling-ball" => vec![
+            vec![0.4 * g("M") * g("R").powi(2)],
+            vec![5.0 / 7.0 * g("g") * g("alpha").sin()],
+        ],
+        // A rod about a pivot d from its centre: I = ML²/12 + Md², T = 2π√(I/(Mgd)).
+        "problem-offset-pivot" => {
+            let i = g("M") * (g("L").powi(2) / 12.0 + g("d").powi(2));
+            vec![
+                vec![i],
+                vec![2.0 * std::f64::consts::PI * (i / (g("M") * g("g") * g("d"))).sqrt()],
+            ]
+        }
+        // Newton on each mass and on the pulley: (m1 − m2)g = (m1 + m2 + I/R²)a, I = MR²/2.
+        "problem-atwood-pulley" => {
+            let i = g("M") * g("R").powi(2) / 2.0;
+            vec![
+                vec![i],
+                vec![(g("m1") - g("m2")) * g("g") / (g("m1") + g("m2") + i / g("R").powi(2))],
+            ]
+        }
+        // A ball rolling in a bowl: Ω² = g/((R − r)(1 + 2/5)).
+        "problem-ball-in-bowl" => {
+            let w = (g("g") / ((g("R") - g("r")) * 1.4)).sqrt();
+            vec![vec![w], vec![2.0 * std::f64::consts::PI / w]]
+        }
         other => panic!("no closed form for {other}"),
     }
 }
@@ -93,7 +119,7 @@ fn expected(id: &str, x: &BTreeMap<String, f64>) -> Vec<Vec<f64>> {
 #[test]
 fn every_key_answer_matches_a_closed_form_and_none_reaches_a_student() {
     let scenes = checked();
-    assert_eq!(scenes.len(), 7);
+    assert_eq!(scenes.len(), 11);
     let dir = scratch("answers-site");
     let site = dir.join("site");
     let built = mechbook(&["build", COURSE, "--out", site.to_str().unwrap()]);
