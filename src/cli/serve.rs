@@ -174,8 +174,8 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     if let Some(p) = pdfs.take() {
         p.cancel();
         eprintln!(
-            "mechbook: stopped before the last edit's PDFs were typeset: {} lacks them until \
-             `mechbook build` (or serve) runs again",
+            "mechbook: stopped before the PDFs were typeset: {} lacks them until `mechbook \
+             build` (or serve) runs again",
             build.out().display()
         );
     }
@@ -254,6 +254,14 @@ impl ChildBuild {
         let exe = std::env::current_exe().context("cannot find this program to run its builds")?;
         let scratch = crate::site::scratch::folder("serve")
             .context("cannot make a temporary folder for the builds' reports")?;
+        // `--no-cache` leaves the course's cache unread and unwritten. Serve's own builds still
+        // share a cache of their own, in its temporary folder (removed with it when serve stops): without one
+        // each edit derived every scene twice, for the page and again for its PDFs.
+        let mut args = args.clone();
+        if args.no_cache {
+            args.no_cache = false;
+            args.cache = scratch.join("cache");
+        }
         Ok(ChildBuild {
             exe,
             args: args.command_line(out),

@@ -342,6 +342,49 @@ fn serve_reloads_the_page_first_and_its_pdfs_follow_as_build_makes_them() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `serve --no-cache` neither reads nor writes the course's cache, yet derives each scene once:
+/// the build of the PDFs after the page-first one, and each edit, take the scenes from serve's
+/// own cache, which goes with serve.
+#[test]
+fn serve_no_cache_derives_each_scene_once_and_leaves_no_cache_behind() {
+    let (dir, course) = new_course("serve-no-cache");
+    let mut s = serve_with(&course, &["--no-cache"], &[]);
+    let built = |log: &[String]| -> Vec<String> {
+        log.iter()
+            .filter(|l| l.starts_with("mechbook: built "))
+            .cloned()
+            .collect()
+    };
+    let log = said(&s, PDFS_READY);
+    // The page-first build's line was said before the address; the PDFs' build's after it.
+    let pdfs = built(&log);
+    assert_eq!(pdfs.len(), 1, "{log:#?}");
+    assert!(
+        pdfs[0].contains("from 2 scenes (2 from the cache"),
+        "the PDFs' build derived again: {}",
+        pdfs[0]
+    );
+    let scene = course.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    std::fs::write(&scene, text.replace("A book as a uniform box", "A box")).unwrap();
+    let log = said(&s, PDFS_READY);
+    let builds = built(&log);
+    assert_eq!(builds.len(), 2, "{log:#?}");
+    assert!(builds[0].contains("(1 from the cache"), "{}", builds[0]);
+    assert!(builds[1].contains("(2 from the cache"), "{}", builds[1]);
+    assert!(page(s.port, "/book.html").contains("A box"));
+    assert_eq!(interrupt(&mut s.child), Some(0));
+    assert!(
+        !course.join(".mechbook-cache").exists(),
+        "--no-cache wrote the course's cache"
+    );
+    let pid = s.child.id();
+    let scratch = std::env::temp_dir().join(format!("mechbook-serve-{pid}"));
+    assert!(!scratch.exists(), "{} left behind", scratch.display());
+    drop(s);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn serve_holds_no_engine_sees_a_replaced_folder_and_keeps_to_its_site_and_host() {
     let (dir, course) = new_course("serve-child");
