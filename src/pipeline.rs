@@ -284,8 +284,8 @@ pub enum Progress<'a> {
 /// Every scene through `store`, in order: the reports, and the errors of those that failed.
 ///
 /// Both cores work: while the engine derives a scene on this thread, a second thread checks
-/// the scene before it numerically (the numeric routes call the engine seldom, through its one
-/// worker). Each scene's report, warnings and error are told in the scenes' order, whichever
+/// the scene before it numerically (an engine call of a numeric route waits for the engine's
+/// one worker, as every call does). Each scene's report, warnings and error are told in the scenes' order, whichever
 /// thread finished first, so the output is that of a run on one thread.
 pub fn run_all<S: ResultStore>(
     scenes: Vec<Scene>,
@@ -307,7 +307,6 @@ pub fn run_all<S: ResultStore>(
                 }
             }
         });
-        let mut derived_scenes = Vec::new();
         for (i, scene) in scenes.into_iter().enumerate() {
             tell(Progress::Starting {
                 done: i,
@@ -321,7 +320,6 @@ pub fn run_all<S: ResultStore>(
                 Lookup::Run(scene, symbolic) => match derived(scene, symbolic) {
                     Ok(d) => {
                         check.send((i, d)).expect("the numeric thread runs");
-                        derived_scenes.push(i);
                         None
                     }
                     Err(e) => Some(Err(e)),

@@ -255,8 +255,9 @@ impl ChildBuild {
         let scratch = crate::site::scratch::folder("serve")
             .context("cannot make a temporary folder for the builds' reports")?;
         // `--no-cache` leaves the course's cache unread and unwritten. Serve's own builds still
-        // share a cache of their own, in its temporary folder (removed with it when serve stops): without one
-        // each edit derived every scene twice, for the page and again for its PDFs.
+        // share a cache of their own, in its temporary folder (removed with it when serve
+        // stops): without one each edit derived every scene twice, for the page and again for
+        // its PDFs.
         let mut args = args.clone();
         if args.no_cache {
             args.no_cache = false;
