@@ -266,8 +266,18 @@ impl Build {
             course: &course,
             templates: &templates,
             timings: self.timings,
+            memo: match &self.cache {
+                Some(cache) => cache,
+                None => &crate::render::memo::Forget,
+            },
         };
         let rendered = crate::render::render(&documents, &cx).map_err(|e| fail(e.into()))?;
+        let mut warnings = Vec::new();
+        if let Some(cache) = &self.cache
+            && let Err(e) = cache.keep_rendered(&rendered.kept)
+        {
+            warnings.push(format!("the cache is not updated: {e}"));
+        }
         let mut site = rendered.files;
         let pdfs = if self.pdfs_later {
             crate::site::pdfs::from_cache_only(&rendered.typeset, self.cache.as_ref(), "site")
@@ -275,7 +285,7 @@ impl Build {
             typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site")
         };
         let pdfs_pending = pdfs.pending;
-        let mut warnings = pdfs.warnings;
+        warnings.extend(pdfs.warnings);
         // A document Typst cannot set fails the build, but the HTML site and the other PDFs
         // are still written.
         let mut failed_documents = pdfs.failed;

@@ -169,7 +169,7 @@ pub struct Cost {
     pub seconds: f64,
 }
 
-#[derive(Debug, Clone, serde::Serialize)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Link {
     pub href: String,
     pub title: String,

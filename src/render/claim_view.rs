@@ -67,7 +67,8 @@ pub(super) fn claim_view(c: &crate::verify::ClaimResult) -> Result<ClaimView, Re
         role: match c.role {
             crate::scene::ClaimRole::Notes => "notes",
             crate::scene::ClaimRole::Mistake => "mistake",
-        },
+        }
+        .into(),
     })
 }
 

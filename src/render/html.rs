@@ -1,12 +1,11 @@
 //! The HTML renderer: the documents -> the site's pages, handouts, sheets, plots and style
 //! sheet through the Tera templates, as bytes in memory. Writing them is `site`'s job.
 
-use super::RenderError;
-use super::renderer::{Context, Rendered, Renderer, SiteFiles, TemplateTexts, add};
+use super::renderer::{Context, Rendered, Renderer, TemplateTexts, add};
 use super::{PageView, page_view, plot, problems};
+use super::{RenderError, memo};
 use crate::document::course::{Documents, Lecture};
-use crate::scene::Course;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 /// The templates, embedded as defaults; a user's folder overrides them file by file.
@@ -73,8 +72,8 @@ fn templates(overrides: &TemplateTexts) -> Result<(tera::Tera, String), RenderEr
     Ok((tera, css))
 }
 
-fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<Vec<u8>, RenderError> {
-    tera.render(name, ctx).map(String::into_bytes).map_err(|e| {
+fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<String, RenderError> {
+    tera.render(name, ctx).map_err(|e| {
         let mut message = e.to_string();
         let mut source = std::error::Error::source(&e);
         while let Some(s) = source {
@@ -91,11 +90,12 @@ fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<Vec<u8>,
 /// A lecture's problem sheet and answer key, when it has problems: their paths.
 fn problem_sheets(
     tera: &tera::Tera,
-    course: &Course,
+    cx: &Context,
     docs: &Documents,
     lecture: &Lecture,
-    files: &mut SiteFiles,
+    out: &mut Rendered,
 ) -> Result<Option<(String, Option<String>)>, RenderError> {
+    let course = cx.course;
     let Some(sheet) = &lecture.sheet else {
         return Ok(None);
     };
@@ -107,43 +107,55 @@ fn problem_sheets(
         if kind == "key" && course.answers_private {
             continue;
         }
-        let mut ctx = tera::Context::new();
-        ctx.insert("site", course);
-        ctx.insert(
-            "lecture",
-            &serde_json::json!({ "name": lecture.name, "heading": heading }),
-        );
-        ctx.insert(
-            "problems",
-            &lecture
-                .pages
-                .iter()
-                .filter(|&&i| docs.is_problem(i))
-                .count(),
-        );
-        let mut css = problems::print_css(&course.title, &format!("{heading}: {title}"), count);
-        // The student's sheet is built from statements and values alone: no answer reaches it.
-        if kind == "student" {
-            ctx.insert("variants", &problems::student_sheet(sheet)?);
-        } else {
-            let key = problems::answer_key(sheet)?;
-            if !key.shared.is_empty() {
-                css.push_str(&problems::shared_css(count));
+        let problems = lecture
+            .pages
+            .iter()
+            .filter(|&&i| docs.is_problem(i))
+            .count();
+        let page = format!("{slug}-problems-{kind}");
+        let unit = memo::key(&[
+            &"sheet",
+            &page,
+            sheet,
+            &lecture.name,
+            heading,
+            &problems,
+            course,
+            cx.templates,
+        ]);
+        let mut columns = problems::Recall::of(cx.memo, &page);
+        let (html, kept) = memo::recall_or(cx.memo, format!("{page}.html"), unit, || {
+            let mut ctx = tera::Context::new();
+            ctx.insert("site", course);
+            ctx.insert(
+                "lecture",
+                &serde_json::json!({ "name": lecture.name, "heading": heading }),
+            );
+            ctx.insert("problems", &problems);
+            let mut css = problems::print_css(&course.title, &format!("{heading}: {title}"), count);
+            // The student's sheet is built from statements and values alone: no answer
+            // reaches it.
+            if kind == "student" {
+                ctx.insert("variants", &problems::student_sheet(sheet, &mut columns)?);
+            } else {
+                let key = problems::answer_key(sheet, &mut columns)?;
+                if !key.shared.is_empty() {
+                    css.push_str(&problems::shared_css(count));
+                }
+                ctx.insert("shared", &key.shared);
+                ctx.insert("variants", &key.variants);
             }
-            ctx.insert("shared", &key.shared);
-            ctx.insert("variants", &key.variants);
-        }
-        ctx.insert("print_css", &css);
-        ctx.insert(
-            "pdf",
-            &super::pdf::ENABLED.then(|| format!("pdf/{slug}-problems-{kind}.pdf")),
-        );
-        let path = format!("handouts/{slug}-problems-{kind}.html");
-        add(
-            files,
-            PathBuf::from(&path),
-            render(tera, &format!("problems-{kind}.html"), &ctx)?,
-        )?;
+            ctx.insert("print_css", &css);
+            ctx.insert(
+                "pdf",
+                &super::pdf::ENABLED.then(|| format!("pdf/{page}.pdf")),
+            );
+            render(tera, &format!("problems-{kind}.html"), &ctx)
+        })?;
+        out.kept.extend(kept);
+        out.kept.extend(columns.kept);
+        let path = format!("handouts/{page}.html");
+        add(&mut out.files, PathBuf::from(&path), html.into_bytes())?;
         paths.push(path);
     }
     Ok(Some((paths[0].clone(), paths.get(1).cloned())))
@@ -164,32 +176,48 @@ impl Renderer for Html {
     }
 }
 
+/// A scene's page as made: its view (which the handouts and the index read), its HTML, and
+/// what the build says of it.
+#[derive(Serialize, Deserialize)]
+struct PageMade {
+    view: PageView,
+    html: String,
+    note: Option<String>,
+}
+
 fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), RenderError> {
     let course = cx.course;
-    let files = &mut out.files;
     let (tera, css) = templates(cx.templates)?;
-    add(files, PathBuf::from("style.css"), css.into_bytes())?;
+    add(&mut out.files, PathBuf::from("style.css"), css.into_bytes())?;
     for (i, file, fig) in &docs.figures {
-        let svg = plot::svg(fig).map_err(|e| e.in_scene(&docs.pages[*i].source))?;
-        add(files, PathBuf::from(file), svg.into_bytes())?;
+        let name = file.replace('/', ".");
+        let (svg, kept) = memo::recall_or(cx.memo, name, memo::key(&[&"plot", fig]), || {
+            plot::svg(fig).map_err(|e| e.in_scene(&docs.pages[*i].source))
+        })?;
+        out.kept.extend(kept);
+        add(&mut out.files, PathBuf::from(file), svg.into_bytes())?;
     }
     // Each page on its own, on both cores; added in the pages' order.
     let made = crate::base::in_order::map_in_order(&docs.pages, |page| {
-        let view = page_view(page, cx.timings).map_err(|e| e.in_scene(&page.source))?;
-        let mut ctx = tera::Context::new();
-        ctx.insert("site", course);
-        ctx.insert("page", &view);
-        ctx.insert("lecture_heading", &course.lecture_heading(&view.lecture));
-        let bytes = render(&tera, "page.html", &ctx)?;
-        let note = phone_scaled(page, &bytes);
-        Ok::<_, RenderError>((view, bytes, note))
+        let unit = memo::key(&[&"page", page, course, cx.templates, &cx.timings]);
+        memo::recall_or(cx.memo, format!("{}.page", page.id), unit, || {
+            let view = page_view(page, cx.timings).map_err(|e| e.in_scene(&page.source))?;
+            let mut ctx = tera::Context::new();
+            ctx.insert("site", course);
+            ctx.insert("page", &view);
+            ctx.insert("lecture_heading", &course.lecture_heading(&view.lecture));
+            let html = render(&tera, "page.html", &ctx)?;
+            let note = phone_scaled(page, html.as_bytes());
+            Ok::<_, RenderError>(PageMade { view, html, note })
+        })
     });
     let mut pages: Vec<PageView> = Vec::new();
     for (made, file) in made.into_iter().zip(&docs.files) {
-        let (view, bytes, note) = made?;
-        out.notes.extend(note);
-        add(files, PathBuf::from(file), bytes)?;
-        pages.push(view);
+        let (made, kept) = made?;
+        out.kept.extend(kept);
+        out.notes.extend(made.note);
+        add(&mut out.files, PathBuf::from(file), made.html.into_bytes())?;
+        pages.push(made.view);
     }
     let mut lectures: Vec<LectureView> = Vec::new();
     for lecture in &docs.lectures {
@@ -217,12 +245,12 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
                 &super::pdf::ENABLED.then(|| format!("pdf/{slug}-{kind}.pdf")),
             );
             add(
-                files,
+                &mut out.files,
                 PathBuf::from(format!("handouts/{slug}-{kind}.html")),
-                render(&tera, "handout.html", &ctx)?,
+                render(&tera, "handout.html", &ctx)?.into_bytes(),
             )?;
         }
-        let problems = problem_sheets(&tera, course, docs, lecture, files)?;
+        let problems = problem_sheets(&tera, cx, docs, lecture, out)?;
         lectures.push(LectureView {
             name: lecture.name.clone(),
             heading: lecture.heading.clone(),
@@ -250,9 +278,9 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
     ctx.insert("site", course);
     ctx.insert("lectures", &lectures);
     add(
-        files,
+        &mut out.files,
         PathBuf::from("index.html"),
-        render(&tera, "index.html", &ctx)?,
+        render(&tera, "index.html", &ctx)?.into_bytes(),
     )?;
     Ok(())
 }

@@ -30,17 +30,23 @@ impl Renderer for JsonReport {
             .collect();
         // Each page's file on both cores, added in the pages' order.
         let files = crate::base::in_order::map_in_order(&published, |&i| {
-            let mut j = scene_json(&docs.pages[i]);
-            if !cx.timings {
-                without_seconds(&mut j);
-            }
-            pretty(&j)
+            let page = &docs.pages[i];
+            let unit = super::memo::key(&[&"json", page, &cx.timings]);
+            super::memo::recall_or(cx.memo, format!("{}.json", page.id), unit, || {
+                let mut j = scene_json(page);
+                if !cx.timings {
+                    without_seconds(&mut j);
+                }
+                Ok::<_, RenderError>(pretty(&j))
+            })
         });
-        for (&i, bytes) in published.iter().zip(files) {
+        for (&i, made) in published.iter().zip(files) {
+            let (text, kept) = made?;
+            out.kept.extend(kept);
             super::renderer::add(
                 &mut out.files,
                 format!("export/json/{}.json", docs.pages[i].id),
-                bytes,
+                text.into_bytes(),
             )?;
         }
         let lectures: Vec<Json> = docs
@@ -56,14 +62,18 @@ impl Renderer for JsonReport {
             })
             .collect();
         let course = json!({ "title": cx.course.title, "lectures": lectures });
-        super::renderer::add(&mut out.files, "export/json/course.json", pretty(&course))
+        super::renderer::add(
+            &mut out.files,
+            "export/json/course.json",
+            pretty(&course).into_bytes(),
+        )
     }
 }
 
-fn pretty(j: &Json) -> Vec<u8> {
+fn pretty(j: &Json) -> String {
     let mut text = serde_json::to_string_pretty(j).expect("JSON values print");
     text.push('\n');
-    text.into_bytes()
+    text
 }
 
 /// The report with every measured time (`seconds`, `symbolic_seconds`) taken out.

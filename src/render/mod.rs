@@ -8,6 +8,7 @@ pub mod handout;
 pub mod html;
 pub mod json;
 pub mod math;
+pub mod memo;
 pub mod moodle;
 pub mod pdf;
 pub mod plot;
@@ -39,10 +40,10 @@ use crate::derive::ExactBasis;
 use crate::document::{At, Link, Page, PrincipalValues};
 use crate::model::value::Value;
 use crate::notation::{Formula, Op};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct StepView {
     pub title: String,
     pub math: String,
@@ -54,7 +55,7 @@ pub struct StepView {
     pub check: String,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ClaimView {
     pub eq: String,
     pub statement: String,
@@ -76,10 +77,10 @@ pub struct ClaimView {
     /// where it rests on no such assumption.
     pub positive: String,
     /// `notes` or `mistake`.
-    pub role: &'static str,
+    pub role: String,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct NumericRow {
     pub body: String,
     pub method: String,
@@ -93,7 +94,7 @@ pub struct NumericRow {
     pub seconds: Option<String>,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct AccuracyRow {
     pub result: String,
     pub method: String,
@@ -103,7 +104,7 @@ pub struct AccuracyRow {
     pub seconds: Option<String>,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct FigureView {
     /// Relative to the site root: `plots/<scene>-<slug>.svg`.
     pub file: String,
@@ -113,7 +114,7 @@ pub struct FigureView {
     pub accuracy: Vec<AccuracyRow>,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PageView {
     pub id: String,
     pub title: String,

@@ -2,6 +2,7 @@
 //! values, space to work, and no answer) and the key (each variant's answers, exact and to four
 //! figures).
 
+use super::memo::{Kept, Memo};
 use super::{RenderError, math};
 use crate::base::format::figures;
 use crate::cas::Expr;
@@ -10,7 +11,8 @@ use crate::model::catalogue::{quantity, quantity_symbol};
 use crate::model::prose::Prose;
 use crate::model::value::Value;
 use crate::notation::{Formula, Op};
-use serde::Serialize;
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
 
 /// Significant figures of the key's decimals.
 pub const KEY_FIGURES: usize = 4;
@@ -19,14 +21,14 @@ pub const KEY_FIGURES: usize = 4;
 /// column: more than the decimal column's, so a grader can tell a rounding slip from an error.
 pub const ROUNDED_FIGURES: usize = 6;
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SheetVariant<P> {
     pub number: usize,
     pub problems: Vec<P>,
 }
 
 /// A problem as the student sees it: no answer, not even hidden.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct StudentProblem {
     pub number: usize,
     pub title: String,
@@ -37,7 +39,7 @@ pub struct StudentProblem {
     pub statement: String,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct KeyProblem {
     pub number: usize,
     pub title: String,
@@ -55,7 +57,7 @@ pub struct KeyProblem {
     pub serves: Vec<usize>,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct KeyAnswer {
     pub label: String,
     pub exact: String,
@@ -67,11 +69,34 @@ pub fn statement_html(statement: &Prose) -> Result<String, RenderError> {
     super::prose_html(statement)
 }
 
-/// The sheet's variants, each with every problem's `make` at its variant on that sheet.
-fn sheet_views<P>(
+/// The sheet's variants, each with every problem's `make` at its variant on that sheet. Each
+/// problem's column (its views in every sheet variant) is a unit of the memo: an edit to one
+/// problem makes only its own views again.
+fn sheet_views<P: Serialize + DeserializeOwned>(
     sheet: &Sheet,
+    memo: &mut Recall,
     make: impl Fn(usize, &Problem, &Variant, bool) -> Result<P, RenderError>,
 ) -> Result<Vec<SheetVariant<P>>, RenderError> {
+    let mut columns = Vec::new();
+    for j in 0..sheet.problems.len() {
+        let (number, p) = sheet.problem(j);
+        let cells: Vec<(usize, bool)> = sheet
+            .variants
+            .iter()
+            .flat_map(|sv| sv.problems.iter().filter(|sp| sp.problem == j))
+            .map(|sp| (sp.variant, sp.shared))
+            .collect();
+        let column = memo.recall_or(&format!("{number}"), &[p, &cells], || {
+            crate::notation::typeset_as(&p.tex, || {
+                cells
+                    .iter()
+                    .map(|&(v, shared)| make(number, p, &p.variants[v], shared))
+                    .collect::<Result<Vec<P>, RenderError>>()
+            })
+            .map_err(|e| e.in_scene(&p.source))
+        })?;
+        columns.push(column.into_iter());
+    }
     sheet
         .variants
         .iter()
@@ -79,14 +104,8 @@ fn sheet_views<P>(
             let problems = sv
                 .problems
                 .iter()
-                .map(|sp| {
-                    let (number, p) = sheet.problem(sp.problem);
-                    crate::notation::typeset_as(&p.tex, || {
-                        make(number, p, &p.variants[sp.variant], sp.shared)
-                    })
-                    .map_err(|e| e.in_scene(&p.source))
-                })
-                .collect::<Result<_, RenderError>>()?;
+                .map(|sp| columns[sp.problem].next().expect("a view for each cell"))
+                .collect();
             Ok(SheetVariant {
                 number: sv.number,
                 problems,
@@ -95,9 +114,47 @@ fn sheet_views<P>(
         .collect()
 }
 
+/// A sheet's units in the memo, named `<sheet>-<problem number>` and keyed by their inputs,
+/// and those made fresh.
+pub struct Recall<'a> {
+    pub memo: &'a dyn Memo,
+    /// The sheet's file, as its unit names start (`lecture-1-problems-key`).
+    pub sheet: String,
+    pub kept: Vec<Kept>,
+}
+
+impl<'a> Recall<'a> {
+    /// The units of the sheet written to `path` (a site path: its `/` become `.`).
+    pub fn of(memo: &'a dyn Memo, path: &str) -> Recall<'a> {
+        Recall {
+            memo,
+            sheet: path.replace('/', "."),
+            kept: Vec::new(),
+        }
+    }
+
+    pub(crate) fn recall_or<T: Serialize + DeserializeOwned>(
+        &mut self,
+        unit: &str,
+        inputs: &[&dyn std::fmt::Debug],
+        make: impl FnOnce() -> Result<T, RenderError>,
+    ) -> Result<T, RenderError> {
+        let mut all: Vec<&dyn std::fmt::Debug> = vec![&"sheet-column", &self.sheet];
+        all.extend_from_slice(inputs);
+        let key = super::memo::key(&all);
+        let name = format!("{}-{unit}", self.sheet);
+        let (made, kept) = super::memo::recall_or(self.memo, name, key, make)?;
+        self.kept.extend(kept);
+        Ok(made)
+    }
+}
+
 /// The student's sheet: built from the statements and values alone, so no answer reaches it.
-pub fn student_sheet(sheet: &Sheet) -> Result<Vec<SheetVariant<StudentProblem>>, RenderError> {
-    sheet_views(sheet, |number, p, v, _| {
+pub fn student_sheet(
+    sheet: &Sheet,
+    memo: &mut Recall,
+) -> Result<Vec<SheetVariant<StudentProblem>>, RenderError> {
+    sheet_views(sheet, memo, |number, p, v, _| {
         Ok(StudentProblem {
             number,
             title: p.title.clone(),
@@ -119,7 +176,7 @@ pub struct AnswerKey {
 }
 
 /// A problem in a sheet variant of the key: its answers, or which of its shared variants.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum KeyEntry {
     Answers(KeyProblem),
@@ -131,7 +188,7 @@ pub enum KeyEntry {
     },
 }
 
-pub fn answer_key(sheet: &Sheet) -> Result<AnswerKey, RenderError> {
+pub fn answer_key(sheet: &Sheet, memo: &mut Recall) -> Result<AnswerKey, RenderError> {
     let shared = sheet
         .shared
         .iter()
@@ -145,7 +202,7 @@ pub fn answer_key(sheet: &Sheet) -> Result<AnswerKey, RenderError> {
             Ok(answered)
         })
         .collect::<Result<_, RenderError>>()?;
-    let variants = sheet_views(sheet, |number, p, v, shared| {
+    let variants = sheet_views(sheet, memo, |number, p, v, shared| {
         Ok(if shared {
             KeyEntry::Shared {
                 number,

@@ -2,6 +2,7 @@
 //! ([`Documents`]) behind one trait, as mdBook's renderers each take one context. A new format
 //! is a file with a [`Renderer`] and a line in `RENDERERS` (`render/mod.rs`).
 
+use super::memo::{Kept, Memo};
 use super::{RenderError, pdf::PdfSource};
 use crate::document::course::Documents;
 use crate::scene::Course;
@@ -39,15 +40,19 @@ pub struct Context<'a> {
     pub templates: &'a TemplateTexts,
     /// Measured seconds in the numeric tables.
     pub timings: bool,
+    /// What earlier builds rendered: units made from the same inputs are taken from it.
+    pub memo: &'a dyn Memo,
 }
 
 /// What the renderers made: the site's files, the documents Typst is to set (`site` typesets
-/// and caches them), and what the build should tell the user.
+/// and caches them), what the build should tell the user, and the units made fresh, for the
+/// memo.
 #[derive(Default)]
 pub struct Rendered {
     pub files: SiteFiles,
     pub typeset: Vec<PdfSource>,
     pub notes: Vec<String>,
+    pub kept: Vec<Kept>,
 }
 
 /// One output format.

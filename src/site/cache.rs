@@ -12,6 +12,7 @@
 use super::SiteError;
 use crate::model::fidelity::Fidelity;
 use crate::pipeline::ResultStore;
+use crate::render::memo::{Kept, Memo};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 
@@ -166,6 +167,49 @@ impl Cache {
         self.named_entry(name, "pdf", &format!("{}:{inputs:016x}", self.program))
     }
 
+    /// A unit the renderers made (`render::memo`), under its name and the hash of its inputs.
+    fn render_entry(&self, name: &str, inputs: u64) -> (PathBuf, u64) {
+        self.named_entry(name, "render", &format!("{}:{inputs:016x}", self.program))
+    }
+
+    /// Keeps the units the renderers made fresh, each replacing its unit's older entry.
+    pub fn keep_rendered(&self, kept: &[Kept]) -> Result<(), SiteError> {
+        if kept.is_empty() {
+            return Ok(());
+        }
+        std::fs::create_dir_all(&self.dir).map_err(|source| SiteError::Io {
+            path: self.dir.clone(),
+            source,
+        })?;
+        let mut names = std::collections::BTreeSet::new();
+        for k in kept {
+            let (path, key) = self.render_entry(&k.name, k.key);
+            super::replace_file(&path, &wrap_entry(key, &k.bytes))?;
+            names.insert(path.file_name().map(|n| n.to_os_string()));
+        }
+        // One pass over the folder for the older entries: a build keeps a hundred units.
+        let units: std::collections::BTreeSet<String> =
+            kept.iter().map(|k| format!("{}.render.", k.name)).collect();
+        let listing = std::fs::read_dir(&self.dir).map_err(|source| SiteError::Io {
+            path: self.dir.clone(),
+            source,
+        })?;
+        for e in listing.flatten() {
+            let n = e.file_name();
+            let s = n.to_string_lossy();
+            let Some(hash) = s.strip_suffix(".json").and_then(|s| s.rsplit_once('.')) else {
+                continue;
+            };
+            let stale = hash.1.len() == 16
+                && units.contains(&format!("{}.", hash.0))
+                && !names.contains(&Some(n.clone()));
+            if stale {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+        Ok(())
+    }
+
     /// The stored bytes on a hit; a damaged entry is told to `damaged` and is a miss.
     fn hit(
         &self,
@@ -267,6 +311,17 @@ impl Cache {
             }
         }
         Ok(())
+    }
+}
+
+/// The build cache keeps what the renderers made: a damaged or missing unit is made again.
+impl Memo for Cache {
+    fn recall(&self, name: &str, key: u64) -> Option<Vec<u8>> {
+        let (path, key) = self.render_entry(name, key);
+        match self.load_at(path, key) {
+            Lookup::Hit(bytes) => Some(bytes),
+            Lookup::Miss | Lookup::Damaged(..) => None,
+        }
     }
 }
 

@@ -2,6 +2,7 @@
 //! links and no build-machine paths in the output.
 
 use super::{mechbook, read_tree, scratch, stderr, stdout};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// A scratch folder with the lectures' site built into `site/` inside it.
@@ -415,5 +416,172 @@ fn the_cache_rebuilds_only_what_changed() {
         page.contains("Numeric fidelity: draft (target relative error 10⁻³"),
         "{page}"
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The renderers' memo (`render::memo`): after one scene's title changes, the pages, JSON,
+/// sheets and markups the edit did not touch are taken from the cache, not made again; the
+/// site is the one a build with no cache writes; a damaged unit, or another template, makes
+/// the pages afresh.
+#[test]
+fn the_renderers_redo_only_what_an_edit_changed() {
+    let dir = scratch("render-memo");
+    let lectures = dir.join("lectures");
+    for sub in ["lecture-3-4", "lecture-3-9"] {
+        std::fs::create_dir_all(lectures.join(sub)).unwrap();
+        for e in std::fs::read_dir(Path::new("lectures").join(sub)).unwrap() {
+            let p = e.unwrap().path();
+            std::fs::copy(&p, lectures.join(sub).join(p.file_name().unwrap())).unwrap();
+        }
+    }
+    let cache = dir.join("cache");
+    let build = |out: &str, extra: &[&str]| {
+        let out = dir.join(out);
+        let mut args = vec!["build", lectures.to_str().unwrap(), "--out"];
+        args.push(out.to_str().unwrap());
+        args.extend_from_slice(extra);
+        let r = mechbook(&args);
+        assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+        read_tree(&out)
+    };
+    let cached = ["--cache", cache.to_str().unwrap()];
+    // Each kept unit's file, by name, with its bytes.
+    let units = || -> BTreeMap<String, (String, Vec<u8>)> {
+        std::fs::read_dir(&cache)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter_map(|p| {
+                let file = p.file_name()?.to_string_lossy().into_owned();
+                let (name, _) = file.split_once(".render.")?;
+                Some((name.to_string(), (file.clone(), std::fs::read(&p).unwrap())))
+            })
+            .collect()
+    };
+    build("a", &cached);
+    let before = units();
+    for name in [
+        "cube-corner.page",
+        "cube-corner.json",
+        "earth-precession.page",
+        "pdf.lecture-3-4-student.pdf",
+    ] {
+        assert!(
+            before.contains_key(name),
+            "no unit {name}: {:?}",
+            before.keys()
+        );
+    }
+    assert!(
+        before.keys().any(|k| k.starts_with("plots.")),
+        "{:?}",
+        before.keys()
+    );
+
+    let earth = lectures.join("lecture-3-9/05-earth.toml");
+    let text = std::fs::read_to_string(&earth).unwrap();
+    std::fs::write(&earth, text.replacen("title = \"", "title = \"Edited: ", 1)).unwrap();
+    let edited = build("b", &cached);
+    let after = units();
+    let fresh = build("fresh", &["--no-cache"]);
+    assert_eq!(
+        edited, fresh,
+        "a site from the memo differs from a fresh one"
+    );
+    let page = String::from_utf8(edited["earth-precession.html"].clone()).unwrap();
+    assert!(
+        page.contains("Edited: Earth"),
+        "the edit is not on its page"
+    );
+    // The edited scene's units are new; the other lecture's are the same files, untouched.
+    for name in [
+        "earth-precession.page",
+        "earth-precession.json",
+        "pdf.lecture-3-9-student.pdf",
+    ] {
+        assert_ne!(
+            before.get(name),
+            after.get(name),
+            "{name} was not made again"
+        );
+    }
+    for name in [
+        "cube-corner.page",
+        "cube-corner.json",
+        "pdf.lecture-3-4-student.pdf",
+    ] {
+        assert_eq!(before.get(name), after.get(name), "{name} was made again");
+    }
+
+    // One problem of a sheet edited: the sheets are made again, but of their problems' parts
+    // only the edited problem's; the other problem's are recalled.
+    let hoop = lectures.join("lecture-3-4/11-problem-tilted-hoop.toml");
+    let text = std::fs::read_to_string(&hoop).unwrap();
+    std::fs::write(&hoop, text.replacen("title = \"", "title = \"Edited: ", 1)).unwrap();
+    let edited = build("e", &cached);
+    let fresh = build("fresh-e", &["--no-cache"]);
+    assert_eq!(
+        edited, fresh,
+        "a sheet from the memo differs from a fresh one"
+    );
+    let sheet =
+        String::from_utf8(edited["handouts/lecture-3-4-problems-key.html"].clone()).unwrap();
+    assert!(sheet.contains("Edited: "), "the edit is not on the key");
+    let (before, after) = (after, units());
+    for sheet in [
+        "lecture-3-4-problems-student",
+        "lecture-3-4-problems-key",
+        "pdf.lecture-3-4-problems-student.pdf",
+        "pdf.lecture-3-4-problems-key.pdf",
+    ] {
+        for (part, made_again) in [("", true), ("-2", true), ("-1", false)] {
+            let name = match part {
+                "" if !sheet.starts_with("pdf.") => format!("{sheet}.html"),
+                _ => format!("{sheet}{part}"),
+            };
+            assert!(
+                after.contains_key(&name),
+                "no unit {name}: {:?}",
+                after.keys()
+            );
+            assert_eq!(
+                before.get(&name) != after.get(&name),
+                made_again,
+                "{name}: made again {}",
+                !made_again
+            );
+        }
+    }
+
+    // A damaged unit is made again: the page is still the right one.
+    let (file, bytes) = &after["cube-corner.page"];
+    std::fs::write(cache.join(file), &bytes[..bytes.len() / 2]).unwrap();
+    assert_eq!(
+        build("c", &cached),
+        fresh,
+        "a damaged unit reached the site"
+    );
+    assert_eq!(
+        &units()["cube-corner.page"].1,
+        bytes,
+        "the damaged unit was not mended"
+    );
+
+    // Another page template: every page is made with it, none recalled from the memo.
+    let templates = dir.join("templates");
+    std::fs::create_dir_all(&templates).unwrap();
+    let page = include_str!("../../templates/page.html").replacen("<body", "<body data-t=\"1\"", 1);
+    std::fs::write(templates.join("page.html"), page).unwrap();
+    let mut args = cached.to_vec();
+    args.extend(["--templates", templates.to_str().unwrap()]);
+    let themed = build("d", &args);
+    for (file, bytes) in &themed {
+        if file.ends_with(".html") && !file.contains('/') && file != "index.html" {
+            let text = String::from_utf8_lossy(bytes);
+            assert!(
+                text.contains("data-t=\"1\""),
+                "{file} was recalled from the memo"
+            );
+        }
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -388,6 +388,7 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
                 course: &course,
                 templates: &Default::default(),
                 timings: false,
+                memo: &mechbook::render::memo::Forget,
             };
             let rendered = mechbook::render::render(&documents, &cx)
                 .map_err(|e| format!("rendering failed: {e}"))?;

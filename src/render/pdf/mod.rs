@@ -9,6 +9,8 @@ mod sheet;
 #[cfg(feature = "pdf")]
 pub mod typeset;
 
+use super::memo::Kept;
+use super::problems::Recall;
 use super::renderer::{Context, Rendered, Renderer};
 use super::{RenderError, SiteFiles};
 use crate::document::course::Documents;
@@ -69,38 +71,84 @@ impl Renderer for Pdf {
         out: &mut Rendered,
     ) -> Result<(), RenderError> {
         if ENABLED {
-            let sources = site_documents(docs, cx.course, &out.files)?;
+            let (sources, kept) = site_documents(docs, cx, &out.files)?;
             out.typeset.extend(sources);
+            out.kept.extend(kept);
         }
         Ok(())
     }
 }
 
-/// Every lecture's handouts, problem sheet and key. `site` holds the plots the instructor's
-/// handout shows.
-pub fn site_documents(
+/// Every lecture's handouts, problem sheet and key, and the markups made fresh (for the
+/// memo). `site` holds the plots the instructor's handout shows.
+fn site_documents(
     docs: &Documents,
-    course: &Course,
+    cx: &Context,
     site: &SiteFiles,
-) -> Result<Vec<PdfSource>, RenderError> {
+) -> Result<(Vec<PdfSource>, Vec<Kept>), RenderError> {
     // Each lecture's documents on both cores, in the lectures' order.
     let made = crate::base::in_order::map_in_order(&docs.lectures, |lecture| {
-        lecture_documents(docs, course, site, lecture)
+        lecture_documents(docs, cx, site, lecture)
     });
-    let mut out = Vec::new();
+    let (mut sources, mut kept) = (Vec::new(), Vec::new());
     for m in made {
-        out.extend(m?);
+        for (source, k) in m? {
+            sources.push(source);
+            kept.extend(k);
+        }
     }
-    Ok(out)
+    Ok((sources, kept))
 }
 
-/// A lecture's handouts, problem sheet and key.
+/// A document's markup, and where each scene's part of it starts: what the memo keeps of it.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Written {
+    markup: String,
+    origins: Vec<(usize, String)>,
+}
+
+impl Written {
+    fn of(m: Markup) -> Written {
+        let s = m.source("", Vec::new());
+        Written {
+            markup: s.markup,
+            origins: s.origins,
+        }
+    }
+
+    fn source(self, path: &str, images: Vec<(String, Vec<u8>)>) -> PdfSource {
+        PdfSource {
+            path: path.to_string(),
+            markup: self.markup,
+            images,
+            origins: self.origins,
+        }
+    }
+}
+
+/// The document at `path` from the memo when its inputs are unchanged, else `write`'s.
+fn written(
+    cx: &Context,
+    path: &str,
+    inputs: &[&dyn std::fmt::Debug],
+    write: impl FnOnce() -> Result<Markup, RenderError>,
+) -> Result<(Written, Option<Kept>), RenderError> {
+    let mut all: Vec<&dyn std::fmt::Debug> = vec![&"pdf", &path, cx.course];
+    all.extend_from_slice(inputs);
+    let unit = super::memo::key(&all);
+    super::memo::recall_or(cx.memo, path.replace('/', "."), unit, || {
+        write().map(Written::of)
+    })
+}
+
+/// A lecture's handouts, problem sheet and key, each with what of its markup was made fresh.
 fn lecture_documents(
     docs: &Documents,
-    course: &Course,
+    cx: &Context,
     site: &SiteFiles,
     lecture: &crate::document::course::Lecture,
-) -> Result<Vec<PdfSource>, RenderError> {
+) -> Result<Vec<(PdfSource, Vec<Kept>)>, RenderError> {
+    let course = cx.course;
     let mut out = Vec::new();
     let heading = &lecture.heading;
     let sheet = &lecture.sheet;
@@ -116,19 +164,22 @@ fn lecture_documents(
         } else {
             (format!("{heading}: summary"), "Student", &paths.student)
         };
-        let mut m = Markup::new(preamble(
-            course,
-            &title,
-            &course_head(course, heading),
-            right,
-        ));
-        m.heading(1, &title)?;
         let parts: Vec<(&crate::document::handout::Part, &crate::document::Page)> = handout
             .parts
             .iter()
             .map(|p| (p, &docs.pages[p.page]))
             .collect();
-        handout::handout(&mut m, &parts, instructor)?;
+        let (made, kept) = written(cx, path, &[&title, heading, &right, &parts], || {
+            let mut m = Markup::new(preamble(
+                course,
+                &title,
+                &course_head(course, heading),
+                right,
+            ));
+            m.heading(1, &title)?;
+            handout::handout(&mut m, &parts, instructor)?;
+            Ok(m)
+        })?;
         let images = if instructor {
             parts
                 .iter()
@@ -142,30 +193,40 @@ fn lecture_documents(
         } else {
             Vec::new()
         };
-        out.push(m.source(path, images));
+        out.push((made.source(path, images), kept.into_iter().collect()));
     }
     if let (Some(sheet), Some((student, key))) = (sheet, &paths.problems) {
         let all: Vec<(usize, Option<&Student>)> =
             (0..sheet.variants.len()).map(|k| (k, None)).collect();
-        let head = format!("{} · {heading}: problem sheet", course.title);
-        let mut m = Markup::new(preamble(
-            course,
-            &format!("{heading}: problem sheet"),
-            &head,
-            "",
-        ));
-        sheet::student_sheet(&mut m, &head, sheet, &all)?;
-        out.push(m.source(student, Vec::new()));
-        let head = format!("{} · {heading}: answer key", course.title);
-        let mut m = Markup::new(preamble(
-            course,
-            &format!("{heading}: answer key"),
-            &head,
-            "",
-        ));
-        sheet::key(&mut m, &head, sheet, &all)?;
+        let mut columns = Recall::of(cx.memo, student);
+        let (made, kept) = written(cx, student, &[heading, sheet], || {
+            let head = format!("{} · {heading}: problem sheet", course.title);
+            let mut m = Markup::new(preamble(
+                course,
+                &format!("{heading}: problem sheet"),
+                &head,
+                "",
+            ));
+            sheet::student_sheet(&mut m, &head, sheet, &all, Some(&mut columns))?;
+            Ok(m)
+        })?;
+        columns.kept.extend(kept);
+        out.push((made.source(student, Vec::new()), columns.kept));
         if let Some(key) = key {
-            out.push(m.source(key, Vec::new()));
+            let mut columns = Recall::of(cx.memo, key);
+            let (made, kept) = written(cx, key, &[heading, sheet], || {
+                let head = format!("{} · {heading}: answer key", course.title);
+                let mut m = Markup::new(preamble(
+                    course,
+                    &format!("{heading}: answer key"),
+                    &head,
+                    "",
+                ));
+                sheet::key(&mut m, &head, sheet, &all, Some(&mut columns))?;
+                Ok(m)
+            })?;
+            columns.kept.extend(kept);
+            out.push((made.source(key, Vec::new()), columns.kept));
         }
     }
     Ok(out)
@@ -237,11 +298,11 @@ pub fn roster_documents(
             if j > 0 {
                 paper.raw("#pagebreak()\n");
             }
-            sheet::student_sheet(&mut paper, &head, sheet, &[(given[i], Some(s))])?;
+            sheet::student_sheet(&mut paper, &head, sheet, &[(given[i], Some(s))], None)?;
             if i > 0 || j > 0 {
                 key.raw("#pagebreak()\n");
             }
-            sheet::key(&mut key, &head, sheet, &[(given[i], Some(s))])?;
+            sheet::key(&mut key, &head, sheet, &[(given[i], Some(s))], None)?;
             csv.push_str(&format!(
                 "{},{},{},{},{file}\n",
                 csv_field(&s.name),

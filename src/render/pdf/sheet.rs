@@ -4,23 +4,12 @@
 //! paper (from a roster) has their name and ID at the top of every page.
 
 use super::markup::{Markup, formula, said_equation, symbol};
-use crate::document::{Problem, Sheet, Variant};
+use crate::document::{Problem, Sheet, SheetProblem, Variant};
 use crate::render::RenderError;
+use crate::render::problems::Recall;
 use crate::render::problems::{KEY_FIGURES, ROUNDED_FIGURES, answer_words, capitalised};
 
 use crate::scene::roster::Student;
-
-/// One sheet variant's problems, each at its own variant: number, problem, variant.
-fn variant_problems(sheet: &Sheet, k: usize) -> Vec<(usize, &Problem, &Variant)> {
-    sheet.variants[k]
-        .problems
-        .iter()
-        .map(|sp| {
-            let (number, p) = sheet.problem(sp.problem);
-            (number, p, &p.variants[sp.variant])
-        })
-        .collect()
-}
 
 /// Starts sheet variant `k` (the `i`th of its document) on a new page, headed with the
 /// document's `head` on the left and `Variant k`, or the student's name, ID and variant, on the
@@ -69,7 +58,9 @@ pub fn student_sheet(
     head: &str,
     sheet: &Sheet,
     which: &[(usize, Option<&Student>)],
+    recall: Option<&mut Recall>,
 ) -> Result<(), RenderError> {
+    let mut columns = Columns::new(sheet, which, recall, |m, n, p, v, _| problem(m, n, p, v))?;
     sheet_headings(m);
     for (i, (k, student)) in which.iter().enumerate() {
         start_variant(m, head, sheet, (i, *k, *student));
@@ -87,11 +78,12 @@ pub fn student_sheet(
                 );
             }
         }
-        for (n, p, v) in variant_problems(sheet, *k) {
+        for sp in &sheet.variants[*k].problems {
+            let (_, p) = sheet.problem(sp.problem);
+            let part = columns.next(sp.problem);
             m.scene_part(&p.source, p.line, |m| {
-                crate::notation::typeset_as(&p.tex, || problem(m, n, p, v))
-            })
-            .map_err(|e| e.in_scene(&p.source))?;
+                m.raw(&part);
+            });
         }
         end_variant(m);
     }
@@ -115,12 +107,16 @@ pub fn key(
     head: &str,
     sheet: &Sheet,
     which: &[(usize, Option<&Student>)],
+    recall: Option<&mut Recall>,
 ) -> Result<(), RenderError> {
     // The site's key answers a problem with fewer variants than the sheet once, in a section
     // of its own, as the HTML key does (the sheet's choice, `document::Sheet::shared`); a
     // student's key answers their own variant where it is asked.
-    sheet_headings(m);
     let whole_sheet = which.iter().all(|(_, student)| student.is_none());
+    let mut columns = Columns::new(sheet, which, recall, |m, n, p, _, sp| {
+        key_entry(m, whole_sheet, sp, n, p)
+    })?;
+    sheet_headings(m);
     if whole_sheet && !sheet.shared.is_empty() {
         m.raw("\n#heading(level: 1)[")
             .text(SHARED)
@@ -141,25 +137,86 @@ pub fn key(
         let right = start_variant(m, head, sheet, (i, *k, *student));
         m.raw("\n#heading(level: 1)[").text(&right).raw("]\n");
         for sp in &sheet.variants[*k].problems {
-            let (n, p) = sheet.problem(sp.problem);
-            let v = &p.variants[sp.variant];
+            let (_, p) = sheet.problem(sp.problem);
+            let part = columns.next(sp.problem);
             m.scene_part(&p.source, p.line, |m| {
-                crate::notation::typeset_as(&p.tex, || {
-                    if whole_sheet && sp.shared {
-                        shared_pointer(m, n, p, v)
-                    } else if sp.shared {
-                        // A student's own variant of a shared problem, answered here.
-                        key_problem(m, &format!("Problem {n}, its variant {}", v.number), p, v)
-                    } else {
-                        key_problem(m, &format!("Problem {n}"), p, v)
-                    }
-                })
-            })
-            .map_err(|e| e.in_scene(&p.source))?;
+                m.raw(&part);
+            });
         }
         end_variant(m);
     }
     Ok(())
+}
+
+/// A problem in a sheet variant of the key: its answers, or where its shared variant is
+/// answered.
+fn key_entry(
+    m: &mut Markup,
+    whole_sheet: bool,
+    sp: &SheetProblem,
+    n: usize,
+    p: &Problem,
+) -> Result<(), RenderError> {
+    let v = &p.variants[sp.variant];
+    if whole_sheet && sp.shared {
+        shared_pointer(m, n, p, v)
+    } else if sp.shared {
+        // A student's own variant of a shared problem, answered here.
+        key_problem(m, &format!("Problem {n}, its variant {}", v.number), p, v)
+    } else {
+        key_problem(m, &format!("Problem {n}"), p, v)
+    }
+}
+
+/// Each problem's part of a sheet variant, written once per problem for all the sheet variants
+/// written (a problem's column): with a memo, a column whose problem is unchanged is recalled.
+/// The parts are then taken in the order they are written.
+struct Columns {
+    parts: Vec<std::vec::IntoIter<String>>,
+}
+
+impl Columns {
+    fn new(
+        sheet: &Sheet,
+        which: &[(usize, Option<&Student>)],
+        mut recall: Option<&mut Recall>,
+        write: impl Fn(&mut Markup, usize, &Problem, &Variant, &SheetProblem) -> Result<(), RenderError>,
+    ) -> Result<Columns, RenderError> {
+        let mut parts = Vec::new();
+        for j in 0..sheet.problems.len() {
+            let (n, p) = sheet.problem(j);
+            let cells: Vec<SheetProblem> = which
+                .iter()
+                .flat_map(|(k, _)| sheet.variants[*k].problems.iter())
+                .filter(|sp| sp.problem == j)
+                .copied()
+                .collect();
+            let make = || {
+                crate::notation::typeset_as(&p.tex, || {
+                    cells
+                        .iter()
+                        .map(|sp| {
+                            let mut m = Markup::default();
+                            write(&mut m, n, p, &p.variants[sp.variant], sp)?;
+                            Ok(m.text)
+                        })
+                        .collect::<Result<Vec<String>, RenderError>>()
+                })
+                .map_err(|e| e.in_scene(&p.source))
+            };
+            let column = match recall.as_deref_mut() {
+                Some(r) => r.recall_or(&format!("{n}"), &[p, &cells], make)?,
+                None => make()?,
+            };
+            parts.push(column.into_iter());
+        }
+        Ok(Columns { parts })
+    }
+
+    /// The next part of problem `j` (an index into the sheet's problems).
+    fn next(&mut self, j: usize) -> String {
+        self.parts[j].next().expect("a part for each cell")
+    }
 }
 
 /// The heading of the key's section of shared answers, as on the HTML key.

@@ -168,6 +168,7 @@ fn each_scenes_part_of_a_document_is_marked_with_its_line() {
         course: &course,
         templates: &Default::default(),
         timings: false,
+        memo: &crate::render::memo::Forget,
     };
     let docs = crate::render::render(&documents, &cx).unwrap().typeset;
     let marks: Vec<(&str, Vec<&str>)> = docs
