@@ -107,7 +107,7 @@ fn problem_sheets(
         if kind == "key" && course.answers_private {
             continue;
         }
-        let problems = lecture
+        let problem_count = lecture
             .pages
             .iter()
             .filter(|&&i| docs.is_problem(i))
@@ -119,7 +119,7 @@ fn problem_sheets(
             sheet,
             &lecture.name,
             heading,
-            &problems,
+            &problem_count,
             course,
             cx.templates,
         ]);
@@ -131,7 +131,7 @@ fn problem_sheets(
                 "lecture",
                 &serde_json::json!({ "name": lecture.name, "heading": heading }),
             );
-            ctx.insert("problems", &problems);
+            ctx.insert("problems", &problem_count);
             let mut css = problems::print_css(&course.title, &format!("{heading}: {title}"), count);
             // The student's sheet is built from statements and values alone: no answer
             // reaches it.

@@ -197,11 +197,13 @@ impl Cache {
         for e in listing.flatten() {
             let n = e.file_name();
             let s = n.to_string_lossy();
-            let Some(hash) = s.strip_suffix(".json").and_then(|s| s.rsplit_once('.')) else {
+            // `<name>.render.<hash>.json`: the unit's prefix, and the hash of its key.
+            let Some((unit, hash)) = s.strip_suffix(".json").and_then(|s| s.rsplit_once('.'))
+            else {
                 continue;
             };
-            let stale = hash.1.len() == 16
-                && units.contains(&format!("{}.", hash.0))
+            let stale = hash.len() == 16
+                && units.contains(&format!("{unit}."))
                 && !names.contains(&Some(n.clone()));
             if stale {
                 let _ = std::fs::remove_file(e.path());

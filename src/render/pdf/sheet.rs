@@ -170,7 +170,8 @@ fn key_entry(
 
 /// Each problem's part of a sheet variant, written once per problem for all the sheet variants
 /// written (a problem's column): with a memo, a column whose problem is unchanged is recalled.
-/// The parts are then taken in the order they are written.
+/// The parts are then taken in the order they are written. The site's documents pass a memo;
+/// a roster's papers, each written for one student, do not.
 struct Columns {
     parts: Vec<std::vec::IntoIter<String>>,
 }
