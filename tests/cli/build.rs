@@ -293,11 +293,8 @@ fn templates_override_file_by_file() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The cache: a second build reads every scene from it and writes the same bytes; after one
-/// scene changes, only that scene runs again; a new fidelity reuses the symbolic results.
-#[test]
-fn the_cache_rebuilds_only_what_changed() {
-    let dir = scratch("cache");
+/// A copy of the shipped lectures in `dir/lectures`, to edit.
+fn copy_lectures(dir: &Path) -> PathBuf {
     let lectures = dir.join("lectures");
     for sub in ["lecture-3-4", "lecture-3-9"] {
         std::fs::create_dir_all(lectures.join(sub)).unwrap();
@@ -306,6 +303,15 @@ fn the_cache_rebuilds_only_what_changed() {
             std::fs::copy(&p, lectures.join(sub).join(p.file_name().unwrap())).unwrap();
         }
     }
+    lectures
+}
+
+/// The cache: a second build reads every scene from it and writes the same bytes; after one
+/// scene changes, only that scene runs again; a new fidelity reuses the symbolic results.
+#[test]
+fn the_cache_rebuilds_only_what_changed() {
+    let dir = scratch("cache");
+    let lectures = copy_lectures(&dir);
     let cache = dir.join("cache");
     let build = |out: &str, extra: &[&str]| {
         let out = dir.join(out);
@@ -426,14 +432,7 @@ fn the_cache_rebuilds_only_what_changed() {
 #[test]
 fn the_renderers_redo_only_what_an_edit_changed() {
     let dir = scratch("render-memo");
-    let lectures = dir.join("lectures");
-    for sub in ["lecture-3-4", "lecture-3-9"] {
-        std::fs::create_dir_all(lectures.join(sub)).unwrap();
-        for e in std::fs::read_dir(Path::new("lectures").join(sub)).unwrap() {
-            let p = e.unwrap().path();
-            std::fs::copy(&p, lectures.join(sub).join(p.file_name().unwrap())).unwrap();
-        }
-    }
+    let lectures = copy_lectures(&dir);
     let cache = dir.join("cache");
     let build = |out: &str, extra: &[&str]| {
         let out = dir.join(out);
