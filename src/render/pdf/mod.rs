@@ -141,6 +141,15 @@ fn written(
     })
 }
 
+/// How a problem sheet or its key is written (`sheet::student_sheet`, `sheet::key`).
+type WriteSheet = fn(
+    &mut Markup,
+    &str,
+    &crate::document::Sheet,
+    &[(usize, Option<&Student>)],
+    Option<&mut Recall>,
+) -> Result<(), RenderError>;
+
 /// A lecture's handouts, problem sheet and key, each with what of its markup was made fresh.
 fn lecture_documents(
     docs: &Documents,
@@ -198,35 +207,23 @@ fn lecture_documents(
     if let (Some(sheet), Some((student, key))) = (sheet, &paths.problems) {
         let all: Vec<(usize, Option<&Student>)> =
             (0..sheet.variants.len()).map(|k| (k, None)).collect();
-        let mut columns = Recall::of(cx.memo, student);
-        let (made, kept) = written(cx, student, &[heading, sheet], || {
-            let head = format!("{} · {heading}: problem sheet", course.title);
-            let mut m = Markup::new(preamble(
-                course,
-                &format!("{heading}: problem sheet"),
-                &head,
-                "",
-            ));
-            sheet::student_sheet(&mut m, &head, sheet, &all, Some(&mut columns))?;
-            Ok(m)
-        })?;
-        columns.kept.extend(kept);
-        out.push((made.source(student, Vec::new()), columns.kept));
-        if let Some(key) = key {
-            let mut columns = Recall::of(cx.memo, key);
-            let (made, kept) = written(cx, key, &[heading, sheet], || {
-                let head = format!("{} · {heading}: answer key", course.title);
-                let mut m = Markup::new(preamble(
-                    course,
-                    &format!("{heading}: answer key"),
-                    &head,
-                    "",
-                ));
-                sheet::key(&mut m, &head, sheet, &all, Some(&mut columns))?;
+        // The sheet, then its key (none when the answers are private): written alike.
+        let documents: [(Option<&String>, &str, WriteSheet); 2] = [
+            (Some(student), "problem sheet", sheet::student_sheet),
+            (key.as_ref(), "answer key", sheet::key),
+        ];
+        for (path, title, write) in documents {
+            let Some(path) = path else { continue };
+            let mut columns = Recall::of(cx.memo, path);
+            let (made, kept) = written(cx, path, &[heading, sheet], || {
+                let head = format!("{} · {heading}: {title}", course.title);
+                let mut m =
+                    Markup::new(preamble(course, &format!("{heading}: {title}"), &head, ""));
+                write(&mut m, &head, sheet, &all, Some(&mut columns))?;
                 Ok(m)
             })?;
             columns.kept.extend(kept);
-            out.push((made.source(key, Vec::new()), columns.kept));
+            out.push((made.source(path, Vec::new()), columns.kept));
         }
     }
     Ok(out)
