@@ -271,6 +271,27 @@ fn our_name(engine: &str) -> Expr {
     Expr::sym(&engine.replace("__d", "'"))
 }
 
+/// The atom's symbols and functions in the order of their printed names, as a polynomial's
+/// variables. Without a map the engine orders them by when it first made each symbol, which
+/// depends on what was derived before in the same process; the sign a factor is given, and so
+/// the order a sum prints in, would too (a scene derived alone printed `r − R` for `R − r`).
+pub(super) fn variables_by_name(atom: &Atom) -> std::sync::Arc<Vec<PolyVariable>> {
+    let mut named: Vec<(String, PolyVariable)> = atom
+        .get_all_indeterminates(false)
+        .into_iter()
+        .filter_map(|v| {
+            let variable = match v {
+                AtomView::Var(s) => PolyVariable::Symbol(s.get_symbol()),
+                AtomView::Fun(f) => PolyVariable::Function(f.get_symbol(), v.to_owned()),
+                _ => return None,
+            };
+            Some((v.to_string(), variable))
+        })
+        .collect();
+    named.sort_by(|a, b| a.0.cmp(&b.0));
+    std::sync::Arc::new(named.into_iter().map(|(_, v)| v).collect())
+}
+
 /// Expanded, with rational functions brought to one reduced fraction.
 fn normal_form(e: &Expr) -> Result<Expr, EngineError> {
     let atom = expand(e)?;
@@ -278,7 +299,8 @@ fn normal_form(e: &Expr) -> Result<Expr, EngineError> {
     if !has_symbolic_denominator(&expanded) || trig::has_fractional_power(e) {
         return Ok(expanded);
     }
-    let rat: RationalPolynomial<_, u16> = atom.to_rational_polynomial(&Q, &Z, None);
+    let rat: RationalPolynomial<_, u16> =
+        atom.to_rational_polynomial(&Q, &Z, variables_by_name(&atom));
     let num = from_atom(&rat.numerator.to_expression().expand())?;
     let den = from_atom(&rat.denominator.to_expression().expand())?;
     Ok(Expr::over(num, den))
@@ -291,7 +313,8 @@ pub(super) fn rational_function(
     if trig::has_fractional_power(e) {
         return Err(EngineError::NotRational { expr: e.to_text() });
     }
-    Ok(expand(e)?.to_rational_polynomial(&Q, &Z, None))
+    let atom = expand(e)?;
+    Ok(atom.to_rational_polynomial(&Q, &Z, variables_by_name(&atom)))
 }
 
 /// The expanded numerator and denominator of a rational function (no fractional powers).
@@ -376,7 +399,8 @@ pub fn is_zero(e: &Expr) -> Result<bool, EngineError> {
     let numerator = if trig::has_fractional_power(&e) {
         atom
     } else {
-        let rat: RationalPolynomial<_, u16> = atom.to_rational_polynomial(&Q, &Z, None);
+        let rat: RationalPolynomial<_, u16> =
+            atom.to_rational_polynomial(&Q, &Z, variables_by_name(&atom));
         if rat.numerator.is_zero() {
             return Ok(true);
         }
@@ -545,7 +569,9 @@ fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, EngineError> {
             })
             .collect(),
     );
-    let rat: RationalPolynomial<_, u16> = expand(&combined)?.to_rational_polynomial(&Q, &Z, None);
+    let atom = expand(&combined)?;
+    let rat: RationalPolynomial<_, u16> =
+        atom.to_rational_polynomial(&Q, &Z, variables_by_name(&atom));
     let mut content = vec![from_atom(&rat.denominator.to_expression())?];
     content[0] = Expr::over(Expr::int(1), content[0].clone());
     for (factor, mult) in rat.numerator.factor() {

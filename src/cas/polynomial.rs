@@ -2,7 +2,7 @@
 //! factors, and quartics in the variable's square.
 
 use super::Roots;
-use super::engine::{EngineError, coefficients, expand, from_atom, simplify};
+use super::engine::{EngineError, coefficients, expand, from_atom, simplify, variables_by_name};
 use super::expr::Expr;
 use super::trig;
 use symbolica::prelude::*;
@@ -11,7 +11,9 @@ use symbolica::prelude::*;
 /// of other angles through their half-angle tangents), with the factors it cannot solve.
 pub fn roots(poly: &Expr, var: &str) -> Result<Roots, EngineError> {
     let (h, args) = trig::to_half_angle(poly);
-    let rat: RationalPolynomial<_, u16> = expand(&h)?.to_rational_polynomial(&Q, &Z, None);
+    let atom = expand(&h)?;
+    let rat: RationalPolynomial<_, u16> =
+        atom.to_rational_polynomial(&Q, &Z, variables_by_name(&atom));
     let mut out = Roots {
         roots: Vec::new(),
         unsolved: Vec::new(),

@@ -285,7 +285,7 @@ fn solve_of_degree_five_is_reported_at_its_line() {
     assert!(
         err.contains(
             "tests/fixtures/step-solve-degree-5.toml:24:1: scene `quintic` could not be derived: \
-             step `x0`: the equation has the factor -a*x - b + k*x^5 of degree 5 in `x`"
+             step `x0`: the equation has the factor a*x + b - k*x^5 of degree 5 in `x`"
         ),
         "{err}"
     );
