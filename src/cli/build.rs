@@ -270,6 +270,8 @@ impl Build {
                 Some(cache) => cache,
                 None => &crate::render::memo::Forget,
             },
+            keys: Default::default(),
+            pdfs_later: self.pdfs_later,
         };
         let rendered = crate::render::render(&documents, &cx).map_err(|e| fail(e.into()))?;
         let mut warnings = Vec::new();
@@ -284,7 +286,8 @@ impl Build {
         } else {
             typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site")
         };
-        let pdfs_pending = pdfs.pending;
+        let mut pdfs_pending = pdfs.pending;
+        pdfs_pending.extend(rendered.later);
         warnings.extend(pdfs.warnings);
         // A document Typst cannot set fails the build, but the HTML site and the other PDFs
         // are still written.

@@ -79,6 +79,31 @@ impl Work {
             w.quadrature_points += points as u64;
         });
     }
+
+    /// `f` of each item on both cores, in the items' order (`base::in_order`), with the work
+    /// done on the other threads counted on this one, as if it had all been done here.
+    pub fn map_in_order<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+        let here = std::thread::current().id();
+        let made = crate::base::in_order::map_in_order(items, |item| {
+            let before = Work::so_far();
+            let r = f(item);
+            let elsewhere = std::thread::current().id() != here;
+            (r, elsewhere.then(|| Work::since(before)))
+        });
+        made.into_iter()
+            .map(|(r, done)| {
+                if let Some(d) = done {
+                    Work::add(|w| {
+                        w.ode_integrations += d.ode_integrations;
+                        w.rhs_evaluations += d.rhs_evaluations;
+                        w.quadrature_runs += d.quadrature_runs;
+                        w.quadrature_points += d.quadrature_points;
+                    });
+                }
+                r
+            })
+            .collect()
+    }
 }
 
 /// The numeric results for a scene.

@@ -7,6 +7,7 @@ use super::{RenderError, memo};
 use crate::document::course::{Documents, Lecture};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+use std::sync::OnceLock;
 
 /// The templates, embedded as defaults; a user's folder overrides them file by file.
 const DEFAULTS: &[(&str, &str)] = &[
@@ -53,23 +54,50 @@ pub fn template_names() -> impl Iterator<Item = &'static str> {
     DEFAULTS.iter().map(|(name, _)| *name)
 }
 
-/// The templates: each default, or the user's own text of it from `overrides` (by name).
-fn templates(overrides: &TemplateTexts) -> Result<(tera::Tera, String), RenderError> {
-    let mut tera = tera::Tera::default();
-    let mut css = String::new();
-    for (name, default) in DEFAULTS {
-        let text = overrides.get(*name).map_or(*default, String::as_str);
-        if *name == "style.css" {
-            css = text.to_string();
-        } else {
-            tera.add_raw_template(name, text)
-                .map_err(|e| RenderError::Template {
-                    name: name.to_string(),
-                    message: format!("{e:?}"),
-                })?;
+/// The templates: each default, or the user's own text of it (by name), each compiled when
+/// first used. A build whose pages, handouts and sheets all come from the memo compiles only
+/// the index's; a unit's key holds the user's templates, so a changed one is always used.
+struct Templates {
+    each: Vec<(&'static str, String, OnceLock<tera::Tera>)>,
+}
+
+impl Templates {
+    /// The templates, and the style sheet's text.
+    fn new(overrides: &TemplateTexts) -> (Templates, String) {
+        let mut css = String::new();
+        let mut each = Vec::new();
+        for (name, default) in DEFAULTS {
+            let text = overrides.get(*name).map_or(*default, String::as_str);
+            if *name == "style.css" {
+                css = text.to_string();
+            } else {
+                each.push((*name, text.to_string(), OnceLock::new()));
+            }
         }
+        (Templates { each }, css)
     }
-    Ok((tera, css))
+
+    /// Template `name` (one of [`DEFAULTS`]) filled from `ctx`.
+    fn render(&self, name: &str, ctx: &tera::Context) -> Result<String, RenderError> {
+        let (_, text, once) = self
+            .each
+            .iter()
+            .find(|(n, ..)| *n == name)
+            .expect("a template of DEFAULTS");
+        let tera = match once.get() {
+            Some(tera) => tera,
+            None => {
+                let mut tera = tera::Tera::default();
+                tera.add_raw_template(name, text)
+                    .map_err(|e| RenderError::Template {
+                        name: name.to_string(),
+                        message: format!("{e:?}"),
+                    })?;
+                once.get_or_init(|| tera)
+            }
+        };
+        render(tera, name, ctx)
+    }
 }
 
 fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<String, RenderError> {
@@ -89,7 +117,7 @@ fn render(tera: &tera::Tera, name: &str, ctx: &tera::Context) -> Result<String, 
 
 /// A lecture's problem sheet and answer key, when it has problems: their paths.
 fn problem_sheets(
-    tera: &tera::Tera,
+    tera: &Templates,
     cx: &Context,
     docs: &Documents,
     lecture: &Lecture,
@@ -150,7 +178,7 @@ fn problem_sheets(
                 "pdf",
                 &super::pdf::ENABLED.then(|| format!("pdf/{page}.pdf")),
             );
-            render(tera, &format!("problems-{kind}.html"), &ctx)
+            tera.render(&format!("problems-{kind}.html"), &ctx)
         })?;
         out.kept.extend(kept);
         out.kept.extend(columns.kept);
@@ -187,7 +215,7 @@ struct PageMade {
 
 fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), RenderError> {
     let course = cx.course;
-    let (tera, css) = templates(cx.templates)?;
+    let (tera, css) = Templates::new(cx.templates);
     add(&mut out.files, PathBuf::from("style.css"), css.into_bytes())?;
     for (i, file, fig) in &docs.figures {
         let name = file.replace('/', ".");
@@ -198,15 +226,23 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
         add(&mut out.files, PathBuf::from(file), svg.into_bytes())?;
     }
     // Each page on its own, on both cores; added in the pages' order.
-    let made = crate::base::in_order::map_in_order(&docs.pages, |page| {
-        let unit = memo::key(&[&"page", page, course, cx.templates, &cx.timings]);
+    let indices: Vec<usize> = (0..docs.pages.len()).collect();
+    let made = crate::base::in_order::map_in_order(&indices, |&i| {
+        let page = &docs.pages[i];
+        let unit = memo::key(&[
+            &"page",
+            &cx.keys.of(docs, i),
+            course,
+            cx.templates,
+            &cx.timings,
+        ]);
         memo::recall_or(cx.memo, format!("{}.page", page.id), unit, || {
             let view = page_view(page, cx.timings).map_err(|e| e.in_scene(&page.source))?;
             let mut ctx = tera::Context::new();
             ctx.insert("site", course);
             ctx.insert("page", &view);
             ctx.insert("lecture_heading", &course.lecture_heading(&view.lecture));
-            let html = render(&tera, "page.html", &ctx)?;
+            let html = tera.render("page.html", &ctx)?;
             let note = phone_scaled(page, html.as_bytes());
             Ok::<_, RenderError>(PageMade { view, html, note })
         })
@@ -223,31 +259,54 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
     for lecture in &docs.lectures {
         let slug = &lecture.slug;
         for handout in &lecture.handouts {
-            let mut ctx = tera::Context::new();
-            ctx.insert("site", course);
-            ctx.insert(
-                "lecture",
-                &serde_json::json!({ "name": lecture.name, "heading": lecture.heading }),
-            );
-            ctx.insert("instructor", &handout.instructor);
-            let parts = handout
+            let kind = handout.kind();
+            let name = format!("{slug}-{kind}");
+            // Its parts, and the pages they are parts of (their views follow from them).
+            let parts: Vec<_> = handout
                 .parts
                 .iter()
-                .map(|p| {
-                    super::handout::part_view(p, &docs.pages[p.page], &pages[p.page])
-                        .map_err(|e| e.in_scene(&docs.pages[p.page].source))
-                })
-                .collect::<Result<Vec<_>, RenderError>>()?;
-            ctx.insert("parts", &parts);
-            let kind = handout.kind();
-            ctx.insert(
-                "pdf",
-                &super::pdf::ENABLED.then(|| format!("pdf/{slug}-{kind}.pdf")),
-            );
+                .map(|p| (p, cx.keys.of(docs, p.page)))
+                .collect();
+            let unit = memo::key(&[
+                &"handout",
+                &name,
+                &lecture.name,
+                &lecture.heading,
+                &handout.instructor,
+                &parts,
+                course,
+                cx.templates,
+                &cx.timings,
+            ]);
+            let (html, kept) =
+                memo::recall_or(cx.memo, format!("handouts.{name}.html"), unit, || {
+                    let mut ctx = tera::Context::new();
+                    ctx.insert("site", course);
+                    ctx.insert(
+                        "lecture",
+                        &serde_json::json!({ "name": lecture.name, "heading": lecture.heading }),
+                    );
+                    ctx.insert("instructor", &handout.instructor);
+                    let parts = handout
+                        .parts
+                        .iter()
+                        .map(|p| {
+                            super::handout::part_view(p, &docs.pages[p.page], &pages[p.page])
+                                .map_err(|e| e.in_scene(&docs.pages[p.page].source))
+                        })
+                        .collect::<Result<Vec<_>, RenderError>>()?;
+                    ctx.insert("parts", &parts);
+                    ctx.insert(
+                        "pdf",
+                        &super::pdf::ENABLED.then(|| format!("pdf/{name}.pdf")),
+                    );
+                    tera.render("handout.html", &ctx)
+                })?;
+            out.kept.extend(kept);
             add(
                 &mut out.files,
-                PathBuf::from(format!("handouts/{slug}-{kind}.html")),
-                render(&tera, "handout.html", &ctx)?.into_bytes(),
+                PathBuf::from(format!("handouts/{name}.html")),
+                html.into_bytes(),
             )?;
         }
         let problems = problem_sheets(&tera, cx, docs, lecture, out)?;
@@ -280,7 +339,7 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
     add(
         &mut out.files,
         PathBuf::from("index.html"),
-        render(&tera, "index.html", &ctx)?.into_bytes(),
+        tera.render("index.html", &ctx)?.into_bytes(),
     )?;
     Ok(())
 }

@@ -31,7 +31,7 @@ impl Renderer for JsonReport {
         // Each page's file on both cores, added in the pages' order.
         let files = crate::base::in_order::map_in_order(&published, |&i| {
             let page = &docs.pages[i];
-            let unit = super::memo::key(&[&"json", page, &cx.timings]);
+            let unit = super::memo::key(&[&"json", &cx.keys.of(docs, i), &cx.timings]);
             super::memo::recall_or(cx.memo, format!("{}.json", page.id), unit, || {
                 let mut j = scene_json(page);
                 if !cx.timings {

@@ -47,6 +47,21 @@ pub fn key(inputs: &[&dyn Debug]) -> u64 {
     h.0
 }
 
+/// Each page's key, hashed once for every unit made from the page (its HTML, its JSON, the
+/// handouts and PDFs it is part of): hashing a page's `Debug` form is most of what a key costs.
+/// One context renders one course's documents, so the keys are made on first use.
+#[derive(Default)]
+pub struct PageKeys(std::sync::OnceLock<Vec<u64>>);
+
+impl PageKeys {
+    /// The key of `docs.pages[i]` (for every page, on both cores, the first time).
+    pub fn of(&self, docs: &crate::document::course::Documents, i: usize) -> u64 {
+        self.0
+            .get_or_init(|| crate::base::in_order::map_in_order(&docs.pages, |page| key(&[page])))
+            [i]
+    }
+}
+
 /// FNV-1a over what is written into it (`base::hash::content_hash`, streamed).
 struct Fnv(u64);
 
@@ -57,6 +72,11 @@ impl std::fmt::Write for Fnv {
         }
         Ok(())
     }
+}
+
+/// Unit `name` from `memo` when it is kept under `key` and reads back.
+pub fn recall<T: DeserializeOwned>(memo: &dyn Memo, name: &str, key: u64) -> Option<T> {
+    serde_json::from_slice(&memo.recall(name, key)?).ok()
 }
 
 /// Unit `name` from `memo` when it is kept under `key`, else `make`'s, with what to keep. A
@@ -70,9 +90,7 @@ pub fn recall_or<T, E>(
 where
     T: Serialize + DeserializeOwned,
 {
-    if let Some(bytes) = memo.recall(&name, key)
-        && let Ok(unit) = serde_json::from_slice(&bytes)
-    {
+    if let Some(unit) = recall(memo, &name, key) {
         return Ok((unit, None));
     }
     let unit = make()?;

@@ -2,7 +2,7 @@
 //! ([`Documents`]) behind one trait, as mdBook's renderers each take one context. A new format
 //! is a file with a [`Renderer`] and a line in `RENDERERS` (`render/mod.rs`).
 
-use super::memo::{Kept, Memo};
+use super::memo::{Kept, Memo, PageKeys};
 use super::{RenderError, pdf::PdfSource};
 use crate::document::course::Documents;
 use crate::scene::Course;
@@ -42,6 +42,12 @@ pub struct Context<'a> {
     pub timings: bool,
     /// What earlier builds rendered: units made from the same inputs are taken from it.
     pub memo: &'a dyn Memo,
+    /// Each page's key for the memo, made once (`Default::default()`).
+    pub keys: PageKeys,
+    /// The page first (`build --pdfs-later`): a PDF whose markup is not in the memo is not
+    /// written now but left to the full build that follows ([`Rendered::later`]); the edited
+    /// lecture's markup is most of what a page-first build would render for paper.
+    pub pdfs_later: bool,
 }
 
 /// What the renderers made: the site's files, the documents Typst is to set (`site` typesets
@@ -53,6 +59,8 @@ pub struct Rendered {
     pub typeset: Vec<PdfSource>,
     pub notes: Vec<String>,
     pub kept: Vec<Kept>,
+    /// The PDFs (their paths in the site) left to a later build ([`Context::pdfs_later`]).
+    pub later: Vec<String>,
 }
 
 /// One output format.

@@ -169,8 +169,6 @@ pub fn check_variants(
     problem: &Problem,
     deadline: &Deadline,
 ) -> Result<Vec<VariantCheck>, VariantError> {
-    let mut out = Vec::new();
-    let angles = scene.whole_turn_symbols();
     // What does not depend on the variant, once: each answer in symbols, in its unit (its
     // derived value times its symbols' unit's size over the unit asked for). A failure here is
     // the first variant's, where it would first show.
@@ -200,79 +198,111 @@ pub fn check_variants(
         .iter()
         .map(|g| g.entries().iter().any(|e| d.numeric_name_in(e).is_some()))
         .collect();
-    for v in &problem.variants {
-        let fail = |source: VariantFailure| VariantError {
-            number: v.number,
-            source,
+    // Each variant on its own, on both cores: one thread's engine calls (its exact answers)
+    // overlap the other's numeric routes. In the variants' order; the first failure is told.
+    let answers = Answers {
+        general,
+        scales,
+        numeric_modes,
+        angles: scene.whole_turn_symbols(),
+    };
+    let checked = crate::numeric::Work::map_in_order(&problem.variants, |v| {
+        check_variant(scene, d, problem, &answers, v, deadline)
+    });
+    checked.into_iter().collect()
+}
+
+/// What the answers are the same in for every variant.
+struct Answers {
+    /// Each answer in symbols, in its unit.
+    general: Vec<Value>,
+    /// The size of the answer's symbols' unit over the unit asked for.
+    scales: Vec<f64>,
+    /// Which answers name a mode with no closed form.
+    numeric_modes: Vec<bool>,
+    /// The scene's angles, put within a turn (`Variant::numbers_within_a_turn`).
+    angles: std::collections::BTreeSet<String>,
+}
+
+/// One variant's answers, exact and by their numeric routes.
+fn check_variant(
+    scene: &Scene,
+    d: &Derivation,
+    problem: &Problem,
+    same: &Answers,
+    v: &crate::scene::Variant,
+    deadline: &Deadline,
+) -> Result<VariantCheck, VariantError> {
+    let fail = |source: VariantFailure| VariantError {
+        number: v.number,
+        source,
+    };
+    deadline.check().map_err(|e| fail(e.into()))?;
+    let general = with_numeric_modes(scene, d, &same.general, v).map_err(|e| fail(e.into()))?;
+    let exact = exact_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
+    let shown = shown_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
+    let numbers = v.numbers_within_a_turn(&same.angles);
+    let agree = |name: &str| agreement(scene, name, &numbers);
+    let mut routes = AnswerRoutes::new(scene, d, &numbers, &agree);
+    let mut answers = Vec::new();
+    for ((((answer, a), scale), shown), numeric_mode) in problem
+        .answers
+        .iter()
+        .zip(exact)
+        .zip(&same.scales)
+        .zip(shown)
+        .zip(same.numeric_modes.iter().copied())
+    {
+        let (numeric, tolerance) = match answer.bare_quantity() {
+            Some(q) => (
+                routes.routes.answer(q).map_err(|e| fail(e.into()))?,
+                agreement(scene, q, &numbers),
+            ),
+            None => {
+                let r = routes
+                    .expression(&answer.value)
+                    .map_err(|e| fail(e.into()))?;
+                // The routes' own errors carried to the answer, and rounding beside them.
+                (vec![r.value], r.tolerance + exact_vs_numeric(scene))
+            }
         };
-        deadline.check().map_err(|e| fail(e.into()))?;
-        let general = with_numeric_modes(scene, d, &general, v).map_err(|e| fail(e.into()))?;
-        let exact = exact_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
-        let shown = shown_answers(&general, problem, v).map_err(|e| fail(e.into()))?;
-        let numbers = v.numbers_within_a_turn(&angles);
-        let agree = |name: &str| agreement(scene, name, &numbers);
-        let mut routes = AnswerRoutes::new(scene, d, &numbers, &agree);
-        let mut answers = Vec::new();
-        for ((((answer, a), scale), shown), numeric_mode) in problem
-            .answers
+        let numeric: Vec<f64> = numeric.iter().map(|x| x * scale).collect();
+        let exact_numbers: Vec<f64> = a
+            .value
+            .entries()
             .iter()
-            .zip(exact)
-            .zip(&scales)
-            .zip(shown)
-            .zip(numeric_modes.iter().copied())
-        {
-            let (numeric, tolerance) = match answer.bare_quantity() {
-                Some(q) => (
-                    routes.routes.answer(q).map_err(|e| fail(e.into()))?,
-                    agreement(scene, q, &numbers),
-                ),
-                None => {
-                    let r = routes
-                        .expression(&answer.value)
-                        .map_err(|e| fail(e.into()))?;
-                    // The routes' own errors carried to the answer, and rounding beside them.
-                    (vec![r.value], r.tolerance + exact_vs_numeric(scene))
-                }
-            };
-            let numeric: Vec<f64> = numeric.iter().map(|x| x * scale).collect();
-            let exact_numbers: Vec<f64> = a
-                .value
-                .entries()
-                .iter()
-                .map(|e| e.eval(&|_| None).unwrap_or(f64::NAN))
-                .collect();
-            let error = max_relative_error(&numeric, &exact_numbers);
-            let rounded = shown
-                .as_ref()
-                .unwrap_or(&a.value)
-                .entries()
-                .iter()
-                .any(has_long_number);
-            answers.push(AnswerCheck {
-                tolerance,
-                quantity: a.quantity,
-                exact: a.value,
-                shown,
-                rounded,
-                numeric_mode,
-                exact_numbers,
-                numeric,
-                // NaN (an answer with no number) fails every comparison: count it as infinite.
-                error: if error.is_nan() { f64::INFINITY } else { error },
-            });
-        }
-        out.push(VariantCheck {
-            number: v.number,
-            values: v
-                .values
-                .iter()
-                .map(|(k, e)| (k.clone(), e.clone()))
-                .collect(),
-            decimal: v.decimal.iter().cloned().collect(),
-            answers,
+            .map(|e| e.eval(&|_| None).unwrap_or(f64::NAN))
+            .collect();
+        let error = max_relative_error(&numeric, &exact_numbers);
+        let rounded = shown
+            .as_ref()
+            .unwrap_or(&a.value)
+            .entries()
+            .iter()
+            .any(has_long_number);
+        answers.push(AnswerCheck {
+            tolerance,
+            quantity: a.quantity,
+            exact: a.value,
+            shown,
+            rounded,
+            numeric_mode,
+            exact_numbers,
+            numeric,
+            // NaN (an answer with no number) fails every comparison: count it as infinite.
+            error: if error.is_nan() { f64::INFINITY } else { error },
         });
     }
-    Ok(out)
+    Ok(VariantCheck {
+        number: v.number,
+        values: v
+            .values
+            .iter()
+            .map(|(k, e)| (k.clone(), e.clone()))
+            .collect(),
+        decimal: v.decimal.iter().cloned().collect(),
+        answers,
+    })
 }
 
 #[cfg(test)]

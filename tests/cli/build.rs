@@ -463,6 +463,8 @@ fn the_renderers_redo_only_what_an_edit_changed() {
         "cube-corner.json",
         "earth-precession.page",
         "pdf.lecture-3-4-student.pdf",
+        "handouts.lecture-3-4-student.html",
+        "handouts.lecture-3-9-instructor.html",
     ] {
         assert!(
             before.contains_key(name),
@@ -496,6 +498,8 @@ fn the_renderers_redo_only_what_an_edit_changed() {
         "earth-precession.page",
         "earth-precession.json",
         "pdf.lecture-3-9-student.pdf",
+        "handouts.lecture-3-9-student.html",
+        "handouts.lecture-3-9-instructor.html",
     ] {
         assert_ne!(
             before.get(name),
@@ -507,6 +511,8 @@ fn the_renderers_redo_only_what_an_edit_changed() {
         "cube-corner.page",
         "cube-corner.json",
         "pdf.lecture-3-4-student.pdf",
+        "handouts.lecture-3-4-student.html",
+        "handouts.lecture-3-4-instructor.html",
     ] {
         assert_eq!(before.get(name), after.get(name), "{name} was made again");
     }
@@ -564,6 +570,47 @@ fn the_renderers_redo_only_what_an_edit_changed() {
         bytes,
         "the damaged unit was not mended"
     );
+
+    // A page-first build (`--pdfs-later`, what `serve` runs on a save) writes no markup for
+    // the edited lecture: its two handouts are left to the full build, which makes them.
+    let text = std::fs::read_to_string(&earth).unwrap();
+    std::fs::write(&earth, text.replacen("Edited: ", "Edited twice: ", 1)).unwrap();
+    let before = units();
+    let out = dir.join("f");
+    let r = mechbook(&[
+        "build",
+        lectures.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--cache",
+        cache.to_str().unwrap(),
+        "--pdfs-later",
+    ]);
+    let err = stderr(&r);
+    assert_eq!(r.status.code(), Some(0), "{err}");
+    assert!(err.contains("(2 left to typeset next)"), "{err}");
+    let after = units();
+    assert_ne!(
+        before.get("earth-precession.page"),
+        after.get("earth-precession.page")
+    );
+    for name in [
+        "pdf.lecture-3-9-student.pdf",
+        "pdf.lecture-3-9-instructor.pdf",
+    ] {
+        assert_eq!(
+            before.get(name),
+            after.get(name),
+            "{name} was written page-first"
+        );
+    }
+    let full = build("g", &cached);
+    assert_ne!(
+        after.get("pdf.lecture-3-9-student.pdf"),
+        units().get("pdf.lecture-3-9-student.pdf"),
+        "the full build did not write the markup"
+    );
+    assert_eq!(full, build("fresh-g", &["--no-cache"]));
 
     // Another page template: every page is made with it, none recalled from the memo.
     let templates = dir.join("templates");

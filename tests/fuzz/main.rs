@@ -389,6 +389,8 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
                 templates: &Default::default(),
                 timings: false,
                 memo: &mechbook::render::memo::Forget,
+                keys: Default::default(),
+                pdfs_later: false,
             };
             let rendered = mechbook::render::render(&documents, &cx)
                 .map_err(|e| format!("rendering failed: {e}"))?;

@@ -71,33 +71,45 @@ impl Renderer for Pdf {
         out: &mut Rendered,
     ) -> Result<(), RenderError> {
         if ENABLED {
-            let (sources, kept) = site_documents(docs, cx, &out.files)?;
-            out.typeset.extend(sources);
-            out.kept.extend(kept);
+            for made in site_documents(docs, cx, &out.files)? {
+                match made {
+                    Lectured::Written(source, kept) => {
+                        out.typeset.push(source);
+                        out.kept.extend(kept);
+                    }
+                    Lectured::Later(path) => out.later.push(path),
+                }
+            }
         }
         Ok(())
     }
 }
 
-/// Every lecture's handouts, problem sheet and key, and the markups made fresh (for the
-/// memo). `site` holds the plots the instructor's handout shows.
+/// A lecture's document, as this build leaves it.
+enum Lectured {
+    /// Its markup, with the units made fresh for it (for the memo).
+    Written(PdfSource, Vec<Kept>),
+    /// Its path: its markup is not in the memo and the build is page-first
+    /// ([`Context::pdfs_later`]).
+    Later(String),
+}
+
+/// Every lecture's handouts, problem sheet and key, in order. `site` holds the plots the
+/// instructor's handout shows.
 fn site_documents(
     docs: &Documents,
     cx: &Context,
     site: &SiteFiles,
-) -> Result<(Vec<PdfSource>, Vec<Kept>), RenderError> {
+) -> Result<Vec<Lectured>, RenderError> {
     // Each lecture's documents on both cores, in the lectures' order.
     let made = crate::base::in_order::map_in_order(&docs.lectures, |lecture| {
         lecture_documents(docs, cx, site, lecture)
     });
-    let (mut sources, mut kept) = (Vec::new(), Vec::new());
+    let mut all = Vec::new();
     for m in made {
-        for (source, k) in m? {
-            sources.push(source);
-            kept.extend(k);
-        }
+        all.extend(m?);
     }
-    Ok((sources, kept))
+    Ok(all)
 }
 
 /// A document's markup, and where each scene's part of it starts: what the memo keeps of it.
@@ -126,19 +138,22 @@ impl Written {
     }
 }
 
-/// The document at `path` from the memo when its inputs are unchanged, else `write`'s.
+/// The document at `path` from the memo when its inputs are unchanged, else `write`'s; `None`
+/// when it is not in the memo and the build is page-first.
 fn written(
     cx: &Context,
     path: &str,
     inputs: &[&dyn std::fmt::Debug],
     write: impl FnOnce() -> Result<Markup, RenderError>,
-) -> Result<(Written, Option<Kept>), RenderError> {
+) -> Result<Option<(Written, Option<Kept>)>, RenderError> {
     let mut all: Vec<&dyn std::fmt::Debug> = vec![&"pdf", &path, cx.course];
     all.extend_from_slice(inputs);
     let unit = super::memo::key(&all);
-    super::memo::recall_or(cx.memo, path.replace('/', "."), unit, || {
-        write().map(Written::of)
-    })
+    let name = path.replace('/', ".");
+    if cx.pdfs_later {
+        return Ok(super::memo::recall(cx.memo, &name, unit).map(|w| (w, None)));
+    }
+    super::memo::recall_or(cx.memo, name, unit, || write().map(Written::of)).map(Some)
 }
 
 /// How a problem sheet or its key is written (`sheet::student_sheet`, `sheet::key`).
@@ -150,13 +165,13 @@ type WriteSheet = fn(
     Option<&mut Recall>,
 ) -> Result<(), RenderError>;
 
-/// A lecture's handouts, problem sheet and key, each with what of its markup was made fresh.
+/// A lecture's handouts, problem sheet and key.
 fn lecture_documents(
     docs: &Documents,
     cx: &Context,
     site: &SiteFiles,
     lecture: &crate::document::course::Lecture,
-) -> Result<Vec<(PdfSource, Vec<Kept>)>, RenderError> {
+) -> Result<Vec<Lectured>, RenderError> {
     let course = cx.course;
     let mut out = Vec::new();
     let heading = &lecture.heading;
@@ -178,7 +193,12 @@ fn lecture_documents(
             .iter()
             .map(|p| (p, &docs.pages[p.page]))
             .collect();
-        let (made, kept) = written(cx, path, &[&title, heading, &right, &parts], || {
+        let keyed: Vec<_> = handout
+            .parts
+            .iter()
+            .map(|p| (p, cx.keys.of(docs, p.page)))
+            .collect();
+        let made = written(cx, path, &[&title, heading, &right, &keyed], || {
             let mut m = Markup::new(preamble(
                 course,
                 &title,
@@ -189,6 +209,10 @@ fn lecture_documents(
             handout::handout(&mut m, &parts, instructor)?;
             Ok(m)
         })?;
+        let Some((made, kept)) = made else {
+            out.push(Lectured::Later(path.clone()));
+            continue;
+        };
         let images = if instructor {
             parts
                 .iter()
@@ -202,7 +226,10 @@ fn lecture_documents(
         } else {
             Vec::new()
         };
-        out.push((made.source(path, images), kept.into_iter().collect()));
+        out.push(Lectured::Written(
+            made.source(path, images),
+            kept.into_iter().collect(),
+        ));
     }
     if let (Some(sheet), Some((student, key))) = (sheet, &paths.problems) {
         let all: Vec<(usize, Option<&Student>)> =
@@ -215,15 +242,22 @@ fn lecture_documents(
         for (path, title, write) in documents {
             let Some(path) = path else { continue };
             let mut columns = Recall::of(cx.memo, path);
-            let (made, kept) = written(cx, path, &[heading, sheet], || {
+            let made = written(cx, path, &[heading, sheet], || {
                 let head = format!("{} · {heading}: {title}", course.title);
                 let mut m =
                     Markup::new(preamble(course, &format!("{heading}: {title}"), &head, ""));
                 write(&mut m, &head, sheet, &all, Some(&mut columns))?;
                 Ok(m)
             })?;
+            let Some((made, kept)) = made else {
+                out.push(Lectured::Later(path.clone()));
+                continue;
+            };
             columns.kept.extend(kept);
-            out.push((made.source(path, Vec::new()), columns.kept));
+            out.push(Lectured::Written(
+                made.source(path, Vec::new()),
+                columns.kept,
+            ));
         }
     }
     Ok(out)

@@ -169,6 +169,8 @@ fn each_scenes_part_of_a_document_is_marked_with_its_line() {
         templates: &Default::default(),
         timings: false,
         memo: &crate::render::memo::Forget,
+        keys: Default::default(),
+        pdfs_later: false,
     };
     let docs = crate::render::render(&documents, &cx).unwrap().typeset;
     let marks: Vec<(&str, Vec<&str>)> = docs
