@@ -143,8 +143,11 @@ pub(super) fn expression(
     let fixed: Vec<String> = env
         .iter()
         .filter(|(k, _)| k.as_str() != over && exact.symbols().contains(k))
-        .map(|(k, v)| format!("{k} = {v}"))
+        .map(|(k, v)| format!("{} = {v}", super::plain_name(k)))
         .collect();
+    // The file keeps the names as written; the reader sees them as symbols.
+    let file_name = format!("{step}-vs-{over}");
+    let (step, over) = (&super::plain_name(step), &super::plain_name(over));
     let dotted = match &route {
         Some((method, _)) => format!(
             " Dots: {} values of {over} by {method}, at most {} (relative) from the curve.",
@@ -202,7 +205,7 @@ pub(super) fn expression(
             seconds,
         });
     }
-    let slug: String = format!("{step}-vs-{over}")
+    let slug: String = file_name
         .chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '-' || c == '_' {

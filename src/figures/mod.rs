@@ -286,6 +286,15 @@ fn own_principal_moments(scene: &Scene, d: &Derivation) -> Result<[f64; 3], Figu
     Ok(moments)
 }
 
+/// A symbol's or a step's name as a reader writes it, for a caption, an axis or a legend (plain
+/// text, where no formula goes): `theta` is θ, `phi'` ϕ̇.
+fn plain_name(name: &str) -> String {
+    let symbol = crate::cas::Expr::sym(name);
+    crate::notation::Tex::read(&symbol.to_latex())
+        .map(|tex| tex.to_plain())
+        .unwrap_or_else(|_| name.to_string())
+}
+
 fn trim_num(x: f64) -> String {
     if (x - std::f64::consts::PI).abs() < 1e-12 {
         "π".into()

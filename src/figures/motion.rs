@@ -90,7 +90,7 @@ pub(super) fn motion(
     let mut series = Vec::new();
     for (k, (q, _)) in full.iter().take(n).enumerate() {
         series.push(Series {
-            name: format!("{q} ({step})"),
+            name: super::plain_name(q),
             mark: Mark::Line,
             colour: k,
             points: states
@@ -114,7 +114,7 @@ pub(super) fn motion(
                 .zip(&lin)
                 .fold(gap, |m, (a, b)| m.max((a[kf] - b[k]).abs()));
             series.push(Series {
-                name: format!("{q} ({linear})"),
+                name: format!("{} (linear)", super::plain_name(q)),
                 mark: Mark::Dashed,
                 colour: kf,
                 points: lin
@@ -125,19 +125,29 @@ pub(super) fn motion(
             });
         }
         apart = format!(
-            " Dashed: the linear equations `{linear}` from the same start, at most {} from the \
-             full motion.",
+            " Dashed: the linear equations from the same start, at most {} from the full \
+             motion.",
             sci(gap)
         );
     }
     let start_text: Vec<String> = full
         .iter()
         .enumerate()
-        .map(|(k, (q, _))| format!("{q} = {}, {q}' = {}", states[0][k], states[0][n + k]))
+        .map(|(k, (q, _))| {
+            format!(
+                "{} = {}, {} = {}",
+                super::plain_name(q),
+                states[0][k],
+                super::plain_name(&format!("{q}'")),
+                states[0][n + k]
+            )
+        })
         .collect();
+    let coordinates: Vec<String> = full.iter().map(|(q, _)| super::plain_name(q)).collect();
+    let coordinates = coordinates.join(", ");
     let desc = format!(
-        "The equations of motion `{step}` integrated from {} over 0 ≤ t ≤ {} at the scene's \
-         values (Dormand–Prince 5(4), tolerance {}, {cost} right-hand sides; against a run at a \
+        "The equations of motion integrated from {} over 0 ≤ t ≤ {} at the scene's values \
+         (Dormand–Prince 5(4), tolerance {}, {cost} right-hand sides; against a run at a \
          hundredth of the tolerance the coordinates differ by at most {} of their size).{apart}",
         start_text.join(", "),
         t_end,
@@ -146,7 +156,7 @@ pub(super) fn motion(
     );
     let mut f = fig(
         &format!("motion-{step}"),
-        format!("The motion of {step}"),
+        format!("The motion of {coordinates}"),
         desc,
         "t",
         "coordinate",
@@ -154,7 +164,7 @@ pub(super) fn motion(
     );
     f.legend = Legend::LowerRight;
     f.accuracy = vec![Accuracy {
-        result: format!("the motion of {step}"),
+        result: format!("the motion of {coordinates}"),
         method: format!("Dormand–Prince 5(4), tol {}", short(MOTION_TOLERANCE)),
         true_error: None,
         estimated_error: Some(error),

@@ -26,6 +26,16 @@ fn the_linear_swing_is_its_closed_form_and_the_full_one_lags() {
         .iter()
         .find(|f| f.slug == "motion-eom")
         .expect("the motion plot");
+    // A student reads the coordinates as symbols, not the scene's names or its step's.
+    assert_eq!(f.title, "The motion of ϕ");
+    assert!(f.desc.contains("from ϕ = 0.8, ϕ̇ = 0 over"), "{}", f.desc);
+    assert!(
+        !f.desc.contains("eom") && !f.desc.contains("phi"),
+        "{}",
+        f.desc
+    );
+    let names: Vec<&str> = f.series.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["ϕ", "ϕ (linear)"]);
     let (full, linear) = (&f.series[0].points, &f.series[1].points);
     // Ω² = M g (L/2) / (M L²/3) = 3g/(2L) at g = 9.81, L = 1.5.
     let omega = (3.0 * 9.81 / (2.0 * 1.5f64)).sqrt();
