@@ -47,6 +47,15 @@ impl Work {
         WORK.with(|w| w.get())
     }
 
+    fn plus(self, other: Work) -> Work {
+        Work {
+            ode_integrations: self.ode_integrations + other.ode_integrations,
+            rhs_evaluations: self.rhs_evaluations + other.rhs_evaluations,
+            quadrature_runs: self.quadrature_runs + other.quadrature_runs,
+            quadrature_points: self.quadrature_points + other.quadrature_points,
+        }
+    }
+
     /// The work done since `before`.
     pub fn since(before: Work) -> Work {
         let now = Work::so_far();
@@ -93,12 +102,7 @@ impl Work {
         made.into_iter()
             .map(|(r, done)| {
                 if let Some(d) = done {
-                    Work::add(|w| {
-                        w.ode_integrations += d.ode_integrations;
-                        w.rhs_evaluations += d.rhs_evaluations;
-                        w.quadrature_runs += d.quadrature_runs;
-                        w.quadrature_points += d.quadrature_points;
-                    });
+                    Work::add(|w| *w = w.plus(d));
                 }
                 r
             })

@@ -262,11 +262,7 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
             let kind = handout.kind();
             let name = format!("{slug}-{kind}");
             // Its parts, and the pages they are parts of (their views follow from them).
-            let parts: Vec<_> = handout
-                .parts
-                .iter()
-                .map(|p| (p, cx.keys.of(docs, p.page)))
-                .collect();
+            let parts = cx.keys.of_parts(docs, &handout.parts);
             let unit = memo::key(&[
                 &"handout",
                 &name,

@@ -60,6 +60,15 @@ impl PageKeys {
             .get_or_init(|| crate::base::in_order::map_in_order(&docs.pages, |page| key(&[page])))
             [i]
     }
+
+    /// A handout's parts, each with the key of the page it is a part of.
+    pub fn of_parts<'p>(
+        &self,
+        docs: &crate::document::course::Documents,
+        parts: &'p [crate::document::handout::Part],
+    ) -> Vec<(&'p crate::document::handout::Part, u64)> {
+        parts.iter().map(|p| (p, self.of(docs, p.page))).collect()
+    }
 }
 
 /// FNV-1a over what is written into it (`base::hash::content_hash`, streamed).

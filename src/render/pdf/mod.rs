@@ -193,11 +193,7 @@ fn lecture_documents(
             .iter()
             .map(|p| (p, &docs.pages[p.page]))
             .collect();
-        let keyed: Vec<_> = handout
-            .parts
-            .iter()
-            .map(|p| (p, cx.keys.of(docs, p.page)))
-            .collect();
+        let keyed = cx.keys.of_parts(docs, &handout.parts);
         let made = written(cx, path, &[&title, heading, &right, &keyed], || {
             let mut m = Markup::new(preamble(
                 course,
