@@ -20,8 +20,9 @@ use std::path::{Path, PathBuf};
 /// line with the entry's key and checksum; 4: a claim's sides and derived value as trees; 5: a
 /// variant's values as trees; 6: the results of an author's steps; 7: a step's momentum or
 /// energy, normal modes, equilibria and stability; 8: motion plots; 9: a problem's answers with
-/// their labels and units, and the values the author wrote in decimals).
-const FORMAT: u64 = 9;
+/// their labels and units, and the values the author wrote in decimals; 10: the checksum
+/// taken over words, `base::hash::word_hash`).
+const FORMAT: u64 = 10;
 
 /// The largest entry read: the shipped scenes' largest report is about 200 KB.
 pub const MAX_ENTRY_BYTES: u64 = 64 << 20;
@@ -329,7 +330,7 @@ impl Memo for Cache {
 
 /// An entry's bytes: a first line naming the format, the key and the payload's checksum.
 fn wrap_entry(key: u64, payload: &[u8]) -> Vec<u8> {
-    let sum = crate::base::hash::content_hash(payload);
+    let sum = crate::base::hash::word_hash(payload);
     let mut out = format!("mechbook-cache {FORMAT} {key:016x} {sum:016x}\n").into_bytes();
     out.extend_from_slice(payload);
     out
@@ -354,7 +355,7 @@ fn unwrap_entry(bytes: &[u8], key: u64) -> Result<&[u8], Damage> {
         return Err(Damage::OtherKey);
     }
     let payload = &bytes[end + 1..];
-    if sum != format!("{:016x}", crate::base::hash::content_hash(payload)) {
+    if sum != format!("{:016x}", crate::base::hash::word_hash(payload)) {
         return Err(Damage::Checksum);
     }
     Ok(payload)

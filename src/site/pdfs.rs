@@ -230,9 +230,9 @@ fn inputs_hash(s: &PdfSource) -> u64 {
         bytes.push(0);
         bytes.extend_from_slice(path.as_bytes());
         bytes.push(0);
-        bytes.extend_from_slice(&crate::base::hash::content_hash(image).to_le_bytes());
+        bytes.extend_from_slice(&crate::base::hash::word_hash(image).to_le_bytes());
     }
-    crate::base::hash::content_hash(&bytes)
+    crate::base::hash::word_hash(&bytes)
 }
 
 #[cfg(all(test, feature = "pdf"))]
