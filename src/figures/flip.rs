@@ -24,6 +24,12 @@ pub(super) fn sign_changes(run: &Run, k: usize) -> Vec<f64> {
         .collect()
 }
 
+/// A moment or a rate as a caption gives it, to six figures: a moment computed from
+/// its body (m(b² + c²)/12) reads 0.000993333, not 0.000993333333333333.
+fn six_figures(x: f64) -> String {
+    crate::base::format::text_number(&crate::base::format::significant(x, 6))
+}
+
 pub(super) fn flip(
     i: &Moments,
     w0: Vector3<f64>,
@@ -71,17 +77,18 @@ pub(super) fn flip(
         },
     ];
     let desc = format!(
-        "Tennis racket: spin started near the middle axis (I{} = {ib}) of I = ({}, {}, {}), \
+        "Tennis racket: spin started near the middle axis (I{} = {}) of I = ({}, {}, {}), \
          ω(0) = ({}, {}, {}). The component ω{} reverses again and again. Measured from Dormand–Prince \
          (tol {}) sign changes: {} flips, every {}; predicted: exactly 2K/λ = {:.6}, and \
          approximately ln(16/(1 − m))/σ = {:.6} with 1 − m = {} and σ = {:.6}.",
         b + 1,
-        i.0[0],
-        i.0[1],
-        i.0[2],
-        w0.x,
-        w0.y,
-        w0.z,
+        six_figures(ib),
+        six_figures(i.0[0]),
+        six_figures(i.0[1]),
+        six_figures(i.0[2]),
+        six_figures(w0.x),
+        six_figures(w0.y),
+        six_figures(w0.z),
         b + 1,
         short(tol),
         flips.len(),

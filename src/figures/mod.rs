@@ -289,10 +289,20 @@ fn own_principal_moments(scene: &Scene, d: &Derivation) -> Result<[f64; 3], Figu
 /// A symbol's or a step's name as a reader writes it, for a caption, an axis or a legend (plain
 /// text, where no formula goes): `theta` is θ, `phi'` ϕ̇.
 fn plain_name(name: &str) -> String {
-    let symbol = crate::cas::Expr::sym(name);
-    crate::notation::Tex::read(&symbol.to_latex())
+    plain_formula(&crate::cas::Expr::sym(name))
+}
+
+/// An exact result as a reader writes it in plain text: `11/12*m*a^2` is 11/12 ma².
+fn plain_formula(e: &crate::cas::Expr) -> String {
+    crate::notation::Tex::read(&e.to_latex())
         .map(|tex| tex.to_plain())
-        .unwrap_or_else(|_| name.to_string())
+        .unwrap_or_else(|_| e.to_string())
+}
+
+/// An exact vector in plain text: (−1, 1, 0).
+fn plain_vector(v: &[crate::cas::Expr]) -> String {
+    let parts: Vec<String> = v.iter().map(plain_formula).collect();
+    format!("({})", parts.join(", "))
 }
 
 fn trim_num(x: f64) -> String {

@@ -5,7 +5,7 @@ use super::{FigureError, colour, legend_entry};
 use crate::base::format::sci;
 use crate::derive::{Derivation, ExactBasis};
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
-use crate::model::value::{Value, eval_at, vector_at};
+use crate::model::value::{eval_at, vector_at};
 use crate::numeric::body::NumBody;
 use crate::numeric::eigen::{Space, principal_axes};
 use crate::numeric::quadrature::{reference_rule, run};
@@ -68,19 +68,13 @@ pub(super) fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, Fi
             ExactBasis::Axis(a) => {
                 let u = v3(a)?;
                 exact_dirs.push(u);
-                (
-                    vec![u],
-                    format!("axis {}", Value::Vector(a.clone()).to_text()),
-                )
+                (vec![u], format!("axis {}", super::plain_vector(a)))
             }
             ExactBasis::PlaneNormalTo(n) => {
                 let (u, w) = plane_basis(&v3(n)?);
                 (
                     vec![u, w],
-                    format!(
-                        "every axis perpendicular to {}",
-                        Value::Vector(n.clone()).to_text()
-                    ),
+                    format!("every axis perpendicular to {}", super::plain_vector(n)),
                 )
             }
             ExactBasis::All => (
@@ -88,14 +82,12 @@ pub(super) fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, Fi
                 "every axis".to_string(),
             ),
         };
-        parts.push(format!(
-            "moment {} ({value:.4}): {what}",
-            sp.value.to_text()
-        ));
+        let moment = super::plain_formula(&sp.value);
+        parts.push(format!("moment {moment} ({value:.4}): {what}"));
         for (j, u) in dirs.iter().enumerate() {
             series.push(Series {
                 name: if j == 0 {
-                    format!("I = {}", sp.value.to_text())
+                    format!("I = {moment}")
                 } else {
                     String::new()
                 },
@@ -153,7 +145,7 @@ pub(super) fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, Fi
         scene
             .values
             .iter()
-            .map(|(k, v)| format!("{k} = {v}"))
+            .map(|(k, v)| format!("{} = {v}", super::plain_name(k)))
             .collect::<Vec<_>>()
             .join(", "),
         parts.join("; ")

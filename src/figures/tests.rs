@@ -87,3 +87,41 @@ fn plane_basis_is_orthonormal_and_normal() {
         assert!((a - b).abs() < 1e-15);
     }
 }
+
+/// A scene's figure, from the scene derived as the build derives it.
+fn figure_of(scene: &str, slug: &str) -> crate::model::figure::Figure {
+    let s = crate::scene::Scene::from_file(std::path::Path::new(scene)).unwrap();
+    let r = crate::pipeline::run_scene(s, None).unwrap();
+    r.figures
+        .into_iter()
+        .find(|f| f.slug == slug)
+        .unwrap_or_else(|| panic!("{scene} has no figure {slug}"))
+}
+
+#[test]
+fn a_caption_gives_exact_moments_and_axes_as_a_physicist_writes_them() {
+    let f = figure_of("tests/course/bodies/05-l-plate.toml", "principal-axes");
+    // Was `moment 19/4*m*a^2 (4.7500): axis [−1, 1, 0]`.
+    for part in [
+        "moment 5ma²/4 (1.2500): axis (1, 1, 0)",
+        "moment 19ma²/4 (4.7500): axis (−1, 1, 0)",
+        "moment 6ma² (6.0000): axis (0, 0, 1)",
+    ] {
+        assert!(f.desc.contains(part), "{part} in {}", f.desc);
+    }
+    assert!(!f.desc.contains(['*', '^', '[']), "{}", f.desc);
+    let legends: Vec<&str> = f.series.iter().map(|s| s.name.as_str()).collect();
+    assert!(legends.contains(&"I = 19ma²/4"), "{legends:?}");
+}
+
+#[test]
+fn the_tennis_racket_caption_gives_its_moments_to_six_figures() {
+    let f = figure_of("tests/course/bodies/07-book-flip.toml", "flip");
+    // Was `I = (0.000993333333333333, 0.00195, 0.00288333333333333)`.
+    assert!(
+        f.desc
+            .contains("(I2 = 0.00195) of I = (0.000993333, 0.00195, 0.00288333)"),
+        "{}",
+        f.desc
+    );
+}

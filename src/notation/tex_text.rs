@@ -40,6 +40,8 @@ fn node(n: &Node, out: &mut String) {
         Node::Number(s) | Node::Function(s) => out.push_str(s),
         Node::Atom(c) => match c {
             Content::BinaryOp { content: '/', .. } => out.push('/'),
+            // A sign with nothing before it to act on is a number's own: (−1, 1, 0), = −a.
+            Content::BinaryOp { content, .. } if is_unary(out, *content) => out.push(*content),
             Content::BinaryOp { content, .. } => out.push_str(&format!(" {content} ")),
             Content::Relation { content, .. } => {
                 out.push_str(&format!(" {} ", relation_text(content)));
@@ -60,13 +62,16 @@ fn node(n: &Node, out: &mut String) {
             out.extend(close);
         }
         Node::Visual(v, parts) => match (v, parts.as_slice()) {
-            // A space after: 2/3 m, not 2/3m.
+            // A space after: 2/3 m, not 2/3m. A product over a number needs no parentheses
+            // (MR²/2); a sum above, or anything but one factor below, does ((a + b)/(2c)).
             (Visual::Fraction(_), [a, b]) => {
-                out.push_str(&format!(
-                    "{}/{} ",
-                    operand(std::slice::from_ref(a)),
-                    operand(std::slice::from_ref(b))
-                ));
+                let (top, bottom) = (text_of(a), text_of(b));
+                let top = if top.contains(' ') || top.contains('/') {
+                    format!("({top})")
+                } else {
+                    top
+                };
+                out.push_str(&format!("{top}/{} ", operand_text(&bottom)));
             }
             (Visual::SquareRoot, [a]) => {
                 out.push_str(&format!("√{}", operand(std::slice::from_ref(a))));
@@ -124,9 +129,21 @@ fn node(n: &Node, out: &mut String) {
     }
 }
 
-/// Text as one item: in parentheses when it is more than one character.
+/// Whether a sign written after `out` acts on what follows alone: nothing, an opening bracket,
+/// a comma or another operator comes before it.
+fn is_unary(out: &str, sign: char) -> bool {
+    let before = out.trim_end();
+    matches!(sign, '−' | '-' | '+' | '±')
+        && (before.is_empty()
+            || before.ends_with([
+                '(', '[', '{', ',', ';', '=', '<', '>', '≤', '≥', '≈', '+', '−', '±', '×', '·',
+            ]))
+}
+
+/// Text as one item: in parentheses unless it is one character or one number (12, 0.5).
 fn operand_text(s: &str) -> String {
-    if s.chars().count() > 1 {
+    let number = !s.is_empty() && s.chars().all(|c| c.is_ascii_digit() || c == '.');
+    if s.chars().count() > 1 && !number {
         format!("({s})")
     } else {
         s.to_string()
@@ -160,7 +177,14 @@ mod tests {
         assert_eq!(plain("\\alpha"), "α");
         assert_eq!(plain("r^2 + x^{-1}"), "r² + x⁻¹");
         assert_eq!(plain("I_{xx} = \\frac{2}{3} m a^2"), "I_xx = 2/3 ma²");
-        assert_eq!(plain("\\frac{M R^2}{2}"), "(MR²)/2");
+        assert_eq!(plain("\\frac{M R^2}{2}"), "MR²/2");
+        assert_eq!(plain("\\frac{11}{12} m a^{2}"), "11/12 ma²");
+        assert_eq!(plain("\\frac{a + b}{2 c}"), "(a + b)/(2c)");
+        assert_eq!(
+            plain("\\left(-1, 1, 0\\right) = -a + b"),
+            "(−1, 1, 0) = −a + b"
+        );
+        assert_eq!(plain("a - b"), "a − b");
         assert_eq!(plain("\\sqrt{g/l}"), "√(g/l)");
         assert_eq!(plain("\\vec L = \\dot\\theta"), "L\u{20d7} = θ\u{307}");
         assert_eq!(plain("A^{T}, \\left(a, b\\right)"), "A^T, (a, b)");

@@ -197,8 +197,10 @@ fn a_flip_plot_takes_the_books_own_moments() {
         m * (h * h + d * d) / 12.0,
         m * (w * w + h * h) / 12.0,
     ];
+    // The caption gives six significant figures (0.000993333): half a unit in the sixth. The
+    // moments about the corner differ from these in the first figure.
     for (got, want) in shown.iter().zip(table) {
-        assert!((got - want).abs() <= 1e-13 * want, "{shown:?} vs {table:?}");
+        assert!((got - want).abs() <= 5e-6 * want, "{shown:?} vs {table:?}");
     }
     assert!(svg.contains("flips"), "no flips measured");
     let _ = std::fs::remove_dir_all(build);
