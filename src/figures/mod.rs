@@ -292,7 +292,7 @@ fn plain_name(name: &str) -> String {
     plain_formula(&crate::cas::Expr::sym(name))
 }
 
-/// An exact result as a reader writes it in plain text: `11/12*m*a^2` is 11/12 ma².
+/// An exact result as a reader writes it in plain text: `11/12*m*a^2` is 11ma²/12.
 fn plain_formula(e: &crate::cas::Expr) -> String {
     crate::notation::Tex::read(&e.to_latex())
         .map(|tex| tex.to_plain())
