@@ -371,9 +371,10 @@ impl Build {
             )
         };
         failures.extend(failed_documents);
-        // The reports' trees are freed on their own thread: a one-shot build's process ends
-        // next, and freeing them took 10 ms of the page-first build that `serve` waits for.
-        drop((documents, rendered.kept));
+        // The reports' trees are freed on their own thread (once the documents borrowing them
+        // are gone): a one-shot build's process ends next, and freeing them took 10 ms of the
+        // page-first build that `serve` waits for.
+        drop(documents);
         std::thread::spawn(move || drop(reports));
         Ok(Built {
             summary,

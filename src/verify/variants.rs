@@ -256,7 +256,7 @@ fn check_variant(
         let (numeric, tolerance) = match answer.bare_quantity() {
             Some(q) => (
                 routes.routes.answer(q).map_err(|e| fail(e.into()))?,
-                agreement(scene, q, &numbers),
+                agree(q),
             ),
             None => {
                 let r = routes
