@@ -1,6 +1,6 @@
 //! The only code that writes files. A site is built in a temporary folder beside the output and
 //! swapped into place in one step, so a failed or killed build leaves the previous site whole;
-//! files are written in sorted order with no timestamps, so the same input gives the same bytes.
+//! files carry no timestamps, so the same input gives the same bytes.
 //! Only an empty folder, or one that mechbook wrote, is ever replaced (`guard`).
 
 pub mod bless;
@@ -94,59 +94,102 @@ pub fn replace_file(path: &Path, bytes: &[u8]) -> Result<(), SiteError> {
     })
 }
 
-/// Writes `files` as the folder `out`, replacing what was there only once everything is written.
-///
-/// The new site is written beside `out` (with the marker file first), then swapped with the old
-/// one in one atomic exchange, so the old site or the new one is in place at every instant; the
-/// old one is then removed. Folders left beside `out` by a build that was killed are removed
-/// first. The caller checks `out` with [`check_output`] before deriving anything; this checks
-/// again, in case the folder changed meanwhile.
+/// Writes `files` as the folder `out`, replacing what was there only once everything is written
+/// (a [`Staging`] folder, swapped in whole). A path outside the folder is refused before anything
+/// is written.
 pub fn write_site(out: &Path, files: &SiteFiles) -> Result<(), SiteError> {
     for p in files.keys() {
-        if p.components().any(|c| !matches!(c, Component::Normal(_))) {
-            return Err(SiteError::BadPath(p.clone()));
-        }
+        inside(p)?;
     }
-    check_output(out, &[])?;
-    let (parent, name) = parent_and_name(out);
-    std::fs::create_dir_all(parent).map_err(io(parent))?;
-    remove_stale(parent, &name);
-    let staging = parent.join(format!(".{name}.building-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&staging);
+    let staging = Staging::begin(out)?;
+    for (rel, bytes) in files {
+        staging.write(rel, bytes)?;
+    }
+    staging.finish()
+}
 
-    let written = (|| {
-        std::fs::create_dir(&staging).map_err(io(&staging))?;
-        let marker = staging.join(guard::MARKER);
+fn inside(rel: &Path) -> Result<(), SiteError> {
+    if rel.components().any(|c| !matches!(c, Component::Normal(_))) {
+        return Err(SiteError::BadPath(rel.to_path_buf()));
+    }
+    Ok(())
+}
+
+/// A folder being written, to take the place of `out` only once it is whole: files go into it as
+/// they are made (a roster's papers one at a time, rather than all held), and [`Staging::finish`]
+/// swaps it into place. Dropped unfinished, as when a build fails, it is removed and `out` keeps
+/// what it had.
+///
+/// The new folder is written beside `out` (with the marker file first), then swapped with the
+/// old one in one atomic exchange, so the old folder or the new one is in place at every
+/// instant; the old one is then removed. Folders left beside `out` by a build that was killed
+/// are removed first. The caller checks `out` with [`check_output`] before deriving anything;
+/// this checks again, in case the folder changed meanwhile.
+pub struct Staging {
+    out: PathBuf,
+    dir: PathBuf,
+    finished: bool,
+}
+
+impl Staging {
+    pub fn begin(out: &Path) -> Result<Staging, SiteError> {
+        check_output(out, &[])?;
+        let (parent, name) = parent_and_name(out);
+        std::fs::create_dir_all(parent).map_err(io(parent))?;
+        remove_stale(parent, &name);
+        let dir = parent.join(format!(".{name}.building-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir(&dir).map_err(io(&dir))?;
+        let staging = Staging {
+            out: out.to_path_buf(),
+            dir,
+            finished: false,
+        };
+        let marker = staging.dir.join(guard::MARKER);
         std::fs::write(&marker, guard::MARKER_TEXT).map_err(io(&marker))?;
-        for (rel, bytes) in files {
-            let path = staging.join(rel);
-            if let Some(dir) = path.parent() {
-                std::fs::create_dir_all(dir).map_err(io(dir))?;
-            }
-            std::fs::write(&path, bytes).map_err(io(&path))?;
+        Ok(staging)
+    }
+
+    /// Writes one file at `rel` inside the folder.
+    pub fn write(&self, rel: &Path, bytes: &[u8]) -> Result<(), SiteError> {
+        inside(rel)?;
+        let path = self.dir.join(rel);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(io(dir))?;
         }
-        Ok(())
-    })();
-    if let Err(e) = written {
-        let _ = std::fs::remove_dir_all(&staging);
-        return Err(e);
+        std::fs::write(&path, bytes).map_err(io(&path))
     }
-    let swapped = if std::fs::symlink_metadata(out).is_ok() {
-        exchange(&staging, out)
-    } else {
-        std::fs::rename(&staging, out)
-    };
-    if let Err(source) = swapped {
-        let _ = std::fs::remove_dir_all(&staging);
-        return Err(SiteError::Io {
-            path: out.to_path_buf(),
-            source,
-        });
+
+    /// Puts the folder in `out`'s place.
+    pub fn finish(mut self) -> Result<(), SiteError> {
+        // From here the folder is either swapped in or removed below, not by `drop`.
+        self.finished = true;
+        let (staging, out) = (&self.dir, &self.out);
+        let swapped = if std::fs::symlink_metadata(out).is_ok() {
+            exchange(staging, out)
+        } else {
+            std::fs::rename(staging, out)
+        };
+        if let Err(source) = swapped {
+            let _ = std::fs::remove_dir_all(staging);
+            return Err(SiteError::Io {
+                path: out.clone(),
+                source,
+            });
+        }
+        // After an exchange the staging name holds the old folder; after a rename it is gone.
+        match std::fs::remove_dir_all(staging) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(io(staging)(e)),
+            _ => Ok(()),
+        }
     }
-    // After an exchange the staging name holds the old site; after a rename it is gone.
-    match std::fs::remove_dir_all(&staging) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(io(&staging)(e)),
-        _ => Ok(()),
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if !self.finished {
+            let _ = std::fs::remove_dir_all(&self.dir);
+        }
     }
 }
 
@@ -199,8 +242,6 @@ fn two_renames(a: &Path, b: &Path) -> std::io::Result<()> {
     std::fs::rename(&aside, a)
 }
 
-/// Removes `.NAME.building-PID` and `.NAME.previous-PID` folders whose process is gone: what a
-/// killed build leaves. Only folders that carry the marker, or are empty, are removed.
 /// The folder holding `out` (`.` for a bare name) and `out`'s own name, beside which a build
 /// stages the site.
 fn parent_and_name(out: &Path) -> (&Path, String) {
@@ -222,6 +263,8 @@ pub fn remove_leftovers(out: &Path) {
     remove_stale(parent, &name);
 }
 
+/// Removes `.NAME.building-PID` and `.NAME.previous-PID` folders whose process is gone: what a
+/// killed build leaves. Only folders that carry the marker, or are empty, are removed.
 fn remove_stale(parent: &Path, name: &str) {
     let Ok(entries) = std::fs::read_dir(parent) else {
         return;
@@ -328,6 +371,41 @@ mod tests {
             std::fs::read_dir(&dir).unwrap().count(),
             1,
             "staging folder left behind"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A folder written file by file (a roster's papers) replaces the old one only when
+    /// finished; dropped unfinished, as when the build fails midway, it leaves no trace.
+    #[test]
+    fn a_staged_folder_takes_the_place_of_the_old_only_when_finished() {
+        let dir = scratch("staging");
+        let out = dir.join("papers");
+        write_site(&out, &files(&[("001.pdf", "old")])).unwrap();
+        let staging = Staging::begin(&out).unwrap();
+        staging.write(Path::new("001.pdf"), b"new").unwrap();
+        assert!(matches!(
+            staging.write(Path::new("../002.pdf"), b"x"),
+            Err(SiteError::BadPath(_))
+        ));
+        drop(staging);
+        assert_eq!(std::fs::read_to_string(out.join("001.pdf")).unwrap(), "old");
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            1,
+            "staging left behind"
+        );
+        let staging = Staging::begin(&out).unwrap();
+        staging.write(Path::new("001.pdf"), b"new").unwrap();
+        staging.write(Path::new("key.pdf"), b"key").unwrap();
+        assert_eq!(std::fs::read_to_string(out.join("001.pdf")).unwrap(), "old");
+        staging.finish().unwrap();
+        assert_eq!(std::fs::read_to_string(out.join("001.pdf")).unwrap(), "new");
+        assert_eq!(std::fs::read_to_string(out.join("key.pdf")).unwrap(), "key");
+        assert_eq!(
+            std::fs::read_dir(&dir).unwrap().count(),
+            1,
+            "staging left behind"
         );
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -262,6 +262,15 @@ impl Build {
         // Load, run, then the documents, once; each renderer prints them; then the PDFs are
         // typeset (or taken from the cache) and everything is written.
         let documents = crate::document::course::documents(&reports, &course);
+        // The papers' sources before anything is rendered or typeset, so that a roster the
+        // sheets cannot serve is refused at once.
+        let paper_sources = match &self.roster {
+            Some((roster, _, seed)) if !self.pdfs_later => Some(
+                crate::render::pdf::roster_documents(&documents, &course, roster, *seed)
+                    .map_err(|e| fail(e.into()))?,
+            ),
+            _ => None,
+        };
         let cx = crate::render::Context {
             course: &course,
             templates: &templates,
@@ -281,30 +290,46 @@ impl Build {
             warnings.push(format!("the cache is not updated: {e}"));
         }
         let mut site = rendered.files;
-        let pdfs = if self.pdfs_later {
-            crate::site::pdfs::from_cache_only(&rendered.typeset, self.cache.as_ref(), "site")
-        } else {
-            typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site")
+        let mut in_site = |path: PathBuf, pdf: Vec<u8>| {
+            site.insert(path, pdf);
+            Ok(())
         };
+        let pdfs = if self.pdfs_later {
+            crate::site::pdfs::from_cache_only(
+                &rendered.typeset,
+                self.cache.as_ref(),
+                "site",
+                &mut in_site,
+            )
+        } else {
+            typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site", &mut in_site)
+        }
+        .map_err(|e| fail(e.into()))?;
         let mut pdfs_pending = pdfs.pending;
         pdfs_pending.extend(rendered.later);
         warnings.extend(pdfs.warnings);
         // A document Typst cannot set fails the build, but the HTML site and the other PDFs
         // are still written.
         let mut failed_documents = pdfs.failed;
-        let (typeset, pdf_cached) = (pdfs.files.len() - pdfs.from_cache, pdfs.from_cache);
-        site.extend(pdfs.files);
-        let papers = match &self.roster {
-            Some((roster, dir, seed)) if !self.pdfs_later => {
-                let (sources, csv) =
-                    crate::render::pdf::roster_documents(&documents, &course, roster, *seed)
-                        .map_err(|e| fail(e.into()))?;
-                let made = typeset_with_progress(&sources, self.cache.as_ref(), "papers");
+        let (typeset, pdf_cached) = (pdfs.made - pdfs.from_cache, pdfs.from_cache);
+        // Each paper is written as soon as it is made, into a folder that takes the papers'
+        // place once the site is written: a class's papers are not all held at once.
+        let papers = match (&self.roster, paper_sources) {
+            (Some((roster, dir, _)), Some((sources, csv))) => {
+                let staging = crate::site::Staging::begin(dir).map_err(|e| fail(e.into()))?;
+                let made = typeset_with_progress(
+                    &sources,
+                    self.cache.as_ref(),
+                    "papers",
+                    &mut |path, pdf| staging.write(&path, &pdf),
+                )
+                .map_err(|e| fail(e.into()))?;
                 warnings.extend(made.warnings);
                 failed_documents.extend(made.failed);
-                let mut files: crate::render::SiteFiles = made.files.into_iter().collect();
-                files.insert(PathBuf::from("variants.csv"), csv);
-                Some((dir, files, roster.students.len()))
+                staging
+                    .write(Path::new("variants.csv"), &csv)
+                    .map_err(|e| fail(e.into()))?;
+                Some((dir, staging, roster.students.len()))
             }
             _ => None,
         };
@@ -315,9 +340,13 @@ impl Build {
             eprintln!("mechbook: warning: {w}");
         }
         crate::site::write_site(&self.out, &site).map_err(|e| fail(e.into()))?;
-        if let Some((dir, files, _)) = &papers {
-            crate::site::write_site(dir, files).map_err(|e| fail(e.into()))?;
-        }
+        let papers = match papers {
+            Some((dir, staging, students)) => {
+                staging.finish().map_err(|e| fail(e.into()))?;
+                Some((dir, students))
+            }
+            None => None,
+        };
         let handouts = site.keys().filter(|p| p.starts_with("handouts")).count();
         let plots = site.keys().filter(|p| p.starts_with("plots")).count();
         for f in &failed_documents {
@@ -342,7 +371,7 @@ impl Build {
         } else {
             String::new()
         };
-        let papers = papers.map_or(String::new(), |(dir, _, students)| {
+        let papers = papers.map_or(String::new(), |(dir, students)| {
             format!(
                 "; {students} students' papers and their key into {} (the site leaves out the \
                  answer keys and Moodle quizzes, since each paper names its variant)",
@@ -504,7 +533,8 @@ fn typeset_with_progress(
     sources: &[crate::render::pdf::PdfSource],
     cache: Option<&crate::site::cache::Cache>,
     prefix: &str,
-) -> crate::site::pdfs::Typeset {
+    keep: &mut crate::site::pdfs::Keep,
+) -> Result<crate::site::pdfs::Typeset, crate::site::SiteError> {
     use std::io::IsTerminal;
     let terminal = std::io::stderr().is_terminal();
     let mut progress = |done: usize, total: usize, path: &str| {
@@ -512,7 +542,7 @@ fn typeset_with_progress(
             eprint!("\r\x1b[2K{}", super::progress_bar(done, total, path));
         }
     };
-    let made = crate::site::pdfs::typeset_all(sources, cache, prefix, &mut progress);
+    let made = crate::site::pdfs::typeset_all(sources, cache, prefix, &mut progress, keep);
     if terminal {
         eprint!("\r\x1b[2K");
     }

@@ -1,15 +1,21 @@
 //! The PDFs of a build: each document typeset by Typst, or taken from the build cache when its
-//! markup and pictures are unchanged (a warm build typesets nothing). The bytes go to the
-//! caller, which writes them with the site.
+//! markup and pictures are unchanged (a warm build typesets nothing). Each PDF goes to the
+//! caller's `keep` as soon as it is made, which puts it in the site or writes it (a roster's
+//! papers are not all held at once).
 
+use super::SiteError;
 use super::cache::Cache;
 use crate::render::pdf::PdfSource;
 use std::path::PathBuf;
 
-/// What typesetting made: each file, and what to tell the user.
+/// Where each PDF goes once it is made or read from the cache: its path and its bytes.
+pub type Keep<'a> = dyn FnMut(PathBuf, Vec<u8>) -> Result<(), SiteError> + 'a;
+
+/// What typesetting made: how many documents, and what to tell the user.
 #[derive(Default)]
 pub struct Typeset {
-    pub files: Vec<(PathBuf, Vec<u8>)>,
+    /// The documents kept, typeset or from the cache.
+    pub made: usize,
     pub from_cache: usize,
     /// Characters no font has, by document; and cache entries that could not be used or kept.
     pub warnings: Vec<String>,
@@ -31,23 +37,28 @@ fn workers() -> usize {
 const MAX_WORKERS: usize = 2;
 
 /// Typesets `sources`, under `prefix` in the cache's names (`site`, `papers`); `progress` is
-/// told of each document before it is made (done, total, path). The documents not in the cache
-/// are typeset on one thread per core; the files, warnings and failures come in the sources'
-/// order whatever the threads' order, so a build's output and messages do not depend on it.
+/// told of each document before it is made (done, total, path), and `keep` is given each PDF as
+/// soon as it is made. The documents not in the cache are typeset on one thread per core; the
+/// warnings and failures come in the sources' order whatever the threads' order, so a build's
+/// output and messages do not depend on it. When `keep` fails, no further document is started
+/// and its error is returned.
 #[cfg(feature = "pdf")]
 pub fn typeset_all(
     sources: &[PdfSource],
     cache: Option<&Cache>,
     prefix: &str,
     progress: &mut dyn FnMut(usize, usize, &str),
-) -> Typeset {
+    keep: &mut Keep,
+) -> Result<Typeset, SiteError> {
     use std::sync::atomic::{AtomicUsize, Ordering};
     let mut out = Typeset::default();
     // From the cache first, in order; the rest are typeset below.
-    let mut made = from_cache(sources, cache, prefix, &mut out);
-    let todo: Vec<usize> = (0..sources.len()).filter(|&i| made[i].is_none()).collect();
+    let cached = from_cache(sources, cache, prefix, &mut out, keep)?;
+    let todo: Vec<usize> = (0..sources.len()).filter(|&i| !cached[i]).collect();
+    let mut notes: Vec<Notes> = (0..sources.len()).map(|_| Notes::default()).collect();
+    let mut kept = Ok(());
     // The workers take the next document and say when they start and finish it; this thread
-    // tells `progress`, which need not be shared between threads.
+    // tells `progress` and `keep`, which need not be shared between threads.
     let next = AtomicUsize::new(0);
     let (tell, told) = std::sync::mpsc::channel();
     std::thread::scope(|scope| {
@@ -68,81 +79,113 @@ pub fn typeset_all(
         for message in told {
             match message {
                 Worker::Starts(k, i) => progress(k, todo.len(), &sources[i].path),
-                Worker::Made(i, done) => made[i] = Some(Made::Typeset(*done)),
+                Worker::Made(i, done) => {
+                    let (said, pdf) = finished(&sources[i], *done, cache, prefix);
+                    notes[i] = said;
+                    if let (Some(pdf), Ok(())) = (pdf, &kept) {
+                        out.made += 1;
+                        kept = keep(PathBuf::from(&sources[i].path), pdf);
+                        if kept.is_err() {
+                            // Nothing more is started; what is under way is let finish.
+                            next.store(todo.len(), Ordering::Relaxed);
+                        }
+                    }
+                }
             }
         }
     });
-    for (s, m) in sources.iter().zip(made) {
-        let done = match m.expect("every document is made or from the cache") {
-            Made::Cached(pdf) => {
-                out.files.push((PathBuf::from(&s.path), pdf));
-                out.from_cache += 1;
-                continue;
-            }
-            Made::Typeset(Ok(done)) => done,
-            Made::Typeset(Err(e)) => {
-                // The error names the document.
-                out.failed.push(e.to_string());
-                continue;
-            }
-        };
-        if !done.past_the_edge.is_empty() {
-            // Named at the scenes whose formulas run past it, where known.
-            let scenes = if done.past_the_edge_in.is_empty() {
-                String::new()
-            } else {
-                format!(" (from {})", done.past_the_edge_in.join(", "))
-            };
-            out.warnings.push(format!(
-                "{}: text runs past the paper's edge on page(s) {}{scenes}",
-                s.path,
-                done.past_the_edge
-                    .iter()
-                    .map(ToString::to_string)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
-        }
-        if !done.missing_glyphs.is_empty() {
-            out.warnings.push(format!(
-                "{}: no font has {}: they are left out of the PDF",
-                s.path,
-                done.missing_glyphs
-                    .iter()
-                    .map(|c| format!("`{c}` (U+{:04X})", u32::from(*c)))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
-        }
-        if done.missing_glyphs.is_empty()
-            && done.past_the_edge.is_empty()
-            && let Some(cache) = cache
-            && let Err(e) = cache.store_pdf(&cache_name(prefix, s), inputs_hash(s), &done.pdf)
-        {
-            out.warnings.push(format!("the cache is not updated: {e}"));
-        }
-        out.files.push((PathBuf::from(&s.path), done.pdf));
+    kept?;
+    for n in notes {
+        out.warnings.extend(n.warnings);
+        out.failed.extend(n.failed);
     }
-    out
+    Ok(out)
 }
 
-/// The documents of `sources` that the cache has, and nothing typeset: the rest are named in
-/// `pending`, for a later build to typeset (`serve` reloads the page first, and its PDFs
-/// follow).
+/// What a build says of one typeset document: its warnings, or why it failed.
 #[cfg(feature = "pdf")]
-pub fn from_cache_only(sources: &[PdfSource], cache: Option<&Cache>, prefix: &str) -> Typeset {
+#[derive(Default)]
+struct Notes {
+    warnings: Vec<String>,
+    failed: Option<String>,
+}
+
+/// A document as Typst made it: what to say of it, and its PDF (none when it failed). A PDF that
+/// needs no warning is stored in the cache.
+#[cfg(feature = "pdf")]
+fn finished(
+    s: &PdfSource,
+    done: Typesetting,
+    cache: Option<&Cache>,
+    prefix: &str,
+) -> (Notes, Option<Vec<u8>>) {
+    let mut notes = Notes::default();
+    let done = match done {
+        Ok(done) => done,
+        Err(e) => {
+            // The error names the document.
+            notes.failed = Some(e.to_string());
+            return (notes, None);
+        }
+    };
+    if !done.past_the_edge.is_empty() {
+        // Named at the scenes whose formulas run past it, where known.
+        let scenes = if done.past_the_edge_in.is_empty() {
+            String::new()
+        } else {
+            format!(" (from {})", done.past_the_edge_in.join(", "))
+        };
+        notes.warnings.push(format!(
+            "{}: text runs past the paper's edge on page(s) {}{scenes}",
+            s.path,
+            done.past_the_edge
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    if !done.missing_glyphs.is_empty() {
+        notes.warnings.push(format!(
+            "{}: no font has {}: they are left out of the PDF",
+            s.path,
+            done.missing_glyphs
+                .iter()
+                .map(|c| format!("`{c}` (U+{:04X})", u32::from(*c)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    if done.missing_glyphs.is_empty()
+        && done.past_the_edge.is_empty()
+        && let Some(cache) = cache
+        && let Err(e) = cache.store_pdf(&cache_name(prefix, s), inputs_hash(s), &done.pdf)
+    {
+        notes
+            .warnings
+            .push(format!("the cache is not updated: {e}"));
+    }
+    (notes, Some(done.pdf))
+}
+
+/// The documents of `sources` that the cache has, each given to `keep`, and nothing typeset:
+/// the rest are named in `pending`, for a later build to typeset (`serve` reloads the page
+/// first, and its PDFs follow).
+#[cfg(feature = "pdf")]
+pub fn from_cache_only(
+    sources: &[PdfSource],
+    cache: Option<&Cache>,
+    prefix: &str,
+    keep: &mut Keep,
+) -> Result<Typeset, SiteError> {
     let mut out = Typeset::default();
-    let made = from_cache(sources, cache, prefix, &mut out);
-    for (s, m) in sources.iter().zip(made) {
-        match m {
-            Some(Made::Cached(pdf)) => {
-                out.files.push((PathBuf::from(&s.path), pdf));
-                out.from_cache += 1;
-            }
-            _ => out.pending.push(s.path.clone()),
+    let cached = from_cache(sources, cache, prefix, &mut out, keep)?;
+    for (s, cached) in sources.iter().zip(cached) {
+        if !cached {
+            out.pending.push(s.path.clone());
         }
     }
-    out
+    Ok(out)
 }
 
 /// The name of a document's entry in the cache.
@@ -154,22 +197,28 @@ fn cache_name(prefix: &str, s: &PdfSource) -> String {
     )
 }
 
-/// Each document's PDF from the cache, in the sources' order, or `None` to typeset it; a
-/// damaged entry is said in `out`'s warnings.
+/// Gives `keep` each document's PDF that the cache has, in the sources' order, and says which
+/// they were (the rest are to be typeset); a damaged entry is said in `out`'s warnings.
 #[cfg(feature = "pdf")]
 fn from_cache(
     sources: &[PdfSource],
     cache: Option<&Cache>,
     prefix: &str,
     out: &mut Typeset,
-) -> Vec<Option<Made>> {
-    let mut made: Vec<Option<Made>> = Vec::with_capacity(sources.len());
+    keep: &mut Keep,
+) -> Result<Vec<bool>, SiteError> {
+    let mut cached = Vec::with_capacity(sources.len());
     for s in sources {
-        let mut from_cache = None;
+        let mut hit = false;
         if let Some(cache) = cache {
             use super::cache::Lookup;
             match cache.load_pdf(&cache_name(prefix, s), inputs_hash(s)) {
-                Lookup::Hit(pdf) => from_cache = Some(pdf),
+                Lookup::Hit(pdf) => {
+                    keep(PathBuf::from(&s.path), pdf)?;
+                    out.made += 1;
+                    out.from_cache += 1;
+                    hit = true;
+                }
                 Lookup::Miss => {}
                 Lookup::Damaged(path, why) => out.warnings.push(format!(
                     "the cache entry {} is damaged ({why}): {} was typeset again",
@@ -178,21 +227,14 @@ fn from_cache(
                 )),
             }
         }
-        made.push(from_cache.map(Made::Cached));
+        cached.push(hit);
     }
-    made
+    Ok(cached)
 }
 
 #[cfg(feature = "pdf")]
 type Typesetting =
     Result<crate::render::pdf::typeset::Typeset, crate::render::pdf::typeset::TypesetError>;
-
-/// A document's PDF from the cache, or as Typst made it.
-#[cfg(feature = "pdf")]
-enum Made {
-    Cached(Vec<u8>),
-    Typeset(Typesetting),
-}
 
 /// What a typesetting worker tells the thread that started it: the k-th document to typeset
 /// (the i-th source) starts, or is made.
@@ -209,14 +251,20 @@ pub fn typeset_all(
     _: Option<&Cache>,
     _: &str,
     _: &mut dyn FnMut(usize, usize, &str),
-) -> Typeset {
-    Typeset::default()
+    _: &mut Keep,
+) -> Result<Typeset, SiteError> {
+    Ok(Typeset::default())
 }
 
 /// Without the feature `pdf` there is nothing to typeset.
 #[cfg(not(feature = "pdf"))]
-pub fn from_cache_only(_: &[PdfSource], _: Option<&Cache>, _: &str) -> Typeset {
-    Typeset::default()
+pub fn from_cache_only(
+    _: &[PdfSource],
+    _: Option<&Cache>,
+    _: &str,
+    _: &mut Keep,
+) -> Result<Typeset, SiteError> {
+    Ok(Typeset::default())
 }
 
 /// The hash of everything a document's bytes depend on but the program (which the cache's
@@ -237,8 +285,23 @@ fn inputs_hash(s: &PdfSource) -> u64 {
 
 #[cfg(all(test, feature = "pdf"))]
 mod tests {
-    use super::typeset_all;
     use crate::render::pdf::PdfSource;
+    use std::collections::BTreeMap;
+    use std::path::PathBuf;
+
+    /// The documents typeset, each PDF kept in the order it came, and what was said.
+    fn typeset_all(
+        sources: &[PdfSource],
+        progress: &mut dyn FnMut(usize, usize, &str),
+    ) -> (Vec<(PathBuf, Vec<u8>)>, super::Typeset) {
+        let mut kept = Vec::new();
+        let made = super::typeset_all(sources, None, "test", progress, &mut |path, pdf| {
+            kept.push((path, pdf));
+            Ok(())
+        })
+        .unwrap();
+        (kept, made)
+    }
 
     fn source(path: &str, markup: &str) -> PdfSource {
         PdfSource {
@@ -251,23 +314,19 @@ mod tests {
 
     #[test]
     fn a_document_typst_cannot_set_is_named_and_the_others_are_still_made() {
-        let made = typeset_all(
+        let (files, made) = typeset_all(
             &[
                 // A title, as PDF/UA-1 asks of every document.
                 source("pdf/a.pdf", "#set document(title: \"A\")\nHello"),
                 source("pdf/b.pdf", "#panic(\"broken\")"),
                 source("pdf/c.pdf", "#set document(title: \"C\")\nWorld"),
             ],
-            None,
-            "test",
             &mut |_, _, _| {},
         );
-        let paths: Vec<String> = made
-            .files
-            .iter()
-            .map(|(p, _)| p.display().to_string())
-            .collect();
+        let mut paths: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+        paths.sort();
         assert_eq!(paths, ["pdf/a.pdf", "pdf/c.pdf"]);
+        assert_eq!(made.made, 2);
         assert_eq!(made.failed.len(), 1, "{:?}", made.failed);
         assert!(
             made.failed[0].starts_with("pdf/b.pdf: Typst cannot typeset it"),
@@ -287,7 +346,7 @@ mod tests {
             (at("#[one]"), "lectures/one.toml:3".into()),
             (at(" #[mine]"), String::new()),
         ];
-        let made = typeset_all(&[in_scene.clone()], None, "test", &mut |_, _, _| {});
+        let (_, made) = typeset_all(&[in_scene.clone()], &mut |_, _, _| {});
         assert_eq!(made.failed.len(), 1, "{:?}", made.failed);
         let e = &made.failed[0];
         assert!(
@@ -298,7 +357,7 @@ mod tests {
         );
         // The same error in mechbook's own markup.
         in_scene.markup = markup.replace("#panic(\"two\")", "#[two]");
-        let made = typeset_all(&[in_scene], None, "test", &mut |_, _, _| {});
+        let (_, made) = typeset_all(&[in_scene], &mut |_, _, _| {});
         let e = &made.failed[0];
         assert!(
             e.starts_with("pdf/d.pdf: Typst cannot typeset it: panicked with: three"),
@@ -306,11 +365,12 @@ mod tests {
         );
     }
 
-    /// On two workers a long document first finishes after the short ones behind it: the
-    /// files still come in the sources' order, each the bytes a one-at-a-time typesetting
-    /// makes, and `progress` hears of each document once.
+    /// On two workers a long document first finishes after the short ones behind it: each PDF
+    /// is kept as soon as it is made (not held for the long one), each the bytes a
+    /// one-at-a-time typesetting makes, the failures still said in the sources' order, and
+    /// `progress` hears of each document once.
     #[test]
-    fn documents_typeset_at_once_come_out_in_order_with_the_same_bytes() {
+    fn documents_typeset_at_once_are_kept_as_made_with_the_same_bytes() {
         let long = format!(
             "#set document(title: \"Long\")\n{}",
             "A line of the long document.\n\n".repeat(2000)
@@ -322,29 +382,67 @@ mod tests {
                 &format!("#set document(title: \"{k}\")\nShort {k}"),
             ));
         }
+        sources.push(source("pdf/6.pdf", "#panic(\"six\")"));
+        sources.push(source("pdf/7.pdf", "#panic(\"seven\")"));
         let mut told = Vec::new();
-        let made = typeset_all(&sources, None, "test", &mut |_, total, path| {
+        let (files, made) = typeset_all(&sources, &mut |_, total, path| {
             told.push((total, path.to_string()));
         });
-        let paths: Vec<String> = made
-            .files
-            .iter()
-            .map(|(p, _)| p.display().to_string())
-            .collect();
+        if super::workers() > 1 {
+            assert_ne!(
+                files[0].0,
+                PathBuf::from("pdf/0.pdf"),
+                "the short documents wait for the long one"
+            );
+        }
+        let files: BTreeMap<PathBuf, Vec<u8>> = files.into_iter().collect();
         let wanted: Vec<String> = sources.iter().map(|s| s.path.clone()).collect();
-        assert_eq!(paths, wanted);
+        assert_eq!(
+            files
+                .keys()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>(),
+            wanted[..6]
+        );
+        assert!(made.failed[0].starts_with("pdf/6.pdf") && made.failed[1].starts_with("pdf/7.pdf"));
         told.sort();
         assert_eq!(
             told,
-            wanted.iter().map(|p| (6, p.clone())).collect::<Vec<_>>()
+            wanted.iter().map(|p| (8, p.clone())).collect::<Vec<_>>()
         );
-        for (s, (_, pdf)) in sources.iter().zip(&made.files) {
+        for s in &sources[..6] {
             let alone = crate::render::pdf::typeset::typeset(s).unwrap().pdf;
             assert!(
-                alone == *pdf,
+                alone == files[&PathBuf::from(&s.path)],
                 "{} differs from its one-at-a-time bytes",
                 s.path
             );
         }
+    }
+
+    /// A failed write stops the typesetting and is what the caller hears.
+    #[test]
+    fn a_failed_keep_stops_the_rest_and_is_returned() {
+        let sources: Vec<PdfSource> = (0..12)
+            .map(|k| {
+                source(
+                    &format!("pdf/{k}.pdf"),
+                    &format!("#set document(title: \"{k}\")\nShort {k}"),
+                )
+            })
+            .collect();
+        let mut started = 0;
+        let result = super::typeset_all(
+            &sources,
+            None,
+            "test",
+            &mut |_, _, _| started += 1,
+            &mut |path, _| Err(crate::site::SiteError::BadPath(path)),
+        );
+        assert!(matches!(result, Err(crate::site::SiteError::BadPath(_))));
+        assert!(
+            started < 12,
+            "all {started} documents were started after the write failed"
+        );
     }
 }

@@ -242,11 +242,11 @@ fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
     // Lecture 3/4's sheet has 12 variants: 9 students take 9 of them.
     std::fs::write(&csv, roster(9)).unwrap();
     let (site, papers) = (dir.join("site"), dir.join("papers"));
-    let build = |seed: &str, papers: &Path| {
-        mechbook(&[
+    // Without a cache, or with the one named.
+    let build_cached = |seed: &str, papers: &Path, cache: Option<&Path>| {
+        let mut args = vec![
             "build",
             "lectures",
-            "--no-cache",
             "--out",
             site.to_str().unwrap(),
             "--roster",
@@ -255,8 +255,14 @@ fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
             papers.to_str().unwrap(),
             "--seed",
             seed,
-        ])
+        ];
+        match cache {
+            Some(dir) => args.extend(["--cache", dir.to_str().unwrap()]),
+            None => args.push("--no-cache"),
+        }
+        mechbook(&args)
     };
+    let build = |seed: &str, papers: &Path| build_cached(seed, papers, None);
     let run = build("1", &papers);
     assert!(run.status.success(), "{}", stderr(&run));
     // Each paper names its variant: the site, which may be published, holds no variant's
@@ -348,10 +354,11 @@ fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
         std::fs::read_to_string(other.join("variants.csv")).unwrap(),
         table
     );
-    // More students than lecture 3/4's 12 variants: refused, nothing written.
+    // More students than lecture 3/4's 12 variants: refused before anything is typeset (the
+    // cache holds no PDF), nothing written.
     std::fs::write(&csv, roster(13)).unwrap();
-    let refused = dir.join("refused");
-    let run = build("1", &refused);
+    let (refused, cache) = (dir.join("refused"), dir.join("cache"));
+    let run = build_cached("1", &refused, Some(&cache));
     assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
     assert!(
         stderr(&run).contains("13 students, but lecture 3/4's problem sheet has 12 variant(s)"),
@@ -359,6 +366,16 @@ fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
         stderr(&run)
     );
     assert!(!refused.exists());
+    let typeset: Vec<String> = std::fs::read_dir(&cache)
+        .into_iter()
+        .flatten()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.contains(".pdf."))
+        .collect();
+    assert!(
+        typeset.is_empty(),
+        "typeset before the refusal: {typeset:?}"
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 
