@@ -73,18 +73,38 @@ try {
     }
   }
   // The page comes before its PDFs: it says they are being typeset, and reloads again when
-  // they are ready.
+  // they are ready. The pages served are read as they pass: the starter's PDFs take about a
+  // quarter of a second, so the page that carries the note may be replaced before the poll
+  // below sees it in the browser (CI once missed it that way).
+  const served = [];
+  await page.route("**/book.html", async (route) => {
+    const response = await route.fetch();
+    const body = await response.text();
+    served.push({ title: (body.match(/<title>([^<]*)<\/title>/) || [])[1] || "",
+                  note: body.includes('id="mechbook-serve-pdfs"') });
+    await route.fulfill({ response, body });
+  });
   await settled(page);
   writeFileSync(scene, original.replace("A book as a uniform box", "A book and its PDFs"));
+  const edited = (s) => s.title.startsWith("A book and its PDFs");
   try {
-    await page.waitForFunction(() => document.title.startsWith("A book and its PDFs") &&
-                                     document.querySelector("#mechbook-serve-pdfs"),
-                               null, { timeout: 5000, polling: 10 });
-    if (shots) await page.screenshot({ path: `${shots}-pdfs.png` });
-    await page.waitForSelector("#mechbook-serve-pdfs", { state: "detached", timeout: 60000 });
-  } catch {
-    fail("the page did not say that its PDFs were being typeset, then reload when they were");
+    await page.waitForFunction(() => document.title.startsWith("A book and its PDFs"), null,
+                               { timeout: 5000, polling: 10 });
+    if (shots && await page.$("#mechbook-serve-pdfs")) {
+      await page.screenshot({ path: `${shots}-pdfs.png` });
+    }
+    await settled(page);
+    const first = served.findIndex((s) => edited(s) && s.note);
+    if (first < 0) {
+      fail(`no page served after the save said that its PDFs were being typeset: ` +
+           JSON.stringify(served));
+    } else if (!served.slice(first + 1).some((s) => edited(s) && !s.note)) {
+      fail(`the page did not reload once its PDFs were ready: ${JSON.stringify(served)}`);
+    }
+  } catch (e) {
+    fail(`the page did not show the save, then settle once its PDFs were ready: ${e.message}`);
   }
+  await page.unroute("**/book.html");
   // A broken scene: the error appears in the open page, over the last good site.
   writeFileSync(scene, original.replace('value = "m*(h^2 + d^2)/3"', 'value = "m*(h^2 + 2d^2)/3"'));
   try {
