@@ -150,12 +150,19 @@ impl Staging {
         Ok(staging)
     }
 
-    /// Writes one file at `rel` inside the folder.
+    /// Writes one file at `rel` inside the folder. A file that `out` already holds with the
+    /// same bytes is linked rather than written: the folder then takes no new file from the
+    /// file system, which on ext4 cost a quarter of a page-first build (`perf record`: finding
+    /// a free inode among those the last build deleted).
     pub fn write(&self, rel: &Path, bytes: &[u8]) -> Result<(), SiteError> {
         inside(rel)?;
         let path = self.dir.join(rel);
         if let Some(dir) = path.parent() {
             std::fs::create_dir_all(dir).map_err(io(dir))?;
+        }
+        let old = self.out.join(rel);
+        if same_bytes(&old, bytes) && std::fs::hard_link(&old, &path).is_ok() {
+            return Ok(());
         }
         std::fs::write(&path, bytes).map_err(io(&path))
     }
@@ -189,6 +196,32 @@ impl Drop for Staging {
     fn drop(&mut self) {
         if !self.finished {
             let _ = std::fs::remove_dir_all(&self.dir);
+        }
+    }
+}
+
+/// Whether `path` is a regular file (not a link) holding exactly `bytes`, read a block at a
+/// time; any error reading it says no.
+fn same_bytes(path: &Path, bytes: &[u8]) -> bool {
+    use std::io::Read;
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return false;
+    };
+    if !meta.is_file() || meta.len() != bytes.len() as u64 {
+        return false;
+    }
+    let Ok(mut file) = std::fs::File::open(path) else {
+        return false;
+    };
+    let mut block = [0u8; 16 * 1024];
+    let mut rest = bytes;
+    loop {
+        match file.read(&mut block) {
+            Ok(0) => return rest.is_empty(),
+            Ok(n) if n <= rest.len() && block[..n] == rest[..n] => rest = &rest[n..],
+            Ok(_) => return false,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(_) => return false,
         }
     }
 }
@@ -406,6 +439,62 @@ mod tests {
             std::fs::read_dir(&dir).unwrap().count(),
             1,
             "staging left behind"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_file_the_old_folder_has_with_the_same_bytes_is_linked_and_no_other() {
+        use std::os::unix::fs::MetadataExt;
+        let dir = scratch("linked");
+        let out = dir.join("site");
+        let outside = dir.join("outside.html");
+        std::fs::write(&outside, "<p>a</p>").unwrap();
+        write_site(
+            &out,
+            &files(&[("same.html", "<p>a</p>"), ("edited.html", "<p>b</p>")]),
+        )
+        .unwrap();
+        // A link in the old folder is not followed, even to a file with the same bytes.
+        std::os::unix::fs::symlink(&outside, out.join("linked.html")).unwrap();
+        let inode = |p: &Path| std::fs::symlink_metadata(p).unwrap().ino();
+        let before = (
+            inode(&out.join("same.html")),
+            inode(&out.join("edited.html")),
+        );
+        write_site(
+            &out,
+            &files(&[
+                ("same.html", "<p>a</p>"),
+                ("edited.html", "<p>c</p>"),
+                ("linked.html", "<p>a</p>"),
+            ]),
+        )
+        .unwrap();
+        assert_eq!(
+            inode(&out.join("same.html")),
+            before.0,
+            "an unchanged file was written anew"
+        );
+        assert_ne!(
+            inode(&out.join("edited.html")),
+            before.1,
+            "an edited file was linked"
+        );
+        assert_ne!(inode(&out.join("linked.html")), inode(&outside));
+        for (name, text) in [
+            ("same.html", "<p>a</p>"),
+            ("edited.html", "<p>c</p>"),
+            ("linked.html", "<p>a</p>"),
+        ] {
+            assert_eq!(std::fs::read_to_string(out.join(name)).unwrap(), text);
+            assert!(std::fs::symlink_metadata(out.join(name)).unwrap().is_file());
+        }
+        assert_eq!(
+            std::fs::metadata(out.join("same.html")).unwrap().nlink(),
+            1,
+            "the old name is left"
         );
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -452,6 +452,14 @@ impl Build {
     pub fn out(&self) -> &Path {
         &self.out
     }
+
+    /// The folders a build writes: the output, the cache and the roster's papers.
+    pub fn written(&self) -> Vec<PathBuf> {
+        let mut w = vec![self.out.clone()];
+        w.extend(self.cache.as_ref().map(|c| c.dir().to_path_buf()));
+        w.extend(self.roster.as_ref().map(|(_, dir, _)| dir.clone()));
+        w
+    }
 }
 
 /// The course file for `paths`: `mechbook.toml` in a folder named (and then the whole course is

@@ -83,7 +83,7 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     })
     .context("cannot watch the files for changes")?;
     let watched = build.watched();
-    let relevant = Relevant::new(&watched, build.out());
+    let relevant = Relevant::new(&watched, &build.written());
     for (target, mode) in relevant.watches() {
         watcher
             .watch(&target, mode)
@@ -372,16 +372,17 @@ fn folder_of(path: &Path) -> PathBuf {
 }
 
 /// Which changed paths call for a build: inside a watched folder or the course file itself,
-/// never in the output, and never under a hidden name (the cache, the site's staging folders,
-/// an editor's swap files) or an editor's backup.
+/// never in what the builds write (the output, the cache, the papers), and never under a hidden
+/// name (the default cache, the site's staging folders, an editor's swap files) or an editor's
+/// backup.
 struct Relevant {
     folders: Vec<PathBuf>,
     files: Vec<PathBuf>,
-    out: PathBuf,
+    written: Vec<PathBuf>,
 }
 
 impl Relevant {
-    fn new(watched: &[PathBuf], out: &Path) -> Relevant {
+    fn new(watched: &[PathBuf], written: &[PathBuf]) -> Relevant {
         let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
         let (folders, files): (Vec<PathBuf>, Vec<PathBuf>) = watched
             .iter()
@@ -390,7 +391,7 @@ impl Relevant {
         Relevant {
             folders,
             files,
-            out: absolute(out),
+            written: written.iter().map(|p| absolute(p)).collect(),
         }
     }
 
@@ -423,7 +424,7 @@ impl Relevant {
         let backup = path
             .file_name()
             .is_some_and(|n| n.to_string_lossy().ends_with('~'));
-        if backup || path.starts_with(&self.out) {
+        if backup || self.written.iter().any(|w| path.starts_with(w)) {
             return false;
         }
         self.files.iter().any(|f| f == path)
@@ -479,11 +480,14 @@ mod tests {
     #[test]
     fn only_edits_of_inputs_call_for_a_build() {
         // `serve .`: the output, the cache and the build's staging folders are inside the
-        // watched folder, and must not start a build (each build writes them: a loop).
+        // watched folder, and must not start a build (each build writes them: a loop), nor a
+        // cache or papers' folder given a name that is not hidden.
         let r = Relevant {
             folders: vec![PathBuf::from("/c"), PathBuf::from("/c/templates")],
             files: vec![PathBuf::from("/c/mechbook.toml")],
-            out: PathBuf::from("/c/site"),
+            written: ["/c/site", "/c/cache", "/c/papers"]
+                .map(PathBuf::from)
+                .to_vec(),
         };
         assert!(r.is_relevant(Path::new("/c/lectures/l1/01-book.toml")));
         assert!(r.is_relevant(Path::new("/c/./mechbook.toml")));
@@ -492,6 +496,8 @@ mod tests {
             "/c/site/index.html",
             "/c/.site.building-42/index.html",
             "/c/.mechbook-cache/ab12/report.json",
+            "/c/cache/book.report.0123456789abcdef.json",
+            "/c/papers/001.pdf",
             "/c/lectures/.01-book.toml.swp",
             "/c/lectures/01-book.toml~",
             "/elsewhere/x.toml",

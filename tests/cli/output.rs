@@ -115,6 +115,8 @@ fn a_build_killed_at_any_instant_leaves_a_whole_site() {
     for (call, points) in [
         ("mkdir", &[1, 2, 10, 30][..]),
         ("openat", &[40, 60, 80, 100, 120][..]),
+        // An unchanged file is linked from the old site rather than written.
+        ("linkat,link", &[1, 5][..]),
         ("renameat2,rename,renameat", &[1][..]),
         ("unlinkat,unlink,rmdir", &[1, 10, 30][..]),
     ] {

@@ -346,6 +346,38 @@ fn serve_reloads_the_page_first_and_its_pdfs_follow_as_build_makes_them() {
 /// the build of the PDFs after the page-first one, and each edit, take the scenes from serve's
 /// own cache, which goes with serve.
 #[test]
+fn serve_is_not_woken_by_its_own_cache_in_a_plainly_named_folder_of_the_course() {
+    // `serve . --cache cache`: the cache is inside the watched folder, every build writes it,
+    // and serve once took those writes for edits and built again and again (11 builds for one
+    // edit of the starter, where 4 are due).
+    let (dir, course) = new_course("serve-own-cache");
+    let mut s = serve_with(&course, &[".", "--cache", "cache"], &[]);
+    said(&s, PDFS_READY);
+    let scene = course.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    std::fs::write(&scene, text.replace("A book as a uniform box", "A box")).unwrap();
+    let log = said(&s, PDFS_READY);
+    let changed = |log: &[String]| -> Vec<String> {
+        log.iter()
+            .filter(|l| l.starts_with("mechbook: changed: "))
+            .cloned()
+            .collect()
+    };
+    assert_eq!(changed(&log).len(), 1, "{log:#?}");
+    assert!(changed(&log)[0].ends_with("01-book.toml"), "{log:#?}");
+    assert!(std::fs::read_dir(course.join("cache")).unwrap().count() > 0);
+    // Nothing more is built once the edit's PDFs are ready.
+    let mut after = Vec::new();
+    while let Ok(line) = s.lines.recv_timeout(Duration::from_millis(1500)) {
+        after.push(line);
+    }
+    assert!(changed(&after).is_empty(), "{after:#?}");
+    assert_eq!(interrupt(&mut s.child), Some(0));
+    drop(s);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn serve_no_cache_derives_each_scene_once_and_leaves_no_cache_behind() {
     let (dir, course) = new_course("serve-no-cache");
     let mut s = serve_with(&course, &["--no-cache"], &[]);
