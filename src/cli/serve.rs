@@ -25,16 +25,18 @@ pub struct ServeArgs {
 /// What wakes the build loop.
 enum Wake {
     Changed(notify::Result<notify::Event>),
-    /// The full build that typesets a site's PDFs has finished (its number, and what it did).
-    PdfsMade(u64, Outcome),
+    /// A child build has finished: an edit's page-first build, or the full build that typesets
+    /// the PDFs after it (its number, and what it did).
+    Built(u64, Outcome),
     Stop,
 }
 
-/// Edits that arrive within this of each other make one build: an editor's save is several
+/// Edits that arrive within this of each other start one build: an editor's save is several
 /// events (write, rename, chmod) within a millisecond or two, and "save all" touches several
-/// files. It is part of every reload's wait; an event later than this starts a build of its
-/// own after this one.
-const SETTLE: Duration = Duration::from_millis(30);
+/// files. It is part of every reload's wait. An edit that comes later, while the page's build
+/// runs, stops that build (it may have read a file half-saved) and starts another, so the wait
+/// need not cover a slow save: it was 30 ms, with the build run to its end whatever came.
+const SETTLE: Duration = Duration::from_millis(5);
 
 pub fn run(args: ServeArgs) -> Result<ExitCode> {
     let build = Build::new(args.build.clone())?;
@@ -89,6 +91,8 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
             .watch(&target, mode)
             .with_context(|| format!("cannot watch {}", target.display()))?;
     }
+    // The edit's page-first build while it runs, and when the edit that started it was seen.
+    let mut page: Option<(ChildRun, Instant)> = None;
     loop {
         let first = match woken.recv() {
             Ok(Wake::Changed(Ok(event))) => event,
@@ -96,9 +100,35 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
                 eprintln!("mechbook: warning: watching: {e}");
                 continue;
             }
-            Ok(Wake::PdfsMade(run, outcome)) => {
-                if pdfs.as_ref().is_some_and(|p| p.run == run) {
-                    let made = pdfs.take().map(|p| p.started.elapsed());
+            Ok(Wake::Built(run, outcome)) => {
+                if page.as_ref().is_some_and(|(p, _)| p.run == run) {
+                    let seen = page.take().map(|(p, seen)| {
+                        p.reap();
+                        seen
+                    });
+                    if !outcome.written {
+                        eprintln!(
+                            "mechbook: still serving the last good site, with the error on every page"
+                        );
+                    }
+                    let follow = pdfs_follow(&outcome, needs_papers);
+                    server.built(outcome.written, outcome.problems, outcome.pdfs_pending);
+                    if let Some(seen) = seen {
+                        eprintln!(
+                            "mechbook: {} ms from the change to telling {} open page(s) to reload",
+                            seen.elapsed().as_millis(),
+                            server.listeners()
+                        );
+                    }
+                    pdfs = follow
+                        .then(|| start_pdfs(&builder, &mut runs, &wake))
+                        .flatten();
+                } else if pdfs.as_ref().is_some_and(|p| p.run == run) {
+                    let made = pdfs.take().map(|p| {
+                        let made = p.started.elapsed();
+                        p.reap();
+                        made
+                    });
                     server.built(outcome.written, outcome.problems, Vec::new());
                     if let Some(made) = made {
                         eprintln!(
@@ -124,7 +154,8 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
         }
         let seen = Instant::now();
         let mut stop = false;
-        // Take the rest of this save, then build once.
+        // Take the rest of this save, then build once. A build that finishes meanwhile is
+        // stopped below (its finish unheard): this edit's build replaces it.
         while let Ok(w) = woken.recv_timeout(SETTLE) {
             if matches!(w, Wake::Stop) {
                 stop = true;
@@ -152,24 +183,27 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
                 eprintln!("mechbook: warning: cannot watch {}: {e}", target.display());
             }
         }
-        // The last edit's PDFs are out of date: this build's full build makes them.
+        // The last edit's PDFs are out of date, and its page too if it is still being built:
+        // this build makes them.
         if let Some(p) = pdfs.take() {
             p.cancel();
         }
-        let outcome = builder.run_page_first();
-        if !outcome.written {
-            eprintln!("mechbook: still serving the last good site, with the error on every page");
+        if let Some((p, _)) = page.take() {
+            eprintln!("mechbook: the build of the last edit's page is stopped for this one");
+            p.cancel();
         }
-        let follow = pdfs_follow(&outcome, needs_papers);
-        server.built(outcome.written, outcome.problems, outcome.pdfs_pending);
-        eprintln!(
-            "mechbook: {} ms from the change to telling {} open page(s) to reload",
-            seen.elapsed().as_millis(),
-            server.listeners()
-        );
-        pdfs = follow
-            .then(|| start_pdfs(&builder, &mut runs, &wake))
-            .flatten();
+        runs += 1;
+        match builder.start(runs, Stage::PageFirst, wake.clone()) {
+            Ok(p) => page = Some((p, seen)),
+            Err(e) => {
+                let problem = format!("cannot start the build: {e:#}");
+                eprintln!("mechbook: error: {problem}");
+                server.built(false, vec![problem], Vec::new());
+            }
+        }
+    }
+    if let Some((p, _)) = page.take() {
+        p.cancel();
     }
     if let Some(p) = pdfs.take() {
         p.cancel();
@@ -200,17 +234,26 @@ fn pdfs_follow(outcome: &Outcome, needs_papers: bool) -> bool {
 }
 
 /// Starts the full build that typesets the PDFs a page-first build left out.
-fn start_pdfs(builder: &ChildBuild, runs: &mut u64, wake: &mpsc::Sender<Wake>) -> Option<PdfBuild> {
+fn start_pdfs(builder: &ChildBuild, runs: &mut u64, wake: &mpsc::Sender<Wake>) -> Option<ChildRun> {
     *runs += 1;
     builder
-        .start_full(*runs, wake.clone())
+        .start(*runs, Stage::Full, wake.clone())
         .map_err(|e| eprintln!("mechbook: warning: cannot start the build of the PDFs: {e:#}"))
         .ok()
 }
 
-/// The full build after a page-first one: it takes the scenes from the cache and typesets the
-/// PDFs. A thread waits for it and tells the build loop.
-struct PdfBuild {
+/// Which of an edit's two builds a child runs.
+#[derive(Clone, Copy, PartialEq)]
+enum Stage {
+    /// The pages, with the PDFs that are not in the cache left out (`--pdfs-later`).
+    PageFirst,
+    /// Everything: the scenes from the cache, and the PDFs typeset.
+    Full,
+}
+
+/// A child build running: an edit's page-first build, or the full build after it. A thread
+/// waits for it and tells the build loop.
+struct ChildRun {
     run: u64,
     out: PathBuf,
     started: Instant,
@@ -218,9 +261,9 @@ struct PdfBuild {
     waiter: std::thread::JoinHandle<()>,
 }
 
-impl PdfBuild {
+impl ChildRun {
     /// Stops the build, if it is still running: a later edit's build replaces it. The site is
-    /// written whole or not at all, so a stopped build leaves the page-first site as it was.
+    /// written whole or not at all, so a stopped build leaves the site as it was.
     fn cancel(self) {
         {
             let mut child = self.child.lock().unwrap_or_else(|p| p.into_inner());
@@ -231,10 +274,16 @@ impl PdfBuild {
         let _ = self.waiter.join();
         crate::site::remove_leftovers(&self.out);
     }
+
+    /// Ends the waiting thread once the build has said it finished.
+    fn reap(self) {
+        let _ = self.waiter.join();
+    }
 }
 
-/// How often the waiter looks whether the full build has finished.
-const POLL: Duration = Duration::from_millis(10);
+/// How often the waiter looks whether a build whose output has closed has ended (the process
+/// closes its files a moment before its parent can see that it ended).
+const POLL: Duration = Duration::from_millis(1);
 
 /// Each build runs as a child process, `mechbook build` with serve's options, so that this
 /// process never holds the engine: `check`, `derive` and another `build` wait at most for one
@@ -290,15 +339,28 @@ impl ChildBuild {
         outcome(ran, &self.status, &self.exe)
     }
 
-    /// The whole build, started: a thread waits for it and sends its outcome as `run`.
-    fn start_full(&self, run: u64, wake: mpsc::Sender<Wake>) -> Result<PdfBuild> {
-        let mut child = self
-            .command(&self.full_status)
-            .stderr(std::process::Stdio::piped())
+    /// A build started as `run`: a thread waits for it and sends its outcome. The page-first
+    /// build's messages go to this terminal as it prints them; the full build's notes are the
+    /// page-first build's, said already, and the rest (typesetting's warnings and errors, the
+    /// summary) go on to this terminal.
+    fn start(&self, run: u64, stage: Stage, wake: mpsc::Sender<Wake>) -> Result<ChildRun> {
+        let status = match stage {
+            Stage::PageFirst => self.status.clone(),
+            Stage::Full => self.full_status.clone(),
+        };
+        let mut command = self.command(&status);
+        if stage == Stage::PageFirst {
+            command.arg("--pdfs-later");
+        } else {
+            command.stderr(std::process::Stdio::piped());
+        }
+        // A build prints nothing on standard output: the pipe closes when it ends, which the
+        // waiter hears at once, where polling for its end cost a reload up to 10 ms.
+        let mut child = command
+            .stdout(std::process::Stdio::piped())
             .spawn()
             .with_context(|| format!("cannot run {}", self.exe.display()))?;
-        // Its notes are the page-first build's, said already; the rest (typesetting's
-        // warnings and errors, the summary) go on to this terminal.
+        let ended_pipe = child.stdout.take();
         if let Some(err) = child.stderr.take() {
             std::thread::spawn(move || {
                 use std::io::BufRead;
@@ -310,10 +372,13 @@ impl ChildBuild {
             });
         }
         let child = std::sync::Arc::new(std::sync::Mutex::new(child));
-        let (status, exe) = (self.full_status.clone(), self.exe.clone());
+        let exe = self.exe.clone();
         let waiter = std::thread::spawn({
             let child = child.clone();
             move || {
+                if let Some(mut pipe) = ended_pipe {
+                    let _ = std::io::copy(&mut pipe, &mut std::io::sink());
+                }
                 let ended = loop {
                     let polled = child.lock().unwrap_or_else(|p| p.into_inner()).try_wait();
                     match polled {
@@ -322,10 +387,10 @@ impl ChildBuild {
                         Err(e) => break Err(e),
                     }
                 };
-                let _ = wake.send(Wake::PdfsMade(run, outcome(ended, &status, &exe)));
+                let _ = wake.send(Wake::Built(run, outcome(ended, &status, &exe)));
             }
         });
-        Ok(PdfBuild {
+        Ok(ChildRun {
             run,
             out: self.out.clone(),
             started: Instant::now(),

@@ -342,6 +342,53 @@ fn serve_reloads_the_page_first_and_its_pdfs_follow_as_build_makes_them() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+#[test]
+fn an_edit_while_the_last_edits_page_is_built_stops_that_build_and_the_page_shows_the_later() {
+    let (dir, course) = new_course("serve-edit-while-building");
+    let s = serve(&course);
+    said(&s, PDFS_READY);
+    let scene = course.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    std::fs::write(
+        &scene,
+        text.replace("A book as a uniform box", "A first edit"),
+    )
+    .unwrap();
+    said(&s, "mechbook: changed: ");
+    // The page's build has started: it derives the edited scene, which takes far longer.
+    std::thread::sleep(Duration::from_millis(20));
+    std::fs::write(
+        &scene,
+        text.replace("A book as a uniform box", "A second edit"),
+    )
+    .unwrap();
+    let log = said(&s, PDFS_READY);
+    let stopped = log
+        .iter()
+        .position(|l| l.contains("the build of the last edit's page is stopped for this one"))
+        .unwrap_or_else(|| panic!("the first edit's build was not stopped: {log:#?}"));
+    // The pages were told to reload once, for the second edit, and only its PDFs were made.
+    let reloads: Vec<usize> = log
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.contains("ms from the change to telling"))
+        .map(|(i, _)| i)
+        .collect();
+    assert_eq!(reloads.len(), 1, "{log:#?}");
+    assert!(stopped < reloads[0], "{log:#?}");
+    let book = page(s.port, "/book.html");
+    assert!(book.contains("A second edit"), "{book}");
+    assert!(!book.contains("mechbook-serve-error"), "{book}");
+    let leftovers: Vec<_> = std::fs::read_dir(&course)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".building-"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+    drop(s);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// `serve --no-cache` neither reads nor writes the course's cache, yet derives each scene once:
 /// the build of the PDFs after the page-first one, and each edit, take the scenes from serve's
 /// own cache, which goes with serve.
