@@ -141,6 +141,22 @@ fn said(s: &Serving, what: &str) -> Vec<String> {
     }
 }
 
+/// Saves the starter's book scene with its title `from` changed to `to`.
+fn retitle_book(course: &Path, from: &str, to: &str) {
+    let scene = course.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    assert!(text.contains(from), "{text}");
+    std::fs::write(&scene, text.replace(from, to)).unwrap();
+}
+
+/// The lines of `log` that start with `prefix`.
+fn starting(log: &[String], prefix: &str) -> Vec<String> {
+    log.iter()
+        .filter(|l| l.starts_with(prefix))
+        .cloned()
+        .collect()
+}
+
 /// What serve prints when the PDFs a page-first build left out are made.
 const PDFS_READY: &str = "the PDFs are ready";
 
@@ -347,21 +363,11 @@ fn an_edit_while_the_last_edits_page_is_built_stops_that_build_and_the_page_show
     let (dir, course) = new_course("serve-edit-while-building");
     let s = serve(&course);
     said(&s, PDFS_READY);
-    let scene = course.join("lectures/lecture-1/01-book.toml");
-    let text = std::fs::read_to_string(&scene).unwrap();
-    std::fs::write(
-        &scene,
-        text.replace("A book as a uniform box", "A first edit"),
-    )
-    .unwrap();
+    retitle_book(&course, "A book as a uniform box", "A first edit");
     said(&s, "mechbook: changed: ");
     // The page's build has started: it derives the edited scene, which takes far longer.
     std::thread::sleep(Duration::from_millis(20));
-    std::fs::write(
-        &scene,
-        text.replace("A book as a uniform box", "A second edit"),
-    )
-    .unwrap();
+    retitle_book(&course, "A first edit", "A second edit");
     let log = said(&s, PDFS_READY);
     let stopped = log
         .iter()
@@ -400,16 +406,9 @@ fn serve_is_not_woken_by_its_own_cache_in_a_plainly_named_folder_of_the_course()
     let (dir, course) = new_course("serve-own-cache");
     let mut s = serve_with(&course, &[".", "--cache", "cache"], &[]);
     said(&s, PDFS_READY);
-    let scene = course.join("lectures/lecture-1/01-book.toml");
-    let text = std::fs::read_to_string(&scene).unwrap();
-    std::fs::write(&scene, text.replace("A book as a uniform box", "A box")).unwrap();
+    retitle_book(&course, "A book as a uniform box", "A box");
     let log = said(&s, PDFS_READY);
-    let changed = |log: &[String]| -> Vec<String> {
-        log.iter()
-            .filter(|l| l.starts_with("mechbook: changed: "))
-            .cloned()
-            .collect()
-    };
+    let changed = |log: &[String]| starting(log, "mechbook: changed: ");
     assert_eq!(changed(&log).len(), 1, "{log:#?}");
     assert!(changed(&log)[0].ends_with("01-book.toml"), "{log:#?}");
     assert!(std::fs::read_dir(course.join("cache")).unwrap().count() > 0);
@@ -428,12 +427,7 @@ fn serve_is_not_woken_by_its_own_cache_in_a_plainly_named_folder_of_the_course()
 fn serve_no_cache_derives_each_scene_once_and_leaves_no_cache_behind() {
     let (dir, course) = new_course("serve-no-cache");
     let mut s = serve_with(&course, &["--no-cache"], &[]);
-    let built = |log: &[String]| -> Vec<String> {
-        log.iter()
-            .filter(|l| l.starts_with("mechbook: built "))
-            .cloned()
-            .collect()
-    };
+    let built = |log: &[String]| starting(log, "mechbook: built ");
     let log = said(&s, PDFS_READY);
     // The page-first build's line was said before the address; the PDFs' build's after it.
     let pdfs = built(&log);
