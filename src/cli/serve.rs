@@ -33,10 +33,15 @@ enum Wake {
 
 /// Edits that arrive within this of each other start one build: an editor's save is several
 /// events (write, rename, chmod) within a millisecond or two, and "save all" touches several
-/// files. It is part of every reload's wait. An edit that comes later, while the page's build
-/// runs, stops that build (it may have read a file half-saved) and starts another, so the wait
-/// need not cover a slow save: it was 30 ms, with the build run to its end whatever came.
+/// files. It is part of every reload's wait. An edit that comes soon after, while the page's
+/// build has only just started, stops that build (it may have read a file half-saved) and
+/// starts another, so the wait need not cover a slow save (it was 30 ms).
 const SETTLE: Duration = Duration::from_millis(5);
+
+/// A page's build younger than this is stopped by an edit; an older one runs to its end and is
+/// shown, and the edit's build follows it: saves in quick succession (an editor saving as one
+/// types) still show, rather than each stopping the last.
+const RESTART_WITHIN: Duration = Duration::from_millis(30);
 
 pub fn run(args: ServeArgs) -> Result<ExitCode> {
     let build = Build::new(args.build.clone())?;
@@ -101,25 +106,9 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
                 continue;
             }
             Ok(Wake::Built(run, outcome)) => {
-                if page.as_ref().is_some_and(|(p, _)| p.run == run) {
-                    let seen = page.take().map(|(p, seen)| {
-                        p.reap();
-                        seen
-                    });
-                    if !outcome.written {
-                        eprintln!(
-                            "mechbook: still serving the last good site, with the error on every page"
-                        );
-                    }
-                    let follow = pdfs_follow(&outcome, needs_papers);
-                    server.built(outcome.written, outcome.problems, outcome.pdfs_pending);
-                    if let Some(seen) = seen {
-                        eprintln!(
-                            "mechbook: {} ms from the change to telling {} open page(s) to reload",
-                            seen.elapsed().as_millis(),
-                            server.listeners()
-                        );
-                    }
+                if let Some((p, seen)) = page.take_if(|(p, _)| p.run == run) {
+                    p.reap();
+                    let follow = page_built(&server, outcome, seen, needs_papers);
                     pdfs = follow
                         .then(|| start_pdfs(&builder, &mut runs, &wake))
                         .flatten();
@@ -188,9 +177,15 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
         if let Some(p) = pdfs.take() {
             p.cancel();
         }
-        if let Some((p, _)) = page.take() {
-            eprintln!("mechbook: the build of the last edit's page is stopped for this one");
-            p.cancel();
+        if let Some((p, seen)) = page.take() {
+            if p.started.elapsed() < RESTART_WITHIN {
+                eprintln!("mechbook: the build of the last edit's page is stopped for this one");
+                p.cancel();
+            } else {
+                // Shown, with no PDFs to follow: this edit's build makes them.
+                let outcome = p.finish();
+                page_built(&server, outcome, seen, needs_papers);
+            }
         }
         runs += 1;
         match builder.start(runs, Stage::PageFirst, wake.clone()) {
@@ -217,6 +212,22 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     drop(watcher);
     server.stop();
     Ok(ExitCode::SUCCESS)
+}
+
+/// Tells the pages that an edit's page-first build has finished (`seen`: when the edit was
+/// seen), and says so; whether the full build is to follow it.
+fn page_built(server: &Server, outcome: Outcome, seen: Instant, needs_papers: bool) -> bool {
+    if !outcome.written {
+        eprintln!("mechbook: still serving the last good site, with the error on every page");
+    }
+    let follow = pdfs_follow(&outcome, needs_papers);
+    server.built(outcome.written, outcome.problems, outcome.pdfs_pending);
+    eprintln!(
+        "mechbook: {} ms from the change to telling {} open page(s) to reload",
+        seen.elapsed().as_millis(),
+        server.listeners()
+    );
+    follow
 }
 
 /// Whether a page-first build is followed by the full one: it wrote the site and left PDFs
@@ -258,7 +269,7 @@ struct ChildRun {
     out: PathBuf,
     started: Instant,
     child: std::sync::Arc<std::sync::Mutex<std::process::Child>>,
-    waiter: std::thread::JoinHandle<()>,
+    waiter: std::thread::JoinHandle<Outcome>,
 }
 
 impl ChildRun {
@@ -278,6 +289,14 @@ impl ChildRun {
     /// Ends the waiting thread once the build has said it finished.
     fn reap(self) {
         let _ = self.waiter.join();
+    }
+
+    /// Waits for the build to end, and what it did (its `Built` message, still sent, is then
+    /// for a run no longer awaited).
+    fn finish(self) -> Outcome {
+        self.waiter
+            .join()
+            .unwrap_or_else(|p| std::panic::resume_unwind(p))
     }
 }
 
@@ -387,7 +406,9 @@ impl ChildBuild {
                         Err(e) => break Err(e),
                     }
                 };
-                let _ = wake.send(Wake::Built(run, outcome(ended, &status, &exe)));
+                let outcome = outcome(ended, &status, &exe);
+                let _ = wake.send(Wake::Built(run, outcome.clone()));
+                outcome
             }
         });
         Ok(ChildRun {

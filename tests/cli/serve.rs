@@ -359,29 +359,35 @@ fn serve_reloads_the_page_first_and_its_pdfs_follow_as_build_makes_them() {
 }
 
 #[test]
-fn an_edit_while_the_last_edits_page_is_built_stops_that_build_and_the_page_shows_the_later() {
+fn a_save_early_in_the_last_saves_page_build_stops_it_and_the_page_shows_the_later() {
     let (dir, course) = new_course("serve-edit-while-building");
     let s = serve(&course);
     said(&s, PDFS_READY);
     retitle_book(&course, "A book as a uniform box", "A first edit");
+    // The page's build starts as serve says this; the second save comes a few ms into it.
     said(&s, "mechbook: changed: ");
-    // The page's build has started: it derives the edited scene, which takes far longer.
-    std::thread::sleep(Duration::from_millis(20));
     retitle_book(&course, "A first edit", "A second edit");
     let log = said(&s, PDFS_READY);
-    let stopped = log
+    let reloads = log
         .iter()
-        .position(|l| l.contains("the build of the last edit's page is stopped for this one"))
-        .unwrap_or_else(|| panic!("the first edit's build was not stopped: {log:#?}"));
-    // The pages were told to reload once, for the second edit, and only its PDFs were made.
-    let reloads: Vec<usize> = log
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| l.contains("ms from the change to telling"))
-        .map(|(i, _)| i)
-        .collect();
-    assert_eq!(reloads.len(), 1, "{log:#?}");
-    assert!(stopped < reloads[0], "{log:#?}");
+        .filter(|l| l.contains("ms from the change to telling"))
+        .count();
+    // Stopped (the usual case): the pages were told to reload once, for the second edit. Not
+    // stopped: the second save came before the build read the file (one build), or the host
+    // was too slow to stop the build within 30 ms of its start (it is shown, then the next).
+    let stopped = "the build of the last edit's page is stopped for this one";
+    if log.iter().any(|l| l.contains(stopped)) {
+        assert_eq!(reloads, 1, "{log:#?}");
+    } else {
+        assert!((1..=2).contains(&reloads), "{log:#?}");
+    }
+    assert_eq!(
+        log.iter()
+            .filter(|l| l.contains("the page first; then"))
+            .count(),
+        reloads,
+        "{log:#?}"
+    );
     let book = page(s.port, "/book.html");
     assert!(book.contains("A second edit"), "{book}");
     assert!(!book.contains("mechbook-serve-error"), "{book}");
@@ -391,6 +397,43 @@ fn an_edit_while_the_last_edits_page_is_built_stops_that_build_and_the_page_show
         .filter(|n| n.contains(".building-"))
         .collect();
     assert!(leftovers.is_empty(), "{leftovers:?}");
+    drop(s);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_edit_late_in_the_last_edits_page_build_waits_for_it_and_both_are_shown() {
+    // An editor saving as one types: each save must not stop the build before it, or no page
+    // would show until the typing stops.
+    let (dir, course) = new_course("serve-edit-late-in-building");
+    let s = serve(&course);
+    said(&s, PDFS_READY);
+    let book = course.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&book).unwrap();
+    // A heavier first edit, so that its build is still running 60 ms in: a numeric fidelity
+    // of 1e-12 makes the check's integrations long.
+    let heavy = text
+        .replace("A book as a uniform box", "A first edit")
+        .replace("[numeric]\n", "[numeric]\nfidelity = \"1e-12\"\n");
+    assert_ne!(
+        heavy,
+        text.replace("A book as a uniform box", "A first edit")
+    );
+    std::fs::write(&book, &heavy).unwrap();
+    said(&s, "mechbook: changed: ");
+    std::thread::sleep(Duration::from_millis(60));
+    std::fs::write(&book, heavy.replace("A first edit", "A second edit")).unwrap();
+    let log = said(&s, PDFS_READY);
+    assert!(
+        !log.iter().any(|l| l.contains("is stopped for this one")),
+        "{log:#?}"
+    );
+    let built: Vec<&String> = log
+        .iter()
+        .filter(|l| l.starts_with("mechbook: built "))
+        .collect();
+    assert!(built.len() >= 2, "{log:#?}");
+    assert!(page(s.port, "/book.html").contains("A second edit"));
     drop(s);
     std::fs::remove_dir_all(&dir).unwrap();
 }
