@@ -62,7 +62,10 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
     // build after it; that one is stopped by the next edit.
     let needs_papers = args.build.roster.is_some();
     let mut runs = 0u64;
-    let first = builder.run_page_first();
+    // Run 0, waited for here: its `Built` message is for no run awaited.
+    let first = builder
+        .start(0, Stage::PageFirst, wake.clone())
+        .map_or_else(not_started, ChildRun::finish);
     let follow = pdfs_follow(&first, needs_papers);
     server.built(first.written, first.problems, first.pdfs_pending);
     let mut pdfs = follow
@@ -107,7 +110,7 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
             }
             Ok(Wake::Built(run, outcome)) => {
                 if let Some((p, seen)) = page.take_if(|(p, _)| p.run == run) {
-                    p.reap();
+                    let _ = p.finish();
                     let follow = page_built(&server, outcome, seen, needs_papers);
                     pdfs = follow
                         .then(|| start_pdfs(&builder, &mut runs, &wake))
@@ -115,7 +118,7 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
                 } else if pdfs.as_ref().is_some_and(|p| p.run == run) {
                     let made = pdfs.take().map(|p| {
                         let made = p.started.elapsed();
-                        p.reap();
+                        let _ = p.finish();
                         made
                     });
                     server.built(outcome.written, outcome.problems, Vec::new());
@@ -191,9 +194,9 @@ pub fn run(args: ServeArgs) -> Result<ExitCode> {
         match builder.start(runs, Stage::PageFirst, wake.clone()) {
             Ok(p) => page = Some((p, seen)),
             Err(e) => {
-                let problem = format!("cannot start the build: {e:#}");
-                eprintln!("mechbook: error: {problem}");
-                server.built(false, vec![problem], Vec::new());
+                let outcome = not_started(e);
+                eprintln!("mechbook: error: {}", outcome.problems.join("; "));
+                server.built(false, outcome.problems, Vec::new());
             }
         }
     }
@@ -286,13 +289,8 @@ impl ChildRun {
         crate::site::remove_leftovers(&self.out);
     }
 
-    /// Ends the waiting thread once the build has said it finished.
-    fn reap(self) {
-        let _ = self.waiter.join();
-    }
-
-    /// Waits for the build to end, and what it did (its `Built` message, still sent, is then
-    /// for a run no longer awaited).
+    /// Waits for the build to end, and what it did. Its `Built` message is sent all the same:
+    /// a caller that waits here has stopped awaiting its run.
     fn finish(self) -> Outcome {
         self.waiter
             .join()
@@ -349,13 +347,6 @@ impl ChildBuild {
             .arg(status)
             .stdin(std::process::Stdio::null());
         c
-    }
-
-    /// One page-first build (`--pdfs-later`); its own messages go to this terminal as it
-    /// prints them.
-    fn run_page_first(&self) -> Outcome {
-        let ran = self.command(&self.status).arg("--pdfs-later").status();
-        outcome(ran, &self.status, &self.exe)
     }
 
     /// A build started as `run`: a thread waits for it and sends its outcome. The page-first
@@ -418,6 +409,15 @@ impl ChildBuild {
             child,
             waiter,
         })
+    }
+}
+
+/// A build that could not be started, as the pages say it.
+fn not_started(e: anyhow::Error) -> Outcome {
+    Outcome {
+        written: false,
+        problems: vec![format!("cannot start the build: {e:#}")],
+        pdfs_pending: Vec::new(),
     }
 }
 
