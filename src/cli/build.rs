@@ -282,12 +282,33 @@ impl Build {
             keys: Default::default(),
             pdfs_later: self.pdfs_later,
         };
-        let rendered = crate::render::render(&documents, &cx).map_err(|e| fail(e.into()))?;
+        let mut rendered = crate::render::render(&documents, &cx).map_err(|e| fail(e.into()))?;
         let mut warnings = Vec::new();
+        // What the renderers made for the cache is not held past this point.
+        let kept = std::mem::take(&mut rendered.kept);
         if let Some(cache) = &self.cache
-            && let Err(e) = cache.keep_rendered(&rendered.kept)
+            && let Err(e) = cache.keep_rendered(&kept)
         {
             warnings.push(format!("the cache is not updated: {e}"));
+        }
+        drop(kept);
+        // The summary's figures are taken from the reports, which are then freed with the
+        // documents: typesetting, the build's peak in memory, needs neither (README,
+        // "Typesetting within a memory budget"). Freeing them takes 10 ms: on another thread
+        // when nothing is typeset, as in the page-first build that `serve` waits for; else here,
+        // where the memory freed can be given back before typesetting.
+        let mut failures: Vec<String> = reports
+            .iter()
+            .flat_map(crate::report::failures)
+            .map(|f| f.text)
+            .collect();
+        let failed = reports.iter().filter(|r| !r.passed()).count();
+        let scene_count = reports.len();
+        drop(documents);
+        if self.pdfs_later {
+            std::thread::spawn(move || drop(reports));
+        } else {
+            drop(reports);
         }
         let mut site = rendered.files;
         let mut in_site = |path: PathBuf, pdf: Vec<u8>| {
@@ -352,12 +373,6 @@ impl Build {
         for f in &failed_documents {
             eprintln!("mechbook: error: {f}");
         }
-        let mut failures: Vec<String> = reports
-            .iter()
-            .flat_map(crate::report::failures)
-            .map(|f| f.text)
-            .collect();
-        let failed = reports.iter().filter(|r| !r.passed()).count();
         let pdf = if crate::render::pdf::ENABLED && self.pdfs_later {
             format!(
                 ", {pdf_cached} PDFs from the cache ({} left to typeset next)",
@@ -380,8 +395,8 @@ impl Build {
         });
         let summary = format!(
             "built {} pages, {plots} plots and {handouts} handouts{pdf} from {} scenes ({cached} from the cache, {symbolic_cached} re-run numerically on cached symbolic results) into {} in {:.2} s{papers}{}{}",
-            reports.len() + 1,
-            reports.len(),
+            scene_count + 1,
+            scene_count,
             self.out.display(),
             start.elapsed().as_secs_f64(),
             peak_memory_mib().map_or(String::new(), |m| format!(", peak memory {m:.0} MiB")),
@@ -400,11 +415,6 @@ impl Build {
             )
         };
         failures.extend(failed_documents);
-        // The reports' trees are freed on their own thread (once the documents borrowing them
-        // are gone): a one-shot build's process ends next, and freeing them took 10 ms of the
-        // page-first build that `serve` waits for.
-        drop(documents);
-        std::thread::spawn(move || drop(reports));
         Ok(Built {
             summary,
             failures,

@@ -3,6 +3,9 @@
 //! caller's `keep` as soon as it is made, which puts it in the site or writes it (a roster's
 //! papers are not all held at once).
 
+#[cfg(feature = "pdf")]
+mod queue;
+
 use super::SiteError;
 use super::cache::Cache;
 use crate::render::pdf::PdfSource;
@@ -32,9 +35,24 @@ fn workers() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_WORKERS))
 }
 
-/// Each worker holds a document's layout in memory: two keep a course's build near one's peak.
+/// Two: each worker holds a document's layout in memory, and the budget below seldom has room
+/// for a third.
 #[cfg(feature = "pdf")]
 const MAX_WORKERS: usize = 2;
+
+/// How much is typeset at once, in bytes of markup and pictures. Typst holds a document's
+/// layout until its PDF is made, about 0.35 MiB for each KB of markup: tests/course's largest
+/// handout (388 KB and two plots) peaks 145 to 164 MiB above the build's 44 MiB. Within this
+/// budget that handout is typeset alone and the others in pairs, and the build peaks at 189 to
+/// 193 MiB, where it peaked at 301 to 342 (README, "Typesetting within a memory budget").
+#[cfg(feature = "pdf")]
+const TYPESET_AT_ONCE: usize = 300_000;
+
+/// A document's size for the budget: its markup and its pictures.
+#[cfg(feature = "pdf")]
+fn size(s: &PdfSource) -> usize {
+    s.markup.len() + s.images.iter().map(|(_, bytes)| bytes.len()).sum::<usize>()
+}
 
 /// Typesets `sources`, under `prefix` in the cache's names (`site`, `papers`); `progress` is
 /// told of each document before it is made (done, total, path), and `keep` is given each PDF as
@@ -50,27 +68,32 @@ pub fn typeset_all(
     progress: &mut dyn FnMut(usize, usize, &str),
     keep: &mut Keep,
 ) -> Result<Typeset, SiteError> {
-    use std::sync::atomic::{AtomicUsize, Ordering};
     let mut out = Typeset::default();
     // From the cache first, in order; the rest are typeset below.
     let cached = from_cache(sources, cache, prefix, &mut out, keep)?;
     let todo: Vec<usize> = (0..sources.len()).filter(|&i| !cached[i]).collect();
+    if !todo.is_empty() {
+        // What the build freed before typesetting goes back to the system, not kept beside
+        // the layouts, which Typst's threads allocate elsewhere.
+        give_back_freed_memory();
+    }
     let mut notes: Vec<Notes> = (0..sources.len()).map(|_| Notes::default()).collect();
     let mut kept = Ok(());
     // The workers take the next document and say when they start and finish it; this thread
     // tells `progress` and `keep`, which need not be shared between threads.
-    let next = AtomicUsize::new(0);
+    let sizes = sources.iter().map(size).collect();
+    let queue = queue::Queue::new(sizes, &todo, TYPESET_AT_ONCE, give_back);
     let (tell, told) = std::sync::mpsc::channel();
     std::thread::scope(|scope| {
         for _ in 0..workers().min(todo.len()) {
             let tell = tell.clone();
-            let (next, todo) = (&next, &todo);
+            let queue = &queue;
             scope.spawn(move || {
-                loop {
-                    let k = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(&i) = todo.get(k) else { break };
-                    let _ = tell.send(Worker::Starts(k, i));
+                while let Some(turn) = queue.next() {
+                    let i = turn.source;
+                    let _ = tell.send(Worker::Starts(turn.k, i));
                     let done = crate::render::pdf::typeset::typeset(&sources[i]);
+                    drop(turn);
                     let _ = tell.send(Worker::Made(i, Box::new(done)));
                 }
             });
@@ -87,7 +110,7 @@ pub fn typeset_all(
                         kept = keep(PathBuf::from(&sources[i].path), pdf);
                         if kept.is_err() {
                             // Nothing more is started; what is under way is let finish.
-                            next.store(todo.len(), Ordering::Relaxed);
+                            queue.stop();
                         }
                     }
                 }
@@ -230,6 +253,28 @@ fn from_cache(
         cached.push(hit);
     }
     Ok(cached)
+}
+
+/// After a document: Typst's memos are dropped (all of them when no other document is under
+/// way, else those the other has not used lately), and the memory freed goes back.
+#[cfg(feature = "pdf")]
+fn give_back(alone: bool) {
+    crate::render::pdf::typeset::evict_memos(alone);
+    give_back_freed_memory();
+}
+
+/// Returns the free pages of the allocator's heaps to the system. glibc keeps what a thread
+/// frees in that thread's arena, so a finished document's layout would stay resident beside
+/// the next document's, typeset on another arena (README, "Typesetting within a memory
+/// budget").
+#[cfg(feature = "pdf")]
+fn give_back_freed_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: malloc_trim only releases free memory; it reads and writes no caller's data.
+    #[allow(unsafe_code)]
+    unsafe {
+        libc::malloc_trim(0);
+    }
 }
 
 #[cfg(feature = "pdf")]

@@ -117,7 +117,7 @@ pub fn typeset(source: &PdfSource) -> Result<Typeset, TypesetError> {
     // thousands of variants, one set rule each, nests that deep, past the main thread's 8 MiB
     // (5,000 variants overflowed it). Its own thread has room for the 10,000 pages a sheet
     // may have; the stack is only reserved, not used, until it is needed.
-    let done = std::thread::scope(|scope| {
+    std::thread::scope(|scope| {
         std::thread::Builder::new()
             .name("typst".into())
             .stack_size(TYPESET_STACK)
@@ -129,21 +129,22 @@ pub fn typeset(source: &PdfSource) -> Result<Typeset, TypesetError> {
             })?
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-    });
-    evict_memos();
-    done
+    })
 }
 
 /// Typst memoises layout and shaping in a global cache that grows with every document: without
-/// eviction a build held every handout's memos to the end. A document's memos that the next
-/// `MEMO_AGE` documents do not use are dropped (the shared styles and fonts are used by each).
-fn evict_memos() {
-    typst::comemo::evict(MEMO_AGE);
+/// eviction a build held every handout's memos to the end. Called after each document: when
+/// no other is being typeset (`alone`) every memo is dropped; else those that the next
+/// `MEMO_AGE` documents do not use, since the other document's are in use.
+pub fn evict_memos(alone: bool) {
+    typst::comemo::evict(if alone { 0 } else { MEMO_AGE });
 }
 
-/// How many documents a memo outlives without being used. Measured on tests/course's 16 PDFs
-/// (README, "A course"): no eviction peaked at 311 MiB; ages 0, 1 and 2 at 198 to 215 MiB in
-/// the same time within the noise; 4 at 252 to 269 MiB.
+/// How many documents a memo outlives without being used, while another document is typeset.
+/// Measured on tests/course's 16 PDFs (README, "A course"): no eviction peaked at 311 MiB;
+/// ages 0, 1 and 2 at 198 to 215 MiB in the same time within the noise; 4 at 252 to 269 MiB.
+/// With documents typeset within a memory budget (session 43), age 0 here too made the build
+/// 0.8 s slower (four runs each: 6.9 to 7.3 s against 5.9 to 6.6 s) at the same peak.
 const MEMO_AGE: usize = 1;
 
 /// The typesetting thread's stack: 1 GiB of address space.
