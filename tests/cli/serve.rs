@@ -428,11 +428,7 @@ fn an_edit_late_in_the_last_edits_page_build_waits_for_it_and_both_are_shown() {
         !log.iter().any(|l| l.contains("is stopped for this one")),
         "{log:#?}"
     );
-    let built: Vec<&String> = log
-        .iter()
-        .filter(|l| l.starts_with("mechbook: built "))
-        .collect();
-    assert!(built.len() >= 2, "{log:#?}");
+    assert!(starting(&log, "mechbook: built ").len() >= 2, "{log:#?}");
     assert!(page(s.port, "/book.html").contains("A second edit"));
     drop(s);
     std::fs::remove_dir_all(&dir).unwrap();

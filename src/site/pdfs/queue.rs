@@ -31,7 +31,7 @@ impl Drop for Turn<'_> {
 }
 
 struct Queued {
-    /// The sources not yet started, the largest last.
+    /// The sources not yet started, the largest first.
     waiting: Vec<usize>,
     /// The summed size of the documents under way, and how many they are.
     running: usize,
@@ -46,7 +46,6 @@ impl Queue {
         let mut waiting = todo.to_vec();
         // Stable, so that equal sizes go in the sources' order.
         waiting.sort_by_key(|&i| std::cmp::Reverse(sizes[i]));
-        waiting.reverse();
         Queue {
             sizes,
             budget,
@@ -74,7 +73,7 @@ impl Queue {
             let fits = q
                 .waiting
                 .iter()
-                .rposition(|&i| q.busy == 0 || q.running + self.sizes[i] <= self.budget);
+                .position(|&i| q.busy == 0 || q.running + self.sizes[i] <= self.budget);
             match fits {
                 Some(at) => {
                     let i = q.waiting.remove(at);
