@@ -3,6 +3,8 @@
 //! HTML (formulas by the Typst printers of the expression tree), then typeset in-process
 //! (`typeset.rs`, with the cargo feature `pdf`). No file I/O here: `site` writes the bytes.
 
+#[cfg(feature = "pdf")]
+mod display_width;
 mod handout;
 mod markup;
 mod sheet;

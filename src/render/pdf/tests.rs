@@ -65,6 +65,47 @@ fn a_formula_wider_than_the_paper_is_broken_onto_it_and_text_past_the_edge_is_fo
     assert_eq!(unbroken.past_the_edge_in, vec!["x.toml:7".to_string()]);
 }
 
+/// A formula short enough is set without `measure` (`narrow`), and gives the bytes the measured
+/// `fit` gives; a long one is still measured.
+#[test]
+fn a_short_formula_set_without_measuring_gives_the_measured_bytes() {
+    let short = [
+        "I_(x x) = frac(2, 5) m a^(2)",
+        "accent(I, arrow) = mat(1, 0; 0, 1)",
+        "p_(ψ) = I_(3) (dot(ψ) + dot(ϕ) cos (θ))",
+    ];
+    let long = vec!["a"; 160].join(" + ");
+    for paper in [Paper::A4, Paper::Letter] {
+        let mut markups = Vec::new();
+        let unmeasured = typeset(&doc(paper, |m| {
+            for f in short {
+                m.block(f, f, "a formula");
+            }
+            m.block(&long, &long, "a sum");
+            markups.push(m.text.clone());
+        }))
+        .unwrap();
+        let measured = typeset(&doc(paper, |m| {
+            for f in short {
+                m.raw("\n#[#set math.equation(alt: \"a formula\");\n#fit($ ")
+                    .raw(f)
+                    .raw(" $, $display(")
+                    .raw(f)
+                    .raw(")$)\n]\n");
+            }
+            m.block(&long, &long, "a sum");
+        }))
+        .unwrap();
+        let markup = &markups[0];
+        assert_eq!(markup.matches("#narrow($").count(), short.len(), "{markup}");
+        assert_eq!(markup.matches("#fit($").count(), 1);
+        assert!(
+            unmeasured.pdf == measured.pdf,
+            "{paper:?}: the bytes differ"
+        );
+    }
+}
+
 #[test]
 fn a_character_no_font_has_is_named() {
     let out = typeset(&doc(Paper::A4, |m| {

@@ -54,7 +54,7 @@ fn fonts() -> &'static (LazyHash<FontBook>, Vec<Font>) {
     })
 }
 
-fn library() -> &'static LazyHash<Library> {
+pub(super) fn library() -> &'static LazyHash<Library> {
     static LIBRARY: OnceLock<LazyHash<Library>> = OnceLock::new();
     LIBRARY.get_or_init(|| LazyHash::new(Library::builder().build()))
 }
@@ -322,6 +322,40 @@ fn missing_glyphs_in(document: &PagedDocument) -> Vec<char> {
             }
         }
     }
+    let mut out = Vec::new();
+    for page in document.pages() {
+        walk(&page.frame, &mut out);
+    }
+    out
+}
+
+/// The text Typst sets on the pages of `markup`, piece by piece in order: for tests that read
+/// back what a document measured.
+#[cfg(test)]
+pub fn texts(markup: &str) -> Vec<String> {
+    use typst::layout::{Frame, FrameItem};
+    fn walk(frame: &Frame, out: &mut Vec<String>) {
+        for (_, item) in frame.items() {
+            match item {
+                FrameItem::Group(g) => walk(&g.frame, out),
+                FrameItem::Text(t) => out.push(t.text.to_string()),
+                _ => {}
+            }
+        }
+    }
+    let source = PdfSource {
+        path: "test.pdf".into(),
+        markup: markup.into(),
+        images: Vec::new(),
+        origins: Vec::new(),
+    };
+    let world = Document {
+        main: Source::detached(markup.to_string()),
+        source: &source,
+    };
+    let document = typst::compile::<PagedDocument>(&world)
+        .output
+        .unwrap_or_else(|e| panic!("{e:?}"));
     let mut out = Vec::new();
     for page in document.pages() {
         walk(&page.frame, &mut out);
