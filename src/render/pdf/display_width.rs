@@ -1,15 +1,17 @@
 //! An upper bound on how wide Typst sets a formula on a line of its own, read from its Typst
 //! math and the math font's glyphs. A formula surely narrower than the narrowest line is set
 //! without `measure` (`Markup::block`), which saves a second layout of every short formula:
-//! a fifth of the typesetting time of a handout of derivations.
+//! about a sixth of the typesetting time of tests/course (README, "Short formulas set without
+//! measuring").
 //!
 //! The bound is a sum over the formula's pieces, since Typst never sets a construct wider than
 //! its parts side by side (a fraction is as wide as its wider part, a script stands beside its
 //! base, a matrix's columns each as wide as their widest entry): each character counts the
 //! widest glyph the font may set for it (any letter style, any size of a delimiter, radical
-//! or large operator), each piece a thick space and an italic correction, and each function
-//! what it draws itself (a radical, a matrix's brackets and gaps). Anything else, a name or a
-//! construct not known here, gives no bound, and the formula is measured as before.
+//! or large operator), each neighbour in a row the most Typst puts between two, each script
+//! its base's italic correction, and each function what it draws itself (a radical, a
+//! matrix's brackets and gaps). Anything else, a name or a construct not known here, gives no
+//! bound, and the formula is measured as before.
 
 use std::collections::HashMap;
 use std::sync::OnceLock;
@@ -27,9 +29,6 @@ const GAP: f64 = 0.34;
 
 /// A space in a string (the font's word space, 0.332 em), rounded up.
 const SPACE: f64 = 0.34;
-
-/// The italic correction a script is set after (New Computer Modern's largest is below this).
-const ITALIC_CORRECTION: f64 = 0.15;
 
 /// A fraction's padding each side (Typst's `FRAC_PADDING`, 0.1 em), rounded up.
 const FRACTION: f64 = 0.25;
@@ -56,13 +55,13 @@ fn width(n: &SyntaxNode, g: &Glyphs) -> Option<f64> {
             .filter(|c| c.kind() != Space)
             .map(|c| Some(width(c, g)? + GAP))
             .sum::<Option<f64>>()?,
-        // `x_1^2`: the base, then the wider script (after the base's italic correction), then
-        // its primes.
+        // `x_1^2`: the base and its italic correction, then the wider script, then its primes.
         MathAttach => {
             let mut parts = n
                 .children()
                 .filter(|c| !matches!(c.kind(), Underscore | Hat));
-            let base = width(parts.next()?, g)?;
+            let base_node = parts.next()?;
+            let base = width(base_node, g)? + g.italic_of(base_node);
             let mut scripts: f64 = 0.0;
             let mut primes = 0.0;
             for p in parts {
@@ -72,7 +71,7 @@ fn width(n: &SyntaxNode, g: &Glyphs) -> Option<f64> {
                     scripts = scripts.max(grouped(p, g)?);
                 }
             }
-            base + ITALIC_CORRECTION + scripts + primes
+            base + scripts + primes
         }
         MathPrimes | MathRoot => children(n, g)?,
         // `a/b`: the wider part.
@@ -253,7 +252,7 @@ fn call(n: &SyntaxNode, g: &Glyphs) -> Option<f64> {
         Set::Bracketed => cells().sum::<f64>() + 2.0 * brackets()?,
         Set::Scripts => {
             cells().sum::<f64>()
-                + ITALIC_CORRECTION
+                + g.most_italic
                 + 2.0 * table.named.iter().copied().fold(0.0_f64, f64::max)
         }
     })
@@ -406,6 +405,10 @@ fn spacing(n: &SyntaxNode) -> Option<f64> {
 /// large operator's larger forms and the pieces they are built of).
 struct Glyphs {
     widest: HashMap<char, f64>,
+    /// Each character's largest italic correction, which a script is set after (a large
+    /// integral's, 0.59 em, is the font's largest).
+    italic: HashMap<char, f64>,
+    most_italic: f64,
 }
 
 impl Glyphs {
@@ -416,6 +419,18 @@ impl Glyphs {
             return Some(0.0);
         }
         self.widest.get(&c).copied()
+    }
+
+    /// The italic correction after a script's base: a character's own, else the largest.
+    fn italic_of(&self, base: &SyntaxNode) -> f64 {
+        let t = base.leaf_text();
+        let mut chars = t.chars();
+        match (base.kind(), chars.next(), chars.next()) {
+            (SyntaxKind::MathText, Some(c), Option::None) => {
+                self.italic.get(&c).copied().unwrap_or(self.most_italic)
+            }
+            _ => self.most_italic,
+        }
     }
 
     /// The widest bracket a function may draw, at any size.
@@ -445,29 +460,46 @@ fn read_glyphs() -> Option<Glyphs> {
     if faces.is_empty() {
         return Option::None;
     }
-    // Each glyph's widest advance over the math fonts, its larger forms and their pieces.
-    let glyph = |c: char| -> Option<f64> {
-        let mut widest: Option<f64> = Option::None;
+    // Each glyph's widest advance and largest italic correction over the math fonts, its
+    // larger forms and their pieces.
+    let glyph = |c: char| -> Option<(f64, f64)> {
+        let mut found: Option<(f64, f64)> = Option::None;
         for f in &faces {
             let Some(id) = f.glyph_index(c) else { continue };
-            let em =
-                |id| f64::from(f.glyph_hor_advance(id).unwrap_or(0)) / f64::from(f.units_per_em());
-            let mut w = em(id);
-            if let Some(v) = f.tables().math.and_then(|m| m.variants)
+            let per_em = f64::from(f.units_per_em());
+            let math = f.tables().math;
+            let measure = |id| {
+                let advance = f64::from(f.glyph_hor_advance(id).unwrap_or(0)) / per_em;
+                let italic = math
+                    .and_then(|m| m.glyph_info)
+                    .and_then(|i| i.italic_corrections)
+                    .and_then(|i| i.get(id))
+                    .map_or(0.0, |v| f64::from(v.value).max(0.0) / per_em);
+                (advance, italic)
+            };
+            let mut ids = vec![id];
+            if let Some(v) = math.and_then(|m| m.variants)
                 && let Some(c) = v.vertical_constructions.get(id)
             {
-                for variant in c.variants {
-                    w = w.max(em(variant.variant_glyph));
-                }
-                for part in c.assembly.map(|a| a.parts).into_iter().flatten() {
-                    w = w.max(em(part.glyph_id));
-                }
+                ids.extend(c.variants.into_iter().map(|v| v.variant_glyph));
+                ids.extend(
+                    c.assembly
+                        .map(|a| a.parts)
+                        .into_iter()
+                        .flatten()
+                        .map(|p| p.glyph_id),
+                );
             }
-            widest = Some(widest.map_or(w, |x: f64| x.max(w)));
+            for id in ids {
+                let (w, i) = measure(id);
+                let (fw, fi) = found.unwrap_or((0.0, 0.0));
+                found = Some((fw.max(w), fi.max(i)));
+            }
         }
-        widest
+        found
     };
     let mut widest = HashMap::new();
+    let mut italic = HashMap::new();
     // Every character of the Basic Latin to Mathematical Operators blocks, arrows, brackets and
     // the letter-like symbols, as the font has it.
     let ranges = [
@@ -477,24 +509,36 @@ fn read_glyphs() -> Option<Glyphs> {
         0x1D400..=0x1D7FF,
     ];
     for c in ranges.into_iter().flatten().filter_map(char::from_u32) {
-        if let Some(w) = glyph(c) {
+        if let Some((w, i)) = glyph(c) {
             widest.insert(c, w);
+            italic.insert(c, i);
         }
     }
     // A letter counts its widest style: Typst sets a letter in the Mathematical Alphanumeric
     // Symbols, or in the letter-like symbols that fill their gaps.
-    let mut styled: Vec<(char, f64)> = Vec::new();
+    let mut styled: Vec<(char, f64, f64)> = Vec::new();
     for (c, forms) in styled_forms() {
-        let w = std::iter::once(c)
-            .chain(forms)
-            .filter_map(|f| widest.get(&f).copied())
-            .fold(0.0_f64, f64::max);
+        let all: Vec<char> = std::iter::once(c).chain(forms).collect();
+        let most = |of: &HashMap<char, f64>| {
+            all.iter()
+                .filter_map(|f| of.get(f).copied())
+                .fold(0.0_f64, f64::max)
+        };
+        let w = most(&widest);
         if w > 0.0 {
-            styled.push((c, w));
+            styled.push((c, w, most(&italic)));
         }
     }
-    widest.extend(styled);
-    Some(Glyphs { widest })
+    for (c, w, i) in styled {
+        widest.insert(c, w);
+        italic.insert(c, i);
+    }
+    let most_italic = italic.values().copied().fold(0.0_f64, f64::max);
+    Some(Glyphs {
+        widest,
+        italic,
+        most_italic,
+    })
 }
 
 /// Each letter and digit with its styled forms (Unicode's Mathematical Alphanumeric Symbols,
