@@ -10,7 +10,7 @@ use pulldown_latex::event::{
 };
 
 /// Operator names Typst's math knows by the same name; any other is `op("…")`.
-const FUNCTIONS: &[&str] = &[
+pub const FUNCTIONS: &[&str] = &[
     "sin", "cos", "tan", "cot", "sec", "csc", "arcsin", "arccos", "arctan", "sinh", "cosh", "tanh",
     "coth", "exp", "ln", "log", "lg", "det", "dim", "ker", "deg", "arg", "gcd", "max", "min",
     "lim", "sup", "inf", "liminf", "limsup", "Pr",

@@ -23,6 +23,9 @@ use typst::syntax::{SyntaxKind, SyntaxNode};
 /// inset each side), 45.8 em; the rest is room for what the bound leaves out.
 pub const NARROWER_THAN_ANY_LINE: f64 = 42.0;
 
+/// The body's size, which the preamble sets for formulas too: a length in points over it is in em.
+const BODY_PT: f64 = 10.5;
+
 /// The most Typst puts between two neighbours in a row: a thick space (5/18 em) around a
 /// relation, or a space of the markup beside a word (the font's, 0.332 em); never both.
 const GAP: f64 = 0.34;
@@ -88,9 +91,11 @@ fn width(n: &SyntaxNode, g: &Glyphs) -> Option<f64> {
             .chars()
             .map(|c| g.widest(c))
             .sum::<Option<f64>>()?,
-        // A bracket of `(…)` at whatever size the content asks; the others as they are.
-        LeftParen | RightParen | Root => g.widest(leaf_char(n)?)?,
-        Escape | MathShorthand | Shorthand => g.widest(leaf_char(n)?)?,
+        // A bracket of `(…)` at whatever size the content asks, a radical sign, an escaped
+        // character, a shorthand (`->`).
+        LeftParen | RightParen | Root | Escape | MathShorthand | Shorthand => {
+            g.widest(leaf_char(n)?)?
+        }
         Str => {
             let s = n.leaf_text();
             let inner = s.strip_prefix('"')?.strip_suffix('"')?;
@@ -99,7 +104,7 @@ fn width(n: &SyntaxNode, g: &Glyphs) -> Option<f64> {
             }
             inner
                 .chars()
-                .map(|c| text_char(c, g))
+                .map(|c| if c == ' ' { Some(SPACE) } else { g.widest(c) })
                 .sum::<Option<f64>>()?
         }
         // Set only beside a word, within the gap counted for it.
@@ -168,16 +173,12 @@ fn leaf_char(n: &SyntaxNode) -> Option<char> {
     }
 }
 
-fn text_char(c: char, g: &Glyphs) -> Option<f64> {
-    if c == ' ' { Some(SPACE) } else { g.widest(c) }
-}
-
 /// A name in the formula: a symbol, an operator's name (`sin`) or a space (`quad`).
 fn named(name: &str, g: &Glyphs) -> Option<f64> {
     if let Some(w) = SPACES.iter().find(|(s, _)| *s == name).map(|(_, w)| *w) {
         return Some(w);
     }
-    if OPERATORS.contains(&name) {
+    if crate::notation::typst::FUNCTIONS.contains(&name) {
         return name.chars().map(|c| g.widest(c)).sum();
     }
     symbol(name, &[], g)
@@ -191,14 +192,6 @@ const SPACES: &[(&str, f64)] = &[
     ("quad", 1.0),
     ("wide", 2.0),
     ("space", SPACE),
-];
-
-/// The operator names Typst's math sets as their letters, upright (`notation/typst.rs` writes
-/// these).
-const OPERATORS: &[&str] = &[
-    "sin", "cos", "tan", "cot", "sec", "csc", "arcsin", "arccos", "arctan", "sinh", "cosh", "tanh",
-    "coth", "exp", "ln", "log", "lg", "det", "dim", "ker", "deg", "arg", "gcd", "max", "min",
-    "lim", "sup", "inf", "liminf", "limsup", "Pr", "tr", "mod",
 ];
 
 /// A symbol of Typst's math by name, with `modifiers` as Typst resolves them.
@@ -227,22 +220,22 @@ fn call(n: &SyntaxNode, g: &Glyphs) -> Option<f64> {
     let name = match callee.kind() {
         SyntaxKind::MathIdent => callee.leaf_text().as_str(),
         SyntaxKind::MathFieldAccess => {
-            return Some(modified(callee, g)?.max(arguments(args, g, false)?));
+            return Some(modified(callee, g)?.max(Table::of(args, g)?.side_by_side()));
         }
         _ => return Option::None,
     };
     let Some((_, set)) = FUNCTIONS.iter().find(|f| f.0 == name) else {
         if let Some(Value::Symbol(_)) = math_scope().get(name).map(|b| b.read()) {
-            return Some(symbol(name, &[], g)?.max(arguments(args, g, false)?));
+            return Some(symbol(name, &[], g)?.max(Table::of(args, g)?.side_by_side()));
         }
-        return Some(width(callee, g)? + arguments(args, g, true)?);
+        return Some(width(callee, g)? + shown_arguments(args, g)?);
     };
     let table = Table::of(args, g)?;
     let cells = || table.rows.iter().flatten().copied();
     let widest = || cells().fold(0.0_f64, f64::max);
     let brackets = || g.widest_bracket();
     Some(match set {
-        Set::Side => cells().sum::<f64>() + table.named.iter().sum::<f64>(),
+        Set::Side => table.side_by_side(),
         Set::Over => widest(),
         Set::Fraction => widest() + FRACTION,
         Set::Binomial => widest() + FRACTION + 2.0 * brackets()?,
@@ -279,6 +272,11 @@ impl Table {
             }
         }
         Some(Table { rows, named })
+    }
+
+    /// Every argument side by side, the named ones' values too.
+    fn side_by_side(&self) -> f64 {
+        self.rows.iter().flatten().sum::<f64>() + self.named.iter().sum::<f64>()
     }
 
     /// A matrix's width: each column as wide as its widest entry, with the gaps between.
@@ -352,28 +350,20 @@ const FUNCTIONS: &[(&str, Set)] = &[
     ("serif", Set::Side),
 ];
 
-/// A call's arguments: each positional one, and each named one's value (`b: x`, `delim: "["`);
-/// `shown`, when the brackets and commas are set as written.
-fn arguments(args: &SyntaxNode, g: &Glyphs, shown: bool) -> Option<f64> {
-    let mut w = 0.0;
-    for a in args.children() {
-        w += match a.kind() {
-            SyntaxKind::LeftParen | SyntaxKind::RightParen | SyntaxKind::Comma if shown => {
-                g.widest(leaf_char(a)?)? + GAP
-            }
-            SyntaxKind::LeftParen
-            | SyntaxKind::RightParen
-            | SyntaxKind::Comma
-            | SyntaxKind::Semicolon => 0.0,
-            SyntaxKind::Named => {
-                // The name and its colon set nothing.
-                let value = a.children().last()?;
-                width(value, g)?
-            }
-            _ => width(a, g)?,
-        };
-    }
-    Some(w)
+/// The arguments of a name that is not a function (`sin(x)`): side by side, with their
+/// brackets and commas set as written.
+fn shown_arguments(args: &SyntaxNode, g: &Glyphs) -> Option<f64> {
+    let marks = args
+        .children()
+        .filter(|a| {
+            matches!(
+                a.kind(),
+                SyntaxKind::LeftParen | SyntaxKind::RightParen | SyntaxKind::Comma
+            )
+        })
+        .map(|a| Some(g.widest(leaf_char(a)?)? + GAP))
+        .sum::<Option<f64>>()?;
+    Some(marks + Table::of(args, g)?.side_by_side())
 }
 
 /// `#h(…)`: its width in em, a negative one as none; a length in points at the body's 10.5 pt.
@@ -391,10 +381,10 @@ fn spacing(n: &SyntaxNode) -> Option<f64> {
     let number: f64 = number.parse().ok()?;
     let em = match unit {
         "em" => number,
-        "pt" => number / 10.5,
-        "mm" => number * 72.0 / 25.4 / 10.5,
-        "cm" => number * 72.0 / 2.54 / 10.5,
-        "in" => number * 72.0 / 10.5,
+        "pt" => number / BODY_PT,
+        "mm" => number * 72.0 / 25.4 / BODY_PT,
+        "cm" => number * 72.0 / 2.54 / BODY_PT,
+        "in" => number * 72.0 / BODY_PT,
         _ => return Option::None,
     };
     Some(em.max(0.0))

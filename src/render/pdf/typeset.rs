@@ -306,43 +306,38 @@ fn past_the_edge(
 
 /// The characters set with no glyph (a font's "notdef", glyph 0) anywhere in the document.
 fn missing_glyphs_in(document: &PagedDocument) -> Vec<char> {
+    let mut out = Vec::new();
+    each_text(document, &mut |t| {
+        for g in &t.glyphs {
+            if g.id == 0 {
+                out.extend(t.text[g.range()].chars());
+            }
+        }
+    });
+    out
+}
+
+/// Each piece of text set on the document's pages, in order.
+fn each_text(document: &PagedDocument, f: &mut dyn FnMut(&typst::text::TextItem)) {
     use typst::layout::{Frame, FrameItem};
-    fn walk(frame: &Frame, out: &mut Vec<char>) {
+    fn walk(frame: &Frame, f: &mut dyn FnMut(&typst::text::TextItem)) {
         for (_, item) in frame.items() {
             match item {
-                FrameItem::Group(g) => walk(&g.frame, out),
-                FrameItem::Text(t) => {
-                    for g in &t.glyphs {
-                        if g.id == 0 {
-                            out.extend(t.text[g.range()].chars());
-                        }
-                    }
-                }
+                FrameItem::Group(g) => walk(&g.frame, f),
+                FrameItem::Text(t) => f(t),
                 _ => {}
             }
         }
     }
-    let mut out = Vec::new();
     for page in document.pages() {
-        walk(&page.frame, &mut out);
+        walk(&page.frame, f);
     }
-    out
 }
 
 /// The text Typst sets on the pages of `markup`, piece by piece in order: for tests that read
 /// back what a document measured.
 #[cfg(test)]
 pub fn texts(markup: &str) -> Vec<String> {
-    use typst::layout::{Frame, FrameItem};
-    fn walk(frame: &Frame, out: &mut Vec<String>) {
-        for (_, item) in frame.items() {
-            match item {
-                FrameItem::Group(g) => walk(&g.frame, out),
-                FrameItem::Text(t) => out.push(t.text.to_string()),
-                _ => {}
-            }
-        }
-    }
     let source = PdfSource {
         path: "test.pdf".into(),
         markup: markup.into(),
@@ -357,8 +352,6 @@ pub fn texts(markup: &str) -> Vec<String> {
         .output
         .unwrap_or_else(|e| panic!("{e:?}"));
     let mut out = Vec::new();
-    for page in document.pages() {
-        walk(&page.frame, &mut out);
-    }
+    each_text(&document, &mut |t| out.push(t.text.to_string()));
     out
 }
