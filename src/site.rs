@@ -10,7 +10,7 @@ pub mod init;
 pub mod pdfs;
 pub mod scratch;
 
-pub use guard::check_output;
+pub use guard::{Sources, check_output};
 
 use std::path::{Component, Path, PathBuf};
 
@@ -46,6 +46,17 @@ pub enum SiteError {
         out.display(), input.display()
     )]
     ContainsInput { out: PathBuf, input: PathBuf },
+    #[error(
+        "the {flag} `{}` is or lies inside `{}`, which mechbook reads, and what mechbook writes \
+         there would replace the course's own files: choose a path outside it, such as {suggest}",
+        written.display(), input.display()
+    )]
+    InsideInput {
+        flag: &'static str,
+        written: PathBuf,
+        input: PathBuf,
+        suggest: &'static str,
+    },
     #[error("cannot read {}: {error}", path.display())]
     Read {
         path: PathBuf,

@@ -231,6 +231,14 @@ pub fn run(args: BenchArgs) -> Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     if let Some(out) = &out {
+        crate::site::Sources::of_course(
+            std::slice::from_ref(&lectures),
+            &[],
+            std::path::Path::new("mechbook.toml"),
+            None,
+            None,
+        )
+        .check_apart("--out folder", out, "docs/bench")?;
         crate::site::check_output(out, &[lectures.clone(), PathBuf::from(".")])?;
     }
     let tty = std::io::stderr().is_terminal();

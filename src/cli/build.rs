@@ -431,9 +431,22 @@ impl Build {
         inputs.extend(files.iter().cloned());
         inputs.extend(self.templates.clone());
         inputs.push(PathBuf::from("."));
+        // Nothing written is, or lies inside, what the course is read from.
+        let sources = crate::site::Sources::of_course(
+            &self.paths,
+            &files,
+            &self.course_file,
+            self.templates.as_deref(),
+            self.roster.as_ref().map(|(r, _, _)| r.source.as_path()),
+        );
+        if let Some(cache) = &self.cache {
+            crate::site::guard::check_holds_no_input(cache.dir(), &inputs)?;
+            sources.check_apart("--cache folder", cache.dir(), ".mechbook-cache")?;
+        }
         if let Some((roster, papers, _)) = &self.roster {
             inputs.push(roster.source.clone());
             crate::site::check_output(papers, &inputs)?;
+            sources.check_apart("--papers folder", papers, "papers/")?;
             let (site, papers_at) = (
                 crate::site::guard::resolve(&self.out),
                 crate::site::guard::resolve(papers),
@@ -448,6 +461,7 @@ impl Build {
             }
         }
         crate::site::check_output(&self.out, &inputs)?;
+        sources.check_apart("output folder", &self.out, "site/")?;
         Ok(files)
     }
 
@@ -475,7 +489,7 @@ impl Build {
 /// The course file for `paths`: `mechbook.toml` in a folder named (and then the whole course is
 /// built), else the nearest one in a folder above the first path (`build course/lectures` finds
 /// `course/mechbook.toml`), else the working folder's.
-fn course_file(paths: &[PathBuf]) -> (PathBuf, bool) {
+pub(super) fn course_file(paths: &[PathBuf]) -> (PathBuf, bool) {
     if let Some(f) = paths
         .iter()
         .map(|p| p.join("mechbook.toml"))

@@ -40,7 +40,18 @@ pub fn run(args: CheckArgs) -> Result<ExitCode> {
         bless,
         fidelity: FidelityArg { fidelity },
     } = args;
-    let Some(scenes) = load(&find(&default_paths(paths)?)?) else {
+    let paths = default_paths(paths)?;
+    let files = find(&paths)?;
+    if let Some(path) = &json_file {
+        // Checked before anything is derived: the report never takes a source's place.
+        let (course_file, _) = super::build::course_file(&paths);
+        crate::site::Sources::of_course(&paths, &files, &course_file, None, None).check_apart(
+            "--json-file",
+            path,
+            "check.json",
+        )?;
+    }
+    let Some(scenes) = load(&files) else {
         return Ok(ExitCode::from(1));
     };
     let (reports, errors) = run_all(scenes, fidelity, &crate::pipeline::NoStore);

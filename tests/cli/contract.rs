@@ -528,7 +528,8 @@ fn the_exact_and_numeric_agreement_grows_with_the_point_masses_summed() {
         points.join(", ")
     );
     std::fs::write(dir.join("points.toml"), scene).unwrap();
-    let report = dir.join("report.json");
+    // Beside the scenes' folder: a report is never written among the scenes.
+    let report = dir.with_extension("report.json");
     let out = mechbook(&["check", arg(&dir), "--json-file", arg(&report)]);
     let json: serde_json::Value = serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
     let failures: Vec<&str> = json["failures"]
@@ -552,6 +553,7 @@ fn the_exact_and_numeric_agreement_grows_with_the_point_masses_summed() {
         "{error}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
+    std::fs::remove_file(&report).unwrap();
 }
 
 #[test]
