@@ -24,11 +24,28 @@ pub enum TexError {
     Chain,
     #[error("{0} is not among what the PDFs can set (see docs/scenes.md)")]
     Unprintable(&'static str),
+    #[error(
+        "`\\{0}` takes a number written in ASCII (`\\char65`, `\\char\"41`): write the \
+         character itself instead"
+    )]
+    NotANumber(&'static str),
+    #[error("it gives the control character U+{0:04X}, which no page or file can show")]
+    Control(u32),
+    /// The parser failed where mechbook does not yet steer around it: a located refusal
+    /// rather than a crash (the fuzz suite treats it as a defect to steer around).
+    #[error("{READER_FAULT}; rewrite the formula, and please report it as a mechbook bug")]
+    ReaderFault,
 }
+
+/// What [`TexError::ReaderFault`] says: the fuzz suite looks for it.
+pub const READER_FAULT: &str = "the LaTeX reader (pulldown-latex) failed on this formula";
 
 /// The deepest nesting read: a guard for the stack, far beyond what an author writes or
 /// mechbook's printers write.
 pub const MAX_DEPTH: usize = 200;
+
+/// The levels a script set above or below its base counts for (see [`element`]).
+const ABOVE_BELOW_LEVELS: usize = 3;
 
 /// The longest chain of commands each the argument of the one before (`\vec\vec…x`,
 /// `\frac1\frac1…`), which the parser reads by recursion: 2,000 overflow a test thread's
@@ -91,17 +108,101 @@ impl Tex {
         if chained_commands(latex) > MAX_CHAIN {
             return Err(TexError::Chain);
         }
-        let storage = Storage::new();
-        let mut events = Parser::new(latex, &storage);
-        let mut nodes = Vec::new();
-        while let Some(node) = element(&mut events, 0)? {
-            nodes.push(node);
-        }
+        let text = parser_text(latex)?;
+        let nodes = without_panic_messages(|| {
+            std::panic::catch_unwind(|| {
+                let storage = Storage::new();
+                let mut events = Parser::new(&text, &storage);
+                let mut nodes = Vec::new();
+                while let Some(node) = element(&mut events, 0)? {
+                    nodes.push(node);
+                }
+                Ok(nodes)
+            })
+        })
+        .map_err(|_| TexError::ReaderFault)??;
         Ok(Tex {
             source: latex.to_string(),
             nodes,
         })
     }
+}
+
+/// The text handed to the parser, on which it never slices inside a character.
+///
+/// pulldown-latex 0.8 steps one byte past the optional space after a number or a unit
+/// (`\kern1em`, `\char"41`), and past the first character of a number it cannot read
+/// (`\char é`, `\begin{alignat}{é}`), and cuts a colour `#rrggbb` at bytes; each panics inside
+/// a character of more than one byte. So every non-ASCII white space is given to it as an
+/// ASCII space (math mode skips both; in `\text{…}` it is then a plain space), and a number
+/// or colour that starts with a non-ASCII character is refused here, with what to write.
+fn parser_text(latex: &str) -> Result<String, TexError> {
+    let text: String = latex
+        .chars()
+        .map(|c| {
+            if c.is_whitespace() && !c.is_ascii() {
+                ' '
+            } else {
+                c
+            }
+        })
+        .collect();
+    for (at, _) in text.match_indices("\\char") {
+        let after = text[at + 5..].trim_start_matches(|c: char| c.is_ascii_whitespace());
+        if after.chars().next().is_some_and(|c| !c.is_ascii()) {
+            return Err(TexError::NotANumber("char"));
+        }
+    }
+    for env in ["alignat}", "alignat*}", "alignedat}"] {
+        for (at, _) in text.match_indices(env) {
+            let after = text[at + env.len()..].trim_start();
+            if let Some(arg) = after.strip_prefix('{')
+                && arg
+                    .trim_start()
+                    .chars()
+                    .next()
+                    .is_some_and(|c| !c.is_ascii())
+            {
+                return Err(TexError::NotANumber("begin{alignat}"));
+            }
+        }
+    }
+    for (at, _) in text.match_indices("{#") {
+        let colour = text[at + 2..].split('}').next().unwrap_or("");
+        if !colour.is_ascii() {
+            return Err(TexError::Unprintable("a colour"));
+        }
+    }
+    Ok(text)
+}
+
+/// A control character that XML 1.0 (and so every page and export) cannot hold: all but tab,
+/// line feed and carriage return.
+fn forbidden_control(c: char) -> bool {
+    c.is_control() && !matches!(c, '\t' | '\n' | '\r')
+}
+
+thread_local! {
+    /// Set while this thread runs the parser, whose panics [`Tex::read`] catches and refuses.
+    static QUIET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f` with the panic message of this thread kept off standard error: the panic is
+/// caught and reported as a located error instead. Other threads' panics print as before.
+fn without_panic_messages<T>(f: impl FnOnce() -> T) -> T {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(std::cell::Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    QUIET.with(|q| q.set(true));
+    let out = f();
+    QUIET.with(|q| q.set(false));
+    out
 }
 
 /// The nodes rewritten by `f`, children first: each node is handed to `f` with its operands and
@@ -257,18 +358,21 @@ fn element(events: &mut Events<'_>, depth: usize) -> Result<Option<Node>, TexErr
         return Ok(None);
     };
     let event = event.map_err(parse_error)?;
-    let operands = |events: &mut Events<'_>, n: usize| -> Result<Vec<Node>, TexError> {
+    let operands = |events: &mut Events<'_>, n: usize, levels: usize| {
         (0..n)
             .map(|_| {
-                element(events, depth + 1)?
+                element(events, depth + levels)?
                     .ok_or_else(|| TexError::Parse("a missing operand".into()))
             })
-            .collect()
+            .collect::<Result<Vec<Node>, TexError>>()
     };
     Ok(Some(match event {
         Event::End => return Ok(None),
         Event::Content(c) => match c {
-            Content::Text(s) => Node::Text(s.to_string()),
+            Content::Text(s) => match s.chars().find(|c| forbidden_control(*c)) {
+                Some(c) => return Err(TexError::Control(c as u32)),
+                None => Node::Text(s.to_string()),
+            },
             Content::Number(s) => Node::Number(s.to_string()),
             Content::Function(s) => Node::Function(s.to_string()),
             // pulldown-latex sets `\mu` as U+00B5, the micro sign; mechbook's printers and
@@ -280,6 +384,9 @@ fn element(events: &mut Events<'_>, depth: usize) -> Result<Option<Node>, TexErr
                 content: 'μ',
                 stretchy,
             }),
+            Content::Ordinary { content, .. } if forbidden_control(content) => {
+                return Err(TexError::Control(content as u32));
+            }
             Content::Ordinary { content, stretchy } => {
                 Node::Atom(Content::Ordinary { content, stretchy })
             }
@@ -307,14 +414,24 @@ fn element(events: &mut Events<'_>, depth: usize) -> Result<Option<Node>, TexErr
                 Visual::Fraction(_) | Visual::Root => 2,
                 Visual::SquareRoot | Visual::Negation => 1,
             };
-            Node::Visual(v, operands(events, n)?)
+            Node::Visual(v, operands(events, n, 1)?)
         }
         Event::Script { ty, position } => {
             let n = match ty {
                 ScriptType::SubSuperscript => 3,
                 ScriptType::Subscript | ScriptType::Superscript => 2,
             };
-            let parts = operands(events, n)?;
+            // Typst sets a script above or below its base (`\\underset`, `\\overbrace`,
+            // `\\sum\\limits`) through a deeper recursion than any other element: nested 78
+            // deep, within the reader's limit, it overflowed a layout thread's stack, which
+            // no setting of mechbook's reaches (measured: 76 built). Each counts three
+            // levels, four with its base's braces: `\\underset{a}{…}` nests at most 50 deep.
+            let levels = if position == ScriptPosition::AboveBelow {
+                ABOVE_BELOW_LEVELS
+            } else {
+                1
+            };
+            let parts = operands(events, n, levels)?;
             Node::Script {
                 ty,
                 position,
@@ -437,6 +554,30 @@ mod tests {
         assert!(serde_json::from_str::<Tex>(r#""\\frac{1}{""#).is_err());
     }
 
+    /// Each of these made pulldown-latex 0.8 slice inside a character and panic: a number or
+    /// a unit followed by a non-ASCII space, a number that starts with a non-ASCII character.
+    #[test]
+    fn a_number_or_unit_before_a_wide_character_is_read_or_refused_never_a_panic() {
+        for space in ['\u{a0}', '\u{2003}', '\u{3000}'] {
+            for latex in [
+                format!("\\char\"41{space}x"),
+                format!("\\char65{space}x"),
+                format!("a\\kern1em{space}b"),
+                format!("a\\mkern1mu{space}b"),
+                format!("a\\hskip1pt{space}b"),
+                format!("a\\kern{space}1em{space}b"),
+                format!("\\text{{a{space}b}}"),
+            ] {
+                let t = Tex::read(&latex).unwrap_or_else(|e| panic!("{latex:?}: {e}"));
+                assert_eq!(t.source, latex, "the source is kept as written");
+            }
+        }
+        assert_eq!(
+            Tex::read("a\\kern1em\u{a0}b").unwrap().nodes,
+            Tex::read("a\\kern1em b").unwrap().nodes
+        );
+    }
+
     #[test]
     fn unreadable_or_too_deep_latex_is_refused() {
         assert!(matches!(Tex::read("\\frac{1}{"), Err(TexError::Parse(_))));
@@ -452,6 +593,32 @@ mod tests {
             "more than 250 commands in a chain, each the argument of the one before: give each \
              argument its braces, `\\vec{\\vec{x}}`"
         );
+        assert_eq!(Tex::read("\\char é"), Err(TexError::NotANumber("char")));
+        assert_eq!(
+            Tex::read("\\char\u{3000}é"),
+            Err(TexError::NotANumber("char"))
+        );
+        assert_eq!(
+            Tex::read("\\begin{alignat}{é} a \\end{alignat}"),
+            Err(TexError::NotANumber("begin{alignat}"))
+        );
+        assert_eq!(
+            Tex::read("\\color{#aééb} x"),
+            Err(TexError::Unprintable("a colour"))
+        );
+        for control in [
+            "\\char0",
+            "\\char8",
+            "\\char27",
+            "\\char\"",
+            "\\text{a\u{7}b}",
+        ] {
+            assert!(
+                matches!(Tex::read(control), Err(TexError::Control(_))),
+                "{control}: {:?}",
+                Tex::read(control)
+            );
+        }
         // A long formula of commands, each with its own brackets or braces, is read.
         let long = "\\sin\\left(\\theta\\right) \\omega_{3} ".repeat(500);
         assert!(Tex::read(&long).is_ok());

@@ -223,6 +223,124 @@ const AUTHOR_SPECIALS: &[&str] = &[
     r"$\\vec\\vec\\vec\\vec\\vec\\vec x$ $a\\!b\\qquad c~d$",
 ];
 
+/// The pieces random LaTeX is made of: what an author writes, and what once crashed the
+/// reader (a number or a unit before a wide space, `\\char` before a non-ASCII letter), made
+/// Moodle blanks (`{1:NUMERICAL:…}`), control characters (`\\char0`) or Typst's named
+/// arguments (`a:b` first in an argument), or headings with no text (`\\hat{}`).
+const LATEX_PIECES: &[&str] = &[
+    "a",
+    "x_1",
+    "\\omega",
+    "é",
+    "1.5",
+    "2",
+    ":",
+    "a:b",
+    "{",
+    "}",
+    "^",
+    "_",
+    "&",
+    "\\\\",
+    "\\frac{",
+    "\\sqrt{",
+    "\\vec{",
+    "\\hat{",
+    "\\underset{a}{",
+    "\\operatorname{",
+    "\\mathrm{",
+    "\\text{",
+    "\\char",
+    "\\char\"41",
+    "\\char65",
+    "\\char0",
+    "\\char27",
+    "\\kern1em",
+    "\\mkern1mu",
+    "\\hskip1pt",
+    "\\kern{",
+    "\u{a0}",
+    "\u{2003}",
+    "\u{3000}",
+    " ",
+    "\\begin{pmatrix}",
+    "\\end{pmatrix}",
+    "\\left(",
+    "\\right)",
+    "{1:NUMERICAL:=0:0}",
+    "{1:SHORTANSWER:=x}",
+    "]]>",
+    "<",
+    ">",
+    "&amp;",
+    "\"",
+    "#",
+    "%",
+    "~",
+    "'",
+    "\\color{#aééb}",
+    "\\begin{alignat}{é}",
+    "\\not=",
+    "<=",
+    "->",
+    ")",
+    "(",
+    ",",
+    "\\,",
+    "\\!",
+    "\\{",
+    "\\}",
+    "\\mu",
+    "\\cdot",
+    "=",
+];
+
+/// Random LaTeX: 1 to 12 pieces, its braces closed half the time.
+fn random_latex(rng: &mut Rng) -> String {
+    let mut out = String::new();
+    for _ in 0..1 + rng.below(12) {
+        out.push_str(rng.pick(LATEX_PIECES));
+    }
+    if rng.below(2) == 0 {
+        let open = out
+            .matches('{')
+            .count()
+            .saturating_sub(out.matches('}').count());
+        out.push_str(&"}".repeat(open));
+    }
+    out
+}
+
+/// Where a field that takes mathematics starts its quoted text: prose takes `$…$`, a
+/// symbol's or a step's `tex` is LaTeX throughout. Each as (where the text starts, where it
+/// ends, whether it is `tex`).
+fn math_fields(text: &str) -> Vec<(usize, usize, bool)> {
+    let mut out = Vec::new();
+    for key in ["title", "statement", "label", "why", "meaning", "tex"] {
+        for (at, _) in text.match_indices(&format!("{key} = \"")) {
+            // A key of its own, not the end of a longer one (`subtitle`).
+            if text[..at].ends_with(|c: char| c.is_ascii_alphanumeric() || c == '_') {
+                continue;
+            }
+            let start = at + key.len() + 4;
+            // A multi-line string (`"""`) is passed over.
+            if text[start..].starts_with('"') {
+                continue;
+            }
+            let mut end = start;
+            let bytes = text.as_bytes();
+            while end < bytes.len() && bytes[end] != b'"' && bytes[end] != b'\n' {
+                end += if bytes[end] == b'\\' { 2 } else { 1 };
+            }
+            if end < bytes.len() && bytes[end] == b'"' {
+                out.push((start, end, key == "tex"));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
 /// One mutation of `text`.
 fn mutate(text: &[u8], rng: &mut Rng) -> Vec<u8> {
     let mut t = text.to_vec();
@@ -333,6 +451,10 @@ fn located(message: &str, path: &Path) -> bool {
 
 fn kind_of(message: &str) -> &'static str {
     let kinds = [
+        (
+            mechbook::notation::latex::READER_FAULT,
+            "latex reader fault",
+        ),
         ("field `variants", "variants"),
         ("field `problem", "problem"),
         ("invalid UTF-8", "not UTF-8"),
@@ -354,8 +476,20 @@ fn kind_of(message: &str) -> &'static str {
         .map_or("other", |(_, v)| v)
 }
 
-/// Parses, derives, verifies and renders one scene text; `Err` is a defect.
+/// Parses, derives, verifies and renders one scene text; `Err` is a defect. A refusal that
+/// the LaTeX reader's backstop gave (its panic caught) is a defect too: mechbook must steer
+/// the reader around it.
 fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
+    let r = run_one_unchecked(bytes, path);
+    if let Ok(Outcome::Refused(kind)) = &r
+        && *kind == "latex reader fault"
+    {
+        return Err("the LaTeX reader panicked (caught by its backstop)".into());
+    }
+    r
+}
+
+fn run_one_unchecked(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
     let text = match std::str::from_utf8(bytes) {
         Ok(t) => t.to_string(),
         Err(_) => {
@@ -423,6 +557,9 @@ fn run_one(bytes: &[u8], path: &Path) -> Result<Outcome, String> {
         }
         Err(e) => {
             let m = e.to_string();
+            if m.contains(mechbook::notation::latex::READER_FAULT) {
+                return Err(format!("the LaTeX reader panicked: {m}"));
+            }
             located(&m, path)
                 .then_some(Outcome::Failed)
                 .ok_or(format!("unlocated error: {m}"))
@@ -559,6 +696,100 @@ fn check(per_scene: usize, seed: u64) {
         "defects (kept in tests/fixtures/fuzz/):\n{}",
         tally.defects.join("\n")
     );
+}
+
+/// Random LaTeX in every field that takes mathematics, in every scene: read or refused at its
+/// line, never a panic (or a caught one); and every export of what is read well-formed (every
+/// Moodle file XML) and every PDF typeset (`run_one`).
+fn latex_fuzz(per_scene: usize, seed: u64) -> Tally {
+    let work = std::env::temp_dir().join(format!("mechbook-latex-fuzz-{}", std::process::id()));
+    std::fs::create_dir_all(&work).unwrap();
+    let mut tally = Tally {
+        mutants: 0,
+        ran: 0,
+        failed: 0,
+        refused: BTreeMap::new(),
+        defects: Vec::new(),
+    };
+    let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+    for (path, bytes) in scenes() {
+        let Ok(text) = String::from_utf8(bytes) else {
+            continue;
+        };
+        let fields = math_fields(&text);
+        if fields.is_empty() {
+            continue;
+        }
+        for n in 0..per_scene {
+            let (start, end, tex) = fields[rng.below(fields.len())];
+            let latex = random_latex(&mut rng);
+            let value = if tex {
+                latex
+            } else {
+                format!("Words ${latex}$ and more")
+            };
+            // As the content of a TOML basic string.
+            let value = value.replace('\\', "\\\\").replace('"', "\\\"");
+            let mutant = format!("{}{value}{}", &text[..start], &text[end..]);
+            let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+            let keep =
+                Path::new("tests/fixtures/fuzz").join(format!("latex-{seed}-{stem}-{n}.toml"));
+            let r = guarded(
+                mutant.clone().into_bytes(),
+                work.join(path.file_name().unwrap()),
+            );
+            tally.mutants += 1;
+            match r {
+                Ok(Outcome::Ran) => tally.ran += 1,
+                Ok(Outcome::Failed) => tally.failed += 1,
+                Ok(Outcome::Refused(k)) => *tally.refused.entry(k).or_default() += 1,
+                Err(e) => {
+                    let hung = e.starts_with("hung");
+                    if !keep.exists() {
+                        let _ = std::fs::write(&keep, &mutant);
+                    }
+                    tally.defects.push(format!("{}: {e}", keep.display()));
+                    if hung {
+                        return tally;
+                    }
+                }
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&work);
+    tally
+}
+
+#[test]
+fn random_latex_in_every_math_field_is_read_or_refused_and_every_export_is_well_formed() {
+    let start = Instant::now();
+    let tally = latex_fuzz(10, 1);
+    report(&tally, start.elapsed().as_secs_f64());
+    assert!(
+        tally.ran > 0,
+        "no mutant was read: the fields are not reached"
+    );
+    assert!(
+        tally.defects.is_empty(),
+        "defects (kept in tests/fixtures/fuzz/):\n{}",
+        tally.defects.join("\n")
+    );
+}
+
+#[test]
+#[ignore = "long: MECHBOOK_FUZZ_MUTANTS=60 cargo test --release --test fuzz -- --ignored --nocapture"]
+fn the_long_latex_fuzz_run() {
+    let n = std::env::var("MECHBOOK_FUZZ_MUTANTS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(60);
+    let seed = std::env::var("MECHBOOK_FUZZ_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(7);
+    let tally = latex_fuzz(n, seed);
+    report(&tally, 0.0);
+    assert!(tally.defects.is_empty(), "{}", tally.defects.join("\n"));
 }
 
 #[test]

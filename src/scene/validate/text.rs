@@ -50,6 +50,12 @@ pub fn control_character(value: &str, source: &str, lines: bool) -> Option<Strin
     })
 }
 
+/// A combining mark (an accent over nothing sets nothing): the combining diacritical marks and
+/// those for symbols, which is what the printers' accents are.
+fn combining_mark(c: char) -> bool {
+    matches!(u32::from(c), 0x0300..=0x036F | 0x20D0..=0x20FF)
+}
+
 /// A Unicode noncharacter (U+FDD0 to U+FDEF, and the last two of every plane, U+FFFE and
 /// U+FFFF among them), which XML does not allow.
 fn noncharacter(c: char) -> bool {
@@ -102,6 +108,17 @@ pub(super) fn latex_problem(latex: &str) -> Option<String> {
         Ok(tex) => tex,
         Err(e) => return Some(e.to_string()),
     };
+    // Every formula is spoken (the page's alttext, the tagged PDF's alternative text, which
+    // PDF/UA refuses empty): one that says nothing sets nothing a reader can see either.
+    if tex.spoken().trim().is_empty() {
+        return Some(if latex.contains('%') && !latex.contains("\\%") {
+            "it sets nothing: `%` starts a LaTeX comment, which runs to the end; write `\\%` \
+             for a percent sign"
+                .into()
+        } else {
+            "it sets nothing but space: write what it stands for, or leave it out".into()
+        });
+    }
     if let Err(e) = tex.to_mathml(false) {
         return Some(e.to_string());
     }
@@ -165,6 +182,18 @@ impl Validator<'_> {
     /// and reasons may run over lines).
     pub(super) fn prose_fields(&self, raw: &RawScene) -> Result<(), SceneError> {
         self.prose(&raw.title, "title", false)?;
+        // A title is every page's heading, and a PDF's: one that sets no character (all of
+        // it `$\operatorname{}$` or `$\hat{}$`) is no heading, which the tagged PDF refuses.
+        if !crate::model::prose::plain(raw.title.get_ref())
+            .chars()
+            .any(|c| !c.is_whitespace() && !combining_mark(c))
+        {
+            return Err(self.err(
+                content_start(&raw.title),
+                "title",
+                "the title sets no visible character: give the scene a title in words",
+            ));
+        }
         for (name, meaning) in &raw.symbols {
             let meaning = crate::scene::raw::meaning_of(meaning);
             self.prose(&meaning, &format!("symbols.{}", name.get_ref()), false)?;
