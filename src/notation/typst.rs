@@ -180,13 +180,15 @@ fn atom(c: &Content<'static>) -> String {
     }
 }
 
-/// A character as itself: ASCII punctuation escaped, since Typst's math reads much of it as
-/// syntax (`/` a fraction, `,` an argument's end, `(` a group, `"` a string).
+/// A character as itself. Every ASCII punctuation character is escaped, since Typst's math
+/// reads much of it as syntax (`/` a fraction, `,` an argument's end, `(` a group, `"` a
+/// string, `a:` a named argument, `<=` and `->` shorthands); an escaped one is set as the
+/// character, with the same spacing.
 fn character(c: char) -> String {
-    match c {
-        '+' | '-' | '=' | '<' | '>' | ':' | '.' | '!' | '?' | '\'' => c.to_string(),
-        c if c.is_ascii_punctuation() => format!("\\{c}"),
-        c => c.to_string(),
+    if c.is_ascii_punctuation() {
+        format!("\\{c}")
+    } else {
+        c.to_string()
     }
 }
 
@@ -435,7 +437,7 @@ mod tests {
         assert_eq!(t("\\frac{1}{2} m"), "frac(1, 2) m");
         assert_eq!(
             t("g = 9.81\\,\\mathrm{m/s^2}"),
-            "g=9.81 thin upright(\"m\"\\/attach(\"s\", t: 2))"
+            "g\\=9.81 thin upright(\"m\"\\/attach(\"s\", t: 2))"
         );
         assert_eq!(
             t("\\mathrm{kg\\,m^2}"),
@@ -461,6 +463,12 @@ mod tests {
         // A lone `)` is a character, never the end of the call it is printed in.
         assert_eq!(t("\\sqrt{)}"), "sqrt(\\))");
         assert_eq!(t("\\frac{(}{)}"), "frac(\\(, \\))");
+        // A ratio at the start of an argument is a character, never a named argument.
+        assert_eq!(t("\\frac{a:b}{c}"), "frac(a\\:b, c)");
+        assert_eq!(t("\\vec{x:y}"), "accent(x\\:y, arrow)");
+        assert_eq!(t("\\begin{pmatrix}a:b & c\\end{pmatrix}"), "mat(a\\:b, c)");
+        // Two characters stay two: no shorthand (`<=` is ≤ in Typst, two signs in LaTeX).
+        assert_eq!(t("a<=b -> c"), "a\\<\\=b−\\>c");
         // A power with no base gets an empty one (`m/s$^2$`).
         assert_eq!(t("^2"), "attach(\"\", t: 2)");
     }
