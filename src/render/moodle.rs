@@ -100,15 +100,17 @@ fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
         );
         return out;
     }
-    let mut text = format!("<p>{statement}</p>\n");
+    // Moodle reads a blank wherever the text has `{N:TYPE:`, so what the author wrote (the
+    // statement, a label, a unit) has its braces as character references: shown and typeset
+    // the same, never read as a blank the key does not have.
+    let mut text = format!("<p>{}</p>\n", no_blanks(&statement));
     for (spec, a) in problem.answers.iter().zip(&v.answers) {
         let tol = tolerance(spec.tolerance, &a.exact_numbers);
-        let unit = spec
-            .unit
-            .as_ref()
-            .map_or(String::new(), |u| format!(" {}", html_escape(&u.text)));
+        let unit = spec.unit.as_ref().map_or(String::new(), |u| {
+            format!(" {}", no_blanks(&html_escape(&u.text)))
+        });
         let blank = |x: f64| format!("{{1:NUMERICAL:={}:{}}}{unit}", number(x), number(tol));
-        let _ = writeln!(text, "<p>{}:</p>", label_tex(spec));
+        let _ = writeln!(text, "<p>{}:</p>", no_blanks(&label_tex(spec)));
         match &a.exact {
             Value::Scalar(_) => {
                 let _ = writeln!(text, "<p>{}</p>", blank(a.exact_numbers[0]));
@@ -225,6 +227,12 @@ fn html_escape(s: &str) -> String {
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
+}
+
+/// Text for a cloze question's HTML with every brace a character reference, so that none
+/// starts a blank (Moodle's `{N:TYPE:…}`).
+fn no_blanks(s: &str) -> String {
+    s.replace('{', "&#123;").replace('}', "&#125;")
 }
 
 fn xml_text(s: &str) -> String {
