@@ -5,6 +5,7 @@
 use super::engine::{EngineError, coefficients, simplify};
 use super::expr::Expr;
 use super::polynomial;
+use super::rational::Rational;
 use std::collections::BTreeMap;
 
 /// What a closed form could not be chosen for.
@@ -43,6 +44,11 @@ fn value(e: &Expr, values: &BTreeMap<String, f64>) -> Result<f64, NoClosedForm> 
         .ok()
         .filter(|v| v.is_finite())
         .ok_or_else(|| NoClosedForm::NoValue(e.clone()))
+}
+
+/// `e`'s exact value at the scene's values, when it is a rational function of them.
+fn exact_at(e: &Expr, values: &BTreeMap<String, f64>) -> Option<Rational> {
+    e.eval_rational(&|s| values.get(s).and_then(|x| Rational::from_f64(*x)))
 }
 
 fn sqrt(e: Expr) -> Expr {
@@ -90,7 +96,25 @@ fn cubic(
         (Err(e), _) | (_, Err(e)) => return Ok(Err(e)),
     };
     let minus_p_third = simplify(&Expr::over(Expr::negate(p.clone()), Expr::int(3)))?;
-    let roots = if pv < 0.0 && 4.0 * pv.powi(3) + 27.0 * qv * qv <= 0.0 {
+    // The signs that choose the form, exactly where p and q are rational at the scene's values
+    // (each f64 taken as the fraction it is): in double precision 2 + 10⁻¹⁷ is 2, and a double
+    // root that has split into a complex pair was taken for two real roots, acos(−1 − ε) and all.
+    let (three_real, q_positive) = match (exact_at(&p, values), exact_at(&q, values)) {
+        (Some(pe), Some(qe)) => {
+            let discriminant = Rational::int(4)
+                .mul(&pe.pow(3).unwrap_or(Rational::ZERO))
+                .add(&Rational::int(27).mul(&qe.mul(&qe)));
+            (
+                pe.is_negative() && !discriminant.is_positive(),
+                qe.is_positive(),
+            )
+        }
+        _ => (
+            pv < 0.0 && 4.0 * pv.powi(3) + 27.0 * qv * qv <= 0.0,
+            qv > 0.0,
+        ),
+    };
+    let roots = if three_real {
         // Left as −(q/2)·(−p/3)^(−3/2): expanded, each term would repeat the power.
         let cos_phi = Expr::mul(vec![
             Expr::rat(-1, 2),
@@ -118,7 +142,7 @@ fn cubic(
             })
             .collect()
     } else {
-        let sign = if qv <= 0.0 { 1 } else { -1 };
+        let sign = if q_positive { -1 } else { 1 };
         let radicand = simplify(&Expr::add(vec![
             Expr::over(Expr::pow(q.clone(), Expr::int(2)), Expr::int(4)),
             Expr::over(Expr::pow(p.clone(), Expr::int(3)), Expr::int(27)),

@@ -125,6 +125,12 @@ impl Rational {
         f64::rounding_from(&self.0, RoundingMode::Nearest).0
     }
 
+    /// The exact value of a finite f64 (every one is a fraction over a power of 2); `None`
+    /// for an infinity or NaN.
+    pub fn from_f64(x: f64) -> Option<Rational> {
+        malachite_q::Rational::try_from(x).ok().map(Rational)
+    }
+
     pub fn negated(&self) -> Rational {
         Rational(-&self.0)
     }

@@ -367,3 +367,29 @@ fn a_result_prints_the_same_whichever_symbol_came_first() {
     };
     assert_eq!(met_first("z", "ordq"), met_first("a", "ordr"));
 }
+
+/// x³ − 3x + 2 + e: a double root at 1 for e = 0, which splits into a complex pair for e > 0
+/// (one real root) and into two real roots for e < 0. At e = ±10⁻¹⁷, 2 + e is 2 in double
+/// precision, and the three-real-roots form, acos of a number below −1 among them, was
+/// published for e > 0. The form is chosen exactly, and each root is checked against the
+/// polynomial at e = ±10⁻³, where f64 tells them apart.
+#[test]
+fn a_cubic_whose_double_root_has_split_gets_its_form_from_exact_signs() {
+    let poly = p("x^3 - 3*x + 2 + e");
+    for (e, real) in [(1e-17, 1), (-1e-17, 3), (1e-3, 1), (-1e-3, 3)] {
+        let values = BTreeMap::from([("e".to_string(), e)]);
+        let roots = closed_form_roots(&poly, "x", &values).unwrap().unwrap();
+        assert_eq!(roots.len(), real, "e = {e}: {roots:?}");
+        if e.abs() > 1e-6 {
+            for r in &roots {
+                let x = at(r, &[("e", e)]);
+                assert!(x.is_finite(), "e = {e}: {r:?}");
+                let residual = x.powi(3) - 3.0 * x + 2.0 + e;
+                assert!(
+                    residual.abs() < 1e-12,
+                    "e = {e}: x = {x}, residual {residual:e}"
+                );
+            }
+        }
+    }
+}

@@ -3,7 +3,7 @@
 
 use super::CONFIRMATION_POINTS;
 use crate::base::rng::Rng;
-use crate::cas::{EvalError, Expr};
+use crate::cas::{EvalError, Expr, Rational};
 use crate::scene::Scene;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -26,6 +26,19 @@ pub(crate) const DOMAIN_TRIES: usize = 20;
 /// The names that take either sign (see [`Scene::signed_names`]).
 pub(crate) fn signed_names(scene: &Scene) -> BTreeSet<String> {
     scene.signed_names()
+}
+
+/// The exact value of `e` at `point` (each f64 taken as the fraction it is), when `e` is built
+/// from numbers and the point's names with `+`, `*` and integer powers; `None` otherwise (π,
+/// a root, a function) or at a pole. It settles what double precision cannot: a difference of
+/// two forms of a high power, whose terms cancel to far below their size.
+pub(crate) fn rational_at(e: &Expr, point: &BTreeMap<String, f64>) -> Option<Rational> {
+    e.eval_rational(&|name| {
+        point
+            .get(name)
+            .filter(|_| name != "pi")
+            .and_then(|x| Rational::from_f64(*x))
+    })
 }
 
 /// Whether each difference vanishes at [`CONFIRMATION_POINTS`] random points (see
@@ -88,10 +101,17 @@ pub(crate) fn largest_differences(
             if tested[j] >= CONFIRMATION_POINTS {
                 continue;
             }
-            let v = d.eval(&env)?;
+            let mut v = d.eval(&env)?;
             let s = scale[j].eval(&env)?.abs().max(1.0);
             if !v.is_finite() || !s.is_finite() {
                 continue;
+            }
+            // Not zero in double precision: exactly, where the difference is a rational function
+            // of the point (an expanded (x − a)^30 loses its digits to cancellation).
+            if v.abs() / s > NUMERICALLY_ZERO
+                && let Some(exact) = rational_at(d, &point)
+            {
+                v = exact.to_f64();
             }
             tested[j] += 1;
             largest[j] = largest[j].max(v.abs() / s);
