@@ -14,6 +14,8 @@ use crate::scene::{Course, Paper};
 pub struct Markup {
     pub text: String,
     origins: Vec<(usize, String)>,
+    /// Whether the sheets' heading rules are set (`sheet::sheet_headings`): once a document.
+    pub sheet_headings: bool,
 }
 
 impl Markup {
@@ -21,6 +23,7 @@ impl Markup {
         Markup {
             text: preamble,
             origins: Vec::new(),
+            sheet_headings: false,
         }
     }
 
