@@ -19,6 +19,7 @@ mod output;
 mod pdf;
 mod problems;
 mod reliability;
+mod reliability5;
 mod serve;
 mod snapshots;
 mod spin;
