@@ -11,7 +11,7 @@ pub struct Queue {
     sizes: Vec<usize>,
     budget: usize,
     /// Told, after each document, whether no other is under way; runs before another starts.
-    give_back: fn(bool),
+    give_back: fn(bool, usize),
     state: Mutex<Queued>,
     turn: Condvar,
 }
@@ -41,8 +41,14 @@ struct Queued {
 
 impl Queue {
     /// A queue of the sources `todo`, of the given `sizes`, typeset at once within `budget`;
-    /// `give_back` is told after each document whether no other is under way.
-    pub fn new(sizes: Vec<usize>, todo: &[usize], budget: usize, give_back: fn(bool)) -> Queue {
+    /// `give_back` is told after each document whether no other is under way, and the
+    /// document's size.
+    pub fn new(
+        sizes: Vec<usize>,
+        todo: &[usize],
+        budget: usize,
+        give_back: fn(bool, usize),
+    ) -> Queue {
         let mut waiting = todo.to_vec();
         // Stable, so that equal sizes go in the sources' order.
         waiting.sort_by_key(|&i| std::cmp::Reverse(sizes[i]));
@@ -97,7 +103,7 @@ impl Queue {
         let mut q = self.lock();
         q.running -= self.sizes[i];
         q.busy -= 1;
-        (self.give_back)(q.busy == 0);
+        (self.give_back)(q.busy == 0, self.sizes[i]);
         self.turn.notify_all();
     }
 
@@ -151,7 +157,7 @@ mod tests {
         (started.into_iter().map(|(_, i)| i).collect(), most)
     }
 
-    fn nothing(_: bool) {}
+    fn nothing(_: bool, _: usize) {}
 
     #[test]
     fn the_largest_go_first_and_what_is_typeset_at_once_stays_within_the_budget() {
@@ -197,7 +203,7 @@ mod tests {
 
     #[test]
     fn give_back_is_told_when_no_other_document_is_under_way() {
-        fn tell(alone: bool) {
+        fn tell(alone: bool, _: usize) {
             TOLD.lock().unwrap().push(alone);
         }
         let queue = Queue::new(vec![5, 5], &[0, 1], 100, tell);
