@@ -25,6 +25,19 @@ fn hoop_course(name: &str) -> (PathBuf, PathBuf) {
     (dir, scene)
 }
 
+/// `mechbook build DIR/problems --out DIR/site`, afresh: the site's folder and the outcome.
+fn build_problems(dir: &Path) -> (PathBuf, std::process::Output) {
+    let site = dir.join("site");
+    let out = mechbook(&[
+        "build",
+        dir.join("problems").to_str().unwrap(),
+        "--no-cache",
+        "--out",
+        site.to_str().unwrap(),
+    ]);
+    (site, out)
+}
+
 fn run_in(dir: &Path, args: &[&str]) -> std::process::Output {
     std::process::Command::new(env!("CARGO_BIN_EXE_mechbook"))
         .args(args)
@@ -138,14 +151,7 @@ fn author_braces_make_no_moodle_blank_and_a_ratio_typesets() {
         );
     write(&dir, "problems/p.toml", &text);
     std::fs::copy("tests/course/mechbook.toml", dir.join("mechbook.toml")).unwrap();
-    let site = dir.join("site");
-    let out = mechbook(&[
-        "build",
-        dir.join("problems").to_str().unwrap(),
-        "--no-cache",
-        "--out",
-        site.to_str().unwrap(),
-    ]);
+    let (site, out) = build_problems(&dir);
     assert!(out.status.success(), "{}", stderr(&out));
     #[cfg(feature = "pdf")]
     assert!(
@@ -258,14 +264,7 @@ fn the_deepest_formula_check_accepts_builds_and_one_deeper_is_refused_at_its_lin
                     ),
                 ),
             );
-            let site = dir.join("site");
-            let out = mechbook(&[
-                "build",
-                dir.join("problems").to_str().unwrap(),
-                "--no-cache",
-                "--out",
-                site.to_str().unwrap(),
-            ]);
+            let (site, out) = build_problems(&dir);
             let err = stderr(&out);
             if builds {
                 assert!(out.status.success(), "{open} × {depth}: {err}");

@@ -777,19 +777,23 @@ fn random_latex_in_every_math_field_is_read_or_refused_and_every_export_is_well_
 }
 
 #[test]
-#[ignore = "long: MECHBOOK_FUZZ_MUTANTS=60 cargo test --release --test fuzz -- --ignored --nocapture"]
+#[ignore = "long: MECHBOOK_FUZZ_MUTANTS=60 cargo test --release --test fuzz the_long_latex -- --ignored --nocapture"]
 fn the_long_latex_fuzz_run() {
-    let n = std::env::var("MECHBOOK_FUZZ_MUTANTS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(60);
-    let seed = std::env::var("MECHBOOK_FUZZ_SEED")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(7);
-    let tally = latex_fuzz(n, seed);
-    report(&tally, 0.0);
+    let start = Instant::now();
+    let tally = latex_fuzz(
+        from_env("MECHBOOK_FUZZ_MUTANTS", 60),
+        from_env("MECHBOOK_FUZZ_SEED", 7),
+    );
+    report(&tally, start.elapsed().as_secs_f64());
     assert!(tally.defects.is_empty(), "{}", tally.defects.join("\n"));
+}
+
+/// A long run's setting from the environment, else `default`.
+fn from_env<T: std::str::FromStr>(name: &str, default: T) -> T {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
 }
 
 #[test]
@@ -800,13 +804,8 @@ fn mutated_scenes_never_panic_hang_or_go_unlocated() {
 #[test]
 #[ignore = "long: MECHBOOK_FUZZ_MUTANTS=300 cargo test --release --test fuzz -- --ignored --nocapture"]
 fn the_long_fuzz_run() {
-    let n = std::env::var("MECHBOOK_FUZZ_MUTANTS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(300);
-    let seed = std::env::var("MECHBOOK_FUZZ_SEED")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(7);
-    check(n, seed);
+    check(
+        from_env("MECHBOOK_FUZZ_MUTANTS", 300),
+        from_env("MECHBOOK_FUZZ_SEED", 7),
+    );
 }
