@@ -63,6 +63,23 @@ pub fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
+/// A course of one problem scene, `text`, at DIR/problems/p.toml (with tests/course's
+/// mechbook.toml), built afresh into DIR/site: the site's folder and the outcome.
+pub fn build_problem(dir: &Path, text: &str) -> (PathBuf, Output) {
+    std::fs::create_dir_all(dir.join("problems")).unwrap();
+    std::fs::write(dir.join("problems/p.toml"), text).unwrap();
+    std::fs::copy("tests/course/mechbook.toml", dir.join("mechbook.toml")).unwrap();
+    let site = dir.join("site");
+    let out = mechbook(&[
+        "build",
+        dir.join("problems").to_str().unwrap(),
+        "--no-cache",
+        "--out",
+        site.to_str().unwrap(),
+    ]);
+    (site, out)
+}
+
 /// A fresh scratch folder for one test, removed by the caller.
 pub fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("mechbook-test-{}-{name}", std::process::id()));

@@ -4,7 +4,7 @@
 //! its variants, author mathematics escaped in Moodle and on the pages, names that Typst could
 //! not set, output files that collide, and lectures in the course's order.
 
-use super::{mechbook, read_tree, scratch, stderr, stdout};
+use super::{build_problem, mechbook, read_tree, scratch, stderr, stdout};
 use std::path::Path;
 
 fn write(dir: &Path, name: &str, text: &str) -> String {
@@ -258,16 +258,7 @@ fn author_mathematics_is_escaped_in_moodle_and_never_markup_on_a_page() {
             r#"label = "moment of inertia about the pivot""#,
             r#"label = 'moment $a<b$ & $\text{<b>}$'"#,
         );
-    write(&dir, "problems/p.toml", &text);
-    std::fs::copy("tests/course/mechbook.toml", dir.join("mechbook.toml")).unwrap();
-    let site = dir.join("site");
-    let out = mechbook(&[
-        "build",
-        dir.join("problems").to_str().unwrap(),
-        "--no-cache",
-        "--out",
-        site.to_str().unwrap(),
-    ]);
+    let (site, out) = build_problem(&dir, &text);
     assert!(out.status.success(), "{}", stderr(&out));
     for (path, bytes) in read_tree(&site) {
         // The JSON report is data, not markup: it keeps the author's text as written, in
@@ -397,16 +388,7 @@ fn names_and_units_that_typst_could_not_set_build_their_pdfs() {
         text.contains("m/s$^2$") && text.contains("I1cone"),
         "{text}"
     );
-    write(&dir, "problems/p.toml", &text);
-    std::fs::copy("tests/course/mechbook.toml", dir.join("mechbook.toml")).unwrap();
-    let site = dir.join("site");
-    let out = mechbook(&[
-        "build",
-        dir.join("problems").to_str().unwrap(),
-        "--no-cache",
-        "--out",
-        site.to_str().unwrap(),
-    ]);
+    let (site, out) = build_problem(&dir, &text);
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(
         read_tree(&site)

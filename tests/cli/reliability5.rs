@@ -3,7 +3,7 @@
 //! read as Moodle blanks, a ratio printed as a named argument into the PDFs' markup, a title
 //! that sets nothing, and a high power whose check cancelled its own digits.
 
-use super::{mechbook, read_tree, scratch, stderr, stdout};
+use super::{build_problem, mechbook, read_tree, scratch, stderr, stdout};
 use std::path::{Path, PathBuf};
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
@@ -23,19 +23,6 @@ fn hoop_course(name: &str) -> (PathBuf, PathBuf) {
         &std::fs::read_to_string("lectures/lecture-3-4/06-hoop.toml").unwrap(),
     );
     (dir, scene)
-}
-
-/// `mechbook build DIR/problems --out DIR/site`, afresh: the site's folder and the outcome.
-fn build_problems(dir: &Path) -> (PathBuf, std::process::Output) {
-    let site = dir.join("site");
-    let out = mechbook(&[
-        "build",
-        dir.join("problems").to_str().unwrap(),
-        "--no-cache",
-        "--out",
-        site.to_str().unwrap(),
-    ]);
-    (site, out)
 }
 
 fn run_in(dir: &Path, args: &[&str]) -> std::process::Output {
@@ -149,9 +136,7 @@ fn author_braces_make_no_moodle_blank_and_a_ratio_typesets() {
             r#"label = "moment of inertia about the pivot""#,
             r#"label = "moment {1:NUMERICAL:=0:0} of inertia""#,
         );
-    write(&dir, "problems/p.toml", &text);
-    std::fs::copy("tests/course/mechbook.toml", dir.join("mechbook.toml")).unwrap();
-    let (site, out) = build_problems(&dir);
+    let (site, out) = build_problem(&dir, &text);
     assert!(out.status.success(), "{}", stderr(&out));
     #[cfg(feature = "pdf")]
     assert!(
@@ -239,7 +224,6 @@ values = {{ a = 0.7, x = 1.3 }}
 #[test]
 fn the_deepest_formula_check_accepts_builds_and_one_deeper_is_refused_at_its_line() {
     let dir = scratch("deep");
-    std::fs::copy("tests/course/mechbook.toml", dir.join("mechbook.toml")).unwrap();
     let text = std::fs::read_to_string("tests/course/problems/01-pendulum-period.toml").unwrap();
     let symbol = r#"M = { meaning = "mass of the rod", unit = "kg" }"#;
     assert!(text.contains(symbol));
@@ -254,9 +238,8 @@ fn the_deepest_formula_check_accepts_builds_and_one_deeper_is_refused_at_its_lin
     ] {
         for (depth, builds) in [(deepest, true), (deepest + 1, false)] {
             let tex = format!("{}M{}", open.repeat(depth), close.repeat(depth));
-            let scene = write(
+            let (site, out) = build_problem(
                 &dir,
-                "problems/p.toml",
                 &text.replace(
                     symbol,
                     &format!(
@@ -264,7 +247,7 @@ fn the_deepest_formula_check_accepts_builds_and_one_deeper_is_refused_at_its_lin
                     ),
                 ),
             );
-            let (site, out) = build_problems(&dir);
+            let scene = dir.join("problems/p.toml");
             let err = stderr(&out);
             if builds {
                 assert!(out.status.success(), "{open} × {depth}: {err}");

@@ -594,6 +594,7 @@ fn scenes() -> Vec<(PathBuf, Vec<u8>)> {
         .collect()
 }
 
+#[derive(Default)]
 struct Tally {
     mutants: usize,
     ran: usize,
@@ -602,31 +603,28 @@ struct Tally {
     defects: Vec<String>,
 }
 
-fn fuzz(per_scene: usize, seed: u64) -> Tally {
-    let work = std::env::temp_dir().join(format!("mechbook-fuzz-{}", std::process::id()));
-    std::fs::create_dir_all(&work).unwrap();
-    let mut tally = Tally {
-        mutants: 0,
-        ran: 0,
-        failed: 0,
-        refused: BTreeMap::new(),
-        defects: Vec::new(),
-    };
-    // `keep`: where a failing input is (already) kept.
-    let record = |tally: &mut Tally, bytes: &[u8], keep: &Path, r: Result<Outcome, String>| {
-        tally.mutants += 1;
+impl Tally {
+    /// Counts one mutant's outcome; a defect's input is kept at `keep` (unless it already is).
+    fn record(&mut self, bytes: &[u8], keep: &Path, r: Result<Outcome, String>) {
+        self.mutants += 1;
         match r {
-            Ok(Outcome::Ran) => tally.ran += 1,
-            Ok(Outcome::Failed) => tally.failed += 1,
-            Ok(Outcome::Refused(k)) => *tally.refused.entry(k).or_default() += 1,
+            Ok(Outcome::Ran) => self.ran += 1,
+            Ok(Outcome::Failed) => self.failed += 1,
+            Ok(Outcome::Refused(k)) => *self.refused.entry(k).or_default() += 1,
             Err(e) => {
                 if !keep.exists() {
                     let _ = std::fs::write(keep, bytes);
                 }
-                tally.defects.push(format!("{}: {e}", keep.display()));
+                self.defects.push(format!("{}: {e}", keep.display()));
             }
         }
-    };
+    }
+}
+
+fn fuzz(per_scene: usize, seed: u64) -> Tally {
+    let work = std::env::temp_dir().join(format!("mechbook-fuzz-{}", std::process::id()));
+    std::fs::create_dir_all(&work).unwrap();
+    let mut tally = Tally::default();
     // Every failure found so far, first.
     let mut kept: Vec<PathBuf> = std::fs::read_dir("tests/fixtures/fuzz")
         .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
@@ -637,7 +635,7 @@ fn fuzz(per_scene: usize, seed: u64) -> Tally {
         let bytes = std::fs::read(&p).unwrap();
         let r = guarded(bytes.clone(), work.join("kept.toml"));
         let hung = matches!(&r, Err(e) if e.starts_with("hung"));
-        record(&mut tally, &bytes, &p, r);
+        tally.record(&bytes, &p, r);
         if hung {
             return tally;
         }
@@ -656,7 +654,7 @@ fn fuzz(per_scene: usize, seed: u64) -> Tally {
             let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
             let keep =
                 Path::new("tests/fixtures/fuzz").join(format!("found-{seed}-{stem}-{n}.toml"));
-            record(&mut tally, &bytes, &keep, r);
+            tally.record(&bytes, &keep, r);
             if hung {
                 let _ = std::fs::remove_dir_all(&work);
                 return tally;
@@ -704,13 +702,7 @@ fn check(per_scene: usize, seed: u64) {
 fn latex_fuzz(per_scene: usize, seed: u64) -> Tally {
     let work = std::env::temp_dir().join(format!("mechbook-latex-fuzz-{}", std::process::id()));
     std::fs::create_dir_all(&work).unwrap();
-    let mut tally = Tally {
-        mutants: 0,
-        ran: 0,
-        failed: 0,
-        refused: BTreeMap::new(),
-        defects: Vec::new(),
-    };
+    let mut tally = Tally::default();
     let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
     for (path, bytes) in scenes() {
         let Ok(text) = String::from_utf8(bytes) else {
@@ -738,21 +730,10 @@ fn latex_fuzz(per_scene: usize, seed: u64) -> Tally {
                 mutant.clone().into_bytes(),
                 work.join(path.file_name().unwrap()),
             );
-            tally.mutants += 1;
-            match r {
-                Ok(Outcome::Ran) => tally.ran += 1,
-                Ok(Outcome::Failed) => tally.failed += 1,
-                Ok(Outcome::Refused(k)) => *tally.refused.entry(k).or_default() += 1,
-                Err(e) => {
-                    let hung = e.starts_with("hung");
-                    if !keep.exists() {
-                        let _ = std::fs::write(&keep, &mutant);
-                    }
-                    tally.defects.push(format!("{}: {e}", keep.display()));
-                    if hung {
-                        return tally;
-                    }
-                }
+            let hung = matches!(&r, Err(e) if e.starts_with("hung"));
+            tally.record(mutant.as_bytes(), &keep, r);
+            if hung {
+                return tally;
             }
         }
     }
