@@ -256,8 +256,10 @@ pub enum Shape {
 }
 
 impl Scene {
-    /// The names that take either sign: the coordinates, their rates and accelerations, and the
-    /// time. Every other symbol of a scene is a mass, a length or a constant, taken positive.
+    /// The names that take either sign: the coordinates, their rates and accelerations, the
+    /// time, and a symbol the scene gives a negative value (in `[numeric]` or a variant: a
+    /// position y = −0.7). Every other symbol of a scene is a mass, a length or a constant,
+    /// taken positive, so that √(a²) is printed a only where a is never negative.
     pub fn signed_names(&self) -> BTreeSet<String> {
         let mut out: BTreeSet<String> = self
             .coordinates
@@ -265,6 +267,21 @@ impl Scene {
             .flat_map(|q| [q.clone(), format!("{q}'"), format!("{q}''")])
             .collect();
         out.insert("t".into());
+        let negative = |x: f64| x < 0.0;
+        out.extend(
+            self.values
+                .iter()
+                .filter(|(_, v)| negative(**v))
+                .map(|(n, _)| n.clone()),
+        );
+        for v in self.problem.iter().flat_map(|p| &p.variants) {
+            out.extend(
+                v.values
+                    .iter()
+                    .filter(|(_, e)| e.eval(&|_| None).is_ok_and(negative))
+                    .map(|(n, _)| n.clone()),
+            );
+        }
         out
     }
 

@@ -32,6 +32,15 @@ fn renamed(name: &str, wanted: &[&str]) -> Option<(&'static str, &'static str)> 
         .find(|(old, _)| *old == name)
 }
 
+/// Why an old name of the symmetric top's is refused, and what to `do` instead (write it, or
+/// rename the key).
+fn renamed_message(old: &str, new: &str, what: &str) -> String {
+    format!(
+        "`{old}` is Poinsot's (in I1, I2 and I3) since the symmetric top's was renamed; in a \
+         `symmetric_top` scene {what} `{new}` (or add `poinsot` to [outputs] want, for Poinsot's)"
+    )
+}
+
 /// The `[expect]` key that pins a problem's variants.
 pub const PINNED_VARIANTS: &str = "variants";
 
@@ -59,11 +68,7 @@ impl Validator<'_> {
                 return Err(self.err(
                     content_start(&c.get_ref().statement),
                     &format!("claim[{i}]"),
-                    format!(
-                        "`{old}` is Poinsot's (in I1, I2 and I3) since the symmetric top's was \
-                         renamed; in a `symmetric_top` scene write `{new}` (or add `poinsot` \
-                         to [outputs] want, for Poinsot's)"
-                    ),
+                    renamed_message(old, new, "write"),
                 ));
             }
             claims.push(claim);
@@ -80,6 +85,7 @@ impl Validator<'_> {
     ) -> Result<Recorded, SceneError> {
         let mut expect = BTreeMap::new();
         let mut lines = BTreeMap::new();
+        let wanted: Vec<&str> = raw.wanted().iter().map(|w| w.get_ref().as_str()).collect();
         for (name, value) in &raw.expect {
             let n = name.get_ref();
             // The problem's pinned variants: read by `pinned_variants`.
@@ -99,6 +105,16 @@ impl Validator<'_> {
                         body_quantities().collect::<Vec<_>>().join(", "),
                         free_body_quantities().collect::<Vec<_>>().join(", ")
                     ),
+                ));
+            }
+            // A scene written before the rename records the top's L² under Poinsot's name:
+            // read as Poinsot's it would "change", and `--bless` could not record it (Poinsot's
+            // is in I2, which a top's scene does not declare).
+            if let Some((old, new)) = renamed(n, &wanted) {
+                return Err(self.err(
+                    name.span().start,
+                    &format!("expect.{n}"),
+                    renamed_message(old, new, "rename the key to"),
                 ));
             }
             let mut scope = allowed.clone();
