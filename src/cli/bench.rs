@@ -57,6 +57,11 @@ pub struct BenchArgs {
     /// 10,000 variants of a nearly symmetric top; each a child process, with its peak memory.
     #[arg(long)]
     pub course_only: Option<PathBuf>,
+    /// Measure only rosters of these sizes (such as 250,1000,5000): for each, the box problem
+    /// with that many variants, then `build --no-cache --roster` of as many students, with the
+    /// time per student and the peak memory; then a site whose sheet has 10,000 variants.
+    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u64).range(1..=10_000))]
+    pub roster_only: Vec<u64>,
     /// The Python, with SymPy, that --links-only runs.
     #[arg(long, default_value = "python3", requires = "links_only")]
     pub python: PathBuf,
@@ -64,7 +69,7 @@ pub struct BenchArgs {
 
 /// The box problem of the variant benchmark; `{count}` is replaced by the number of variants.
 /// Its ranges span 18,480 combinations, most with a < b < c.
-const VARIANT_SCENE: &str = r#"
+pub(super) const VARIANT_SCENE: &str = r#"
 id = "bench-box-variants"
 title = "A box about its centre"
 notes = { lecture = "bench" }
@@ -210,8 +215,15 @@ pub fn run(args: BenchArgs) -> Result<ExitCode> {
         steps_only,
         links_only,
         course_only,
+        roster_only,
         python,
     } = args;
+    if !roster_only.is_empty() {
+        let sizes: Vec<usize> = roster_only.iter().map(|&n| n as usize).collect();
+        return print_part(|p| {
+            super::bench_roster::roster_bench(&sizes, repeats as usize, &mut |l: &str| p(l))
+        });
+    }
     if let Some(course) = course_only {
         return print_part(|p| {
             super::bench_course::course_bench(&course, repeats as usize, &mut |l: &str| p(l))

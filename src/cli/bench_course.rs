@@ -45,7 +45,7 @@ const STUDENTS: usize = 25;
 /// Runs `mechbook ARGS` in `dir` with its own cache folder: its wall-clock seconds, timed from
 /// outside, and the peak memory in MiB it prints as it exits (Linux's VmHWM), asked for by
 /// `PEAK_MEMORY_ENV`.
-fn child(args: &[&str], dir: &Path) -> Result<(f64, f64)> {
+pub(super) fn child(args: &[&str], dir: &Path) -> Result<(f64, f64)> {
     let exe = std::env::current_exe()?;
     let start = Instant::now();
     let out = Command::new(exe)

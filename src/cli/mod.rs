@@ -4,6 +4,7 @@
 mod bench;
 mod bench_course;
 mod bench_links;
+mod bench_roster;
 mod bench_serve;
 mod bench_timing;
 mod build;

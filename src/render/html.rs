@@ -306,13 +306,14 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
             )?;
         }
         let problems = problem_sheets(&tera, cx, docs, lecture, out)?;
+        let sheet_variants = lecture.sheet.as_ref().map(|s| s.variants.len());
         lectures.push(LectureView {
             name: lecture.name.clone(),
             heading: lecture.heading.clone(),
             student: format!("handouts/{slug}-student.html"),
             instructor: format!("handouts/{slug}-instructor.html"),
             pdf: super::pdf::ENABLED
-                .then(|| super::pdf::lecture_pdfs(slug, problems.is_some(), course)),
+                .then(|| super::pdf::lecture_pdfs(slug, sheet_variants, course)),
             problems,
             pages: lecture
                 .pages

@@ -53,7 +53,11 @@ pub fn remove(dir: &Path) {
     let _ = std::fs::remove_dir_all(dir);
 }
 
-/// Writes a file of the bench's own (a roster, a scene) into its scratch folder.
+/// Writes a file of the bench's own (a roster, a scene) into its scratch folder, with the
+/// folders it lies in.
 pub fn write_file(path: &Path, text: &str) -> std::io::Result<()> {
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent)?;
+    }
     std::fs::write(path, text)
 }

@@ -771,3 +771,68 @@ fn every_formula_in_the_pdfs_is_tagged_with_its_spoken_form() {
     eprintln!("{formulas} formulas in {pdfs} PDFs, each with its spoken form");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// Typst holds a document's whole layout until its PDF is made, so a class key of 1,000
+/// students or a sheet of 1,000 variants in one document peaked at over 800 MiB: past 200, each
+/// is typeset in parts of 200, each its own PDF, named for its part and saying what it holds.
+#[test]
+fn a_class_key_and_a_sheet_past_200_are_typeset_in_parts() {
+    if !poppler() {
+        return;
+    }
+    let dir = scratch("pdf-parts");
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_mechbook"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+    };
+    run(&["init"]);
+    let scene = dir.join("lectures/lecture-1/02-problem-box.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    assert!(
+        text.contains("\ncount = 6\n"),
+        "the starter's box problem changed"
+    );
+    let text: String = text
+        .replace("\ncount = 6\n", "\ncount = 201\n")
+        .lines()
+        .filter(|l| !l.starts_with("variants = "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&scene, text).unwrap();
+    std::fs::write(dir.join("students.csv"), roster(201)).unwrap();
+    run(&["check", "--bless"]);
+    run(&["build", "--no-cache", "--roster", "students.csv"]);
+    let papers = dir.join("papers");
+    assert!(!papers.join("key.pdf").exists());
+    let (first, second) = (
+        pages(&papers.join("key-1.pdf")),
+        pages(&papers.join("key-2.pdf")),
+    );
+    // A student's key is a page: 200 in the first part, the 201st alone in the second.
+    assert_eq!((first.len(), second.len()), (200, 1));
+    assert!(first[199].contains("Student 199, Name"), "{}", first[199]);
+    assert!(second[0].contains("Student 200, Name"), "{}", second[0]);
+    let title = tool("pdfinfo", &[papers.join("key-2.pdf").to_str().unwrap()]);
+    assert!(
+        title.contains("answer key for the class, student 201"),
+        "{title}"
+    );
+    // The site's sheet (its key is left out beside a roster): variants 1–200, then 201.
+    let site = dir.join("site");
+    let sheet = |k: usize| site.join(format!("pdf/lecture-1-problems-student-{k}.pdf"));
+    assert!(!site.join("pdf/lecture-1-problems-student.pdf").exists());
+    assert_eq!((pages(&sheet(1)).len(), pages(&sheet(2)).len()), (200, 1));
+    assert!(pages(&sheet(2))[0].contains("Variant 201"));
+    let index = std::fs::read_to_string(site.join("index.html")).unwrap();
+    for link in [
+        "lecture-1-problems-student-1.pdf\">variants 1–200</a>",
+        "lecture-1-problems-student-2.pdf\">variant 201</a>",
+    ] {
+        assert!(index.contains(link), "{link} not in {index}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -278,7 +278,10 @@ fn bless_never_writes_what_check_refuses_in_a_scene_whose_outputs_changed_names(
     let old = shipped
         .replace("\ntop_momentum_squared =", "\nmomentum_squared =")
         .replace("\ntop_twice_energy =", "\ntwice_energy =");
-    assert_ne!(old, shipped, "the shipped scene no longer records the top's quantities");
+    assert_ne!(
+        old, shipped,
+        "the shipped scene no longer records the top's quantities"
+    );
     let scene = write(&dir, "lectures/week-9/06-problem-top.toml", &old);
     let line = old
         .lines()

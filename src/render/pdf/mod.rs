@@ -41,20 +41,78 @@ pub struct LecturePdfs {
     pub student: String,
     pub instructor: String,
     /// The problem sheet and its key (none when the course's answers are private), when the
-    /// lecture has problems.
+    /// lecture has problems: the first part's, when they are typeset in parts.
     pub problems: Option<(String, Option<String>)>,
+    /// A sheet of more than [`VARIANTS_A_DOCUMENT`] variants: each part's sheet and key and the
+    /// variants it holds; empty when the sheet is one document.
+    pub problem_parts: Vec<SheetPart>,
 }
 
-pub fn lecture_pdfs(slug: &str, has_problems: bool, course: &Course) -> LecturePdfs {
+/// One part of a long problem sheet: its sheet, its key, and its first and last variants.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct SheetPart {
+    pub sheet: String,
+    pub key: Option<String>,
+    pub first: usize,
+    pub last: usize,
+}
+
+/// At most this many sheet variants (or a roster's students) are typeset as one document: Typst
+/// holds a document's whole layout until its PDF is made, about 0.8 MiB a page, so a sheet of
+/// 1,000 variants in one document peaked at 837 MiB, and of 10,000 at 6.9 GB. A longer sheet,
+/// or a roster's key, is typeset in parts of this many, each its own PDF.
+pub const VARIANTS_A_DOCUMENT: usize = 200;
+
+/// The parts of `n` variants or students: each part's first index and its end (exclusive).
+fn parts(n: usize) -> Vec<std::ops::Range<usize>> {
+    (0..n.div_ceil(VARIANTS_A_DOCUMENT).max(1))
+        .map(|k| k * VARIANTS_A_DOCUMENT..((k + 1) * VARIANTS_A_DOCUMENT).min(n))
+        .collect()
+}
+
+/// What a part holds, as its title says: `variants 201 to 400`, or `variant 401` alone.
+fn which_of(noun: &str, first: usize, last: usize) -> String {
+    if first == last {
+        format!("{noun} {first}")
+    } else {
+        format!("{noun}s {first} to {last}")
+    }
+}
+
+/// The documents of the sheet of `n` variants of the lecture `slug`: one sheet and key, or
+/// parts with their number after their name (`lecture-1-problems-student-2.pdf` holds
+/// variants 201 to 400).
+fn sheet_documents(slug: &str, n: usize, course: &Course) -> Vec<SheetPart> {
+    let all = parts(n);
+    let one = all.len() == 1;
+    all.into_iter()
+        .enumerate()
+        .map(|(k, range)| {
+            let part = if one {
+                String::new()
+            } else {
+                format!("-{}", k + 1)
+            };
+            SheetPart {
+                sheet: format!("pdf/{slug}-problems-student{part}.pdf"),
+                key: (!course.answers_private)
+                    .then(|| format!("pdf/{slug}-problems-key{part}.pdf")),
+                first: range.start + 1,
+                last: range.end,
+            }
+        })
+        .collect()
+}
+
+/// The PDFs of the lecture `slug`, whose problem sheet has `variants` variants (none when it
+/// has no problems).
+pub fn lecture_pdfs(slug: &str, variants: Option<usize>, course: &Course) -> LecturePdfs {
+    let parts = variants.map_or_else(Vec::new, |n| sheet_documents(slug, n, course));
     LecturePdfs {
         student: format!("pdf/{slug}-student.pdf"),
         instructor: format!("pdf/{slug}-instructor.pdf"),
-        problems: has_problems.then(|| {
-            (
-                format!("pdf/{slug}-problems-student.pdf"),
-                (!course.answers_private).then(|| format!("pdf/{slug}-problems-key.pdf")),
-            )
-        }),
+        problems: parts.first().map(|p| (p.sheet.clone(), p.key.clone())),
+        problem_parts: if parts.len() > 1 { parts } else { Vec::new() },
     }
 }
 
@@ -178,7 +236,7 @@ fn lecture_documents(
     let mut out = Vec::new();
     let heading = &lecture.heading;
     let sheet = &lecture.sheet;
-    let paths = lecture_pdfs(&lecture.slug, sheet.is_some(), course);
+    let paths = lecture_pdfs(&lecture.slug, None, course);
     for handout in &lecture.handouts {
         let instructor = handout.instructor;
         let (title, right, path) = if instructor {
@@ -229,33 +287,47 @@ fn lecture_documents(
             kept.into_iter().collect(),
         ));
     }
-    if let (Some(sheet), Some((student, key))) = (sheet, &paths.problems) {
-        let all: Vec<(usize, Option<&Student>)> =
-            (0..sheet.variants.len()).map(|k| (k, None)).collect();
-        // The sheet, then its key (none when the answers are private): written alike.
-        let documents: [(Option<&String>, &str, WriteSheet); 2] = [
-            (Some(student), "problem sheet", sheet::student_sheet),
-            (key.as_ref(), "answer key", sheet::key),
-        ];
-        for (path, title, write) in documents {
-            let Some(path) = path else { continue };
-            let mut columns = Recall::of(cx.memo, path);
-            let made = written(cx, path, &[heading, sheet], || {
-                let head = format!("{} · {heading}: {title}", course.title);
-                let mut m =
-                    Markup::new(preamble(course, &format!("{heading}: {title}"), &head, ""));
-                write(&mut m, &head, sheet, &all, Some(&mut columns))?;
-                Ok(m)
-            })?;
-            let Some((made, kept)) = made else {
-                out.push(Lectured::Later(path.clone()));
-                continue;
+    if let Some(sheet) = sheet {
+        let parts = sheet_documents(&lecture.slug, sheet.variants.len(), course);
+        let in_parts = parts.len() > 1;
+        for part in &parts {
+            let which: Vec<(usize, Option<&Student>)> =
+                (part.first - 1..part.last).map(|k| (k, None)).collect();
+            // Which variants, when the sheet is in parts.
+            let of = if in_parts {
+                format!(", {}", which_of("variant", part.first, part.last))
+            } else {
+                String::new()
             };
-            columns.kept.extend(kept);
-            out.push(Lectured::Written(
-                made.source(path, Vec::new()),
-                columns.kept,
-            ));
+            // The sheet, then its key (none when the answers are private): written alike.
+            let documents: [(Option<&String>, &str, WriteSheet); 2] = [
+                (Some(&part.sheet), "problem sheet", sheet::student_sheet),
+                (part.key.as_ref(), "answer key", sheet::key),
+            ];
+            for (path, title, write) in documents {
+                let Some(path) = path else { continue };
+                let mut columns = Recall::of(cx.memo, path);
+                let made = written(cx, path, &[heading, sheet], || {
+                    let head = format!("{} · {heading}: {title}{of}", course.title);
+                    let mut m = Markup::new(preamble(
+                        course,
+                        &format!("{heading}: {title}{of}"),
+                        &head,
+                        "",
+                    ));
+                    write(&mut m, &head, sheet, &which, Some(&mut columns))?;
+                    Ok(m)
+                })?;
+                let Some((made, kept)) = made else {
+                    out.push(Lectured::Later(path.clone()));
+                    continue;
+                };
+                columns.kept.extend(kept);
+                out.push(Lectured::Written(
+                    made.source(path, Vec::new()),
+                    columns.kept,
+                ));
+            }
         }
     }
     Ok(out)
@@ -281,7 +353,8 @@ pub enum RosterPapersError {
 }
 
 /// The roster's papers: one PDF per student with their variant of every lecture's sheet and
-/// their name and ID on every page, the key to all of them in the roster's order, and
+/// their name and ID on every page, the key to all of them in the roster's order (`key.pdf`,
+/// or `key-1.pdf`, `key-2.pdf`, … of [`VARIANTS_A_DOCUMENT`] students each), and
 /// `variants.csv` (name, id, lecture, variant, paper) for grading. Paths are relative to the
 /// papers' folder. Lecture `k`'s variants are dealt with the seed `seed + k`.
 pub fn roster_documents(
@@ -307,13 +380,40 @@ pub fn roster_documents(
     }
     let mut out = Vec::new();
     let mut csv = String::from("name,id,lecture,variant,paper\n");
-    let mut key = Markup::new(preamble(
-        course,
-        &format!("{}: answer key for the class", course.title),
-        &format!("{} · answer key", course.title),
-        "",
-    ));
+    // The class key, in parts of at most VARIANTS_A_DOCUMENT students (`key-2.pdf` holds
+    // students 201 to 400), each typeset alone, so that memory does not grow with the class.
+    let key_parts = parts(roster.students.len());
+    let in_parts = key_parts.len() > 1;
+    let key_part = |k: usize| {
+        let (first, last) = (key_parts[k].start + 1, key_parts[k].end);
+        let of = if in_parts {
+            format!(", {}", which_of("student", first, last))
+        } else {
+            String::new()
+        };
+        Markup::new(preamble(
+            course,
+            &format!("{}: answer key for the class{of}", course.title),
+            &format!("{} · answer key{of}", course.title),
+            "",
+        ))
+    };
+    let key_file = |k: usize| {
+        if in_parts {
+            format!("key-{}.pdf", k + 1)
+        } else {
+            "key.pdf".to_string()
+        }
+    };
+    let mut key = key_part(0);
+    let mut keys = Vec::new();
     for (i, s) in roster.students.iter().enumerate() {
+        let part = i / VARIANTS_A_DOCUMENT;
+        if i > 0 && i % VARIANTS_A_DOCUMENT == 0 {
+            let done = std::mem::replace(&mut key, key_part(part));
+            keys.push(done.source(&key_file(part - 1), Vec::new()));
+        }
+        let first_of_part = i % VARIANTS_A_DOCUMENT == 0;
         let file = format!("{:03}-{}.pdf", i + 1, file_safe(&s.id));
         let mut paper = Markup::new(preamble(
             course,
@@ -328,7 +428,7 @@ pub fn roster_documents(
                 paper.raw("#pagebreak()\n");
             }
             sheet::student_sheet(&mut paper, &head, sheet, &[(given[i], Some(s))], None)?;
-            if i > 0 || j > 0 {
+            if !first_of_part || j > 0 {
                 key.raw("#pagebreak()\n");
             }
             sheet::key(&mut key, &head, sheet, &[(given[i], Some(s))], None)?;
@@ -342,7 +442,8 @@ pub fn roster_documents(
         }
         out.push(paper.source(&file, Vec::new()));
     }
-    out.push(key.source("key.pdf", Vec::new()));
+    keys.push(key.source(&key_file(key_parts.len() - 1), Vec::new()));
+    out.extend(keys);
     Ok((out, csv.into_bytes()))
 }
 

@@ -289,3 +289,18 @@ fn every_element_the_reader_reads_is_typeset() {
         );
     }
 }
+
+#[test]
+fn a_sheet_or_a_class_key_is_one_document_up_to_200_then_parts_of_200() {
+    use super::parts;
+    assert_eq!(parts(1), vec![0..1]);
+    assert_eq!(parts(200), vec![0..200]);
+    assert_eq!(parts(201), vec![0..200, 200..201]);
+    let all = parts(10_000);
+    assert_eq!(all.len(), 50);
+    // Every variant in one part, in order.
+    assert!(all.windows(2).all(|w| w[0].end == w[1].start));
+    assert_eq!((all[0].start, all[49].end), (0, 10_000));
+    assert_eq!(super::which_of("variant", 401, 401), "variant 401");
+    assert_eq!(super::which_of("student", 201, 400), "students 201 to 400");
+}
