@@ -82,6 +82,18 @@ impl Expr {
         Expr::Sym(digits.to_string())
     }
 
+    /// Whether `self`, printed as a factor, starts with a numeral: a number, or a whole power
+    /// of one (a variant's 0.4⁴). Beside the factor before it, it takes a times sign, or 3 and
+    /// 0.4⁴ would read 30.4⁴.
+    pub fn leads_with_numeral(&self) -> bool {
+        match self {
+            Expr::Pow(base, exp) => {
+                base.is_number_like() && matches!(&**exp, Expr::Num(r) if r.is_integer())
+            }
+            _ => self.is_number_like(),
+        }
+    }
+
     /// A number, or a [`Expr::numeral`]: a factor that takes a `⋅` after another (`3 ⋅ 9.81`).
     pub fn is_number_like(&self) -> bool {
         match self {

@@ -94,7 +94,7 @@ pub(super) fn page_factors(fs: &[Expr], times: &str, out: &mut String, style: &d
     };
     for (i, f) in fs.iter().enumerate() {
         if i > 0 {
-            out.push_str(if f.is_number_like() { times } else { " " });
+            out.push_str(if f.leads_with_numeral() { times } else { " " });
         }
         write(f, out, ctx, style);
     }

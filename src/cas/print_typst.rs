@@ -467,9 +467,27 @@ impl Style for Typst<'_> {
 #[cfg(test)]
 mod tests {
     use super::super::parse::parse;
+    use crate::cas::Expr;
 
     fn typst(text: &str) -> String {
         parse(text).unwrap().expr.to_typst()
+    }
+
+    /// A variant's decimal is a numeral: after a number, it and a whole power of it take a dot
+    /// (3 and 0.4⁴ side by side read as 30.4⁴); LaTeX and the page's tree print the same.
+    #[test]
+    fn a_number_before_a_power_of_a_decimal_takes_a_dot() {
+        let e = Expr::mul(vec![
+            Expr::int(3),
+            Expr::pow(Expr::numeral("0.4"), Expr::int(4)),
+        ]);
+        assert_eq!(e.to_typst(), "3 dot.op 0.4^(4)");
+        assert_eq!(e.to_latex(), "3 \\cdot 0.4^{4}");
+        let root = Expr::mul(vec![
+            Expr::int(3),
+            Expr::pow(Expr::numeral("0.4"), Expr::rat(1, 2)),
+        ]);
+        assert!(!root.to_typst().contains("dot"), "{}", root.to_typst());
     }
 
     #[test]

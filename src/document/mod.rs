@@ -25,6 +25,7 @@ use crate::numeric::Work;
 use crate::pipeline::SceneReport;
 use crate::verify::variants::VariantCheck;
 use crate::verify::{ClaimResult, EigenCheck, QuantityCheck, RegressionResult, StepCheck};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// One scene's page: heading, derivation, results, checks, claims and figures.
@@ -188,18 +189,58 @@ pub fn figure_file(r: &SceneReport, fig: &crate::model::figure::Figure) -> Strin
 /// The page of one scene, linked to the scenes before and after it.
 pub fn page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&SceneReport>) -> Page {
     let mut page = derived_page(r, prev, next);
+    let mut lines: BTreeMap<String, usize> = BTreeMap::new();
     for step in &mut page.steps {
-        if let Some(form) = authors_form(step, &page.claims) {
+        let Some(author) = step.author.clone() else {
+            continue;
+        };
+        let line = lines.entry(author.clone()).or_default();
+        let on = claims_on_line(r, &author, *line, &step.claims, &page.claims);
+        *line += 1;
+        if let Some(form) = authors_form(step, &on, &page.claims) {
             step.statement = form;
         }
     }
     page
 }
 
+/// The claims whose form line `k` of the author's step `author` may print. Line k of a step
+/// of several results shows its k-th (Ω_k, r_k, or the k-th unknown), and a list `gives`
+/// states each as a claim on its own name (`Omega_2`): that claim alone. Else a single
+/// `gives`, which sits on the step's last line (`on_last`); an entry of a list for another
+/// result never (Ω₃ was once printed in the form the list gives Ω₁).
+fn claims_on_line(
+    r: &SceneReport,
+    author: &str,
+    k: usize,
+    on_last: &[usize],
+    claims: &[ClaimResult],
+) -> Vec<usize> {
+    let Some(index) = r.scene.steps.iter().position(|s| s.name == author) else {
+        return Vec::new();
+    };
+    let results = r.scene.steps[index].gives_each.len();
+    let entry = |m: usize| Some(Expr::sym(&crate::scene::mode_name(author, m)));
+    let of_step = |j: &usize| claims[*j].step == Some(index);
+    let own: Vec<usize> = (0..claims.len())
+        .filter(of_step)
+        .filter(|&j| claims[j].quantity == entry(k))
+        .collect();
+    if !own.is_empty() {
+        return own;
+    }
+    on_last
+        .iter()
+        .copied()
+        .filter(|&j| !(0..results).any(|m| claims[j].quantity == entry(m)))
+        .collect()
+}
+
 /// A step's statement in the form its `gives` writes, where that agrees with the derivation:
 /// the author's form is the one printed (the derived form stays in the claim, for `--json`).
-fn authors_form(step: &Step, claims: &[ClaimResult]) -> Option<Formula> {
-    let gives = step.claims.iter().map(|&i| &claims[i]).find(|c| {
+/// `on` are the claims this line may print (see [`claims_on_line`]).
+fn authors_form(step: &Step, on: &[usize], claims: &[ClaimResult]) -> Option<Formula> {
+    let gives = on.iter().map(|&i| &claims[i]).find(|c| {
         c.verdict == crate::scene::Verdict::Agrees
             && c.problem.is_none()
             && c.precision.is_none()

@@ -175,7 +175,7 @@ impl Walk<'_> {
             Prec::Power
         };
         for (i, f) in fs.iter().enumerate() {
-            if i > 0 && f.is_number_like() {
+            if i > 0 && f.leads_with_numeral() {
                 out.push(bin('⋅'));
             }
             self.write(f, ctx, &mut out);

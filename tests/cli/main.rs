@@ -17,6 +17,7 @@ mod lock;
 mod output;
 #[cfg(feature = "pdf")]
 mod pdf;
+mod printed;
 mod problems;
 mod reliability;
 mod reliability5;
