@@ -69,7 +69,7 @@ pub struct BenchArgs {
 
 /// The box problem of the variant benchmark; `{count}` is replaced by the number of variants.
 /// Its ranges span 18,480 combinations, most with a < b < c.
-pub(super) const VARIANT_SCENE: &str = r#"
+const VARIANT_SCENE: &str = r#"
 id = "bench-box-variants"
 title = "A box about its centre"
 notes = { lecture = "bench" }
@@ -221,7 +221,12 @@ pub fn run(args: BenchArgs) -> Result<ExitCode> {
     if !roster_only.is_empty() {
         let sizes: Vec<usize> = roster_only.iter().map(|&n| n as usize).collect();
         return print_part(|p| {
-            super::bench_roster::roster_bench(&sizes, repeats as usize, &mut |l: &str| p(l))
+            super::bench_roster::roster_bench(
+                VARIANT_SCENE,
+                &sizes,
+                repeats as usize,
+                &mut |l: &str| p(l),
+            )
         });
     }
     if let Some(course) = course_only {

@@ -15,21 +15,23 @@ use std::path::Path;
 /// The variants of the sheet-only row: the most a problem may have.
 const SHEET_VARIANTS: usize = 10_000;
 
-/// A course of one lecture whose box problem has `count` variants, in `dir`, its variants
-/// recorded as an author's are.
-fn course(dir: &Path, count: usize) -> Result<()> {
+/// A course of one lecture whose problem (`scene`, `{count}` replaced) has `count` variants,
+/// in `dir`, its variants recorded as an author's are.
+fn course(dir: &Path, scene: &str, count: usize) -> Result<()> {
     scratch::write_file(&dir.join("mechbook.toml"), "title = \"Roster bench\"\n")?;
     scratch::write_file(
         &dir.join("lectures/lecture-1/box.toml"),
-        &super::bench::VARIANT_SCENE.replace("{count}", &count.to_string()),
+        &scene.replace("{count}", &count.to_string()),
     )?;
     child(&["check", "--bless"], dir)?;
     Ok(())
 }
 
 /// The table: for each roster size, the build's fastest and median seconds, the median per
-/// student, and its peak memory; then the 10,000-variant sheet.
+/// student, and its peak memory; then the 10,000-variant sheet. `scene` is the problem, its
+/// variants' count written `{count}` (the box problem of `--variants-only`).
 pub fn roster_bench(
+    scene: &str,
     sizes: &[usize],
     repeats: usize,
     progress: &mut impl FnMut(&str),
@@ -46,7 +48,7 @@ pub fn roster_bench(
         progress(&format!("{n} students"));
         let dir = scratch::folder("bench-roster")?;
         let result = (|| -> Result<Timing> {
-            course(&dir, n)?;
+            course(&dir, scene, n)?;
             let mut csv = String::from("name,id\n");
             for k in 1..=n {
                 let _ = writeln!(csv, "Student {k},{}", 100_000 + k);
@@ -70,7 +72,7 @@ pub fn roster_bench(
     progress(&format!("a sheet of {SHEET_VARIANTS} variants"));
     let dir = scratch::folder("bench-sheet")?;
     let result = (|| {
-        course(&dir, SHEET_VARIANTS)?;
+        course(&dir, scene, SHEET_VARIANTS)?;
         timed(repeats, || child(&["build", "--no-cache"], &dir))
     })();
     scratch::remove(&dir);

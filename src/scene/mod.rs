@@ -11,6 +11,7 @@ pub mod operations;
 mod raw;
 pub mod roster;
 mod step;
+mod symbol_domains;
 mod types;
 mod validate;
 pub mod variants;
