@@ -2,17 +2,7 @@
 //! a scene, errors outside a course, `derive` saying why it fails, and shell completions.
 //! (`serve` is in serve.rs.)
 
-use super::{lecture, mechbook, read_tree, scratch, stderr, stdout};
-use std::path::Path;
-use std::process::{Command, Output};
-
-fn mechbook_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mechbook"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run mechbook")
-}
+use super::{lecture, mechbook, mechbook_in, read_tree, scratch, stderr, stdout};
 
 #[test]
 fn init_makes_a_course_that_builds_and_checks_at_once() {

@@ -29,6 +29,15 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// `mechbook ARGS` run in `dir`, as a user in a course's folder runs it.
+pub fn mechbook_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mechbook"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("run mechbook")
+}
+
 pub fn mechbook(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_mechbook"))
         .args(args)

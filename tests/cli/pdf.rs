@@ -3,7 +3,7 @@
 //! course's paper, every font is embedded and no character lacks a glyph, two builds give the
 //! same bytes, and a roster gives each student a paper with their name on every page.
 
-use super::{mechbook, scratch, stderr, stdout};
+use super::{mechbook, mechbook_in, scratch, stderr, stdout};
 use mechbook::base::format::figures;
 use serde_json::Value as Json;
 use std::path::Path;
@@ -782,11 +782,7 @@ fn a_class_key_and_a_sheet_past_200_are_typeset_in_parts() {
     }
     let dir = scratch("pdf-parts");
     let run = |args: &[&str]| {
-        let out = Command::new(env!("CARGO_BIN_EXE_mechbook"))
-            .args(args)
-            .current_dir(&dir)
-            .output()
-            .unwrap();
+        let out = mechbook_in(&dir, args);
         assert!(out.status.success(), "{args:?}: {}", stderr(&out));
     };
     run(&["init"]);

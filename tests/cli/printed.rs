@@ -2,7 +2,7 @@
 //! its own result, never the first entry's form beside a later one; a product of a number and a
 //! power of a variant's decimal keeps its times sign (3 ⋅ 0.4⁴, once "30.4⁴").
 
-use super::{mechbook, scratch, stderr, stdout};
+use super::{mechbook, mechbook_in, scratch, stderr, stdout};
 use std::path::Path;
 
 fn scene(dir: &Path, name: &str, text: &str) -> String {
@@ -165,11 +165,7 @@ R = ["0.4", "0.5", "0.6"]
 "#,
     );
     let run = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_mechbook"))
-            .args(args)
-            .current_dir(&dir)
-            .output()
-            .unwrap();
+        let out = mechbook_in(&dir, args);
         assert!(out.status.success(), "{args:?}: {}", stderr(&out));
     };
     run(&["check", "--bless"]);

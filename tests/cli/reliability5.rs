@@ -3,7 +3,7 @@
 //! read as Moodle blanks, a ratio printed as a named argument into the PDFs' markup, a title
 //! that sets nothing, and a high power whose check cancelled its own digits.
 
-use super::{build_problem, mechbook, read_tree, scratch, stderr, stdout};
+use super::{build_problem, mechbook, mechbook_in, read_tree, scratch, stderr, stdout};
 use std::path::{Path, PathBuf};
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
@@ -25,14 +25,6 @@ fn hoop_course(name: &str) -> (PathBuf, PathBuf) {
     (dir, scene)
 }
 
-fn run_in(dir: &Path, args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_mechbook"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run mechbook")
-}
-
 #[test]
 fn no_output_path_replaces_a_scene_the_course_file_or_lands_among_the_scenes() {
     let (dir, scene) = hoop_course("outputs-apart");
@@ -47,7 +39,7 @@ fn no_output_path_replaces_a_scene_the_course_file_or_lands_among_the_scenes() {
         &["build", "--cache", "lectures/week-1"],
         &["build", "--cache", "."],
     ] {
-        let out = run_in(&dir, args);
+        let out = mechbook_in(&dir, args);
         let err = stderr(&out);
         assert_eq!(out.status.code(), Some(1), "{args:?} was accepted: {err}");
         assert!(
@@ -58,7 +50,7 @@ fn no_output_path_replaces_a_scene_the_course_file_or_lands_among_the_scenes() {
     }
     assert!(std::fs::read(&scene).unwrap().starts_with(b"# A thin hoop"));
     // Beside the sources, the report is written whole.
-    let out = run_in(&dir, &["check", "--json-file", "check.json"]);
+    let out = mechbook_in(&dir, &["check", "--json-file", "check.json"]);
     assert!(out.status.success(), "{}", stderr(&out));
     let report: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("check.json")).unwrap()).unwrap();
@@ -96,7 +88,7 @@ fn latex_that_crashed_the_reader_is_read_or_refused_at_its_line() {
             text.replace(title, &format!("title = \"{words}{latex}\"")),
         )
         .unwrap();
-        let out = run_in(&dir, &["check"]);
+        let out = mechbook_in(&dir, &["check"]);
         let err = stderr(&out);
         assert!(!err.contains("panicked"), "{latex}: {err}");
         match refused {
@@ -113,7 +105,7 @@ fn latex_that_crashed_the_reader_is_read_or_refused_at_its_line() {
     // The titles that a reader could not show are refused by `build` as by `check`, so no site
     // is written without its PDFs.
     std::fs::write(&scene, text.replace(title, "title = \"$\\\\hat{}$\"")).unwrap();
-    let out = run_in(&dir, &["build", "--no-cache"]);
+    let out = mechbook_in(&dir, &["build", "--no-cache"]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(!dir.join("site").exists());
     std::fs::remove_dir_all(dir).unwrap();
@@ -289,7 +281,7 @@ fn bless_never_writes_what_check_refuses_in_a_scene_whose_outputs_changed_names(
         .unwrap()
         + 1;
     for args in [&["check"][..], &["check", "--bless"]] {
-        let out = run_in(&dir, args);
+        let out = mechbook_in(&dir, args);
         let err = stderr(&out);
         assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
         assert!(
