@@ -19,7 +19,10 @@ mod print;
 mod print_latex;
 mod print_typst;
 mod symbol_latex;
-pub use symbol_latex::{Head, NameForm, SymbolTex, greek_letter, name_form, typeset_as};
+pub use symbol_latex::{
+    Head, NameForm, SymbolTex, greek_letter, name_form, numbered_result, prints_as_word,
+    typeset_as, typesets,
+};
 mod radical;
 mod rational;
 mod size;

@@ -57,6 +57,9 @@ pub(super) fn typst_symbol(s: &str) -> String {
     if let Some(t) = super::symbol_latex::scene_typst(s) {
         return t;
     }
+    if let Some((own, k)) = super::symbol_latex::numbered_result(s) {
+        return format!("attach({}, b: {k})", own.typst);
+    }
     match name_form(s) {
         NameForm::Rate(base, second) => format!(
             "{}({})",

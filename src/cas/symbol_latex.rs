@@ -33,9 +33,26 @@ pub(super) fn scene_tex(s: &str) -> Option<String> {
     TYPESET.with(|t| t.borrow().get(s).map(|x| x.latex.clone()))
 }
 
+/// Whether the scene being rendered typesets a name itself (a `tex`).
+pub fn typesets(s: &str) -> bool {
+    TYPESET.with(|t| t.borrow().contains_key(s))
+}
+
 /// The scene's own Typst for a name, while its page is rendered.
 pub(super) fn scene_typst(s: &str) -> Option<String> {
     TYPESET.with(|t| t.borrow().get(s).map(|x| x.typst.clone()))
+}
+
+/// A numbered result of a step the scene typesets (`acc_2` of a step `acc` with `tex = "a"`):
+/// the step's own typesetting and the number, which prints as its subscript (a₂).
+pub fn numbered_result(s: &str) -> Option<(SymbolTex, &str)> {
+    let (base, k) = s.rsplit_once('_')?;
+    if k.is_empty() || !k.chars().all(|c| c.is_ascii_digit()) {
+        return None;
+    }
+    TYPESET
+        .with(|t| t.borrow().get(base).cloned())
+        .map(|tex| (tex, k))
 }
 
 /// Greek letters by their LaTeX names, as LaTeX sets them (`phi` is ϕ, `varphi` φ).
@@ -170,11 +187,35 @@ pub fn name_form(s: &str) -> NameForm<'_> {
     NameForm::Head(head, tail)
 }
 
+/// Whether a name prints as a word rather than a symbol (`Lag`, `space_rate`, `acc_1`, `Lag'`):
+/// more than one letter set upright, which a reader takes for mechbook's own name. `own` says
+/// whether the scene typesets a name itself (a `tex`), which makes it a symbol.
+pub fn prints_as_word(s: &str, own: &dyn Fn(&str) -> bool) -> bool {
+    if own(s) {
+        return false;
+    }
+    if let Some((base, k)) = s.rsplit_once('_')
+        && !k.is_empty()
+        && k.chars().all(|c| c.is_ascii_digit())
+        && own(base)
+    {
+        return false;
+    }
+    match name_form(s) {
+        NameForm::Rate(base, _) => prints_as_word(base, own),
+        NameForm::Word(_) | NameForm::Head(Head::Upright(_), _) => true,
+        NameForm::Numeral(_) | NameForm::Inertia(_) | NameForm::Head(..) => false,
+    }
+}
+
 /// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
 /// `inertia_tensor` -> upright text.
 pub(super) fn latex_symbol(s: &str) -> String {
     if let Some(tex) = scene_tex(s) {
         return tex;
+    }
+    if let Some((own, k)) = numbered_result(s) {
+        return format!("{{{}}}_{{{k}}}", own.latex);
     }
     match name_form(s) {
         // A coordinate's rates: `phi'` is φ̇, `phi''` φ̈.
@@ -202,5 +243,45 @@ pub(super) fn latex_symbol(s: &str) -> String {
                 format!("{head}_{{{tail}}}")
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn own(names: &[(&str, &str)]) -> BTreeMap<String, SymbolTex> {
+        names
+            .iter()
+            .map(|(n, latex)| {
+                let tex = SymbolTex {
+                    latex: latex.to_string(),
+                    typst: latex.to_string(),
+                };
+                (n.to_string(), tex)
+            })
+            .collect()
+    }
+
+    /// `acc_2` of a step `acc` with `tex = "a"` prints a₂ in every printer, and is no word;
+    /// without the `tex` it is the word `acc` with its subscript, which `check` warns of.
+    #[test]
+    fn a_numbered_result_prints_with_its_steps_symbol() {
+        let steps = own(&[("acc", "a")]);
+        let typesets = |n: &str| steps.contains_key(n);
+        assert!(!prints_as_word("acc_2", &typesets));
+        assert!(prints_as_word("acc_2", &|_| false));
+        assert!(prints_as_word("space_rate", &|_| false));
+        assert!(prints_as_word("acc_x", &|_| false));
+        assert!(prints_as_word("Lag'", &|_| false));
+        for symbol in ["phi1", "w3", "Ixx", "Omega_2", "p_phi", "x_c", "m2"] {
+            assert!(!prints_as_word(symbol, &|_| false), "{symbol}");
+        }
+        let (latex, typst) = typeset_as(steps, || {
+            let e = crate::cas::Expr::sym("acc_2");
+            (e.to_latex(), e.to_typst())
+        });
+        assert_eq!(latex, "{a}_{2}");
+        assert_eq!(typst, "attach(a, b: 2)");
     }
 }

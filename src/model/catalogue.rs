@@ -253,7 +253,11 @@ pub fn routed_quantities() -> impl Iterator<Item = &'static str> {
 /// clashes with no scene symbol: a claim's `inertia_tensor[0][1]` reads I_{xy}. Other names
 /// print as upright words.
 pub fn quantity_symbol(name: &str) -> Option<&'static str> {
-    find(name).and_then(|q| q.symbol)
+    match name {
+        // A scene's unit `axis`, which claims name beside the quantities.
+        "axis" => Some("\\hat{n}"),
+        _ => find(name).and_then(|q| q.symbol),
+    }
 }
 
 /// A derived quantity's heading on a page: its name in words, a Greek letter's name as the
@@ -336,7 +340,7 @@ pub const CATALOGUE: &[Quantity] = {
     use Kind::*;
     use quantity::*;
     &[
-        q(MASS, Scalar, Stage::Tensor),
+        with_symbol(MASS, Scalar, Stage::Tensor, "M"),
         with_symbol(
             CENTRE_OF_MASS,
             Vector,
@@ -357,7 +361,7 @@ pub const CATALOGUE: &[Quantity] = {
             Stage::MomentAboutAxis,
             "I_{n}",
         ),
-        q(RADIUS_OF_GYRATION, Scalar, Stage::Gyration),
+        with_symbol(RADIUS_OF_GYRATION, Scalar, Stage::Gyration, "R_{0}"),
         // The integrand of I_xx is the I_xx per unit of the integration variable.
         with_symbol(INTEGRAND, Matrix, Stage::Tensor, "dI"),
         with_symbol(POSITION, Vector, Stage::Tensor, "\\vec{r}"),
@@ -369,10 +373,10 @@ pub const CATALOGUE: &[Quantity] = {
         q(W1_SECOND_DERIVATIVE, Scalar, Stage::SymmetricTop),
         q(SYMMETRIC_SOLUTION, Vector, Stage::SymmetricTop),
         q(SYMMETRIC_RESIDUAL, Vector, Stage::SymmetricTop),
-        q(OMEGA_SQUARED, Scalar, Stage::SymmetricTop),
+        with_symbol(OMEGA_SQUARED, Scalar, Stage::SymmetricTop, "\\omega^{2}"),
         q(PRECESSION_RATE, Scalar, Stage::SymmetricTop),
-        q(TOP_TWICE_ENERGY, Scalar, Stage::SymmetricTop),
-        q(TOP_MOMENTUM_SQUARED, Scalar, Stage::SymmetricTop),
+        with_symbol(TOP_TWICE_ENERGY, Scalar, Stage::SymmetricTop, "2T"),
+        with_symbol(TOP_MOMENTUM_SQUARED, Scalar, Stage::SymmetricTop, "L^{2}"),
         q(BODY_CONE_TAN_SQUARED, Scalar, Stage::SymmetricTop),
         q(SPACE_CONE_COS_SQUARED, Scalar, Stage::SymmetricTop),
         q(MOMENTUM_TILT_TAN_SQUARED, Scalar, Stage::SymmetricTop),
@@ -380,18 +384,23 @@ pub const CATALOGUE: &[Quantity] = {
         q(OSCILLATION_FREQUENCY_SQUARED, Vector, Stage::AxisStability),
         q(AMPLITUDE_RATIO_SQUARED, Vector, Stage::AxisStability),
         q(STABILITY, Matrix, Stage::AxisStability),
-        q(GROWTH_RATE_SQUARED, Scalar, Stage::AxisStability),
-        q(TWICE_ENERGY, Scalar, Stage::Poinsot),
-        q(MOMENTUM_SQUARED, Scalar, Stage::Poinsot),
+        with_symbol(
+            GROWTH_RATE_SQUARED,
+            Scalar,
+            Stage::AxisStability,
+            "\\sigma^{2}",
+        ),
+        with_symbol(TWICE_ENERGY, Scalar, Stage::Poinsot, "2T"),
+        with_symbol(MOMENTUM_SQUARED, Scalar, Stage::Poinsot, "L^{2}"),
         q(ELLIPSOID_VALUE, Scalar, Stage::Poinsot),
         q(GRADIENT_FACTOR_SQUARED, Scalar, Stage::Poinsot),
         q(PLANE_DISTANCE_SQUARED, Scalar, Stage::Poinsot),
-        q(ENERGY_FROM_MOMENTUM, Scalar, Stage::Poinsot),
+        with_symbol(ENERGY_FROM_MOMENTUM, Scalar, Stage::Poinsot, "T"),
         q(MOMENTUM_GAP, Vector, Stage::Poinsot),
         q(POLHODE_CONIC_PRODUCT, Vector, Stage::Poinsot),
         q(POLHODE_CLOSURE, Matrix, Stage::Poinsot),
         q(SEPARATRIX_SLOPE_SQUARED, Scalar, Stage::Poinsot),
-        q(EARTH_BETA, Scalar, Stage::EarthPrecession),
+        with_symbol(EARTH_BETA, Scalar, Stage::EarthPrecession, "\\beta"),
         q(EULER_PERIOD_SIDEREAL_DAYS, Scalar, Stage::EarthPrecession),
         q(EULER_PERIOD_SOLAR_DAYS, Scalar, Stage::EarthPrecession),
         q(CHANDLER_RATIO, Scalar, Stage::EarthPrecession),

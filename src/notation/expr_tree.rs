@@ -357,6 +357,20 @@ pub fn symbol(s: &str, named: Named<'_>) -> Vec<Node> {
     if let Some(nodes) = SCENE.with(|t| t.borrow().get(s).cloned()) {
         return nodes;
     }
+    // A numbered result of a step the scene typesets: `acc_2` of `tex = "a"` is a₂.
+    if let Some((base, k)) = s.rsplit_once('_')
+        && !k.is_empty()
+        && k.chars().all(|c| c.is_ascii_digit())
+        && let Some(nodes) = SCENE.with(|t| t.borrow().get(base).cloned())
+    {
+        let mut out = if nodes.len() == 1 {
+            nodes
+        } else {
+            vec![group(nodes)]
+        };
+        attach(&mut out, ScriptType::Subscript, vec![num(k)]);
+        return out;
+    }
     match name_form(s) {
         NameForm::Rate(base, second) => {
             vec![accent(

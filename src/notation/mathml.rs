@@ -45,7 +45,8 @@ pub fn mathml(nodes: &[Node], block: bool) -> Result<String, MathmlError> {
         push_mathml(&mut out, events, config()).map_err(|e| MathmlError::Writer(e.to_string()))?;
         Ok(out)
     };
-    let nodes = no_break_spaces(nodes);
+    // An upright word is one identifier (`<mtext>body</mtext>`), spoken as the word.
+    let nodes = super::tree::upright_words(&no_break_spaces(nodes));
     let mut out = write(&nodes)?;
     // An author's `\cos^2 x`: set as mechbook's printer writes it, `{\cos}^{2}`.
     if out.contains("<msup><mspace") {

@@ -14,6 +14,7 @@ pub mod linebreak;
 mod linebreak_tests;
 pub mod mathml;
 mod product_cut;
+pub mod read_back;
 mod spoken;
 mod tex_text;
 mod tree;

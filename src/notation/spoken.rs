@@ -17,7 +17,7 @@ impl Tex {
 /// The nodes in words, single-spaced.
 pub fn spoken(nodes: &[Node]) -> String {
     let mut words = Vec::new();
-    say(nodes, &mut words);
+    say(&super::tree::upright_words(nodes), &mut words);
     let text = words.join(" ");
     text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
@@ -299,6 +299,36 @@ mod tests {
 
     fn said(latex: &str) -> String {
         Tex::read(latex).unwrap().spoken()
+    }
+
+    /// An upright word is one identifier on the page, one text run in Typst, and one word to a
+    /// listener: `\mathrm{body}` was four `<mi>` and "b o d y".
+    #[test]
+    fn an_upright_word_is_one_identifier_and_spoken_as_the_word() {
+        assert_eq!(said(r"\Omega_{\mathrm{body}}"), "capital omega sub body");
+        assert_eq!(said(r"3\,\mathrm{kg}"), "3 kg");
+        let tex = Tex::read(r"\Omega_{\mathrm{body}} = \mathrm{d} x").unwrap();
+        let page = tex.to_mathml(false).unwrap();
+        assert!(page.contains("<mtext>body</mtext>"), "{page}");
+        assert!(!page.contains(">b</mi>"), "{page}");
+        // One letter upright stays a letter.
+        assert!(
+            page.contains(r#"<mi mathvariant="normal">d</mi>"#),
+            "{page}"
+        );
+        assert!(tex.to_typst().unwrap().contains(r#""body""#));
+        // A result named as a word (no `tex`) is one identifier too, spoken as the word.
+        let word = parse("slow_eps + Lfree").unwrap().expr.to_tex();
+        assert_eq!(word.spoken(), "slow_eps plus Lfree");
+        assert!(
+            word.to_mathml(false)
+                .unwrap()
+                .contains("<mtext>Lfree</mtext>")
+        );
+        // The second result of a step `acc` with `tex = "a"` is a₂ on the page too.
+        let names = [("acc".to_string(), "a".to_string())].into();
+        let second = crate::notation::typeset_as(&names, || parse("acc_2").unwrap().expr.to_tex());
+        assert_eq!(second.spoken(), "a sub 2");
     }
 
     #[test]

@@ -147,6 +147,67 @@ pub fn upright(s: &str) -> Node {
     in_font(Font::UpRight, letters(s))
 }
 
+/// The nodes with each run of two or more letters set upright (`\mathrm{body}`, a unit's `kg`)
+/// as one piece of text: one identifier on the page and one word to a listener, not four
+/// italic-less letters read one by one.
+pub fn upright_words(nodes: &[Node]) -> Vec<Node> {
+    super::latex::rewrite(nodes, &|n| match n {
+        Node::Group(g, inner)
+            if matches!(
+                inner.first(),
+                Some(Node::State(StateChange::Font(Some(Font::UpRight))))
+            ) =>
+        {
+            Node::Group(g, joined_letters(inner))
+        }
+        other => other,
+    })
+}
+
+/// A run of two or more Latin letters as one text node, with the underscores and digits
+/// within it (a name set as a word, `w_min2`); anything else as it is.
+fn joined_letters(nodes: Vec<Node>) -> Vec<Node> {
+    let mut out = Vec::new();
+    let mut run: Vec<Node> = Vec::new();
+    let flush = |run: &mut Vec<Node>, out: &mut Vec<Node>| {
+        let letters = run
+            .iter()
+            .filter(|n| matches!(n, Node::Atom(Content::Ordinary { content, .. }) if content.is_ascii_alphabetic()))
+            .count();
+        if letters >= 2 {
+            let word: String = run
+                .iter()
+                .map(|n| match n {
+                    Node::Atom(Content::Ordinary { content, .. }) => content.to_string(),
+                    Node::Number(digits) => digits.clone(),
+                    _ => String::new(),
+                })
+                .collect();
+            out.push(Node::Text(word));
+            run.clear();
+        } else {
+            out.append(run);
+        }
+    };
+    for n in nodes {
+        let joins = match &n {
+            Node::Atom(Content::Ordinary { content, .. }) => {
+                content.is_ascii_alphabetic() || (*content == '_' && !run.is_empty())
+            }
+            Node::Number(_) => !run.is_empty(),
+            _ => false,
+        };
+        if joins {
+            run.push(n);
+        } else {
+            flush(&mut run, &mut out);
+            out.push(n);
+        }
+    }
+    flush(&mut run, &mut out);
+    out
+}
+
 /// An accent over `base`: `\dot{x}` is `˙`, `\ddot` `¨`, `\vec` `→`.
 pub fn accent(base: Vec<Node>, mark: char, stretchy: bool) -> Node {
     Node::Script {

@@ -44,11 +44,11 @@ pub(super) fn claim_view(c: &crate::verify::ClaimResult) -> Result<ClaimView, Re
         derived = tera::escape_html(found);
     }
     Ok(ClaimView {
+        quantity: left_side(c)?,
         eq: c.eq.clone(),
         statement: c.statement.clone(),
         statement_html: author_html(&c.statement)?,
         verdict: c.verdict.as_str().into(),
-        quantity: render(c.quantity.as_ref())?,
         notes,
         derived,
         derived_equal,
@@ -69,6 +69,32 @@ pub(super) fn claim_view(c: &crate::verify::ClaimResult) -> Result<ClaimView, Re
             crate::scene::ClaimRole::Mistake => "mistake",
         }
         .into(),
+    })
+}
+
+/// A claim's left side: the symbol its author gives it, else its quantity where every name in
+/// it prints as a symbol (I₁₁, L², the scene's own), else none, and the page prints the
+/// claim's formula alone: never a name of mechbook's (`plane_distance_squared`) as a word.
+fn left_side(c: &crate::verify::ClaimResult) -> Result<String, RenderError> {
+    if let Some(latex) = &c.tex {
+        // Scene validation read it; a claim from elsewhere (a cache) is read again here.
+        let tex = Tex::read(latex).map_err(|e| RenderError::Math {
+            latex: latex.clone(),
+            message: e.to_string(),
+        })?;
+        return math::inline(&tex);
+    }
+    match &c.quantity {
+        Some(q) if !names_a_word(q) => math::inline(&q.to_tex_named(&quantity_symbol)),
+        _ => Ok(String::new()),
+    }
+}
+
+/// Whether an expression names something that would print as a word: a derived quantity with
+/// no symbol, or a step's result the scene gives no `tex`.
+pub(super) fn names_a_word(e: &crate::cas::Expr) -> bool {
+    e.symbols().iter().any(|s| {
+        quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &crate::cas::typesets)
     })
 }
 

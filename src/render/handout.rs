@@ -103,7 +103,10 @@ fn step_view<'a>(
                     .map_or(String::new(), |v| v.at.clone());
                 // A number no student reads exactly is shown to six figures.
                 let math = match approx {
-                    Some(f) => super::math::block(&f.to_tex())?,
+                    // In the scene's own typesetting, as the page's lines are (`turn_1` is ū₁).
+                    Some(f) => {
+                        crate::notation::typeset_as(&page.tex, || super::math::block(&f.to_tex()))?
+                    }
                     None => view.steps[l].math.clone(),
                 };
                 Ok((math, at))

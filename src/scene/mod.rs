@@ -27,7 +27,8 @@ pub use types::{
 };
 pub use validate::{
     CLAIM_FUNCTIONS, MAX_INPUT_DEGREE, MAX_INPUT_TERMS, MAX_NAME, MAX_PLOT_RADIANS, MAX_PLOT_TIME,
-    PINNED_VARIANTS, RESERVED_IDS, control_character, step_has_route, step_named,
+    PINNED_VARIANTS, RESERVED_IDS, control_character, prints_its_name, step_has_route, step_named,
+    suggested_tex,
 };
 pub use variants::{shown_value, terminating_decimal};
 

@@ -350,6 +350,10 @@ pub struct RawClaim {
     /// `notes` (default): the notes' own statement; `mistake`: a common mistake for students.
     #[serde(default)]
     pub role: Option<Text>,
+    /// The symbol its quantity is printed as, in LaTeX (`tex = "d^2"`), where the quantity is a
+    /// name of mechbook's (`plane_distance_squared`) that a page would not print.
+    #[serde(default)]
+    pub tex: Option<Text>,
 }
 
 /// A `solve` step's unknowns: one name, or a list of them for a linear system.

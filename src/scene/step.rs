@@ -128,6 +128,26 @@ impl Operation {
         operation_kind(self.name()).expect("every operation has a row in the table")
     }
 
+    /// What the step does, in words: its heading on a page where its name is no symbol.
+    pub fn heading(&self) -> &'static str {
+        match self {
+            Operation::Be(_) => "Definition",
+            Operation::Differentiate { .. } => "Derivative",
+            Operation::Lagrange { .. } => "Equations of motion",
+            Operation::Routh { .. } => "Routhian",
+            Operation::Linearise { .. } => "Linearised equations of motion",
+            Operation::Frequency { .. } => "Frequency of small oscillations",
+            Operation::Substitute { .. } => "Substitution",
+            Operation::Solve { .. } => "Solution",
+            Operation::Momentum { .. } => "Generalised momentum",
+            Operation::Energy { .. } => "Energy function",
+            Operation::Series { .. } => "Series",
+            Operation::Integrate { .. } => "Integral",
+            Operation::Equilibria { .. } => "States of rest",
+            Operation::Stability { .. } => "Stability",
+        }
+    }
+
     pub fn name(&self) -> &'static str {
         match self {
             Operation::Be(_) => "be",

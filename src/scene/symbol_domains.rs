@@ -7,6 +7,23 @@ use crate::cas::Expr;
 use std::collections::BTreeSet;
 
 impl Scene {
+    /// A name's LaTeX as the scene's pages print it: its own `tex`, else the conventions
+    /// (`phi''` is `\ddot{\phi}`).
+    pub fn latex_of(&self, name: &str) -> String {
+        let own = self
+            .tex
+            .iter()
+            .map(|(k, latex)| {
+                let tex = crate::cas::SymbolTex {
+                    latex: latex.clone(),
+                    typst: String::new(),
+                };
+                (k.clone(), tex)
+            })
+            .collect();
+        crate::cas::typeset_as(own, || Expr::sym(name).to_latex())
+    }
+
     /// The names that take either sign: the coordinates, their rates and accelerations, the
     /// time, and a symbol the scene gives a negative value (in `[numeric]` or a variant: a
     /// position y = −0.7). Every other symbol of a scene is a mass, a length or a constant,

@@ -355,6 +355,8 @@ pub struct Claim {
     /// `check --bless` records the derived one).
     pub expect: Option<Verdict>,
     pub role: ClaimRole,
+    /// The symbol its quantity is printed as (LaTeX), where the author gives one.
+    pub tex: Option<String>,
     pub line: usize,
 }
 

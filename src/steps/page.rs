@@ -44,30 +44,34 @@ pub(super) fn page_steps(scene: &Scene, step: &AuthorStep, result: &StepResult) 
 /// A name as the page typesets it, for a title (`$\phi_{1}$`, the scene's own LaTeX where it
 /// gives one): a title is the author's kind of text, its mathematics read by every renderer.
 fn typeset(scene: &Scene, name: &str) -> String {
-    let own = scene
-        .tex
-        .iter()
-        .map(|(k, latex)| {
-            let tex = crate::cas::SymbolTex {
-                latex: latex.clone(),
-                typst: String::new(),
-            };
-            (k.clone(), tex)
-        })
-        .collect();
-    format!(
-        "${}$",
-        crate::cas::typeset_as(own, || Expr::sym(name).to_latex())
-    )
+    format!("${}$", scene.latex_of(name))
+}
+
+/// Whether a name prints as a word on the scene's pages (see `cas::prints_as_word`).
+fn is_word(scene: &Scene, name: &str) -> bool {
+    crate::cas::prints_as_word(name, &|n| scene.tex.contains_key(n))
+}
+
+/// A step's heading: the symbol its result prints as (`$L$`), or what the step does
+/// ("Equations of motion") where its page prints no name of its own or it would print as a
+/// word; never the step's name as the author's file spells it (`Lag`, `eom`).
+fn heading(scene: &Scene, step: &AuthorStep) -> String {
+    if crate::scene::prints_its_name(step, &scene.steps) && !is_word(scene, &step.name) {
+        typeset(scene, &step.name)
+    } else {
+        step.op.heading().to_string()
+    }
 }
 
 fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec<Step> {
     // The author's reason, its `$…$` mathematics typeset.
     let why = crate::model::prose::author(&step.why);
-    let title = match &step.eq {
-        Some(eq) => format!("{} (eq {eq})", step.name),
-        None => step.name.clone(),
+    let label = heading(scene, step);
+    let cited = |s: String| match &step.eq {
+        Some(eq) => format!("{s} (eq {eq})"),
+        None => s,
     };
+    let title = cited(label.clone());
     let named = |e: &Expr| Formula::equation(Formula::Expr(Expr::sym(&step.name)), e.clone());
     match result {
         StepResult::Expr(e) => vec![Step::note(&title, named(e), why)],
@@ -132,7 +136,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                         .text(&format!(": {verdict}"));
                     let why = with_reason(step, &why, at);
                     Step::note(
-                        &format!("{title}: stability"),
+                        &title,
                         match &c.omega_squared {
                             Some(w2) => Formula::equation(omega2.clone(), w2.clone()),
                             None => Formula::Row(vec![
@@ -197,7 +201,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     row.push(Formula::Expr(m.clone()));
                 }
                 Step::note(
-                    &format!("{title}: stability"),
+                    &title,
                     Formula::Row(row),
                     with_reason(step, &why, at),
                 )
@@ -208,12 +212,15 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
             .iter()
             .enumerate()
             .map(|(k, (unknown, value))| {
+                // The name later steps give it, where it prints as a symbol (a₁ of `tex = "a"`).
+                let named = mode_name(&step.name, k);
+                let own = if is_word(scene, &named) {
+                    String::new()
+                } else {
+                    format!("{}, ", typeset(scene, &named))
+                };
                 Step::note(
-                    &format!(
-                        "{title}: {}, the value of {}",
-                        mode_name(&step.name, k),
-                        typeset(scene, unknown)
-                    ),
+                    &format!("{title}: {own}the value of {}", typeset(scene, unknown)),
                     Formula::equation(Formula::Expr(Expr::sym(unknown)), value.clone()),
                     why.clone(),
                 )
@@ -276,6 +283,11 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     _ => None,
                 };
                 let q = typeset(scene, q);
+                let (of, after) = match &step.op {
+                    Operation::Linearise { .. } => ("linearised equation", ""),
+                    Operation::Substitute { .. } => ("equation", ", substituted"),
+                    _ => ("equation", ""),
+                };
                 let what = match constraint {
                     Some(false) => {
                         format!("the constraint of the multiplier {q}, differentiated twice")
@@ -283,10 +295,16 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     Some(true) => {
                         format!("the constraint of the multiplier {q}, differentiated once")
                     }
-                    None => format!("the equation of motion of {q}"),
+                    None => format!("the {of} of motion of {q}{after}"),
+                };
+                // Under a symbol, `L: the equation of motion of φ`; else the words alone.
+                let line = if label == step.op.heading() {
+                    cited(capitalised(&what))
+                } else {
+                    format!("{title}: {what}")
                 };
                 Step::note(
-                    &format!("{title}: {what}"),
+                    &line,
                     Formula::Row(vec![
                         Formula::Expr(e.clone()),
                         Formula::Op(crate::notation::Op::Equals),
@@ -297,6 +315,13 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
             })
             .collect(),
     }
+}
+
+/// A sentence's words with a capital first.
+fn capitalised(s: &str) -> String {
+    let mut c = s.chars();
+    c.next()
+        .map_or_else(String::new, |f| f.to_uppercase().chain(c).collect())
 }
 
 /// The step's reason, and after it the roots set aside as real for no values of the symbols

@@ -35,6 +35,7 @@ pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, ca
             figures: None,
             expect: step.expect,
             role: step.role,
+            tex: None,
             line: step.line,
         };
         let mut r = match d.named.get(&step.name) {
@@ -91,7 +92,16 @@ fn check_gives_each(
             figures: None,
             expect: step.expect,
             role: step.role,
+            tex: None,
             line: step.line,
+        };
+        // Several unknowns print as themselves (T = …, ẍ = …), not as the step's `sol_2`.
+        let claim = match &step.op {
+            crate::scene::Operation::Solve { unknowns, .. } if unknowns.len() > 1 => Claim {
+                tex: unknowns.get(k).map(|u| scene.latex_of(u)),
+                ..claim
+            },
+            _ => claim,
         };
         let mut r = if step.gives_each.len() != count {
             let mut r = unchecked(&claim);

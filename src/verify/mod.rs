@@ -72,6 +72,9 @@ pub struct ClaimResult {
     /// where the engine's test alone did not decide it; said beside the verdict.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub positive: Vec<String>,
+    /// The symbol the author gives its quantity (LaTeX), printed as its left side.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tex: Option<String>,
 }
 
 impl ClaimResult {
@@ -268,6 +271,7 @@ fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
         step: None,
         dimension: None,
         positive: Vec::new(),
+        tex: claim.tex.clone(),
     }
 }
 

@@ -319,12 +319,12 @@ fn a_symbol_is_typeset_as_its_scene_says_on_the_page_and_the_key() {
     );
     // Other scenes are not touched: the pendulum's own names are as before.
     assert!(read("problem-pendulum.html").contains("<mi>M</mi>"));
-    // A scene with a radius R calls its centre of mass R⃗_cm, not R⃗.
+    // A scene with a radius R calls its centre of mass R⃗_cm, not R⃗ (cm one upright word).
     let centre = read("problem-centre-of-mass.html");
     let step = &centre[centre.find("Centre of mass</strong>").unwrap()..];
     assert!(
         step.starts_with(
-            "Centre of mass</strong><math display=\"block\"><msub><mover><mrow><mi>R</mi></mrow><mi>→</mi></mover><mrow><mrow><mi mathvariant=\"normal\">c</mi><mi mathvariant=\"normal\">m</mi>"
+            "Centre of mass</strong><math display=\"block\"><msub><mover><mrow><mi>R</mi></mrow><mi>→</mi></mover><mrow><mrow><mtext>cm</mtext>"
         ),
         "{}",
         &step[..300]

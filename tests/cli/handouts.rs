@@ -124,7 +124,7 @@ fn a_step_at_a_multiple_of_pi_over_twelve_is_worked_out_exactly() {
     let scene = course.join("lectures/lecture-1/01-book.toml");
     let text = std::fs::read_to_string(&scene).unwrap().replace(
         "[outputs]",
-        "[[step]]\nname = \"proj\"\nbe = \"m*cos(pi/2) + m*sin(pi/6) + m*cos(5*pi/12)\"\n\
+        "[[step]]\nname = \"proj\"\ntex = \"p\"\nbe = \"m*cos(pi/2) + m*sin(pi/6) + m*cos(5*pi/12)\"\n\
          why = \"exact values\"\n\n[outputs]",
     );
     std::fs::write(&scene, text).unwrap();
@@ -137,7 +137,9 @@ fn a_step_at_a_multiple_of_pi_over_twelve_is_worked_out_exactly() {
     ]);
     assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
     let page = read(&site, "book.html");
-    let step = &page[page.find("<strong>proj</strong>").expect("the step")..];
+    let step = &page[page
+        .find("<strong><math display=\"inline\" alttext=\"p\">")
+        .expect("the step")..];
     let step = &step[..step.find("</li>").unwrap()];
     // m/2 + m(√6 − √2)/4: no sine or cosine is left.
     assert!(

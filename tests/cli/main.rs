@@ -14,6 +14,7 @@ mod course;
 mod handouts;
 mod hostile;
 mod lock;
+mod names;
 mod output;
 #[cfg(feature = "pdf")]
 mod pdf;

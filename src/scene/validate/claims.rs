@@ -208,6 +208,19 @@ impl Validator<'_> {
                 ));
             }
         };
+        let tex = match &c.tex {
+            Some(t) => match super::text::latex_problem(t.get_ref()) {
+                Some(why) => {
+                    return Err(self.err(
+                        content_start(t),
+                        &format!("{field}.tex"),
+                        format!("`{}` cannot be typeset: {why}", t.get_ref()),
+                    ));
+                }
+                None => Some(t.get_ref().trim().to_string()),
+            },
+            None => None,
+        };
         Ok(Claim {
             eq,
             statement: c.statement.get_ref().clone(),
@@ -216,6 +229,7 @@ impl Validator<'_> {
             figures,
             expect,
             role,
+            tex,
             line: self.loc.line_col(offset).0,
         })
     }

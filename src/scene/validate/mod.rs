@@ -12,11 +12,13 @@ mod outputs;
 mod plots;
 mod problem;
 mod steps;
+mod symbol_names;
 mod symbols;
 mod text;
 
 pub use answers::{step_has_route, step_named};
 pub use claims::PINNED_VARIANTS;
+pub use symbol_names::{prints_its_name, suggested_tex};
 pub use text::control_character;
 
 use super::error::{Locator, SceneError};
@@ -101,7 +103,7 @@ impl Validator<'_> {
     pub(super) fn scene(&self, raw: RawScene) -> Result<Scene, SceneError> {
         self.names(&raw)?;
         self.prose_fields(&raw)?;
-        let warnings = self.ascii_math_warnings(&raw);
+        let mut warnings = self.ascii_math_warnings(&raw);
         let symbols = self.symbols(&raw)?;
         let mut allowed: BTreeSet<String> = symbols.keys().cloned().collect();
         allowed.insert("pi".into());
@@ -177,6 +179,7 @@ impl Validator<'_> {
         )?;
         let units = self.units(&raw)?;
         let tex = self.typesetting(&raw)?;
+        warnings.extend(self.symbol_name_warnings(&raw, &steps, &tex));
         let moments_from_bodies = self.moments_from_bodies(&raw, &symbols, &bodies, &wants)?;
         let pinned_variants = self.pinned_variants(&raw, problem.is_some())?;
         Ok(Scene {
