@@ -92,7 +92,7 @@ fn left_side(c: &crate::verify::ClaimResult) -> Result<String, RenderError> {
 
 /// Whether an expression names something that would print as a word: a derived quantity with
 /// no symbol, or a step's result the scene gives no `tex`.
-pub(super) fn names_a_word(e: &crate::cas::Expr) -> bool {
+fn names_a_word(e: &crate::cas::Expr) -> bool {
     e.symbols().iter().any(|s| {
         quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &crate::cas::typesets)
     })

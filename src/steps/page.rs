@@ -52,26 +52,26 @@ fn is_word(scene: &Scene, name: &str) -> bool {
     crate::cas::prints_as_word(name, &|n| scene.tex.contains_key(n))
 }
 
-/// A step's heading: the symbol its result prints as (`$L$`), or what the step does
-/// ("Equations of motion") where its page prints no name of its own or it would print as a
-/// word; never the step's name as the author's file spells it (`Lag`, `eom`).
-fn heading(scene: &Scene, step: &AuthorStep) -> String {
-    if crate::scene::prints_its_name(step, &scene.steps) && !is_word(scene, &step.name) {
-        typeset(scene, &step.name)
-    } else {
-        step.op.heading().to_string()
-    }
+/// Whether a step is headed by the symbol its result prints as (`$L$`); else by what it does
+/// ("Equations of motion"), where its page prints no name of its own or it would print as a
+/// word: never by the step's name as the author's file spells it (`Lag`, `eom`).
+fn headed_by_symbol(scene: &Scene, step: &AuthorStep) -> bool {
+    crate::scene::prints_its_name(step, &scene.steps) && !is_word(scene, &step.name)
 }
 
 fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec<Step> {
     // The author's reason, its `$…$` mathematics typeset.
     let why = crate::model::prose::author(&step.why);
-    let label = heading(scene, step);
+    let by_symbol = headed_by_symbol(scene, step);
     let cited = |s: String| match &step.eq {
         Some(eq) => format!("{s} (eq {eq})"),
         None => s,
     };
-    let title = cited(label.clone());
+    let title = cited(if by_symbol {
+        typeset(scene, &step.name)
+    } else {
+        step.op.heading().to_string()
+    });
     let named = |e: &Expr| Formula::equation(Formula::Expr(Expr::sym(&step.name)), e.clone());
     match result {
         StepResult::Expr(e) => vec![Step::note(&title, named(e), why)],
@@ -298,10 +298,10 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     None => format!("the {of} of motion of {q}{after}"),
                 };
                 // Under a symbol, `L: the equation of motion of φ`; else the words alone.
-                let line = if label == step.op.heading() {
-                    cited(capitalised(&what))
-                } else {
+                let line = if by_symbol {
                     format!("{title}: {what}")
+                } else {
+                    cited(capitalised(&what))
                 };
                 Step::note(
                     &line,

@@ -92,16 +92,14 @@ fn check_gives_each(
             figures: None,
             expect: step.expect,
             role: step.role,
-            tex: None,
-            line: step.line,
-        };
-        // Several unknowns print as themselves (T = …, ẍ = …), not as the step's `sol_2`.
-        let claim = match &step.op {
-            crate::scene::Operation::Solve { unknowns, .. } if unknowns.len() > 1 => Claim {
-                tex: unknowns.get(k).map(|u| scene.latex_of(u)),
-                ..claim
+            // Several unknowns print as themselves (T = …, ẍ = …), not as the step's `sol_2`.
+            tex: match &step.op {
+                crate::scene::Operation::Solve { unknowns, .. } if unknowns.len() > 1 => {
+                    unknowns.get(k).map(|u| scene.latex_of(u))
+                }
+                _ => None,
             },
-            _ => claim,
+            line: step.line,
         };
         let mut r = if step.gives_each.len() != count {
             let mut r = unchecked(&claim);
