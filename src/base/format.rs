@@ -2,6 +2,15 @@
 
 /// A relative error or a time in compact scientific form, as a reader writes it: 8.3×10⁻¹⁶
 /// (never 8.3e-16, which reads as 8.3·e − 16); exact zero prints as 0.
+/// The first letter in capitals: a label or a heading opens a row or a sentence.
+pub fn capitalised(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    }
+}
+
 pub fn sci(x: f64) -> String {
     if x == 0.0 {
         "0".into()

@@ -20,7 +20,7 @@ mod print_latex;
 mod print_typst;
 mod symbol_latex;
 pub use symbol_latex::{
-    Head, NameForm, SymbolTex, greek_letter, name_form, numbered_result, prints_as_word,
+    Head, NameForm, SymbolTex, greek_letter, name_form, numbered, numbered_result, prints_as_word,
     typeset_as, typesets,
 };
 mod radical;

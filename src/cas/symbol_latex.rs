@@ -46,13 +46,16 @@ pub(super) fn scene_typst(s: &str) -> Option<String> {
 /// A numbered result of a step the scene typesets (`acc_2` of a step `acc` with `tex = "a"`):
 /// the step's own typesetting and the number, which prints as its subscript (a₂).
 pub fn numbered_result(s: &str) -> Option<(SymbolTex, &str)> {
-    let (base, k) = s.rsplit_once('_')?;
-    if k.is_empty() || !k.chars().all(|c| c.is_ascii_digit()) {
-        return None;
-    }
+    let (base, k) = numbered(s)?;
     TYPESET
         .with(|t| t.borrow().get(base).cloned())
         .map(|tex| (tex, k))
+}
+
+/// A name and its number, for a name of the form `step_k` (`acc_2` is `acc` and `2`).
+pub fn numbered(s: &str) -> Option<(&str, &str)> {
+    s.rsplit_once('_')
+        .filter(|(_, k)| !k.is_empty() && k.chars().all(|c| c.is_ascii_digit()))
 }
 
 /// Greek letters by their LaTeX names, as LaTeX sets them (`phi` is ϕ, `varphi` φ).
@@ -194,11 +197,7 @@ pub fn prints_as_word(s: &str, own: &dyn Fn(&str) -> bool) -> bool {
     if own(s) {
         return false;
     }
-    if let Some((base, k)) = s.rsplit_once('_')
-        && !k.is_empty()
-        && k.chars().all(|c| c.is_ascii_digit())
-        && own(base)
-    {
+    if numbered(s).is_some_and(|(base, _)| own(base)) {
         return false;
     }
     match name_form(s) {

@@ -358,9 +358,7 @@ pub fn symbol(s: &str, named: Named<'_>) -> Vec<Node> {
         return nodes;
     }
     // A numbered result of a step the scene typesets: `acc_2` of `tex = "a"` is a₂.
-    if let Some((base, k)) = s.rsplit_once('_')
-        && !k.is_empty()
-        && k.chars().all(|c| c.is_ascii_digit())
+    if let Some((base, k)) = crate::cas::numbered(s)
         && let Some(nodes) = SCENE.with(|t| t.borrow().get(base).cloned())
     {
         let mut out = if nodes.len() == 1 {

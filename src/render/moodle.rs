@@ -180,7 +180,7 @@ pub fn tolerance(relative: f64, numbers: &[f64]) -> f64 {
 /// shown as written.
 fn label(spec: &crate::scene::Answer) -> String {
     if let Some(words) = &spec.label {
-        return super::problems::capitalised(words);
+        return crate::base::format::capitalised(words);
     }
     let Some(name) = spec.bare_quantity() else {
         return spec.written.clone();

@@ -298,18 +298,9 @@ pub fn answer_order(name: &str) -> Option<&'static str> {
 /// An answer's label as HTML: the author's words, a bare quantity's own, or the expression.
 fn spec_label(a: &crate::scene::Answer) -> Result<String, RenderError> {
     match (&a.label, a.bare_quantity()) {
-        (Some(words), _) => super::author_html(&capitalised(words)),
+        (Some(words), _) => super::author_html(&crate::base::format::capitalised(words)),
         (None, Some(q)) => answer_label(q),
         (None, None) => math::inline(&a.value.to_tex()),
-    }
-}
-
-/// The first letter in capitals: a label heads its row.
-pub fn capitalised(s: &str) -> String {
-    let mut c = s.chars();
-    match c.next() {
-        Some(f) => f.to_uppercase().chain(c).collect(),
-        None => String::new(),
     }
 }
 

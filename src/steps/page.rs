@@ -301,7 +301,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                 let line = if by_symbol {
                     format!("{title}: {what}")
                 } else {
-                    cited(capitalised(&what))
+                    cited(crate::base::format::capitalised(&what))
                 };
                 Step::note(
                     &line,
@@ -315,13 +315,6 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
             })
             .collect(),
     }
-}
-
-/// A sentence's words with a capital first.
-fn capitalised(s: &str) -> String {
-    let mut c = s.chars();
-    c.next()
-        .map_or_else(String::new, |f| f.to_uppercase().chain(c).collect())
 }
 
 /// The step's reason, and after it the roots set aside as real for no values of the symbols

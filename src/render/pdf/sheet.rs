@@ -4,10 +4,11 @@
 //! paper (from a roster) has their name and ID at the top of every page.
 
 use super::markup::{Markup, formula, said_equation, symbol};
+use crate::base::format::capitalised;
 use crate::document::{Problem, Sheet, SheetProblem, Variant};
 use crate::render::RenderError;
 use crate::render::problems::Recall;
-use crate::render::problems::{KEY_FIGURES, ROUNDED_FIGURES, answer_words, capitalised};
+use crate::render::problems::{KEY_FIGURES, ROUNDED_FIGURES, answer_words};
 
 use crate::scene::roster::Student;
 
