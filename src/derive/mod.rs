@@ -64,6 +64,9 @@ pub struct Step {
     /// the instructor's handout shows it, the student's leaves it out.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub second_route: bool,
+    /// For an author's step: the result this line states, which the build checks it shows.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stands_for: Option<step_names::StandsFor>,
 }
 
 /// A step's reason, with the citation key a scene may map to its notes' equations.
@@ -119,6 +122,15 @@ impl Step {
             author: None,
             exact: None,
             second_route: false,
+            stands_for: None,
+        }
+    }
+
+    /// The line as a statement of the result `s` (see [`step_names::StandsFor`]).
+    pub fn standing_for(self, s: step_names::StandsFor) -> Step {
+        Step {
+            stands_for: Some(s),
+            ..self
         }
     }
 

@@ -6,7 +6,7 @@
 use super::Derivation;
 use super::algebra::{Env, Value, evaluate};
 pub use super::solve::equation_with;
-pub use super::step_result::{Stability, Stable, StateStability, StepResult};
+pub use super::step_result::{Stability, Stable, Stands, StandsFor, StateStability, StepResult};
 use crate::cas::Expr;
 use crate::scene::{AuthorStep, Operation, Scene};
 use std::collections::BTreeMap;

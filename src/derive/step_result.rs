@@ -185,4 +185,45 @@ impl StepResult {
                 .unwrap_or_default(),
         }
     }
+
+    /// What a printed line that stands for `s` must show (see [`StandsFor`]).
+    pub fn stood_for(&self, step: &str, s: &StandsFor) -> Option<Stands> {
+        match (s, self) {
+            (StandsFor::Equation(q), StepResult::Equations(eqs)) => eqs
+                .iter()
+                .find(|(c, _)| c == q)
+                .map(|(_, e)| Stands::Residual(e.clone())),
+            (StandsFor::Result(name), StepResult::NumericModes { frequencies, .. }) => frequencies
+                .iter()
+                .enumerate()
+                .find(|(k, _)| mode_name(step, *k) == *name)
+                .map(|(_, w)| Stands::Number(*w)),
+            (StandsFor::Result(name), _) => self
+                .values(step)
+                .into_iter()
+                .find(|(n, _)| n == name)
+                .map(|(_, e)| Stands::Value(e)),
+            (StandsFor::Equation(_), _) => None,
+        }
+    }
+}
+
+/// What one printed line of an author's step states, by the name the derivation gives it: set
+/// where the line is made (`steps/page.rs`), so that the build can read the line back, after
+/// every later change of form, and check it against the result (`render/guard.rs`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub enum StandsFor {
+    /// `symbol = value`: the result of that name (the step's own, or its k-th: `Omega_2`).
+    Result(String),
+    /// `… = 0`: the equation of motion of that coordinate.
+    Equation(String),
+}
+
+/// What a printed line must show: an exact value, a number to its printed figures, or an
+/// equation whose residual is in proportion to this one.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stands {
+    Value(Expr),
+    Number(f64),
+    Residual(Expr),
 }

@@ -47,6 +47,9 @@ pub struct Page {
     pub coordinates: Vec<(String, String)>,
     /// The declared units of symbols and coordinates, by name, as written.
     pub units: std::collections::BTreeMap<String, String>,
+    /// The names that take either sign (coordinates, their rates, negative values), for the
+    /// random points at which the build checks what the page shows.
+    pub signed: std::collections::BTreeSet<String>,
     /// How the scene typesets its names (name -> LaTeX), where it says.
     pub tex: std::collections::BTreeMap<String, String>,
     /// The scene's abbreviations (`lambda = M/(2*pi*R)`), which its claims and steps use.
@@ -107,6 +110,11 @@ pub struct Step {
     /// A built-in step that checks an earlier one by another route: the student's handout
     /// leaves it out.
     pub second_route: bool,
+    /// For an author's step: what this line must show, which the build reads back and checks
+    /// (`render/guard.rs`).
+    pub stands_for: Option<crate::derive::step_names::Stands>,
+    /// The line of the author's step in the scene file (0 for a built-in step).
+    pub line: usize,
 }
 
 impl Step {
@@ -291,6 +299,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect(),
         tex: s.tex.clone(),
+        signed: s.signed_names(),
         units: s
             .units
             .iter()
@@ -323,6 +332,15 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
                     statement: st.statement.clone(),
                     exact: st.exact.clone(),
                     second_route: st.second_route,
+                    line: author.map_or(0, |k| s.steps[k].line),
+                    stands_for: match (&st.author, &st.stands_for) {
+                        (Some(name), Some(s)) => r
+                            .derivation
+                            .named
+                            .get(name)
+                            .and_then(|result| result.stood_for(name, s)),
+                        _ => None,
+                    },
                     why: st.why.clone(),
                     key: st.cite.clone(),
                     citation: st.citation(&s.cite).map(str::to_string),

@@ -16,7 +16,10 @@ pub struct Quantity {
     /// value` under no heading of its own. `None` for the catalogue's quantities, which the
     /// page heads with their names in words ("Inertia tensor").
     pub symbol: Option<Expr>,
+    /// The value in the form the page prints it.
     pub value: Value,
+    /// The value as derived, which the build checks `value` shows (`render/guard.rs`).
+    pub derived: Value,
     /// Each entry at the scene's values, row-major (`None` where a symbol has no value).
     pub numbers: Vec<Option<f64>>,
     /// The value at the scene's numbers, when that says something the exact form does not.
@@ -127,6 +130,7 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
                 .map(|e| eval_at(e, values).ok())
                 .collect(),
             at: at_numbers(&v, values),
+            derived: v,
             value: shown,
             is_result: name != quantity::INTEGRAND && name != quantity::POSITION,
         })

@@ -47,6 +47,8 @@ fn a_cited_step_gives_its_reason_after_the_citation() {
         claims: Vec::new(),
         exact: None,
         second_route: false,
+        stands_for: None,
+        line: 0,
     };
     assert_eq!(step.why_cited().to_text(), "eq (51): expand");
     let uncited = Step {

@@ -49,11 +49,30 @@ pub fn read_back(nodes: &[Node], names: &Names) -> Result<Expr, ReadBackError> {
     Reader { names }.row(nodes)
 }
 
+/// A printed formula's sides at its top-level relations (`x = a`, `Ω₂ ≈ 5.2`): each side with
+/// the relation before it, the first with none.
+pub fn sides(nodes: &[Node]) -> Vec<(Option<String>, &[Node])> {
+    let mut out = Vec::new();
+    let (mut start, mut relation) = (0, None);
+    for (i, n) in nodes.iter().enumerate() {
+        if let Node::Atom(Content::Relation { content, .. }) = n {
+            out.push((relation.take(), &nodes[start..i]));
+            relation = Some(super::latex::relation_text(content));
+            start = i + 1;
+        }
+    }
+    out.push((relation, &nodes[start..]));
+    out
+}
+
 enum Token {
     Term(Expr),
     Plus,
     Minus,
     Times,
+    /// `×`: between numbers a product (2.5 × 10⁻⁶), between vectors a cross product, which
+    /// the reader does not read.
+    Cross,
     Over,
 }
 
@@ -78,7 +97,8 @@ impl Reader<'_> {
                 Node::Atom(Content::BinaryOp { content, .. }) => tokens.push(match content {
                     '+' => Token::Plus,
                     '−' | '-' => Token::Minus,
-                    '⋅' | '×' | '*' => Token::Times,
+                    '⋅' | '*' => Token::Times,
+                    '×' => Token::Cross,
                     '/' => Token::Over,
                     _ => return Err(ReadBackError::Unreadable("an operator")),
                 }),
@@ -240,6 +260,11 @@ fn function_name(printed: &str) -> String {
     }
 }
 
+/// A number, or a power of numbers (10⁻⁶).
+fn numeric(e: &Expr) -> bool {
+    e.symbols().is_empty()
+}
+
 /// Terms and signs as a sum of products: side by side or `⋅` multiplies, `/` divides the
 /// product so far by the next factor, a sign starts a term.
 fn sum(tokens: Vec<Token>) -> Result<Expr, ReadBackError> {
@@ -247,6 +272,7 @@ fn sum(tokens: Vec<Token>) -> Result<Expr, ReadBackError> {
     let mut product: Vec<Expr> = Vec::new();
     let mut negative = false;
     let mut divide = false;
+    let mut crossed = false;
     let mut wants_term = true;
     let close = |product: &mut Vec<Expr>, negative: bool, terms: &mut Vec<Expr>| {
         if product.is_empty() {
@@ -258,6 +284,9 @@ fn sum(tokens: Vec<Token>) -> Result<Expr, ReadBackError> {
     for t in tokens {
         match t {
             Token::Term(e) => {
+                if std::mem::take(&mut crossed) && !(numeric(&e) && product.iter().all(numeric)) {
+                    return Err(ReadBackError::Unreadable("a cross product"));
+                }
                 let e = if divide {
                     Expr::pow(e, Expr::int(-1))
                 } else {
@@ -277,11 +306,12 @@ fn sum(tokens: Vec<Token>) -> Result<Expr, ReadBackError> {
                 }
                 wants_term = true;
             }
-            Token::Times | Token::Over => {
+            Token::Times | Token::Cross | Token::Over => {
                 if wants_term {
                     return Err(ReadBackError::Incomplete);
                 }
                 divide = matches!(t, Token::Over);
+                crossed = matches!(t, Token::Cross);
                 wants_term = true;
             }
         }

@@ -1,6 +1,7 @@
 //! A claim of the notes as the templates show it: its statement, the notes' side and the
 //! derived side as MathML, and whether the derived side is worth showing beside an agreement.
 
+use super::guard::Guard;
 use super::{ClaimView, RenderError, author_html, math, number, prose_html};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
@@ -8,7 +9,10 @@ use crate::notation::{Tex, linebreak};
 use crate::scene::Verdict;
 
 /// A claim as the templates show it: its statement and its formulas as MathML.
-pub(super) fn claim_view(c: &crate::verify::ClaimResult) -> Result<ClaimView, RenderError> {
+pub(super) fn claim_view(
+    c: &crate::verify::ClaimResult,
+    guard: &mut Guard,
+) -> Result<ClaimView, RenderError> {
     let render = |e: Option<&crate::cas::Expr>| {
         e.map(|e| math::inline(&e.to_tex_named(&quantity_symbol)))
             .transpose()
@@ -34,6 +38,14 @@ pub(super) fn claim_view(c: &crate::verify::ClaimResult) -> Result<ClaimView, Re
             Some(tex) => math::width(tex) > (2.0 * notes_width).max(linebreak::PHONE),
             None => false,
         };
+    // Each side read back and checked to be what it prints (the notes' formula as the scene
+    // writes it; the derived value), the rounded decimal aside.
+    if let (Some(tex), Some(e)) = (&notes_tex, &c.notes) {
+        guard.printed(tex, e, c.line)?;
+    }
+    if let (Some(tex), Some(Value::Scalar(e)), None) = (&derived_tex, &c.derived, &c.precision) {
+        guard.printed(tex, e, c.line)?;
+    }
     let mut derived = match &derived_tex {
         Some(tex) if !derived_equal && !same => math::inline(tex)?,
         _ => String::new(),

@@ -4,6 +4,9 @@
 //! in memory: no file I/O here.
 
 mod claim_view;
+mod guard;
+#[cfg(test)]
+mod guard_tests;
 pub mod handout;
 pub mod html;
 pub mod json;
@@ -116,6 +119,10 @@ pub struct FigureView {
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PageView {
+    /// How many of its formulas the build's guard read back and checked, and could not read
+    /// (in this build; none for a page recalled from the cache, checked when it was made).
+    #[serde(skip)]
+    pub guarded: guard::Counts,
     pub id: String,
     pub title: String,
     /// The title as HTML: its `$…$` mathematics as MathML.
@@ -167,6 +174,20 @@ pub enum RenderError {
     /// Two of the site's files would have one name (one would silently replace the other).
     #[error("two files of the site would both be `{}`: rename a scene or a lecture", path.display())]
     Collision { path: PathBuf },
+    /// A formula the page would show that is not the result it stands for: mechbook's bug,
+    /// caught before anything is written (`guard.rs`).
+    #[error(
+        "line {line}: mechbook would print `{printed}`, which reads back as {read}, for the \
+         derived result {result} (they differ by {by:.1e} at random points); this is a bug in \
+         mechbook's printing, not in the scene: please report it with this scene"
+    )]
+    Misprinted {
+        line: usize,
+        printed: String,
+        read: String,
+        result: String,
+        by: f64,
+    },
     /// Any of the above, in one scene's page.
     #[error("{}: {error}", path.display())]
     InScene {
@@ -322,13 +343,18 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
 }
 
 fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
+    let mut guard = guard::Guard::for_page(page);
     let steps = page
         .steps
         .iter()
         .map(|st| {
+            let tex = st.statement.to_tex();
+            if let Some(stands) = &st.stands_for {
+                guard.step_line(&tex, stands, st.line)?;
+            }
             Ok(StepView {
                 title: author_html(&st.title)?,
-                math: math::block(&st.statement.to_tex())?,
+                math: math::block(&tex)?,
                 why: prose_html(&st.why_cited())?,
                 at: String::new(),
                 check: st.check.as_ref().map(check_text).unwrap_or_default(),
@@ -341,7 +367,13 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             true => Some(StepView {
                 title: result_heading(q),
                 math: match &q.symbol {
-                    Some(symbol) => math::block(&result_equation(symbol, &q.value).to_tex())?,
+                    Some(symbol) => {
+                        let tex = result_equation(symbol, &q.value).to_tex();
+                        if let Value::Scalar(derived) = &q.derived {
+                            guard.printed(&tex, derived, page.line)?;
+                        }
+                        math::block(&tex)?
+                    }
                     None => value_math(&q.value)?,
                 },
                 why: String::new(),
@@ -401,9 +433,10 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
     let claims = page
         .claims
         .iter()
-        .map(claim_view::claim_view)
+        .map(|c| claim_view::claim_view(c, &mut guard))
         .collect::<Result<_, RenderError>>()?;
     Ok(PageView {
+        guarded: guard.counts,
         id: page.id.clone(),
         title: crate::model::prose::plain(&page.title),
         title_html: author_html(&page.title)?,

@@ -235,18 +235,27 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
             .unit
             .as_ref()
             .map_or(String::new(), |u| format!(" {}", unit_html(&u.text)));
+        let (exact, figures) = match a.rounded {
+            true => (
+                decimals(&a.exact, &a.exact_numbers, ROUNDED_FIGURES).to_tex(),
+                Some(ROUNDED_FIGURES),
+            ),
+            false => (a.shown_or_exact().to_tex(), None),
+        };
+        let decimal = decimals(&a.exact, &a.exact_numbers, KEY_FIGURES).to_tex();
+        // Each column read back: the number a grader reads is the variant's answer.
+        if let [value] = a.exact_numbers.as_slice() {
+            super::guard::printed_number(&exact, *value, figures, spec.line)?;
+            super::guard::printed_number(&decimal, *value, Some(KEY_FIGURES), spec.line)?;
+        }
         answers.push(KeyAnswer {
             label: spec_label(spec)?,
-            exact: if a.rounded {
-                let rounded = decimals(&a.exact, &a.exact_numbers, ROUNDED_FIGURES);
-                format!("≈ {}{unit}", math::inline(&rounded.to_tex())?)
-            } else {
-                format!("{}{unit}", math::inline(&a.shown_or_exact().to_tex())?)
-            },
-            decimal: format!(
-                "{}{unit}",
-                math::inline(&decimals(&a.exact, &a.exact_numbers, KEY_FIGURES).to_tex())?
+            exact: format!(
+                "{}{}{unit}",
+                if a.rounded { "≈ " } else { "" },
+                math::inline(&exact)?
             ),
+            decimal: format!("{}{unit}", math::inline(&decimal)?),
         });
     }
     Ok(KeyProblem {

@@ -3,7 +3,7 @@
 
 use crate::cas::Expr;
 use crate::derive::Step;
-use crate::derive::step_names::{Stable, StepResult};
+use crate::derive::step_names::{Stable, StandsFor, StepResult};
 use crate::model::prose::Prose;
 use crate::notation::Formula;
 use crate::scene::{AuthorStep, Operation, Scene, mode_name};
@@ -73,8 +73,11 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
         step.op.heading().to_string()
     });
     let named = |e: &Expr| Formula::equation(Formula::Expr(Expr::sym(&step.name)), e.clone());
+    // What each line states, by the derivation's name for it: the build reads it back.
+    let own = || StandsFor::Result(step.name.clone());
+    let kth = |k: usize| StandsFor::Result(mode_name(&step.name, k));
     match result {
-        StepResult::Expr(e) => vec![Step::note(&title, named(e), why)],
+        StepResult::Expr(e) => vec![Step::note(&title, named(e), why).standing_for(own())],
         StepResult::Conserved { value, conserved } => {
             let of = match &step.op {
                 Operation::Momentum { coordinate, .. } => coordinate.as_str(),
@@ -87,7 +90,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
             };
             let verdict = Prose::default().text(verdict).expr(&Expr::sym(of));
             let why = with_reason(step, &why, verdict);
-            vec![Step::note(&title, named(value), why)]
+            vec![Step::note(&title, named(value), why).standing_for(own())]
         }
         StepResult::Equilibria {
             coordinate,
@@ -110,6 +113,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                         Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
                         if k + 1 == n { last_why.clone() } else { why.clone() },
                     )
+                    .standing_for(kth(k))
                 })
                 .collect()
         }
@@ -117,7 +121,8 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
             let omega2 = Formula::Expr(Expr::pow(Expr::sym("Omega"), Expr::int(2)));
             cases
                 .iter()
-                .map(|c| {
+                .enumerate()
+                .map(|(k, c)| {
                     let verdict = match c.verdict {
                         Stable::Always => "stable for all values",
                         Stable::Never => "unstable for all values",
@@ -135,18 +140,21 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                         ))
                         .text(&format!(": {verdict}"));
                     let why = with_reason(step, &why, at);
-                    Step::note(
-                        &title,
-                        match &c.omega_squared {
-                            Some(w2) => Formula::equation(omega2.clone(), w2.clone()),
-                            None => Formula::Row(vec![
+                    match &c.omega_squared {
+                        Some(w2) => {
+                            let line = Formula::equation(omega2.clone(), w2.clone());
+                            Step::note(&title, line, why).standing_for(kth(k))
+                        }
+                        None => Step::note(
+                            &title,
+                            Formula::Row(vec![
                                 omega2.clone(),
                                 Formula::Op(crate::notation::Op::Equals),
                                 Formula::Text("?".into()),
                             ]),
-                        },
-                        why,
-                    )
+                            why,
+                        ),
+                    }
                 })
                 .collect()
         }
@@ -224,6 +232,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     Formula::equation(Formula::Expr(Expr::sym(unknown)), value.clone()),
                     why.clone(),
                 )
+                .standing_for(kth(k))
             })
             .collect(),
         StepResult::Modes(values) | StepResult::Roots(values) => values
@@ -240,6 +249,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     Formula::equation(Formula::Expr(sub), w.clone()),
                     why.clone(),
                 )
+                .standing_for(kth(k))
             })
             .collect(),
         // Ω_k ≈ its value: no closed form, so a number, with the reason beside it.
@@ -263,11 +273,13 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     ]),
                     with_reason(step, &why, added),
                 )
+                .standing_for(kth(k))
             })
             .collect(),
         StepResult::Equations(eqs) => eqs
             .iter()
-            .map(|(q, e)| {
+            .map(|(coordinate, e)| {
+                let q = coordinate;
                 // A constraint on the coordinates is differentiated twice to reach the
                 // accelerations, one on the rates (rolling) once.
                 let constraint = match &step.op {
@@ -312,6 +324,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     ]),
                     why.clone(),
                 )
+                .standing_for(StandsFor::Equation(coordinate.clone()))
             })
             .collect(),
     }

@@ -556,11 +556,13 @@ pub(crate) mod solve;
 pub(crate) mod step_check;
 pub mod variants;
 pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
+pub use printed::{ShownDiffers, shown_is_equation, shown_is_result};
 pub use regressions::check_regressions;
 pub use rounding::round_to_figures;
 use rounding::rounded_agreement;
 pub(crate) mod random_points;
-use random_points::{NUMERICALLY_ZERO, SAMPLE_FROM, numerically_zero, signed_names};
+pub(crate) use random_points::NUMERICALLY_ZERO;
+use random_points::{SAMPLE_FROM, numerically_zero, signed_names};
 pub use step_check::StepCheck;
 
 #[cfg(test)]

@@ -1,12 +1,14 @@
 //! The built-in steps' printed forms against their exact results at random points: the second
-//! route beside the engine's proof (`derive::present`) for each form a page prints.
+//! route beside the engine's proof (`derive::present`) for each form a page prints; and the
+//! build's guard, which takes what a page shows, read back from its printed tree, for the result
+//! it stands for (`render/guard.rs`).
 
-use super::random_points::{NUMERICALLY_ZERO, largest_differences};
+use super::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, largest_differences};
 use super::{CONFIRMATION_POINTS, StepCheck};
 use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::present::scalars;
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// One check for each built-in step printed in another form than derived, in the steps' order:
 /// every symbol drawn with either sign, as the presentation assumed.
@@ -43,6 +45,99 @@ pub fn check_printed_forms(d: &Derivation, seed: u64) -> Vec<StepCheck> {
             check
         })
         .collect()
+}
+
+/// Whether a formula a page shows, read back from its printed tree, is the result it stands
+/// for: equal at random points (every symbol drawn as the presentation assumed, the `signed`
+/// ones with either sign), else, where the points differ or say nothing, by the engine over
+/// positive symbols. `Err` carries the largest relative difference found.
+pub fn shown_is_result(
+    shown: &Expr,
+    result: &Expr,
+    signed: &BTreeSet<String>,
+) -> Result<(), ShownDiffers> {
+    let diff = Expr::minus(shown.clone(), result.clone());
+    let at_points = largest_differences(
+        std::slice::from_ref(&diff),
+        std::slice::from_ref(result),
+        1,
+        signed,
+    )
+    .ok()
+    .and_then(|d| d.first().copied())
+    .filter(|d| d.is_finite());
+    if at_points.is_some_and(|d| d <= NUMERICALLY_ZERO) {
+        return Ok(());
+    }
+    // The engine settles what the points cannot: a form defined nowhere in [0.4, 1.4), or one
+    // equal only where the presentation took a symbol positive.
+    let proved = crate::cas::is_zero_over_positive(vec![diff], signed.clone())
+        .is_ok_and(|z| z.first() == Some(&true));
+    match proved {
+        true => Ok(()),
+        false => Err(ShownDiffers {
+            by: at_points.unwrap_or(f64::NAN),
+        }),
+    }
+}
+
+/// A shown formula that is not its result, and by how much at random points (NaN where no
+/// point was defined).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShownDiffers {
+    pub by: f64,
+}
+
+/// Whether an equation a page shows, `shown = 0` read back, is the equation of motion whose
+/// residual is `residual`: the two in proportion, by a factor free of the `varying` names (the
+/// coordinates and their rates), as a page may divide out a mass or multiply out a denominator.
+/// The ratio is compared at points that share every other symbol's value.
+pub fn shown_is_equation(
+    shown: &Expr,
+    residual: &Expr,
+    varying: &BTreeSet<String>,
+) -> Result<(), ShownDiffers> {
+    let mut rng = crate::base::rng::Rng::new(1);
+    let mut names: Vec<String> = shown
+        .symbols()
+        .into_iter()
+        .chain(residual.symbols())
+        .collect();
+    names.sort();
+    names.dedup();
+    let mut fixed = BTreeMap::new();
+    for n in names.iter().filter(|n| !varying.contains(*n)) {
+        fixed.insert(n.clone(), SAMPLE_FROM + rng.uniform());
+    }
+    let mut ratios = Vec::new();
+    for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
+        if ratios.len() == CONFIRMATION_POINTS {
+            break;
+        }
+        let mut point = fixed.clone();
+        for n in names.iter().filter(|n| varying.contains(*n)) {
+            // Either sign: a coordinate or rate is not positive.
+            point.insert(n.clone(), 2.0 * rng.uniform() - 1.0);
+        }
+        let env = |s: &str| point.get(s).copied().filter(|_| s != "pi");
+        let (Ok(a), Ok(b)) = (shown.eval(&env), residual.eval(&env)) else {
+            continue;
+        };
+        if a.is_finite() && b.is_finite() && b.abs() > 1e-6 {
+            ratios.push(a / b);
+        }
+    }
+    let Some(first) = ratios.first().copied().filter(|r| *r != 0.0) else {
+        return Err(ShownDiffers { by: f64::NAN });
+    };
+    let by = ratios
+        .iter()
+        .map(|r| (r - first).abs() / first.abs())
+        .fold(0.0, f64::max);
+    match by <= NUMERICALLY_ZERO {
+        true => Ok(()),
+        false => Err(ShownDiffers { by }),
+    }
 }
 
 #[cfg(test)]

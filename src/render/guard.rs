@@ -1,0 +1,217 @@
+//! The build's guard: before a page is set, each formula it shows for a result is read back
+//! from its printed tree (`notation::read_back`, the tree MathML, the spoken form and the
+//! handouts are made from) into an expression, and checked to be that result
+//! (`verify::shown_is_result`: random points, then the engine). A page that would show what was
+//! not derived fails the build at the scene's line, as mechbook's bug, never a published page.
+
+use super::RenderError;
+use crate::cas::Expr;
+use crate::derive::step_names::Stands;
+use crate::document::Page;
+use crate::model::value::Value;
+use crate::notation::Tex;
+use crate::notation::read_back::{Names, read_back, sides};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The page's reader: the names its formulas may print, what the results among them stand
+/// for, and how many formulas it read.
+pub struct Guard<'a> {
+    page: &'a Page,
+    /// The scene's own names (symbols, coordinates and their rates, definitions, `t`, `π`).
+    names: Vec<String>,
+    /// Each result a formula may name (a step's, `Omega_2`), as derived.
+    results: BTreeMap<String, Expr>,
+    varying: BTreeSet<String>,
+    pub counts: Counts,
+}
+
+/// How many formulas the guard read back and found equal, and how many it could not read (a
+/// vector, a matrix, an integral, a name it does not know).
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+pub struct Counts {
+    pub checked: usize,
+    pub unread: usize,
+}
+
+impl<'a> Guard<'a> {
+    /// The guard of one page, under the scene's typesetting in force.
+    pub fn for_page(page: &'a Page) -> Guard<'a> {
+        let coordinates = page.coordinates.iter().map(|(q, _)| q);
+        let varying: BTreeSet<String> = coordinates
+            .clone()
+            .flat_map(|q| [q.clone(), format!("{q}'"), format!("{q}''")])
+            .chain(["t".to_string()])
+            .collect();
+        let mut names: Vec<String> = page.symbols.iter().map(|(s, _)| s.clone()).collect();
+        names.extend(varying.iter().cloned());
+        names.extend(page.definitions.iter().map(|(d, _)| d.clone()));
+        names.push("pi".into());
+        let results = page
+            .quantities
+            .iter()
+            .filter_map(|q| match &q.derived {
+                Value::Scalar(e) if q.symbol.is_some() => Some((q.name.clone(), e.clone())),
+                _ => None,
+            })
+            .collect();
+        Guard {
+            page,
+            names,
+            results,
+            varying,
+            counts: Counts::default(),
+        }
+    }
+
+    /// The expression a printed piece shows: the result's own names first (where a step's
+    /// symbol prints as a scene's, `L`, the result's reading wins), then the scene's, then the
+    /// other results', each put in by its derived value. `None` where it cannot be read.
+    fn shown(&self, nodes: &[crate::notation::Node], of: &[&Expr]) -> Option<Expr> {
+        // A product of vectors prints `⋅` and `×` as a product of numbers does, and a matrix
+        // (𝟙) as a number: only a scalar the random points can evaluate is read.
+        if of.iter().any(|e| !evaluable_scalar(e)) {
+            return None;
+        }
+        let own: Vec<String> = of.iter().flat_map(|e| e.symbols()).collect();
+        let table = Names::new(
+            own.iter()
+                .chain(&self.names)
+                .chain(self.results.keys())
+                .map(String::as_str),
+        );
+        let e = read_back(nodes, &table).ok()?;
+        Some(e.substitute(&|n| {
+            (!own.iter().any(|o| o == n))
+                .then(|| self.results.get(n).cloned())
+                .flatten()
+        }))
+    }
+
+    /// One line of an author's step against what it stands for. `line` is the step's line in
+    /// the scene.
+    pub fn step_line(
+        &mut self,
+        tex: &Tex,
+        stands: &Stands,
+        line: usize,
+    ) -> Result<(), RenderError> {
+        let parts = sides(&tex.nodes);
+        let (relation, last) = parts.last().cloned().unwrap_or((None, &[]));
+        let verdict = match stands {
+            Stands::Value(result) => self.shown(last, &[result]).map(|shown| {
+                crate::verify::shown_is_result(&shown, result, &self.page.signed)
+                    .map_err(|d| (shown, Some(result.clone()), d.by))
+            }),
+            // Printed to six figures: within half a unit of the sixth.
+            Stands::Number(w) => self
+                .shown(last, &[])
+                .and_then(|e| e.eval(&|_| None).ok())
+                .filter(|_| matches!(relation.as_deref(), Some("≈" | "=")))
+                .map(|x| {
+                    let by = (x - w).abs() / w.abs().max(f64::MIN_POSITIVE);
+                    match by <= 5e-6 {
+                        true => Ok(()),
+                        false => Err((Expr::numeral(&x.to_string()), None, by)),
+                    }
+                }),
+            Stands::Residual(residual) => match parts.as_slice() {
+                [(None, lhs), (Some(_), rhs)] => self
+                    .shown(lhs, &[residual])
+                    .zip(self.shown(rhs, &[residual]))
+                    .map(|(a, b)| {
+                        let shown = Expr::minus(a, b);
+                        crate::verify::shown_is_equation(&shown, residual, &self.varying)
+                            .map_err(|d| (shown, Some(residual.clone()), d.by))
+                    }),
+                _ => None,
+            },
+        };
+        let Some(verdict) = verdict else {
+            self.counts.unread += 1;
+            return Ok(());
+        };
+        self.counts.checked += 1;
+        verdict.map_err(|(shown, result, by)| RenderError::Misprinted {
+            line,
+            printed: tex.source.clone(),
+            read: shown.to_text(),
+            result: result.map_or_else(|| format!("{stands:?}"), |r| r.to_text()),
+            by,
+        })
+    }
+
+    /// A formula printed for `result` (a claim's side, a result's value): the printer's own
+    /// round trip, which a wrong printer ("3 0.4⁴" for 3·0.4⁴) fails.
+    pub fn printed(&mut self, tex: &Tex, result: &Expr, line: usize) -> Result<(), RenderError> {
+        let parts = sides(&tex.nodes);
+        let Some(shown) = parts
+            .last()
+            .and_then(|(_, last)| self.shown(last, &[result]))
+        else {
+            self.counts.unread += 1;
+            return Ok(());
+        };
+        self.counts.checked += 1;
+        crate::verify::shown_is_result(&shown, result, &self.page.signed).map_err(|d| {
+            RenderError::Misprinted {
+                line,
+                printed: tex.source.clone(),
+                read: shown.to_text(),
+                result: result.to_text(),
+                by: d.by,
+            }
+        })
+    }
+}
+
+/// A number a key or a sheet prints for `value` (a variant's answer), read back: exact to
+/// 1e-9, or within half a unit of its last figure where it is rounded to `figures`. `Ok(false)`
+/// where the formula is no scalar the reader reads (a vector's entries).
+pub fn printed_number(
+    tex: &Tex,
+    value: f64,
+    figures: Option<usize>,
+    line: usize,
+) -> Result<bool, RenderError> {
+    let parts = sides(&tex.nodes);
+    let Some(shown) = parts
+        .last()
+        .and_then(|(_, last)| read_back(last, &Names::new(["pi"])).ok())
+    else {
+        return Ok(false);
+    };
+    let Ok(x) = shown.eval(&|_| None) else {
+        return Ok(false);
+    };
+    let scale = value.abs().max(f64::MIN_POSITIVE);
+    let within = match figures {
+        Some(n) => 0.5 * 10f64.powi(1 - n as i32) * 10f64.powi(scale.log10().floor() as i32),
+        None => crate::verify::NUMERICALLY_ZERO * scale.max(1.0),
+    };
+    match (x - value).abs() <= within * (1.0 + 1e-9) {
+        true => Ok(true),
+        false => Err(RenderError::Misprinted {
+            line,
+            printed: tex.source.clone(),
+            read: shown.to_text(),
+            result: value.to_string(),
+            by: (x - value).abs() / scale,
+        }),
+    }
+}
+
+/// Whether a result is a scalar of the functions the random points evaluate (no vector, no
+/// matrix, no `dot` or `cross`).
+fn evaluable_scalar(e: &Expr) -> bool {
+    let mut ok = true;
+    e.walk(&mut |x| {
+        ok &= match x {
+            Expr::Call(f, args) => {
+                args.len() == 1 && ["sin", "cos", "sqrt", "acos", "asin"].contains(&f.as_str())
+            }
+            Expr::List(_) | Expr::Index(..) => false,
+            _ => true,
+        }
+    });
+    ok
+}

@@ -1,0 +1,179 @@
+//! The build's guard made to fail: a page whose line shows another result's form (the list
+//! `gives` once printed Ω₂ in Ω₁'s form), an equation of motion that is not the derived one,
+//! and a printer that drops a times sign ("3 0.4⁴" for 3 ⋅ 0.4⁴) are refused, at the step's
+//! line; the same pages as derived pass.
+
+use super::RenderError;
+use super::guard::printed_number;
+use crate::document::Page;
+use crate::notation::{Formula, Op};
+use crate::scene::Scene;
+use std::path::Path;
+
+/// Two pendulums joined by a spring (issue 69's reproducer), its modes given as a list.
+const COUPLED: &str = r#"id = "coupled"
+title = "Two coupled pendulums"
+notes = { lecture = "1" }
+symbols = { m = "mass", l = "length", g = "gravity", k = "spring constant", t = "time" }
+
+[coordinates]
+phi1 = { meaning = "angle of the first pendulum", unit = "rad" }
+phi2 = { meaning = "angle of the second pendulum", unit = "rad" }
+
+[outputs]
+want = []
+
+[[step]]
+name = "Lag"
+tex = "L"
+be = "m*l^2/2*(phi1'^2 + phi2'^2) + m*g*l*(cos(phi1) + cos(phi2)) - k*l^2/2*(sin(phi1) - sin(phi2))^2"
+why = "the Lagrangian"
+
+[[step]]
+name = "eom"
+lagrange = "Lag"
+why = "the equations"
+
+[[step]]
+name = "small"
+linearise = "eom"
+about = { phi1 = "0", phi2 = "0" }
+why = "small angles"
+
+[[step]]
+name = "Omega"
+frequency = "small"
+gives = ["sqrt(g/l)", "sqrt(g/l + 2*k/m)"]
+why = "the normal modes"
+expect = "agrees"
+
+[numeric]
+values = { m = 0.2, l = 0.5, g = 9.81, k = 0.5 }
+"#;
+
+fn coupled() -> Page {
+    let scene = Scene::parse(COUPLED, Path::new("coupled.toml")).unwrap();
+    let report = crate::pipeline::run_scene(scene, None).unwrap();
+    crate::document::page(&report, None, None)
+}
+
+/// The index of the page's line of the author's step `name` showing `what` in its title.
+fn line_of(page: &Page, name: &str, what: &str) -> usize {
+    page.steps
+        .iter()
+        .position(|s| s.author.as_deref() == Some(name) && s.title.contains(what))
+        .unwrap_or_else(|| panic!("no line `{what}` of {name}"))
+}
+
+fn misprinted_line(result: Result<super::PageView, RenderError>) -> usize {
+    match result {
+        Err(RenderError::Misprinted { line, .. }) => line,
+        Err(other) => panic!("not the guard: {other}"),
+        Ok(_) => panic!("the guard let a wrong line through"),
+    }
+}
+
+#[test]
+fn the_page_as_derived_passes_and_reads_every_step_line() {
+    let page = coupled();
+    let guarded = page.steps.iter().filter(|s| s.stands_for.is_some()).count();
+    // L, two equations of motion, two linearised, two modes.
+    assert_eq!(
+        guarded,
+        7,
+        "{:?}",
+        page.steps.iter().map(|s| &s.title).collect::<Vec<_>>()
+    );
+    let view = super::page_view(&page, false).unwrap();
+    // Each of those lines, and the page's results (L and Ω₁, Ω₂ under the steps).
+    assert_eq!(view.guarded.unread, 0);
+    assert!(view.guarded.checked >= 7 + 3, "{:?}", view.guarded);
+}
+
+/// Ω₂'s line in Ω₁'s form, as a list `gives` once printed it: refused at the step's line.
+#[test]
+fn a_mode_printed_in_another_modes_form_fails_the_build_at_its_line() {
+    let mut page = coupled();
+    let first = line_of(&page, "Omega", "normal mode 1");
+    let second = line_of(&page, "Omega", "normal mode 2");
+    let Formula::Row(one) = page.steps[first].statement.clone() else {
+        panic!("Ω₁'s line is no row");
+    };
+    let Formula::Row(mut two) = page.steps[second].statement.clone() else {
+        panic!("Ω₂'s line is no row");
+    };
+    // Ω₂ = (Ω₁'s value): the left side stays Ω₂, as the page printed it.
+    two[2] = one[2].clone();
+    page.steps[second].statement = Formula::Row(two);
+    let line = misprinted_line(super::page_view(&page, false));
+    // The step's `[[step]]` line, just above its name.
+    let name = COUPLED
+        .lines()
+        .position(|l| l == "name = \"Omega\"")
+        .unwrap();
+    assert_eq!(line, name);
+}
+
+/// An equation of motion with a term's sign turned is not the derived one; the derived one
+/// divided by a mass (a page cancels masses) still is.
+#[test]
+fn an_equation_of_motion_is_read_back_up_to_a_factor_free_of_the_coordinates() {
+    let page = coupled();
+    let eq = line_of(&page, "eom", "of motion of");
+    let Formula::Row(row) = page.steps[eq].statement.clone() else {
+        panic!("no row");
+    };
+    let Formula::Expr(residual) = &row[0] else {
+        panic!("no residual");
+    };
+    let with = |lhs: crate::cas::Expr| {
+        let mut p = page.clone();
+        p.steps[eq].statement = Formula::Row(vec![
+            Formula::Expr(lhs),
+            Formula::Op(Op::Equals),
+            Formula::Number("0".into()),
+        ]);
+        super::page_view(&p, false)
+    };
+    let over_m = crate::cas::Expr::over(residual.clone(), crate::cas::Expr::sym("m"));
+    with(over_m).unwrap();
+    let spring = crate::cas::parse("k*l^2*sin(phi1)").unwrap().expr;
+    let wrong = crate::cas::Expr::add(vec![residual.clone(), spring]);
+    assert!(misprinted_line(with(wrong)) > 0);
+}
+
+/// A printer that drops the times sign between two numbers prints 3 ⋅ 0.4⁴ as "3 0.4⁴", which
+/// a grader reads as 30.4⁴: the key's guard refuses it, and takes the right print.
+#[test]
+fn a_printer_that_drops_a_times_sign_fails_the_keys_guard() {
+    let value = 3.0 * 0.4f64.powi(4);
+    let wrong = Formula::Row(vec![
+        Formula::Number("3".into()),
+        Formula::Sup(
+            Box::new(Formula::Number("0.4".into())),
+            Box::new(Formula::Number("4".into())),
+        ),
+    ]);
+    match printed_number(&wrong.to_tex(), value, None, 12) {
+        Err(RenderError::Misprinted { line, read, by, .. }) => {
+            assert_eq!(line, 12);
+            // Read as a reader reads it: 30.4⁴ = (152/5)⁴, some 11,000 times the answer.
+            assert_eq!(read, "(152/5)^4");
+            assert!(by > 1e4, "{by}");
+        }
+        other => panic!("the guard let `3 0.4⁴` through: {other:?}"),
+    }
+    let right = crate::cas::parse("3*0.4^4").unwrap().expr;
+    assert!(matches!(
+        printed_number(&right.to_tex(), value, None, 12),
+        Ok(true)
+    ));
+    // Rounded to four figures: within half a unit of the fourth, not beyond.
+    let four = Formula::decimal("0.07680");
+    assert!(matches!(
+        printed_number(&four.to_tex(), value, Some(4), 12),
+        Ok(true)
+    ));
+    let off = Formula::decimal("0.07690");
+    assert!(printed_number(&off.to_tex(), value, Some(4), 12).is_err());
+}
