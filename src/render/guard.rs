@@ -164,6 +164,21 @@ impl<'a> Guard<'a> {
     }
 }
 
+/// The result a built-in line ends with (`… = M/(2πR)`), which its last side prints: a scalar
+/// expression after the row's last relation.
+pub fn last_result(f: &crate::notation::Formula) -> Option<&Expr> {
+    use crate::notation::{Formula, Op};
+    match f {
+        Formula::Row(items) => match items.as_slice() {
+            [.., Formula::Op(Op::Equals), Formula::Expr(e)] if !matches!(e, Expr::List(_)) => {
+                Some(e)
+            }
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
 /// A number a key or a sheet prints for `value` (a variant's answer), read back: exact to
 /// 1e-9, or within half a unit of its last figure where it is rounded to `figures`. `Ok(false)`
 /// where the formula is no scalar the reader reads (a vector's entries).

@@ -177,3 +177,84 @@ fn a_printer_that_drops_a_times_sign_fails_the_keys_guard() {
     let off = Formula::decimal("0.07690");
     assert!(printed_number(&off.to_tex(), value, Some(4), 12).is_err());
 }
+
+/// A body's built-in steps (the hoop's integrals and moments) are read back too: the page as
+/// derived passes, and a moment printed twice its value fails.
+#[test]
+fn a_built_in_steps_last_side_is_read_back() {
+    let path = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/lectures/lecture-3-4/06-hoop.toml"
+    ));
+    let report = crate::pipeline::run_scene(Scene::from_file(path).unwrap(), None).unwrap();
+    let page = crate::document::page(&report, None, None);
+    let built_in = page.steps.iter().filter(|s| s.author.is_none()).count();
+    let view = super::page_view(&page, false).unwrap();
+    assert!(
+        view.guarded.checked >= built_in / 2,
+        "{:?} of {built_in}",
+        view.guarded
+    );
+    // The first built-in line whose last side is a scalar result, that result doubled (what
+    // it was derived as kept in `exact`, as a presented line keeps it).
+    let mut wrong = page.clone();
+    let ends_in_a_formula = |f: &Formula| match f {
+        Formula::Row(r) => matches!(r.last(), Some(Formula::Expr(e))
+            if !e.symbols().is_empty() && !matches!(e, crate::cas::Expr::List(_))),
+        _ => false,
+    };
+    let line = wrong
+        .steps
+        .iter_mut()
+        .find(|s| s.author.is_none() && ends_in_a_formula(&s.statement))
+        .expect("a built-in line ending in a formula");
+    line.exact.get_or_insert_with(|| line.statement.clone());
+    let Formula::Row(row) = &mut line.statement else {
+        unreachable!()
+    };
+    let Some(Formula::Expr(e)) = row.last_mut() else {
+        unreachable!()
+    };
+    *e = crate::cas::Expr::mul(vec![crate::cas::Expr::int(2), e.clone()]);
+    assert!(matches!(
+        super::page_view(&wrong, false),
+        Err(RenderError::Misprinted { .. })
+    ));
+}
+
+/// How many formulas the guard reads back on the shipped lectures and `tests/course`, for
+/// docs/performance.md: `cargo test --release --lib guard_counts -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn guard_counts() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for site in ["lectures", "tests/course"] {
+        let mut files = Vec::new();
+        let mut dirs = vec![root.join(site)];
+        while let Some(dir) = dirs.pop() {
+            for entry in std::fs::read_dir(&dir).unwrap().flatten() {
+                let path = entry.path();
+                if path.is_dir() {
+                    dirs.push(path);
+                } else if path.extension().is_some_and(|e| e == "toml")
+                    && path.file_name().is_some_and(|n| n != "mechbook.toml")
+                {
+                    files.push(path);
+                }
+            }
+        }
+        let (mut scenes, mut total) = (0, super::guard::Counts::default());
+        for file in files {
+            let Ok(scene) = Scene::from_file(&file) else {
+                continue;
+            };
+            let report = crate::pipeline::run_scene(scene, None).unwrap();
+            let view = super::page_view(&crate::document::page(&report, None, None), false);
+            let counts = view.unwrap().guarded;
+            scenes += 1;
+            total.checked += counts.checked;
+            total.unread += counts.unread;
+        }
+        eprintln!("{site}: {scenes} scenes, {total:?}");
+    }
+}

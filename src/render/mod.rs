@@ -349,8 +349,16 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         .iter()
         .map(|st| {
             let tex = st.statement.to_tex();
-            if let Some(stands) = &st.stands_for {
-                guard.step_line(&tex, stands, st.line)?;
+            match &st.stands_for {
+                Some(stands) => guard.step_line(&tex, stands, st.line)?,
+                // A built-in step: its last side is the last result it derived.
+                None => {
+                    if let Some(last) =
+                        guard::last_result(st.exact.as_ref().unwrap_or(&st.statement))
+                    {
+                        guard.printed(&tex, last, page.line)?;
+                    }
+                }
             }
             Ok(StepView {
                 title: author_html(&st.title)?,
