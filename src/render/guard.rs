@@ -87,14 +87,21 @@ impl<'a> Guard<'a> {
         }))
     }
 
+    /// One line of the derivation: an author's step's against what it stands for, a built-in
+    /// one's last side against the last result it derived.
+    pub fn step(&mut self, st: &crate::document::Step, tex: &Tex) -> Result<(), RenderError> {
+        match &st.stands_for {
+            Some(stands) => self.step_line(tex, stands, st.line),
+            None => match last_result(st.exact.as_ref().unwrap_or(&st.statement)) {
+                Some(last) => self.printed(tex, last, self.page.line),
+                None => Ok(()),
+            },
+        }
+    }
+
     /// One line of an author's step against what it stands for. `line` is the step's line in
     /// the scene.
-    pub fn step_line(
-        &mut self,
-        tex: &Tex,
-        stands: &Stands,
-        line: usize,
-    ) -> Result<(), RenderError> {
+    fn step_line(&mut self, tex: &Tex, stands: &Stands, line: usize) -> Result<(), RenderError> {
         let parts = sides(&tex.nodes);
         let (relation, last) = parts.last().cloned().unwrap_or((None, &[]));
         let verdict = match stands {

@@ -349,17 +349,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         .iter()
         .map(|st| {
             let tex = st.statement.to_tex();
-            match &st.stands_for {
-                Some(stands) => guard.step_line(&tex, stands, st.line)?,
-                // A built-in step: its last side is the last result it derived.
-                None => {
-                    if let Some(last) =
-                        guard::last_result(st.exact.as_ref().unwrap_or(&st.statement))
-                    {
-                        guard.printed(&tex, last, page.line)?;
-                    }
-                }
-            }
+            guard.step(st, &tex)?;
             Ok(StepView {
                 title: author_html(&st.title)?,
                 math: math::block(&tex)?,
@@ -604,23 +594,4 @@ fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_result_at_the_numbers_prints_six_figures_and_names_its_symbols() {
-        let v = Value::Scalar(Expr::mul(vec![
-            Expr::int(2),
-            Expr::sym("pi"),
-            Expr::sym("R"),
-        ]));
-        let at = At {
-            symbols: vec![("R".into(), 2.0)],
-            numbers: vec![4.0 * std::f64::consts::PI],
-        };
-        let html = at_numbers_html(&v, &at).unwrap();
-        assert!(html.starts_with("at <math"), "{html}");
-        assert!(html.contains("<mi>R</mi>"), "{html}");
-        assert!(html.contains("<mn>12.5664</mn>"), "{html}");
-    }
-}
+mod tests;

@@ -1,0 +1,20 @@
+//! The result at the scene's numbers, as a page prints it.
+
+use super::*;
+
+#[test]
+fn a_result_at_the_numbers_prints_six_figures_and_names_its_symbols() {
+    let v = Value::Scalar(Expr::mul(vec![
+        Expr::int(2),
+        Expr::sym("pi"),
+        Expr::sym("R"),
+    ]));
+    let at = At {
+        symbols: vec![("R".into(), 2.0)],
+        numbers: vec![4.0 * std::f64::consts::PI],
+    };
+    let html = at_numbers_html(&v, &at).unwrap();
+    assert!(html.starts_with("at <math"), "{html}");
+    assert!(html.contains("<mi>R</mi>"), "{html}");
+    assert!(html.contains("<mn>12.5664</mn>"), "{html}");
+}
