@@ -73,7 +73,7 @@ pub fn text_number(s: &str) -> String {
 
 /// A computed value to `digits` significant figures, in plain notation between 1e-4 and 1e6 (no
 /// trailing zeros: 0.5, not 0.500000) and in scientific notation outside: 0.570436, 4.21566,
-/// 1.2e-7 → 1.20e-7 at three figures.
+/// 1.2e-7 at three figures.
 pub fn significant(x: f64, digits: usize) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
@@ -91,7 +91,15 @@ pub fn significant(x: f64, digits: usize) -> String {
             plain
         }
     } else {
-        format!("{x:.prec$e}", prec = digits.saturating_sub(1))
+        // Trailing zeros dropped here too: 3.2e-5, not 3.20000e-5.
+        let sci = format!("{x:.prec$e}", prec = digits.saturating_sub(1));
+        match sci.split_once('e') {
+            Some((mantissa, exponent)) if mantissa.contains('.') => format!(
+                "{}e{exponent}",
+                mantissa.trim_end_matches('0').trim_end_matches('.')
+            ),
+            _ => sci,
+        }
     }
 }
 
@@ -138,7 +146,9 @@ mod tests {
         assert_eq!(significant(0.5704361, 6), "0.570436");
         assert_eq!(significant(4.215662, 6), "4.21566");
         assert_eq!(significant(-18.75, 3), "-18.8");
-        assert_eq!(significant(1.2e-7, 3), "1.20e-7");
+        assert_eq!(significant(1.2e-7, 3), "1.2e-7");
+        assert_eq!(significant(3.2e-5, 6), "3.2e-5");
+        assert_eq!(significant(1.0e-14, 2), "1e-14");
         assert_eq!(significant(0.0, 6), "0");
         assert_eq!(significant(0.5, 6), "0.5");
         assert_eq!(significant(1200.0, 3), "1200");

@@ -11,6 +11,7 @@ mod closed_form;
 mod engine;
 mod expr;
 mod factor;
+mod factor_order;
 mod parse;
 mod polynomial;
 mod positive;
@@ -37,6 +38,7 @@ pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
 /// goes, a term's sign, an index chain's axes, a sum's common factor), for the tree printer in
 /// `notation`.
 pub use factor::common_factor;
+pub use factor_order::{Declared, order_factors};
 pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use print::{Prec, index_chain, page_fraction, split_sign};
 pub use radical::pull_squares;
@@ -381,17 +383,19 @@ pub fn roots_over_positive(e: &Expr) -> Result<Expr, CasError> {
 }
 
 /// Each expression in the form a textbook prints (see `present.rs`), proven equal to it by the
-/// engine with every symbol but the `signed` ones positive; an expression with no shorter
-/// proven form is returned as it is.
+/// engine with every symbol but the `signed` ones positive, its products' factors in the
+/// scene's `declared` order (`factor_order.rs`); an expression with no shorter proven form is
+/// returned as it is, its factors ordered.
 pub fn present_all(
     exprs: Vec<Expr>,
     signed: std::collections::BTreeSet<String>,
+    declared: Declared,
 ) -> Result<Vec<Expr>, CasError> {
     run(move || {
         let positive = |s: &str| !signed.contains(s);
         exprs
             .iter()
-            .map(|e| present::present(e, &positive))
+            .map(|e| present::present(e, &positive).map(|f| order_factors(&f, &declared)))
             .collect()
     })
 }

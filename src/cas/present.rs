@@ -662,7 +662,7 @@ mod tests {
         ];
         let signed = ["theta".to_string()].into_iter().collect();
         let exprs: Vec<Expr> = cases.iter().map(|(from, _)| p(from)).collect();
-        let out = present_all(exprs, signed).unwrap();
+        let out = present_all(exprs, signed, Default::default()).unwrap();
         for ((from, to), got) in cases.iter().zip(&out) {
             assert_eq!(got.to_text(), *to, "{from}");
             assert!(

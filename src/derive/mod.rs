@@ -390,7 +390,7 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     if plan.runs(Stage::EarthPrecession) {
         earth::earth_precession(&mut d)?;
     }
-    present::present_builtin_steps(&mut d)?;
+    present::present_builtin_steps(&mut d, &scene.declared)?;
     Ok(d)
 }
 

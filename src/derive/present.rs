@@ -11,7 +11,10 @@ use crate::notation::{Formula, Op};
 use std::collections::BTreeSet;
 
 /// Each built-in step's statement in its printed form; the exact one kept where they differ.
-pub fn present_builtin_steps(d: &mut Derivation) -> Result<(), DeriveError> {
+pub fn present_builtin_steps(
+    d: &mut Derivation,
+    declared: &cas::Declared,
+) -> Result<(), DeriveError> {
     let mut exprs = Vec::new();
     let mut signed = BTreeSet::new();
     for step in d.steps.iter_mut().filter(|s| s.author.is_none()) {
@@ -23,7 +26,7 @@ pub fn present_builtin_steps(d: &mut Derivation) -> Result<(), DeriveError> {
     if exprs.is_empty() {
         return Ok(());
     }
-    let mut forms = cas::present_all(exprs, signed)?.into_iter();
+    let mut forms = cas::present_all(exprs, signed, declared.clone())?.into_iter();
     for step in d.steps.iter_mut().filter(|s| s.author.is_none()) {
         let exact = step.statement.clone();
         let mut changed = false;

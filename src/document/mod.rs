@@ -4,6 +4,7 @@
 //! Formulas stay trees ([`Formula`], [`Value`], [`Prose`]) and numbers stay numbers: nothing
 //! here is printed, and there is no file I/O.
 
+mod claim_sides;
 pub mod course;
 pub mod handout;
 mod problems;

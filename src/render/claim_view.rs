@@ -2,27 +2,68 @@
 //! derived side as MathML, and whether the derived side is worth showing beside an agreement.
 
 use super::guard::Guard;
-use super::{ClaimView, RenderError, author_html, math, number, prose_html};
+use super::{RenderError, author_html, math, number, prose_html};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::{Tex, linebreak};
+use crate::notation::{Formula, Op, Tex, linebreak};
 use crate::scene::Verdict;
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ClaimView {
+    pub eq: String,
+    pub statement: String,
+    /// The statement as HTML: its `$…$` mathematics as MathML.
+    pub statement_html: String,
+    pub verdict: String,
+    /// The quantity claimed, the notes' formula for it and the derived one, as MathML (empty
+    /// when not checkable).
+    pub quantity: String,
+    pub notes: String,
+    pub derived: String,
+    /// An agreeing claim whose derived form is longer than the notes' (and equal to it).
+    pub derived_equal: bool,
+    /// Each as HTML, its formulas as MathML.
+    pub differences: Vec<String>,
+    /// For a number the notes give roughly: how it was rounded to compare.
+    pub precision: Option<String>,
+    /// The symbols an agreement takes to be positive, as MathML, `, ` between them; empty
+    /// where it rests on no such assumption.
+    pub positive: String,
+    /// `notes` or `mistake`.
+    pub role: String,
+    /// The statement as a lead to its formula (a capital first, no closing full stop), for a
+    /// scalar claim whose statement writes no equation of its own.
+    pub lead_html: Option<String>,
+    /// Both sides are words (a sign), which take no left side.
+    pub words: bool,
+    /// A scalar claim's notes' and derived sides as displayed formulas, each after the
+    /// claim's left side (empty for any other claim).
+    pub notes_block: String,
+    pub derived_block: String,
+}
 
 /// A claim as the templates show it: its statement and its formulas as MathML.
 pub(super) fn claim_view(
-    c: &crate::verify::ClaimResult,
+    page: &crate::document::Page,
+    i: usize,
     guard: &mut Guard,
 ) -> Result<ClaimView, RenderError> {
+    let c = &page.claims[i];
     let render = |e: Option<&crate::cas::Expr>| {
         e.map(|e| math::inline(&e.to_tex_named(&quantity_symbol)))
             .transpose()
             .map(Option::unwrap_or_default)
     };
     let notes_tex = c.notes.as_ref().map(|e| e.to_tex_named(&quantity_symbol));
-    let derived_tex = c
-        .derived
-        .as_ref()
-        .map(|v| derived_tex(v, c.precision.is_some()));
+    // The derived side in the form the page prints its result (`Page::claim_derived`).
+    let derived_tex =
+        c.derived.as_ref().map(
+            |v| match page.claim_derived(i).filter(|_| c.precision.is_none()) {
+                Some(form) => form.to_tex(),
+                None => derived_tex(v, c.precision.is_some()),
+            },
+        );
     // Beside a claim that agrees, the derived form is shown when it says something the
     // notes' form does not and is about as short; a longer one is equal to the notes' form
     // (their difference simplifies to 0), which the page says instead. It is in
@@ -50,16 +91,42 @@ pub(super) fn claim_view(
         Some(tex) if !derived_equal && !same => math::inline(tex)?,
         _ => String::new(),
     };
+    // A scalar claim's sides as displayed formulas with their left side (`T = …`), which the
+    // handouts set on lines of their own: an inline fraction is small on paper and phones.
+    let displayed = |side: &Option<Tex>| -> Result<String, RenderError> {
+        let scalar = matches!(c.derived, Some(Value::Scalar(_))) && c.sign_words().is_none();
+        match (side, scalar) {
+            (Some(tex), true) => {
+                let side = Formula::Tex(tex.clone());
+                let row = match page.claim_left(i) {
+                    Ok(Some(left)) => Formula::Row(vec![left, Formula::Op(Op::Equals), side]),
+                    _ => side,
+                };
+                math::block(&row.to_tex())
+            }
+            _ => Ok(String::new()),
+        }
+    };
+    let notes_block = displayed(&notes_tex)?;
+    let derived_block = displayed(&derived_tex)?;
     let mut notes = render(c.notes.as_ref())?;
+    let words = c.sign_words().is_some();
     if let Some((said, found)) = c.sign_words() {
         notes = tera::escape_html(said);
         derived = tera::escape_html(found);
     }
     Ok(ClaimView {
-        quantity: left_side(c)?,
+        quantity: left_side(page, i)?,
+        notes_block,
+        derived_block,
         eq: c.eq.clone(),
         statement: c.statement.clone(),
         statement_html: author_html(&c.statement)?,
+        lead_html: lead(&c.statement)
+            .filter(|_| shows_formula(page, i))
+            .map(|l| author_html(&l))
+            .transpose()?,
+        words,
         verdict: c.verdict.as_str().into(),
         notes,
         derived,
@@ -84,30 +151,16 @@ pub(super) fn claim_view(
     })
 }
 
-/// A claim's left side: the symbol its author gives it, else its quantity where every name in
-/// it prints as a symbol (I₁₁, L², the scene's own), else none, and the page prints the
-/// claim's formula alone: never a name of mechbook's (`plane_distance_squared`) as a word.
-fn left_side(c: &crate::verify::ClaimResult) -> Result<String, RenderError> {
-    if let Some(latex) = &c.tex {
-        // Scene validation read it; a claim from elsewhere (a cache) is read again here.
-        let tex = Tex::read(latex).map_err(|e| RenderError::Math {
-            latex: latex.clone(),
+/// A claim's left side as MathML (`Page::claim_left`), empty where it has none.
+fn left_side(page: &crate::document::Page, i: usize) -> Result<String, RenderError> {
+    match page.claim_left(i) {
+        Ok(Some(f)) => math::inline(&f.to_tex()),
+        Ok(None) => Ok(String::new()),
+        Err(e) => Err(RenderError::Math {
+            latex: page.claims[i].tex.clone().unwrap_or_default(),
             message: e.to_string(),
-        })?;
-        return math::inline(&tex);
+        }),
     }
-    match &c.quantity {
-        Some(q) if !names_a_word(q) => math::inline(&q.to_tex_named(&quantity_symbol)),
-        _ => Ok(String::new()),
-    }
-}
-
-/// Whether an expression names something that would print as a word: a derived quantity with
-/// no symbol, or a step's result the scene gives no `tex`.
-fn names_a_word(e: &crate::cas::Expr) -> bool {
-    e.symbols().iter().any(|s| {
-        quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &crate::cas::typesets)
-    })
 }
 
 /// The derived side of a claim; a number the notes give roughly as a decimal (303.6246, not a
@@ -120,4 +173,34 @@ fn derived_tex(v: &Value, rough: bool) -> Tex {
         },
         _ => v.to_tex(),
     }
+}
+
+/// A claim's statement as the lead of its formula ("The tension in the string: T = …"): its
+/// first letter a capital, its closing full stop dropped; `None` where the statement writes an
+/// equation of its own ("$\\beta^2 = …$: the linearised equations …"), which the formula
+/// would repeat.
+pub(crate) fn lead(statement: &str) -> Option<String> {
+    let math_has_equation = statement
+        .split('$')
+        .skip(1)
+        .step_by(2)
+        .any(|m| m.contains('=') || m.contains("\\approx"));
+    if math_has_equation {
+        return None;
+    }
+    let s = statement.trim_end();
+    let s = s.strip_suffix('.').unwrap_or(s);
+    let mut chars = s.chars();
+    chars
+        .next()
+        .map(|first| first.to_uppercase().chain(chars).collect())
+}
+
+/// Whether an agreeing claim's list item prints its formula after its statement: a scalar
+/// claim with a left side, or one whose statement holds no mathematics (a statement that
+/// writes "$|\\vec L|^2$ is constant: $I_1^2 A^2 + …$" is not followed by "I₁²A² + …" again).
+pub(crate) fn shows_formula(page: &crate::document::Page, i: usize) -> bool {
+    let c = &page.claims[i];
+    let has_left = matches!(page.claim_left(i), Ok(Some(_)));
+    matches!(c.derived, Some(Value::Scalar(_))) && (has_left || !c.statement.contains('$'))
 }

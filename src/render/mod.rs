@@ -3,6 +3,8 @@
 //! MathML), Moodle's quizzes (`moodle.rs`) and the PDFs' markup (`pdf/`). The files are made
 //! in memory: no file I/O here.
 
+#[cfg(test)]
+mod claim_form_tests;
 mod claim_view;
 mod guard;
 #[cfg(test)]
@@ -18,6 +20,8 @@ pub mod plot;
 pub mod problems;
 pub mod renderer;
 
+pub use claim_view::ClaimView;
+pub(crate) use claim_view::{lead as claim_lead, shows_formula as claim_shows_formula};
 pub use html::template_names;
 pub use renderer::{Context, Rendered, Renderer, SiteFiles, TemplateTexts};
 
@@ -56,31 +60,6 @@ pub struct StepView {
     pub at: String,
     /// An author's step's numeric check, as HTML (empty for a built-in step).
     pub check: String,
-}
-
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct ClaimView {
-    pub eq: String,
-    pub statement: String,
-    /// The statement as HTML: its `$…$` mathematics as MathML.
-    pub statement_html: String,
-    pub verdict: String,
-    /// The quantity claimed, the notes' formula for it and the derived one, as MathML (empty
-    /// when not checkable).
-    pub quantity: String,
-    pub notes: String,
-    pub derived: String,
-    /// An agreeing claim whose derived form is longer than the notes' (and equal to it).
-    pub derived_equal: bool,
-    /// Each as HTML, its formulas as MathML.
-    pub differences: Vec<String>,
-    /// For a number the notes give roughly: how it was rounded to compare.
-    pub precision: Option<String>,
-    /// The symbols an agreement takes to be positive, as MathML, `, ` between them; empty
-    /// where it rests on no such assumption.
-    pub positive: String,
-    /// `notes` or `mistake`.
-    pub role: String,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -428,10 +407,8 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             seconds: timings.then(|| format!("{:.1e}", q.seconds)),
         })
         .collect();
-    let claims = page
-        .claims
-        .iter()
-        .map(|c| claim_view::claim_view(c, &mut guard))
+    let claims = (0..page.claims.len())
+        .map(|i| claim_view::claim_view(page, i, &mut guard))
         .collect::<Result<_, RenderError>>()?;
     Ok(PageView {
         guarded: guard.counts,

@@ -26,6 +26,9 @@ pub struct Scene {
     pub notes: NotesRef,
     /// Symbol name -> its meaning.
     pub symbols: BTreeMap<String, String>,
+    /// The symbols and the coordinates in the order the file declares them: the order of a
+    /// printed product's factors (M g l where the author declares M, g, l).
+    pub declared: crate::cas::Declared,
     /// Abbreviations used in claims, such as `lambda = M/(2*pi*R)`.
     pub definitions: BTreeMap<String, Expr>,
     pub vectors: BTreeMap<String, [Expr; 3]>,

@@ -92,7 +92,7 @@ fn printed_form(scene: &Scene, result: &StepResult) -> Result<Option<StepResult>
         .into_iter()
         .map(|e| e.clone())
         .collect();
-    let forms = cas::present_all(exact.clone(), scene.signed_names())?;
+    let forms = cas::present_all(exact.clone(), scene.signed_names(), scene.declared.clone())?;
     if forms == exact {
         return Ok(None);
     }

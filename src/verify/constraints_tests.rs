@@ -21,7 +21,8 @@ fn run(text: &str) -> SceneReport {
     run_scene(Scene::parse(text, Path::new("p.toml")).unwrap(), None).unwrap()
 }
 
-/// Every step passes its numeric route and every claim (and `gives`) agrees.
+/// Every step passes its numeric route and every claim (and `gives`) of the notes agrees; a
+/// common mistake the scene sets beside them disagrees.
 fn all_pass_and_agree(r: &SceneReport) {
     assert!(
         r.verification.steps.iter().all(|c| c.passed()),
@@ -29,10 +30,11 @@ fn all_pass_and_agree(r: &SceneReport) {
         r.verification.steps
     );
     assert!(
-        r.verification
-            .claims
-            .iter()
-            .all(|c| c.verdict == Verdict::Agrees),
+        r.verification.claims.iter().all(|c| c.verdict
+            == match c.role {
+                crate::scene::ClaimRole::Notes => Verdict::Agrees,
+                crate::scene::ClaimRole::Mistake => Verdict::Disagrees,
+            }),
         "{:?}",
         r.verification.claims
     );

@@ -75,6 +75,10 @@ pub struct ClaimResult {
     /// The symbol the author gives its quantity (LaTeX), printed as its left side.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tex: Option<String>,
+    /// The derived side in the form a textbook prints, where a box shows it and it differs
+    /// from `derived` (`claim_form.rs`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shown: Option<Expr>,
 }
 
 impl ClaimResult {
@@ -272,6 +276,7 @@ fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
         dimension: None,
         positive: Vec::new(),
         tex: claim.tex.clone(),
+        shown: None,
     }
 }
 
@@ -504,6 +509,7 @@ pub fn verify_symbolic(
     if plan.runs(Stage::Steps) {
         claims.extend(gives::check_gives(scene, d)?);
     }
+    claim_form::present_claims(scene, &mut claims)?;
     let regressions = if plan.runs(Stage::Regression) {
         check_regressions(scene, d)?
     } else {
@@ -538,6 +544,7 @@ pub fn verify_numeric(
 mod answer_routes;
 mod body_moments;
 pub mod budget;
+mod claim_form;
 pub mod dimensions;
 mod free_top;
 mod gives;

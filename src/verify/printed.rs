@@ -150,7 +150,7 @@ mod tests {
     fn symmetric_top() -> Derivation {
         let mut d = Derivation::default();
         free_top::symmetric_top(&mut d).unwrap();
-        present::present_builtin_steps(&mut d).unwrap();
+        present::present_builtin_steps(&mut d, &Default::default()).unwrap();
         d
     }
 

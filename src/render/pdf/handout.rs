@@ -14,7 +14,7 @@ use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
 use crate::document::{At, Page};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::symbol_tex;
+use crate::notation::{Formula, Op, symbol_tex};
 use crate::render::RenderError;
 
 /// The body of a handout: one section per page.
@@ -151,11 +151,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
                     None => "As in the notes".to_string(),
                 });
                 // The symbols whose positivity the agreement rests on.
-                for (k, name) in page.claims[c.claim].positive.iter().enumerate() {
-                    m.text(if k == 0 { ", for positive " } else { ", " });
-                    let e = crate::cas::Expr::sym(name);
-                    m.inline(&e.to_typst(), &e.to_tex().spoken());
-                }
+                positive(m, &page.claims[c.claim].positive);
                 m.text(".");
                 m.raw("]\n");
             }
@@ -291,9 +287,19 @@ fn claims(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// A claim: in a list, with its verdict for the instructor, or boxed with both forms.
+/// A claim: in a list, with its verdict for the instructor, or with its formula as in the
+/// notes for the student; or boxed with both forms.
 fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), RenderError> {
-    let c = &page.claims[shown.claim];
+    let i = shown.claim;
+    let c = &page.claims[i];
+    // A scalar claim's notes' side after its left side; a vector's or a matrix's as a column
+    // of its own (below).
+    let scalar = matches!(c.derived, Some(Value::Scalar(_)));
+    let notes = c
+        .notes
+        .as_ref()
+        .filter(|_| scalar)
+        .map(|e| claim_formula(page, i, Formula::Expr(e.clone())));
     let Mark::Boxed {
         heading,
         wrong,
@@ -301,7 +307,30 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
         verdict,
     } = &shown.mark
     else {
-        if let Some(eq) = page.claim_equation(shown.claim) {
+        let lead = crate::render::claim_lead(&c.statement)
+            .filter(|_| crate::render::claim_shows_formula(page, i));
+        if let (Mark::Agrees, Some(notes), None, Some(lead)) =
+            (&shown.mark, notes, c.sign_words(), lead)
+        {
+            // "The tension in the string:", T = 2m₁m₂g/(m₁ + m₂) displayed, "As in the notes,
+            // eq. (9.1)."
+            // One block, so that the formula and the sentence after it stay in the list item.
+            m.raw("#block[");
+            m.author(&lead)?.text(":");
+            let notes = notes?;
+            let (whole, broken) = formula_and_broken(&notes)?;
+            m.block(&whole, &broken, &notes.to_tex().spoken());
+            m.text("As in the notes");
+            if let Some(eq) = page.claim_equation(i) {
+                m.text(&format!(", eq. ({eq})"));
+            }
+            positive(m, &c.positive);
+            m.text(".");
+            m.raw("]");
+            m.line();
+            return Ok(());
+        }
+        if let Some(eq) = page.claim_equation(i) {
             m.text(&format!("({eq}) "));
         }
         m.author(&c.statement)?;
@@ -311,30 +340,6 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
         m.line();
         return Ok(());
     };
-    let (notes, said_notes) = c
-        .notes
-        .as_ref()
-        .map(|e| {
-            let typst = e.to_typst_named(&|q| {
-                quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok())
-            });
-            (typst, e.to_tex_named(&quantity_symbol).spoken())
-        })
-        .unwrap_or_default();
-    let (derived, derived_broken, said_derived) = c
-        .derived
-        .as_ref()
-        .map(|v| match v {
-            Value::Scalar(e) if c.precision.is_some() => match e.eval(&|_| None) {
-                Ok(x) => (number(x, 7), number(x, 7), said_number(x, 7)),
-                Err(_) => (e.to_typst(), e.to_typst(), e.to_tex().spoken()),
-            },
-            _ => {
-                let e = v.to_expr();
-                (e.to_typst(), e.to_typst_breakable(), e.to_tex().spoken())
-            }
-        })
-        .unwrap_or_default();
     m.raw("#block(stroke: 0.6pt, inset: 6pt, radius: 2pt, breakable: false)[*")
         .text(heading)
         .raw("*");
@@ -350,10 +355,62 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
             .raw("]\n");
         return Ok(());
     }
-    m.text(&format!("{wrong}: "))
-        .block(&notes, &notes, &said_notes)
-        .text(&format!("{right}: "))
-        .block(&derived, &derived_broken, &said_derived)
-        .raw("]\n");
+    m.text(&format!("{wrong}: "));
+    if let Some(notes) = notes {
+        let notes = notes?;
+        let (whole, broken) = formula_and_broken(&notes)?;
+        m.block(&whole, &broken, &notes.to_tex().spoken());
+    } else if let Some(e) = &c.notes {
+        let typst =
+            e.to_typst_named(&|q| quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok()));
+        m.block(&typst, &typst, &e.to_tex_named(&quantity_symbol).spoken());
+    }
+    m.text(&format!("{right}: "));
+    let derived = c.derived.as_ref().map(|v| match v {
+        Value::Scalar(e) if c.precision.is_some() => match e.eval(&|_| None) {
+            Ok(x) => Ok((number(x, 7), number(x, 7), said_number(x, 7))),
+            Err(_) => Ok((e.to_typst(), e.to_typst(), e.to_tex().spoken())),
+        },
+        // The form the page prints for the result (`Page::claim_derived`).
+        Value::Scalar(_) => {
+            let side = page
+                .claim_derived(i)
+                .unwrap_or_else(|| Formula::Expr(v.to_expr()));
+            let f = claim_formula(page, i, side)?;
+            let (whole, broken) = formula_and_broken(&f)?;
+            Ok((whole, broken, f.to_tex().spoken()))
+        }
+        // A vector or a matrix as a column of its own, without a left side.
+        _ => {
+            let e = v.to_expr();
+            Ok((e.to_typst(), e.to_typst_breakable(), e.to_tex().spoken()))
+        }
+    });
+    if let Some(derived) = derived {
+        let (whole, broken, said) = derived?;
+        m.block(&whole, &broken, &said);
+    }
+    m.raw("]\n");
     Ok(())
+}
+
+/// `left = side` for claim `i` (`Page::claim_left`), or `side` where it has no left side.
+fn claim_formula(page: &Page, i: usize, side: Formula) -> Result<Formula, RenderError> {
+    let left = page.claim_left(i).map_err(|e| RenderError::Math {
+        latex: page.claims[i].tex.clone().unwrap_or_default(),
+        message: e.to_string(),
+    })?;
+    Ok(match left {
+        Some(left) => Formula::Row(vec![left, Formula::Op(Op::Equals), side]),
+        None => side,
+    })
+}
+
+/// ", for positive g, l": the symbols an agreement rests on being positive.
+fn positive(m: &mut Markup, names: &[String]) {
+    for (k, name) in names.iter().enumerate() {
+        m.text(if k == 0 { ", for positive " } else { ", " });
+        let e = crate::cas::Expr::sym(name);
+        m.inline(&e.to_typst(), &e.to_tex().spoken());
+    }
 }

@@ -182,7 +182,9 @@ impl Validator<'_> {
         warnings.extend(self.symbol_name_warnings(&raw, &steps, &tex));
         let moments_from_bodies = self.moments_from_bodies(&raw, &symbols, &bodies, &wants)?;
         let pinned_variants = self.pinned_variants(&raw, problem.is_some())?;
+        let declared = symbols::declared_order(&raw);
         Ok(Scene {
+            declared,
             id_at: self.loc.line_col(content_start(&raw.id)),
             lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
             id: raw.id.into_inner(),

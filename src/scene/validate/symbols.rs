@@ -225,3 +225,24 @@ impl Validator<'_> {
         Ok(values)
     }
 }
+
+/// The symbols and the coordinates in the order the file declares them (by where each key is
+/// written), the order of a printed product's factors.
+pub(super) fn declared_order(raw: &crate::scene::raw::RawScene) -> crate::cas::Declared {
+    type Table = std::collections::BTreeMap<
+        toml::Spanned<String>,
+        toml::Spanned<crate::scene::raw::RawMeaning>,
+    >;
+    let in_file_order = |m: &Table| {
+        let mut names: Vec<(usize, String)> = m
+            .keys()
+            .map(|k| (k.span().start, k.get_ref().clone()))
+            .collect();
+        names.sort();
+        names.into_iter().map(|(_, n)| n).collect()
+    };
+    crate::cas::Declared {
+        symbols: in_file_order(&raw.symbols),
+        coordinates: in_file_order(&raw.coordinates),
+    }
+}
