@@ -78,6 +78,15 @@ impl Page {
         })
     }
 
+    /// `left = side` for claim `i` (its left side by [`Page::claim_left`]), or `side` alone
+    /// where it has none: the row both handouts display for each side of a scalar claim.
+    pub fn claim_row(&self, i: usize, side: Formula) -> Result<Formula, TexError> {
+        Ok(match self.claim_left(i)? {
+            Some(left) => Formula::Row(vec![left, Formula::Op(Op::Equals), side]),
+            None => side,
+        })
+    }
+
     /// Claim `i`'s derived side as the page prints it: the form of the line that states its
     /// result, else the textbook's form of the derived value, else `None` (the value as it is).
     pub fn claim_derived(&self, i: usize) -> Option<Formula> {

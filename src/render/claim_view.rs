@@ -5,7 +5,7 @@ use super::guard::Guard;
 use super::{RenderError, author_html, math, number, prose_html};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::{Formula, Op, Tex, linebreak};
+use crate::notation::{Formula, Tex, linebreak};
 use crate::scene::Verdict;
 use serde::{Deserialize, Serialize};
 
@@ -97,11 +97,9 @@ pub(super) fn claim_view(
         let scalar = matches!(c.derived, Some(Value::Scalar(_))) && c.sign_words().is_none();
         match (side, scalar) {
             (Some(tex), true) => {
-                let side = Formula::Tex(tex.clone());
-                let row = match page.claim_left(i) {
-                    Ok(Some(left)) => Formula::Row(vec![left, Formula::Op(Op::Equals), side]),
-                    _ => side,
-                };
+                let row = page
+                    .claim_row(i, Formula::Tex(tex.clone()))
+                    .unwrap_or_else(|_| Formula::Tex(tex.clone()));
                 math::block(&row.to_tex())
             }
             _ => Ok(String::new()),

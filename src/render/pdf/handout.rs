@@ -14,7 +14,7 @@ use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
 use crate::document::{At, Page};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::{Formula, Op, symbol_tex};
+use crate::notation::{Formula, symbol_tex};
 use crate::render::RenderError;
 
 /// The body of a handout: one section per page.
@@ -394,15 +394,11 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
     Ok(())
 }
 
-/// `left = side` for claim `i` (`Page::claim_left`), or `side` where it has no left side.
+/// `left = side` for claim `i` (`Page::claim_row`), or `side` where it has no left side.
 fn claim_formula(page: &Page, i: usize, side: Formula) -> Result<Formula, RenderError> {
-    let left = page.claim_left(i).map_err(|e| RenderError::Math {
+    page.claim_row(i, side).map_err(|e| RenderError::Math {
         latex: page.claims[i].tex.clone().unwrap_or_default(),
         message: e.to_string(),
-    })?;
-    Ok(match left {
-        Some(left) => Formula::Row(vec![left, Formula::Op(Op::Equals), side]),
-        None => side,
     })
 }
 
