@@ -168,6 +168,33 @@ impl Cache {
         self.named_entry(name, "pdf", &format!("{}:{inputs:016x}", self.program))
     }
 
+    /// What a build said of a typeset PDF (text past the paper's edge, a missing glyph), one
+    /// warning a line, kept beside it so that a warm build says it again without typesetting.
+    /// Stored before the PDF: a PDF in the cache always has its warnings there too.
+    pub fn load_pdf_warnings(&self, name: &str, inputs: u64) -> Lookup {
+        let (path, key) = self.pdf_warnings_entry(name, inputs);
+        self.load_at(path, key)
+    }
+
+    pub fn store_pdf_warnings(
+        &self,
+        name: &str,
+        inputs: u64,
+        warnings: &[String],
+    ) -> Result<(), SiteError> {
+        let (path, key) = self.pdf_warnings_entry(name, inputs);
+        let text = warnings.join("\n");
+        self.store_at(&path, key, name, "pdf-warnings", text.as_bytes())
+    }
+
+    fn pdf_warnings_entry(&self, name: &str, inputs: u64) -> (PathBuf, u64) {
+        self.named_entry(
+            name,
+            "pdf-warnings",
+            &format!("{}:{inputs:016x}", self.program),
+        )
+    }
+
     /// A unit the renderers made (`render::memo`), under its name and the hash of its inputs.
     fn render_entry(&self, name: &str, inputs: u64) -> (PathBuf, u64) {
         self.named_entry(name, "render", &format!("{}:{inputs:016x}", self.program))

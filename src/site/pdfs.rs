@@ -133,8 +133,8 @@ struct Notes {
     failed: Option<String>,
 }
 
-/// A document as Typst made it: what to say of it, and its PDF (none when it failed). A PDF that
-/// needs no warning is stored in the cache.
+/// A document as Typst made it: what to say of it, and its PDF (none when it failed). The PDF is
+/// stored in the cache with what is said of it.
 #[cfg(feature = "pdf")]
 fn finished(
     s: &PdfSource,
@@ -179,14 +179,20 @@ fn finished(
                 .join(", ")
         ));
     }
-    if done.missing_glyphs.is_empty()
-        && done.past_the_edge.is_empty()
-        && let Some(cache) = cache
-        && let Err(e) = cache.store_pdf(&cache_name(prefix, s), inputs_hash(s), &done.pdf)
-    {
-        notes
-            .warnings
-            .push(format!("the cache is not updated: {e}"));
+    if let Some(cache) = cache {
+        // The warnings first: a PDF found in the cache has its warnings there too.
+        let name = cache_name(prefix, s);
+        let stored = if notes.warnings.is_empty() {
+            Ok(())
+        } else {
+            cache.store_pdf_warnings(&name, inputs_hash(s), &notes.warnings)
+        }
+        .and_then(|()| cache.store_pdf(&name, inputs_hash(s), &done.pdf));
+        if let Err(e) = stored {
+            notes
+                .warnings
+                .push(format!("the cache is not updated: {e}"));
+        }
     }
     (notes, Some(done.pdf))
 }
@@ -237,6 +243,13 @@ fn from_cache(
             use super::cache::Lookup;
             match cache.load_pdf(&cache_name(prefix, s), inputs_hash(s)) {
                 Lookup::Hit(pdf) => {
+                    // Said again, as when it was typeset.
+                    if let Lookup::Hit(said) =
+                        cache.load_pdf_warnings(&cache_name(prefix, s), inputs_hash(s))
+                    {
+                        let said = String::from_utf8_lossy(&said).into_owned();
+                        out.warnings.extend(said.lines().map(str::to_string));
+                    }
                     keep(PathBuf::from(&s.path), pdf)?;
                     out.made += 1;
                     out.from_cache += 1;

@@ -832,3 +832,50 @@ fn a_class_key_and_a_sheet_past_200_are_typeset_in_parts() {
     }
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// A PDF with a warning (a character no font has) is kept in the cache like any other: a warm
+/// build typesets nothing, says the same warnings, and writes the same bytes.
+#[test]
+fn a_pdf_with_a_warning_is_cached_and_its_warning_said_again() {
+    let dir = scratch("pdf-warned");
+    assert!(mechbook_in(&dir, &["init"]).status.success());
+    let scene = dir.join("lectures/lecture-1/01-book.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let marked = text.replacen(
+        "title = \"A book as a uniform box\"",
+        "title = \"A book as a uniform box \u{13000}\"",
+        1,
+    );
+    assert_ne!(marked, text, "the starter's title moved");
+    std::fs::write(&scene, marked).unwrap();
+    let build = |out: &str| {
+        let r = mechbook_in(&dir, &["build", "--cache", "cache", "--out", out]);
+        assert!(r.status.success(), "{}", stderr(&r));
+        let said = stderr(&r);
+        let warnings: Vec<String> = said
+            .lines()
+            .filter(|l| l.starts_with("mechbook: warning:"))
+            .map(str::to_string)
+            .collect();
+        (said, warnings, super::read_tree(&dir.join(out)))
+    };
+    let (cold, cold_warnings, a) = build("a");
+    assert!(
+        cold.contains("4 PDFs (4 typeset, 0 from the cache)"),
+        "{cold}"
+    );
+    assert_eq!(cold_warnings.len(), 2, "{cold}");
+    assert!(
+        cold_warnings
+            .iter()
+            .all(|w| w.contains("no font has `\u{13000}`")),
+        "{cold}"
+    );
+    let (warm, warm_warnings, b) = build("b");
+    assert!(
+        warm.contains("4 PDFs (0 typeset, 4 from the cache)"),
+        "{warm}"
+    );
+    assert_eq!(warm_warnings, cold_warnings);
+    assert_eq!(a, b, "the cached site differs from the typeset one");
+}
