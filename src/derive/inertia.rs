@@ -138,17 +138,20 @@ fn body_part(
                 .collect();
             let tensor = sum_mats(placed.iter().map(|(m, r)| mat_scale(m, &inertia_kernel(r))));
             let tensor = simplify_mat(&tensor)?;
-            d.steps.push(Step::equation(
-                &format!("{label}: sum over the point masses"),
-                "I",
-                &Value::Matrix(tensor.clone()),
-                cited(
-                    "point-tensor",
-                    Prose::default()
-                        .text("the tensor's integral replaced by ")
-                        .math("sum_i m_i big(r_i^2 one - vec(r_i) vec(r_i)^T)"),
-                ),
-            ));
+            d.steps.push(
+                Step::equation(
+                    &format!("{label}: sum over the point masses"),
+                    "I",
+                    &Value::Matrix(tensor.clone()),
+                    cited(
+                        "point-tensor",
+                        Prose::default()
+                            .text("the tensor's integral replaced by ")
+                            .math("sum_i m_i big(r_i^2 one - vec(r_i) vec(r_i)^T)"),
+                    ),
+                )
+                .working(),
+            );
             let moment =
                 first_moment.then(|| sum_vecs(placed.iter().map(|(m, r)| scale_vec(m, r))));
             Ok(Part {
@@ -160,17 +163,20 @@ fn body_part(
         MassModel::Continuum(c) => {
             let r = simplify_vec(&place(body, &c.local))?;
             let position = Value::Vector(r.clone());
-            d.steps.push(Step::equation(
-                &format!("{label}: position of a mass element"),
-                "vec(r)",
-                &position,
-                &if body.rotations.is_empty() {
-                    "the body's own parametrisation".to_string()
-                } else {
-                    "the body's parametrisation, rotated as the scene says, then shifted"
-                        .to_string()
-                },
-            ));
+            d.steps.push(
+                Step::equation(
+                    &format!("{label}: position of a mass element"),
+                    "vec(r)",
+                    &position,
+                    &if body.rotations.is_empty() {
+                        "the body's own parametrisation".to_string()
+                    } else {
+                        "the body's parametrisation, rotated as the scene says, then shifted"
+                            .to_string()
+                    },
+                )
+                .working(),
+            );
             let shown = cas::simplify_all(vec![c.density.clone(), c.jacobian.clone()])?;
             let (density, jacobian) = (&shown[0], &shown[1]);
             d.steps.push(Step::note(
@@ -180,7 +186,8 @@ fn body_part(
                     &[Expr::sym(c.density_name), jacobian.clone(), density.clone()],
                 ),
                 "uniform density: the mass divided by the length, area or volume; times the Jacobian",
-            ));
+            )
+            .working());
             let kernel = inertia_kernel(&r);
             let integrands: Vec<Expr> = UNIQUE
                 .iter()
@@ -204,24 +211,30 @@ fn body_part(
                     body.label, results[0], body.mass
                 )));
             }
-            d.steps.push(Step::equation(
-                &format!("{label}: total mass"),
-                "int dm",
-                &Value::Scalar(results[0].clone()),
-                why_integrate(&c.domain),
-            ));
+            d.steps.push(
+                Step::equation(
+                    &format!("{label}: total mass"),
+                    "int dm",
+                    &Value::Scalar(results[0].clone()),
+                    why_integrate(&c.domain),
+                )
+                .working(),
+            );
             for (k, (i, j)) in UNIQUE.iter().enumerate() {
                 let name = format!("I{}{}", AXES[*i], AXES[*j]);
-                d.steps.push(Step::note(
-                    &format!("{label}: {name}"),
-                    integral_formula(
-                        Formula::parse(&format!("{}_{}", &name[..1], &name[1..]), &[]),
-                        &integrands[k],
-                        &c.domain,
-                        &results[k + 1],
-                    ),
-                    why_integrate(&c.domain),
-                ));
+                d.steps.push(
+                    Step::note(
+                        &format!("{label}: {name}"),
+                        integral_formula(
+                            Formula::parse(&format!("{}_{}", &name[..1], &name[1..]), &[]),
+                            &integrands[k],
+                            &c.domain,
+                            &results[k + 1],
+                        ),
+                        why_integrate(&c.domain),
+                    )
+                    .working(),
+                );
             }
             if index == 0 {
                 // The first body's integrand and position, for claims about the notes' integrals.
@@ -261,7 +274,7 @@ pub fn derive_tensor(
         if parts.len() > 1 {
             "the sum of the parts' tensors about the same origin"
         } else {
-            "the integrals above, assembled; $\\overleftrightarrow{I}$ is symmetric"
+            "each entry the body's integral over its mass (a sum, for point masses); $\\overleftrightarrow{I}$ is symmetric"
         },
     ));
     d.set(quantity::INERTIA_TENSOR, tensor)?;

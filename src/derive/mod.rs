@@ -64,6 +64,10 @@ pub struct Step {
     /// the instructor's handout shows it, the student's leaves it out.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub second_route: bool,
+    /// A step of the working a student's summary leaves out (a body's integrals, a
+    /// characteristic polynomial that does not factor): the instructor's handout shows it.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub working: bool,
     /// For an author's step: the result this line states, which the build checks it shows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stands_for: Option<step_names::StandsFor>,
@@ -122,6 +126,7 @@ impl Step {
             author: None,
             exact: None,
             second_route: false,
+            working: false,
             stands_for: None,
         }
     }
@@ -138,6 +143,14 @@ impl Step {
     pub fn second_route(self) -> Step {
         Step {
             second_route: true,
+            ..self
+        }
+    }
+
+    /// The step as working that a student's summary leaves out.
+    pub fn working(self) -> Step {
+        Step {
+            working: true,
             ..self
         }
     }

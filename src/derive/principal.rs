@@ -166,6 +166,52 @@ pub fn eigenvalue_letter(scene: &Scene) -> &'static str {
     if line_density { "mu" } else { "lambda" }
 }
 
+/// The characteristic polynomial det(I − λ𝟙), factored as (λ₁ − λ)(λ₂ − λ)(λ₃ − λ) over its
+/// roots in ascending order where every root was found (the product is checked to multiply
+/// back to the determinant); else expanded, as working that a student's summary leaves out.
+fn characteristic_step(
+    characteristic: &Expr,
+    roots: &cas::Roots,
+    ev_name: &str,
+) -> Result<Step, DeriveError> {
+    let lhs = format!("det big(ten(I) - {ev_name} one) = $0");
+    let why = || {
+        cited(
+            "characteristic-polynomial",
+            "the principal moments are the roots",
+        )
+    };
+    let shown = |e: &Expr| e.substitute(&|s| (s == LAMBDA).then(|| Expr::sym(ev_name)));
+    if !roots.unsolved.is_empty() || roots.roots.is_empty() {
+        let line = Formula::parse(&lhs, &[shown(characteristic)]);
+        return Ok(Step::note("Characteristic polynomial", line, why()).working());
+    }
+    let factor = |value: &Expr, with: &Expr, multiplicity: u32| {
+        let difference = Expr::minus(value.clone(), with.clone());
+        match multiplicity {
+            1 => difference,
+            m => Expr::pow(difference, Expr::int(i128::from(m))),
+        }
+    };
+    let product = |with: &Expr| {
+        Expr::mul(
+            roots
+                .roots
+                .iter()
+                .map(|(value, m)| factor(value, with, *m))
+                .collect(),
+        )
+    };
+    let difference = Expr::minus(product(&Expr::sym(LAMBDA)), characteristic.clone());
+    if !cas::is_zero_all(vec![difference])?[0] {
+        return Err(DeriveError::Inconsistent(format!(
+            "the principal moments' product does not give back the characteristic polynomial {characteristic}"
+        )));
+    }
+    let line = Formula::parse(&lhs, &[product(&Expr::sym(ev_name))]);
+    Ok(Step::note("Characteristic polynomial", line, why()))
+}
+
 pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     let positive_set = positive_symbols(scene);
     let positive = |s: &str| positive_set.contains(s);
@@ -174,17 +220,6 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     let lambda = Expr::sym(LAMBDA);
     let characteristic = cas::simplify(&det(&shifted(&tensor, &lambda)))?;
     let shown = |e: &Expr| e.substitute(&|s| (s == LAMBDA).then(|| Expr::sym(ev_name)));
-    d.steps.push(Step::note(
-        "Characteristic polynomial",
-        Formula::parse(
-            &format!("det big(ten(I) - {ev_name} one) = $0"),
-            &[shown(&characteristic)],
-        ),
-        cited(
-            "characteristic-polynomial",
-            "the principal moments are the roots",
-        ),
-    ));
     let mut roots = cas::roots(&characteristic, LAMBDA)?;
     for (value, _) in roots.roots.iter_mut() {
         *value = pull_squares(value, &positive);
@@ -203,6 +238,8 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
             .then(ta.cmp(&tb))
     });
     roots.unsolved.sort_by_key(|(factor, _)| factor.to_text());
+    d.steps
+        .push(characteristic_step(&characteristic, &roots, ev_name)?);
     let mut spaces = Vec::new();
     for (value, multiplicity) in &roots.roots {
         let m = shifted(&tensor, value);
@@ -270,25 +307,36 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         });
     }
     for (factor, mult) in &roots.unsolved {
-        d.steps.push(Step::note(
-            "Irreducible factor",
-            // A simple factor has no exponent: (…), not (…)¹.
-            Formula::parse(
-                &if *mult > 1 {
-                    format!("big($0)^{mult}")
-                } else {
-                    "$0".to_string()
-                },
-                &[shown(factor)],
-            ),
-            "no factorisation over the rationals: no root is rational in the symbols",
-        ));
+        d.steps.push(
+            Step::note(
+                "Irreducible factor",
+                // A simple factor has no exponent: (…), not (…)¹.
+                Formula::parse(
+                    &if *mult > 1 {
+                        format!("big($0)^{mult}")
+                    } else {
+                        "$0".to_string()
+                    },
+                    &[shown(factor)],
+                ),
+                "no factorisation over the rationals: no root is rational in the symbols",
+            )
+            .working(),
+        );
     }
     // A symmetric tensor's cubic has three real roots: when it does not factor, Viète's
     // trigonometric form gives them exactly.
     let closed_form = if roots.roots.is_empty() && roots.unsolved.len() == 1 {
         let c = cubic_roots(&tensor, &positive)?;
         let two_rho = Expr::mul(vec![Expr::int(2), c.rho.clone()]);
+        // In the form a textbook prints: the masses cancel from cos φ, squares leave the root.
+        let parts = vec![c.centre.clone(), two_rho, c.cos_phi.clone()];
+        let signed = parts
+            .iter()
+            .flat_map(|e| e.symbols())
+            .filter(|s| !positive(s))
+            .collect();
+        let parts = cas::present_all(parts, signed, scene.declared.clone())?;
         d.steps.push(Step::note(
             "Principal moments in closed form",
             Formula::parse(
@@ -296,7 +344,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
                     "{ev_name}_k = $0 + big($1) cos big(varphi/3 - (2pi k)/3), ~~ k = 0, 1, 2, \
                      quad cos varphi = $2"
                 ),
-                &[c.centre.clone(), two_rho, c.cos_phi.clone()],
+                &parts,
             ),
             format!("three real roots ($\\overleftrightarrow{{I}}$ is symmetric): depress the cubic by $\\{ev_name} = t + \\operatorname{{tr}} \\overleftrightarrow{{I}}/3$ to $t^3 + pt + q$, then $t = 2\\rho\\cos\\theta$ with $\\rho = \\sqrt{{-p/3}}$ turns it into $\\cos 3\\theta = -q/(2\\rho^3)$ (Viète)").as_str(),
         ));

@@ -112,7 +112,7 @@ pub fn part(index: usize, page: &Page, instructor: bool) -> Part {
             .collect()
     } else {
         (0..page.steps.len())
-            .filter(|&line| !page.steps[line].second_route)
+            .filter(|&line| !(page.steps[line].second_route || page.steps[line].working))
             .map(|line| titled_line(line, false, None))
             .collect()
     };
@@ -124,7 +124,9 @@ pub fn part(index: usize, page: &Page, instructor: bool) -> Part {
             Vec::new()
         },
         steps,
-        principal: !authored,
+        // The principal moments and axes are the built-in steps' own: shown once, without
+        // the eigen-solver's numeric check.
+        principal: false,
         figures: false,
         claims: (0..page.claims.len())
             .filter(|i| !on_steps.contains(i))

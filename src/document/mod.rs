@@ -111,6 +111,8 @@ pub struct Step {
     /// A built-in step that checks an earlier one by another route: the student's handout
     /// leaves it out.
     pub second_route: bool,
+    /// A built-in step of working (a body's integrals): the student's handout leaves it out.
+    pub working: bool,
     /// For an author's step: what this line must show, which the build reads back and checks
     /// (`render/guard.rs`).
     pub stands_for: Option<crate::derive::step_names::Stands>,
@@ -333,6 +335,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
                     statement: st.statement.clone(),
                     exact: st.exact.clone(),
                     second_route: st.second_route,
+                    working: st.working,
                     line: author.map_or(0, |k| s.steps[k].line),
                     stands_for: match (&st.author, &st.stands_for) {
                         (Some(name), Some(s)) => r

@@ -47,6 +47,7 @@ fn a_cited_step_gives_its_reason_after_the_citation() {
         claims: Vec::new(),
         exact: None,
         second_route: false,
+        working: false,
         stands_for: None,
         line: 0,
     };

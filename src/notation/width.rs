@@ -79,6 +79,14 @@ fn add(n: &Node, w: &mut f32) {
         },
         Node::Group(Grouping::LeftRight(..), inner) => match matrix(n) {
             Some((_, body)) => table_width(body, true),
+            // Brackets stretched around a fraction are wider (measured in Chromium: a phone's
+            // (5ma²/4 − λ)(19ma²/4 − λ)(6ma² − λ) ran 1.3 % past its line).
+            None if inner
+                .iter()
+                .any(|n| matches!(n, Node::Visual(Visual::Fraction(_), _))) =>
+            {
+                width(inner) + 2.0
+            }
             None => width(inner) + 1.0,
         },
         Node::Group(Grouping::Aligned, body) => table_width(body, false),

@@ -145,13 +145,14 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                             let line = Formula::equation(omega2.clone(), w2.clone());
                             Step::note(&title, line, why).standing_for(kth(k))
                         }
+                        // No exact Ω² to print: the line states the state of rest, and
+                        // its reason says why.
                         None => Step::note(
                             &title,
-                            Formula::Row(vec![
-                                omega2.clone(),
-                                Formula::Op(crate::notation::Op::Equals),
-                                Formula::Text("?".into()),
-                            ]),
+                            Formula::equation(
+                                Formula::Expr(Expr::sym(coordinate)),
+                                c.at.value.clone(),
+                            ),
                             why,
                         ),
                     }

@@ -336,3 +336,56 @@ fn the_student_summary_teaches_each_derivation_in_the_authors_order() {
         );
     }
 }
+
+/// An inertia scene summarised for students: the tensor, centre of mass and principal moments
+/// once, none of the body's integrals, no characteristic polynomial that does not factor, no
+/// numeric check; the instructor's handout keeps them all. The starter's book alone prints on
+/// one A4 page.
+#[test]
+fn an_inertia_scene_is_summarised_for_students_on_one_page() {
+    let dir = scratch("inertia-summary");
+    assert!(super::mechbook_in(&dir, &["init"]).status.success());
+    std::fs::remove_file(dir.join("lectures/lecture-1/02-problem-box.toml")).unwrap();
+    let r = super::mechbook_in(&dir, &["build", "--no-cache"]);
+    assert!(r.status.success(), "{}", stderr(&r));
+    let site = dir.join("site");
+    let student = read(&site, "handouts/lecture-1-student.html");
+    let instructor = read(&site, "handouts/lecture-1-instructor.html");
+    for working in [
+        "position of a mass element",
+        "mass element",
+        "total mass",
+        "Irreducible factor",
+        "eigen-solver",
+        "Principal moments at the scene",
+    ] {
+        assert!(!student.contains(working), "the student's has {working}");
+        assert!(
+            instructor.contains(working),
+            "the instructor's lacks {working}"
+        );
+    }
+    for shown in [
+        "The inertia tensor",
+        "Centre of mass",
+        "Principal moments in closed form",
+    ] {
+        assert_eq!(student.matches(shown).count(), 1, "{shown}");
+    }
+    assert!(!student.contains(">?<"), "a question mark typeset");
+    let pdf = site.join("pdf/lecture-1-student.pdf");
+    match std::process::Command::new("pdfinfo").arg(&pdf).output() {
+        Ok(out) => {
+            let info = String::from_utf8_lossy(&out.stdout).into_owned();
+            let pages = info
+                .lines()
+                .find_map(|l| l.strip_prefix("Pages:"))
+                .map(|n| n.trim().to_string());
+            assert_eq!(pages.as_deref(), Some("1"), "{info}");
+        }
+        Err(_) => assert!(
+            std::env::var_os("CI").is_none(),
+            "CI needs poppler-utils (pdfinfo)"
+        ),
+    }
+}
