@@ -83,13 +83,28 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                 Operation::Momentum { coordinate, .. } => coordinate.as_str(),
                 _ => "t",
             };
-            let verdict = if *conserved {
-                "conserved: the Lagrangian does not depend on "
+            // The derivation's verdict after the author's reason, said once: a reason that
+            // says it is conserved is enough; one that already says why ("$L$ does not depend
+            // on $x$") takes "conserved"; any other, the verdict with its why.
+            let says_why = ["does not depend on", "cyclic", "does not appear in"]
+                .iter()
+                .any(|w| step.why.contains(w));
+            let why = if *conserved && step.why.contains("conserved") {
+                why
+            } else if *conserved && says_why {
+                with_reason(step, &why, Prose::default().text("conserved"))
             } else {
-                "not conserved: the Lagrangian depends on "
+                let verdict = if *conserved {
+                    "conserved: the Lagrangian does not depend on "
+                } else {
+                    "not conserved: the Lagrangian depends on "
+                };
+                with_reason(
+                    step,
+                    &why,
+                    Prose::default().text(verdict).expr(&Expr::sym(of)),
+                )
             };
-            let verdict = Prose::default().text(verdict).expr(&Expr::sym(of));
-            let why = with_reason(step, &why, verdict);
             vec![Step::note(&title, named(value), why).standing_for(own())]
         }
         StepResult::Equilibria {

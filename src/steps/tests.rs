@@ -1330,3 +1330,34 @@ fn a_cube_root_over_positive_symbols_agrees_and_its_square_frequency_is_positive
         .verdict;
     assert_eq!(verdict, Verdict::Disagrees);
 }
+
+/// A momentum's reason says "conserved" once: the author's reason that says it is kept alone,
+/// one that says why takes "conserved", another takes the verdict with its why.
+#[test]
+fn a_conserved_momentum_is_said_conserved_once() {
+    let reason = |r: &SceneReport, name: &str| {
+        let step = r
+            .derivation
+            .steps
+            .iter()
+            .find(|s| s.author.as_deref() == Some(name));
+        step.expect("the step's line").why.to_text()
+    };
+    let cart = std::fs::read_to_string("tests/course/dynamics/20-pendulum-on-cart.toml").unwrap();
+    let r = run(&cart);
+    assert_eq!(reason(&r, "px"), "$L$ does not depend on $x$; conserved");
+    let said = cart.replace(
+        "why = \"$L$ does not depend on $x$\"",
+        "why = \"the cart's momentum, conserved\"",
+    );
+    assert_ne!(said, cart);
+    assert_eq!(reason(&run(&said), "px"), "the cart's momentum, conserved");
+    let other = cart.replace(
+        "why = \"$L$ does not depend on $x$\"",
+        "why = \"the cart's momentum\"",
+    );
+    assert_eq!(
+        reason(&run(&other), "px"),
+        "the cart's momentum; conserved: the Lagrangian does not depend on x"
+    );
+}
