@@ -107,15 +107,20 @@ impl Expr {
     pub fn add(terms: Vec<Expr>) -> Expr {
         let mut out = Vec::new();
         let mut constant = Rational::ZERO;
+        // The numbers summed where the first stands, as an author writes 1 + cos θ.
+        let mut at = None;
         for t in terms {
             match t {
                 Expr::Add(inner) => out.extend(inner),
-                Expr::Num(r) => constant = constant.add(&r),
+                Expr::Num(r) => {
+                    at.get_or_insert(out.len());
+                    constant = constant.add(&r);
+                }
                 other => out.push(other),
             }
         }
         if !constant.is_zero() {
-            out.push(Expr::Num(constant));
+            out.insert(at.unwrap_or(out.len()), Expr::Num(constant));
         }
         match out.len() {
             0 => Expr::int(0),

@@ -32,6 +32,25 @@ fn split(term: &Expr) -> (Rational, Vec<(Expr, Rational)>) {
     (coefficient, bases)
 }
 
+/// The factor a printer takes out of a sum (see [`common_factor`]): none where a term carries
+/// brackets of its own (a sum, or a power of one, among its factors), which a textbook prints
+/// term by term: ½ml²(φ̇₁² + φ̇₂²) + mgl(cos φ₁ + cos φ₂), not l/2 (ml(…) + 2mg(…)).
+pub fn printed_common_factor(terms: &[Expr]) -> Option<(Expr, Vec<Expr>)> {
+    let bracketed = |f: &Expr| match f {
+        Expr::Add(_) => true,
+        Expr::Pow(b, _) => matches!(b.as_ref(), Expr::Add(_)),
+        _ => false,
+    };
+    let has_brackets = |t: &Expr| match t {
+        Expr::Mul(f) => f.iter().any(bracketed),
+        other => bracketed(other),
+    };
+    if terms.iter().any(has_brackets) {
+        return None;
+    }
+    common_factor(terms)
+}
+
 /// The factor common to every term of a sum, and the terms divided by it; `None` when there is
 /// nothing worth taking out. The factor is the gcd of the coefficients (negative when every term
 /// is) times each base that every term has, to its smallest power of one sign. A bare number is

@@ -1,7 +1,7 @@
 //! A product's factors in the order a physicist writes them: the number, roots of numbers,
 //! π, the scene's symbols in the order the scene declares them (the author controls M g l and
-//! m₁ m₂ g), other names by power and name, the coordinates and their rates in the order
-//! declared, functions (sin θ), then the rest (a sum in parentheses). The engine returns its
+//! m₁ m₂ g), other names by power and name, a sum of those alone (R − r), the coordinates and
+//! their rates in the order declared, functions (sin θ), then the rest (a sum in parentheses). The engine returns its
 //! factors by name (g l M, 2 g m₁ m₂); only the order of factors changes, never a value.
 
 use super::expr::Expr;
@@ -41,6 +41,22 @@ pub fn order_factors(e: &Expr, declared: &Declared) -> Expr {
     }
 }
 
+/// No coordinate, rate or function in `e`.
+fn of_parameters(e: &Expr, declared: &Declared) -> bool {
+    let mut plain = true;
+    e.walk(&mut |x| {
+        plain &= match x {
+            Expr::Sym(s) => !declared
+                .coordinates
+                .iter()
+                .any(|c| c == s.trim_end_matches('\'')),
+            Expr::Call(..) | Expr::List(_) | Expr::Index(..) => false,
+            _ => true,
+        }
+    });
+    plain
+}
+
 /// (kind, exponent, place in the declared order, name) of a factor.
 fn key(e: &Expr, declared: &Declared) -> (u8, f64, usize, String) {
     let (base, exponent) = match e {
@@ -56,7 +72,7 @@ fn key(e: &Expr, declared: &Declared) -> (u8, f64, usize, String) {
             let coordinate = s.trim_end_matches('\'');
             match declared.coordinates.iter().position(|c| c == coordinate) {
                 // A coordinate before its rate, each after the parameters: L² φ̈, not φ̈ L².
-                Some(k) => (4, 0.0, 3 * k + (s.len() - coordinate.len()), s.clone()),
+                Some(k) => (5, 0.0, 3 * k + (s.len() - coordinate.len()), s.clone()),
                 // A declared symbol by its place alone (M R² ω₃ where the scene declares M, R,
                 // ω₃); any other name after them, by power and name.
                 None => match declared.symbols.iter().position(|d| d == s) {
@@ -65,7 +81,12 @@ fn key(e: &Expr, declared: &Declared) -> (u8, f64, usize, String) {
                 },
             }
         }
-        (_, Expr::Call(..)) => (5, exponent, 0, base.to_text()),
-        _ => (6, exponent, 0, base.to_text()),
+        // A sum or a product of parameters alone (under a power) before the coordinates, by
+        // power: 7m(R − r)²φ̇², g(m₁ − m₂)x, 2π√(gl)(1 + a²/16).
+        (_, Expr::Add(_) | Expr::Mul(_)) if of_parameters(base, declared) => {
+            (4, exponent, 0, base.to_text())
+        }
+        (_, Expr::Call(..)) => (6, exponent, 0, base.to_text()),
+        _ => (7, exponent, 0, base.to_text()),
     }
 }

@@ -26,9 +26,11 @@ pub use symbol_latex::{
 };
 mod radical;
 mod rational;
+mod series_form;
 mod size;
 mod trig;
 mod trig_pairs;
+mod written;
 
 pub use angles::{Zero, Zeros};
 pub use closed_form::NoClosedForm;
@@ -37,7 +39,7 @@ pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
 /// The layout decisions every printer of an expression shares (where a product's fraction bar
 /// goes, a term's sign, an index chain's axes, a sum's common factor), for the tree printer in
 /// `notation`.
-pub use factor::common_factor;
+pub use factor::{common_factor, printed_common_factor};
 pub use factor_order::{Declared, order_factors};
 pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use print::{Prec, index_chain, page_fraction, split_sign};
@@ -398,6 +400,27 @@ pub fn present_all(
             .map(|e| present::present(e, &positive).map(|f| order_factors(&f, &declared)))
             .collect()
     })
+}
+
+/// An author's expression as written, its names put in (`written`), in the form a page prints
+/// it where the engine proves it equal to `exact`, else `exact`'s presented form (see
+/// `written.rs`); its products' factors in the scene's `declared` order.
+pub fn present_written(
+    written: Expr,
+    exact: Expr,
+    signed: std::collections::BTreeSet<String>,
+    declared: Declared,
+) -> Result<Expr, CasError> {
+    run(move || {
+        let positive = |s: &str| !signed.contains(s);
+        written::present_written(&written, &exact, &positive).map(|f| order_factors(&f, &declared))
+    })
+}
+
+/// An author's expression with its names kept, as a page prints it (`written.rs`): no engine,
+/// nothing expanded.
+pub fn as_written(e: &Expr, signed: &std::collections::BTreeSet<String>) -> Expr {
+    written::as_written(e, &|s: &str| !signed.contains(s))
 }
 
 /// The expanded numerator and denominator of each rational function.

@@ -4,7 +4,7 @@
 //! each node's own syntax. The pages' tree (`notation/expr_tree.rs`) follows the same walk.
 
 use super::expr::Expr;
-use super::factor::common_factor;
+use super::factor::printed_common_factor;
 use super::rational::Rational;
 use std::fmt;
 
@@ -171,7 +171,7 @@ pub(super) fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
         Expr::Add(v) => {
             if ctx == Prec::Sum
                 && style.factors_sums()
-                && let Some((factor, rest)) = common_factor(v)
+                && let Some((factor, rest)) = printed_common_factor(v)
             {
                 // c (a + b): the factor, then the sum left in parentheses.
                 let (negative, factor) = split_sign(&factor);

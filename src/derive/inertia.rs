@@ -222,9 +222,16 @@ fn body_part(
             );
             for (k, (i, j)) in UNIQUE.iter().enumerate() {
                 let name = format!("I{}{}", AXES[*i], AXES[*j]);
+                // Titled as a page sets it (I_xx typeset, not the name `Ixx`).
+                let what = if i == j {
+                    "moment"
+                } else {
+                    "product of inertia"
+                };
+                let typeset = format!("${}_{{{}}}$", &name[..1], &name[1..]);
                 d.steps.push(
                     Step::note(
-                        &format!("{label}: {name}"),
+                        &format!("{label}: the {what} {typeset}"),
                         integral_formula(
                             Formula::parse(&format!("{}_{}", &name[..1], &name[1..]), &[]),
                             &integrands[k],

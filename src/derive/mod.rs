@@ -71,6 +71,10 @@ pub struct Step {
     /// For an author's step: the result this line states, which the build checks it shows.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stands_for: Option<step_names::StandsFor>,
+    /// The reason a student's summary gives, where it says less than `why` (the roots set
+    /// aside as real for no values of the symbols are the instructor's working).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub student_why: Option<Prose>,
 }
 
 /// A step's reason, with the citation key a scene may map to its notes' equations.
@@ -128,6 +132,15 @@ impl Step {
             second_route: false,
             working: false,
             stands_for: None,
+            student_why: None,
+        }
+    }
+
+    /// The step with the shorter reason a student's summary gives.
+    pub fn for_students(self, why: Prose) -> Step {
+        Step {
+            student_why: Some(why),
+            ..self
         }
     }
 

@@ -170,6 +170,7 @@ pub fn eigenvalue_letter(scene: &Scene) -> &'static str {
 /// roots in ascending order where every root was found (the product is checked to multiply
 /// back to the determinant); else expanded, as working that a student's summary leaves out.
 fn characteristic_step(
+    scene: &Scene,
     characteristic: &Expr,
     roots: &cas::Roots,
     ev_name: &str,
@@ -208,7 +209,22 @@ fn characteristic_step(
             "the principal moments' product does not give back the characteristic polynomial {characteristic}"
         )));
     }
-    let line = Formula::parse(&lhs, &[product(&Expr::sym(ev_name))]);
+    // Each moment as its own line prints it, 3M(R² + 4h²)/20, not the engine's 3MR²/20 +
+    // 3Mh²/5 (proven equal, so the product is the one checked above).
+    let moments = cas::present_all(
+        roots.roots.iter().map(|(v, _)| v.clone()).collect(),
+        scene.signed_names(),
+        scene.declared.clone(),
+    )?;
+    let ev = Expr::sym(ev_name);
+    let shown_product = Expr::mul(
+        moments
+            .iter()
+            .zip(&roots.roots)
+            .map(|(value, (_, m))| factor(value, &ev, *m))
+            .collect(),
+    );
+    let line = Formula::parse(&lhs, &[shown_product]);
     Ok(Step::note("Characteristic polynomial", line, why()))
 }
 
@@ -238,8 +254,12 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
             .then(ta.cmp(&tb))
     });
     roots.unsolved.sort_by_key(|(factor, _)| factor.to_text());
-    d.steps
-        .push(characteristic_step(&characteristic, &roots, ev_name)?);
+    d.steps.push(characteristic_step(
+        scene,
+        &characteristic,
+        &roots,
+        ev_name,
+    )?);
     let mut spaces = Vec::new();
     for (value, multiplicity) in &roots.roots {
         let m = shifted(&tensor, value);

@@ -40,6 +40,11 @@ impl StepError {
 /// The names a step's expressions may use: the scene's definitions and vectors, the derived
 /// quantities, and the results of the steps before it.
 fn env(scene: &Scene, d: &Derivation) -> Env {
+    env_of(scene, d, false)
+}
+
+/// The names' environment; `printed`: each step's result in the form its page prints.
+fn env_of(scene: &Scene, d: &Derivation, printed: bool) -> Env {
     let mut env = Env::new();
     for (name, e) in &scene.definitions {
         env.insert(name.clone(), Value::Scalar(e.clone()));
@@ -51,11 +56,27 @@ fn env(scene: &Scene, d: &Derivation) -> Env {
         env.insert(name.clone(), v.clone());
     }
     for (name, r) in &d.named {
+        let r = d.printed.get(name).filter(|_| printed).unwrap_or(r);
         for (name, e) in r.values(name) {
             env.insert(name, Value::Scalar(e));
         }
     }
     env
+}
+
+/// An expression as written, each earlier step put in by the form its page prints (see
+/// `expand_names`): what a reader of the page would write next.
+pub fn expand_printed_names(
+    scene: &Scene,
+    d: &Derivation,
+    step: &AuthorStep,
+    e: &Expr,
+) -> Result<Expr, StepError> {
+    let exact = expand_names(scene, d, step, e)?;
+    match evaluate(e, &env_of(scene, d, true)) {
+        Ok(Value::Scalar(x)) => Ok(x),
+        _ => Ok(exact),
+    }
 }
 
 /// An expression with every name bound in the environment replaced by its value, unsimplified:

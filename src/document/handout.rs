@@ -214,10 +214,24 @@ fn values_at(page: &Page, lines: &[usize]) -> Vec<Option<usize>> {
 
 fn student_step(page: &Page, lines: Vec<usize>) -> ShownStep {
     let at = values_at(page, &lines);
+    // Claims that agree with one equation of the notes, on the same condition, said once: a
+    // list `gives` of three modes is "As in the notes, eq. (11.12)" once, not three times.
+    let mut said = Vec::new();
     let claims = lines
         .iter()
         .flat_map(|&l| page.steps[l].claims.clone())
         .filter_map(|i| shown_claim(page, i, false))
+        .filter(|c| {
+            let agreement = (
+                page.claim_equation(c.claim),
+                page.claims[c.claim].positive.clone(),
+            );
+            !matches!(c.mark, Mark::Agrees) || {
+                let new = !said.contains(&agreement);
+                said.push(agreement);
+                new
+            }
+        })
         .collect();
     let approx = lines
         .iter()
@@ -321,5 +335,70 @@ mod tests {
         assert!(is_step_value("Omega", &steps));
         assert!(!is_step_value("Omega_min", &steps));
         assert!(!is_step_value("inertia_tensor", &steps));
+    }
+}
+
+#[cfg(test)]
+mod agreement_tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// A scene whose two modes the notes' one equation gives as a list.
+    const MODES: &str = r#"id = "modes"
+title = "Two coupled pendulums"
+notes = { lecture = "1" }
+symbols = { m = "mass", l = "length", g = "gravity", k = "spring constant" }
+
+[coordinates]
+phi1 = "angle of the first pendulum"
+phi2 = "angle of the second pendulum"
+
+[[step]]
+name = "Lag"
+tex = "L"
+be = "m*l^2/2*(phi1'^2 + phi2'^2) + m*g*l*(cos(phi1) + cos(phi2)) - k*l^2/2*(sin(phi1) - sin(phi2))^2"
+why = "the Lagrangian"
+
+[[step]]
+name = "eom"
+lagrange = "Lag"
+why = "the equations"
+
+[[step]]
+name = "small"
+linearise = "eom"
+about = { phi1 = "0", phi2 = "0" }
+why = "small angles"
+
+[[step]]
+name = "Omega"
+frequency = "small"
+eq = "11.12"
+gives = ["sqrt(g/l)", "sqrt(g/l + 2*k/m)"]
+why = "the normal modes"
+expect = "agrees"
+
+[numeric]
+values = { m = 0.2, l = 0.5, g = 9.81, k = 0.5 }
+"#;
+
+    /// Both modes agree with eq. (11.12): the student's summary says so once, the
+    /// instructor's gives each claim its verdict.
+    #[test]
+    fn claims_agreeing_with_one_equation_are_said_once() {
+        let scene = Scene::parse(MODES, std::path::Path::new("modes.toml")).unwrap();
+        let report = crate::pipeline::run_scene(scene, None).unwrap();
+        let page = crate::document::page(&report, None, None);
+        let student = part(0, &page, false);
+        let said: Vec<&ShownClaim> = student.steps.iter().flat_map(|s| &s.claims).collect();
+        assert_eq!(said.len(), 1, "{said:?}");
+        assert!(matches!(said[0].mark, Mark::Agrees));
+        // The instructor's list of claims keeps each, with its verdict.
+        let instructor = part(0, &page, true);
+        let verdicts = instructor
+            .claims
+            .iter()
+            .filter(|c| matches!(c.mark, Mark::Verdict));
+        assert_eq!(verdicts.count(), 2);
     }
 }

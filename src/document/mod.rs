@@ -118,6 +118,8 @@ pub struct Step {
     pub stands_for: Option<crate::derive::step_names::Stands>,
     /// The line of the author's step in the scene file (0 for a built-in step).
     pub line: usize,
+    /// The reason a student's summary gives, where it says less than `why`.
+    pub student_why: Option<Prose>,
 }
 
 impl Step {
@@ -130,6 +132,19 @@ impl Step {
                 p
             }
             None => self.why.clone(),
+        }
+    }
+
+    /// The reason as a student's summary gives it, the citation first.
+    pub fn student_why_cited(&self) -> Prose {
+        match &self.student_why {
+            Some(why) => Step {
+                why: why.clone(),
+                student_why: None,
+                ..self.clone()
+            }
+            .why_cited(),
+            None => self.why_cited(),
         }
     }
 }
@@ -268,6 +283,14 @@ fn authors_form(step: &Step, on: &[usize], claims: &[ClaimResult]) -> Option<For
         }
         // `name = value`.
         [name, eq, Formula::Expr(_)] => Some(Formula::Row(vec![name.clone(), eq.clone(), notes])),
+        // `name = the author's expression = value`.
+        [name, eq, named, eq2, Formula::Expr(_)] => Some(Formula::Row(vec![
+            name.clone(),
+            eq.clone(),
+            named.clone(),
+            eq2.clone(),
+            notes,
+        ])),
         _ => None,
     }
 }
@@ -336,6 +359,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
                     exact: st.exact.clone(),
                     second_route: st.second_route,
                     working: st.working,
+                    student_why: st.student_why.clone(),
                     line: author.map_or(0, |k| s.steps[k].line),
                     stands_for: match (&st.author, &st.stands_for) {
                         (Some(name), Some(s)) => r

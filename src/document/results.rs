@@ -33,6 +33,10 @@ pub struct Quantity {
 pub struct At {
     pub symbols: Vec<(String, f64)>,
     pub numbers: Vec<f64>,
+    /// Each of those symbols' unit, where the scene gives one.
+    pub units: std::collections::BTreeMap<String, String>,
+    /// The unit of a scalar result's number (see `verify::dimensions::unit_of`).
+    pub unit: Option<String>,
 }
 
 /// An exact principal moment, its multiplicity and its axis or plane.
@@ -129,7 +133,7 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
                 .iter()
                 .map(|e| eval_at(e, values).ok())
                 .collect(),
-            at: at_numbers(&v, values),
+            at: at_numbers(&v, values).map(|at| with_units(at, &r.scene, &v)),
             derived: v,
             value: shown,
             is_result: name != quantity::INTEGRAND && name != quantity::POSITION,
@@ -166,7 +170,23 @@ fn at_numbers(v: &Value, values: &crate::model::value::Values) -> Option<At> {
             .map(|k| (k.clone(), values[&k]))
             .collect(),
         numbers,
+        units: Default::default(),
+        unit: None,
     })
+}
+
+/// The units of a result at the scene's numbers: its symbols', and a scalar's own.
+fn with_units(mut at: At, scene: &crate::scene::Scene, v: &Value) -> At {
+    at.units = at
+        .symbols
+        .iter()
+        .filter_map(|(k, _)| Some((k.clone(), scene.units.get(k)?.text.clone())))
+        .collect();
+    at.unit = match v {
+        Value::Scalar(e) => crate::verify::dimensions::unit_of(scene, e),
+        _ => None,
+    };
+    at
 }
 
 pub(super) fn principal_axes(r: &SceneReport) -> Vec<PrincipalAxis> {

@@ -50,6 +50,7 @@ fn a_cited_step_gives_its_reason_after_the_citation() {
         working: false,
         stands_for: None,
         line: 0,
+        student_why: None,
     };
     assert_eq!(step.why_cited().to_text(), "eq (51): expand");
     let uncited = Step {

@@ -61,6 +61,17 @@ impl Dimension {
     }
 }
 
+impl Dimension {
+    /// As a unit in SI base units, whole powers only (`kg m^2 s^-1`); none for a pure number
+    /// or a fractional power, which no reader writes as a unit.
+    pub fn base_units(&self) -> Option<String> {
+        if self.is_none() || self.0.iter().any(|p| !p.is_integer()) {
+            return None;
+        }
+        Some(self.to_string())
+    }
+}
+
 /// In SI base units: `kg m^2 s^-1`, or `1` for a pure number.
 impl fmt::Display for Dimension {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

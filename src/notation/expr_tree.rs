@@ -8,8 +8,8 @@ use super::tree::{
     space, sqrt, upright,
 };
 use crate::cas::{
-    Expr, Head, NameForm, Prec, Rational, common_factor, greek_letter, index_chain, name_form,
-    page_fraction, split_sign,
+    Expr, Head, NameForm, Prec, Rational, greek_letter, index_chain, name_form, page_fraction,
+    printed_common_factor, split_sign,
 };
 use pulldown_latex::event::{Font, ScriptPosition, ScriptType};
 use std::cell::RefCell;
@@ -92,7 +92,7 @@ impl Walk<'_> {
             Expr::Sym(s) => out.extend(symbol(s, self.named)),
             Expr::Add(v) => {
                 if ctx == Prec::Sum
-                    && let Some((factor, rest)) = common_factor(v)
+                    && let Some((factor, rest)) = printed_common_factor(v)
                 {
                     // c (a + b): the factor, then the sum left in parentheses.
                     let (negative, factor) = split_sign(&factor);

@@ -120,7 +120,8 @@ fn derived_products_take_the_order_the_scene_declares() {
     let (page, view) = page_and_view("dynamics/09-sleeping-cone.toml");
     assert_line(
         line(&view, &page, "a", 0),
-        "a = \\frac{3 M R^{2} \\omega_{3}}{10}",
+        // The author's I₃ω₃ first, I₃ being a step's result.
+        "a = I_{3} \\omega_{3} = \\frac{3 M R^{2} \\omega_{3}}{10}",
     );
     let (page, view) = page_and_view("dynamics/13-atwood.toml");
     assert_line(
@@ -137,5 +138,90 @@ fn derived_products_take_the_order_the_scene_declares() {
     assert_line(
         line(&view, &page, "p_phi", 0),
         "p_{\\phi} = \\frac{M L^{2} \\dot{\\phi}}{3}",
+    );
+}
+
+/// The sine and cosine of φₖ as the pages set them.
+fn sin_cos(f: &str, k: u8) -> String {
+    format!("\\{f}\\left(\\phi_{{{k}}}\\right)")
+}
+
+#[test]
+fn an_authors_energies_print_as_written_with_squares_of_differences_kept() {
+    let (page, view) = page_and_view("dynamics/22-coupled-pendulums.toml");
+    let (s1, s2, c1, c2) = (
+        sin_cos("sin", 1),
+        sin_cos("sin", 2),
+        sin_cos("cos", 1),
+        sin_cos("cos", 2),
+    );
+    let spring = format!("\\frac{{k l^{{2}} \\left({s1} - {s2}\\right)^{{2}}}}{{2}}");
+    let gravity = format!("m g l \\left({c1} + {c2}\\right)");
+    // Not l/2 (2kl − 2mg cos φ₁ − … − kl cos²φ₁ − …), the engine's expansion with 1 − cos².
+    assert_line(
+        line(&view, &page, "V", 0),
+        &format!("V = {spring} - {gravity}"),
+    );
+    // The Lagrangian: T − V, then T and V put in as the page states them.
+    let kinetic = "\\frac{m l^{2} \\left(\\dot{\\phi_{1}}^{2} + \\dot{\\phi_{2}}^{2}\\right)}{2}";
+    assert_line(
+        line(&view, &page, "Lag", 0),
+        &format!("\\mathcal{{L}} = T - V = {kinetic} - {spring} + {gravity}"),
+    );
+}
+
+#[test]
+fn an_equation_of_motion_prints_one_term_per_force() {
+    let (page, view) = page_and_view("dynamics/22-coupled-pendulums.toml");
+    // Gravity, the spring, the bob's inertia: not l(mg sin φ₁ + kl cos φ₁ sin φ₁ − …).
+    assert_line(
+        line(&view, &page, "eom", 0),
+        &format!(
+            "m g l {} + k l^{{2}} {} \\left({} - {}\\right) + m l^{{2}} \\ddot{{\\phi_{{1}}}} = 0",
+            sin_cos("sin", 1),
+            sin_cos("cos", 1),
+            sin_cos("sin", 1),
+            sin_cos("sin", 2)
+        ),
+    );
+}
+
+#[test]
+fn a_beat_period_prints_the_difference_of_the_named_modes() {
+    let (page, view) = page_and_view("dynamics/22-coupled-pendulums.toml");
+    // 2π/(Ω₂ − Ω₁) as the author wrote it, then each mode put in as its line prints it; not
+    // 2πl/(√((mg + 2kl)lm)/m − √(gl)).
+    assert_line(
+        line(&view, &page, "beat", 0),
+        "T_{\\mathrm{beat}} = \\frac{2 \\pi}{\\Omega_{2} - \\Omega_{1}} = \\frac{2 \\pi}{\\sqrt{\\frac{m g + 2 k l}{m l}} - \\sqrt{\\frac{g}{l}}}",
+    );
+}
+
+#[test]
+fn a_lagrangian_with_a_moment_put_in_collects_its_kinetic_terms() {
+    let (page, view) = page_and_view("problems/11-ball-in-bowl.toml");
+    // ½m(R − r)²φ̇² + ½I((R − r)φ̇/r)² with I = 2mr²/5: one kinetic term, 7/10 of it; not
+    // m(7Rφ̇² + 10g cos φ − 7rφ̇²)(R − r)/10.
+    let printed = line(&view, &page, "Lag", 0);
+    let value = "\\frac{7 m \\left(R - r\\right)^{2} \\dot{\\phi}^{2}}{10} + m g \\left(R - r\\right) \\cos\\left(\\phi\\right)";
+    let written = "\\frac{m \\left(R - r\\right)^{2} \\dot{\\phi}^{2}}{2} + \\frac{I \\left(R - r\\right)^{2} \\dot{\\phi}^{2}}{2 r^{2}} + m g \\left(R - r\\right) \\cos\\left(\\phi\\right)";
+    assert_line(printed, &format!("L = {written} = {value}"));
+}
+
+#[test]
+fn a_denominator_is_led_by_a_positive_term() {
+    let (page, view) = page_and_view("dynamics/19-block-on-wedge.toml");
+    let (cos, sin) = ("\\cos\\left(\\alpha\\right)", "\\sin\\left(\\alpha\\right)");
+    // A power of a function is set after a thin space, as the printer sets sin²α.
+    let below = "M + m \\, \\sin^{2}\\left(\\alpha\\right)";
+    // Not m g cos α sin α/(−M − m sin²α): the sign taken out of the denominator.
+    assert_line(
+        line(&view, &page, "acc", 0),
+        &format!("\\ddot{{X}} = -\\frac{{m g {cos} {sin}}}{{{below}}}"),
+    );
+    assert_line(
+        line(&view, &page, "acc", 1),
+        // Both signs gone: not −g sin α (M + m)/(−M − m sin²α).
+        &format!("\\ddot{{s}} = \\frac{{g {sin} \\left(M + m\\right)}}{{{below}}}"),
     );
 }

@@ -258,3 +258,32 @@ fn guard_counts() {
         eprintln!("{site}: {scenes} scenes, {total:?}");
     }
 }
+
+/// A line that states a result twice, the author's expression with its names and then its
+/// value (𝓛 = T − V = …), is read back on both sides: T + V in the middle fails at the step's
+/// line, while the page as derived reads every line.
+#[test]
+fn the_middle_side_of_a_line_is_read_back_too() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/course/dynamics/22-coupled-pendulums.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let report = crate::pipeline::run_scene(Scene::parse(&text, &path).unwrap(), None).unwrap();
+    let mut page = crate::document::page(&report, None, None);
+    let view = super::page_view(&page, false).unwrap();
+    assert_eq!(view.guarded.unread, 0, "{:?}", view.guarded);
+    let i = page
+        .steps
+        .iter()
+        .position(|s| s.author.as_deref() == Some("Lag"))
+        .unwrap();
+    let Formula::Row(mut row) = page.steps[i].statement.clone() else {
+        panic!("𝓛's line is no row");
+    };
+    assert_eq!(row.len(), 5, "𝓛 = T − V = …");
+    use crate::cas::Expr;
+    row[2] = Formula::Expr(Expr::add(vec![Expr::sym("T"), Expr::sym("V")]));
+    page.steps[i].statement = Formula::Row(row);
+    let line = misprinted_line(super::page_view(&page, false));
+    let name = text.lines().position(|l| l == "name = \"Lag\"").unwrap();
+    assert_eq!(line, name);
+}

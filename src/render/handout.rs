@@ -82,7 +82,7 @@ fn step_view<'a>(
     let (reason, title, why) = if s.reason_first {
         let reason = match first.why.is_empty() {
             true => None,
-            false => Some(prose_html(&first.why_cited().capitalised())?),
+            false => Some(prose_html(&first.student_why_cited().capitalised())?),
         };
         (reason, None, None)
     } else {

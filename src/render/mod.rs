@@ -236,17 +236,32 @@ fn value_math(v: &Value) -> Result<String, RenderError> {
 fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
     let n: Vec<Formula> = at_entries(at).into_iter().map(|x| number(x, 6)).collect();
     let symbols = at.symbols.iter().map(|(k, x)| {
-        Formula::Row(vec![
-            Formula::Expr(Expr::sym(k)),
-            Formula::Op(Op::Equals),
-            number(*x, 6),
-        ])
+        with_unit(
+            Formula::Row(vec![
+                Formula::Expr(Expr::sym(k)),
+                Formula::Op(Op::Equals),
+                number(*x, 6),
+            ]),
+            at.units.get(k),
+        )
     });
     Ok(format!(
         "at {}: {}",
         math::inline(&listed(symbols).to_tex())?,
-        math::inline(&numbers_formula(v, n).to_tex())?
+        math::inline(&with_unit(numbers_formula(v, n), at.unit.as_ref()).to_tex())?
     ))
+}
+
+/// A number followed by its unit, a thin space between: 9.81 m/s².
+fn with_unit(f: Formula, unit: Option<&String>) -> Formula {
+    match unit {
+        Some(u) => Formula::Row(vec![
+            f,
+            Formula::Op(Op::Thin),
+            crate::model::units::unit_formula(u),
+        ]),
+        None => f,
+    }
 }
 
 /// Formulas one after another, set apart by a comma and a space: `a = 1,\; b = 2`.
@@ -451,9 +466,14 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             .coordinates
             .iter()
             .map(|(k, v)| {
+                // With its unit, as the PDF's setup and the symbols give theirs.
+                let unit = page
+                    .units
+                    .get(k)
+                    .map_or(String::new(), |u| format!(" ({})", problems::unit_html(u)));
                 Ok((
                     math::mathml(&Expr::sym(k).to_tex(), false)?,
-                    author_html(v)?,
+                    format!("{}{unit}", author_html(v)?),
                 ))
             })
             .collect::<Result<_, RenderError>>()?,

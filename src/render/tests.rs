@@ -12,9 +12,13 @@ fn a_result_at_the_numbers_prints_six_figures_and_names_its_symbols() {
     let at = At {
         symbols: vec![("R".into(), 2.0)],
         numbers: vec![4.0 * std::f64::consts::PI],
+        units: [("R".to_string(), "m".to_string())].into(),
+        unit: Some("m".into()),
     };
     let html = at_numbers_html(&v, &at).unwrap();
     assert!(html.starts_with("at <math"), "{html}");
     assert!(html.contains("<mi>R</mi>"), "{html}");
     assert!(html.contains("<mn>12.5664</mn>"), "{html}");
+    // Each number with its unit: R = 2 m, and the result's 12.5664 m.
+    assert_eq!(html.matches(">m</mi>").count(), 2, "{html}");
 }

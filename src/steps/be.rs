@@ -8,7 +8,7 @@ use super::Context;
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
-use crate::derive::step_names::{StepResult, expand_names};
+use crate::derive::step_names::{StepResult, expand_names, expand_printed_names};
 use crate::verify::CONFIRMATION_POINTS;
 use crate::verify::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, rational_at};
 use crate::verify::step_check::{CheckError, StepCheck, at, random_point};
@@ -68,4 +68,52 @@ pub(super) fn check(
         });
     }
     Ok(())
+}
+
+/// The form the page prints: the author's expression as written, each earlier step put in by
+/// the form its page prints, where the engine proves it equal (`cas::present_written`).
+pub(super) fn printed(cx: Context, e: &Expr, exact: &Expr) -> Result<Expr, DeriveError> {
+    let written = expand_printed_names(cx.scene, cx.d, cx.step, e).map_err(DeriveError::Step)?;
+    Ok(cas::present_written(
+        written,
+        exact.clone(),
+        cx.scene.signed_names(),
+        cx.scene.declared.clone(),
+    )?)
+}
+
+/// The author's expression with its names, where it names an earlier step's result and every
+/// name in it prints as a symbol: T_beat = 2π/(Ω₂ − Ω₁) before its value, as a textbook
+/// writes L = T − V before putting T and V in.
+pub(super) fn as_named(cx: Context, e: &Expr) -> Option<Expr> {
+    let results: Vec<String> =
+        cx.d.named
+            .iter()
+            .flat_map(|(name, r)| {
+                let mut names = vec![name.clone()];
+                names.extend(r.values(name).into_iter().map(|(n, _)| n));
+                names
+            })
+            .collect();
+    let scene = cx.scene;
+    let own = |n: &str| {
+        scene.symbols.contains_key(n)
+            || ["t", "pi"].contains(&n)
+            || scene.coordinates.contains_key(n.trim_end_matches('\''))
+    };
+    let symbols = e.symbols();
+    let names_a_result = symbols.iter().any(|s| results.contains(s));
+    let each_a_symbol = symbols.iter().all(|s| {
+        own(s) || (results.contains(s) && !cas::prints_as_word(s, &|n| scene.tex.contains_key(n)))
+    });
+    let mut plain = true;
+    e.walk(&mut |x| {
+        plain &= match x {
+            Expr::Call(f, _) => ["sin", "cos", "tan", "sqrt"].contains(&f.as_str()),
+            Expr::List(_) | Expr::Index(..) => false,
+            _ => true,
+        }
+    });
+    (names_a_result && each_a_symbol && plain && !matches!(e, Expr::Sym(_)))
+        .then(|| cas::as_written(e, &scene.signed_names()))
 }

@@ -62,7 +62,25 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         // A statement other than `name = result`: an integral shown with its limits.
         let mut shown: Option<Formula> = None;
         let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
-        let printed = printed_form(scene, &result).map_err(|e| locate(step, e))?;
+        let printed = match (&step.op, &result) {
+            // An author's expression prints as written, its names kept where they print as
+            // symbols (T_beat = 2π/(Ω₂ − Ω₁) = …), then put in.
+            (Operation::Be(e), StepResult::Expr(exact)) => {
+                let cx = Context { scene, d, step };
+                let form = be::printed(cx, e, exact).map_err(|e| locate(step, e))?;
+                if let Some(named) = be::as_named(cx, e).filter(|n| *n != form) {
+                    shown = Some(Formula::Row(vec![
+                        Formula::Expr(Expr::sym(&step.name)),
+                        Formula::Op(crate::notation::Op::Equals),
+                        Formula::Expr(named),
+                        Formula::Op(crate::notation::Op::Equals),
+                        Formula::Expr(form.clone()),
+                    ]));
+                }
+                (form != *exact).then_some(StepResult::Expr(form))
+            }
+            _ => printed_form(scene, &result).map_err(|e| locate(step, e))?,
+        };
         let mut steps = page::page_steps(scene, step, printed.as_ref().unwrap_or(&result));
         if printed.is_some() {
             for (shown, exact) in steps.iter_mut().zip(page::page_steps(scene, step, &result)) {

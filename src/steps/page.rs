@@ -123,12 +123,17 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                 .iter()
                 .enumerate()
                 .map(|(k, z)| {
-                    Step::note(
+                    let line = Step::note(
                         &format!("{title}: equilibrium {}", k + 1),
                         Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
                         if k + 1 == n { last_why.clone() } else { why.clone() },
                     )
-                    .standing_for(kth(k))
+                    .standing_for(kth(k));
+                    // The roots set aside are the instructor's working.
+                    match k + 1 == n && !excluded.is_empty() {
+                        true => line.for_students(why.clone()),
+                        false => line,
+                    }
                 })
                 .collect()
         }
@@ -185,11 +190,15 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                 .iter()
                 .enumerate()
                 .map(|(k, state)| {
-                    Step::note(
+                    let line = Step::note(
                         &format!("{title}: equilibrium {}", k + 1),
                         state_formula(coordinates, state),
                         if k + 1 == n { last_why.clone() } else { why.clone() },
-                    )
+                    );
+                    match k + 1 == n && !excluded.is_empty() {
+                        true => line.for_students(why.clone()),
+                        false => line,
+                    }
                 })
                 .collect()
         }

@@ -953,6 +953,10 @@ values = {{ m = 1.0, k = 2.0, {symbol} = {value} }}
                 .find(|s| s.title.contains("equilibrium 1"));
             let why = format!("{:?}", page.unwrap().why);
             assert!(why.contains("real for no values of the symbols"), "{why}");
+            // The instructor's working: the student's summary gives the reason alone.
+            let student = format!("{:?}", page.unwrap().student_why);
+            assert!(student.starts_with("Some"), "{student}");
+            assert!(!student.contains("real for no values"), "{student}");
         }
         // Ω² = 3k/(m r) is positive for every positive value, ∛p among them.
         assert_eq!(

@@ -42,6 +42,26 @@ fn names<'a>(scene: &'a Scene) -> impl Fn(&str) -> Option<Measure> + 'a {
     }
 }
 
+/// The unit a result's number at the scene's values is in: a unit the scene declares of that
+/// dimension and size (N/m, rad/s), else SI base units with whole powers (`m s^-2`); none where
+/// a name in it has no unit, the number is not in coherent SI units (a length in cm times one
+/// in m), or it is a pure number.
+pub fn unit_of(scene: &Scene, e: &Expr) -> Option<String> {
+    let m = measure(scene, e).ok()??;
+    if m.dimension.is_none() {
+        return None;
+    }
+    let declared = scene
+        .units
+        .values()
+        .find(|u| u.dimension == m.dimension && u.scale == m.scale);
+    match declared {
+        Some(u) => Some(u.text.clone()),
+        None if m.scale == Rational::ONE => m.dimension.base_units(),
+        None => None,
+    }
+}
+
 fn measure(scene: &Scene, e: &Expr) -> Result<Option<Measure>, DimensionError> {
     measure_of(e, &names(scene))
 }

@@ -118,7 +118,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
     let last = &page.steps[*s.lines.last().unwrap()];
     m.raw(&format!("\n#block(width: 100%, breakable: true)[*{n}.* "));
     if s.reason_first {
-        m.prose(&first.why_cited().capitalised())?;
+        m.prose(&first.student_why_cited().capitalised())?;
         m.raw("\n");
     } else {
         m.raw("*").author(&last.title)?.raw("*");
@@ -242,12 +242,19 @@ fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
     let symbols: Vec<String> = at
         .symbols
         .iter()
-        .map(|(k, x)| format!("{} = {}", symbol(k), number(*x, 6)))
+        .map(|(k, x)| format!("{} = {}{}", symbol(k), number(*x, 6), unit(at.units.get(k))))
         .collect();
+    let spoken_unit =
+        |u: Option<&String>| u.map_or(String::new(), |u| format!(" {}", said_unit(u)));
     let said_symbols: Vec<String> = at
         .symbols
         .iter()
-        .map(|(k, x)| said_equation(k, &said_number(*x, 6)))
+        .map(|(k, x)| {
+            said_equation(
+                k,
+                &format!("{}{}", said_number(*x, 6), spoken_unit(at.units.get(k))),
+            )
+        })
         .collect();
     let said_values: Vec<String> = crate::render::at_entries(at)
         .into_iter()
@@ -256,8 +263,22 @@ fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
     m.text("at ")
         .inline(&symbols.join("\\, thin "), &said_symbols.join(", "))
         .text(": ")
-        .display(&numbers_typst(v, &n), &said_values.join(", "))
+        .display(
+            &format!("{}{}", numbers_typst(v, &n), unit(at.unit.as_ref())),
+            &format!(
+                "{}{}",
+                said_values.join(", "),
+                spoken_unit(at.unit.as_ref())
+            ),
+        )
         .par();
+}
+
+/// A number's unit after a thin space, in math markup; nothing without one.
+fn unit(u: Option<&String>) -> String {
+    u.map_or(String::new(), |u| {
+        format!(" thin {}", super::sheet::unit_typst(u))
+    })
 }
 
 /// Numbers in the shape of `v`: a number, a row or a matrix.

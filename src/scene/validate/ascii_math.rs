@@ -13,6 +13,9 @@ const GREEK: &[&str] = &[
     "Omega",
 ];
 
+/// Functions a page sets upright, which LaTeX writes as commands: `\sin(\alpha)`.
+const FUNCTIONS: &[&str] = &["sin", "cos", "tan", "exp", "log", "ln"];
+
 /// The first ASCII mathematics in `text` outside its `$…$` and its backticks: its byte offset
 /// and the characters around it, as the author wrote them.
 pub fn ascii_math(text: &str) -> Option<(usize, String)> {
@@ -78,7 +81,8 @@ fn math_at(text: &str, i: usize) -> Option<String> {
             && (GREEK.contains(&stem)
                 || (stem.len() == 1 && stem.as_bytes()[0].is_ascii_lowercase()));
         if let Some(len) = operation(word, after) {
-            return Some(text[i..i + word.len() + len].to_string());
+            let end = i + word.len() + len;
+            return Some(text[i..end + more_math(&text[end..])].to_string());
         }
         GREEK.contains(&word) || subscripted(word) || primed || indexed
     } else {
@@ -128,6 +132,32 @@ fn operation(word: &str, after: &str) -> Option<usize> {
     None
 }
 
+/// How much of `rest` continues a formula found before it, word by word: `L = I omega` is
+/// suggested whole, not as `$L = I$`. A word continues it when it is a letter, a Greek name
+/// (with an index), a number, an operator, or holds a power.
+fn more_math(rest: &str) -> usize {
+    let mut taken = 0;
+    while let Some(after_space) = rest[taken..].strip_prefix(' ') {
+        let word: &str = after_space
+            .split(|c: char| c.is_whitespace() || ",;:".contains(c))
+            .next()
+            .unwrap_or("");
+        let word = word.trim_end_matches('.');
+        let bare = word.trim_matches(['(', ')']);
+        let stem = bare.trim_end_matches(|c: char| c.is_ascii_digit());
+        let mathy = !bare.is_empty()
+            && ((bare.len() == 1 && bare.is_ascii())
+                || GREEK.contains(&stem)
+                || bare.bytes().all(|b| b.is_ascii_digit())
+                || bare.contains('^'));
+        if !mathy || word.matches('(').count() != word.matches(')').count() {
+            break;
+        }
+        taken += 1 + word.len();
+    }
+    taken
+}
+
 /// `I_xx`, `omega_z`, `delta_jk`: letters, `_`, then a letter or digit.
 fn subscripted(word: &str) -> bool {
     word.split_once('_').is_some_and(|(head, tail)| {
@@ -166,13 +196,13 @@ fn latex_for(found: &str) -> String {
             rest = rest.get(close + 1..).unwrap_or("");
             continue;
         }
-        out.push_str(&if GREEK.contains(&head) {
-            format!("\\{head}")
-        } else {
-            head.to_string()
-        });
+        let command = |w: &str| match GREEK.contains(&w) || FUNCTIONS.contains(&w) {
+            true => format!("\\{w}"),
+            false => w.to_string(),
+        };
+        out.push_str(&command(head));
         if let Some(sub) = sub {
-            out.push_str(&format!("_{{{sub}}}"));
+            out.push_str(&format!("_{{{}}}", command(sub)));
         }
     }
     out.push_str(rest);
@@ -186,9 +216,15 @@ fn around(text: &str, i: usize) -> String {
     let end = text[i..]
         .find(char::is_whitespace)
         .map_or(text.len(), |e| i + e);
-    text[start..end]
-        .trim_end_matches(['.', ',', ';', ':'])
-        .to_string()
+    let mut found = text[start..end].trim_end_matches(['.', ',', ';', ':']);
+    // A bracket the run opens or closes beyond it: `(R^2` of "(R^2 + r^2)" is `R^2`.
+    let (open, close) = (found.matches('(').count(), found.matches(')').count());
+    if open > close {
+        found = found.strip_prefix('(').unwrap_or(found);
+    } else if close > open {
+        found = found.strip_suffix(')').unwrap_or(found);
+    }
+    found.to_string()
 }
 
 impl Validator<'_> {
@@ -252,7 +288,7 @@ mod tests {
     #[test]
     fn powers_greek_names_roots_and_subscripts_are_found_outside_dollars() {
         let found = |t: &str| ascii_math(t).map(|(_, s)| s);
-        assert_eq!(found("L = m r^2 omega."), Some("L = m".into()));
+        assert_eq!(found("L = m r^2 omega."), Some("L = m r^2 omega".into()));
         assert_eq!(found("then m r^2 omega."), Some("r^2".into()));
         assert_eq!(found("so A T A^-1 = A T A^T"), Some("A^-1".into()));
         assert_eq!(found("tilted by theta, about x"), Some("theta".into()));
@@ -289,6 +325,19 @@ mod tests {
         assert_eq!(found("A4 paper, a step, and/or 9.81 m/s"), None);
         assert_eq!(found("a - as in a dash - here"), None);
         assert_eq!(found("lecture 3/4, in 2 - 3 weeks"), None);
+    }
+
+    /// Each suggestion is a whole formula whose brackets pair, that the pages' reader reads.
+    #[test]
+    fn a_suggestion_is_whole_latex_that_reads_back() {
+        let suggested = |t: &str| super::latex_for(&ascii_math(t).unwrap().1);
+        assert_eq!(suggested("a moment of (R^2 + r^2)/4"), "R^2");
+        assert_eq!(suggested("the slope sin(alpha) sets it"), "\\sin(\\alpha)");
+        assert_eq!(suggested("so L = I omega, along the axis"), "L = I \\omega");
+        assert_eq!(suggested("the momentum p_phi is conserved"), "p_{\\phi}");
+        for latex in ["R^2", "\\sin(\\alpha)", "L = I \\omega", "p_{\\phi}"] {
+            assert!(crate::notation::Tex::read(latex).is_ok(), "{latex}");
+        }
     }
 
     #[test]
