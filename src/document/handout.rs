@@ -343,50 +343,17 @@ mod agreement_tests {
     use super::*;
     use crate::scene::Scene;
 
-    /// A scene whose two modes the notes' one equation gives as a list.
-    const MODES: &str = r#"id = "modes"
-title = "Two coupled pendulums"
-notes = { lecture = "1" }
-symbols = { m = "mass", l = "length", g = "gravity", k = "spring constant" }
-
-[coordinates]
-phi1 = "angle of the first pendulum"
-phi2 = "angle of the second pendulum"
-
-[[step]]
-name = "Lag"
-tex = "L"
-be = "m*l^2/2*(phi1'^2 + phi2'^2) + m*g*l*(cos(phi1) + cos(phi2)) - k*l^2/2*(sin(phi1) - sin(phi2))^2"
-why = "the Lagrangian"
-
-[[step]]
-name = "eom"
-lagrange = "Lag"
-why = "the equations"
-
-[[step]]
-name = "small"
-linearise = "eom"
-about = { phi1 = "0", phi2 = "0" }
-why = "small angles"
-
-[[step]]
-name = "Omega"
-frequency = "small"
-eq = "11.12"
-gives = ["sqrt(g/l)", "sqrt(g/l + 2*k/m)"]
-why = "the normal modes"
-expect = "agrees"
-
-[numeric]
-values = { m = 0.2, l = 0.5, g = 9.81, k = 0.5 }
-"#;
+    /// Two coupled pendulums whose two modes the notes' one equation gives as a list.
+    fn modes() -> String {
+        include_str!("../../tests/fixtures/coupled-modes-list.toml")
+            .replace("gives = [", "eq = \"11.12\"\ngives = [")
+    }
 
     /// Both modes agree with eq. (11.12): the student's summary says so once, the
     /// instructor's gives each claim its verdict.
     #[test]
     fn claims_agreeing_with_one_equation_are_said_once() {
-        let scene = Scene::parse(MODES, std::path::Path::new("modes.toml")).unwrap();
+        let scene = Scene::parse(&modes(), std::path::Path::new("modes.toml")).unwrap();
         let report = crate::pipeline::run_scene(scene, None).unwrap();
         let page = crate::document::page(&report, None, None);
         let student = part(0, &page, false);

@@ -105,17 +105,17 @@ impl<'a> Guard<'a> {
         let parts = sides(&tex.nodes);
         let (relation, last) = parts.last().cloned().unwrap_or((None, &[]));
         let verdict = match stands {
-            // Every side after the name: `T_beat = 2π/(Ω₂ − Ω₁) = …` proves its middle too.
-            Stands::Value(result) => parts[1.min(parts.len() - 1)..]
-                .iter()
-                .map(|(_, side)| self.shown(side, &[result]))
-                .collect::<Option<Vec<Expr>>>()
-                .map(|shown| {
-                    shown.into_iter().try_for_each(|shown| {
-                        crate::verify::shown_is_result(&shown, result, &self.page.signed)
-                            .map_err(|d| (shown, Some(result.clone()), d.by))
-                    })
-                }),
+            // The last side, and every middle side a reader can take back: `T_beat =
+            // 2π/(Ω₂ − Ω₁) = …` proves its middle too (an integral with its limits is not read).
+            Stands::Value(result) => self.shown(last, &[result]).map(|last| {
+                let middles = parts[1.min(parts.len() - 1)..parts.len() - 1]
+                    .iter()
+                    .filter_map(|(_, side)| self.shown(side, &[result]));
+                middles.chain([last]).try_for_each(|shown| {
+                    crate::verify::shown_is_result(&shown, result, &self.page.signed)
+                        .map_err(|d| (shown, Some(result.clone()), d.by))
+                })
+            }),
             // Printed to six figures: within half a unit of the sixth.
             Stands::Number(w) => self
                 .shown(last, &[])

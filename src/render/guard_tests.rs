@@ -11,45 +11,7 @@ use crate::scene::Scene;
 use std::path::Path;
 
 /// Two pendulums joined by a spring (issue 69's reproducer), its modes given as a list.
-const COUPLED: &str = r#"id = "coupled"
-title = "Two coupled pendulums"
-notes = { lecture = "1" }
-symbols = { m = "mass", l = "length", g = "gravity", k = "spring constant", t = "time" }
-
-[coordinates]
-phi1 = { meaning = "angle of the first pendulum", unit = "rad" }
-phi2 = { meaning = "angle of the second pendulum", unit = "rad" }
-
-[outputs]
-want = []
-
-[[step]]
-name = "Lag"
-tex = "L"
-be = "m*l^2/2*(phi1'^2 + phi2'^2) + m*g*l*(cos(phi1) + cos(phi2)) - k*l^2/2*(sin(phi1) - sin(phi2))^2"
-why = "the Lagrangian"
-
-[[step]]
-name = "eom"
-lagrange = "Lag"
-why = "the equations"
-
-[[step]]
-name = "small"
-linearise = "eom"
-about = { phi1 = "0", phi2 = "0" }
-why = "small angles"
-
-[[step]]
-name = "Omega"
-frequency = "small"
-gives = ["sqrt(g/l)", "sqrt(g/l + 2*k/m)"]
-why = "the normal modes"
-expect = "agrees"
-
-[numeric]
-values = { m = 0.2, l = 0.5, g = 9.81, k = 0.5 }
-"#;
+const COUPLED: &str = include_str!("../../tests/fixtures/coupled-modes-list.toml");
 
 fn coupled() -> Page {
     let scene = Scene::parse(COUPLED, Path::new("coupled.toml")).unwrap();
