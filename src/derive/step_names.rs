@@ -72,10 +72,10 @@ pub fn expand_printed_names(
     step: &AuthorStep,
     e: &Expr,
 ) -> Result<Expr, StepError> {
-    let exact = expand_names(scene, d, step, e)?;
+    // Anything the printed forms cannot give, the derived ones do, or say why not.
     match evaluate(e, &env_of(scene, d, true)) {
-        Ok(Value::Scalar(x)) => Ok(x),
-        _ => Ok(exact),
+        Ok(Value::Scalar(x)) if d.numeric_name_in(e).is_none() => Ok(x),
+        _ => expand_names(scene, d, step, e),
     }
 }
 

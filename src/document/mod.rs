@@ -125,26 +125,22 @@ pub struct Step {
 impl Step {
     /// The reason as one sentence: the citation first, if any.
     pub fn why_cited(&self) -> Prose {
-        match &self.citation {
-            Some(c) => {
-                let mut p = Prose::from(format!("{c}: "));
-                p.0.extend(self.why.0.iter().cloned());
-                p
-            }
-            None => self.why.clone(),
-        }
+        self.cited(&self.why)
     }
 
     /// The reason as a student's summary gives it, the citation first.
     pub fn student_why_cited(&self) -> Prose {
-        match &self.student_why {
-            Some(why) => Step {
-                why: why.clone(),
-                student_why: None,
-                ..self.clone()
+        self.cited(self.student_why.as_ref().unwrap_or(&self.why))
+    }
+
+    fn cited(&self, why: &Prose) -> Prose {
+        match &self.citation {
+            Some(c) => {
+                let mut p = Prose::from(format!("{c}: "));
+                p.0.extend(why.0.iter().cloned());
+                p
             }
-            .why_cited(),
-            None => self.why_cited(),
+            None => why.clone(),
         }
     }
 }
