@@ -557,6 +557,16 @@ pub fn primitive_part(entries: &[Expr]) -> Result<Vec<Expr>, EngineError> {
 }
 
 fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, EngineError> {
+    let content = content(entries)?;
+    entries
+        .iter()
+        .map(|e| normal_form(&Expr::over(e.clone(), content.clone())))
+        .collect()
+}
+
+/// The entries' common factor: the factors of a + z1·b + z2·c (fresh z's) that do not contain
+/// the z's, over the common denominator.
+pub fn content(entries: &[Expr]) -> Result<Expr, EngineError> {
     let combined = Expr::add(
         entries
             .iter()
@@ -580,11 +590,7 @@ fn divide_by_content(entries: &[Expr]) -> Result<Vec<Expr>, EngineError> {
             content.push(Expr::pow(f, Expr::int(mult as i128)));
         }
     }
-    let content = Expr::mul(content);
-    entries
-        .iter()
-        .map(|e| normal_form(&Expr::over(e.clone(), content.clone())))
-        .collect()
+    Ok(Expr::mul(content))
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@ mod engine;
 mod expr;
 mod factor;
 mod factor_order;
+mod matrix_form;
 mod parse;
 mod polynomial;
 mod positive;
@@ -41,6 +42,7 @@ pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
 /// `notation`.
 pub use factor::{common_factor, printed_common_factor};
 pub use factor_order::{Declared, order_factors};
+pub use matrix_form::{MatrixForm, factor_and_rows};
 pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use print::{Prec, index_chain, page_fraction, split_sign};
 pub use radical::pull_squares;
@@ -398,6 +400,35 @@ pub fn present_all(
         exprs
             .iter()
             .map(|e| present::present(e, &positive).map(|f| order_factors(&f, &declared)))
+            .collect()
+    })
+}
+
+/// Each matrix with its entries' common factor out (`matrix_form.rs`), its parts presented as
+/// `present_all` presents a scalar, or as its author wrote it (`factor*[[…]]`) where proven
+/// equal; `None` for a matrix with no factor to take out.
+pub fn matrix_forms(
+    matrices: Vec<(Vec<Vec<Expr>>, Option<Expr>)>,
+    signed: std::collections::BTreeSet<String>,
+    declared: Declared,
+) -> Result<Vec<Option<MatrixForm>>, CasError> {
+    run(move || {
+        let positive = |s: &str| !signed.contains(s);
+        let order = |e: &Expr| order_factors(e, &declared);
+        matrices
+            .iter()
+            .map(|(rows, written)| {
+                matrix_form::matrix_form(rows, written.as_ref(), &positive).map(|form| {
+                    form.map(|f| MatrixForm {
+                        factor: order(&f.factor),
+                        rows: f
+                            .rows
+                            .iter()
+                            .map(|r| r.iter().map(order).collect())
+                            .collect(),
+                    })
+                })
+            })
             .collect()
     })
 }

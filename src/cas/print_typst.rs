@@ -425,6 +425,21 @@ impl Style for Typst<'_> {
             out.push(')');
             return;
         }
+        // A diagonal matrix too wide for its line as diag(a, b, c), which breaks between its
+        // entries and inside their sums as a row of a matrix cannot.
+        if self.layout == Layout::Breakable
+            && let Some(diagonal) = diagonal(v)
+        {
+            out.push_str("op(\"diag\")(");
+            for (i, entry) in diagonal.into_iter().enumerate() {
+                if i > 0 {
+                    out.push_str(", ");
+                }
+                write(entry, out, Prec::Sum, self);
+            }
+            out.push(')');
+            return;
+        }
         out.push_str("mat(");
         for (i, row) in v.iter().enumerate() {
             if i > 0 {
@@ -465,6 +480,26 @@ impl Style for Typst<'_> {
         }
         out.push(')');
     }
+}
+
+/// A square matrix's diagonal, where every other entry is 0.
+fn diagonal(rows: &[Expr]) -> Option<Vec<&Expr>> {
+    let mut out = Vec::new();
+    for (i, row) in rows.iter().enumerate() {
+        let Expr::List(cells) = row else { return None };
+        if cells.len() != rows.len() {
+            return None;
+        }
+        if cells
+            .iter()
+            .enumerate()
+            .any(|(j, c)| j != i && !c.is_zero())
+        {
+            return None;
+        }
+        out.push(&cells[i]);
+    }
+    Some(out)
 }
 
 #[cfg(test)]

@@ -393,3 +393,71 @@ fn a_cubic_whose_double_root_has_split_gets_its_form_from_exact_signs() {
         }
     }
 }
+
+/// Rows of a matrix written in the claim language.
+fn rows(s: &str) -> Vec<Vec<Expr>> {
+    factor_and_rows(&p(s)).unwrap().1
+}
+
+/// Each entry of a matrix form at a point, the factor put in: compared with the matrix as
+/// derived there, an independent route from the engine's proof.
+fn form_at(f: &MatrixForm, vars: &[(&str, f64)]) -> Vec<f64> {
+    f.product().iter().flatten().map(|e| at(e, vars)).collect()
+}
+
+#[test]
+fn a_matrix_prints_with_its_common_factor_out_where_that_is_narrower() {
+    let box_123 = rows(
+        "[[13/3*m*a^2, -1/2*m*a^2, -3/4*m*a^2], [-1/2*m*a^2, 10/3*m*a^2, -3/2*m*a^2], \
+         [-3/4*m*a^2, -3/2*m*a^2, 5/3*m*a^2]]",
+    );
+    // Only 1/60 in common, before sums of symbols: nothing taken out.
+    // (tests/course/problems/05-centre-of-mass.toml: a cylinder of mass m and a cone of k.)
+    let side = "1/2*H*h*k + k*H^2 + 3/20*k*R^2 + 1/10*k*h^2 + 1/3*m*H^2 + 1/4*m*R^2";
+    let cone = rows(&format!(
+        "[[{side}, 0, 0], [0, {side}, 0], [0, 0, 3/10*k*R^2 + 1/2*m*R^2]]"
+    ));
+    let single = rows("[[0, 0, 0], [0, 0, 0], [0, 0, m*R^2]]");
+    let forms = matrix_forms(
+        vec![(box_123.clone(), None), (cone, None), (single, None)],
+        Default::default(),
+        Default::default(),
+    )
+    .unwrap();
+    let f = forms[0]
+        .as_ref()
+        .expect("the box's tensor has m a²/12 in common");
+    assert_eq!(f.factor.to_text(), "1/12*m*a^2");
+    assert_eq!(
+        Expr::List(f.rows.iter().cloned().map(Expr::List).collect()).to_text(),
+        "[[52, -6, -9], [-6, 40, -18], [-9, -18, 20]]"
+    );
+    let point = [("m", 0.7), ("a", 1.3)];
+    let derived: Vec<f64> = box_123.iter().flatten().map(|e| at(e, &point)).collect();
+    assert_eq!(form_at(f, &point), derived);
+    assert_eq!(forms[1], None);
+    assert_eq!(forms[2], None, "one entry not zero: no factor in front");
+}
+
+#[test]
+fn an_authors_matrix_form_wins_where_it_is_equal() {
+    let cube = rows(
+        "[[2/3*m*a^2, -1/4*m*a^2, -1/4*m*a^2], [-1/4*m*a^2, 2/3*m*a^2, -1/4*m*a^2], \
+         [-1/4*m*a^2, -1/4*m*a^2, 2/3*m*a^2]]",
+    );
+    let notes = p("m*a^2*[[2/3, -1/4, -1/4], [-1/4, 2/3, -1/4], [-1/4, -1/4, 2/3]]");
+    // A wrong form (the diagonal's 2/3 as 3/2) is not taken: the computed factor is.
+    let wrong = p("m*a^2*[[3/2, -1/4, -1/4], [-1/4, 3/2, -1/4], [-1/4, -1/4, 3/2]]");
+    let forms = matrix_forms(
+        vec![(cube.clone(), Some(notes)), (cube, Some(wrong))],
+        Default::default(),
+        Default::default(),
+    )
+    .unwrap();
+    let written = forms[0].as_ref().unwrap();
+    assert_eq!(written.factor.to_text(), "m*a^2");
+    assert_eq!(written.rows[0][0].to_text(), "2/3");
+    let computed = forms[1].as_ref().unwrap();
+    assert_eq!(computed.factor.to_text(), "1/12*m*a^2");
+    assert_eq!(computed.rows[0][0].to_text(), "8");
+}

@@ -233,6 +233,10 @@ pub struct Derivation {
     /// `cas::present_all`), by the step's name; its check compares it with `named`.
     #[serde(default)]
     pub printed: BTreeMap<String, step_names::StepResult>,
+    /// Each matrix quantity with a common factor to take out, as its page prints it
+    /// (`present::present_matrices`).
+    #[serde(default)]
+    pub matrices: BTreeMap<String, crate::cas::MatrixForm>,
 }
 
 impl Derivation {
@@ -416,7 +420,7 @@ pub fn derive(scene: &Scene, plan: &Plan) -> Result<Derivation, DeriveError> {
     if plan.runs(Stage::EarthPrecession) {
         earth::earth_precession(&mut d)?;
     }
-    present::present_builtin_steps(&mut d, &scene.declared)?;
+    present::present_builtin_steps(&mut d, &scene.declared, &scene.claims)?;
     Ok(d)
 }
 

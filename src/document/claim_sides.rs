@@ -93,6 +93,15 @@ impl Page {
         if let Some((_, rhs)) = self.claim_line(i) {
             return Some(rhs.clone());
         }
+        // A matrix as its result prints: its factor out.
+        if let Some(crate::cas::Expr::Sym(name)) = &self.claims[i].quantity
+            && let Some(q) = self
+                .quantities
+                .iter()
+                .find(|q| q.symbol.is_none() && &q.name == name && q.matrix.is_some())
+        {
+            return Some(q.formula());
+        }
         self.claims[i].shown.clone().map(Formula::Expr)
     }
 }

@@ -26,6 +26,18 @@ pub struct Quantity {
     pub at: Option<At>,
     /// Whether a page lists it: the integrand and the position are working, not results.
     pub is_result: bool,
+    /// A matrix with its entries' common factor out, as the page prints it.
+    pub matrix: Option<crate::cas::MatrixForm>,
+}
+
+impl Quantity {
+    /// The value as the page prints it: a matrix with its factor out, else `value`.
+    pub fn formula(&self) -> crate::notation::Formula {
+        match &self.matrix {
+            Some(form) => crate::derive::present::matrix_formula(form),
+            None => crate::notation::Formula::Expr(self.value.to_expr()),
+        }
+    }
 }
 
 /// A result at the scene's numbers: the values of the symbols it contains, and its entries.
@@ -137,6 +149,7 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
             derived: v,
             value: shown,
             is_result: name != quantity::INTEGRAND && name != quantity::POSITION,
+            matrix: r.derivation.matrices.get(&name).cloned(),
         })
         .collect()
 }

@@ -7,7 +7,9 @@
 use super::expr_tree::symbol;
 use super::latex::Node;
 use crate::cas::Expr;
-use pulldown_latex::event::{Content, Grouping, ScriptPosition, ScriptType, Visual};
+use pulldown_latex::event::{
+    Content, EnvironmentFlow, Grouping, ScriptPosition, ScriptType, Visual,
+};
 
 /// Why a printed tree is no expression a reader could take back.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -135,7 +137,11 @@ impl Reader<'_> {
                 .map(|p| p.expr)
                 .map_err(|_| ReadBackError::Unreadable("a number")),
             Node::Group(Grouping::Normal, inner) => self.row(inner),
-            Node::Group(Grouping::LeftRight(Some('('), Some(')')), inner) => self.row(inner),
+            Node::Group(Grouping::LeftRight(Some('('), Some(')')), inner) => match inner.as_slice()
+            {
+                [Node::Group(Grouping::Matrix { .. }, body)] => self.matrix(body),
+                _ => self.row(inner),
+            },
             Node::Visual(Visual::Fraction(_), parts) if parts.len() == 2 => {
                 Ok(Expr::over(self.part(&parts[0])?, self.part(&parts[1])?))
             }
@@ -157,6 +163,20 @@ impl Reader<'_> {
             Node::Text(t) => Err(ReadBackError::Unknown(t.clone())),
             _ => Err(ReadBackError::Unreadable("a piece of the formula")),
         }
+    }
+
+    /// A matrix's body (`pmatrix`): rows at each new line, cells at each alignment; a list of
+    /// rows, each a list of its cells.
+    fn matrix(&self, body: &[Node]) -> Result<Expr, ReadBackError> {
+        let rows = body.split(|n| matches!(n, Node::Flow(EnvironmentFlow::NewLine { .. })));
+        rows.map(|row| {
+            row.split(|n| matches!(n, Node::Flow(EnvironmentFlow::Alignment)))
+                .map(|cell| self.row(cell))
+                .collect::<Result<Vec<_>, _>>()
+                .map(Expr::List)
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(Expr::List)
     }
 
     /// A fraction's or a script's part: a name (an upright word is a group of its own), else

@@ -129,10 +129,11 @@ fn derived_products_take_the_order_the_scene_declares() {
         "T = \\frac{2 m_{1} m_{2} g}{m_{1} + m_{2}}",
     );
     let (page, view) = page_and_view("dynamics/03-double-pendulum.toml");
-    // A linearised equation of motion: the parameters before the coordinates and rates.
+    // A linearised equation of motion: m l divided out, the accelerations first, the
+    // parameters before the coordinates and rates.
     assert_line(
         line(&view, &page, "small", 0),
-        "m l \\left(2 g \\phi_{1} + 2 l \\ddot{\\phi_{1}} + l \\ddot{\\phi_{2}}\\right) = 0",
+        "2 l \\ddot{\\phi_{1}} + l \\ddot{\\phi_{2}} + 2 g \\phi_{1} = 0",
     );
     let (page, view) = page_and_view("dynamics/01-physical-pendulum.toml");
     assert_line(
@@ -173,16 +174,33 @@ fn an_authors_energies_print_as_written_with_squares_of_differences_kept() {
 #[test]
 fn an_equation_of_motion_prints_one_term_per_force() {
     let (page, view) = page_and_view("dynamics/22-coupled-pendulums.toml");
-    // Gravity, the spring, the bob's inertia: not l(mg sin φ₁ + kl cos φ₁ sin φ₁ − …).
+    // The bob's inertia, gravity, the spring, l divided out: not l(mg sin φ₁ + kl cos φ₁ sin φ₁
+    // − …), nor mgl sin φ₁ + … + ml²φ̈₁ with the acceleration last.
     assert_line(
         line(&view, &page, "eom", 0),
         &format!(
-            "m g l {} + k l^{{2}} {} \\left({} - {}\\right) + m l^{{2}} \\ddot{{\\phi_{{1}}}} = 0",
+            "m l \\ddot{{\\phi_{{1}}}} + m g {} + k l {} \\left({} - {}\\right) = 0",
             sin_cos("sin", 1),
             sin_cos("cos", 1),
             sin_cos("sin", 1),
             sin_cos("sin", 2)
         ),
+    );
+    // Linearised: m l φ̈₁ + m g φ₁ + k l φ₁ − k l φ₂ = 0.
+    assert_line(
+        line(&view, &page, "small", 0),
+        "m l \\ddot{\\phi_{1}} + m g \\phi_{1} + k l \\phi_{1} - k l \\phi_{2} = 0",
+    );
+}
+
+#[test]
+fn an_equation_of_motion_collects_each_acceleration_and_leads_with_it() {
+    // A ball rolling in a bowl: 7(R − r)φ̈ + 5g sin φ = 0, not 1/5 m (R − r)(5g sin φ + 7Rφ̈ −
+    // 7rφ̈) = 0.
+    let (page, view) = page_and_view("problems/11-ball-in-bowl.toml");
+    assert_line(
+        line(&view, &page, "eom", 0),
+        "7 \\left(R - r\\right) \\ddot{\\phi} + 5 g \\sin\\left(\\phi\\right) = 0",
     );
 }
 

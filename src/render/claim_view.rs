@@ -84,8 +84,10 @@ pub(super) fn claim_view(
     if let (Some(tex), Some(e)) = (&notes_tex, &c.notes) {
         guard.printed(tex, e, c.line)?;
     }
-    if let (Some(tex), Some(Value::Scalar(e)), None) = (&derived_tex, &c.derived, &c.precision) {
-        guard.printed(tex, e, c.line)?;
+    match (&derived_tex, &c.derived, &c.precision) {
+        (Some(tex), Some(Value::Scalar(e)), None) => guard.printed(tex, e, c.line)?,
+        (Some(tex), Some(v @ Value::Matrix(_)), None) => guard.printed_value(tex, v, c.line)?,
+        _ => {}
     }
     let mut derived = match &derived_tex {
         Some(tex) if !derived_equal && !same => math::inline(tex)?,

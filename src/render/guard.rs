@@ -92,10 +92,19 @@ impl<'a> Guard<'a> {
     pub fn step(&mut self, st: &crate::document::Step, tex: &Tex) -> Result<(), RenderError> {
         match &st.stands_for {
             Some(stands) => self.step_line(tex, stands, st.line),
-            None => match last_result(st.exact.as_ref().unwrap_or(&st.statement)) {
-                Some(last) => self.printed(tex, last, self.page.line),
-                None => Ok(()),
-            },
+            None => {
+                let exact = st.exact.as_ref().unwrap_or(&st.statement);
+                match last_result(exact) {
+                    Some(last) => self.printed(tex, last, self.page.line),
+                    None if crate::derive::present::is_matrix_statement(exact) => self
+                        .printed_matrix(
+                            tex,
+                            &crate::derive::present::shown_entries(exact),
+                            self.page.line,
+                        ),
+                    None => Ok(()),
+                }
+            }
         }
     }
 
@@ -176,6 +185,68 @@ impl<'a> Guard<'a> {
             }
         })
     }
+}
+
+impl Guard<'_> {
+    /// A value printed under its heading (the inertia tensor): a matrix read back entry by
+    /// entry, its factor in front put into each; a scalar or vector is not read here.
+    pub fn printed_value(
+        &mut self,
+        tex: &Tex,
+        derived: &Value,
+        line: usize,
+    ) -> Result<(), RenderError> {
+        match derived {
+            Value::Matrix(_) => self.printed_matrix(tex, &derived.entries(), line),
+            _ => Ok(()),
+        }
+    }
+
+    /// A matrix's last side read back, `factor (rows)` or `(rows)`, each entry against the
+    /// result's in row-major order.
+    fn printed_matrix(
+        &mut self,
+        tex: &Tex,
+        entries: &[Expr],
+        line: usize,
+    ) -> Result<(), RenderError> {
+        let parts = sides(&tex.nodes);
+        let of: Vec<&Expr> = entries.iter().collect();
+        let Some(shown) = parts
+            .last()
+            .and_then(|(_, last)| self.shown(last, &of))
+            .and_then(|e| matrix_entries(&e))
+            .filter(|shown| shown.len() == entries.len())
+        else {
+            self.counts.unread += 1;
+            return Ok(());
+        };
+        self.counts.checked += 1;
+        for (shown, result) in shown.iter().zip(entries) {
+            crate::verify::shown_is_result(shown, result, &self.page.signed).map_err(|d| {
+                RenderError::Misprinted {
+                    line,
+                    printed: tex.source.clone(),
+                    read: shown.to_text(),
+                    result: result.to_text(),
+                    by: d.by,
+                }
+            })?;
+        }
+        Ok(())
+    }
+}
+
+/// The entries of a matrix read back, row-major: a list of rows, or a factor times one, the
+/// factor put into each entry.
+fn matrix_entries(e: &Expr) -> Option<Vec<Expr>> {
+    let (factor, rows) = crate::cas::factor_and_rows(e)?;
+    let entries = rows.into_iter().flatten();
+    Some(
+        entries
+            .map(|c| Expr::mul(vec![factor.clone(), c]))
+            .collect(),
+    )
 }
 
 /// The result a built-in line ends with (`… = M/(2πR)`), which its last side prints: a scalar

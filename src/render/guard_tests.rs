@@ -249,3 +249,57 @@ fn the_middle_side_of_a_line_is_read_back_too() {
     let name = text.lines().position(|l| l == "name = \"Lag\"").unwrap();
     assert_eq!(line, name);
 }
+
+/// A tensor printed with its common factor out (m a²/12 (52 −6 −9; …)) is read back entry by
+/// entry, in the step's line and under the results: the page as derived passes, and one
+/// entry changed (52 to 25) fails.
+#[test]
+fn a_matrix_with_its_factor_out_is_read_back_entry_by_entry() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/course/bodies/01-box-123.toml");
+    let report = crate::pipeline::run_scene(Scene::from_file(&path).unwrap(), None).unwrap();
+    let page = crate::document::page(&report, None, None);
+    let tensor = page
+        .quantities
+        .iter()
+        .find(|q| q.name == "inertia_tensor")
+        .unwrap();
+    let form = tensor
+        .matrix
+        .clone()
+        .expect("the box's tensor has m a²/12 out");
+    assert_eq!(form.rows[0][0].to_text(), "52");
+    let view = super::page_view(&page, false).unwrap();
+    assert_eq!(view.guarded.unread, 0, "{:?}", view.guarded);
+    let mut wrong = page.clone();
+    let q = wrong
+        .quantities
+        .iter_mut()
+        .find(|q| q.name == "inertia_tensor")
+        .unwrap();
+    q.matrix.as_mut().unwrap().rows[0][0] = crate::cas::Expr::int(25);
+    assert!(matches!(
+        super::page_view(&wrong, false),
+        Err(RenderError::Misprinted { .. })
+    ));
+    // The step's line, its factor out, with one entry changed.
+    let mut wrong = page;
+    let step = wrong
+        .steps
+        .iter_mut()
+        .find(|s| s.exact.is_some() && crate::derive::present::is_matrix_statement(&s.statement))
+        .expect("a line states the tensor");
+    let Formula::Row(row) = &mut step.statement else {
+        unreachable!()
+    };
+    let Some(Formula::Row(form)) = row.last_mut() else {
+        panic!("the tensor's line is `I = factor (rows)`")
+    };
+    let Formula::Matrix(rows) = &mut form[1] else {
+        unreachable!()
+    };
+    rows[1][1] = Formula::Expr(crate::cas::Expr::int(41));
+    assert!(matches!(
+        super::page_view(&wrong, false),
+        Err(RenderError::Misprinted { .. })
+    ));
+}

@@ -227,10 +227,6 @@ pub fn result_equation(symbol: &Expr, value: &Value) -> Formula {
     Formula::equation(Formula::Expr(symbol.clone()), value.to_expr())
 }
 
-fn value_math(v: &Value) -> Result<String, RenderError> {
-    math::block(&v.to_tex())
-}
-
 /// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
 /// of the symbols it contains) and the number, vector or matrix as MathML.
 fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
@@ -366,7 +362,11 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
                         }
                         math::block(&tex)?
                     }
-                    None => value_math(&q.value)?,
+                    None => {
+                        let tex = q.formula().to_tex();
+                        guard.printed_value(&tex, &q.derived, page.line)?;
+                        math::block(&tex)?
+                    }
                 },
                 why: String::new(),
                 at: match &q.at {

@@ -10,6 +10,7 @@
 mod be;
 mod differentiate;
 mod energy;
+mod equation_form;
 mod equilibria;
 mod frequency;
 mod integrate;

@@ -340,10 +340,11 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                 } else {
                     cited(crate::base::format::capitalised(&what))
                 };
+                let parameter = |s: &str| scene.symbols.contains_key(s);
                 Step::note(
                     &line,
                     Formula::Row(vec![
-                        Formula::Expr(e.clone()),
+                        Formula::Expr(super::equation_form::equation_form(e, coordinate, &parameter)),
                         Formula::Op(crate::notation::Op::Equals),
                         Formula::Number("0".into()),
                     ]),

@@ -173,12 +173,21 @@ fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
             }
             None => {
                 m.heading(3, &crate::render::result_heading(q))?;
-                let value = q.value.to_expr();
-                m.block(
-                    &value.to_typst(),
-                    &value.to_typst_breakable(),
-                    &value.to_tex().spoken(),
-                );
+                match &q.matrix {
+                    Some(_) => {
+                        let value = q.formula();
+                        let (whole, broken) = formula_and_broken(&value)?;
+                        m.block(&whole, &broken, &value.to_tex().spoken());
+                    }
+                    None => {
+                        let value = q.value.to_expr();
+                        m.block(
+                            &value.to_typst(),
+                            &value.to_typst_breakable(),
+                            &value.to_tex().spoken(),
+                        );
+                    }
+                }
             }
         }
         if let Some(at) = &q.at {
@@ -401,11 +410,21 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
             let (whole, broken) = formula_and_broken(&f)?;
             Ok((whole, broken, f.to_tex().spoken()))
         }
-        // A vector or a matrix as a column of its own, without a left side.
-        _ => {
-            let e = v.to_expr();
-            Ok((e.to_typst(), e.to_typst_breakable(), e.to_tex().spoken()))
-        }
+        // A vector or a matrix as a column of its own, without a left side; a matrix with its
+        // factor out as its result prints.
+        _ => match page
+            .claim_derived(i)
+            .filter(|_| matches!(v, Value::Matrix(_)))
+        {
+            Some(f) => {
+                let (whole, broken) = formula_and_broken(&f)?;
+                Ok((whole, broken, f.to_tex().spoken()))
+            }
+            None => {
+                let e = v.to_expr();
+                Ok((e.to_typst(), e.to_typst_breakable(), e.to_tex().spoken()))
+            }
+        },
     });
     if let Some(derived) = derived {
         let (whole, broken, said) = derived?;
