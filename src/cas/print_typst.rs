@@ -178,6 +178,18 @@ impl Typst<'_> {
         }
     }
 
+    /// Entries in parentheses, a comma between them: (a, b, c).
+    fn tuple<'e>(&self, entries: impl Iterator<Item = &'e Expr>, out: &mut String) {
+        out.push('(');
+        for (i, entry) in entries.enumerate() {
+            if i > 0 {
+                out.push_str(", ");
+            }
+            write(entry, out, Prec::Sum, self);
+        }
+        out.push(')');
+    }
+
     /// A matrix's cell. Typst sets cells in the text style, where a fraction's parts are
     /// script-sized and their indices smaller still (half the body): one with a fraction is
     /// set in the display style, as a textbook sets it.
@@ -415,14 +427,7 @@ impl Style for Typst<'_> {
     fn list(&self, v: &[Expr], out: &mut String) {
         let is_matrix = v.iter().all(|r| matches!(r, Expr::List(_)));
         if self.layout == Layout::Breakable && !is_matrix {
-            out.push('(');
-            for (i, entry) in v.iter().enumerate() {
-                if i > 0 {
-                    out.push_str(", ");
-                }
-                write(entry, out, Prec::Sum, self);
-            }
-            out.push(')');
+            self.tuple(v.iter(), out);
             return;
         }
         // A diagonal matrix too wide for its line as diag(a, b, c), which breaks between its
@@ -430,14 +435,8 @@ impl Style for Typst<'_> {
         if self.layout == Layout::Breakable
             && let Some(diagonal) = diagonal(v)
         {
-            out.push_str("op(\"diag\")(");
-            for (i, entry) in diagonal.into_iter().enumerate() {
-                if i > 0 {
-                    out.push_str(", ");
-                }
-                write(entry, out, Prec::Sum, self);
-            }
-            out.push(')');
+            out.push_str("op(\"diag\")");
+            self.tuple(diagonal.into_iter(), out);
             return;
         }
         out.push_str("mat(");

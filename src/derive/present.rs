@@ -138,27 +138,38 @@ pub fn matrix_formula(form: &cas::MatrixForm) -> Formula {
 
 /// Whether a statement gives a matrix: `lhs = (rows)`, or its factor out `lhs = f (rows)`.
 pub fn is_matrix_statement(f: &Formula) -> bool {
-    matrix_rows(f).is_some()
-        || matches!(f, Formula::Row(items) if matches!(items.as_slice(),
-            [_, Formula::Op(Op::Equals), Formula::Row(form)]
-                if matches!(form.as_slice(), [Formula::Expr(_), Formula::Matrix(_)])))
+    matrix_rows(f).is_some() || factored_entries(f).is_some()
 }
 
 /// The rows of a statement `lhs = matrix`.
 fn matrix_rows(f: &Formula) -> Option<Vec<Vec<Expr>>> {
     match f {
         Formula::Row(items) => match items.as_slice() {
-            [_, Formula::Op(Op::Equals), Formula::Expr(Expr::List(rows))] => rows
-                .iter()
-                .map(|r| match r {
-                    Expr::List(cells) => Some(cells.clone()),
-                    _ => None,
-                })
-                .collect(),
+            [_, Formula::Op(Op::Equals), Formula::Expr(e @ Expr::List(_))] => {
+                cas::factor_and_rows(e).map(|(_, rows)| rows)
+            }
             _ => None,
         },
         _ => None,
     }
+}
+
+/// The entries of a statement `lhs = f (rows)` (`matrix_formula`), the factor put into each.
+fn factored_entries(f: &Formula) -> Option<Vec<Expr>> {
+    let Formula::Row(items) = f else { return None };
+    let [_, Formula::Op(Op::Equals), Formula::Row(form)] = items.as_slice() else {
+        return None;
+    };
+    let [Formula::Expr(factor), Formula::Matrix(rows)] = form.as_slice() else {
+        return None;
+    };
+    rows.iter()
+        .flatten()
+        .map(|cell| match cell {
+            Formula::Expr(e) => Some(Expr::mul(vec![factor.clone(), e.clone()])),
+            _ => None,
+        })
+        .collect()
 }
 
 /// Every entry a statement `lhs = value` gives, as its line prints it: a scalar, a vector's
@@ -168,26 +179,13 @@ pub fn shown_entries(f: &Formula) -> Vec<Expr> {
     if let Some(rows) = matrix_rows(f) {
         return rows.into_iter().flatten().collect();
     }
-    match f {
-        Formula::Row(items) => match items.as_slice() {
-            [_, Formula::Op(Op::Equals), Formula::Row(form)] => match form.as_slice() {
-                [Formula::Expr(factor), Formula::Matrix(rows)] => rows
-                    .iter()
-                    .flatten()
-                    .filter_map(|cell| match cell {
-                        Formula::Expr(e) => Some(Expr::mul(vec![factor.clone(), e.clone()])),
-                        _ => None,
-                    })
-                    .collect(),
-                _ => Vec::new(),
-            },
-            _ => scalars(&mut f.clone())
-                .into_iter()
-                .map(|e| e.clone())
-                .collect(),
-        },
-        _ => Vec::new(),
+    if let Some(entries) = factored_entries(f) {
+        return entries;
     }
+    scalars(&mut f.clone())
+        .into_iter()
+        .map(|e| e.clone())
+        .collect()
 }
 
 /// The exact scalars a step gives as its result: each entry of the value of a statement
@@ -203,8 +201,8 @@ pub fn scalars(f: &mut Formula) -> Vec<&mut Expr> {
     }
 }
 
-/// A scalar, or each entry of a vector. A matrix (a tensor) stays as derived: its entries are
-/// set side by side, where a form over one denominator runs past the paper's edge.
+/// A scalar, or each entry of a vector. A matrix (a tensor) is presented whole, its common
+/// factor out (`present_matrices`): each entry over its own denominator runs past the edge.
 fn entries(e: &mut Expr) -> Vec<&mut Expr> {
     match e {
         Expr::List(items) if items.iter().any(|i| matches!(i, Expr::List(_))) => Vec::new(),

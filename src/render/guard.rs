@@ -175,7 +175,19 @@ impl<'a> Guard<'a> {
             return Ok(());
         };
         self.counts.checked += 1;
-        crate::verify::shown_is_result(&shown, result, &self.page.signed).map_err(|d| {
+        self.is_result(tex, &shown, result, line)
+    }
+
+    /// `shown`, read back from `tex`, against the result it stands for: a misprint at `line`
+    /// where they differ.
+    fn is_result(
+        &self,
+        tex: &Tex,
+        shown: &Expr,
+        result: &Expr,
+        line: usize,
+    ) -> Result<(), RenderError> {
+        crate::verify::shown_is_result(shown, result, &self.page.signed).map_err(|d| {
             RenderError::Misprinted {
                 line,
                 printed: tex.source.clone(),
@@ -222,18 +234,10 @@ impl Guard<'_> {
             return Ok(());
         };
         self.counts.checked += 1;
-        for (shown, result) in shown.iter().zip(entries) {
-            crate::verify::shown_is_result(shown, result, &self.page.signed).map_err(|d| {
-                RenderError::Misprinted {
-                    line,
-                    printed: tex.source.clone(),
-                    read: shown.to_text(),
-                    result: result.to_text(),
-                    by: d.by,
-                }
-            })?;
-        }
-        Ok(())
+        shown
+            .iter()
+            .zip(entries)
+            .try_for_each(|(shown, result)| self.is_result(tex, shown, result, line))
     }
 }
 
