@@ -88,6 +88,8 @@ pub struct Symbolic {
     pub derivation: Derivation,
     pub claims: Vec<verify::ClaimResult>,
     pub regressions: Vec<verify::RegressionResult>,
+    #[serde(default)]
+    pub step_records: Vec<verify::StepRecord>,
     pub seconds: f64,
     pub engine_calls: u64,
 }
@@ -134,8 +136,8 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
         at: (f.line, 1),
         ..fail(StageError::Dimension(f))
     })?;
-    let (mut claims, regressions) =
-        verify::verify_symbolic(scene, &derivation, plan).map_err(|e| fail(e.into()))?;
+    let checks = verify::verify_symbolic(scene, &derivation, plan).map_err(|e| fail(e.into()))?;
+    let mut claims = checks.claims;
     for (line, why) in verify::dimensions::claim_notes(scene, &derivation) {
         if let Some(c) = claims
             .iter_mut()
@@ -156,7 +158,8 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
     Ok(Symbolic {
         derivation,
         claims,
-        regressions,
+        regressions: checks.regressions,
+        step_records: checks.step_records,
         seconds: engine_after - engine_before,
         engine_calls: calls_after - calls_before,
     })
@@ -486,6 +489,7 @@ fn numeric_stage(d: Derived, fidelity: Option<Fidelity>) -> Result<SceneReport, 
     let mut verification = Verification {
         claims: symbolic.claims,
         regressions: symbolic.regressions,
+        step_records: symbolic.step_records,
         ..Verification::default()
     };
     // The steps' checks and the variants' share one budget.
@@ -529,6 +533,7 @@ pub fn symbolic_part(r: &SceneReport) -> Symbolic {
         derivation: r.derivation.clone(),
         claims: r.verification.claims.clone(),
         regressions: r.verification.regressions.clone(),
+        step_records: r.verification.step_records.clone(),
         seconds: r.symbolic_seconds,
         engine_calls: r.engine_calls,
     }

@@ -98,6 +98,8 @@ fn unexpected(rest: &[u8], first: u8) -> String {
     match text.chars().next() {
         Some(c) if c.is_control() => format!("unexpected control character U+{:04X}", c as u32),
         Some(c) if !first.is_ascii() => format!("unexpected `{c}`"),
+        // Python's power: `l**2`.
+        _ if first == b'*' => "unexpected `*`: write a power with `^` (l^2), not `**`".into(),
         _ => format!("unexpected `{}`", first as char),
     }
 }

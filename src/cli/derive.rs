@@ -51,7 +51,21 @@ pub fn run(args: DeriveArgs) -> Result<ExitCode> {
         t
     };
     std::io::stdout().write_all(text.as_bytes())?;
-    if r.passed() {
+    if r.verification.passed_but_for_new_steps() {
+        let new = r
+            .verification
+            .step_records
+            .iter()
+            .filter(|s| s.recorded.is_none())
+            .count();
+        if new > 0 {
+            eprintln!(
+                "mechbook: {new} step(s) of `{}` not yet recorded: once you have reviewed them, \
+                 `mechbook check --bless {}` records them, so that `check` sees a change",
+                r.scene.id,
+                scene.display()
+            );
+        }
         return Ok(ExitCode::SUCCESS);
     }
     // Standard output is the derivation; why it fails goes to standard error, as `check` says it.

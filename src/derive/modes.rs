@@ -128,8 +128,14 @@ fn matrices(eqs: &[(String, Expr)]) -> Result<(Vec<Expr>, Vec<Expr>), DeriveErro
     Ok((mass, stiffness))
 }
 
+/// An eigenvalue λ of (K, M) within this fraction of the largest |λ| is a zero mode (a free
+/// motion, which has no restoring force): round-off of an exact zero is about 1e-16 of it, and
+/// a mode a million times slower than its companions would be 1e-12.
+pub const ZERO_MODE: f64 = 1e-12;
+
 /// The frequencies at the scene's values: √λ for the eigenvalues of the pencil (K, M), which
-/// must be symmetric with M positive definite (equations from `lagrange` are), and λ > 0.
+/// must be symmetric with M positive definite (equations from `lagrange` are), and λ ≥ 0 (a
+/// zero mode is a free motion).
 fn numeric_modes(
     mass: &[Expr],
     stiffness: &[Expr],
@@ -191,8 +197,14 @@ fn pencil_frequencies(
              and M; but there {e}: the equations must come from `lagrange`"
         ))
     })?;
+    let scale = lambdas.iter().fold(0.0_f64, |a, l| a.max(l.abs()));
     let mut frequencies = Vec::with_capacity(n);
     for (k, lambda) in lambdas.iter().enumerate() {
+        // A free motion (a cart's translation): a zero mode, to the round-off of the others.
+        if lambda.abs() <= ZERO_MODE * scale {
+            frequencies.push(0.0);
+            continue;
+        }
         if *lambda <= 0.0 {
             return Err(DeriveError::NotDerivable(format!(
                 "at the {whose}'s values, mode {} has lambda = {lambda:.6}, not positive: the \

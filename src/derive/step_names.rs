@@ -6,7 +6,9 @@
 use super::Derivation;
 use super::algebra::{Env, Value, evaluate};
 pub use super::solve::equation_with;
-pub use super::step_result::{Stability, Stable, Stands, StandsFor, StateStability, StepResult};
+pub use super::step_result::{
+    Recordable, Stability, Stable, Stands, StandsFor, StateStability, StepResult,
+};
 use crate::cas::Expr;
 use crate::scene::{AuthorStep, Operation, Scene};
 use std::collections::BTreeMap;

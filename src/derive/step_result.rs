@@ -186,6 +186,41 @@ impl StepResult {
         }
     }
 
+    /// Every result the step gives, in order, as `check --bless` records them: each value,
+    /// root, mode, unknown and equation of motion (its residual); each state of rest's
+    /// coordinates (a list), and about each state its Ω² or its stiffness's leading minors (a
+    /// list).
+    pub fn recordables(&self) -> Vec<Recordable> {
+        let exact = |e: &Expr| Recordable::Exact(e.clone());
+        match self {
+            StepResult::Expr(e) | StepResult::Conserved { value: e, .. } => vec![exact(e)],
+            StepResult::Equations(eqs) | StepResult::Solution(eqs) => {
+                eqs.iter().map(|(_, e)| exact(e)).collect()
+            }
+            StepResult::Modes(v) | StepResult::Roots(v) => v.iter().map(exact).collect(),
+            StepResult::NumericModes { frequencies, .. } => {
+                frequencies.iter().map(|w| Recordable::Number(*w)).collect()
+            }
+            StepResult::Equilibria { zeros, .. } => zeros.iter().map(|z| exact(&z.value)).collect(),
+            StepResult::Stability { cases, .. } => cases
+                .iter()
+                .map(|c| {
+                    c.omega_squared
+                        .as_ref()
+                        .map_or(Recordable::NotDerived, exact)
+                })
+                .collect(),
+            StepResult::RestStates { states, .. } => states
+                .iter()
+                .map(|s| Recordable::Exact(Expr::List(s.iter().map(|z| z.value.clone()).collect())))
+                .collect(),
+            StepResult::RestStability { cases, .. } => cases
+                .iter()
+                .map(|c| Recordable::Exact(Expr::List(c.minors.clone())))
+                .collect(),
+        }
+    }
+
     /// What a printed line that stands for `s` must show (see [`StandsFor`]).
     pub fn stood_for(&self, step: &str, s: &StandsFor) -> Option<Stands> {
         match (s, self) {
@@ -204,6 +239,28 @@ impl StepResult {
                 .find(|(n, _)| n == name)
                 .map(|(_, e)| Stands::Value(e)),
             (StandsFor::Equation(_), _) => None,
+        }
+    }
+}
+
+/// One result of a step as `check --bless` records it in `[expect]`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Recordable {
+    Exact(Expr),
+    /// A numeric result (a mode with no closed form): its value at the scene's values.
+    Number(f64),
+    /// A result the engine did not derive (an Ω² beyond its budget).
+    NotDerived,
+}
+
+impl Recordable {
+    /// As `[expect]` writes it: an exact form, a number to all its digits (Rust's shortest
+    /// form that reads back to the same `f64`), or [`crate::scene::NOT_DERIVED`].
+    pub fn text(&self) -> String {
+        match self {
+            Recordable::Exact(e) => e.to_text(),
+            Recordable::Number(x) => format!("{x}"),
+            Recordable::NotDerived => crate::scene::NOT_DERIVED.to_string(),
         }
     }
 }

@@ -42,6 +42,9 @@ pub struct Failure {
     /// A verdict or a recorded result that differs from the derivation: `check --bless`
     /// records the new one. Any other failure is not settled by a record.
     pub recordable: bool,
+    /// A step not yet recorded: `check` fails on it, a build and `derive` do not (the author
+    /// may still be writing it).
+    pub new_step: bool,
 }
 
 impl std::fmt::Display for Failure {
@@ -75,6 +78,7 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
         failures.push(Failure {
             text: format!("{src}:{}: claim ({}): {why}", c.line, c.eq),
             recordable,
+            new_step: false,
         });
     }
     for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
@@ -97,6 +101,19 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
         failures.push(Failure {
             text,
             recordable: true,
+            new_step: false,
+        });
+    }
+    for s in r
+        .verification
+        .step_records
+        .iter()
+        .filter(|s| !s.unchanged())
+    {
+        failures.push(Failure {
+            text: format!("{src}:{}: {}", s.line, step_record_failure(s)),
+            recordable: true,
+            new_step: s.recorded.is_none(),
         });
     }
     if let Some(pin) = r.verification.pin.as_ref().filter(|p| !p.unchanged()) {
@@ -128,6 +145,7 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
         failures.push(Failure {
             text,
             recordable: true,
+            new_step: false,
         });
     }
     for q in r.verification.quantities.iter().filter(|q| !q.passed) {
@@ -192,6 +210,7 @@ fn unrecordable(text: String) -> Failure {
     Failure {
         text,
         recordable: false,
+        new_step: false,
     }
 }
 
@@ -525,4 +544,51 @@ pub fn explain_text(page: &Page) -> String {
         w.ode_integrations, w.rhs_evaluations, w.quadrature_runs, w.quadrature_points
     );
     out
+}
+
+/// Why a step's results fail `check`: not yet recorded, or which of them changed.
+fn step_record_failure(s: &crate::verify::StepRecord) -> String {
+    let Some((recorded, line)) = &s.recorded else {
+        return format!(
+            "step `{}` not yet recorded (derived {}): review it, then run `mechbook check \
+             --bless`, which records it in the scene's [expect]",
+            s.step,
+            s.derived.join(", ")
+        );
+    };
+    if s.derived.is_empty() {
+        return format!(
+            "[expect] records `{}`, which names no step or quantity of this scene (a step \
+             renamed or removed?): `mechbook check --bless` removes it",
+            s.step
+        );
+    }
+    if recorded.len() != s.derived.len() {
+        return format!(
+            "step `{}` changed: it gives {} result(s), and {} were recorded (line {line}): \
+             derived {}",
+            s.step,
+            s.derived.len(),
+            recorded.len(),
+            s.derived.join(", ")
+        );
+    }
+    let changes: Vec<String> = s
+        .differing
+        .iter()
+        .map(|&k| {
+            let which = if s.derived.len() == 1 {
+                String::new()
+            } else {
+                format!("result {} ", k + 1)
+            };
+            format!("{which}recorded {}, derived {}", recorded[k], s.derived[k])
+        })
+        .collect();
+    format!(
+        "step `{}` changed since it was recorded (line {line}): {}; if the change is meant, run \
+         `mechbook check --bless`",
+        s.step,
+        changes.join("; ")
+    )
 }

@@ -88,8 +88,78 @@ pub(super) fn toml_error(loc: &Locator, offset: usize, message: &str) -> SceneEr
         .filter(|l| !l.is_empty())
         .collect::<Vec<_>>()
         .join(": ");
-    let hint = unknown_name_hint(&one_line);
+    let hint = unknown_name_hint(&one_line) + shape_hint(&one_line, &field).as_str();
     loc.error(offset, &field, one_line + hint.as_str())
+}
+
+/// Each field whose value is a table or a list, by its key, with an example of its shape
+/// (docs/scenes.md has each in full).
+const SHAPES: &[(&str, &str)] = &[
+    (
+        "symbols",
+        "[symbols] m = { meaning = \"mass of the bob\", unit = \"kg\" }",
+    ),
+    (
+        "coordinates",
+        "[coordinates] phi = { meaning = \"angle from the vertical\", unit = \"rad\" }",
+    ),
+    ("vectors", "[vectors] r = [\"x\", \"y\", \"0\"]"),
+    ("omega", "omega = [\"w1\", \"w2\", \"w3\"]"),
+    ("axis", "axis = [\"0\", \"0\", \"1\"]"),
+    ("size", "size = [\"a\", \"b\", \"c\"]"),
+    ("shift", "shift = [\"a/2\", \"a/2\", \"0\"]"),
+    (
+        "at",
+        "at = [\"x\", \"y\", \"z\"] (a point's place), or at = { \"phi'\" = 0.5 } (a plot's values)",
+    ),
+    (
+        "points",
+        "points = [{ mass = \"m\", at = [\"a\", \"0\", \"0\"] }]",
+    ),
+    ("rotate", "rotate = [{ axis = \"z\", angle = \"pi/4\" }]"),
+    (
+        "cyclic",
+        "cyclic = { phi = \"p\" } (each cyclic coordinate and the symbol of its momentum)",
+    ),
+    (
+        "constraints",
+        "constraints = { T = \"l - x1 - x2\" } (each multiplier and its constraint)",
+    ),
+    ("about", "about = { phi = \"0\" }"),
+    ("set", "set = { \"theta'\" = \"x'/R\" }"),
+    ("start", "start = { phi = 0.3, \"phi'\" = 0 }"),
+    (
+        "over",
+        "over = [[\"r\", \"0\", \"R\"], [\"theta\", \"0\", \"2*pi\"]] (a step's ranges), or over = \"alpha\" (a plot's)",
+    ),
+    ("for", "for = \"x''\", or for = [\"x''\", \"T\"]"),
+    (
+        "gives",
+        "gives = \"sqrt(g/l)\", or gives = [\"sqrt(g/l)\", \"sqrt(3*g/l)\"] for several results",
+    ),
+    ("range", "range = [\"0\", \"pi\"]"),
+    ("values", "values = { m = 1.0, l = 2.0 }"),
+    ("want", "want = [\"inertia_tensor\", \"principal_moments\"]"),
+    ("equations", "equations = [\"31\", \"32\"]"),
+    (
+        "answers",
+        "answers = [{ value = \"omega\", label = \"the angular frequency\", unit = \"1/s\" }]",
+    ),
+];
+
+/// For serde's "invalid type: sequence, expected a map" on a field whose shape is known: an
+/// example of the right one.
+fn shape_hint(message: &str, field: &str) -> String {
+    if !message.starts_with("invalid type") {
+        return String::new();
+    }
+    let key = field.rsplit('.').next().unwrap_or(field);
+    let key = key.split('[').next().unwrap_or(key);
+    SHAPES
+        .iter()
+        .find(|(name, _)| *name == key)
+        .map(|(_, example)| format!("; write it as {example}"))
+        .unwrap_or_default()
 }
 
 /// For serde's "unknown field `quanity`, expected one of `eq`, `quantity`, …" (and "unknown

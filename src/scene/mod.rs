@@ -22,8 +22,8 @@ pub use error::{Locator, SceneError};
 pub use load::{MAX_DEPTH, MAX_SCENE_BYTES, find_scenes, load_all};
 pub use step::{AuthorStep, MAX_NAMED_STATES, Operation, mode_name};
 pub use types::{
-    Answer, Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia, NotesRef,
-    PlotRequest, Problem, Scene, Shape, Variant, Verdict, lecture_slug,
+    Answer, Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia, NOT_DERIVED,
+    NotesRef, PlotRequest, Problem, RecordedStep, Scene, Shape, Variant, Verdict, lecture_slug,
 };
 pub use validate::{
     CLAIM_FUNCTIONS, MAX_INPUT_DEGREE, MAX_INPUT_TERMS, MAX_NAME, MAX_PLOT_RADIANS, MAX_PLOT_TIME,

@@ -40,8 +40,10 @@ pub struct RawScene {
     pub outputs: Option<RawOutputs>,
     #[serde(default)]
     pub numeric: RawNumeric,
+    /// Recorded results: a quantity's exact value, or a step's result (a list for a step
+    /// with several), as `check --bless` writes them.
     #[serde(default)]
-    pub expect: BTreeMap<Spanned<String>, Text>,
+    pub expect: BTreeMap<Spanned<String>, Spanned<RawRecorded>>,
     /// Step key -> the notes' citation for it (`characteristic-polynomial = "eq (51)"`).
     #[serde(default)]
     pub cite: BTreeMap<Spanned<String>, Text>,
@@ -363,6 +365,19 @@ pub struct RawClaim {
     expecting = "`for` takes the unknown's name, or a list of names such as [\"x''\", \"F\"]"
 )]
 pub enum RawUnknowns {
+    One(String),
+    Many(Vec<String>),
+}
+
+/// An `[expect]` value: one result, or a step's several results in order.
+#[derive(Deserialize)]
+#[serde(
+    untagged,
+    expecting = "an `[expect]` value is what `check --bless` writes: a result's exact form, such \
+                 as \"m*a^2/6\", or a list of them, such as [\"sqrt(g/l)\", \"sqrt(3*g/l)\"], for a \
+                 step with several results"
+)]
+pub enum RawRecorded {
     One(String),
     Many(Vec<String>),
 }

@@ -52,6 +52,9 @@ pub struct Scene {
     pub fidelity: Option<Fidelity>,
     /// Recorded results: quantity name -> expected exact value (the regression record).
     pub expect: BTreeMap<String, Expr>,
+    /// Each author's step's results as `check --bless` recorded them under its name in
+    /// `[expect]`, by the step's name.
+    pub step_records: BTreeMap<String, RecordedStep>,
     /// Step key -> how this course's notes cite it, such as `eq (51)`.
     pub cite: BTreeMap<String, String>,
     /// A problem for students, with its variants.
@@ -256,6 +259,17 @@ pub enum Shape {
         radius: Expr,
     },
     Points(Vec<(Expr, [Expr; 3])>),
+}
+
+/// A step's result recorded where none was derived (an Ω² beyond the engine's budget).
+pub const NOT_DERIVED: &str = "not derived";
+
+/// A step's results as recorded in `[expect]`: each as written (an exact form, the number of a
+/// numeric result, or [`NOT_DERIVED`]), and the line of its key.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordedStep {
+    pub values: Vec<String>,
+    pub line: usize,
 }
 
 impl Scene {

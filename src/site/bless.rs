@@ -297,20 +297,44 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
         }
     }
 
+    // Each step's results under its name, after the quantities: `check` reports a change at
+    // the step's line.
+    let steps: Vec<_> = r
+        .verification
+        .step_records
+        .iter()
+        .filter(|s| !s.unchanged())
+        .collect();
+    if !steps.is_empty() {
+        let table = expect_table(&mut doc, path)?;
+        for s in steps {
+            if s.derived.is_empty() {
+                table.remove(&s.step);
+                changes.push(Blessed {
+                    line: s.line,
+                    what: format!("[expect] {}: removed (no step of that name)", s.step),
+                });
+                continue;
+            }
+            set_record_keeping_decor(table, &s.step, &s.derived);
+            changes.push(Blessed {
+                line: s.line,
+                what: match &s.recorded {
+                    None => format!("[expect] {} = {}", s.step, s.derived.join(", ")),
+                    Some((then, _)) => format!(
+                        "[expect] {}: {} -> {}",
+                        s.step,
+                        then.join(", "),
+                        s.derived.join(", ")
+                    ),
+                },
+            });
+        }
+    }
+
     // The problem's variants, pinned: one hash a variant, so that `check` sees a sheet change.
     if let Some(pin) = r.verification.pin.as_ref().filter(|p| !p.unchanged()) {
-        if doc.get("expect").is_none() {
-            let mut table = toml_edit::Table::new();
-            table.decor_mut().set_prefix(EXPECT_COMMENT);
-            doc.insert("expect", Item::Table(table));
-        }
-        let table = doc
-            .get_mut("expect")
-            .and_then(Item::as_table_like_mut)
-            .ok_or_else(|| BlessError::Shape {
-                path: path.clone(),
-                field: "expect",
-            })?;
+        let table = expect_table(&mut doc, path)?;
         set_keeping_decor(table, PINNED_VARIANTS, &pin.derived.join(" "));
         changes.push(Blessed {
             line: pin.line,
@@ -325,6 +349,49 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
         });
     }
     Ok((doc.to_string(), changes))
+}
+
+/// The scene's `[expect]`, made (with its comment) where there is none.
+fn expect_table<'a>(
+    doc: &'a mut DocumentMut,
+    path: &Path,
+) -> Result<&'a mut dyn TableLike, BlessError> {
+    if doc.get("expect").is_none() {
+        let mut table = toml_edit::Table::new();
+        table.decor_mut().set_prefix(EXPECT_COMMENT);
+        doc.insert("expect", Item::Table(table));
+    }
+    doc.get_mut("expect")
+        .and_then(Item::as_table_like_mut)
+        .ok_or_else(|| BlessError::Shape {
+            path: path.to_path_buf(),
+            field: "expect",
+        })
+}
+
+/// Sets a step's record: one string for one result, else a list with one result a line.
+fn set_record_keeping_decor(table: &mut dyn TableLike, key: &str, values: &[String]) {
+    if let [one] = values {
+        return set_keeping_decor(table, key, one);
+    }
+    let mut list = toml_edit::Array::new();
+    for v in values {
+        let mut item = Value::from(v.as_str());
+        item.decor_mut().set_prefix("\n    ");
+        list.push_formatted(item);
+    }
+    list.set_trailing_comma(true);
+    list.set_trailing("\n");
+    let mut value = Value::Array(list);
+    match table.get_mut(key).and_then(Item::as_value_mut) {
+        Some(old) => {
+            *value.decor_mut() = old.decor().clone();
+            *old = value;
+        }
+        None => {
+            table.insert(key, Item::Value(value));
+        }
+    }
 }
 
 /// The tables of `[[key]]` (claims, steps) or an inline `key = [{…}]`, in order; none when

@@ -8,6 +8,9 @@ use crate::model::prose::Prose;
 use crate::notation::Formula;
 use crate::scene::{AuthorStep, Operation, Scene, mode_name};
 
+/// After a mode's title where its frequency is zero: what a zero mode is.
+const ZERO_MODE: &str = ", a zero mode: a free motion, with no restoring force";
+
 /// A state of rest of several coordinates: q1 = v1, q2 = v2, …
 fn state_formula(coordinates: &[String], state: &[crate::cas::Zero]) -> Formula {
     let mut row = Vec::new();
@@ -269,8 +272,9 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     StepResult::Modes(_) => "normal mode",
                     _ => "root",
                 };
+                let zero = matches!(result, StepResult::Modes(_)) && w.is_zero();
                 Step::note(
-                    &format!("{title}: {what} {}", k + 1),
+                    &format!("{title}: {what} {}{}", k + 1, if zero { ZERO_MODE } else { "" }),
                     Formula::equation(Formula::Expr(sub), w.clone()),
                     why.clone(),
                 )
@@ -290,7 +294,11 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                 );
                 added.0.extend(reason.0.iter().cloned());
                 Step::note(
-                    &format!("{title}: normal mode {}", k + 1),
+                    &format!(
+                        "{title}: normal mode {}{}",
+                        k + 1,
+                        if *w == 0.0 { ZERO_MODE } else { "" }
+                    ),
                     Formula::Row(vec![
                         Formula::Expr(Expr::sym(&mode_name(&step.name, k))),
                         Formula::Op(crate::notation::Op::Approx),

@@ -404,6 +404,68 @@ fn heavy_top_momenta_and_energy() {
     assert!(check.error > 1e-3, "{check:?}");
 }
 
+/// The pendulum on a free cart of tests/course: nothing pulls the cart back, so its slow mode
+/// is zero, a result, which the eigenvalue route confirms on its companion's scale; the other is
+/// the textbook's √((M + m)g/(Ml)). A mode said to be slow but not zero fails that route, and
+/// the page names the zero mode.
+#[test]
+fn a_free_system_has_a_zero_mode() {
+    let r = course_scene(
+        "20-pendulum-on-cart.toml",
+        "gives = [\"0\"",
+        "gives = [\"0\"",
+    );
+    let omega = r
+        .verification
+        .steps
+        .iter()
+        .find(|c| c.step == "Omega")
+        .unwrap();
+    assert!(omega.passed() && omega.error < 1e-12, "{omega:?}");
+    let crate::derive::step_names::StepResult::Modes(modes) = &r.derivation.named["Omega"] else {
+        panic!("{:?}", r.derivation.named["Omega"])
+    };
+    assert!(modes[0].is_zero(), "{:?}", modes[0]);
+    let v = |s: &str| r.scene.values[s];
+    let textbook = ((v("M") + v("m")) * v("g") / (v("M") * v("l"))).sqrt();
+    let fast = modes[1].eval(&|s| r.scene.values.get(s).copied()).unwrap();
+    assert!(
+        (fast - textbook).abs() < 1e-13 * textbook,
+        "{fast} {textbook}"
+    );
+    assert!(
+        r.verification
+            .claims
+            .iter()
+            .all(|c| c.verdict == Verdict::Agrees),
+        "{:?}",
+        r.verification.claims
+    );
+    let Some(crate::derive::step_names::StepResult::Equations(linear)) =
+        r.derivation.named.get("small")
+    else {
+        panic!()
+    };
+    for wrong in [
+        vec![parse("1/1000").unwrap().expr, modes[1].clone()],
+        vec![modes[1].clone(), modes[0].clone()],
+    ] {
+        let mut check = blank();
+        modes_check(&r.scene, linear, &wrong, &mut check).unwrap();
+        assert!(check.error > 1e-4, "{wrong:?}: {check:?}");
+    }
+    let step = r.scene.steps.iter().find(|s| s.name == "Omega").unwrap();
+    let titles: Vec<String> = super::page::page_steps(&r.scene, step, &r.derivation.named["Omega"])
+        .into_iter()
+        .map(|s| s.title)
+        .collect();
+    assert!(
+        titles[0].ends_with("normal mode 1, a zero mode: a free motion, with no restoring force")
+            && !titles[1].contains("zero mode"),
+        "{titles:?}"
+    );
+}
+
 /// The double pendulum of tests/course: its two modes are √((2 ∓ √2) g/l) (the textbook's,
 /// computed here in floating point), the claims agree, and a wrong mode disagrees; the
 /// eigenvalue route fails modes that are swapped.

@@ -164,6 +164,9 @@ pub struct Verification {
     /// A problem's variants against those `check --bless` pinned.
     #[serde(default)]
     pub pin: Option<variants::Pin>,
+    /// Each author's step's results against those `check --bless` recorded.
+    #[serde(default)]
+    pub step_records: Vec<StepRecord>,
 }
 
 impl Verification {
@@ -181,7 +184,17 @@ impl Verification {
     }
 
     pub fn passed(&self) -> bool {
+        self.step_records.iter().all(StepRecord::unchanged) && self.passed_but_for_new_steps()
+    }
+
+    /// As [`Verification::passed`], except that a step not yet recorded passes: what `derive`
+    /// asks of a derivation still being written (`check` asks for the record).
+    pub fn passed_but_for_new_steps(&self) -> bool {
         self.regressions.iter().all(|r| r.unchanged)
+            && self
+                .step_records
+                .iter()
+                .all(|s| s.unchanged() || s.recorded.is_none())
             && self.pin.as_ref().is_none_or(variants::Pin::unchanged)
             && self.verified()
     }
@@ -494,30 +507,6 @@ pub fn check_quantities(
     Ok(out)
 }
 
-/// The symbolic checks: the notes' claims and the recorded results. They depend on the scene
-/// and its derivation only, never on the fidelity.
-pub fn verify_symbolic(
-    scene: &Scene,
-    d: &Derivation,
-    plan: &crate::plan::Plan,
-) -> Result<(Vec<ClaimResult>, Vec<RegressionResult>), crate::derive::DeriveError> {
-    let mut claims = if plan.runs(Stage::Claims) {
-        check_claims(scene, d)?
-    } else {
-        Vec::new()
-    };
-    if plan.runs(Stage::Steps) {
-        claims.extend(gives::check_gives(scene, d)?);
-    }
-    claim_form::present_claims(scene, &mut claims)?;
-    let regressions = if plan.runs(Stage::Regression) {
-        check_regressions(scene, d)?
-    } else {
-        Vec::new()
-    };
-    Ok((claims, regressions))
-}
-
 /// The numeric checks: each quadrature run against its law, the exact quantities against the
 /// numeric ones, and the principal axes against `SymmetricEigen`.
 pub fn verify_numeric(
@@ -561,12 +550,16 @@ pub(crate) mod routh;
 pub(crate) mod series;
 pub(crate) mod solve;
 pub(crate) mod step_check;
+mod step_records;
+mod symbolic;
 pub mod variants;
 pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
 pub use printed::{ShownDiffers, shown_is_equation, shown_is_result};
 pub use regressions::check_regressions;
 pub use rounding::round_to_figures;
 use rounding::rounded_agreement;
+pub use step_records::{NUMBER_AGREEMENT, StepRecord, check_step_records};
+pub use symbolic::{SymbolicChecks, verify_symbolic};
 pub(crate) mod random_points;
 pub(crate) use random_points::NUMERICALLY_ZERO;
 use random_points::{SAMPLE_FROM, numerically_zero, signed_names};

@@ -515,8 +515,11 @@ pub(crate) fn modes_agreement(
     if numeric.len() != derived.len() {
         check.error = f64::INFINITY;
     }
+    // A zero mode is compared on its companions' scale: relative to itself it has none.
+    let fastest = numeric.iter().fold(0.0_f64, |a, w| a.max(w.abs()));
     for (w, x) in numeric.iter().zip(derived) {
-        let error = (x - w).abs() / w.abs();
+        let scale = if *w == 0.0 { fastest } else { w.abs() };
+        let error = (x - w).abs() / scale;
         check.error = check
             .error
             .max(if error.is_nan() { f64::INFINITY } else { error });
@@ -558,11 +561,15 @@ pub(crate) fn numeric_modes(
         }
     }
     let a = m.lu().solve(&k).ok_or(CheckError::Singular)?;
-    let mut numeric: Vec<f64> = crate::base::float::complex_eigenvalues(a)
-        .ok_or(CheckError::NoEigenvalues)?
+    let lambdas = crate::base::float::complex_eigenvalues(a).ok_or(CheckError::NoEigenvalues)?;
+    let scale = lambdas.iter().fold(0.0_f64, |a, l| a.max(l.norm()));
+    let mut numeric: Vec<f64> = lambdas
         .iter()
         .map(|l| {
-            if l.im.abs() <= 1e-12 * l.norm() {
+            if l.norm() <= crate::derive::modes::ZERO_MODE * scale {
+                // A free motion: λ is zero to the round-off of its companions.
+                0.0
+            } else if l.im.abs() <= 1e-12 * l.norm() {
                 l.re.sqrt()
             } else {
                 f64::NAN

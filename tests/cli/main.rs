@@ -20,6 +20,7 @@ mod output;
 mod pdf;
 mod printed;
 mod problems;
+mod records;
 mod reliability;
 mod reliability5;
 mod serve;

@@ -4,13 +4,17 @@ use super::{Validator, content_start};
 use crate::cas::Expr;
 use crate::model::catalogue::{body_quantities, free_body_quantities, is_quantity};
 use crate::scene::error::SceneError;
-use crate::scene::raw::{RawClaim, RawScene, Text};
-use crate::scene::types::{Claim, ClaimRole, Verdict};
+use crate::scene::raw::{RawClaim, RawRecorded, RawScene, Text};
+use crate::scene::types::{Claim, ClaimRole, NOT_DERIVED, RecordedStep, Verdict};
 use crate::scene::validate::CLAIM_FUNCTIONS;
 use std::collections::{BTreeMap, BTreeSet};
 
-/// `[expect]`: each quantity's recorded value, and the line of its key.
-type Recorded = (BTreeMap<String, Expr>, BTreeMap<String, usize>);
+/// `[expect]`: each quantity's recorded value, the line of each key, and each step's record.
+type Recorded = (
+    BTreeMap<String, Expr>,
+    BTreeMap<String, usize>,
+    BTreeMap<String, RecordedStep>,
+);
 
 /// The symmetric top's quantities that once had the names Poinsot's construction now has (an
 /// old scene's `momentum_squared` meant L² of the top, and now means L² in I1, I2 and I3): the
@@ -76,15 +80,17 @@ impl Validator<'_> {
         Ok(claims)
     }
 
-    /// `[expect]`: recorded results, by quantity.
+    /// `[expect]`: recorded results, by quantity, and each author's step's, by its name.
     pub(super) fn expect(
         &self,
         raw: &RawScene,
         allowed: &BTreeSet<String>,
         variables: &BTreeSet<String>,
+        steps: &[String],
     ) -> Result<Recorded, SceneError> {
         let mut expect = BTreeMap::new();
         let mut lines = BTreeMap::new();
+        let mut step_records = BTreeMap::new();
         let wanted: Vec<&str> = raw.wanted().iter().map(|w| w.get_ref().as_str()).collect();
         for (name, value) in &raw.expect {
             let n = name.get_ref();
@@ -92,18 +98,40 @@ impl Validator<'_> {
             if n == PINNED_VARIANTS {
                 continue;
             }
+            let line = self.loc.line_col(name.span().start).0;
+            // A key that names no quantity in a scene of steps is a step's record: a step
+            // renamed or removed since, which `check` reports and `--bless` removes.
+            if steps.contains(n) || (!steps.is_empty() && !is_quantity(n)) {
+                step_records.insert(
+                    n.clone(),
+                    RecordedStep {
+                        values: self.step_record(value, n)?,
+                        line,
+                    },
+                );
+                continue;
+            }
             if !is_quantity(n) {
                 return Err(self.err(
                     name.span().start,
                     &format!("expect.{n}"),
                     format!(
-                        "`{n}` is not a derived quantity{}; the quantities are {}, {}",
+                        "`{n}` is not a derived quantity or a step{}; the quantities are {}, {}{}",
                         crate::base::suggest::did_you_mean(
                             n,
-                            body_quantities().chain(free_body_quantities())
+                            steps.iter().map(String::as_str).chain(
+                                body_quantities()
+                                    .chain(free_body_quantities())
+                                    .map(|q| -> &str { q })
+                            )
                         ),
                         body_quantities().collect::<Vec<_>>().join(", "),
-                        free_body_quantities().collect::<Vec<_>>().join(", ")
+                        free_body_quantities().collect::<Vec<_>>().join(", "),
+                        if steps.is_empty() {
+                            String::new()
+                        } else {
+                            format!("; the steps are {}", steps.join(", "))
+                        }
                     ),
                 ));
             }
@@ -117,15 +145,54 @@ impl Validator<'_> {
                     renamed_message(old, new, "rename the key to"),
                 ));
             }
+            let RawRecorded::One(text) = value.get_ref() else {
+                return Err(self.err(
+                    value.span().start,
+                    &format!("expect.{n}"),
+                    format!("`{n}` records one value: write it as one string, not a list"),
+                ));
+            };
+            let text = toml::Spanned::new(value.span(), text.clone());
             let mut scope = allowed.clone();
             scope.extend(variables.iter().cloned());
             expect.insert(
                 n.clone(),
-                self.claim_expr(value, &format!("expect.{n}"), &scope)?,
+                self.claim_expr(&text, &format!("expect.{n}"), &scope)?,
             );
-            lines.insert(n.clone(), self.loc.line_col(name.span().start).0);
+            lines.insert(n.clone(), line);
         }
-        Ok((expect, lines))
+        Ok((expect, lines, step_records))
+    }
+
+    /// A step's recorded results, each of which must read as an expression (or be
+    /// [`NOT_DERIVED`]); the names are not checked here: a wrong one reads as a changed result.
+    fn step_record(
+        &self,
+        value: &toml::Spanned<RawRecorded>,
+        step: &str,
+    ) -> Result<Vec<String>, SceneError> {
+        let values = match value.get_ref() {
+            RawRecorded::One(text) => vec![text.clone()],
+            RawRecorded::Many(list) => list.clone(),
+        };
+        for (k, v) in values.iter().enumerate() {
+            if v == NOT_DERIVED {
+                continue;
+            }
+            if let Err(e) = crate::cas::parse(v) {
+                return Err(self.err(
+                    value.span().start,
+                    &format!("expect.{step}"),
+                    format!(
+                        "the recorded result {} of step `{step}` cannot be read ({}): remove the \
+                         key and run `mechbook check --bless` to record it again",
+                        k + 1,
+                        e.message
+                    ),
+                ));
+            }
+        }
+        Ok(values)
     }
 
     /// `[expect] variants`: one 8-digit hex hash per variant, as `check --bless` writes them;
@@ -150,11 +217,11 @@ impl Validator<'_> {
                 "`variants` pins a problem's variants, and this scene has no [problem]: remove it",
             ));
         }
-        let hashes: Vec<String> = value
-            .get_ref()
-            .split_whitespace()
-            .map(String::from)
-            .collect();
+        let text = match value.get_ref() {
+            RawRecorded::One(text) => text.as_str(),
+            RawRecorded::Many(_) => "",
+        };
+        let hashes: Vec<String> = text.split_whitespace().map(String::from).collect();
         if hashes.is_empty()
             || !hashes
                 .iter()
@@ -340,7 +407,10 @@ pub(super) fn check_calls(e: &Expr, claim_language: bool) -> Result<(), CallErro
                 if !allowed.contains(&name.as_str()) {
                     *out = Err(CallError::Unknown {
                         name: name.clone(),
-                        hint: crate::base::suggest::did_you_mean(name, allowed.iter().copied()),
+                        hint: super::hints::sympy(name).map_or_else(
+                            || crate::base::suggest::did_you_mean(name, allowed.iter().copied()),
+                            String::from,
+                        ),
                         allowed: allowed.to_vec(),
                     });
                     return;

@@ -6,6 +6,7 @@ mod ascii_math;
 mod bodies;
 mod claims;
 mod expression_plot;
+mod hints;
 mod motion_plot;
 mod operation;
 mod outputs;
@@ -167,7 +168,9 @@ impl Validator<'_> {
             ),
             None => None,
         };
-        let (expect, expect_lines) = self.expect(&raw, &allowed, &variables)?;
+        let step_names: Vec<String> = steps.iter().map(|s| s.name.clone()).collect();
+        let (expect, expect_lines, step_records) =
+            self.expect(&raw, &allowed, &variables, &step_names)?;
         let cite = self.cites(&raw)?;
         let problem = self.problem(
             &raw,
@@ -218,6 +221,7 @@ impl Validator<'_> {
             seed: raw.numeric.seed.unwrap_or(1),
             fidelity,
             expect,
+            step_records,
             cite,
             problem,
             moments_from_bodies,
@@ -530,21 +534,13 @@ impl Validator<'_> {
             )
         })?;
         if let Some((name, offset)) = parsed.symbols.iter().find(|(n, _)| !names.contains(n)) {
-            let hint = crate::base::suggest::did_you_mean(name, names.iter().map(String::as_str));
-            let known = names.iter().cloned().collect::<Vec<_>>().join(", ");
-            let message = if claim {
-                format!(
-                    "undefined name `{name}`{hint}: not a symbol, definition, vector or derived \
-                     quantity of this scene; those are {known}"
-                )
-            } else {
-                format!(
-                    "undefined symbol `{name}`{hint}: declare it under [symbols] (declared: {known})"
-                )
-            };
+            let message = hints::undefined_name(name, names, claim);
             return Err(self.err(start + offset, field, message));
         }
         check_calls(&parsed.expr, claim).map_err(|m| self.err(start, field, m.to_string()))?;
+        if let Some(message) = hints::time_derivative(&parsed.expr, names) {
+            return Err(self.err(start, field, message));
+        }
         Ok(parsed.expr)
     }
 
