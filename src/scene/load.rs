@@ -175,8 +175,18 @@ fn unknown_name_hint(message: &str) -> String {
         return String::new();
     };
     let candidates = expected.split('`').skip(1).step_by(2);
-    crate::base::suggest::did_you_mean(name, candidates)
+    let near = crate::base::suggest::did_you_mean(name, candidates);
+    // A key of the scene itself written after a [table] header lands in that table.
+    if near.is_empty() && TOP_LEVEL.contains(&name) && message.starts_with("unknown field") {
+        return format!(
+            "; `{name}` is a key of the scene itself: write it above the first [table] header"
+        );
+    }
+    near
 }
+
+/// The scene's own keys that are not tables (`[symbols]`, `[[step]]`).
+const TOP_LEVEL: &[&str] = &["id", "title", "notes", "assume", "axis", "omega"];
 
 /// The dotted key written on the line of `offset` (`body.size`), with its table's name.
 fn key_at(text: &str, offset: usize) -> String {

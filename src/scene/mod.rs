@@ -12,6 +12,7 @@ mod raw;
 pub mod roster;
 mod step;
 mod symbol_domains;
+pub use symbol_domains::SAMPLE_FROM;
 mod types;
 mod validate;
 pub mod variants;
@@ -22,8 +23,9 @@ pub use error::{Locator, SceneError};
 pub use load::{MAX_DEPTH, MAX_SCENE_BYTES, find_scenes, load_all};
 pub use step::{AuthorStep, MAX_NAMED_STATES, Operation, mode_name};
 pub use types::{
-    Answer, Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia, NOT_DERIVED,
-    NotesRef, PlotRequest, Problem, RecordedStep, Scene, Shape, Variant, Verdict, lecture_slug,
+    Answer, Assumption, Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia,
+    NOT_DERIVED, NotesRef, PlotRequest, Problem, RecordedStep, Scene, Shape, Variant, Verdict,
+    lecture_slug,
 };
 pub use validate::{
     CLAIM_FUNCTIONS, MAX_INPUT_DEGREE, MAX_INPUT_TERMS, MAX_NAME, MAX_PLOT_RADIANS, MAX_PLOT_TIME,

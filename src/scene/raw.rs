@@ -40,6 +40,10 @@ pub struct RawScene {
     pub outputs: Option<RawOutputs>,
     #[serde(default)]
     pub numeric: RawNumeric,
+    /// The physics' domain: inequalities between the scene's names (`"R > r"`, `"0 < beta <
+    /// beta0"`), which the random points keep to and the engine uses to decide signs.
+    #[serde(default)]
+    pub assume: Vec<Text>,
     /// Recorded results: a quantity's exact value, or a step's result (a list for a step
     /// with several), as `check --bless` writes them.
     #[serde(default)]

@@ -6,6 +6,11 @@ use super::{Scene, Shape};
 use crate::cas::Expr;
 use std::collections::BTreeSet;
 
+/// Where the random points of the random-point tests (`verify::random_points`) lie: every symbol in [0.4, 1.4), positive
+/// and away from 0, where a mass or a moment in a denominator vanishes, and within a factor
+/// 3.5 of the others, so that no term of a degree-30 expression over- or underflows.
+pub const SAMPLE_FROM: f64 = 0.4;
+
 impl Scene {
     /// A name's LaTeX as the scene's pages print it: its own `tex`, else the conventions
     /// (`phi''` is `\ddot{\phi}`).
@@ -22,6 +27,22 @@ impl Scene {
             })
             .collect();
         crate::cas::typeset_as(own, || Expr::sym(name).to_latex())
+    }
+
+    /// Whether `point` lies in the scene's domain: every assumption whose names the point
+    /// gives holds there (the others say nothing of it).
+    pub fn in_domain(&self, point: &std::collections::BTreeMap<String, f64>) -> bool {
+        self.assumptions.iter().all(|a| {
+            let gap = Expr::minus(a.larger.clone(), a.smaller.clone());
+            match gap.eval(&|s| point.get(s).copied().filter(|_| s != "pi")) {
+                Ok(x) => x > 0.0,
+                // A name the point does not give: this assumption is not about it.
+                Err(_) => !gap
+                    .symbols()
+                    .iter()
+                    .all(|s| s == "pi" || point.contains_key(s)),
+            }
+        })
     }
 
     /// The names that take either sign: the coordinates, their rates and accelerations, the

@@ -70,6 +70,19 @@ pub struct Scene {
     /// How symbols and coordinates are typeset when the scene says (`tex = "\\Omega"`), as
     /// LaTeX that has been read at load.
     pub tex: BTreeMap<String, String>,
+    /// `assume`: the physics' domain, each inequality `smaller < larger`.
+    pub assumptions: Vec<Assumption>,
+}
+
+/// One inequality of a scene's domain: `smaller < larger` (a `<=` is taken as `<`: the random
+/// points never land on the boundary, and the engine's signs are strict).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Assumption {
+    pub smaller: Expr,
+    pub larger: Expr,
+    /// As the author wrote it, for messages.
+    pub text: String,
+    pub line: usize,
 }
 
 /// A problem: a statement whose `{symbol}` placeholders each variant fills in, and the derived

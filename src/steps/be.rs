@@ -42,7 +42,7 @@ pub(super) fn check(
         if compared == CONFIRMATION_POINTS {
             break;
         }
-        let point = random_point(&[&raw, r], &mut rng);
+        let point = random_point(&[&raw, r], &mut rng, cx.scene);
         let (a, b) = (at(&raw, &point)?, at(r, &point)?);
         check.evaluations += 2;
         // Where either is undefined or infinite, nothing is compared (inf − inf is NaN, which

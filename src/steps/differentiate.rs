@@ -68,7 +68,7 @@ pub(super) fn check(
         if checked == CONFIRMATION_POINTS {
             break;
         }
-        let mut point = random_point(&[&f, r], &mut rng);
+        let mut point = random_point(&[&f, r], &mut rng, cx.scene);
         let mut accel = BTreeMap::new();
         for q in cx.scene.coordinates.keys() {
             for name in [q.clone(), format!("{q}'"), format!("{q}''")] {

@@ -285,7 +285,9 @@ fn printed_check(
         .zip(&exact)
         .map(|(p, e)| Expr::minus(p.clone(), e.clone()))
         .collect();
-    let agree = numerically_zero(&diffs, &exact, seed, &signed_names(scene))?;
+    let agree = numerically_zero(&diffs, &exact, seed, &signed_names(scene), &|p| {
+        scene.in_domain(p)
+    })?;
     check.evaluations += (CONFIRMATION_POINTS * 2 * diffs.len()) as u64;
     check.method.push_str(&format!(
         "; its printed form against its exact result at {CONFIRMATION_POINTS} random points"

@@ -82,7 +82,7 @@ pub(super) fn check(
             .flat_map(|(f, r)| [f, *r])
             .chain(values.values())
             .collect();
-        let point = random_point(&exprs, &mut rng);
+        let point = random_point(&exprs, &mut rng, cx.scene);
         // All at once, as the exact rule replaces: a replacement that names another
         // replaced name takes that name's value before the replacement. The result is
         // in the names as they were (after a swap, x stands where y stood).

@@ -177,6 +177,7 @@ fn same_equation(
         &[scale],
         scene.seed.wrapping_add(20_000),
         &signed_names(scene),
+        &|p| scene.in_domain(p),
     )
     .map(|z| z[0] && state_free && !ratio.is_zero());
     match numeric {

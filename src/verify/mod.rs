@@ -362,7 +362,9 @@ fn check_claim(
         .map(|(a, b)| Expr::add(vec![a.clone(), b.clone()]))
         .collect();
     let signed = signed_names(scene);
-    match numerically_zero(&diffs, &scale, scene.seed.wrapping_add(i as u64), &signed) {
+    let in_domain = |p: &std::collections::BTreeMap<String, f64>| scene.in_domain(p);
+    let seed = scene.seed.wrapping_add(i as u64);
+    match numerically_zero(&diffs, &scale, seed, &signed, &in_domain) {
         Ok(numeric) => {
             // Not zero as written but zero at every random point: perhaps once roots are taken
             // over positive symbols, as a scene's are (√(g²) = g).
@@ -387,6 +389,20 @@ fn check_claim(
                     }
                 }
                 r.positive = positive.into_iter().collect();
+            }
+            // Still not zero as written: perhaps inside the domain the scene assumes (R > r).
+            let still: Vec<usize> = (0..diffs.len())
+                .filter(|&k| !symbolic[k] && numeric[k])
+                .collect();
+            if !still.is_empty() && !scene.assumptions.is_empty() {
+                let again = assumed::is_zero_in_domain(
+                    scene,
+                    still.iter().map(|&k| diffs[k].clone()).collect(),
+                    &signed,
+                )?;
+                for (k, zero) in still.into_iter().zip(again) {
+                    symbolic[k] |= zero;
+                }
             }
             // The two tests contradict each other: report both and decide nothing. The
             // engine may have missed an identity (a "non-zero" that is zero), or the random
@@ -531,6 +547,7 @@ pub fn verify_numeric(
 }
 
 mod answer_routes;
+mod assumed;
 mod body_moments;
 pub mod budget;
 mod claim_form;

@@ -370,7 +370,7 @@ pub(crate) fn linear_check(
     let mut rng = Rng::new(seed);
     for _ in 0..CONFIRMATION_POINTS {
         let exprs: Vec<&Expr> = full.iter().chain(linear).map(|(_, e)| e).collect();
-        let mut point = random_point(&exprs, &mut rng);
+        let mut point = random_point(&exprs, &mut rng, scene);
         for q in scene.coordinates.keys() {
             let q0 = match about.get(q) {
                 Some(e) => at(e, &point)?,

@@ -37,7 +37,7 @@ pub fn check_printed_forms(d: &Derivation, seed: u64) -> Vec<StepCheck> {
                 evaluations: (CONFIRMATION_POINTS * 2 * diffs.len()) as u64,
                 problem: None,
             };
-            match largest_differences(&diffs, &exact, seed, &signed) {
+            match largest_differences(&diffs, &exact, seed, &signed, &|_| true) {
                 Ok(d) => check.error = d.into_iter().fold(0.0, f64::max),
                 Err(e) => check.problem = Some(e.to_string()),
             }
@@ -61,6 +61,7 @@ pub fn shown_is_result(
         std::slice::from_ref(result),
         1,
         signed,
+        &|_| true,
     )
     .ok()
     .and_then(|d| d.first().copied())

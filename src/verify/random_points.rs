@@ -7,10 +7,7 @@ use crate::cas::{EvalError, Expr, Rational};
 use crate::scene::Scene;
 use std::collections::{BTreeMap, BTreeSet};
 
-/// Where the random points of [`numerically_zero`] lie: every symbol in [0.4, 1.4), positive
-/// and away from 0, where a mass or a moment in a denominator vanishes, and within a factor
-/// 3.5 of the others, so that no term of a degree-30 expression over- or underflows.
-pub(crate) const SAMPLE_FROM: f64 = 0.4;
+pub(crate) use crate::scene::SAMPLE_FROM;
 
 /// A difference below this, relative to its scale (at least 1), counts as zero at a random
 /// point. The expressions are sums of at most the engine's 20,000 terms of size about 1 there,
@@ -22,6 +19,10 @@ pub(crate) const NUMERICALLY_ZERO: f64 = 1e-9;
 /// Random points drawn per point tested, at most, to find points where an expression is
 /// defined.
 pub(crate) const DOMAIN_TRIES: usize = 20;
+
+/// Whether a point lies in the domain the random points keep to: a scene's `assume`
+/// (`Scene::in_domain`), or everywhere.
+pub(crate) type Domain<'a> = dyn Fn(&BTreeMap<String, f64>) -> bool + 'a;
 
 /// The names that take either sign (see [`Scene::signed_names`]).
 pub(crate) fn signed_names(scene: &Scene) -> BTreeSet<String> {
@@ -48,8 +49,9 @@ pub(crate) fn numerically_zero(
     scale: &[Expr],
     seed: u64,
     signed: &BTreeSet<String>,
+    domain: &Domain<'_>,
 ) -> Result<Vec<bool>, EvalError> {
-    Ok(largest_differences(diffs, scale, seed, signed)?
+    Ok(largest_differences(diffs, scale, seed, signed, domain)?
         .into_iter()
         .map(|d| d <= NUMERICALLY_ZERO)
         .collect())
@@ -64,6 +66,7 @@ pub(crate) fn largest_differences(
     scale: &[Expr],
     seed: u64,
     signed: &BTreeSet<String>,
+    domain: &Domain<'_>,
 ) -> Result<Vec<f64>, EvalError> {
     let mut rng = Rng::new(seed);
     let mut largest = vec![0.0f64; diffs.len()];
@@ -96,6 +99,10 @@ pub(crate) fn largest_differences(
                 (n.clone(), if negative { -x } else { x })
             })
             .collect();
+        // Outside the physics' domain (`assume`) a point says nothing: another is drawn.
+        if !domain(&point) {
+            continue;
+        }
         let env = |s: &str| point.get(s).copied().filter(|_| s != "pi");
         for (j, d) in diffs.iter().enumerate() {
             if tested[j] >= CONFIRMATION_POINTS {

@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 fn points(scene: &Scene, exprs: &[&Expr], seed: u64) -> Vec<BTreeMap<String, f64>> {
     let mut rng = Rng::new(seed);
     let mut points: Vec<BTreeMap<String, f64>> = (0..CONFIRMATION_POINTS)
-        .map(|_| random_point(exprs, &mut rng))
+        .map(|_| random_point(exprs, &mut rng, scene))
         .collect();
     points.push(scene.values.clone());
     points

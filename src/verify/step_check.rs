@@ -141,15 +141,31 @@ impl StepCheck {
 pub(crate) const H: f64 = 1e-3;
 
 /// Every symbol of the expressions at a random value in [0.4, 1.4) (π is π).
-pub(crate) fn random_point(exprs: &[&Expr], rng: &mut Rng) -> BTreeMap<String, f64> {
+pub(crate) fn random_point(
+    exprs: &[&Expr],
+    rng: &mut Rng,
+    scene: &crate::scene::Scene,
+) -> BTreeMap<String, f64> {
     let mut names: Vec<String> = exprs.iter().flat_map(|e| e.symbols()).collect();
     names.sort();
     names.dedup();
-    names
-        .into_iter()
-        .filter(|s| s != "pi")
-        .map(|s| (s, SAMPLE_FROM + rng.uniform()))
-        .collect()
+    names.retain(|s| s != "pi");
+    let mut draw = || -> BTreeMap<String, f64> {
+        names
+            .iter()
+            .map(|s| (s.clone(), SAMPLE_FROM + rng.uniform()))
+            .collect()
+    };
+    // Inside the physics' domain (`assume`), where a scene states one: the load checked that
+    // such points exist; should these draws all miss, the last is compared, and says so.
+    let mut point = draw();
+    for _ in 1..super::random_points::DOMAIN_TRIES {
+        if scene.in_domain(&point) {
+            break;
+        }
+        point = draw();
+    }
+    point
 }
 
 pub(crate) fn at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {

@@ -11,6 +11,7 @@ mod catalogue;
 mod check;
 mod contract;
 mod course;
+mod domain;
 mod handouts;
 mod hostile;
 mod lock;

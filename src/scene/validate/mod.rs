@@ -3,6 +3,7 @@
 
 mod answers;
 mod ascii_math;
+mod assumptions;
 mod bodies;
 mod claims;
 mod expression_plot;
@@ -149,6 +150,9 @@ impl Validator<'_> {
         // Values before plots: a free-body plot's inertia and omega may be expressions.
         let values = self.values(&raw, &symbols, &bodies, omega.iter().chain(axis.iter()))?;
         let plots = self.plots(&raw, &symbols, &values, &steps, &coordinates)?;
+        let mut domain_names = allowed.clone();
+        domain_names.extend(coordinates.keys().cloned());
+        let assumptions = self.assumptions(&raw, &domain_names, &values)?;
         self.requests(
             &raw,
             &symbols,
@@ -228,6 +232,7 @@ impl Validator<'_> {
             pinned_variants,
             units,
             tex,
+            assumptions,
         })
     }
 

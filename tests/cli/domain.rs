@@ -1,0 +1,76 @@
+//! `assume`: a scene's domain. Its random points keep to it and the engine decides signs by it,
+//! so a claim true only there is decided, and decided the same for every seed; a wrong form
+//! still disagrees.
+
+use super::{mechbook, scratch, stdout};
+
+/// A ball of radius r in a bowl of radius R: two claims true where R > r, and one wrong.
+fn bowl(assume: &str, seed: u64) -> String {
+    format!(
+        r#"id = "bowl-domain"
+title = "Roots that need R > r"
+notes = {{ lecture = "x" }}
+{assume}
+[symbols]
+R = "radius of the bowl"
+r = "radius of the ball"
+g = "gravitational acceleration"
+
+[[claim]]
+eq = "1"
+statement = "a root of a square"
+quantity = "sqrt((R - r)^2)"
+value = "R - r"
+
+[[claim]]
+eq = "2"
+statement = "the period as the inverse of a frequency"
+quantity = "2*pi/sqrt(5*g/(7*(R - r)))"
+value = "2*pi*sqrt(7*(R - r)/(5*g))"
+
+[[claim]]
+eq = "3"
+statement = "a period with its fraction upside down"
+quantity = "2*pi/sqrt(5*g/(7*(R - r)))"
+value = "2*pi*sqrt(5*(R - r)/(7*g))"
+
+[numeric]
+values = {{ R = 0.5, r = 0.02, g = 9.81 }}
+seed = {seed}
+"#
+    )
+}
+
+/// Each claim's verdict, by `derive --json` in a folder of its own (`name`).
+fn verdicts(text: &str, name: &str) -> Vec<String> {
+    let dir = scratch(name);
+    let path = dir.join("bowl.toml");
+    std::fs::write(&path, text).unwrap();
+    let out = mechbook(&["derive", "--json", path.to_str().unwrap()]);
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    json["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["verdict"].as_str().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn a_claim_true_in_the_domain_is_decided_for_every_seed() {
+    for seed in 1..=6 {
+        assert_eq!(
+            verdicts(
+                &bowl("assume = [\"R > r\"]", seed),
+                &format!("domain-{seed}")
+            ),
+            ["agrees", "agrees", "disagrees"],
+            "seed {seed}"
+        );
+    }
+    // Without the domain, neither true claim agrees: |R − r| is not R − r, and the period is
+    // left undecided.
+    let free = verdicts(&bowl("", 1), "domain-free");
+    assert!(free[0] != "agrees" && free[1] != "agrees", "{free:?}");
+}
