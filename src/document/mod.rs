@@ -60,6 +60,9 @@ pub struct Page {
     pub steps: Vec<Step>,
     /// Every derived quantity, in the catalogue's order.
     pub quantities: Vec<Quantity>,
+    /// Each result that is a number only, by its name (`Omega_5` of a `frequency` with no
+    /// closed form): at the scene's values, in the derivation's order.
+    pub numeric_results: Vec<(String, f64)>,
     /// The exact principal moments with their axes.
     pub principal_axes: Vec<PrincipalAxis>,
     /// The principal moments at the scene's values, by both routes.
@@ -430,6 +433,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
         claims: r.verification.claims.clone(),
         exact_vs_numeric: r.verification.quantities.clone(),
         regressions: r.verification.regressions.clone(),
+        numeric_results: numeric_results(r),
         variants: r.verification.variants.clone(),
         answers: r
             .scene
@@ -506,3 +510,18 @@ fn describe_body(b: &crate::scene::Body) -> Prose {
 
 #[cfg(test)]
 mod tests;
+
+/// Each numeric mode under its name, the scene's steps in order.
+fn numeric_results(r: &SceneReport) -> Vec<(String, f64)> {
+    let mut out = Vec::new();
+    for step in &r.scene.steps {
+        if let Some(crate::derive::step_names::StepResult::NumericModes { frequencies, .. }) =
+            r.derivation.named.get(&step.name)
+        {
+            for (k, w) in frequencies.iter().enumerate() {
+                out.push((crate::scene::mode_name(&step.name, k), *w));
+            }
+        }
+    }
+    out
+}

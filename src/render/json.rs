@@ -161,6 +161,18 @@ pub fn scene_json(page: &Page) -> Json {
             json!({ "exact": q.value.to_text(), "latex": q.value.to_latex(), "numeric": numeric_entries(q) }),
         );
     }
+    // A number with no exact form: no `exact` text that would be a float in disguise.
+    for (name, w) in &page.numeric_results {
+        quantities.insert(
+            name.clone(),
+            json!({ "exact": null, "latex": null, "numeric": [num(*w)], "numeric_only": true }),
+        );
+    }
+    let numeric_only = |e: &Expr| {
+        e.symbols()
+            .iter()
+            .any(|s| page.numeric_results.iter().any(|(n, _)| n == s))
+    };
     let claims: Vec<Json> = page
         .claims
         .iter()
@@ -263,9 +275,11 @@ pub fn scene_json(page: &Page) -> Json {
                 "quantity": a.quantity,
                 "label": spec.label,
                 "unit": spec.unit.as_ref().map(|u| &u.text),
-                "exact": a.exact.to_text(),
-                "latex": a.exact.to_latex(),
-                "entries": a.exact.entries().iter().map(|e| e.to_latex()).collect::<Vec<_>>(),
+                // An answer on a numeric mode has its number at each variant, not an exact form.
+                "exact": (!numeric_only(&spec.value)).then(|| a.exact.to_text()),
+                "latex": (!numeric_only(&spec.value)).then(|| a.exact.to_latex()),
+                "entries": if numeric_only(&spec.value) { Vec::new() } else { a.exact.entries().iter().map(|e| e.to_latex()).collect::<Vec<_>>() },
+                "numeric_only": numeric_only(&spec.value),
                 "numeric": a.exact_numbers.iter().map(|x| num(*x)).collect::<Vec<_>>(),
                 "independent": a.numeric.iter().map(|x| num(*x)).collect::<Vec<_>>(),
                 "error": num(a.error),

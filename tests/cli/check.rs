@@ -382,3 +382,34 @@ fn changed_variants_fail_check_until_blessed() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Modes with no closed form are numbers in `derive --json`'s `quantities`, with no exact
+/// text; an answer on them has none either. The five-link pendulum's are the textbook's (√λ of
+/// its M⁻¹K, by nalgebra's Schur decomposition) to 1e-9.
+#[test]
+fn numeric_modes_are_numbers_in_the_json_and_never_an_exact_form() {
+    let out = mechbook(&[
+        "derive",
+        "--json",
+        "tests/course/problems/07-five-links.toml",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let textbook = mechbook::verify::n_link::textbook_modes(5);
+    for (k, w) in textbook.iter().enumerate() {
+        let q = &v["quantities"][format!("Omega_{}", k + 1)];
+        assert!(q["exact"].is_null() && q["numeric_only"] == true, "{q}");
+        let x = q["numeric"][0].as_f64().unwrap();
+        assert!(
+            (x - w).abs() <= 1e-9 * w,
+            "Omega_{}: {x} against {w}",
+            k + 1
+        );
+    }
+    for answer in v["variants"][0]["answers"].as_array().unwrap() {
+        assert!(
+            answer["exact"].is_null() && answer["numeric"][0].as_f64().is_some(),
+            "{answer}"
+        );
+    }
+}
