@@ -21,6 +21,7 @@ pub(crate) fn is_zero_in_domain(
     signed: &BTreeSet<String>,
 ) -> Result<Vec<bool>, cas::CasError> {
     let mut diffs = diffs;
+    let mut substituted = false;
     for (k, a) in scene.assumptions.iter().enumerate() {
         let Expr::Sym(x) = &a.larger else {
             continue;
@@ -29,11 +30,43 @@ pub(crate) fn is_zero_in_domain(
             continue;
         }
         let value = Expr::add(vec![a.smaller.clone(), Expr::sym(&gap(k))]);
+        substituted = true;
         diffs = diffs
             .iter()
             .map(|d| d.substitute(&|s| (s == x).then(|| value.clone())))
             .collect();
     }
-    // (r + g) − r is g before the roots are taken apart.
-    cas::is_zero_over_positive(cas::simplify_all(diffs)?, signed.clone())
+    // (r + g) − r is g before the roots are taken apart; with nothing put in, the form is
+    // kept (the simplifier would expand sin⁴θ).
+    if substituted {
+        diffs = cas::simplify_all(diffs)?;
+    }
+    cas::is_zero_over_positive(diffs, signed.clone())
+}
+
+/// Each difference still not zero but zero at every random point, tried once more over the
+/// domain: as simplified, and as written (the simplifier expands sin⁴θ under √(sin⁴θ X),
+/// whose square factor sin²θ then no longer leaves the root).
+pub(crate) fn second_chance(
+    scene: &Scene,
+    [simplified, written]: [&[Expr]; 2],
+    numeric: &[bool],
+    symbolic: &mut [bool],
+    signed: &BTreeSet<String>,
+) -> Result<(), cas::CasError> {
+    let still: Vec<usize> = (0..symbolic.len())
+        .filter(|&k| !symbolic[k] && numeric[k])
+        .collect();
+    if still.is_empty() {
+        return Ok(());
+    }
+    let tried: Vec<Expr> = still
+        .iter()
+        .flat_map(|&k| [simplified[k].clone(), written[k].clone()])
+        .collect();
+    let again = is_zero_in_domain(scene, tried, signed)?;
+    for (i, k) in still.into_iter().enumerate() {
+        symbolic[k] |= again[2 * i] || again[2 * i + 1];
+    }
+    Ok(())
 }

@@ -303,8 +303,8 @@ fn check_claim(
     let (Some(q), Some(v)) = (&claim.quantity, &claim.value) else {
         return Ok(r);
     };
-    let derived = match evaluate(q, env) {
-        Ok(x) => simplify_value(&x)?,
+    let (as_written, derived) = match evaluate(q, env) {
+        Ok(x) => (x.clone(), simplify_value(&x)?),
         Err(e) => {
             r.problem = Some(format!("the derived side does not evaluate: {e}"));
             return Ok(r);
@@ -390,20 +390,10 @@ fn check_claim(
                 }
                 r.positive = positive.into_iter().collect();
             }
-            // Still not zero as written: perhaps inside the domain the scene assumes (R > r).
-            let still: Vec<usize> = (0..diffs.len())
-                .filter(|&k| !symbolic[k] && numeric[k])
+            let written: Vec<Expr> = (as_written.entries().into_iter().zip(&ne))
+                .map(|(a, b)| Expr::minus(a, b.clone()))
                 .collect();
-            if !still.is_empty() && !scene.assumptions.is_empty() {
-                let again = assumed::is_zero_in_domain(
-                    scene,
-                    still.iter().map(|&k| diffs[k].clone()).collect(),
-                    &signed,
-                )?;
-                for (k, zero) in still.into_iter().zip(again) {
-                    symbolic[k] |= zero;
-                }
-            }
+            assumed::second_chance(scene, [&diffs, &written], &numeric, &mut symbolic, &signed)?;
             // The two tests contradict each other: report both and decide nothing. The
             // engine may have missed an identity (a "non-zero" that is zero), or the random
             // points may all have missed where the difference lives.

@@ -74,3 +74,37 @@ fn a_claim_true_in_the_domain_is_decided_for_every_seed() {
     let free = verdicts(&bowl("", 1), "domain-free");
     assert!(free[0] != "agrees" && free[1] != "agrees", "{free:?}");
 }
+
+/// Textbook identities over positive symbols, and an even power under a root of a signed
+/// coordinate's sine, each decided; a wrong form of each of two still disagrees.
+#[test]
+fn textbook_identities_agree_and_their_wrong_forms_do_not() {
+    let claim = |eq: usize, quantity: &str, value: &str| {
+        format!(
+            "[[claim]]\neq = \"{eq}\"\nstatement = \"an identity\"\nquantity = \"{quantity}\"\nvalue = \"{value}\"\n\n"
+        )
+    };
+    let text = format!(
+        "id = \"identities\"\ntitle = \"Textbook identities\"\nnotes = {{ lecture = \"x\" }}\n\n\
+         [symbols]\nL = \"a length\"\na = \"one\"\nb = \"another\"\nX = \"a positive quantity\"\n\n\
+         [coordinates]\ntheta = \"an angle\"\n\n{}{}{}{}{}{}\
+         [numeric]\nvalues = {{ L = 1.0, a = 2.0, b = 3.0, X = 2.0 }}\n",
+        claim(1, "L/sqrt(12)", "sqrt(3)*L/6"),
+        claim(2, "sqrt(a)/sqrt(b)", "sqrt(a/b)"),
+        claim(3, "sqrt(a)*sqrt(b)", "sqrt(a*b)"),
+        claim(4, "sqrt(sin(theta)^4*X)", "sin(theta)^2*sqrt(X)"),
+        claim(5, "L/sqrt(12)", "sqrt(2)*L/6"),
+        claim(6, "sqrt(sin(theta)^4*X)", "sin(theta)*sqrt(X)"),
+    );
+    assert_eq!(
+        verdicts(&text, "identities"),
+        [
+            "agrees",
+            "agrees",
+            "agrees",
+            "agrees",
+            "disagrees",
+            "disagrees"
+        ]
+    );
+}
