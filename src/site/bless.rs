@@ -382,16 +382,7 @@ fn set_record_keeping_decor(table: &mut dyn TableLike, key: &str, values: &[Stri
     }
     list.set_trailing_comma(true);
     list.set_trailing("\n");
-    let mut value = Value::Array(list);
-    match table.get_mut(key).and_then(Item::as_value_mut) {
-        Some(old) => {
-            *value.decor_mut() = old.decor().clone();
-            *old = value;
-        }
-        None => {
-            table.insert(key, Item::Value(value));
-        }
-    }
+    set_value_keeping_decor(table, key, Value::Array(list));
 }
 
 /// The tables of `[[key]]` (claims, steps) or an inline `key = [{…}]`, in order; none when
@@ -413,7 +404,11 @@ fn array_tables<'a>(doc: &'a mut DocumentMut, key: &str) -> Option<Vec<&'a mut d
 /// Sets `key` to the string `text`, keeping the key's comment above it and the old value's
 /// surrounding spaces and comment (`insert` would reformat the key).
 fn set_keeping_decor(table: &mut dyn TableLike, key: &str, text: &str) {
-    let mut value = Value::from(text);
+    set_value_keeping_decor(table, key, Value::from(text));
+}
+
+/// Sets `key` to `value`, keeping the old value's surrounding spaces and comment.
+fn set_value_keeping_decor(table: &mut dyn TableLike, key: &str, mut value: Value) {
     match table.get_mut(key).and_then(Item::as_value_mut) {
         Some(old) => {
             *value.decor_mut() = old.decor().clone();
