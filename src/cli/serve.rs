@@ -346,6 +346,7 @@ impl ChildBuild {
             .arg("--status-file")
             .arg(status)
             .stdin(std::process::Stdio::null());
+        die_with_parent(&mut c);
         c
     }
 
@@ -410,6 +411,30 @@ impl ChildBuild {
             waiter,
         })
     }
+}
+
+/// A build outlives a serve that is killed outright (SIGKILL, which serve cannot hear): it went
+/// on writing the site, into a folder its owner may be removing. On Linux the kernel sends it
+/// SIGTERM when the serve thread that started it ends: the loop thread, which lives as long as
+/// serve does.
+fn die_with_parent(command: &mut std::process::Command) {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::process::CommandExt;
+        // SAFETY: between fork and exec the closure calls only prctl, which is
+        // async-signal-safe and touches no memory of the parent's.
+        #[allow(unsafe_code)]
+        unsafe {
+            command.pre_exec(|| {
+                if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGTERM) == -1 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                Ok(())
+            });
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = command;
 }
 
 /// A build that could not be started, as the pages say it.

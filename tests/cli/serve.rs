@@ -71,8 +71,19 @@ struct Serving {
 }
 
 /// A failed assertion must not leave a server running (it holds mechbook's lock).
+/// SIGTERM first, as a service manager stops it: serve stops its build and removes its
+/// scratch folder before it ends. SIGKILL only if it has not ended in 20 s.
 impl Drop for Serving {
     fn drop(&mut self) {
+        let pid = self.child.id().to_string();
+        let _ = Command::new("kill").args(["-TERM", &pid]).status();
+        let deadline = Instant::now() + Duration::from_secs(20);
+        while Instant::now() < deadline {
+            if !matches!(self.child.try_wait(), Ok(None)) {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
         let _ = self.child.kill();
         let _ = self.child.wait();
     }
@@ -656,5 +667,73 @@ fn serve_open_starts_the_browser_named_by_browser_at_the_served_address() {
     assert_eq!(url, format!("http://127.0.0.1:{}/", s.port));
     assert_eq!(get(s.port, "/").0, 200);
     assert_eq!(interrupt(&mut s.child), Some(0));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The processes whose parent is `pid`, read from /proc.
+#[cfg(target_os = "linux")]
+fn children_of(pid: u32) -> Vec<u32> {
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir("/proc").unwrap().map_while(Result::ok) {
+        let Ok(stat) = std::fs::read_to_string(entry.path().join("stat")) else {
+            continue;
+        };
+        // pid (comm) state ppid …: the name may hold spaces, the fields after its ')' do not.
+        let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+        let ppid = after.split_whitespace().nth(1);
+        if ppid == Some(pid.to_string().as_str())
+            && let Ok(child) = entry.file_name().to_string_lossy().parse()
+        {
+            found.push(child);
+        }
+    }
+    found
+}
+
+/// Whether process `pid` still runs (a zombie waiting for its reaper has ended).
+#[cfg(target_os = "linux")]
+fn runs(pid: u32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat"))
+        .ok()
+        .and_then(|s| {
+            s.rsplit_once(')')
+                .map(|(_, rest)| rest.trim_start().starts_with('Z'))
+        })
+        .is_some_and(|zombie| !zombie)
+}
+
+#[test]
+#[cfg(target_os = "linux")]
+fn a_serve_killed_outright_takes_its_build_with_it() {
+    let (dir, course) = new_course("serve-killed");
+    // The engine's lock held here: serve's first build (no cache) waits for it, and would go on
+    // waiting, then write the site, after serve is gone.
+    let cache = dir.join("xdg");
+    std::fs::create_dir_all(cache.join("mechbook")).unwrap();
+    let lock = std::fs::File::create(cache.join("mechbook/symbolica.lock")).unwrap();
+    lock.lock().unwrap();
+    let mut serve = Command::new(env!("CARGO_BIN_EXE_mechbook"))
+        .args(["serve", "--no-cache"])
+        .env("XDG_CACHE_HOME", &cache)
+        .current_dir(&course)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let serve_pid = serve.id();
+    let started = within(Duration::from_secs(30), || {
+        !children_of(serve_pid).is_empty()
+    });
+    let builds = children_of(serve_pid);
+    // SIGKILL: serve cannot stop its build itself.
+    let _ = serve.kill();
+    let _ = serve.wait();
+    assert!(started.is_some(), "serve started no build");
+    let ended = within(Duration::from_secs(5), || !builds.iter().any(|&b| runs(b)));
+    drop(lock);
+    assert!(
+        ended.is_some(),
+        "build {builds:?} still runs after serve was killed"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
