@@ -47,9 +47,6 @@ pub enum EvalError {
     },
 }
 
-/// The scalar functions the engine and the evaluator understand.
-pub const SCALAR_FUNCTIONS: &[&str] = &["sin", "cos", "sqrt"];
-
 impl Expr {
     pub fn int(n: i128) -> Expr {
         Expr::Num(Rational::int(n))
@@ -292,24 +289,20 @@ impl Expr {
                 );
                 Expr::mul(vec![b.as_ref().clone(), lower, a.diff(x)?])
             }
-            Expr::Call(name, args) if args.len() == 1 => {
-                let u = &args[0];
-                let outer = match name.as_str() {
-                    "sin" => Expr::call("cos", u.clone()),
-                    "cos" => Expr::negate(Expr::call("sin", u.clone())),
-                    "sqrt" => Expr::over(Expr::int(1), Expr::mul(vec![Expr::int(2), self.clone()])),
-                    // d acos u = −du/√(1 − u²), d asin u = du/√(1 − u²).
-                    "acos" | "asin" => Expr::over(
-                        Expr::int(if name == "acos" { -1 } else { 1 }),
-                        Expr::pow(
-                            Expr::minus(Expr::int(1), Expr::pow(u.clone(), Expr::int(2))),
-                            Expr::rat(1, 2),
-                        ),
-                    ),
-                    _ => return Err(DiffError::Function { name: name.clone() }),
-                };
-                Expr::mul(vec![outer, u.diff(x)?])
+            Expr::Call(name, args) if super::functions::arity(name) == Some(args.len()) => {
+                let mut terms = Vec::new();
+                for (k, u) in args.iter().enumerate() {
+                    let du = u.diff(x)?;
+                    if du.is_zero() {
+                        continue;
+                    }
+                    let outer = super::functions::partial(name, args, k)
+                        .ok_or_else(|| DiffError::Function { name: name.clone() })?;
+                    terms.push(Expr::mul(vec![outer, du]));
+                }
+                Expr::add(terms)
             }
+            Expr::Call(name, _) => return Err(DiffError::Function { name: name.clone() }),
             _ => return Err(DiffError::NotScalar),
         })
     }
@@ -334,19 +327,14 @@ impl Expr {
                     other => base.powf(other.eval(env)?),
                 }
             }
-            Expr::Call(name, args) if args.len() == 1 => {
-                let x = args[0].eval(env)?;
-                match name.as_str() {
-                    "sin" => x.sin(),
-                    "cos" => x.cos(),
-                    "sqrt" => x.sqrt(),
-                    // Only an equilibrium's angle (cas::zeros) or a cubic's closed form holds these.
-                    "acos" => x.acos(),
-                    "asin" => x.asin(),
-                    _ => return Err(EvalError::NotScalarFunction(name.clone())),
-                }
+            Expr::Call(name, args) => {
+                let xs = args
+                    .iter()
+                    .map(|a| a.eval(env))
+                    .collect::<Result<Vec<_>, _>>()?;
+                super::functions::value(name, &xs)
+                    .ok_or_else(|| EvalError::NotScalarFunction(name.clone()))?
             }
-            Expr::Call(name, _) => return Err(EvalError::NotScalarFunction(name.clone())),
             Expr::List(_) | Expr::Index(..) => return Err(EvalError::NotScalar),
         })
     }

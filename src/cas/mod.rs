@@ -7,11 +7,15 @@
 //! instead of aborting. Another engine could replace `engine.rs` without touching the derivations.
 
 mod angles;
+mod atoms;
 mod closed_form;
 mod engine;
+mod engine_error;
+mod exponentials;
 mod expr;
 mod factor;
 mod factor_order;
+mod functions;
 mod matrix_form;
 mod parse;
 mod polynomial;
@@ -36,12 +40,13 @@ mod written;
 pub use angles::{Zero, Zeros};
 pub use closed_form::NoClosedForm;
 pub use engine::{EngineError, MAX_DEGREE, MAX_TERMS};
-pub use expr::{DiffError, EvalError, Expr, SCALAR_FUNCTIONS};
+pub use expr::{DiffError, EvalError, Expr};
 /// The layout decisions every printer of an expression shares (where a product's fraction bar
 /// goes, a term's sign, an index chain's axes, a sum's common factor), for the tree printer in
 /// `notation`.
 pub use factor::{common_factor, printed_common_factor};
 pub use factor_order::{Declared, order_factors};
+pub use functions::{SCALAR_FUNCTIONS, arity, needs_dimensionless, textbook_name};
 pub use matrix_form::{MatrixForm, factor_and_rows};
 pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use print::{Prec, index_chain, page_fraction, split_sign};
@@ -376,6 +381,19 @@ pub fn is_zero_over_positive(
             .iter()
             .map(|e| positive::is_zero(e, &positive))
             .collect()
+    })
+}
+
+/// Each expression with its exponentials (and sinh, cosh through them) as powers of new
+/// positive symbols `exp__k`, one per monomial of their exponents, so that
+/// [`is_zero_over_positive`] decides exp(u)·exp(−u) = 1 and cosh²u − sinh²u = 1. An
+/// expression whose exponent is past the engine's budget is returned as it is.
+pub fn exponentials_as_powers(exprs: Vec<Expr>) -> Result<Vec<Expr>, CasError> {
+    run(move || {
+        Ok(exprs
+            .iter()
+            .map(|e| exponentials::as_powers(e).unwrap_or_else(|_| e.clone()))
+            .collect())
     })
 }
 

@@ -382,14 +382,21 @@ impl Parser<'_> {
                         args.push(self.sum()?);
                     }
                     self.expect(b')')?;
-                    // tan x is read as sin x / cos x, so that every later stage knows it.
-                    if name == "tan" && args.len() == 1 {
+                    // tan x is read as sin x / cos x, tanh x as sinh x / cosh x, ln as log, so
+                    // that every later stage knows them.
+                    if let ("tan" | "tanh", 1) = (name.as_str(), args.len()) {
                         let x = args.remove(0);
+                        let h = if name == "tanh" { "h" } else { "" };
                         return Ok(Expr::over(
-                            Expr::call("sin", x.clone()),
-                            Expr::call("cos", x),
+                            Expr::call(&format!("sin{h}"), x.clone()),
+                            Expr::call(&format!("cos{h}"), x),
                         ));
                     }
+                    let name = if name == "ln" {
+                        "log".to_string()
+                    } else {
+                        name
+                    };
                     return Ok(Expr::Call(name, args));
                 }
                 self.symbols.push((name.clone(), s));

@@ -237,10 +237,15 @@ impl Style for Latex<'_> {
         if self.claim_call(n, args, out) {
             return;
         }
-        if n == "sin" || n == "cos" {
-            out.push_str(&format!("\\{n}\\left("));
-        } else if n == "acos" || n == "asin" {
-            out.push_str(&format!("\\arc{}\\left(", &n[1..]));
+        if n == "abs" && args.len() == 1 {
+            out.push_str("\\left|");
+            write(&args[0], out, Prec::Sum, self);
+            out.push_str("\\right|");
+            return;
+        }
+        if n != "atan2" && super::SCALAR_FUNCTIONS.contains(&n) {
+            // \sin, \arcsin, \ln, \sinh: LaTeX's own operator names.
+            out.push_str(&format!("\\{}\\left(", super::textbook_name(n)));
         } else {
             out.push_str(&format!("\\operatorname{{{n}}}\\left("));
         }

@@ -408,11 +408,18 @@ impl Style for Typst<'_> {
         if self.claim_call(n, args, out) {
             return;
         }
+        if n == "abs" && args.len() == 1 {
+            out.push_str("lr(| ");
+            write(&args[0], out, Prec::Sum, self);
+            out.push_str(" |)");
+            return;
+        }
         match n {
-            "sin" | "cos" | "tan" | "exp" | "ln" | "log" | "arcsin" | "arccos" | "arctan" => {
-                out.push_str(n)
+            "tan" | "arcsin" | "arccos" | "arctan" => out.push_str(n),
+            // Typst's own operators: sin, arcsin, ln, sinh, exp.
+            n if n != "atan2" && super::SCALAR_FUNCTIONS.contains(&n) => {
+                out.push_str(super::textbook_name(n))
             }
-            "acos" | "asin" | "atan" => out.push_str(&format!("arc{}", &n[1..])),
             _ => out.push_str(&format!("op({})", typst_string(n))),
         }
         out.push_str(" (");

@@ -296,7 +296,12 @@ fn call(name: &str, args: Vec<Value>) -> Result<Value, ClaimError> {
         kinds: kinds.join(" and "),
     };
     Ok(match (name, args.as_slice()) {
-        ("sin" | "cos" | "sqrt" | "acos", [Scalar(x)]) => Scalar(Expr::call(name, x.clone())),
+        (_, [Scalar(x)]) if crate::cas::SCALAR_FUNCTIONS.contains(&name) && name != "atan2" => {
+            Scalar(Expr::call(name, x.clone()))
+        }
+        ("atan2", [Scalar(y), Scalar(x)]) => {
+            Scalar(Expr::Call(name.into(), vec![y.clone(), x.clone()]))
+        }
         ("dot", [Vector(a), Vector(b)]) => Scalar(dot(a, b)),
         ("cross", [Vector(a), Vector(b)]) => Vector(cross(a, b)),
         ("outer", [Vector(a), Vector(b)]) => Matrix(std::array::from_fn(|i| {

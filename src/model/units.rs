@@ -488,12 +488,13 @@ pub fn measure_of(
             let m = measure_of(&args[0], names)?;
             match f.as_str() {
                 "sqrt" => m.and_then(|m| m.power(&Rational::new(1, 2).expect("two is not zero"))),
-                "sin" | "cos" | "tan" | "acos" | "asin" | "atan" | "exp" | "log" => {
+                "abs" => m,
+                f if crate::cas::needs_dimensionless(f) => {
                     if let Some(m) = &m
                         && !m.dimension.is_none()
                     {
                         return Err(DimensionError::Function {
-                            function: f.clone(),
+                            function: f.to_string(),
                             argument: args[0].to_text(),
                             dimension: m.dimension.to_string(),
                         });
@@ -503,6 +504,11 @@ pub fn measure_of(
                 "sign" => Some(Measure::none()),
                 _ => None,
             }
+        }
+        // atan2(y, x): the angle of a point, whose two coordinates share a unit, as a sum's terms.
+        Expr::Call(f, args) if f == "atan2" => {
+            measure_of(&Expr::add(args.clone()), names)?;
+            Some(Measure::none())
         }
         _ => None,
     })

@@ -258,12 +258,13 @@ impl Walk<'_> {
                 self.write(v, Prec::Sum, &mut at);
                 attach(out, ScriptType::Subscript, at);
             }
+            ("abs", [x]) => out.push(super::tree::grown(
+                Some('|'),
+                Some('|'),
+                self.nodes(x, Prec::Sum),
+            )),
             _ => {
-                let name = match n {
-                    "acos" | "asin" => format!("arc{}", &n[1..]),
-                    other => other.to_string(),
-                };
-                out.push(Node::Function(name));
+                out.push(Node::Function(crate::cas::textbook_name(n).to_string()));
                 let mut inner = Vec::new();
                 for (i, a) in args.iter().enumerate() {
                     if i > 0 {

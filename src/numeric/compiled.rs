@@ -20,6 +20,13 @@ enum Op {
     Cos,
     Sqrt,
     Acos,
+    Exp,
+    Log,
+    Atan,
+    Atan2,
+    Sinh,
+    Cosh,
+    Abs,
     Asin,
 }
 
@@ -125,6 +132,13 @@ fn apply(op: Op, len: usize, value: impl Fn(usize) -> f64, x: &[f64]) -> f64 {
         Op::Sqrt => value(0).sqrt(),
         Op::Acos => value(0).acos(),
         Op::Asin => value(0).asin(),
+        Op::Exp => value(0).exp(),
+        Op::Log => value(0).ln(),
+        Op::Atan => value(0).atan(),
+        Op::Atan2 => value(0).atan2(value(1)),
+        Op::Sinh => value(0).sinh(),
+        Op::Cosh => value(0).cosh(),
+        Op::Abs => value(0).abs(),
     }
 }
 
@@ -169,17 +183,27 @@ impl Builder<'_> {
                     other => (Op::PowF, vec![base, self.emit(other)?]),
                 }
             }
-            Expr::Call(name, args) if args.len() == 1 => {
-                let x = self.emit(&args[0])?;
+            Expr::Call(name, args) if crate::cas::arity(name) == Some(args.len()) => {
                 let op = match name.as_str() {
                     "sin" => Op::Sin,
                     "cos" => Op::Cos,
                     "sqrt" => Op::Sqrt,
                     "acos" => Op::Acos,
                     "asin" => Op::Asin,
+                    "exp" => Op::Exp,
+                    "log" => Op::Log,
+                    "atan" => Op::Atan,
+                    "atan2" => Op::Atan2,
+                    "sinh" => Op::Sinh,
+                    "cosh" => Op::Cosh,
+                    "abs" => Op::Abs,
                     _ => return Err(EvalError::NotScalarFunction(name.clone())),
                 };
-                (op, vec![x])
+                let xs = args
+                    .iter()
+                    .map(|a| self.emit(a))
+                    .collect::<Result<_, _>>()?;
+                (op, xs)
             }
             Expr::Call(name, _) => return Err(EvalError::NotScalarFunction(name.clone())),
             Expr::List(_) | Expr::Index(..) => return Err(EvalError::NotScalar),

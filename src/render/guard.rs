@@ -310,9 +310,7 @@ fn evaluable_scalar(e: &Expr) -> bool {
     let mut ok = true;
     e.walk(&mut |x| {
         ok &= match x {
-            Expr::Call(f, args) => {
-                args.len() == 1 && ["sin", "cos", "sqrt", "acos", "asin"].contains(&f.as_str())
-            }
+            Expr::Call(f, args) => crate::cas::arity(f) == Some(args.len()),
             Expr::List(_) | Expr::Index(..) => false,
             _ => true,
         }

@@ -109,7 +109,7 @@ pub(super) fn as_named(cx: Context, e: &Expr) -> Option<Expr> {
     let mut plain = true;
     e.walk(&mut |x| {
         plain &= match x {
-            Expr::Call(f, _) => ["sin", "cos", "tan", "sqrt"].contains(&f.as_str()),
+            Expr::Call(f, args) => cas::arity(f) == Some(args.len()),
             Expr::List(_) | Expr::Index(..) => false,
             _ => true,
         }

@@ -3,6 +3,7 @@
 //! fixes are the engine's too (R > r: √((R − r)²) = R − r).
 
 use crate::cas::{self, Expr};
+use crate::derive::sign::Sign;
 use crate::scene::Scene;
 use std::collections::BTreeSet;
 
@@ -41,7 +42,71 @@ pub(crate) fn is_zero_in_domain(
     if substituted {
         diffs = cas::simplify_all(diffs)?;
     }
+    let exponential = |d: &Expr| {
+        let mut found = false;
+        d.walk(&mut |x| {
+            found |= matches!(x, Expr::Call(f, _) if ["exp", "sinh", "cosh"].contains(&f.as_str()))
+        });
+        found
+    };
+    if diffs.iter().any(exponential) {
+        diffs = cas::exponentials_as_powers(diffs)?;
+    }
+    let diffs = diffs
+        .iter()
+        .map(|d| absolute_values_signed(d, signed))
+        .collect();
     cas::is_zero_over_positive(diffs, signed.clone())
+}
+
+/// The sign of `u` when it is the same for all positive values of its symbols, none of them
+/// `signed` and none inside a function (whose sign the proof does not see).
+fn fixed_sign(u: &Expr, signed: &BTreeSet<String>) -> Option<Sign> {
+    let mut plain = true;
+    u.walk(&mut |x| plain &= !matches!(x, Expr::Call(..) | Expr::List(_) | Expr::Index(..)));
+    let free = u.symbols().iter().all(|s| !signed.contains(s));
+    if !(plain && free) {
+        return None;
+    }
+    crate::derive::sign::sign_over_positive(u)
+        .ok()
+        .filter(|s| *s != Sign::NotFixed)
+}
+
+/// `e` with each |u| written as u or −u where u's sign is the same for all positive values of
+/// its symbols: |−m x₀| = m x₀; and atan2(y, x) as atan(y/x) where x > 0.
+fn absolute_values_signed(e: &Expr, signed: &BTreeSet<String>) -> Expr {
+    let each = |v: &[Expr]| {
+        v.iter()
+            .map(|x| absolute_values_signed(x, signed))
+            .collect()
+    };
+    match e {
+        Expr::Call(f, args) if f == "abs" && args.len() == 1 => {
+            let u = absolute_values_signed(&args[0], signed);
+            match fixed_sign(&u, signed) {
+                Some(Sign::Positive) => u,
+                Some(Sign::Negative) => Expr::negate(u),
+                _ => Expr::call("abs", u),
+            }
+        }
+        // atan2(y, x) = atan(y/x) for x > 0: atan2(D, D) = atan 1 = π/4.
+        Expr::Call(f, args) if f == "atan2" && args.len() == 2 => {
+            let [y, x] = [0, 1].map(|k| absolute_values_signed(&args[k], signed));
+            match fixed_sign(&x, signed) {
+                Some(Sign::Positive) => Expr::call("atan", Expr::over(y, x)),
+                _ => Expr::Call(f.clone(), vec![y, x]),
+            }
+        }
+        Expr::Call(f, args) => Expr::Call(f.clone(), each(args)),
+        Expr::Add(v) => Expr::add(each(v)),
+        Expr::Mul(v) => Expr::mul(each(v)),
+        Expr::Pow(a, b) => Expr::pow(
+            absolute_values_signed(a, signed),
+            absolute_values_signed(b, signed),
+        ),
+        _ => e.clone(),
+    }
 }
 
 /// Each difference still not zero but zero at every random point, tried once more over the

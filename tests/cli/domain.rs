@@ -42,7 +42,7 @@ seed = {seed}
 }
 
 /// Each claim's verdict, by `derive --json` in a folder of its own (`name`).
-fn verdicts(text: &str, name: &str) -> Vec<String> {
+pub(super) fn verdicts(text: &str, name: &str) -> Vec<String> {
     let dir = scratch(name);
     let path = dir.join("bowl.toml");
     std::fs::write(&path, text).unwrap();

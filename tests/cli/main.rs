@@ -12,6 +12,7 @@ mod check;
 mod contract;
 mod course;
 mod domain;
+mod functions;
 mod handouts;
 mod hostile;
 mod lock;

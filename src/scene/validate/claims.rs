@@ -6,7 +6,6 @@ use crate::model::catalogue::{body_quantities, free_body_quantities, is_quantity
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawClaim, RawRecorded, RawScene, Text};
 use crate::scene::types::{Claim, ClaimRole, NOT_DERIVED, RecordedStep, Verdict};
-use crate::scene::validate::CLAIM_FUNCTIONS;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// `[expect]`: each quantity's recorded value, the line of each key, and each step's record.
@@ -369,6 +368,39 @@ impl Validator<'_> {
     }
 }
 
+/// The functions a claim may call: the elementary ones and those of vectors and matrices.
+pub const CLAIM_FUNCTIONS: &[&str] = &[
+    "sin",
+    "cos",
+    "tan",
+    "sqrt",
+    "exp",
+    "log",
+    "ln",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "sinh",
+    "cosh",
+    "tanh",
+    "abs",
+    "diff",
+    "subs",
+    "dot",
+    "cross",
+    "outer",
+    "transpose",
+    "eye",
+    "diag",
+    "rot_x",
+    "rot_y",
+    "rot_z",
+    "trace",
+    "det",
+    "sign",
+];
+
 /// Checks that every call names a known function with the right number of arguments.
 /// A call, list or index the expression's language does not have.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -416,7 +448,7 @@ pub(super) fn check_calls(e: &Expr, claim_language: bool) -> Result<(), CallErro
                     return;
                 }
                 let arity = match name.as_str() {
-                    "dot" | "cross" | "outer" | "diff" => 2,
+                    "dot" | "cross" | "outer" | "diff" | "atan2" => 2,
                     "diag" | "subs" => 3,
                     "eye" => 0,
                     _ => 1,

@@ -28,32 +28,12 @@ use super::raw::{RawScene, Text};
 use super::types::{Claim, NotesRef, Scene};
 use crate::cas::{Expr, parse_input as parse_expr};
 use crate::model::catalogue::{Output, find};
+pub use claims::CLAIM_FUNCTIONS;
 use claims::check_calls;
 use outputs::body_moments;
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
 
-pub const CLAIM_FUNCTIONS: &[&str] = &[
-    "diff",
-    "sin",
-    "cos",
-    "sqrt",
-    "tan",
-    "dot",
-    "cross",
-    "outer",
-    "transpose",
-    "eye",
-    "diag",
-    "rot_x",
-    "rot_y",
-    "rot_z",
-    "trace",
-    "det",
-    "sign",
-    "subs",
-    "acos",
-];
 const RESERVED: &[&str] = &["pi"];
 
 /// The largest degree and number of terms a dimension, mass or value expression may expand
