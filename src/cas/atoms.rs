@@ -17,7 +17,7 @@ pub(super) const PREFIX: &str = "mb";
 pub(super) fn to_atom(e: &Expr) -> Atom {
     // sin(asin u) = u, exp(log u) = u: the engine holds the inverses opaque.
     if let Expr::Call(name, args) = e
-        && let Some(undone) = super::functions::undo_inverse(name, args)
+        && let Some(undone) = super::exact_values::undo_inverse(name, args)
     {
         return to_atom(&undone);
     }
@@ -53,7 +53,7 @@ pub(super) fn to_atom(e: &Expr) -> Atom {
                     _ => None,
                 })
                 .collect();
-            if let Some(value) = numbers.and_then(|n| super::functions::exact_at(name, &n)) {
+            if let Some(value) = numbers.and_then(|n| super::exact_values::exact_at(name, &n)) {
                 return to_atom(&value);
             }
             symbol!(format!("{PREFIX}{name}").as_str()).call_args(atoms.iter())
@@ -156,7 +156,7 @@ fn from_view(v: AtomView<'_>) -> Result<Expr, EngineError> {
                 });
             };
             let args = all(&mut f.iter())?;
-            super::functions::exact_at(name, &args).unwrap_or(Expr::Call(name.into(), args))
+            super::exact_values::exact_at(name, &args).unwrap_or(Expr::Call(name.into(), args))
         }
         AtomView::Pow(p) => {
             let (b, x) = p.get_base_exp();

@@ -296,7 +296,7 @@ impl Expr {
                     if du.is_zero() {
                         continue;
                     }
-                    let outer = super::functions::partial(name, args, k)
+                    let outer = partial(name, args, k)
                         .ok_or_else(|| DiffError::Function { name: name.clone() })?;
                     terms.push(Expr::mul(vec![outer, du]));
                 }
@@ -396,4 +396,42 @@ fn term_key(e: &Expr) -> (bool, String, String) {
         other => other.clone(),
     };
     (matches!(e, Expr::Num(_)), monomial.to_text(), e.to_text())
+}
+
+/// The derivative of `name(args)` with respect to its `k`-th argument, by the textbook rules;
+/// `None` for a name that is not elementary. The chain rule is the caller's.
+fn partial(name: &str, args: &[Expr], k: usize) -> Option<Expr> {
+    let u = args.first()?.clone();
+    let square = |e: Expr| Expr::pow(e, Expr::int(2));
+    let one_minus_square_root =
+        |u: Expr| Expr::pow(Expr::minus(Expr::int(1), square(u)), Expr::rat(1, 2));
+    Some(match (name, k) {
+        ("sin", 0) => Expr::call("cos", u),
+        ("cos", 0) => Expr::negate(Expr::call("sin", u)),
+        ("sqrt", 0) => Expr::over(
+            Expr::int(1),
+            Expr::mul(vec![Expr::int(2), Expr::call("sqrt", u)]),
+        ),
+        ("exp", 0) => Expr::call("exp", u),
+        ("log", 0) => Expr::over(Expr::int(1), u),
+        // d asin u = du/√(1 − u²), d acos u = −du/√(1 − u²).
+        ("asin", 0) => Expr::over(Expr::int(1), one_minus_square_root(u)),
+        ("acos", 0) => Expr::over(Expr::int(-1), one_minus_square_root(u)),
+        ("atan", 0) => Expr::over(Expr::int(1), Expr::add(vec![Expr::int(1), square(u)])),
+        ("sinh", 0) => Expr::call("cosh", u),
+        ("cosh", 0) => Expr::call("sinh", u),
+        // d|u| = u/|u| du, away from u = 0.
+        ("abs", 0) => Expr::over(u.clone(), Expr::call("abs", u)),
+        // atan2(y, x), the angle of the point (x, y): ∂/∂y = x/(x² + y²), ∂/∂x = −y/(x² + y²).
+        ("atan2", 0 | 1) => {
+            let x = args.get(1)?.clone();
+            let r2 = Expr::add(vec![square(x.clone()), square(u.clone())]);
+            if k == 0 {
+                Expr::over(x, r2)
+            } else {
+                Expr::over(Expr::negate(u), r2)
+            }
+        }
+        _ => return None,
+    })
 }

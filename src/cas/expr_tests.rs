@@ -167,3 +167,42 @@ fn a_product_puts_its_coefficient_before_a_root_of_a_number() {
     let e = Expr::ordered_product(vec![Expr::sym("M"), root, p("27/32")]);
     assert_eq!(e.to_text(), "27/32*3^(1/2)*M");
 }
+
+/// Each function's derivative (`Expr::diff`, by each argument) against a central difference of
+/// its value, at points inside every domain: an independent route, which a wrong sign or factor
+/// fails.
+#[test]
+fn each_derivative_is_the_slope_of_its_value() {
+    use super::functions::{SCALAR_FUNCTIONS, arity, value};
+    for &name in SCALAR_FUNCTIONS {
+        let n = arity(name).unwrap();
+        let vars = ["x", "y"];
+        let call = Expr::Call(
+            name.into(),
+            vars[..n].iter().map(|s| Expr::sym(s)).collect(),
+        );
+        for (x, y) in [(0.3, 0.7), (0.55, -0.4), (0.8, 1.9)] {
+            for (k, var) in vars[..n].iter().enumerate() {
+                let d = call.diff(var).unwrap();
+                let exact = d
+                    .eval(&|s| match s {
+                        "x" => Some(x),
+                        "y" => Some(y),
+                        _ => None,
+                    })
+                    .unwrap();
+                let h = 1e-6;
+                let shift = |s: f64| {
+                    let mut p = [x, y];
+                    p[k] += s;
+                    value(name, &p[..n]).unwrap()
+                };
+                let slope = (shift(h) - shift(-h)) / (2.0 * h);
+                assert!(
+                    (slope - exact).abs() < 1e-7 * exact.abs().max(1.0),
+                    "d{name}/d{var} at ({x}, {y}): {exact} by the rule, {slope} by the slope"
+                );
+            }
+        }
+    }
+}

@@ -11,6 +11,7 @@ mod atoms;
 mod closed_form;
 mod engine;
 mod engine_error;
+mod exact_values;
 mod exponentials;
 mod expr;
 mod factor;

@@ -14,7 +14,7 @@ pub mod roster;
 pub use problems::{
     Problem, SharedAnswer, Sheet, SheetProblem, SheetVariant, Variant, problem, sheet,
 };
-pub use results::{At, PrincipalAxis, PrincipalValues, Quantity};
+pub use results::{At, ListResult, PrincipalAxis, PrincipalValues, Quantity};
 
 use crate::cas::Expr;
 use crate::model::fidelity::Fidelity;
@@ -63,6 +63,8 @@ pub struct Page {
     /// Each result that is a number only, by its name (`Omega_5` of a `frequency` with no
     /// closed form): at the scene's values, in the derivation's order.
     pub numeric_results: Vec<(String, f64)>,
+    /// Each state of rest of several coordinates and the minors about it.
+    pub list_results: Vec<ListResult>,
     /// The exact principal moments with their axes.
     pub principal_axes: Vec<PrincipalAxis>,
     /// The principal moments at the scene's values, by both routes.
@@ -434,6 +436,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
         exact_vs_numeric: r.verification.quantities.clone(),
         regressions: r.verification.regressions.clone(),
         numeric_results: numeric_results(r),
+        list_results: results::list_results(r),
         variants: r.verification.variants.clone(),
         answers: r
             .scene

@@ -256,3 +256,46 @@ mod tests {
         assert!(at_numbers(&Value::Scalar(unknown), &values).is_none());
     }
 }
+
+/// A result of several entries that is no vector of space: a state of rest of several
+/// coordinates (each one's value, in the scene's order of coordinates), or the leading principal
+/// minors of the stiffness about it. `rest_1`, `upright_1`: the step's name and the state's
+/// number, as the page lists them.
+#[derive(Debug, Clone)]
+pub struct ListResult {
+    pub name: String,
+    pub entries: Vec<Expr>,
+    /// Each entry at the scene's values; none where it is not a finite real number there.
+    pub numbers: Vec<Option<f64>>,
+}
+
+/// Each state of rest of several coordinates, and the minors about each, in the derivation's
+/// order.
+pub(super) fn list_results(r: &SceneReport) -> Vec<ListResult> {
+    use crate::derive::step_names::StepResult;
+    let mut out = Vec::new();
+    for step in &r.scene.steps {
+        let lists: Vec<Vec<Expr>> = match r.derivation.named.get(&step.name) {
+            Some(StepResult::RestStates { states, .. }) => states
+                .iter()
+                .map(|state| state.iter().map(|z| z.value.clone()).collect())
+                .collect(),
+            Some(StepResult::RestStability { cases, .. }) => {
+                cases.iter().map(|c| c.minors.clone()).collect()
+            }
+            _ => continue,
+        };
+        for (k, entries) in lists.into_iter().enumerate() {
+            let numbers = entries
+                .iter()
+                .map(|e| eval_at(e, &r.scene.values).ok().filter(|x| x.is_finite()))
+                .collect();
+            out.push(ListResult {
+                name: crate::scene::mode_name(&step.name, k),
+                entries,
+                numbers,
+            });
+        }
+    }
+    out
+}

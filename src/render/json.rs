@@ -168,6 +168,19 @@ pub fn scene_json(page: &Page) -> Json {
             json!({ "exact": null, "latex": null, "numeric": [num(*w)], "numeric_only": true }),
         );
     }
+    // A state of rest of several coordinates, or the minors about it: a list, and its numbers.
+    for list in &page.list_results {
+        let exact = Expr::List(list.entries.clone());
+        let numbers: Vec<Json> = list
+            .numbers
+            .iter()
+            .map(|x| x.map(num).unwrap_or(Json::Null))
+            .collect();
+        quantities.insert(
+            list.name.clone(),
+            json!({ "exact": exact.to_text(), "latex": exact.to_latex(), "numeric": numbers }),
+        );
+    }
     let numeric_only = |e: &Expr| {
         e.symbols()
             .iter()

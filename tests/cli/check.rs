@@ -413,3 +413,50 @@ fn numeric_modes_are_numbers_in_the_json_and_never_an_exact_form() {
         );
     }
 }
+
+/// A state of rest of several coordinates and the minors about it are lists in `derive
+/// --json`'s `quantities`, with their numbers. The double pendulum's (m = l = 1, g = 9.81):
+/// each string hangs down or stands up, and about each state the minors of the potential's
+/// Hessian, diag(2mgl cos φ₁, mgl cos φ₂), computed here.
+#[test]
+fn states_of_rest_of_several_coordinates_and_their_minors_are_lists_in_the_json() {
+    let out = mechbook(&[
+        "derive",
+        "--json",
+        "tests/course/dynamics/03-double-pendulum.toml",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    let (m, l, g) = (1.0, 1.0, 9.81);
+    let pi = std::f64::consts::PI;
+    let states = [
+        ("[0, 0]", 0.0, 0.0),
+        ("[0, pi]", 0.0, pi),
+        ("[pi, 0]", pi, 0.0),
+        ("[pi, pi]", pi, pi),
+    ];
+    for (k, (text, p1, p2)) in states.into_iter().enumerate() {
+        let rest = &v["quantities"][format!("rest_{}", k + 1)];
+        assert_eq!(rest["exact"], text, "{rest}");
+        let numbers: Vec<f64> = rest["numeric"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert_eq!(numbers, [p1, p2], "{rest}");
+        let hessian = [2.0 * m * g * l * f64::cos(p1), m * g * l * f64::cos(p2)];
+        let minors = [hessian[0], hessian[0] * hessian[1]];
+        let upright = &v["quantities"][format!("upright_{}", k + 1)];
+        let got = upright["numeric"].as_array().unwrap();
+        assert_eq!(got.len(), 2, "{upright}");
+        for (x, want) in got.iter().zip(minors) {
+            let x = x.as_f64().unwrap();
+            assert!(
+                (x - want).abs() <= 1e-12 * want.abs(),
+                "upright_{}: {x} against {want}",
+                k + 1
+            );
+        }
+    }
+}
