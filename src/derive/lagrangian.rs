@@ -199,8 +199,27 @@ pub fn equilibria(
             eqs.len()
         )));
     };
-    let at_rest = at_rest(r, q);
-    let mut found = cas::zeros(&cas::simplify(&at_rest)?, q)?;
+    let at_rest = cas::simplify(&at_rest(r, q))?;
+    // Zeros are found of polynomials in q, sin q and cos q only: exp(−a(x − x₀)) = 1 is solved
+    // by no rule here.
+    let mut other = None;
+    at_rest.walk(&mut |e| {
+        if let Expr::Call(f, args) = e
+            && !["sin", "cos", "sqrt"].contains(&f.as_str())
+            && args.iter().any(|a| a.symbols().iter().any(|s| s == q))
+        {
+            other.get_or_insert_with(|| e.to_text());
+        }
+    });
+    if let Some(call) = other {
+        return Err(DeriveError::NotDerivable(format!(
+            "the static equation {} = 0 holds `{call}`: its states of rest are found for a \
+             polynomial in `{q}`, sin({q}) and cos({q}) only; give the state in a `linearise` \
+             step's `about` (an error there says when it is not at rest)",
+            at_rest.to_text()
+        )));
+    }
+    let mut found = cas::zeros(&at_rest, q)?;
     // A cubic or quartic factor of a polynomial: its roots real at the scene's values, in the
     // closed form `solve` gives (r³ = p: r = ∛p).
     for f in std::mem::take(&mut found.unsolved) {

@@ -9,6 +9,7 @@ mod bad_input;
 mod build;
 mod catalogue;
 mod check;
+mod classics;
 mod contract;
 mod course;
 mod domain;
