@@ -250,9 +250,16 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
             .into_iter()
             .flatten()
             .find_map(|e| d.numeric_name_in(e));
-        if let Some((name, step)) = numeric {
+        let unbound = [&claim.quantity, &claim.value]
+            .into_iter()
+            .flatten()
+            .find_map(|e| result_names::unbound_result(scene, &env, e));
+        let problem = numeric
+            .map(|(name, step)| crate::derive::step_names::numeric_only(&name, &step))
+            .or(unbound);
+        if let Some(problem) = problem {
             let mut r = unchecked(claim);
-            r.problem = Some(crate::derive::step_names::numeric_only(&name, &step));
+            r.problem = Some(problem);
             out.push(r);
             continue;
         }
@@ -552,6 +559,7 @@ mod printed;
 mod regressions;
 pub(crate) mod rest;
 pub(crate) mod rest_states;
+mod result_names;
 mod rounding;
 pub(crate) mod routh;
 pub(crate) mod series;

@@ -460,3 +460,39 @@ fn states_of_rest_of_several_coordinates_and_their_minors_are_lists_in_the_json(
         }
     }
 }
+
+/// A claim that names a result its step did not give is not checkable, and says what the step
+/// gives: it was "disagrees", with the name standing for itself.
+#[test]
+fn a_claim_on_a_result_no_step_gave_says_what_the_step_gives() {
+    let dir = scratch("unbound-result");
+    let cases = [
+        (
+            "tests/course/dynamics/19-block-on-wedge.toml",
+            "quantity = \"acc_1\"",
+            "quantity = \"acc_5\"",
+            "`acc_5` is no result of step `acc`, which gives acc_1, acc_2",
+        ),
+        (
+            "tests/course/dynamics/03-double-pendulum.toml",
+            "quantity = \"Omega_1\"",
+            "quantity = \"rest_2\"",
+            "`rest_2` is no result of step `rest`, which gives none a claim can name",
+        ),
+    ];
+    for (k, (scene, from, to, said)) in cases.into_iter().enumerate() {
+        let text = std::fs::read_to_string(scene).unwrap();
+        assert!(text.contains(from), "{scene}");
+        let path = dir.join(format!("scene-{k}.toml"));
+        std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+        let out = mechbook(&["check", path.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(1), "{}", stdout(&out));
+        assert!(stdout(&out).contains(said), "{}", stdout(&out));
+        assert!(
+            !stdout(&out).contains("disagree with the derivation"),
+            "{}",
+            stdout(&out)
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
