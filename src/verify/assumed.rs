@@ -15,7 +15,8 @@ fn gap(k: usize) -> String {
 /// Whether each difference is zero over the scene's domain: every symbol but the `signed`
 /// ones positive, and each assumption `x > e` (x a symbol of either kind that `e` does not
 /// contain) put in as x = e + g, g > 0. Assumptions of another shape are the random points'
-/// alone.
+/// alone. Exponentials are then powers of positive symbols (`cas::exponentials_as_powers`),
+/// and |u| and atan2(y, x) are written by their argument's sign where it is fixed.
 pub(crate) fn is_zero_in_domain(
     scene: &Scene,
     diffs: Vec<Expr>,
@@ -52,10 +53,7 @@ pub(crate) fn is_zero_in_domain(
     if diffs.iter().any(exponential) {
         diffs = cas::exponentials_as_powers(diffs)?;
     }
-    let diffs = diffs
-        .iter()
-        .map(|d| absolute_values_signed(d, signed))
-        .collect();
+    let diffs = diffs.iter().map(|d| by_fixed_signs(d, signed)).collect();
     cas::is_zero_over_positive(diffs, signed.clone())
 }
 
@@ -75,15 +73,11 @@ fn fixed_sign(u: &Expr, signed: &BTreeSet<String>) -> Option<Sign> {
 
 /// `e` with each |u| written as u or −u where u's sign is the same for all positive values of
 /// its symbols: |−m x₀| = m x₀; and atan2(y, x) as atan(y/x) where x > 0.
-fn absolute_values_signed(e: &Expr, signed: &BTreeSet<String>) -> Expr {
-    let each = |v: &[Expr]| {
-        v.iter()
-            .map(|x| absolute_values_signed(x, signed))
-            .collect()
-    };
+fn by_fixed_signs(e: &Expr, signed: &BTreeSet<String>) -> Expr {
+    let each = |v: &[Expr]| v.iter().map(|x| by_fixed_signs(x, signed)).collect();
     match e {
         Expr::Call(f, args) if f == "abs" && args.len() == 1 => {
-            let u = absolute_values_signed(&args[0], signed);
+            let u = by_fixed_signs(&args[0], signed);
             match fixed_sign(&u, signed) {
                 Some(Sign::Positive) => u,
                 Some(Sign::Negative) => Expr::negate(u),
@@ -92,7 +86,7 @@ fn absolute_values_signed(e: &Expr, signed: &BTreeSet<String>) -> Expr {
         }
         // atan2(y, x) = atan(y/x) for x > 0: atan2(D, D) = atan 1 = π/4.
         Expr::Call(f, args) if f == "atan2" && args.len() == 2 => {
-            let [y, x] = [0, 1].map(|k| absolute_values_signed(&args[k], signed));
+            let [y, x] = [0, 1].map(|k| by_fixed_signs(&args[k], signed));
             match fixed_sign(&x, signed) {
                 Some(Sign::Positive) => Expr::call("atan", Expr::over(y, x)),
                 _ => Expr::Call(f.clone(), vec![y, x]),
@@ -101,10 +95,7 @@ fn absolute_values_signed(e: &Expr, signed: &BTreeSet<String>) -> Expr {
         Expr::Call(f, args) => Expr::Call(f.clone(), each(args)),
         Expr::Add(v) => Expr::add(each(v)),
         Expr::Mul(v) => Expr::mul(each(v)),
-        Expr::Pow(a, b) => Expr::pow(
-            absolute_values_signed(a, signed),
-            absolute_values_signed(b, signed),
-        ),
+        Expr::Pow(a, b) => Expr::pow(by_fixed_signs(a, signed), by_fixed_signs(b, signed)),
         _ => e.clone(),
     }
 }
