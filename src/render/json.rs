@@ -97,12 +97,16 @@ fn num(x: f64) -> Json {
 }
 
 /// A quantity's entries at the scene's values, in its shape.
-fn numeric_entries(q: &Quantity) -> Json {
-    let vals: Vec<Json> = q
-        .numbers
+/// Numbers as JSON, null where there is none.
+fn numbers_json(numbers: &[Option<f64>]) -> Vec<Json> {
+    numbers
         .iter()
         .map(|x| x.map(num).unwrap_or(Json::Null))
-        .collect();
+        .collect()
+}
+
+fn numeric_entries(q: &Quantity) -> Json {
+    let vals = numbers_json(&q.numbers);
     match q.value {
         Value::Scalar(_) => vals.into_iter().next().unwrap_or(Json::Null),
         Value::Vector(_) => Json::Array(vals),
@@ -171,14 +175,9 @@ pub fn scene_json(page: &Page) -> Json {
     // A state of rest of several coordinates, or the minors about it: a list, and its numbers.
     for list in &page.list_results {
         let exact = Expr::List(list.entries.clone());
-        let numbers: Vec<Json> = list
-            .numbers
-            .iter()
-            .map(|x| x.map(num).unwrap_or(Json::Null))
-            .collect();
         quantities.insert(
             list.name.clone(),
-            json!({ "exact": exact.to_text(), "latex": exact.to_latex(), "numeric": numbers }),
+            json!({ "exact": exact.to_text(), "latex": exact.to_latex(), "numeric": numbers_json(&list.numbers) }),
         );
     }
     let numeric_only = |e: &Expr| {
