@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The n-link pendulum (n = 1 to 6) against SymPy's LagrangesMethod + linearize, in one run:
+# The n-link pendulum (n = 1 to 10) against SymPy's LagrangesMethod + linearize, in one run:
 # SymPy 1.14.0 from PyPI into a temporary virtual environment, mechbook the release binary.
 #   bash docs/bench/links.sh [repeats]
 set -euo pipefail

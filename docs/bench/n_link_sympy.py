@@ -8,10 +8,12 @@ frequencies at m = 1, l = 1, g = 9.81 as the imaginary parts of the eigenvalues 
     python n_link_sympy.py N
 
 prints one JSON line: n, the seconds from the first import to the modes (the whole script,
-start-up included), the seconds of the mechanics alone, and the frequencies, slowest first.
+start-up included), the seconds of the mechanics alone, the frequencies, slowest first, and
+the process's peak memory in MiB.
 """
 
 import json
+import resource
 import sys
 import time
 
@@ -67,6 +69,8 @@ print(
             "seconds": time.perf_counter() - start,
             "mechanics_seconds": mechanics,
             "frequencies": frequencies,
+            # Linux gives the peak resident set in KiB.
+            "peak_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
         }
     )
 )

@@ -46,7 +46,7 @@ pub struct BenchArgs {
     /// tests/course/dynamics): each scene derived, then each step checked on its numeric route.
     #[arg(long)]
     pub steps_only: Option<PathBuf>,
-    /// Measure only the n-link pendulum, n = 1 to 6 (Lagrangian, equations, linearisation,
+    /// Measure only the n-link pendulum, n = 1 to 10 (Lagrangian, equations, linearisation,
     /// normal modes): mechbook's whole process against SymPy's LagrangesMethod and linearize,
     /// each tool's modes checked against the eigenvalues of M⁻¹K. SymPy runs under --python;
     /// `bash docs/bench/links.sh` makes one with SymPy and runs this.

@@ -1,4 +1,4 @@
-//! `mechbook bench --links-only`: the n-link pendulum (n = 1 to 6) from its Lagrangian to its
+//! `mechbook bench --links-only`: the n-link pendulum (n = 1 to 10) from its Lagrangian to its
 //! normal modes, mechbook's whole process against SymPy's LagrangesMethod and linearize in the
 //! same run, and each one's modes against the eigenvalues of the textbook's M⁻¹K.
 
@@ -12,8 +12,13 @@ use std::time::Instant;
 /// The SymPy side, run by the caller's Python (docs/bench/n_link_sympy.py).
 const SYMPY_SCRIPT: &str = include_str!("../../docs/bench/n_link_sympy.py");
 
-/// The largest n measured: SymPy takes about 7 s at 6 on this kind of machine.
-pub const MAX_LINKS: usize = 6;
+/// The largest n measured: SymPy takes about 28 s at 10 on this kind of machine, mechbook
+/// about 0.3 s.
+pub const MAX_LINKS: usize = 10;
+
+/// What mechbook's whole process must take at n = [`MAX_LINKS`], at most: the report says
+/// whether it did.
+const LINKS_TARGET_SECONDS: f64 = 1.0;
 
 /// The modes mechbook derives for the scene, at its values.
 fn mechbook_modes(file: &Path) -> Result<Vec<f64>> {
@@ -45,11 +50,13 @@ fn worst(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// One SymPy run: its whole process's seconds, the mechanics' own, and its frequencies.
+/// One SymPy run: its whole process's seconds, the mechanics' own, its frequencies and its
+/// peak memory (MiB).
 struct SympyRun {
     seconds: f64,
     mechanics: f64,
     frequencies: Vec<f64>,
+    peak: f64,
 }
 
 fn sympy_run(python: &Path, script: &Path, n: usize) -> Result<SympyRun> {
@@ -69,6 +76,7 @@ fn sympy_run(python: &Path, script: &Path, n: usize) -> Result<SympyRun> {
     Ok(SympyRun {
         seconds,
         mechanics: number("mechanics_seconds")?,
+        peak: number("peak_mib").unwrap_or(f64::NAN),
         frequencies: line["frequencies"]
             .as_array()
             .context("SymPy's line lacks its frequencies")?
@@ -78,10 +86,12 @@ fn sympy_run(python: &Path, script: &Path, n: usize) -> Result<SympyRun> {
     })
 }
 
-/// mechbook's whole process (`mechbook derive`, a fresh cache each run): its fastest seconds.
-fn mechbook_run(file: &Path, cache: &Path, repeats: usize) -> Result<f64> {
+/// mechbook's whole process (`mechbook derive`, a fresh cache each run): its fastest seconds
+/// and its largest peak memory (MiB, as the child prints it).
+fn mechbook_run(file: &Path, cache: &Path, repeats: usize) -> Result<(f64, f64)> {
     let exe = std::env::current_exe()?;
     let mut fastest = f64::INFINITY;
+    let mut peak = f64::NAN;
     for run in 0..repeats {
         let fresh = cache.join(run.to_string());
         let start = Instant::now();
@@ -90,6 +100,7 @@ fn mechbook_run(file: &Path, cache: &Path, repeats: usize) -> Result<f64> {
             .arg(file)
             .env("SYMBOLICA_HIDE_BANNER", "1")
             .env("XDG_CACHE_HOME", &fresh)
+            .env(super::PEAK_MEMORY_ENV, "1")
             .output()
             .context("cannot run mechbook derive")?;
         fastest = fastest.min(start.elapsed().as_secs_f64());
@@ -101,8 +112,14 @@ fn mechbook_run(file: &Path, cache: &Path, repeats: usize) -> Result<f64> {
             );
         }
         let _ = std::fs::remove_dir_all(&fresh);
+        let printed = String::from_utf8_lossy(&out.stderr)
+            .split("peak memory ")
+            .nth(1)
+            .and_then(|s| s.split_whitespace().next())
+            .and_then(|s| s.parse::<f64>().ok());
+        peak = peak.max(printed.unwrap_or(f64::NAN));
     }
-    Ok(fastest)
+    Ok((fastest, peak))
 }
 
 /// The report: per n, each tool's fastest whole process of `repeats`, SymPy's mechanics alone,
@@ -134,17 +151,22 @@ fn measure(
          a fresh cache each run. SymPy: `{}` running docs/bench/n_link_sympy.py \
          (physics.mechanics: LagrangesMethod, linearize with A_and_B, mpmath's eigenvalues), \
          the whole process and the mechanics alone. Each tool's modes against √λ of the \
-         textbook's M⁻¹K (nalgebra).\n\n| n | mechbook | SymPy whole | SymPy mechanics | \
-         whole / whole | mechanics / whole | mechbook vs M⁻¹K | SymPy vs M⁻¹K |\n\
-         |---|---|---|---|---|---|---|---|\n",
+         textbook's M⁻¹K (nalgebra). Peak memory: each process's own (Linux VmHWM for \
+         mechbook, ru_maxrss for Python).\n\n| n | mechbook | SymPy whole | SymPy mechanics | \
+         whole / whole | mechanics / whole | mechbook vs M⁻¹K | SymPy vs M⁻¹K | mechbook peak | \
+         SymPy peak |\n|---|---|---|---|---|---|---|---|---|---|\n",
         python.display()
     );
     let mut sympy_missing = None;
+    let mut largest = None;
     for n in 1..=MAX_LINKS {
         progress(&format!("{n}-link pendulum"));
         let file = dir.join(format!("links-{n}.toml"));
         std::fs::write(&file, n_link_scene(n))?;
-        let ours = mechbook_run(&file, &dir.join("cache"), repeats)?;
+        let (ours, our_peak) = mechbook_run(&file, &dir.join("cache"), repeats)?;
+        if n == MAX_LINKS {
+            largest = Some(ours);
+        }
         let reference = textbook_modes(n);
         let ours_error = worst(&mechbook_modes(&file)?, &reference);
         let mut sympy: Option<SympyRun> = None;
@@ -163,21 +185,43 @@ fn measure(
                 }
             }
         }
-        let (whole, mechanics, ratio, ratio_mechanics, theirs) = match &sympy {
+        let (whole, mechanics, ratio, ratio_mechanics, theirs, their_peak) = match &sympy {
             Some(s) => (
                 format!("{:.3} s", s.seconds),
                 format!("{:.3} s", s.mechanics),
                 format!("{:.0}×", s.seconds / ours),
                 format!("{:.0}×", s.mechanics / ours),
                 crate::base::format::sci(worst(&s.frequencies, &reference)),
+                format!("{:.0} MiB", s.peak),
             ),
-            None => ("—".into(), "—".into(), "—".into(), "—".into(), "—".into()),
+            None => Default::default(),
+        };
+        let dash = |s: String| if s.is_empty() { "—".to_string() } else { s };
+        let _ = writeln!(
+            md,
+            "| {n} | {:.3} s | {} | {} | {} | {} | {} | {} | {:.0} MiB | {} |",
+            ours,
+            dash(whole),
+            dash(mechanics),
+            dash(ratio),
+            dash(ratio_mechanics),
+            crate::base::format::sci(ours_error),
+            dash(theirs),
+            our_peak,
+            dash(their_peak),
+        );
+    }
+    if let Some(seconds) = largest {
+        let verdict = if seconds < LINKS_TARGET_SECONDS {
+            "under"
+        } else {
+            "NOT under"
         };
         let _ = writeln!(
             md,
-            "| {n} | {:.3} s | {whole} | {mechanics} | {ratio} | {ratio_mechanics} | {} | {theirs} |",
-            ours,
-            crate::base::format::sci(ours_error),
+            "\nAt n = {MAX_LINKS}, mechbook's whole pipeline (equations, linearisation, modes, \
+             every step's numeric check) took {seconds:.3} s: {verdict} the \
+             {LINKS_TARGET_SECONDS} s it must."
         );
     }
     if let Some(why) = sympy_missing {
