@@ -21,6 +21,7 @@ pub mod present;
 mod principal;
 pub(crate) mod quotient_rule;
 pub mod rest_states;
+pub mod result_order;
 pub mod routh;
 pub mod series;
 pub mod sign;
@@ -242,12 +243,12 @@ pub struct Derivation {
 impl Derivation {
     /// The names of results that are numbers at the scene's values, with no exact form for a
     /// later step or a claim (`Omega_5` of a 6-coordinate `frequency`), and the step of each.
-    pub fn numeric_names(&self) -> BTreeMap<String, String> {
+    pub fn numeric_names(&self, scene: &Scene) -> BTreeMap<String, String> {
         let mut out = BTreeMap::new();
         for (step, r) in &self.named {
             if let step_names::StepResult::NumericModes { frequencies, .. } = r {
                 for k in 0..frequencies.len() {
-                    out.insert(crate::scene::mode_name(step, k), step.clone());
+                    out.insert(scene.result_names(step).kth(k), step.clone());
                 }
             }
         }
@@ -255,7 +256,7 @@ impl Derivation {
     }
 
     /// The first name in `e` whose result is numeric only, and its step.
-    pub fn numeric_name_in(&self, e: &Expr) -> Option<(String, String)> {
+    pub fn numeric_name_in(&self, scene: &Scene, e: &Expr) -> Option<(String, String)> {
         // Most derivations have no numeric modes: nothing to look up.
         if !self
             .named
@@ -264,7 +265,7 @@ impl Derivation {
         {
             return None;
         }
-        let names = self.numeric_names();
+        let names = self.numeric_names(scene);
         e.symbols()
             .into_iter()
             .find_map(|s| names.get(&s).map(|step| (s.clone(), step.clone())))

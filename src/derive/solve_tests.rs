@@ -365,8 +365,9 @@ fn nutation_turns_at_the_cubics_roots() {
     );
 }
 
-/// `solve` of an expression solves it for where it is zero; of a step that gives several roots,
-/// it is an error at the step's line that says what `solve` takes.
+/// `solve` of an expression solves it for where it is zero (x takes either sign here, from its
+/// value, so both roots); of a step that gives several roots, it is an error at the step's
+/// line that says what `solve` takes.
 #[test]
 fn solve_takes_an_expression_but_not_several_roots() {
     let scene = |last: &str| {
@@ -375,11 +376,11 @@ fn solve_takes_an_expression_but_not_several_roots() {
              symbols = {{ a = \"a\", x = \"x\" }}\n\n\
              [[step]]\nname = \"f\"\nbe = \"x^2 - a\"\n\n\
              [[step]]\nname = \"r\"\nsolve = \"f\"\nfor = \"x\"\n\n{last}\
-             [numeric]\nvalues = {{ a = 2.0, x = 1.0 }}\n"
+             [numeric]\nvalues = {{ a = 2.0, x = -1.0 }}\n"
         )
     };
     let r = run_scene(Scene::parse(&scene(""), Path::new("s.toml")).unwrap(), None).unwrap();
-    let roots = r.derivation.named["r"].values("r");
+    let roots = r.derivation.named["r"].values(r.scene.result_names("r"));
     let at = |e: &crate::cas::Expr| e.eval(&|s| (s == "a").then_some(2.0)).unwrap();
     assert_eq!(roots.len(), 2);
     assert!((at(&roots[0].1) + 2f64.sqrt()).abs() < 1e-15);

@@ -59,7 +59,7 @@ fn env_of(scene: &Scene, d: &Derivation, printed: bool) -> Env {
     }
     for (name, r) in &d.named {
         let r = d.printed.get(name).filter(|_| printed).unwrap_or(r);
-        for (name, e) in r.values(name) {
+        for (name, e) in r.values(scene.result_names(name)) {
             env.insert(name, Value::Scalar(e));
         }
     }
@@ -76,7 +76,7 @@ pub fn expand_printed_names(
 ) -> Result<Expr, StepError> {
     // Anything the printed forms cannot give, the derived ones do, or say why not.
     match evaluate(e, &env_of(scene, d, true)) {
-        Ok(Value::Scalar(x)) if d.numeric_name_in(e).is_none() => Ok(x),
+        Ok(Value::Scalar(x)) if d.numeric_name_in(scene, e).is_none() => Ok(x),
         _ => expand_names(scene, d, step, e),
     }
 }
@@ -89,7 +89,7 @@ pub fn expand_names(
     step: &AuthorStep,
     e: &Expr,
 ) -> Result<Expr, StepError> {
-    if let Some((name, of)) = d.numeric_name_in(e) {
+    if let Some((name, of)) = d.numeric_name_in(scene, e) {
         return Err(StepError::Operation {
             step: step.name.clone(),
             line: step.line,

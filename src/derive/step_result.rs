@@ -1,7 +1,7 @@
 //! What an author's step found, and the names it gives later steps and claims.
 
 use crate::cas::{self, Expr};
-use crate::scene::{MAX_NAMED_STATES, mode_name};
+use crate::scene::{MAX_NAMED_STATES, ResultNames};
 
 /// What a step found: an expression, or equations of motion (each coordinate's residual, which
 /// the motion keeps at zero).
@@ -14,8 +14,8 @@ pub enum StepResult {
         conserved: bool,
     },
     Equations(Vec<(String, Expr)>),
-    /// The normal-mode angular frequencies of n ≥ 2 coordinates, slowest first at the scene's
-    /// values.
+    /// The normal-mode angular frequencies of n ≥ 2 coordinates, in the order of
+    /// `derive/result_order.rs` (slowest first where that holds across the domain).
     Modes(Vec<Expr>),
     /// The normal-mode angular frequencies at the scene's values, slowest first, where they
     /// have no closed form, and why.
@@ -23,8 +23,8 @@ pub enum StepResult {
         frequencies: Vec<f64>,
         reason: crate::model::prose::Prose,
     },
-    /// Every root of a `solve` that has more than one, in order of their values at the
-    /// scene's values.
+    /// Every root of a `solve` that has more than one, in the order of
+    /// `derive/result_order.rs` (smallest first where that holds across the domain).
     Roots(Vec<Expr>),
     /// The value of each unknown of a `solve` of several, in the order of `for`.
     Solution(Vec<(String, Expr)>),
@@ -111,11 +111,14 @@ impl StepResult {
     }
 
     /// How many results the step gives: one per name in [`StepResult::values`], and one per
-    /// numeric mode (which has no exact value to name).
-    pub fn count(&self, name: &str) -> usize {
+    /// numeric mode and state of several coordinates (which have no one exact value to name).
+    pub fn count(&self, names: ResultNames) -> usize {
         match self {
             StepResult::NumericModes { frequencies, .. } => frequencies.len(),
-            _ => self.values(name).len(),
+            StepResult::RestStates { states, .. } => states.len(),
+            StepResult::RestStability { cases, .. } => cases.len(),
+            StepResult::Stability { cases, .. } => cases.len(),
+            _ => self.values(names).len(),
         }
     }
 
@@ -153,31 +156,32 @@ impl StepResult {
     }
 
     /// The names later steps and claims use: the step's own name for an expression, and
-    /// `Omega_1`, `Omega_2`, ... for the modes of a step `Omega`.
-    pub fn values(&self, name: &str) -> Vec<(String, Expr)> {
+    /// `Omega_1`, `Omega_2`, ... (or the author's `names`) for the modes of a step `Omega`.
+    pub fn values(&self, names: ResultNames) -> Vec<(String, Expr)> {
+        let name = names.step;
         match self {
             StepResult::Equilibria { zeros, .. } => zeros
                 .iter()
                 .take(MAX_NAMED_STATES)
                 .enumerate()
-                .map(|(k, z)| (mode_name(name, k), z.value.clone()))
+                .map(|(k, z)| (names.kth(k), z.value.clone()))
                 .collect(),
             // Ω² about each state, where it was derived.
             StepResult::Stability { cases, .. } => cases
                 .iter()
                 .take(MAX_NAMED_STATES)
                 .enumerate()
-                .filter_map(|(k, c)| Some((mode_name(name, k), c.omega_squared.clone()?)))
+                .filter_map(|(k, c)| Some((names.kth(k), c.omega_squared.clone()?)))
                 .collect(),
             StepResult::Solution(pairs) => pairs
                 .iter()
                 .enumerate()
-                .map(|(k, (_, value))| (mode_name(name, k), value.clone()))
+                .map(|(k, (_, value))| (names.kth(k), value.clone()))
                 .collect(),
             StepResult::Modes(values) | StepResult::Roots(values) => values
                 .iter()
                 .enumerate()
-                .map(|(k, w)| (mode_name(name, k), w.clone()))
+                .map(|(k, w)| (names.kth(k), w.clone()))
                 .collect(),
             _ => self
                 .scalar()
@@ -222,7 +226,7 @@ impl StepResult {
     }
 
     /// What a printed line that stands for `s` must show (see [`StandsFor`]).
-    pub fn stood_for(&self, step: &str, s: &StandsFor) -> Option<Stands> {
+    pub fn stood_for(&self, names: ResultNames, s: &StandsFor) -> Option<Stands> {
         match (s, self) {
             (StandsFor::Equation(q), StepResult::Equations(eqs)) => eqs
                 .iter()
@@ -231,10 +235,10 @@ impl StepResult {
             (StandsFor::Result(name), StepResult::NumericModes { frequencies, .. }) => frequencies
                 .iter()
                 .enumerate()
-                .find(|(k, _)| mode_name(step, *k) == *name)
+                .find(|(k, _)| names.kth(*k) == *name)
                 .map(|(_, w)| Stands::Number(*w)),
             (StandsFor::Result(name), _) => self
-                .values(step)
+                .values(names)
                 .into_iter()
                 .find(|(n, _)| n == name)
                 .map(|(_, e)| Stands::Value(e)),

@@ -81,10 +81,10 @@ pub fn resolve_expr(scene: &Scene, e: &Expr) -> Result<Value, super::algebra::Cl
 }
 
 /// Every step's named result, by name (`a`, `Omega`, `x_1`, ...).
-pub fn step_values(d: &Derivation) -> BTreeMap<String, Expr> {
+pub fn step_values(scene: &Scene, d: &Derivation) -> BTreeMap<String, Expr> {
     d.named
         .iter()
-        .flat_map(|(name, r)| r.values(name))
+        .flat_map(|(name, r)| r.values(scene.result_names(name)))
         .collect()
 }
 
@@ -127,7 +127,7 @@ pub fn general_answers(
     d: &Derivation,
     problem: &Problem,
 ) -> Result<Vec<Value>, DeriveError> {
-    let steps = step_values(d);
+    let steps = step_values(scene, d);
     problem
         .answers
         .iter()
@@ -147,7 +147,7 @@ pub fn with_numeric_modes<'a>(
     general: &'a [Value],
     variant: &Variant,
 ) -> Result<std::borrow::Cow<'a, [Value]>, DeriveError> {
-    let names = d.numeric_names();
+    let names = d.numeric_names(scene);
     let named: std::collections::BTreeSet<String> = general
         .iter()
         .flat_map(|g| g.entries())
@@ -178,7 +178,7 @@ pub fn with_numeric_modes<'a>(
             let exact = cas::Rational::parse_decimal(&format!("{w:e}")).ok_or_else(|| {
                 DeriveError::Inconsistent(format!("the frequency {w} is not a finite number"))
             })?;
-            values.insert(crate::scene::mode_name(step, k), Expr::Num(exact));
+            values.insert(scene.result_names(step).kth(k), Expr::Num(exact));
         }
     }
     Ok(std::borrow::Cow::Owned(

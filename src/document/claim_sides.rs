@@ -24,7 +24,7 @@ impl Page {
             let k = match lines {
                 1 if author == name => Some(0),
                 1 => None,
-                _ => (0..lines).find(|&k| crate::scene::mode_name(author, k) == name),
+                _ => (0..lines).find(|&k| self.steps[i + k].result.as_deref() == Some(name)),
             };
             if let Some(k) = k {
                 return match &self.steps[i + k].statement {

@@ -200,10 +200,9 @@ fn values_at(page: &Page, lines: &[usize]) -> Vec<Option<usize>> {
     };
     (0..lines.len())
         .map(|k| {
-            let name = if lines.len() == 1 {
-                author.to_string()
-            } else {
-                crate::scene::mode_name(author, k)
+            let name = match &page.steps[lines[k]].result {
+                Some(result) if lines.len() > 1 => result.clone(),
+                _ => author.to_string(),
             };
             page.quantities
                 .iter()

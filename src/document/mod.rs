@@ -121,6 +121,8 @@ pub struct Step {
     /// For an author's step: what this line must show, which the build reads back and checks
     /// (`render/guard.rs`).
     pub stands_for: Option<crate::derive::step_names::Stands>,
+    /// The name of the result this line states (`Omega_2`, or the author's `slow`), if any.
+    pub result: Option<String>,
     /// The line of the author's step in the scene file (0 for a built-in step).
     pub line: usize,
     /// The reason a student's summary gives, where it says less than `why`.
@@ -247,7 +249,8 @@ fn claims_on_line(
         return Vec::new();
     };
     let results = r.scene.steps[index].gives_each.len();
-    let entry = |m: usize| Some(Expr::sym(&crate::scene::mode_name(author, m)));
+    let names = r.scene.steps[index].result_names();
+    let entry = |m: usize| Some(Expr::sym(&names.kth(m)));
     let of_step = |j: &usize| claims[*j].step == Some(index);
     let own: Vec<usize> = (0..claims.len())
         .filter(of_step)
@@ -363,11 +366,15 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
                     student_why: st.student_why.clone(),
                     line: author.map_or(0, |k| s.steps[k].line),
                     stands_for: match (&st.author, &st.stands_for) {
-                        (Some(name), Some(s)) => r
+                        (Some(name), Some(stands)) => r
                             .derivation
                             .named
                             .get(name)
-                            .and_then(|result| result.stood_for(name, s)),
+                            .and_then(|result| result.stood_for(s.result_names(name), stands)),
+                        _ => None,
+                    },
+                    result: match &st.stands_for {
+                        Some(crate::derive::step_names::StandsFor::Result(n)) => Some(n.clone()),
                         _ => None,
                     },
                     why: st.why.clone(),
@@ -522,7 +529,7 @@ fn numeric_results(r: &SceneReport) -> Vec<(String, f64)> {
             r.derivation.named.get(&step.name)
         {
             for (k, w) in frequencies.iter().enumerate() {
-                out.push((crate::scene::mode_name(&step.name, k), *w));
+                out.push((step.result_names().kth(k), *w));
             }
         }
     }

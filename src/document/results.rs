@@ -92,8 +92,9 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
         .iter()
         .filter_map(|step| r.derivation.named.get_key_value(&step.name));
     let named = in_order.flat_map(|(name, s)| {
-        let printed = r.derivation.printed.get(name).map(|p| p.values(name));
-        let exact = s.values(name);
+        let names = r.scene.result_names(name);
+        let printed = r.derivation.printed.get(name).map(|p| p.values(names));
+        let exact = s.values(names);
         let shown = printed
             .filter(|p| p.len() == exact.len())
             .unwrap_or_else(|| exact.clone());
@@ -106,17 +107,17 @@ pub(super) fn quantities(r: &SceneReport) -> Vec<Quantity> {
             StepResult::Solution(pairs) => pairs
                 .iter()
                 .enumerate()
-                .map(|(k, (u, _))| (mode_name(name, k), Expr::sym(u)))
+                .map(|(k, (u, _))| (names.kth(k), Expr::sym(u)))
                 .collect(),
             StepResult::Equilibria {
                 coordinate, zeros, ..
             } => (0..zeros.len())
-                .map(|k| (mode_name(name, k), Expr::sym(coordinate)))
+                .map(|k| (names.kth(k), Expr::sym(coordinate)))
                 .collect(),
             StepResult::Stability { cases, .. } => (0..cases.len())
                 .map(|k| {
                     let omega = Expr::sym(&mode_name("Omega", k));
-                    (mode_name(name, k), Expr::pow(omega, Expr::int(2)))
+                    (names.kth(k), Expr::pow(omega, Expr::int(2)))
                 })
                 .collect(),
             _ => Default::default(),
@@ -291,7 +292,7 @@ pub(super) fn list_results(r: &SceneReport) -> Vec<ListResult> {
                 .map(|e| eval_at(e, &r.scene.values).ok().filter(|x| x.is_finite()))
                 .collect();
             out.push(ListResult {
-                name: crate::scene::mode_name(&step.name, k),
+                name: step.result_names().kth(k),
                 entries,
                 numbers,
             });

@@ -49,6 +49,7 @@ fn a_cited_step_gives_its_reason_after_the_citation() {
         second_route: false,
         working: false,
         stands_for: None,
+        result: None,
         line: 0,
         student_why: None,
     };

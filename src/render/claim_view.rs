@@ -30,6 +30,8 @@ pub struct ClaimView {
     /// The symbols an agreement takes to be positive, as MathML, `, ` between them; empty
     /// where it rests on no such assumption.
     pub positive: String,
+    /// The agreement holds where both sides are real (`ClaimResult::where_real`).
+    pub where_real: bool,
     /// `notes` or `mistake`.
     pub role: String,
     /// The statement as a lead to its formula (a capital first, no closing full stop), for a
@@ -143,6 +145,7 @@ pub(super) fn claim_view(
             .map(|n| math::inline(&crate::cas::Expr::sym(n).to_tex()))
             .collect::<Result<Vec<_>, _>>()?
             .join(", "),
+        where_real: c.where_real,
         role: match c.role {
             crate::scene::ClaimRole::Notes => "notes",
             crate::scene::ClaimRole::Mistake => "mistake",

@@ -202,6 +202,9 @@ pub fn scene_json(page: &Page) -> Json {
                 "precision": c.precision,
             });
             // The symbols an agreement takes to be positive, where it rests on that.
+            if c.where_real {
+                claim["where_real"] = json!(true);
+            }
             if !c.positive.is_empty() {
                 claim["positive"] = json!(c.positive);
             }

@@ -467,6 +467,9 @@ pub fn derivation_text(page: &Page) -> String {
             if !c.positive.is_empty() {
                 let _ = writeln!(out, "        for positive {}", c.positive.join(", "));
             }
+            if c.where_real {
+                let _ = writeln!(out, "        where both sides are real");
+            }
             for d in &c.differences {
                 let _ = writeln!(out, "        {d}");
             }

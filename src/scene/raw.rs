@@ -497,6 +497,9 @@ pub struct RawStep {
     pub start: BTreeMap<Spanned<String>, Spanned<f64>>,
     #[serde(default)]
     pub gives: Option<Spanned<RawGives>>,
+    /// The author's names for a step's several results, in order (`names = ["slow", "fast"]`).
+    #[serde(default)]
+    pub names: Option<Spanned<Vec<String>>>,
     #[serde(default)]
     pub why: Option<Text>,
     /// How the step's name is typeset, in LaTeX: `tex = "I_p"`.

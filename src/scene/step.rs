@@ -21,6 +21,9 @@ pub struct AuthorStep {
     /// The notes' form of each result of a step that gives several (`Omega_1`, `Omega_2`, …),
     /// in order: a list `gives`.
     pub gives_each: Vec<Expr>,
+    /// The author's names for its several results (`names = ["slow", "fast"]`), in the order
+    /// the step gives them; empty: `Omega_1`, `Omega_2`, ….
+    pub names: Vec<String>,
     pub expect: Option<Verdict>,
     pub role: ClaimRole,
     /// For `lagrange`, `momentum` and `energy`: the state their numeric check integrates from,
@@ -43,9 +46,45 @@ impl AuthorStep {
             // Each state of rest `rest_1`, ..., and its Ω² under the `stability` step's name.
             Several::States => MAX_NAMED_STATES,
         };
+        if !self.names.is_empty() {
+            return std::iter::once(self.name.clone())
+                .chain(self.names.iter().cloned())
+                .collect();
+        }
         std::iter::once(self.name.clone())
             .chain((0..more).map(|k| mode_name(&self.name, k)))
             .collect()
+    }
+
+    /// The names of its several results.
+    pub fn result_names(&self) -> ResultNames<'_> {
+        ResultNames {
+            step: &self.name,
+            own: &self.names,
+        }
+    }
+}
+
+/// The names of a step's several results: the author's `names`, else the step's name
+/// numbered from 1 (`Omega_1`, `Omega_2`, …).
+#[derive(Debug, Clone, Copy)]
+pub struct ResultNames<'a> {
+    pub step: &'a str,
+    pub own: &'a [String],
+}
+
+impl ResultNames<'_> {
+    /// A result of a step that names none of its own: `Omega_1` for the first of `Omega`.
+    pub fn numbered(step: &str) -> ResultNames<'_> {
+        ResultNames { step, own: &[] }
+    }
+
+    /// The name of the k-th result (from 0).
+    pub fn kth(&self, k: usize) -> String {
+        match self.own.get(k) {
+            Some(name) => name.clone(),
+            None => mode_name(self.step, k),
+        }
     }
 }
 

@@ -29,6 +29,15 @@ impl Scene {
         crate::cas::typeset_as(own, || Expr::sym(name).to_latex())
     }
 
+    /// The names of the several results of the step `step` (numbered, for a name that is no
+    /// author's step).
+    pub fn result_names<'a>(&'a self, step: &'a str) -> super::ResultNames<'a> {
+        match self.steps.iter().find(|s| s.name == step) {
+            Some(s) => s.result_names(),
+            None => super::ResultNames::numbered(step),
+        }
+    }
+
     /// Whether `point` lies in the scene's domain: every assumption whose names the point
     /// gives holds there (the others say nothing of it).
     pub fn in_domain(&self, point: &std::collections::BTreeMap<String, f64>) -> bool {

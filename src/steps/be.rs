@@ -91,7 +91,11 @@ pub(super) fn as_named(cx: Context, e: &Expr) -> Option<Expr> {
             .iter()
             .flat_map(|(name, r)| {
                 let mut names = vec![name.clone()];
-                names.extend(r.values(name).into_iter().map(|(n, _)| n));
+                names.extend(
+                    r.values(cx.scene.result_names(name))
+                        .into_iter()
+                        .map(|(n, _)| n),
+                );
                 names
             })
             .collect();

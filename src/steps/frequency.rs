@@ -12,6 +12,7 @@ use super::{Context, equations};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::frequency;
 use crate::derive::modes::normal_modes;
+use crate::derive::result_order::stable_order;
 use crate::derive::step_names::StepResult;
 use crate::scene::Operation;
 use crate::verify::motion::{modes_agreement, modes_check, period_check};
@@ -20,7 +21,13 @@ use crate::verify::step_check::{CheckError, StepCheck, equations_of};
 pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     Ok(match equations(cx.d, of)? {
         eqs @ [_] => StepResult::Expr(frequency(eqs)?),
-        eqs => normal_modes(eqs, &cx.scene.values)?,
+        eqs => match normal_modes(eqs, &cx.scene.values)? {
+            StepResult::Modes(mut modes) => {
+                stable_order(&mut modes, cx.scene);
+                StepResult::Modes(modes)
+            }
+            numeric => numeric,
+        },
     })
 }
 

@@ -63,6 +63,7 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         // A statement other than `name = result`: an integral shown with its limits.
         let mut shown: Option<Formula> = None;
         let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
+        named_as_listed(step, &result).map_err(|e| locate(step, e))?;
         let printed = match (&step.op, &result) {
             // An author's expression prints as written, its names kept where they print as
             // symbols (T_beat = 2π/(Ω₂ − Ω₁) = …), then put in.
@@ -100,6 +101,28 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         d.named.insert(step.name.clone(), result);
     }
     Ok(())
+}
+
+/// The author's `names`, one for each result the step gives.
+fn named_as_listed(step: &AuthorStep, result: &StepResult) -> Result<(), DeriveError> {
+    let listed = step.names.len();
+    let given = match result.scalar() {
+        Some(_) => 1,
+        None => result.count(step.result_names()),
+    };
+    if listed == 0 || (listed == given && result.scalar().is_none()) {
+        return Ok(());
+    }
+    Err(DeriveError::NotDerivable(match result.scalar() {
+        Some(_) => format!(
+            "the step gives one result, named `{}` by its `name`: leave out `names`",
+            step.name
+        ),
+        None => format!(
+            "the step gives {given} results, and `names` lists {listed}: list one name for each, \
+             in the step's order (without `names`, the page numbers them)"
+        ),
+    }))
 }
 
 /// The result in the forms a textbook prints (`cas::present_all`), where any differs from the

@@ -6,7 +6,7 @@ use crate::derive::Step;
 use crate::derive::step_names::{Stable, StandsFor, StepResult};
 use crate::model::prose::Prose;
 use crate::notation::Formula;
-use crate::scene::{AuthorStep, Operation, Scene, mode_name};
+use crate::scene::{AuthorStep, Operation, Scene};
 
 /// After a mode's title where its frequency is zero: what a zero mode is.
 const ZERO_MODE: &str = ", a zero mode: a free motion, with no restoring force";
@@ -78,7 +78,8 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
     let named = |e: &Expr| Formula::equation(Formula::Expr(Expr::sym(&step.name)), e.clone());
     // What each line states, by the derivation's name for it: the build reads it back.
     let own = || StandsFor::Result(step.name.clone());
-    let kth = |k: usize| StandsFor::Result(mode_name(&step.name, k));
+    let names = step.result_names();
+    let kth = |k: usize| StandsFor::Result(names.kth(k));
     match result {
         StepResult::Expr(e) => vec![Step::note(&title, named(e), why).standing_for(own())],
         StepResult::Conserved { value, conserved } => {
@@ -249,7 +250,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
             .enumerate()
             .map(|(k, (unknown, value))| {
                 // The name later steps give it, where it prints as a symbol (a₁ of `tex = "a"`).
-                let named = mode_name(&step.name, k);
+                let named = names.kth(k);
                 let own = if is_word(scene, &named) {
                     String::new()
                 } else {
@@ -267,7 +268,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
             .iter()
             .enumerate()
             .map(|(k, w)| {
-                let sub = Expr::sym(&mode_name(&step.name, k));
+                let sub = Expr::sym(&names.kth(k));
                 let what = match result {
                     StepResult::Modes(_) => "normal mode",
                     _ => "root",
@@ -300,7 +301,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                         if *w == 0.0 { ZERO_MODE } else { "" }
                     ),
                     Formula::Row(vec![
-                        Formula::Expr(Expr::sym(&mode_name(&step.name, k))),
+                        Formula::Expr(Expr::sym(&names.kth(k))),
                         Formula::Op(crate::notation::Op::Approx),
                         Formula::Number(crate::base::format::significant(*w, 6)),
                     ]),

@@ -9,6 +9,7 @@
 use super::Context;
 use crate::cas::Expr;
 use crate::derive::DeriveError;
+use crate::derive::result_order::{positive_roots, stable_order};
 use crate::derive::solve::{solve, solve_system};
 use crate::derive::step_names::{StepResult, equation_with};
 use crate::verify::solve::{roots_check, system_check};
@@ -30,7 +31,9 @@ pub(super) fn derive(
     })?;
     Ok(match unknowns {
         [unknown] => {
-            let mut roots = solve(eqs, unknown, &cx.scene.values)?;
+            let mut roots =
+                positive_roots(solve(eqs, unknown, &cx.scene.values)?, unknown, cx.scene);
+            stable_order(&mut roots, cx.scene);
             match roots.len() {
                 1 => StepResult::Expr(roots.remove(0)),
                 _ => StepResult::Roots(roots),

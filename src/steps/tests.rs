@@ -531,7 +531,7 @@ fn bead_on_hoop_equilibria_and_stability() {
     let (g, rr, w) = (9.81f64, 0.5f64, 6.0f64);
     let named: BTreeMap<String, f64> = ["rest", "stable"]
         .iter()
-        .flat_map(|s| r.derivation.named[*s].values(s))
+        .flat_map(|s| r.derivation.named[*s].values(r.scene.result_names(s)))
         .map(|(n, e)| (n, e.eval(&|s| r.scene.values.get(s).copied()).unwrap()))
         .collect();
     let c = g / (rr * w * w);

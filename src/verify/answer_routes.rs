@@ -13,7 +13,7 @@ use crate::derive::Derivation;
 use crate::derive::step_names::{equation_with, expand_names, expand_ranges};
 use crate::derive::variants::{placeholder_of, resolve_expr};
 use crate::numeric::answers::{RouteError, Routes};
-use crate::scene::{Operation, Scene, mode_name, step_named};
+use crate::scene::{Operation, Scene, step_named};
 use std::collections::BTreeMap;
 
 /// How closely Newton's method must put a root back: it converges quadratically to rounding,
@@ -153,13 +153,32 @@ impl<'a> AnswerRoutes<'a> {
             .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
         match &step.op {
             Operation::Be(e) => self.expression(e),
-            // A mode of n ≥ 2 coordinates (`Omega_2`): the k-th slowest √λ of M⁻¹K at the
-            // variant's numbers, as the step's own check finds them.
+            // A mode of n ≥ 2 coordinates (`Omega_2`): the √λ of M⁻¹K at the variant's numbers
+            // of the same rank among the modes as this one among the step's exact modes there
+            // (their names keep an order that need not be slowest first at every variant);
+            // a mode with no closed form is the k-th slowest.
             Operation::Frequency { of } if name != step.name => {
                 let modes = numeric_modes(equations_of(self.d, of)?, self.numbers)?;
-                let value = *(0..modes.len())
-                    .position(|k| mode_name(&step.name, k) == name)
-                    .and_then(|k| modes.get(k))
+                let k = (0..modes.len())
+                    .position(|k| step.result_names().kth(k) == name)
+                    .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
+                let rank = match self.d.named.get(&step.name) {
+                    Some(crate::derive::step_names::StepResult::Modes(exact)) => {
+                        let at = |e: &Expr| {
+                            e.eval(&|s| self.numbers.get(s).copied())
+                                .map_err(CheckError::from)
+                        };
+                        let own = at(&exact[k])?;
+                        let mut below = 0;
+                        for e in exact {
+                            below += usize::from(at(e)? < own);
+                        }
+                        below
+                    }
+                    _ => k,
+                };
+                let value = *modes
+                    .get(rank)
                     .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
                 Ok(Routed {
                     value,
@@ -217,7 +236,7 @@ impl<'a> AnswerRoutes<'a> {
             .d
             .named
             .iter()
-            .flat_map(|(n, r)| r.values(n))
+            .flat_map(|(n, r)| r.values(self.scene.result_names(n)))
             .find(|(n, _)| n == name)
             .map(|(_, e)| e)
             .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;

@@ -64,7 +64,7 @@ fn blank() -> StepCheck {
 
 /// A step's value (`acc_3` among them) at a state, the scene's values for the rest.
 pub(super) fn value(r: &SceneReport, name: &str, at: &[(&str, f64)]) -> f64 {
-    let d = crate::derive::variants::step_values(&r.derivation);
+    let d = crate::derive::variants::step_values(&r.scene, &r.derivation);
     d[name]
         .eval(&|s| {
             at.iter()

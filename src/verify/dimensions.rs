@@ -124,7 +124,7 @@ pub fn check_dimensions(scene: &Scene, d: &Derivation) -> Result<(), DimensionFa
         }
     }
     if let Some(problem) = &scene.problem {
-        let steps = step_values(d);
+        let steps = step_values(scene, d);
         for a in &problem.answers {
             if let Ok(general) = general_answer(scene, d, &steps, a) {
                 answer_scale(scene, a, &general)?;

@@ -46,12 +46,14 @@ pub fn check_gives(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, ca
                 | StepResult::Roots(_)
                 | StepResult::Solution(_)),
             ) => {
-                let n = several.count(&step.name);
+                let names = step.result_names();
+                let n = several.count(names);
                 let mut r = unchecked(&claim);
                 r.problem = Some(format!(
-                    "this step gives {n} values, named {}_1 to {}_{n}: state each in a claim on \
-                     its name instead of `gives`",
-                    step.name, step.name,
+                    "this step gives {n} values, named {} to {}: state each in a claim on its \
+                     name instead of `gives`",
+                    names.kth(0),
+                    names.kth(n.max(1) - 1),
                 ));
                 r
             }
@@ -72,11 +74,14 @@ fn check_gives_each(
     i: usize,
 ) -> Result<Vec<ClaimResult>, cas::CasError> {
     let step = &scene.steps[i];
-    let count = d.named.get(&step.name).map_or(0, |r| r.count(&step.name));
-    let numeric = d.numeric_names();
+    let count = d
+        .named
+        .get(&step.name)
+        .map_or(0, |r| r.count(step.result_names()));
+    let numeric = d.numeric_names(scene);
     let mut out = Vec::new();
     for (k, value) in step.gives_each.iter().enumerate() {
-        let name = crate::scene::mode_name(&step.name, k);
+        let name = step.result_names().kth(k);
         let claim = Claim {
             eq: step.eq.clone().unwrap_or_else(|| step.name.clone()),
             statement: format!(

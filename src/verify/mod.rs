@@ -72,6 +72,10 @@ pub struct ClaimResult {
     /// where the engine's test alone did not decide it; said beside the verdict.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub positive: Vec<String>,
+    /// The agreement holds where both sides are real: decided by their squares, both sides
+    /// being never negative (`squares.rs`); said beside the verdict.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub where_real: bool,
     /// The symbol the author gives its quantity (LaTeX), printed as its left side.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tex: Option<String>,
@@ -235,7 +239,7 @@ pub fn claim_env(scene: &Scene, d: &Derivation) -> Env {
         env.insert(name.clone(), v.clone());
     }
     for (name, r) in &d.named {
-        for (name, e) in r.values(name) {
+        for (name, e) in r.values(scene.result_names(name)) {
             env.insert(name, Value::Scalar(e));
         }
     }
@@ -249,7 +253,7 @@ pub fn check_claims(scene: &Scene, d: &Derivation) -> Result<Vec<ClaimResult>, c
         let numeric = [&claim.quantity, &claim.value]
             .into_iter()
             .flatten()
-            .find_map(|e| d.numeric_name_in(e));
+            .find_map(|e| d.numeric_name_in(scene, e));
         let unbound = [&claim.quantity, &claim.value]
             .into_iter()
             .flatten()
@@ -295,6 +299,7 @@ fn unchecked(claim: &crate::scene::Claim) -> ClaimResult {
         step: None,
         dimension: None,
         positive: Vec::new(),
+        where_real: false,
         tex: claim.tex.clone(),
         shown: None,
     }
@@ -401,6 +406,8 @@ fn check_claim(
                 .map(|(a, b)| Expr::minus(a, b.clone()))
                 .collect();
             assumed::second_chance(scene, [&diffs, &written], &numeric, &mut symbolic, &signed)?;
+            // Both sides never negative: their squares (√a √b against √(ab), a's sign unknown).
+            r.where_real = squares::third_chance(&de, &ne, &numeric, &mut symbolic, &signed)?;
             // The two tests contradict each other: report both and decide nothing. The
             // engine may have missed an identity (a "non-zero" that is zero), or the random
             // points may all have missed where the difference lives.
@@ -564,6 +571,7 @@ mod rounding;
 pub(crate) mod routh;
 pub(crate) mod series;
 pub(crate) mod solve;
+mod squares;
 pub(crate) mod step_check;
 mod step_records;
 mod symbolic;

@@ -97,6 +97,14 @@ pub fn shown_is_equation(
     residual: &Expr,
     varying: &BTreeSet<String>,
 ) -> Result<(), ShownDiffers> {
+    // An equation a substitution satisfies identically (steady precession's ψ equation):
+    // `0 = 0` stands for the residual 0, which has no ratio to compare.
+    if residual.is_zero() {
+        return match shown.is_zero() {
+            true => Ok(()),
+            false => Err(ShownDiffers { by: f64::INFINITY }),
+        };
+    }
     let mut rng = crate::base::rng::Rng::new(1);
     let mut names: Vec<String> = shown
         .symbols()
@@ -165,6 +173,18 @@ mod tests {
         let checks = check_printed_forms(&d, 7);
         assert!(!checks.is_empty());
         assert!(checks.iter().all(StepCheck::passed), "{checks:?}");
+    }
+
+    #[test]
+    fn an_equation_satisfied_identically_is_shown_as_zero_equals_zero_only() {
+        let none = BTreeSet::new();
+        let x = Expr::sym("x");
+        assert_eq!(
+            shown_is_equation(&Expr::int(0), &Expr::int(0), &none),
+            Ok(())
+        );
+        assert!(shown_is_equation(&x, &Expr::int(0), &none).is_err());
+        assert!(shown_is_equation(&Expr::int(0), &x, &none).is_err());
     }
 
     #[test]

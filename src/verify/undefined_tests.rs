@@ -35,7 +35,7 @@ fn run(text: &str) -> Result<SceneReport, String> {
 }
 
 fn f0(r: &SceneReport) -> f64 {
-    step_values(&r.derivation)["f0"]
+    step_values(&r.scene, &r.derivation)["f0"]
         .eval(&|s| r.scene.values.get(s).copied())
         .unwrap()
 }

@@ -196,7 +196,11 @@ pub fn check_variants(
     // Which answers name a mode with no closed form: the same for every variant.
     let numeric_modes: Vec<bool> = general
         .iter()
-        .map(|g| g.entries().iter().any(|e| d.numeric_name_in(e).is_some()))
+        .map(|g| {
+            g.entries()
+                .iter()
+                .any(|e| d.numeric_name_in(scene, e).is_some())
+        })
         .collect();
     // Each variant on its own, on both cores: one thread's engine calls (its exact answers)
     // overlap the other's numeric routes. In the variants' order; the first failure is told.

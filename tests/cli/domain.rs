@@ -69,10 +69,23 @@ fn a_claim_true_in_the_domain_is_decided_for_every_seed() {
             "seed {seed}"
         );
     }
-    // Without the domain, neither true claim agrees: |R − r| is not R − r, and the period is
-    // left undecided.
+    // Without the domain, |R − r| is not R − r; the period agrees by its squares (both sides
+    // roots, never negative), and only where both sides are real, which the claim says.
     let free = verdicts(&bowl("", 1), "domain-free");
-    assert!(free[0] != "agrees" && free[1] != "agrees", "{free:?}");
+    assert!(free[0] != "agrees" && free[1] == "agrees", "{free:?}");
+    let dir = scratch("domain-free-json");
+    let path = dir.join("bowl.toml");
+    std::fs::write(&path, bowl("", 1)).unwrap();
+    let out = mechbook(&["derive", "--json", path.to_str().unwrap()]);
+    let json: serde_json::Value = serde_json::from_str(&stdout(&out)).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let where_real: Vec<bool> = json["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["where_real"].as_bool().unwrap_or(false))
+        .collect();
+    assert_eq!(where_real, [false, true, false]);
 }
 
 /// Textbook identities over positive symbols, and an even power under a root of a signed

@@ -26,6 +26,7 @@ mod problems;
 mod records;
 mod reliability;
 mod reliability5;
+mod result_names;
 mod serve;
 mod snapshots;
 mod spin;

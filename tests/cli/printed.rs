@@ -67,6 +67,7 @@ values = { m = 0.2, l = 0.5, g = 9.81, k = 0.5 }
         r#"id = "roots"
 title = "Two roots"
 notes = { lecture = "1" }
+assume = ["b > a"]
 symbols = { a = "a length", b = "another", x = "the unknown" }
 
 [outputs]

@@ -123,6 +123,36 @@ def main():
     w = modes(L, [ph], [0], {m: 1, r: 0.05, R: 0.6, g: 9.81})[0]
     out["classic-cylinder-in-cylinder"] = {"Omega": w, "T": 2 * float(sp.pi) / w}
 
+    # A spherical pendulum on its steady cone at theta0: phi' from the conserved p_phi put into
+    # the tilt's equation, theta'' = F(theta), and the wobble's omega^2 = -F'(theta0).
+    m, l, g, p, th0 = sp.symbols("m l g p theta0", positive=True)
+    th, ph = f("theta")(t), f("phi")(t)
+    L = m * l**2 / 2 * (th.diff(t) ** 2 + sp.sin(th) ** 2 * ph.diff(t) ** 2) + m * g * l * sp.cos(th)
+    tilt, _ = equations(L, [th, ph])
+    u, pp = sp.symbols("u pp")
+    rate = pp / (m * l**2 * sp.sin(u) ** 2)
+    flat = tilt.subs(ph.diff(t), rate).subs(th.diff(t, 2), sp.Symbol("acc")).subs(th, u)
+    (acc,) = sp.solve(flat, sp.Symbol("acc"))
+    cone = m * l**2 * sp.sin(th0) ** 2 * sp.sqrt(g / (l * sp.cos(th0)))
+    v = {m: 1, l: sp.Rational(3, 2), g: sp.Rational(981, 100), th0: sp.Rational(3, 5)}
+    w2 = -sp.diff(acc, u).subs(pp, cone).subs(u, th0)
+    out["classic-spherical-pendulum-cone"] = {"w": float(sp.sqrt(w2.subs(v)))}
+
+    # A heavy symmetric top precessing steadily: Lagrange's tilt equation with theta' = theta''
+    # = 0 and the spin w3 = psi' + phi' cos(theta), a quadratic in phi'.
+    M, g, l, I1, I3, w3, th0 = sp.symbols("M g l I1 I3 w3 theta", positive=True)
+    th, ph, ps = f("theta")(t), f("phi")(t), f("psi")(t)
+    L = (I1 / 2 * (th.diff(t) ** 2 + ph.diff(t) ** 2 * sp.sin(th) ** 2)
+         + I3 / 2 * (ps.diff(t) + ph.diff(t) * sp.cos(th)) ** 2 - M * g * l * sp.cos(th))
+    tilt = equations(L, [th, ph, ps])[0]
+    rate = sp.Symbol("rate")
+    steady = (tilt.subs(th.diff(t, 2), 0).subs(th.diff(t), 0)
+              .subs(ps.diff(t), w3 - ph.diff(t) * sp.cos(th)).subs(ph.diff(t), rate).subs(th, th0))
+    v = {M: 1, g: sp.Rational(981, 100), l: sp.Rational(1, 10), I1: sp.Rational(1, 50),
+         I3: sp.Rational(1, 100), w3: 60, th0: sp.Rational(1, 2)}
+    slow, fast = sorted(float(r) for r in sp.solve(steady.subs(v), rate))
+    out["classic-heavy-top-precession"] = {"slow": slow, "fast": fast}
+
     print(json.dumps(out, indent=2, sort_keys=True))
 
 

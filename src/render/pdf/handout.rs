@@ -151,7 +151,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
                     None => "As in the notes".to_string(),
                 });
                 // The symbols whose positivity the agreement rests on.
-                positive(m, &page.claims[c.claim].positive);
+                positive(m, &page.claims[c.claim]);
                 m.text(".");
                 m.raw("]\n");
             }
@@ -354,7 +354,7 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
             if let Some(eq) = page.claim_equation(i) {
                 m.text(&format!(", eq. ({eq})"));
             }
-            positive(m, &c.positive);
+            positive(m, c);
             m.text(".");
             m.raw("]");
             m.line();
@@ -442,11 +442,15 @@ fn claim_formula(page: &Page, i: usize, side: Formula) -> Result<Formula, Render
     })
 }
 
-/// ", for positive g, l": the symbols an agreement rests on being positive.
-fn positive(m: &mut Markup, names: &[String]) {
-    for (k, name) in names.iter().enumerate() {
+/// ", for positive g, l": the symbols an agreement rests on being positive, and ", where both
+/// sides are real" where it rests on that.
+fn positive(m: &mut Markup, c: &crate::verify::ClaimResult) {
+    for (k, name) in c.positive.iter().enumerate() {
         m.text(if k == 0 { ", for positive " } else { ", " });
         let e = crate::cas::Expr::sym(name);
         m.inline(&e.to_typst(), &e.to_tex().spoken());
+    }
+    if c.where_real {
+        m.text(", where both sides are real");
     }
 }

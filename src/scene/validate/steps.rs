@@ -208,6 +208,7 @@ impl Validator<'_> {
             .enumerate()
             .map(|(k, g)| self.claim_expr(g, &format!("{field}.gives[{k}]"), scope))
             .collect::<Result<Vec<_>, _>>()?;
+        let names = self.result_names(s, &op, field, scope)?;
         Ok(AuthorStep {
             name: name.clone(),
             why: s
@@ -222,12 +223,68 @@ impl Validator<'_> {
                 .transpose()?,
             gives,
             gives_each,
+            names,
             expect: self.verdict(s.expect.as_ref(), field)?,
             role: self.role(s.role.as_ref(), field)?,
             start,
             line: self.loc.line_col(offset).0,
             op,
         })
+    }
+
+    /// The author's names for a step's several results: each new, for a step that gives
+    /// several.
+    fn result_names(
+        &self,
+        s: &RawStep,
+        op: &Operation,
+        field: &str,
+        scope: &BTreeSet<String>,
+    ) -> Result<Vec<String>, SceneError> {
+        let Some(names) = &s.names else {
+            return Ok(Vec::new());
+        };
+        let at = names.span().start;
+        let field = format!("{field}.names");
+        if matches!(op.kind().several, Several::None) {
+            return Err(self.err(
+                at,
+                &field,
+                format!(
+                    "`names` names the several results of a step (the modes of `frequency`, the \
+                     roots or unknowns of `solve`, the states of `equilibria` and `stability`); \
+                     `{}` gives one, named by the step's `name`",
+                    op.name()
+                ),
+            ));
+        }
+        let mut seen = BTreeSet::new();
+        for name in names.get_ref() {
+            if !is_identifier(name)
+                || scope.contains(name)
+                || name == s.name.get_ref()
+                || !seen.insert(name)
+            {
+                return Err(self.err(
+                    at,
+                    &field,
+                    format!(
+                        "`{name}` cannot name a result: each of `names` is a letter followed by \
+                         letters, digits or single underscores, used once, and not yet a name \
+                         in this scene (`names = [\"slow\", \"fast\"]`)"
+                    ),
+                ));
+            }
+        }
+        if names.get_ref().is_empty() {
+            return Err(self.err(
+                at,
+                &field,
+                "`names` lists a name for each of the step's results (`names = [\"slow\", \
+                 \"fast\"]`), or is left out",
+            ));
+        }
+        Ok(names.get_ref().clone())
     }
 
     /// A rate `x'` names a coordinate `x`: said plainly, before "undefined name".

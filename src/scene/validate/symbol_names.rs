@@ -30,6 +30,19 @@ impl Validator<'_> {
                 .or_insert_with(|| format!("the symbol `{}`", name.get_ref()));
         }
         for (i, (s, step)) in raw.steps.iter().zip(steps).enumerate() {
+            if let Some(word) = step.names.iter().find(|n| prints_as_word(n, &own)) {
+                out.push(self.err(
+                    s.get_ref().names.as_ref().map_or(0, |n| n.span().start),
+                    &format!("step[{i}].names"),
+                    format!(
+                        "step `{}` has no `tex`: its result `{word}` would be printed as the \
+                         word `{word}`; give the step the symbol the notes write (`tex = \
+                         \"\\\\dot\\\\phi\"`), and each result prints as that symbol with \
+                         its name below it",
+                        step.name
+                    ),
+                ));
+            }
             if !prints_its_name(step, steps) {
                 continue;
             }

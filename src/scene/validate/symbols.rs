@@ -113,6 +113,19 @@ impl Validator<'_> {
                 out.insert(name.clone(), tex.get_ref().trim().to_string());
             }
         }
+        // The author's names of a step's results print as the step's symbol with the name
+        // below it: `names = ["slow", "fast"]` of `tex = "\\dot\\phi"` as φ̇ with "slow".
+        for s in &raw.steps {
+            let s = s.get_ref();
+            let (Some(tex), Some(names)) = (&s.tex, &s.names) else {
+                continue;
+            };
+            for name in names.get_ref() {
+                out.entry(name.clone()).or_insert_with(|| {
+                    format!("{{{}}}_{{\\mathrm{{{name}}}}}", tex.get_ref().trim())
+                });
+            }
+        }
         Ok(out)
     }
 
