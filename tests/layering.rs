@@ -486,3 +486,34 @@ fn render_and_report_read_no_file_and_parse_no_expression() {
     assert!(!uses_in(&files, "site", &io).is_empty());
     assert!(!uses_in(&files, "scene", &parsing).is_empty());
 }
+
+/// docs/architecture.md's folder tree names every module of `src/`, in the order of [`LAYERS`]:
+/// the document a newcomer reads is the rule this test holds.
+#[test]
+fn the_architecture_document_lists_the_modules_in_their_order() {
+    let doc = std::fs::read_to_string("docs/architecture.md").unwrap();
+    let tree = doc
+        .split("```")
+        .nth(1)
+        .expect("docs/architecture.md has its folder tree");
+    let listed: Vec<String> = tree
+        .lines()
+        .filter_map(|l| l.strip_prefix("src/"))
+        .map(|l| top_module(l.split_whitespace().next().unwrap().trim_end_matches('/')))
+        .collect();
+    let ordered: Vec<String> = LAYERS
+        .iter()
+        .flat_map(|layer| layer.iter().map(|m| m.to_string()))
+        .collect();
+    assert_eq!(listed, ordered, "docs/architecture.md's folder tree");
+    let mut modules: Vec<String> = std::fs::read_dir("src")
+        .unwrap()
+        .map(|e| top_module(&e.unwrap().file_name().to_string_lossy()))
+        .filter(|m| m != "lib" && m != "main")
+        .collect();
+    modules.sort();
+    modules.dedup();
+    let mut sorted = ordered.clone();
+    sorted.sort();
+    assert_eq!(modules, sorted, "the modules of src/ and LAYERS");
+}

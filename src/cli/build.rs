@@ -293,7 +293,7 @@ impl Build {
         }
         drop(kept);
         // The summary's figures are taken from the reports, which are then freed with the
-        // documents: typesetting, the build's peak in memory, needs neither (README,
+        // documents: typesetting, the build's peak in memory, needs neither (docs/performance.md,
         // "Typesetting within a memory budget"). Freeing them takes 10 ms: on another thread
         // when nothing is typeset, as in the page-first build that `serve` waits for; else here,
         // where the memory freed can be given back before typesetting.

@@ -156,7 +156,7 @@ pub fn derived_text(g: &crate::verify::RegressionResult) -> String {
         .map_or_else(|| "(not derived)".into(), Value::to_text)
 }
 
-/// One scene's page as JSON, in the shape documented in the README.
+/// One scene's page as JSON, in the shape docs/usage.md gives (`--json`).
 pub fn scene_json(page: &Page) -> Json {
     let mut quantities = serde_json::Map::new();
     for q in &page.quantities {

@@ -44,7 +44,7 @@ const MAX_WORKERS: usize = 2;
 /// layout until its PDF is made, about 0.35 MiB for each KB of markup: tests/course's largest
 /// handout (388 KB and two plots) peaks 145 to 164 MiB above the build's 44 MiB. Within this
 /// budget that handout is typeset alone and the others in pairs, and the build peaks at 189 to
-/// 193 MiB, where it peaked at 301 to 342 (README, "Typesetting within a memory budget").
+/// 193 MiB, where it peaked at 301 to 342 (docs/performance.md, "Typesetting within a memory budget").
 #[cfg(feature = "pdf")]
 const TYPESET_AT_ONCE: usize = 300_000;
 
@@ -294,7 +294,7 @@ const TRIM_AFTER: usize = 256 << 10;
 
 /// Returns the free pages of the allocator's heaps to the system. glibc keeps what a thread
 /// frees in that thread's arena, so a finished document's layout would stay resident beside
-/// the next document's, typeset on another arena (README, "Typesetting within a memory
+/// the next document's, typeset on another arena (docs/performance.md, "Typesetting within a memory
 /// budget").
 #[cfg(feature = "pdf")]
 fn give_back_freed_memory() {

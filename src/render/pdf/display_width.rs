@@ -1,7 +1,7 @@
 //! An upper bound on how wide Typst sets a formula on a line of its own, read from its Typst
 //! math and the math font's glyphs. A formula surely narrower than the narrowest line is set
 //! without `measure` (`Markup::block`), which saves a second layout of every short formula:
-//! about a sixth of the typesetting time of tests/course (README, "Short formulas set without
+//! about a sixth of the typesetting time of tests/course (docs/performance.md, "Short formulas set without
 //! measuring").
 //!
 //! The bound is a sum over the formula's pieces, since Typst never sets a construct wider than
