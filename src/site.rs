@@ -405,7 +405,8 @@ mod tests {
         write_site(&out, &files(&[("index.html", "good")])).unwrap();
         // A file and a folder of the same name cannot both be written: the build fails midway.
         let bad = files(&[("page", "x"), ("page/inner.html", "y")]);
-        assert!(write_site(&out, &bad).is_err());
+        let e = write_site(&out, &bad).unwrap_err();
+        assert!(e.to_string().contains("File exists"), "{e}");
         assert_eq!(
             std::fs::read_to_string(out.join("index.html")).unwrap(),
             "good"

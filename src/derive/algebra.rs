@@ -414,6 +414,7 @@ mod tests {
             }
         );
         assert!(ev("r*r", &env).unwrap_err().to_string().contains("dot"));
-        assert!(ev("r[3]", &env).is_err());
+        let e = ev("r[3]", &env).unwrap_err();
+        assert_eq!(e.to_string(), "an index is a literal 0, 1 or 2");
     }
 }

@@ -184,8 +184,12 @@ mod tests {
         assert_eq!(sign("p - q").unwrap(), Sign::NotFixed);
         assert_eq!(sign("a - a").unwrap(), Sign::NotFixed);
         // Semi-definite: never negative, zero at p = q. Neither proof applies, so it is refused.
-        assert!(sign("(p - q)^2").is_err());
-        assert!(sign("sqrt(p) - q").is_err());
+        let e = sign("(p - q)^2").unwrap_err();
+        assert!(matches!(e, DeriveError::UndecidedSign { .. }), "{e:?}");
+        // A root is no rational function: the engine says so.
+        let e = sign("sqrt(p) - q").unwrap_err();
+        assert!(e.to_string().contains("sqrt(p) - q"), "{e:?}");
+        assert!(matches!(e, DeriveError::Cas(_)), "{e:?}");
         // Powers of positive products, fractional ones too, without the engine.
         assert_eq!(sign("3*p^(-1/3)*k/m").unwrap(), Sign::Positive);
         assert_eq!(sign("-2*(a*b)^(1/3)/c").unwrap(), Sign::Negative);

@@ -14,15 +14,17 @@ fn cone_angles_oblate_always_bigger_body_cone_prolate_either() {
         let f = figure(FreeBodyPlot::Cones, i, w, 20.0, &Fidelity::STANDARD).unwrap();
         assert!(f.desc.contains(relation), "{i:?}: {}", f.desc);
     }
+    let e = figure(
+        FreeBodyPlot::Cones,
+        [1.0, 2.0, 2.5],
+        [1.0, 0.0, 0.0],
+        1.0,
+        &Fidelity::STANDARD,
+    )
+    .unwrap_err();
     assert!(
-        figure(
-            FreeBodyPlot::Cones,
-            [1.0, 2.0, 2.5],
-            [1.0, 0.0, 0.0],
-            1.0,
-            &Fidelity::STANDARD
-        )
-        .is_err()
+        matches!(e, crate::figures::FigureError::NotSymmetric),
+        "{e:?}"
     );
 }
 
@@ -47,15 +49,17 @@ fn only_the_intermediate_axis_departs() {
     // reverses (flip time about 2K/λ ≈ 14 here).
     assert!(top(0) < 3.0 && top(2) < 3.0, "{} {}", top(0), top(2));
     assert!(top(1) > 170.0, "{}", top(1));
+    let e = figure(
+        FreeBodyPlot::AxisSpins,
+        [1.0, 2.0, 3.0],
+        [1.0, 1.0, 0.0],
+        1.0,
+        &Fidelity::STANDARD,
+    )
+    .unwrap_err();
     assert!(
-        figure(
-            FreeBodyPlot::AxisSpins,
-            [1.0, 2.0, 3.0],
-            [1.0, 1.0, 0.0],
-            1.0,
-            &Fidelity::STANDARD
-        )
-        .is_err()
+        matches!(e, crate::figures::FigureError::NoLargestComponent),
+        "{e:?}"
     );
 }
 

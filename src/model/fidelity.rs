@@ -169,7 +169,12 @@ mod tests {
         assert_eq!((t.level, t.tolerance), (Level::Target, 1e-6));
         assert_eq!(t.max_points(), Fidelity::STANDARD.max_points());
         for bad in ["fast", "0", "-1e-3", "1", "nan", "inf", "1e-16"] {
-            assert!(Fidelity::parse(bad).is_err(), "{bad} accepted");
+            let e = Fidelity::parse(bad).unwrap_err();
+            let expected = match bad {
+                "fast" => matches!(e, FidelityError::Unknown(_)),
+                _ => matches!(e, FidelityError::Tolerance(_)),
+            };
+            assert!(expected, "{bad}: {e:?}");
         }
     }
 

@@ -137,7 +137,8 @@ fn a_printer_that_drops_a_times_sign_fails_the_keys_guard() {
         Ok(true)
     ));
     let off = Formula::decimal("0.07690");
-    assert!(printed_number(&off.to_tex(), value, Some(4), 12).is_err());
+    let e = printed_number(&off.to_tex(), value, Some(4), 12).unwrap_err();
+    assert!(matches!(e, RenderError::Misprinted { .. }), "{e:?}");
 }
 
 /// A body's built-in steps (the hoop's integrals and moments) are read back too: the page as

@@ -315,6 +315,7 @@ mod tests {
 
     #[test]
     fn unreadable_latex_is_an_error() {
-        assert!(read("\\frac{1}{").is_err());
+        let e = read("\\frac{1}{").unwrap_err();
+        assert!(e.to_string().contains("unbalanced group"), "{e:?}");
     }
 }

@@ -183,8 +183,11 @@ mod tests {
             shown_is_equation(&Expr::int(0), &Expr::int(0), &none),
             Ok(())
         );
-        assert!(shown_is_equation(&x, &Expr::int(0), &none).is_err());
-        assert!(shown_is_equation(&Expr::int(0), &x, &none).is_err());
+        let infinite = Err(ShownDiffers { by: f64::INFINITY });
+        assert_eq!(shown_is_equation(&x, &Expr::int(0), &none), infinite);
+        // x against the residual 0 has no ratio at any point: it differs by NaN.
+        let e = shown_is_equation(&Expr::int(0), &x, &none).unwrap_err();
+        assert!(e.by.is_nan(), "{e:?}");
     }
 
     #[test]

@@ -1,5 +1,8 @@
-//! insta snapshots of the main content of a few pages: a change in a derivation, its MathML, a
-//! verdict or a plot's description shows up as a reviewable diff (`cargo insta review`).
+//! insta snapshots of the main content of a few pages, and of tests/course's documents of every
+//! kind (a student's handout, a problem sheet, its key, a Moodle quiz, a scene's JSON): a change
+//! in a derivation, its MathML, a verdict or a plot's description shows up as a reviewable diff
+//! (`cargo insta review`). The PDFs' Typst markup has its own snapshot beside the renderer
+//! (`src/render/pdf/tests.rs`).
 
 use super::{mechbook, scratch, stderr};
 
@@ -29,5 +32,32 @@ fn main_content_of_key_pages() {
         let html = std::fs::read_to_string(out.join(format!("{page}.html"))).unwrap();
         insta::assert_snapshot!(page, main_content(&html));
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// tests/course's documents of each kind, from one build.
+#[test]
+fn every_kind_of_document_of_the_course() {
+    let dir = scratch("snapshots-course");
+    let out = dir.join("site");
+    let r = mechbook(&["build", "tests/course", "--out", out.to_str().unwrap()]);
+    assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+    let read = |path: &str| std::fs::read_to_string(out.join(path)).unwrap();
+    for (name, path) in [
+        (
+            "handout",
+            "handouts/lecture-Bodies-of-revolution-student.html",
+        ),
+        (
+            "sheet",
+            "handouts/lecture-Composite-bodies-problems-student.html",
+        ),
+        ("key", "handouts/lecture-Composite-bodies-problems-key.html"),
+    ] {
+        insta::assert_snapshot!(name, main_content(&read(path)));
+    }
+    insta::assert_snapshot!("moodle", read("export/moodle/problem-centre-of-mass.xml"));
+    let json: serde_json::Value = serde_json::from_str(&read("export/json/l-plate.json")).unwrap();
+    insta::assert_snapshot!("json", serde_json::to_string_pretty(&json).unwrap());
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -304,3 +304,36 @@ fn a_sheet_or_a_class_key_is_one_document_up_to_200_then_parts_of_200() {
     assert_eq!(super::which_of("variant", 401, 401), "variant 401");
     assert_eq!(super::which_of("student", 201, 400), "students 201 to 400");
 }
+
+/// The Typst markup of tests/course's "Bodies of revolution" student handout (the cone and the
+/// hemisphere), as a snapshot: a change in how the PDFs print a formula, a verdict or a table
+/// is a reviewable diff (`cargo insta review`).
+#[test]
+fn the_typst_markup_of_a_handout() {
+    let reports: Vec<_> = [
+        "tests/course/bodies/03-cone.toml",
+        "tests/course/bodies/04-hemisphere.toml",
+    ]
+    .iter()
+    .map(|f| {
+        let scene = crate::scene::Scene::from_file(std::path::Path::new(f)).unwrap();
+        crate::pipeline::run_scene(scene, None).unwrap()
+    })
+    .collect();
+    let course = Course::default();
+    let documents = crate::document::course::documents(&reports, &course);
+    let cx = crate::render::Context {
+        course: &course,
+        templates: &Default::default(),
+        timings: false,
+        memo: &crate::render::memo::Forget,
+        keys: Default::default(),
+        pdfs_later: false,
+    };
+    let docs = crate::render::render(&documents, &cx).unwrap().typeset;
+    let student = docs
+        .iter()
+        .find(|d| d.path.ends_with("-student.pdf"))
+        .expect("a student's handout");
+    insta::assert_snapshot!("typst_student_handout", student.markup);
+}
