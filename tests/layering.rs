@@ -170,65 +170,134 @@ fn read_tree(root: &Path, dir: &Path, files: &mut BTreeMap<String, String>) {
     }
 }
 
-/// The second-level module of a file inside a top-level module: `figures/drift.rs` and
-/// `scene/validate/text.rs` belong to `drift` and `validate`; `mod.rs` and top-level files to none
-/// (a module's `mod.rs` dispatches to its children, which may use its types).
-fn second_module(relative: &str) -> Option<String> {
-    let mut parts = relative.split('/');
-    let (_, second, deeper) = (parts.next()?, parts.next()?, parts.next().is_some());
-    let name = second.strip_suffix(".rs").unwrap_or(second);
-    (name != "mod" && (deeper || second.ends_with(".rs"))).then(|| name.to_string())
+/// A file's module path: `render/pdf/sheet.rs` is render::pdf::sheet, `render/pdf/mod.rs` is
+/// render::pdf.
+fn module_path(relative: &str) -> Vec<String> {
+    let mut parts: Vec<String> = relative.split('/').map(str::to_string).collect();
+    let last = parts.pop().unwrap_or_default();
+    let name = last.strip_suffix(".rs").unwrap_or(&last);
+    if name != "mod" {
+        parts.push(name.to_string());
+    }
+    parts
 }
 
-/// (top, from, to, file) for every import between two children of one top-level module:
-/// `super::x` in `top/y.rs`, or `crate::top::x` anywhere in `top/y`.
+/// Whether `path` names a module of the tree: a file `a/b.rs` or a folder `a/b/`.
+fn is_module(files: &BTreeMap<String, String>, path: &[String]) -> bool {
+    let joined = path.join("/");
+    files.contains_key(&format!("{joined}.rs"))
+        || files.keys().any(|k| k.starts_with(&format!("{joined}/")))
+}
+
+/// The first names of each path a `use` or a call writes after a prefix: `a::b::{c, d::e}`
+/// gives [a, b, c] and [a, b, d, e].
+fn paths_after(rest: &str) -> Vec<Vec<String>> {
+    let ident = |t: &str| -> String {
+        t.trim()
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let mut head = Vec::new();
+    let mut rest = rest;
+    loop {
+        if let Some(group) = rest.strip_prefix('{') {
+            // The group's top-level items, each a path of its own.
+            let (mut depth, mut end) = (0, group.len());
+            for (k, c) in group.char_indices() {
+                match c {
+                    '{' => depth += 1,
+                    '}' if depth == 0 => {
+                        end = k;
+                        break;
+                    }
+                    '}' => depth -= 1,
+                    _ => {}
+                }
+            }
+            let mut out = Vec::new();
+            let (mut depth, mut start) = (0, 0);
+            let inner = &group[..end];
+            for (k, c) in inner.char_indices().chain([(inner.len(), ',')]) {
+                match c {
+                    '{' => depth += 1,
+                    '}' => depth -= 1,
+                    ',' if depth == 0 => {
+                        for tail in paths_after(inner[start..k].trim()) {
+                            out.push(head.iter().cloned().chain(tail).collect());
+                        }
+                        start = k + 1;
+                    }
+                    _ => {}
+                }
+            }
+            return out;
+        }
+        let name = ident(rest);
+        if name.is_empty() {
+            return vec![head];
+        }
+        rest = &rest[rest.find(&name).unwrap_or(0) + name.len()..];
+        head.push(name);
+        match rest.strip_prefix("::") {
+            Some(more) => rest = more,
+            None => return vec![head],
+        }
+    }
+}
+
+/// (folder, from, to, file) for every import between two children of one module folder, at
+/// any depth: `super::x` or `crate::a::x` in `a/y.rs` (children y and x of `a`), `super::x` in
+/// `a/b/mod.rs` (children b and x of `a`), `crate::a::b::x` in `a/b/c.rs` (c and x of `a/b`).
 fn inner_edges(files: &BTreeMap<String, String>) -> Vec<(String, String, String, String)> {
     let mut out = Vec::new();
     for (relative, text) in files {
-        let Some(from) = second_module(relative) else {
-            continue;
-        };
         if is_test_file(relative) {
             continue;
         }
-        let top = top_module(relative);
+        let own = module_path(relative);
         let text = without_test_modules(text);
-        let direct_child = relative.matches('/').count() == 1;
-        let mut targets = Vec::new();
-        for prefix in [format!("crate::{top}::"), "super::".to_string()] {
-            if prefix == "super::" && !direct_child {
-                continue;
-            }
-            for (at, _) in text.match_indices(&prefix) {
+        let mut targets: Vec<Vec<String>> = Vec::new();
+        for prefix in ["crate::", "super::"] {
+            for (at, _) in text.match_indices(prefix) {
                 let before = text[..at].chars().next_back();
                 if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
                     continue;
                 }
-                let rest = &text[at + prefix.len()..];
-                let names: Vec<&str> = match rest.strip_prefix('{') {
-                    Some(group) => group[..group.find('}').unwrap_or(group.len())]
-                        .split(',')
-                        .collect(),
-                    None => vec![rest],
+                let mut base: Vec<String> = match prefix {
+                    "crate::" => Vec::new(),
+                    _ => own[..own.len().saturating_sub(1)].to_vec(),
                 };
-                for name in names {
-                    let name: String = name
-                        .trim()
-                        .chars()
-                        .take_while(|c| c.is_alphanumeric() || *c == '_')
-                        .collect();
-                    let is_child = files.contains_key(&format!("{top}/{name}.rs"))
-                        || files
-                            .keys()
-                            .any(|k| k.starts_with(&format!("{top}/{name}/")));
-                    if is_child && name != from {
-                        targets.push(name);
+                let mut rest = &text[at + prefix.len()..];
+                while let Some(more) = rest.strip_prefix("super::") {
+                    base.pop();
+                    rest = more;
+                }
+                for tail in paths_after(rest) {
+                    let mut path = base.clone();
+                    for name in tail {
+                        path.push(name);
+                        if !is_module(files, &path) {
+                            path.pop();
+                            break;
+                        }
                     }
+                    targets.push(path);
                 }
             }
         }
         for to in targets {
-            out.push((top.clone(), from.clone(), to, relative.clone()));
+            // The folder both lie in: the edge between its two children.
+            let shared = own.iter().zip(&to).take_while(|(a, b)| a == b).count();
+            if shared == 0 || shared >= own.len() || shared >= to.len() {
+                continue;
+            }
+            out.push((
+                own[..shared].join("/"),
+                own[shared].clone(),
+                to[shared].clone(),
+                relative.clone(),
+            ));
         }
     }
     out.sort();
@@ -236,7 +305,7 @@ fn inner_edges(files: &BTreeMap<String, String>) -> Vec<(String, String, String,
     out
 }
 
-/// Each circle among the children of a top-level module, as `top: a -> b -> a`.
+/// Each circle among the children of a module folder, at any depth, as `top: a -> b -> a`.
 fn inner_circles(files: &BTreeMap<String, String>) -> Vec<String> {
     let edges = inner_edges(files);
     let mut graph: BTreeMap<(String, String), Vec<String>> = BTreeMap::new();
@@ -317,6 +386,23 @@ fn the_checker_finds_a_circle_between_the_children_of_a_module() {
             "scene/load.rs".to_string(),
             "fn f() { crate::scene::validate::text::check() }\n".to_string(),
         ),
+        // Nested: two files of render/pdf, and a folder's mod.rs with a sibling of its folder.
+        (
+            "render/pdf/handout.rs".to_string(),
+            "use super::sheet::said_unit;\n".to_string(),
+        ),
+        (
+            "render/pdf/sheet.rs".to_string(),
+            "fn f() { super::handout::numbers() }\n".to_string(),
+        ),
+        (
+            "render/pdf/mod.rs".to_string(),
+            "mod handout;\nmod sheet;\nuse super::renderer::{Context, Rendered};\n".to_string(),
+        ),
+        (
+            "render/renderer.rs".to_string(),
+            "use super::{RenderError, pdf::PdfSource};\n".to_string(),
+        ),
         // Not a circle: a child using its parent's types, and test code.
         (
             "figures/flip.rs".to_string(),
@@ -329,6 +415,8 @@ fn the_checker_finds_a_circle_between_the_children_of_a_module() {
         circles,
         [
             "figures: drift -> free_body -> drift",
+            "render/pdf: handout -> sheet -> handout",
+            "render: pdf -> renderer -> pdf",
             "scene: load -> validate -> load"
         ],
         "{circles:#?}"

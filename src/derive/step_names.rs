@@ -40,8 +40,8 @@ impl StepError {
 }
 
 /// The names a step's expressions may use: the scene's definitions and vectors, the derived
-/// quantities, and the results of the steps before it.
-fn env(scene: &Scene, d: &Derivation) -> Env {
+/// quantities, and the results of the steps before it (a claim's, with ω and the axis).
+pub fn names_env(scene: &Scene, d: &Derivation) -> Env {
     env_of(scene, d, false)
 }
 
@@ -96,7 +96,7 @@ pub fn expand_names(
             message: numeric_only(&name, &of),
         });
     }
-    match evaluate(e, &env(scene, d)) {
+    match evaluate(e, &names_env(scene, d)) {
         Ok(Value::Scalar(x)) => Ok(x),
         Ok(other) => Err(StepError::NotScalar {
             step: step.name.clone(),

@@ -2,8 +2,8 @@
 //! ([`Documents`]) behind one trait, as mdBook's renderers each take one context. A new format
 //! is a file with a [`Renderer`] and a line in `RENDERERS` (`render/mod.rs`).
 
+use super::RenderError;
 use super::memo::{Kept, Memo, PageKeys};
-use super::{RenderError, pdf::PdfSource};
 use crate::document::course::Documents;
 use crate::scene::Course;
 use std::collections::BTreeMap;
@@ -69,4 +69,17 @@ pub trait Renderer: Sync {
     /// PDFs take the HTML's plots).
     fn render(&self, docs: &Documents, cx: &Context, out: &mut Rendered)
     -> Result<(), RenderError>;
+}
+
+/// One document to typeset: where it goes, its markup, and the pictures it shows.
+#[derive(Debug, Clone)]
+pub struct PdfSource {
+    /// Relative to the output folder: `pdf/lecture-3-4-student.pdf`.
+    pub path: String,
+    pub markup: String,
+    /// Path (as the markup names it) -> bytes: the plots of an instructor's handout.
+    pub images: Vec<(String, Vec<u8>)>,
+    /// Where each scene's part of the markup starts (a byte offset), and the scene's file and
+    /// line: a Typst error is reported at the scene it falls in.
+    pub origins: Vec<(usize, String)>,
 }

@@ -220,28 +220,18 @@ impl Verification {
     }
 }
 
-/// The names a claim may use, bound to their values.
+/// The names a claim may use, bound to their values: a step's (`derive::step_names`), and the
+/// scene's ω and axis.
 pub fn claim_env(scene: &Scene, d: &Derivation) -> Env {
-    let mut env = Env::new();
-    for (name, e) in &scene.definitions {
-        env.insert(name.clone(), Value::Scalar(e.clone()));
-    }
-    for (name, v) in &scene.vectors {
-        env.insert(name.clone(), Value::Vector(v.clone()));
-    }
+    let mut env = crate::derive::step_names::names_env(scene, d);
+    // A quantity or a step's result of the same name wins, as it was bound after these.
     if let Some(w) = &scene.omega {
-        env.insert("omega".into(), Value::Vector(w.clone()));
+        env.entry("omega".into())
+            .or_insert_with(|| Value::Vector(w.clone()));
     }
     if let Some(n) = &scene.axis {
-        env.insert("axis".into(), Value::Vector(n.clone()));
-    }
-    for (name, v) in &d.quantities {
-        env.insert(name.clone(), v.clone());
-    }
-    for (name, r) in &d.named {
-        for (name, e) in r.values(scene.result_names(name)) {
-            env.insert(name, Value::Scalar(e));
-        }
+        env.entry("axis".into())
+            .or_insert_with(|| Value::Vector(n.clone()));
     }
     env
 }

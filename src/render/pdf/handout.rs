@@ -7,7 +7,7 @@
 use super::markup::{
     Markup, formula_and_broken, number, said_equation, said_number, said_symbol, symbol,
 };
-use super::sheet::said_unit;
+use super::quantities::{numbers_typst, said_unit, unit_typst};
 use crate::base::format::sci;
 use crate::derive::ExactBasis;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
@@ -102,7 +102,7 @@ fn setup(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
         if let Some(u) = page.units.get(name) {
             // Typeset as the pages and the sheets set units: kg m², not kg m^2.
             m.text(" (")
-                .inline(&super::sheet::unit_typst(u), said_unit(u).trim())
+                .inline(&unit_typst(u), said_unit(u).trim())
                 .text(")");
         }
         m.raw("],\n");
@@ -285,24 +285,7 @@ fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
 
 /// A number's unit after a thin space, in math markup; nothing without one.
 fn unit(u: Option<&String>) -> String {
-    u.map_or(String::new(), |u| {
-        format!(" thin {}", super::sheet::unit_typst(u))
-    })
-}
-
-/// Numbers in the shape of `v`: a number, a row or a matrix.
-pub fn numbers_typst(v: &Value, n: &[String]) -> String {
-    match v {
-        Value::Scalar(_) => n[0].clone(),
-        Value::Vector(_) => format!("mat({})", n.join(", ")),
-        Value::Matrix(_) => format!(
-            "mat({})",
-            n.chunks(3)
-                .map(|row| row.join(", "))
-                .collect::<Vec<_>>()
-                .join("; ")
-        ),
-    }
+    u.map_or(String::new(), |u| format!(" thin {}", unit_typst(u)))
 }
 
 fn claims(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {

@@ -7,6 +7,7 @@
 mod display_width;
 mod handout;
 mod markup;
+mod quantities;
 mod sheet;
 #[cfg(feature = "pdf")]
 pub mod typeset;
@@ -22,18 +23,7 @@ use crate::scene::roster::Roster;
 use crate::scene::roster::Student;
 use markup::{Markup, preamble};
 
-/// One document to typeset: where it goes, its markup, and the pictures it shows.
-#[derive(Debug, Clone)]
-pub struct PdfSource {
-    /// Relative to the output folder: `pdf/lecture-3-4-student.pdf`.
-    pub path: String,
-    pub markup: String,
-    /// Path (as the markup names it) -> bytes: the plots of an instructor's handout.
-    pub images: Vec<(String, Vec<u8>)>,
-    /// Where each scene's part of the markup starts (a byte offset), and the scene's file and
-    /// line: a Typst error is reported at the scene it falls in.
-    pub origins: Vec<(usize, String)>,
-}
+pub use super::renderer::PdfSource;
 
 /// A lecture's PDFs, relative to the site's root.
 #[derive(Debug, Clone, serde::Serialize)]

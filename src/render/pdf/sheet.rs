@@ -4,6 +4,7 @@
 //! paper (from a roster) has their name and ID at the top of every page.
 
 use super::markup::{Markup, formula, said_equation, symbol};
+use super::quantities::{numbers_typst, said_unit, unit_typst};
 use crate::base::format::capitalised;
 use crate::document::{Problem, Sheet, SheetProblem, Variant};
 use crate::render::RenderError;
@@ -305,10 +306,7 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
         if a.rounded {
             let rounded = decimals(&a.exact_numbers, ROUNDED_FIGURES);
             m.display(
-                &format!(
-                    "approx {}{unit}",
-                    super::handout::numbers_typst(&a.exact, &rounded)
-                ),
+                &format!("approx {}{unit}", numbers_typst(&a.exact, &rounded)),
                 &format!("about {}{said_unit}", rounded.join(", ")),
             );
         } else {
@@ -319,10 +317,7 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
         }
         m.raw("], [")
             .display(
-                &format!(
-                    "{}{unit}",
-                    super::handout::numbers_typst(&a.exact, &numbers)
-                ),
+                &format!("{}{unit}", numbers_typst(&a.exact, &numbers)),
                 &format!("{}{said_unit}", numbers.join(", ")),
             )
             .raw("],\n");
@@ -352,42 +347,4 @@ pub fn decimals(numbers: &[f64], digits: usize) -> Vec<String> {
             .replace('-', "−")
         })
         .collect()
-}
-
-/// A unit in words, after its number: " m per s squared".
-pub(super) fn said_unit(text: &str) -> String {
-    let words = text
-        .replace('*', " ")
-        .replace('/', " per ")
-        .replace("^2", " squared")
-        .replace("^3", " cubed")
-        .replace('^', " to the power ");
-    format!(" {words}")
-}
-
-/// A unit in Typst's math, upright: `kg m^2/s` as kg m²/s, each power raised after the text
-/// before it.
-pub fn unit_typst(text: &str) -> String {
-    let text = text.replace('*', " ");
-    let mut out = String::new();
-    let mut rest = text.as_str();
-    while let Some(i) = rest.find('^') {
-        let power: String = rest[i + 1..]
-            .chars()
-            .take_while(|c| c.is_ascii_digit() || *c == '-')
-            .collect();
-        out.push_str(&format!(
-            "upright({})^({}) ",
-            crate::base::typst::typst_string(&rest[..i]),
-            power.replace('-', "−")
-        ));
-        rest = &rest[i + 1 + power.len()..];
-    }
-    if !rest.is_empty() {
-        out.push_str(&format!(
-            "upright({})",
-            crate::base::typst::typst_string(rest)
-        ));
-    }
-    out.trim_end().to_string()
 }
