@@ -1,8 +1,9 @@
 //! `mechbook build`: the course site. `serve` runs the same build on every edit.
 
-use super::{FidelityArg, default_paths, find, peak_memory_mib, run_all};
+use super::{FidelityArg, default_paths, find, run_all};
+
+mod stages;
 use crate::model::fidelity::Fidelity;
-use crate::pipeline;
 use crate::site::cache::Cache;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
@@ -224,212 +225,40 @@ impl Build {
     /// and says why.
     pub fn run(&self) -> Result<Built, NotBuilt> {
         let start = std::time::Instant::now();
-        let fail = NotBuilt::Other;
-        let mut course =
-            crate::scene::Course::load(&self.course_file).map_err(|e| fail(e.into()))?;
-        // The papers name each student's variant: the site, which may be published, then
-        // holds no variant's answers (the roster's own key is among the papers).
-        course.answers_private = self.roster.is_some();
-        // Refused before anything is derived, so a refused build touches nothing. The
-        // inputs are the scene files themselves, and the folders named.
-        let files = self.check_output().map_err(fail)?;
-        let scenes = crate::scene::load_all(&files)
-            .map_err(|errors| NotBuilt::Scenes(errors.iter().map(ToString::to_string).collect()))?;
-        super::warn(&scenes);
-        if self.whole_course {
-            let lectures = scenes.iter().map(|s| s.notes.lecture.as_str()).collect();
-            if let Some(e) = course.unused_lecture(&lectures) {
-                return Err(NotBuilt::Scenes(vec![e.to_string()]));
-            }
-        }
-        let (reports, errors) = match &self.cache {
-            Some(cache) => run_all(scenes, self.fidelity, cache),
-            None => run_all(scenes, self.fidelity, &pipeline::NoStore),
-        };
-        if !errors.is_empty() {
-            return Err(NotBuilt::Derive(errors));
-        }
-        let cached = reports
-            .iter()
-            .filter(|r| r.from_cache == pipeline::FromCache::Everything)
-            .count();
-        let symbolic_cached = reports
-            .iter()
-            .filter(|r| r.from_cache == pipeline::FromCache::Symbolic)
-            .count();
+        let (course, scenes) = self.load()?;
+        let (reports, cached) = self.derive(scenes)?;
         let templates =
-            crate::site::read_templates(self.templates.as_deref()).map_err(|e| fail(e.into()))?;
-        // Load, run, then the documents, once; each renderer prints them; then the PDFs are
-        // typeset (or taken from the cache) and everything is written.
-        let documents = crate::document::course::documents(&reports, &course);
-        // The papers' sources before anything is rendered or typeset, so that a roster the
-        // sheets cannot serve is refused at once.
-        let paper_sources = match &self.roster {
-            Some((roster, _, seed)) if !self.pdfs_later => Some(
-                crate::render::pdf::roster_documents(&documents, &course, roster, *seed)
-                    .map_err(|e| fail(e.into()))?,
-            ),
-            _ => None,
-        };
-        let cx = crate::render::Context {
-            course: &course,
-            templates: &templates,
-            timings: self.timings,
-            memo: match &self.cache {
-                Some(cache) => cache,
-                None => &crate::render::memo::Forget,
-            },
-            keys: Default::default(),
-            pdfs_later: self.pdfs_later,
-        };
-        let mut rendered = crate::render::render(&documents, &cx).map_err(|e| fail(e.into()))?;
-        let mut warnings = Vec::new();
-        // What the renderers made for the cache is not held past this point.
-        let kept = std::mem::take(&mut rendered.kept);
-        if let Some(cache) = &self.cache
-            && let Err(e) = cache.keep_rendered(&kept)
-        {
-            warnings.push(format!("the cache is not updated: {e}"));
-        }
-        drop(kept);
-        // The summary's figures are taken from the reports, which are then freed with the
-        // documents: typesetting, the build's peak in memory, needs neither (docs/performance.md,
-        // "Typesetting within a memory budget"). Freeing them takes 10 ms: on another thread
-        // when nothing is typeset, as in the page-first build that `serve` waits for; else here,
-        // where the memory freed can be given back before typesetting.
-        // A step not yet recorded fails `check`, not a build: the author may be writing it.
-        let (new_steps, failures): (Vec<_>, Vec<_>) = reports
-            .iter()
-            .flat_map(crate::report::failures)
-            .partition(|f| f.new_step);
-        let mut failures: Vec<String> = failures.into_iter().map(|f| f.text).collect();
-        let failed = reports
-            .iter()
-            .filter(|r| !r.verification.passed_but_for_new_steps())
-            .count();
-        if !new_steps.is_empty() {
-            eprintln!(
-                "mechbook: note: {} step(s) not yet recorded, which `check` fails on: once you \
-                 have reviewed them, `mechbook check --bless` records them",
-                new_steps.len()
-            );
-        }
-        let scene_count = reports.len();
-        drop(documents);
-        if self.pdfs_later {
-            std::thread::spawn(move || drop(reports));
-        } else {
-            drop(reports);
-        }
-        let mut site = rendered.files;
-        let mut in_site = |path: PathBuf, pdf: Vec<u8>| {
-            site.insert(path, pdf);
-            Ok(())
-        };
-        let pdfs = if self.pdfs_later {
-            crate::site::pdfs::from_cache_only(
-                &rendered.typeset,
-                self.cache.as_ref(),
-                "site",
-                &mut in_site,
-            )
-        } else {
-            typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site", &mut in_site)
-        }
-        .map_err(|e| fail(e.into()))?;
-        let mut pdfs_pending = pdfs.pending;
-        pdfs_pending.extend(rendered.later);
-        warnings.extend(pdfs.warnings);
-        // A document Typst cannot set fails the build, but the HTML site and the other PDFs
-        // are still written.
-        let mut failed_documents = pdfs.failed;
-        let (typeset, pdf_cached) = (pdfs.made - pdfs.from_cache, pdfs.from_cache);
-        // Each paper is written as soon as it is made, into a folder that takes the papers'
-        // place once the site is written: a class's papers are not all held at once.
-        let papers = match (&self.roster, paper_sources) {
-            (Some((roster, dir, _)), Some((sources, csv))) => {
-                let staging = crate::site::Staging::begin(dir).map_err(|e| fail(e.into()))?;
-                let made = typeset_with_progress(
-                    &sources,
-                    self.cache.as_ref(),
-                    "papers",
-                    &mut |path, pdf| staging.write(&path, &pdf),
-                )
-                .map_err(|e| fail(e.into()))?;
-                warnings.extend(made.warnings);
-                failed_documents.extend(made.failed);
-                staging
-                    .write(Path::new("variants.csv"), &csv)
-                    .map_err(|e| fail(e.into()))?;
-                Some((dir, staging, roster.students.len()))
-            }
-            _ => None,
-        };
-        for n in &rendered.notes {
+            crate::site::read_templates(self.templates.as_deref()).map_err(stages::other)?;
+        let mut made = self.render(reports, &course, &templates)?;
+        let mut site = std::mem::take(&mut made.rendered.files);
+        let mut warnings = std::mem::take(&mut made.warnings);
+        let mut pdfs = self.typeset_site(&mut made.rendered, &mut site, &mut warnings)?;
+        let papers = self.typeset_papers(made.papers.take(), &mut warnings, &mut pdfs.failed)?;
+        for n in &made.rendered.notes {
             eprintln!("mechbook: note: {n}");
         }
         for w in &warnings {
             eprintln!("mechbook: warning: {w}");
         }
-        crate::site::write_site(&self.out, &site).map_err(|e| fail(e.into()))?;
+        crate::site::write_site(&self.out, &site).map_err(stages::other)?;
         let papers = match papers {
             Some((dir, staging, students)) => {
-                staging.finish().map_err(|e| fail(e.into()))?;
+                staging.finish().map_err(stages::other)?;
                 Some((dir, students))
             }
             None => None,
         };
-        let handouts = site.keys().filter(|p| p.starts_with("handouts")).count();
-        let plots = site.keys().filter(|p| p.starts_with("plots")).count();
-        for f in &failed_documents {
+        for f in &pdfs.failed {
             eprintln!("mechbook: error: {f}");
         }
-        let pdf = if crate::render::pdf::ENABLED && self.pdfs_later {
-            format!(
-                ", {pdf_cached} PDFs from the cache ({} left to typeset next)",
-                pdfs_pending.len()
-            )
-        } else if crate::render::pdf::ENABLED {
-            format!(
-                ", {} PDFs ({typeset} typeset, {pdf_cached} from the cache)",
-                typeset + pdf_cached
-            )
-        } else {
-            String::new()
-        };
-        let papers = papers.map_or(String::new(), |(dir, students)| {
-            format!(
-                "; {students} students' papers and their key into {} (the site leaves out the \
-                 answer keys and Moodle quizzes, since each paper names its variant)",
-                dir.display()
-            )
-        });
-        let summary = format!(
-            "built {} pages, {plots} plots and {handouts} handouts{pdf} from {} scenes ({cached} from the cache, {symbolic_cached} re-run numerically on cached symbolic results) into {} in {:.2} s{papers}{}{}",
-            scene_count + 1,
-            scene_count,
-            self.out.display(),
-            start.elapsed().as_secs_f64(),
-            peak_memory_mib().map_or(String::new(), |m| format!(", peak memory {m:.0} MiB")),
-            if failed > 0 {
-                format!("; {failed} scene(s) FAILED their checks (run `mechbook check`)")
-            } else {
-                String::new()
-            }
-        );
-        let summary = if failed_documents.is_empty() {
-            summary
-        } else {
-            format!(
-                "{summary}; {} PDF(s) FAILED to typeset (above)",
-                failed_documents.len()
-            )
-        };
-        failures.extend(failed_documents);
+        let seconds = start.elapsed().as_secs_f64();
+        let summary = self.summary(&site, &made, &cached, &pdfs, papers, seconds);
+        let mut failures = std::mem::take(&mut made.failures);
+        failures.extend(pdfs.failed);
         Ok(Built {
             summary,
             failures,
-            pdfs_pending,
+            pdfs_pending: pdfs.pending,
         })
     }
 
