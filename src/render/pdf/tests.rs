@@ -189,6 +189,21 @@ fn every_kind_of_name_a_scene_may_write_is_typeset() {
     );
 }
 
+/// The PDFs' sources of the scenes' documents, as a build renders them (no cache).
+fn pdf_sources(reports: &[crate::pipeline::SceneReport]) -> Vec<PdfSource> {
+    let course = Course::default();
+    let documents = crate::document::course::documents(reports, &course);
+    let cx = crate::render::Context {
+        course: &course,
+        templates: &Default::default(),
+        timings: false,
+        memo: &crate::render::memo::Forget,
+        keys: Default::default(),
+        pdfs_later: false,
+    };
+    crate::render::render(&documents, &cx).unwrap().typeset
+}
+
 /// Each scene's part of a lecture's documents is marked with its file and line (the `id`'s in
 /// a handout, the `[problem]`'s on a sheet), so a Typst error there is reported at the scene.
 #[test]
@@ -203,17 +218,7 @@ fn each_scenes_part_of_a_document_is_marked_with_its_line() {
         [variants]\ncount = 2\nm = [\"2\", \"3\"]\na = [\"1\"]\n";
     let scene = crate::scene::Scene::parse(BOX, std::path::Path::new("b.toml")).unwrap();
     let reports = [crate::pipeline::run_scene(scene, None).unwrap()];
-    let course = Course::default();
-    let documents = crate::document::course::documents(&reports, &course);
-    let cx = crate::render::Context {
-        course: &course,
-        templates: &Default::default(),
-        timings: false,
-        memo: &crate::render::memo::Forget,
-        keys: Default::default(),
-        pdfs_later: false,
-    };
-    let docs = crate::render::render(&documents, &cx).unwrap().typeset;
+    let docs = pdf_sources(&reports);
     let marks: Vec<(&str, Vec<&str>)> = docs
         .iter()
         .map(|d| {
@@ -320,17 +325,7 @@ fn the_typst_markup_of_a_handout() {
         crate::pipeline::run_scene(scene, None).unwrap()
     })
     .collect();
-    let course = Course::default();
-    let documents = crate::document::course::documents(&reports, &course);
-    let cx = crate::render::Context {
-        course: &course,
-        templates: &Default::default(),
-        timings: false,
-        memo: &crate::render::memo::Forget,
-        keys: Default::default(),
-        pdfs_later: false,
-    };
-    let docs = crate::render::render(&documents, &cx).unwrap().typeset;
+    let docs = pdf_sources(&reports);
     let student = docs
         .iter()
         .find(|d| d.path.ends_with("-student.pdf"))
