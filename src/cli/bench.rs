@@ -411,12 +411,7 @@ fn child_build(args: &[&str]) -> Result<(f64, f64)> {
     if !out.status.success() {
         bail!("mechbook build {} failed: {err}", args.join(" "));
     }
-    let peak = err
-        .split("peak memory ")
-        .nth(1)
-        .and_then(|s| s.split_whitespace().next())
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(f64::NAN);
+    let peak = super::bench_timing::printed_peak(&err).unwrap_or(f64::NAN);
     Ok((seconds, peak))
 }
 

@@ -62,12 +62,7 @@ pub(super) fn child(args: &[&str], dir: &Path) -> Result<(f64, f64)> {
     if !finished(args, out.status.code()) {
         bail!("mechbook {} failed: {err}", args.join(" "));
     }
-    let peak_mib = err
-        .rsplit("mechbook: peak memory ")
-        .next()
-        .and_then(|s| s.split_whitespace().next())
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(f64::NAN);
+    let peak_mib = super::bench_timing::printed_peak(&err).unwrap_or(f64::NAN);
     Ok((seconds, peak_mib))
 }
 

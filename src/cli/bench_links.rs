@@ -112,11 +112,7 @@ fn mechbook_run(file: &Path, cache: &Path, repeats: usize) -> Result<(f64, f64)>
             );
         }
         let _ = std::fs::remove_dir_all(&fresh);
-        let printed = String::from_utf8_lossy(&out.stderr)
-            .split("peak memory ")
-            .nth(1)
-            .and_then(|s| s.split_whitespace().next())
-            .and_then(|s| s.parse::<f64>().ok());
+        let printed = super::bench_timing::printed_peak(&String::from_utf8_lossy(&out.stderr));
         peak = peak.max(printed.unwrap_or(f64::NAN));
     }
     Ok((fastest, peak))

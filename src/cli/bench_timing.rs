@@ -3,6 +3,16 @@
 
 use anyhow::Result;
 
+/// The peak memory (MiB) a child printed as it exited ([`super::PEAK_MEMORY_ENV`]): its
+/// last such line.
+pub(super) fn printed_peak(stderr: &str) -> Option<f64> {
+    stderr
+        .rsplit("mechbook: peak memory ")
+        .next()
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+}
+
 /// The fastest and the median of several runs, and the largest peak memory.
 pub(super) struct Timing {
     pub fastest: f64,

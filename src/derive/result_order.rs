@@ -96,14 +96,14 @@ pub fn positive_roots(roots: Vec<Expr>, unknown: &str, scene: &Scene) -> Vec<Exp
         }
         _ => false,
     });
+    let signed = scene.signed_names();
     if roots.len() < 2
         || multiplier
         || !scene.symbols.contains_key(unknown)
-        || scene.signed_names().contains(unknown)
+        || signed.contains(unknown)
     {
         return roots;
     }
-    let signed = scene.signed_names();
     let kept: Vec<Expr> = roots
         .iter()
         .filter(|r| {
