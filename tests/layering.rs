@@ -423,6 +423,73 @@ fn the_checker_finds_a_circle_between_the_children_of_a_module() {
     );
 }
 
+/// The renderers, each a child of `render/`: none may import another, so that each prints
+/// the documents alone (what they share is `renderer`, `memo` and `plot`).
+const RENDERERS: &[&str] = &["html", "json", "moodle", "pdf"];
+
+/// Every import from one renderer into another, as `from -> to (file)`.
+fn between_renderers(files: &BTreeMap<String, String>) -> Vec<String> {
+    inner_edges(files)
+        .into_iter()
+        .filter(|(top, from, to, _)| {
+            top == "render"
+                && RENDERERS.contains(&from.as_str())
+                && RENDERERS.contains(&to.as_str())
+        })
+        .map(|(_, from, to, file)| format!("{from} -> {to} ({file})"))
+        .collect()
+}
+
+#[test]
+fn no_renderer_imports_another() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = BTreeMap::new();
+    read_tree(&root, &root, &mut files);
+    for r in RENDERERS {
+        assert!(
+            is_module(&files, &["render".to_string(), r.to_string()]),
+            "render/{r} is not a module"
+        );
+    }
+    let edges = between_renderers(&files);
+    assert!(edges.is_empty(), "{}", edges.join("\n"));
+    // The checker sees the renderers' imports of what they share.
+    assert!(
+        inner_edges(&files)
+            .iter()
+            .any(|(top, from, to, _)| top == "render" && from == "pdf" && to == "memo"),
+        "the walk sees no edge from render/pdf"
+    );
+}
+
+#[test]
+fn the_checker_finds_one_renderer_importing_another() {
+    let files = BTreeMap::from([
+        (
+            "render/html/mod.rs".to_string(),
+            "mod page;\nfn f() { super::pdf::lecture_pdfs() }\n".to_string(),
+        ),
+        (
+            "render/html/page.rs".to_string(),
+            "use super::super::memo;\n".to_string(),
+        ),
+        (
+            "render/pdf/sheet.rs".to_string(),
+            "use crate::render::html::problems::Recall;\n".to_string(),
+        ),
+        ("render/pdf/mod.rs".to_string(), "mod sheet;\n".to_string()),
+        ("render/memo.rs".to_string(), String::new()),
+        ("render/html/problems.rs".to_string(), String::new()),
+    ]);
+    assert_eq!(
+        between_renderers(&files),
+        [
+            "html -> pdf (render/html/mod.rs)",
+            "pdf -> html (render/pdf/sheet.rs)"
+        ]
+    );
+}
+
 #[test]
 fn every_import_points_down_the_pipeline() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");

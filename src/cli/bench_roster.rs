@@ -3,7 +3,7 @@
 //! --roster` of N students, each a child process timed from outside with its peak memory; and
 //! last a site whose sheet has 10,000 variants, the most a problem may have. Time per student
 //! should stay flat and memory bounded, since the class key and a long sheet are typeset in
-//! parts (`render::pdf::VARIANTS_A_DOCUMENT`).
+//! parts (`document::files::VARIANTS_A_DOCUMENT`).
 
 use super::bench_course::child;
 use super::bench_timing::{Timing, timed};

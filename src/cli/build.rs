@@ -184,7 +184,7 @@ impl Build {
             status_file: _,
             pdfs_later,
         } = args;
-        if roster.is_some() && !crate::render::pdf::ENABLED {
+        if roster.is_some() && !crate::document::files::PDFS {
             anyhow::bail!(
                 "--roster makes PDFs, and this mechbook was built without them: build it with \
                  the default features (`cargo build --release`)"
@@ -403,10 +403,9 @@ pub fn report_not_built(not_built: NotBuilt) -> Result<()> {
 /// roster's papers can take a while.
 fn typeset_with_progress(
     sources: &[crate::render::pdf::PdfSource],
-    cache: Option<&crate::site::cache::Cache>,
-    prefix: &str,
-    keep: &mut crate::site::pdfs::Keep,
-) -> Result<crate::site::pdfs::Typeset, crate::site::SiteError> {
+    store: Option<&dyn crate::render::pdf::batch::PdfStore>,
+    keep: &mut crate::render::pdf::batch::Keep<crate::site::SiteError>,
+) -> Result<crate::render::pdf::batch::Typeset, crate::site::SiteError> {
     use std::io::IsTerminal;
     let terminal = std::io::stderr().is_terminal();
     let mut progress = |done: usize, total: usize, path: &str| {
@@ -414,7 +413,7 @@ fn typeset_with_progress(
             eprint!("\r\x1b[2K{}", super::progress_bar(done, total, path));
         }
     };
-    let made = crate::site::pdfs::typeset_all(sources, cache, prefix, &mut progress, keep);
+    let made = crate::render::pdf::batch::typeset_all(sources, store, &mut progress, keep);
     if terminal {
         eprint!("\r\x1b[2K");
     }

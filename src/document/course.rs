@@ -2,6 +2,7 @@
 //! sheet, each problem for Moodle. What each shows is decided here, once; the renderers (HTML,
 //! PDF, Moodle) print these documents and decide only how they look.
 
+use super::files::{LecturePdfs, lecture_pdfs};
 use super::handout::{Part, part};
 use super::{Page, Problem, Sheet, figure_file, page_file, pages, problem, sheet};
 use crate::model::figure::Figure;
@@ -35,6 +36,8 @@ pub struct Lecture {
     pub handouts: [Handout; 2],
     /// The sheet of its problems' variants, when it has problems with variants.
     pub sheet: Option<Sheet>,
+    /// Its PDFs' paths, which the HTML links to when this mechbook writes PDFs.
+    pub pdfs: LecturePdfs,
 }
 
 /// A lecture's handout: the part of each page it shows, in order.
@@ -96,8 +99,11 @@ pub fn documents<'a>(reports: &'a [SceneReport], course: &Course) -> Documents<'
                     .map(|(_, p)| p.clone())
                     .collect(),
             );
+            let slug = lecture_slug(&name);
+            let variants = sheet.as_ref().map(|s| s.variants.len());
             Lecture {
-                slug: lecture_slug(&name),
+                pdfs: lecture_pdfs(&slug, variants, course),
+                slug,
                 heading: course.lecture_heading(&name),
                 handouts: [handout(false), handout(true)],
                 pages: scenes,

@@ -6,13 +6,16 @@
 
 mod claim_sides;
 pub mod course;
+pub mod files;
 pub mod handout;
 mod problems;
 mod results;
 pub mod roster;
+pub mod words;
 
 pub use problems::{
-    Problem, SharedAnswer, Sheet, SheetProblem, SheetVariant, Variant, problem, sheet,
+    KEY_FIGURES, Problem, ROUNDED_FIGURES, SharedAnswer, Sheet, SheetProblem, SheetVariant,
+    Variant, answer_order, answer_words, problem, sheet,
 };
 pub use results::{At, ListResult, PrincipalAxis, PrincipalValues, Quantity};
 

@@ -4,6 +4,7 @@
 //! once.
 
 use super::page_file;
+use crate::model::catalogue::quantity;
 use crate::model::prose::Prose;
 use crate::notation::Formula;
 use crate::pipeline::SceneReport;
@@ -258,4 +259,35 @@ pub fn sheet(problems: Vec<Problem>) -> Option<Sheet> {
         variants,
         shared,
     })
+}
+
+/// Significant figures of the key's decimals.
+pub const KEY_FIGURES: usize = 4;
+
+/// The figures of an exact answer too long to read (`AnswerCheck::rounded`), in the key's exact
+/// column: more than the decimal column's, so a grader can tell a rounding slip from an error.
+pub const ROUNDED_FIGURES: usize = 6;
+
+/// An answer's name in words, as a student reads it: "Moment about the axis".
+pub fn answer_words(name: &str) -> &str {
+    match name {
+        quantity::PRINCIPAL_MOMENTS => "Principal moments",
+        quantity::PRECESSION_RATE => "Precession rate",
+        quantity::RADIUS_OF_GYRATION => "Radius of gyration",
+        quantity::INERTIA_TENSOR => "Inertia tensor",
+        quantity::ANGULAR_MOMENTUM => "Angular momentum",
+        quantity::KINETIC_ENERGY => "Kinetic energy",
+        quantity::MOMENT_ABOUT_AXIS => "Moment about the axis",
+        _ => name,
+    }
+}
+
+/// The order a list or matrix answer's entries are asked in, for a blank per entry.
+pub fn answer_order(name: &str) -> Option<&'static str> {
+    match name {
+        quantity::PRINCIPAL_MOMENTS => Some("in ascending order, I1 ≤ I2 ≤ I3"),
+        quantity::ANGULAR_MOMENTUM => Some("its x, y and z components"),
+        quantity::INERTIA_TENSOR => Some("rows and columns x, y, z"),
+        _ => None,
+    }
 }

@@ -24,7 +24,7 @@ fn every_printer_reads_the_page_not_the_report() {
     page.title = "TITLE-MARK".into();
     let text = crate::report::derivation_text(&page);
     let json = crate::report::scene_json(&page).to_string();
-    let view = crate::render::page_view(&page, false).unwrap();
+    let view = crate::render::html::page_view(&page, false).unwrap();
     let html = serde_json::to_string(&view).unwrap();
     for mark in ["STEP-MARK", "WHY-MARK", "CLAIM-MARK", "TITLE-MARK"] {
         assert!(text.contains(mark), "derive text lacks {mark}");

@@ -2,7 +2,7 @@
 //! `export/json/`, one file a scene, with the course's lectures in `export/json/course.json`.
 
 use super::RenderError;
-use super::renderer::{Context, Rendered, Renderer};
+use super::renderer::{Context, Plots, Rendered, Renderer};
 use crate::cas::Expr;
 use crate::derive::ExactBasis;
 use crate::document::course::Documents;
@@ -18,12 +18,8 @@ use serde_json::{Value as Json, json};
 pub struct JsonReport;
 
 impl Renderer for JsonReport {
-    fn render(
-        &self,
-        docs: &Documents,
-        cx: &Context,
-        out: &mut Rendered,
-    ) -> Result<(), RenderError> {
+    fn render(&self, docs: &Documents, _: &Plots, cx: &Context) -> Result<Rendered, RenderError> {
+        let mut out = Rendered::default();
         // A problem's page holds every variant's answers: none where answers are private.
         let published: Vec<usize> = (0..docs.pages.len())
             .filter(|&i| !(cx.course.answers_private && docs.is_problem(i)))
@@ -66,7 +62,8 @@ impl Renderer for JsonReport {
             &mut out.files,
             "export/json/course.json",
             pretty(&course).into_bytes(),
-        )
+        )?;
+        Ok(out)
     }
 }
 

@@ -7,6 +7,7 @@
 //! A unit's key hashes the `Debug` form of each of its inputs: every field of a document takes
 //! part, so a change anywhere in them misses. The program itself is in the cache's own key.
 
+use super::RenderError;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use std::fmt::Debug;
@@ -105,6 +106,41 @@ where
     let unit = make()?;
     let bytes = serde_json::to_vec(&unit).expect("a rendered unit serialises");
     Ok((unit, Some(Kept { name, key, bytes })))
+}
+
+/// A sheet's units in the memo, named `<sheet>-<problem number>` and keyed by their inputs,
+/// and those made fresh.
+pub struct Recall<'a> {
+    pub memo: &'a dyn Memo,
+    /// The sheet's file, as its unit names start (`lecture-1-problems-key`).
+    pub sheet: String,
+    pub kept: Vec<Kept>,
+}
+
+impl<'a> Recall<'a> {
+    /// The units of the sheet written to `path` (a site path: its `/` become `.`).
+    pub fn of(memo: &'a dyn Memo, path: &str) -> Recall<'a> {
+        Recall {
+            memo,
+            sheet: path.replace('/', "."),
+            kept: Vec::new(),
+        }
+    }
+
+    pub(crate) fn recall_or<T: Serialize + DeserializeOwned>(
+        &mut self,
+        unit: &str,
+        inputs: &[&dyn std::fmt::Debug],
+        make: impl FnOnce() -> Result<T, RenderError>,
+    ) -> Result<T, RenderError> {
+        let mut all: Vec<&dyn std::fmt::Debug> = vec![&"sheet-column", &self.sheet];
+        all.extend_from_slice(inputs);
+        let key = key(&all);
+        let name = format!("{}-{unit}", self.sheet);
+        let (made, kept) = recall_or(self.memo, name, key, make)?;
+        self.kept.extend(kept);
+        Ok(made)
+    }
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@
 //! largest entry of its answer, so that a zero entry is not asked for exactly.
 
 use super::RenderError;
-use super::renderer::{Context, Rendered, Renderer};
+use super::renderer::{Context, Plots, Rendered, Renderer};
 use crate::document::course::Documents;
 use crate::document::{Problem, Variant};
 use crate::model::prose::{Piece, Prose};
@@ -19,15 +19,11 @@ const DIGITS: usize = 12;
 pub struct Moodle;
 
 impl Renderer for Moodle {
-    fn render(
-        &self,
-        docs: &Documents,
-        cx: &Context,
-        out: &mut Rendered,
-    ) -> Result<(), RenderError> {
+    fn render(&self, docs: &Documents, _: &Plots, cx: &Context) -> Result<Rendered, RenderError> {
+        let mut out = Rendered::default();
         // A quiz holds every variant's answers: none in a site whose answers are private.
         if cx.course.answers_private {
-            return Ok(());
+            return Ok(out);
         }
         let base = &cx.course.base_url;
         for (i, problem) in &docs.problems {
@@ -38,7 +34,7 @@ impl Renderer for Moodle {
                 quiz(problem, solution.as_deref()).into_bytes(),
             )?;
         }
-        Ok(())
+        Ok(out)
     }
 }
 
@@ -185,8 +181,8 @@ fn label(spec: &crate::scene::Answer) -> String {
     let Some(name) = spec.bare_quantity() else {
         return spec.written.clone();
     };
-    let words = super::problems::answer_words(name);
-    match super::problems::answer_order(name) {
+    let words = crate::document::answer_words(name);
+    match crate::document::answer_order(name) {
         Some(order) => format!("{words} ({order})"),
         None => words.to_string(),
     }

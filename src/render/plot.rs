@@ -3,6 +3,9 @@
 //! white with dark ink, so it reads the same on a light or a dark page and on paper.
 
 use super::RenderError;
+use super::memo::{self, Kept};
+use super::renderer::{Context, Plots};
+use crate::document::course::Documents;
 use crate::model::figure::{Figure, Legend, Mark, Scale};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -223,6 +226,24 @@ fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>>
             .draw()?;
     }
     Ok(())
+}
+
+/// Every plot of the documents as SVG, each drawn once (or taken from the memo), and the plots
+/// drawn fresh, for the memo.
+pub fn draw_all(docs: &Documents, cx: &Context) -> Result<(Plots, Vec<Kept>), RenderError> {
+    let mut plots = Plots::new();
+    let mut kept = Vec::new();
+    for (i, file, fig) in &docs.figures {
+        let name = file.replace('/', ".");
+        let (drawn, k) = memo::recall_or(cx.memo, name, memo::key(&[&"plot", fig]), || {
+            svg(fig).map_err(|e| e.in_scene(&docs.pages[*i].source))
+        })?;
+        kept.extend(k);
+        if plots.insert(file.clone(), drawn).is_some() {
+            return Err(RenderError::Collision { path: file.into() });
+        }
+    }
+    Ok((plots, kept))
 }
 
 #[cfg(test)]

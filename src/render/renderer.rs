@@ -63,12 +63,34 @@ pub struct Rendered {
     pub later: Vec<String>,
 }
 
+/// The course's plots, drawn once before any renderer runs: each file (relative to the site's
+/// root) and its SVG. The HTML shows them and the instructor's handouts print them.
+pub type Plots = BTreeMap<String, String>;
+
 /// One output format.
 pub trait Renderer: Sync {
-    /// Prints the documents into `out`. A renderer may read what those before it made (the
-    /// PDFs take the HTML's plots).
-    fn render(&self, docs: &Documents, cx: &Context, out: &mut Rendered)
-    -> Result<(), RenderError>;
+    /// The documents in this format: its own files and documents to typeset, made from the
+    /// documents and the plots alone (no renderer reads what another made).
+    fn render(
+        &self,
+        docs: &Documents,
+        plots: &Plots,
+        cx: &Context,
+    ) -> Result<Rendered, RenderError>;
+}
+
+impl Rendered {
+    /// Takes in what another renderer made; a file both made is an error, never replaced.
+    pub fn absorb(&mut self, other: Rendered) -> Result<(), RenderError> {
+        for (path, bytes) in other.files {
+            add(&mut self.files, path, bytes)?;
+        }
+        self.typeset.extend(other.typeset);
+        self.notes.extend(other.notes);
+        self.kept.extend(other.kept);
+        self.later.extend(other.later);
+        Ok(())
+    }
 }
 
 /// One document to typeset: where it goes, its markup, and the pictures it shows.

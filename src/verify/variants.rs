@@ -46,7 +46,7 @@ pub struct AnswerCheck {
     pub shown: Option<Value>,
     /// The shown form has a number of more digits than a reader takes in
     /// (`derive::variants::has_long_number`): the key gives the answer to
-    /// `render::problems::ROUNDED_FIGURES` figures in its exact column, and `--json` the exact
+    /// `document::ROUNDED_FIGURES` figures in its exact column, and `--json` the exact
     /// value.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub rounded: bool,

@@ -5,7 +5,7 @@
 use super::{mechbook, scratch, stderr, stdout};
 use mechbook::base::format::{figures, significant};
 use mechbook::notation::Tex;
-use mechbook::render::math::inline;
+use mechbook::render::html::math::inline;
 use nalgebra::{Matrix3, Vector3};
 use serde_json::Value as Json;
 use std::path::{Path, PathBuf};

@@ -370,7 +370,7 @@ fn lectures_come_in_the_course_files_order_then_in_natural_order() {
 
 #[test]
 fn names_and_units_that_typst_could_not_set_build_their_pdfs() {
-    if !mechbook::render::pdf::ENABLED {
+    if !mechbook::document::files::PDFS {
         return;
     }
     let dir = scratch("typst-names");
@@ -507,7 +507,7 @@ values = { s = 1.0, r = 1.1 }
 
 #[test]
 fn a_roster_that_is_no_regular_file_is_refused_at_once() {
-    if !mechbook::render::pdf::ENABLED {
+    if !mechbook::document::files::PDFS {
         return;
     }
     let dir = scratch("roster-device");

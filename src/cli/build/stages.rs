@@ -4,6 +4,7 @@
 use super::{Build, NotBuilt, typeset_with_progress};
 use crate::pipeline::{self, SceneReport};
 use crate::render::pdf::PdfSource;
+use crate::render::pdf::batch::PdfStore;
 use crate::render::{Rendered, SiteFiles};
 use crate::scene::{Course, Scene};
 use std::path::{Path, PathBuf};
@@ -172,17 +173,14 @@ impl Build {
     ) -> Result<Typesetting, NotBuilt> {
         let mut in_site = |path: PathBuf, pdf: Vec<u8>| {
             site.insert(path, pdf);
-            Ok(())
+            Ok::<(), crate::site::SiteError>(())
         };
+        let store = self.pdf_store("site");
+        let store = store.as_ref().map(|s| s as &dyn PdfStore);
         let pdfs = if self.pdfs_later {
-            crate::site::pdfs::from_cache_only(
-                &rendered.typeset,
-                self.cache.as_ref(),
-                "site",
-                &mut in_site,
-            )
+            crate::render::pdf::batch::from_cache_only(&rendered.typeset, store, &mut in_site)
         } else {
-            typeset_with_progress(&rendered.typeset, self.cache.as_ref(), "site", &mut in_site)
+            typeset_with_progress(&rendered.typeset, store, &mut in_site)
         }
         .map_err(other)?;
         let mut pending = pdfs.pending;
@@ -198,6 +196,12 @@ impl Build {
         })
     }
 
+    /// The cache's PDFs under `prefix`, when the build has a cache.
+    fn pdf_store<'a>(&'a self, prefix: &'a str) -> Option<crate::site::pdfs::CachedPdfs<'a>> {
+        let cache = self.cache.as_ref()?;
+        Some(crate::site::pdfs::CachedPdfs { cache, prefix })
+    }
+
     /// A roster's papers, each written as soon as it is made, into a folder that takes the
     /// papers' place once the site is written: a class's papers are not all held at once.
     pub(super) fn typeset_papers(
@@ -210,11 +214,11 @@ impl Build {
             return Ok(None);
         };
         let staging = crate::site::Staging::begin(dir).map_err(other)?;
+        let store = self.pdf_store("papers");
+        let store = store.as_ref().map(|s| s as &dyn PdfStore);
         let made =
-            typeset_with_progress(&sources, self.cache.as_ref(), "papers", &mut |path, pdf| {
-                staging.write(&path, &pdf)
-            })
-            .map_err(other)?;
+            typeset_with_progress(&sources, store, &mut |path, pdf| staging.write(&path, &pdf))
+                .map_err(other)?;
         warnings.extend(made.warnings);
         failed.extend(made.failed);
         staging
@@ -236,12 +240,12 @@ impl Build {
         let handouts = site.keys().filter(|p| p.starts_with("handouts")).count();
         let plots = site.keys().filter(|p| p.starts_with("plots")).count();
         let (typeset, pdf_cached) = (pdfs.typeset, pdfs.from_cache);
-        let pdf = if crate::render::pdf::ENABLED && self.pdfs_later {
+        let pdf = if crate::document::files::PDFS && self.pdfs_later {
             format!(
                 ", {pdf_cached} PDFs from the cache ({} left to typeset next)",
                 pdfs.pending.len()
             )
-        } else if crate::render::pdf::ENABLED {
+        } else if crate::document::files::PDFS {
             format!(
                 ", {} PDFs ({typeset} typeset, {pdf_cached} from the cache)",
                 typeset + pdf_cached

@@ -11,7 +11,7 @@ use super::quantities::{numbers_typst, said_unit, unit_typst};
 use crate::base::format::sci;
 use crate::derive::ExactBasis;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
-use crate::document::{At, Page};
+use crate::document::{At, Page, words};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
 use crate::notation::{Formula, symbol_tex};
@@ -138,7 +138,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
         m.raw("#text(9.5pt)[");
         m.prose(&last.why_cited())?;
         if let Some(c) = last.check.as_ref().filter(|_| s.checks) {
-            m.raw(" — ").text(&crate::render::check_sentence(c));
+            m.raw(" — ").text(&words::check_sentence(c));
         }
         m.raw("]\n");
     }
@@ -167,12 +167,12 @@ fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
         match &q.symbol {
             // A step's result, named by its own equation (`ẍ₁ = …`).
             Some(symbol) => {
-                let statement = crate::render::result_equation(symbol, &q.value);
+                let statement = words::result_equation(symbol, &q.value);
                 let (whole, broken) = formula_and_broken(&statement)?;
                 m.block(&whole, &broken, &statement.to_tex().spoken());
             }
             None => {
-                m.heading(3, &crate::render::result_heading(q))?;
+                m.heading(3, &words::result_heading(q))?;
                 match &q.matrix {
                     Some(_) => {
                         let value = q.formula();
@@ -231,7 +231,7 @@ fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
         let said: Vec<String> = p.exact.iter().map(|v| said_number(*v, 6)).collect();
         m.block(&line, &line, &said_equation(&p.letter, &said.join(", ")));
         m.raw("#text(9.5pt)[").text("at ");
-        let values = crate::render::values_at(&p.values);
+        let values = words::values_at(&p.values);
         m.inline(&super::markup::formula(&values)?, &values.to_tex().spoken());
         m.text(&format!(
             ": the eigen-solver on the exact tensor agrees to {} (relative)",
@@ -244,7 +244,7 @@ fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
 
 /// A result at the scene's numbers, to six significant figures.
 fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
-    let n: Vec<String> = crate::render::at_entries(at)
+    let n: Vec<String> = words::at_entries(at)
         .into_iter()
         .map(|x| number(x, 6))
         .collect();
@@ -265,7 +265,7 @@ fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
             )
         })
         .collect();
-    let said_values: Vec<String> = crate::render::at_entries(at)
+    let said_values: Vec<String> = words::at_entries(at)
         .into_iter()
         .map(|x| said_number(x, 6))
         .collect();
@@ -320,8 +320,7 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
         verdict,
     } = &shown.mark
     else {
-        let lead = crate::render::claim_lead(&c.statement)
-            .filter(|_| crate::render::claim_shows_formula(page, i));
+        let lead = words::claim_lead(&c.statement).filter(|_| words::claim_shows_formula(page, i));
         if let (Mark::Agrees, Some(notes), None, Some(lead)) =
             (&shown.mark, notes, c.sign_words(), lead)
         {

@@ -3,19 +3,22 @@
 //! HTML (formulas by the Typst printers of the expression tree), then typeset in-process
 //! (`typeset.rs`, with the cargo feature `pdf`). No file I/O here: `site` writes the bytes.
 
+pub mod batch;
 #[cfg(feature = "pdf")]
 mod display_width;
 mod handout;
 mod markup;
 mod quantities;
+#[cfg(feature = "pdf")]
+mod queue;
 mod sheet;
 #[cfg(feature = "pdf")]
 pub mod typeset;
 
+use super::RenderError;
 use super::memo::Kept;
-use super::problems::Recall;
-use super::renderer::{Context, Rendered, Renderer};
-use super::{RenderError, SiteFiles};
+use super::memo::Recall;
+use super::renderer::{Context, Plots, Rendered, Renderer};
 use crate::document::course::Documents;
 use crate::document::roster::TooFewVariants;
 use crate::scene::Course;
@@ -24,41 +27,7 @@ use crate::scene::roster::Student;
 use markup::{Markup, preamble};
 
 pub use super::renderer::PdfSource;
-
-/// A lecture's PDFs, relative to the site's root.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct LecturePdfs {
-    pub student: String,
-    pub instructor: String,
-    /// The problem sheet and its key (none when the course's answers are private), when the
-    /// lecture has problems: the first part's, when they are typeset in parts.
-    pub problems: Option<(String, Option<String>)>,
-    /// A sheet of more than [`VARIANTS_A_DOCUMENT`] variants: each part's sheet and key and the
-    /// variants it holds; empty when the sheet is one document.
-    pub problem_parts: Vec<SheetPart>,
-}
-
-/// One part of a long problem sheet: its sheet, its key, and its first and last variants.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct SheetPart {
-    pub sheet: String,
-    pub key: Option<String>,
-    pub first: usize,
-    pub last: usize,
-}
-
-/// At most this many sheet variants (or a roster's students) are typeset as one document: Typst
-/// holds a document's whole layout until its PDF is made, about 0.8 MiB a page, so a sheet of
-/// 1,000 variants in one document peaked at 837 MiB, and of 10,000 at 6.9 GB. A longer sheet,
-/// or a roster's key, is typeset in parts of this many, each its own PDF.
-pub const VARIANTS_A_DOCUMENT: usize = 200;
-
-/// The parts of `n` variants or students: each part's first index and its end (exclusive).
-fn parts(n: usize) -> Vec<std::ops::Range<usize>> {
-    (0..n.div_ceil(VARIANTS_A_DOCUMENT).max(1))
-        .map(|k| k * VARIANTS_A_DOCUMENT..((k + 1) * VARIANTS_A_DOCUMENT).min(n))
-        .collect()
-}
+use crate::document::files::{PDFS, VARIANTS_A_DOCUMENT, parts};
 
 /// What a part holds, as its title says: `variants 201 to 400`, or `variant 401` alone.
 fn which_of(noun: &str, first: usize, last: usize) -> String {
@@ -69,59 +38,20 @@ fn which_of(noun: &str, first: usize, last: usize) -> String {
     }
 }
 
-/// The documents of the sheet of `n` variants of the lecture `slug`: one sheet and key, or
-/// parts with their number after their name (`lecture-1-problems-student-2.pdf` holds
-/// variants 201 to 400).
-fn sheet_documents(slug: &str, n: usize, course: &Course) -> Vec<SheetPart> {
-    let all = parts(n);
-    let one = all.len() == 1;
-    all.into_iter()
-        .enumerate()
-        .map(|(k, range)| {
-            let part = if one {
-                String::new()
-            } else {
-                format!("-{}", k + 1)
-            };
-            SheetPart {
-                sheet: format!("pdf/{slug}-problems-student{part}.pdf"),
-                key: (!course.answers_private)
-                    .then(|| format!("pdf/{slug}-problems-key{part}.pdf")),
-                first: range.start + 1,
-                last: range.end,
-            }
-        })
-        .collect()
-}
-
-/// The PDFs of the lecture `slug`, whose problem sheet has `variants` variants (none when it
-/// has no problems).
-pub fn lecture_pdfs(slug: &str, variants: Option<usize>, course: &Course) -> LecturePdfs {
-    let parts = variants.map_or_else(Vec::new, |n| sheet_documents(slug, n, course));
-    LecturePdfs {
-        student: format!("pdf/{slug}-student.pdf"),
-        instructor: format!("pdf/{slug}-instructor.pdf"),
-        problems: parts.first().map(|p| (p.sheet.clone(), p.key.clone())),
-        problem_parts: if parts.len() > 1 { parts } else { Vec::new() },
-    }
-}
-
-/// Whether this mechbook writes PDFs (the cargo feature `pdf`).
-pub const ENABLED: bool = cfg!(feature = "pdf");
-
 /// Each lecture's handouts, problem sheet and key, as Typst markup: `site/pdfs.rs` typesets
-/// them. The instructor's handout shows the HTML's plots (the HTML renderer runs first).
+/// them. The instructor's handout shows the course's plots.
 pub struct Pdf;
 
 impl Renderer for Pdf {
     fn render(
         &self,
         docs: &Documents,
+        plots: &Plots,
         cx: &Context,
-        out: &mut Rendered,
-    ) -> Result<(), RenderError> {
-        if ENABLED {
-            for made in site_documents(docs, cx, &out.files)? {
+    ) -> Result<Rendered, RenderError> {
+        let mut out = Rendered::default();
+        if PDFS {
+            for made in site_documents(docs, plots, cx)? {
                 match made {
                     Lectured::Written(source, kept) => {
                         out.typeset.push(source);
@@ -131,7 +61,7 @@ impl Renderer for Pdf {
                 }
             }
         }
-        Ok(())
+        Ok(out)
     }
 }
 
@@ -144,16 +74,16 @@ enum Lectured {
     Later(String),
 }
 
-/// Every lecture's handouts, problem sheet and key, in order. `site` holds the plots the
-/// instructor's handout shows.
+/// Every lecture's handouts, problem sheet and key, in order, with the plots the instructor's
+/// handouts show.
 fn site_documents(
     docs: &Documents,
+    plots: &Plots,
     cx: &Context,
-    site: &SiteFiles,
 ) -> Result<Vec<Lectured>, RenderError> {
     // Each lecture's documents on both cores, in the lectures' order.
     let made = crate::base::in_order::map_in_order(&docs.lectures, |lecture| {
-        lecture_documents(docs, cx, site, lecture)
+        lecture_documents(docs, plots, cx, lecture)
     });
     let mut all = Vec::new();
     for m in made {
@@ -218,15 +148,15 @@ type WriteSheet = fn(
 /// A lecture's handouts, problem sheet and key.
 fn lecture_documents(
     docs: &Documents,
+    plots: &Plots,
     cx: &Context,
-    site: &SiteFiles,
     lecture: &crate::document::course::Lecture,
 ) -> Result<Vec<Lectured>, RenderError> {
     let course = cx.course;
     let mut out = Vec::new();
     let heading = &lecture.heading;
     let sheet = &lecture.sheet;
-    let paths = lecture_pdfs(&lecture.slug, None, course);
+    let paths = &lecture.pdfs;
     for handout in &lecture.handouts {
         let instructor = handout.instructor;
         let (title, right, path) = if instructor {
@@ -265,8 +195,8 @@ fn lecture_documents(
                 .filter(|(part, _)| part.figures)
                 .flat_map(|(_, p)| &p.figures)
                 .filter_map(|f| {
-                    let bytes = site.get(std::path::Path::new(&f.file))?;
-                    Some((f.file.clone(), bytes.clone()))
+                    let svg = plots.get(&f.file)?;
+                    Some((f.file.clone(), svg.clone().into_bytes()))
                 })
                 .collect()
         } else {
@@ -278,9 +208,9 @@ fn lecture_documents(
         ));
     }
     if let Some(sheet) = sheet {
-        let parts = sheet_documents(&lecture.slug, sheet.variants.len(), course);
+        let parts = &lecture.pdfs.sheets;
         let in_parts = parts.len() > 1;
-        for part in &parts {
+        for part in parts {
             let which: Vec<(usize, Option<&Student>)> =
                 (part.first - 1..part.last).map(|k| (k, None)).collect();
             // Which variants, when the sheet is in parts.

@@ -6,10 +6,10 @@
 use super::markup::{Markup, formula, said_equation, symbol};
 use super::quantities::{numbers_typst, said_unit, unit_typst};
 use crate::base::format::capitalised;
+use crate::document::{KEY_FIGURES, ROUNDED_FIGURES, answer_words};
 use crate::document::{Problem, Sheet, SheetProblem, Variant};
 use crate::render::RenderError;
-use crate::render::problems::Recall;
-use crate::render::problems::{KEY_FIGURES, ROUNDED_FIGURES, answer_words};
+use crate::render::memo::Recall;
 
 use crate::scene::roster::Student;
 

@@ -2,10 +2,13 @@
 //! derived side as MathML, and whether the derived side is worth showing beside an agreement.
 
 use super::guard::Guard;
-use super::{RenderError, author_html, math, number, prose_html};
+use super::math;
+use super::prose::{author_html, number, prose_html};
+use crate::document::words::{claim_lead, claim_shows_formula};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
 use crate::notation::{Formula, Tex, linebreak};
+use crate::render::RenderError;
 use crate::scene::Verdict;
 use serde::{Deserialize, Serialize};
 
@@ -124,8 +127,8 @@ pub(super) fn claim_view(
         eq: c.eq.clone(),
         statement: c.statement.clone(),
         statement_html: author_html(&c.statement)?,
-        lead_html: lead(&c.statement)
-            .filter(|_| shows_formula(page, i))
+        lead_html: claim_lead(&c.statement)
+            .filter(|_| claim_shows_formula(page, i))
             .map(|l| author_html(&l))
             .transpose()?,
         words,
@@ -176,34 +179,4 @@ fn derived_tex(v: &Value, rough: bool) -> Tex {
         },
         _ => v.to_tex(),
     }
-}
-
-/// A claim's statement as the lead of its formula ("The tension in the string: T = …"): its
-/// first letter a capital, its closing full stop dropped; `None` where the statement writes an
-/// equation of its own ("$\\beta^2 = …$: the linearised equations …"), which the formula
-/// would repeat.
-pub(crate) fn lead(statement: &str) -> Option<String> {
-    let math_has_equation = statement
-        .split('$')
-        .skip(1)
-        .step_by(2)
-        .any(|m| m.contains('=') || m.contains("\\approx"));
-    if math_has_equation {
-        return None;
-    }
-    let s = statement.trim_end();
-    let s = s.strip_suffix('.').unwrap_or(s);
-    let mut chars = s.chars();
-    chars
-        .next()
-        .map(|first| first.to_uppercase().chain(chars).collect())
-}
-
-/// Whether an agreeing claim's list item prints its formula after its statement: a scalar
-/// claim with a left side, or one whose statement holds no mathematics (a statement that
-/// writes "$|\\vec L|^2$ is constant: $I_1^2 A^2 + …$" is not followed by "I₁²A² + …" again).
-pub(crate) fn shows_formula(page: &crate::document::Page, i: usize) -> bool {
-    let c = &page.claims[i];
-    let has_left = matches!(page.claim_left(i), Ok(Some(_)));
-    matches!(c.derived, Some(Value::Scalar(_))) && (has_left || !c.statement.contains('$'))
 }

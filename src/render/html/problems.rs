@@ -2,24 +2,20 @@
 //! values, space to work, and no answer) and the key (each variant's answers, exact and to four
 //! figures).
 
-use super::memo::{Kept, Memo};
-use super::{RenderError, math};
+use super::math;
+use super::prose::{author_html, prose_html, unit_html};
 use crate::base::format::figures;
 use crate::cas::Expr;
-use crate::document::{Problem, Sheet, Variant};
+use crate::document::words::{listed, numbers_formula};
+use crate::document::{KEY_FIGURES, Problem, ROUNDED_FIGURES, Sheet, Variant, answer_words};
 use crate::model::catalogue::{quantity, quantity_symbol};
 use crate::model::prose::Prose;
 use crate::model::value::Value;
 use crate::notation::{Formula, Op};
+use crate::render::RenderError;
+use crate::render::memo::Recall;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
-
-/// Significant figures of the key's decimals.
-pub const KEY_FIGURES: usize = 4;
-
-/// The figures of an exact answer too long to read (`AnswerCheck::rounded`), in the key's exact
-/// column: more than the decimal column's, so a grader can tell a rounding slip from an error.
-pub const ROUNDED_FIGURES: usize = 6;
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SheetVariant<P> {
@@ -66,7 +62,7 @@ pub struct KeyAnswer {
 
 /// A statement as HTML: the text escaped, each value as MathML.
 pub fn statement_html(statement: &Prose) -> Result<String, RenderError> {
-    super::prose_html(statement)
+    prose_html(statement)
 }
 
 /// The sheet's variants, each with every problem's `make` at its variant on that sheet. Each
@@ -114,41 +110,6 @@ fn sheet_views<P: Serialize + DeserializeOwned>(
         .collect()
 }
 
-/// A sheet's units in the memo, named `<sheet>-<problem number>` and keyed by their inputs,
-/// and those made fresh.
-pub struct Recall<'a> {
-    pub memo: &'a dyn Memo,
-    /// The sheet's file, as its unit names start (`lecture-1-problems-key`).
-    pub sheet: String,
-    pub kept: Vec<Kept>,
-}
-
-impl<'a> Recall<'a> {
-    /// The units of the sheet written to `path` (a site path: its `/` become `.`).
-    pub fn of(memo: &'a dyn Memo, path: &str) -> Recall<'a> {
-        Recall {
-            memo,
-            sheet: path.replace('/', "."),
-            kept: Vec::new(),
-        }
-    }
-
-    pub(crate) fn recall_or<T: Serialize + DeserializeOwned>(
-        &mut self,
-        unit: &str,
-        inputs: &[&dyn std::fmt::Debug],
-        make: impl FnOnce() -> Result<T, RenderError>,
-    ) -> Result<T, RenderError> {
-        let mut all: Vec<&dyn std::fmt::Debug> = vec![&"sheet-column", &self.sheet];
-        all.extend_from_slice(inputs);
-        let key = super::memo::key(&all);
-        let name = format!("{}-{unit}", self.sheet);
-        let (made, kept) = super::memo::recall_or(self.memo, name, key, make)?;
-        self.kept.extend(kept);
-        Ok(made)
-    }
-}
-
 /// The student's sheet: built from the statements and values alone, so no answer reaches it.
 pub fn student_sheet(
     sheet: &Sheet,
@@ -158,7 +119,7 @@ pub fn student_sheet(
         Ok(StudentProblem {
             number,
             title: p.title.clone(),
-            title_html: super::author_html(&p.title)?,
+            title_html: author_html(&p.title)?,
             variant: v.number,
             statement: statement_html(&v.statement)?,
         })
@@ -207,7 +168,7 @@ pub fn answer_key(sheet: &Sheet, memo: &mut Recall) -> Result<AnswerKey, RenderE
             KeyEntry::Shared {
                 number,
                 title: p.title.clone(),
-                title_html: super::author_html(&p.title)?,
+                title_html: author_html(&p.title)?,
                 variant: v.number,
             }
         } else {
@@ -261,9 +222,9 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
     Ok(KeyProblem {
         number,
         title: p.title.clone(),
-        title_html: super::author_html(&p.title)?,
+        title_html: author_html(&p.title)?,
         variant: v.number,
-        values: math::inline(&super::listed(values).to_tex())?,
+        values: math::inline(&listed(values).to_tex())?,
         answers,
         page: p.page.clone(),
         checked: crate::base::format::sci(v.worst_error()),
@@ -277,58 +238,16 @@ pub fn decimals(shape: &Value, numbers: &[f64], digits: usize) -> Formula {
         .iter()
         .map(|x| Formula::decimal(&figures(*x, digits)))
         .collect();
-    super::numbers_formula(shape, n)
-}
-
-/// An answer's name in words, as a student reads it: "Moment about the axis".
-pub fn answer_words(name: &str) -> &str {
-    match name {
-        quantity::PRINCIPAL_MOMENTS => "Principal moments",
-        quantity::PRECESSION_RATE => "Precession rate",
-        quantity::RADIUS_OF_GYRATION => "Radius of gyration",
-        quantity::INERTIA_TENSOR => "Inertia tensor",
-        quantity::ANGULAR_MOMENTUM => "Angular momentum",
-        quantity::KINETIC_ENERGY => "Kinetic energy",
-        quantity::MOMENT_ABOUT_AXIS => "Moment about the axis",
-        _ => name,
-    }
-}
-
-/// The order a list or matrix answer's entries are asked in, for a blank per entry.
-pub fn answer_order(name: &str) -> Option<&'static str> {
-    match name {
-        quantity::PRINCIPAL_MOMENTS => Some("in ascending order, I1 ≤ I2 ≤ I3"),
-        quantity::ANGULAR_MOMENTUM => Some("its x, y and z components"),
-        quantity::INERTIA_TENSOR => Some("rows and columns x, y, z"),
-        _ => None,
-    }
+    numbers_formula(shape, n)
 }
 
 /// An answer's label as HTML: the author's words, a bare quantity's own, or the expression.
 fn spec_label(a: &crate::scene::Answer) -> Result<String, RenderError> {
     match (&a.label, a.bare_quantity()) {
-        (Some(words), _) => super::author_html(&crate::base::format::capitalised(words)),
+        (Some(words), _) => author_html(&crate::base::format::capitalised(words)),
         (None, Some(q)) => answer_label(q),
         (None, None) => math::inline(&a.value.to_tex()),
     }
-}
-
-/// A unit as HTML: `kg m^2/s` as kg m<sup>2</sup>/s, a `*` as a space.
-pub fn unit_html(text: &str) -> String {
-    let escaped = tera::escape_html(text).replace('*', " ");
-    let mut out = String::new();
-    let mut rest = escaped.as_str();
-    while let Some(i) = rest.find('^') {
-        out.push_str(&rest[..i]);
-        let power: String = rest[i + 1..]
-            .chars()
-            .take_while(|c| c.is_ascii_digit() || *c == '-')
-            .collect();
-        out.push_str(&format!("<sup>{}</sup>", power.replace('-', "−")));
-        rest = &rest[i + 1 + power.len()..];
-    }
-    out.push_str(rest);
-    format!("<span class=\"unit\">{out}</span>")
 }
 
 /// "Inertia tensor" and its symbol, as HTML.

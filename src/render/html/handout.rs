@@ -2,9 +2,11 @@
 //! read off its page's view. What a part shows is decided in `document::handout`; this only
 //! looks the pieces up.
 
-use super::{ClaimView, PageView, RenderError, StepView, prose_html};
+use super::prose::prose_html;
+use super::{ClaimView, PageView, StepView};
 use crate::document::Page;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
+use crate::render::RenderError;
 use serde::Serialize;
 
 #[derive(Serialize)]

@@ -3,15 +3,15 @@
 //! and a printer that drops a times sign ("3 0.4⁴" for 3 ⋅ 0.4⁴) are refused, at the step's
 //! line; the same pages as derived pass.
 
-use super::RenderError;
 use super::guard::printed_number;
 use crate::document::Page;
 use crate::notation::{Formula, Op};
+use crate::render::RenderError;
 use crate::scene::Scene;
 use std::path::Path;
 
 /// Two pendulums joined by a spring (issue 69's reproducer), its modes given as a list.
-const COUPLED: &str = include_str!("../../tests/fixtures/coupled-modes-list.toml");
+const COUPLED: &str = include_str!("../../../tests/fixtures/coupled-modes-list.toml");
 
 fn coupled() -> Page {
     let scene = Scene::parse(COUPLED, Path::new("coupled.toml")).unwrap();

@@ -1,10 +1,10 @@
 //! Formulas on the pages: MathML at build time (notation/mathml.rs), a long one in pieces a
 //! browser can wrap, so pages need no JavaScript and no network.
 
-use super::RenderError;
 use crate::notation::latex::{Node, relation_text};
 use crate::notation::linebreak;
 use crate::notation::{self, MathmlError, Tex};
+use crate::render::RenderError;
 use pulldown_latex::event::{Content, Grouping};
 
 /// MathML for a formula or a piece of it, displayed as a block or inline. A formula that

@@ -66,7 +66,7 @@ fn an_agreeing_claim_prints_its_quantity_and_the_notes_form() {
 
 #[test]
 fn a_statement_that_writes_its_equation_is_not_followed_by_it_again() {
-    use super::claim_view::lead;
+    use crate::document::words::claim_lead as lead;
     assert_eq!(
         lead("the tension in the string.").as_deref(),
         Some("The tension in the string")

@@ -4,13 +4,13 @@
 //! (`verify::shown_is_result`: random points, then the engine). A page that would show what was
 //! not derived fails the build at the scene's line, as mechbook's bug, never a published page.
 
-use super::RenderError;
 use crate::cas::Expr;
 use crate::derive::step_names::Stands;
 use crate::document::Page;
 use crate::model::value::Value;
 use crate::notation::Tex;
 use crate::notation::read_back::{Names, read_back, sides};
+use crate::render::RenderError;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The page's reader: the names its formulas may print, what the results among them stand

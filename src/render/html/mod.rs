@@ -1,28 +1,47 @@
 //! The HTML renderer: the documents -> the site's pages, handouts, sheets, plots and style
 //! sheet through the Tera templates, as bytes in memory. Writing them is `site`'s job.
 
-use super::renderer::{Context, Rendered, Renderer, TemplateTexts, add};
-use super::{PageView, page_view, plot, problems};
-use super::{RenderError, memo};
+#[cfg(test)]
+mod claim_form_tests;
+mod claim_view;
+mod guard;
+#[cfg(test)]
+mod guard_tests;
+pub mod handout;
+pub mod math;
+pub mod page;
+pub mod problems;
+mod prose;
+
+pub use claim_view::ClaimView;
+pub use page::{PageView, StepView, page_view};
+
+use super::RenderError;
+use super::memo;
+use super::renderer::{Context, Plots, Rendered, Renderer, TemplateTexts, add};
 use crate::document::course::{Documents, Lecture};
+use crate::document::files::{LecturePdfs, PDFS};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
 /// The templates, embedded as defaults; a user's folder overrides them file by file.
 const DEFAULTS: &[(&str, &str)] = &[
-    ("page.html", include_str!("../../templates/page.html")),
-    ("index.html", include_str!("../../templates/index.html")),
-    ("handout.html", include_str!("../../templates/handout.html")),
+    ("page.html", include_str!("../../../templates/page.html")),
+    ("index.html", include_str!("../../../templates/index.html")),
+    (
+        "handout.html",
+        include_str!("../../../templates/handout.html"),
+    ),
     (
         "problems-student.html",
-        include_str!("../../templates/problems-student.html"),
+        include_str!("../../../templates/problems-student.html"),
     ),
     (
         "problems-key.html",
-        include_str!("../../templates/problems-key.html"),
+        include_str!("../../../templates/problems-key.html"),
     ),
-    ("style.css", include_str!("../../templates/style.css")),
+    ("style.css", include_str!("../../../templates/style.css")),
 ];
 
 #[derive(Serialize)]
@@ -45,7 +64,7 @@ struct LectureView {
     /// has problems.
     problems: Option<(String, Option<String>)>,
     /// The same as PDFs, when this mechbook writes them.
-    pdf: Option<super::pdf::LecturePdfs>,
+    pdf: Option<LecturePdfs>,
     pages: Vec<PageLink>,
 }
 
@@ -151,7 +170,7 @@ fn problem_sheets(
             course,
             cx.templates,
         ]);
-        let mut columns = problems::Recall::of(cx.memo, &page);
+        let mut columns = memo::Recall::of(cx.memo, &page);
         let (html, kept) = memo::recall_or(cx.memo, format!("{page}.html"), unit, || {
             let mut ctx = tera::Context::new();
             ctx.insert("site", course);
@@ -174,10 +193,15 @@ fn problem_sheets(
                 ctx.insert("variants", &key.variants);
             }
             ctx.insert("print_css", &css);
-            ctx.insert(
-                "pdf",
-                &super::pdf::ENABLED.then(|| format!("pdf/{page}.pdf")),
-            );
+            // A sheet in parts links to its first part's PDF; the index lists every part.
+            let pdf = lecture.pdfs.problems.as_ref().and_then(|(sheet, key)| {
+                if kind == "student" {
+                    Some(sheet)
+                } else {
+                    key.as_ref()
+                }
+            });
+            ctx.insert("pdf", &pdf.filter(|_| PDFS));
             tera.render(&format!("problems-{kind}.html"), &ctx)
         })?;
         out.kept.extend(kept);
@@ -197,10 +221,12 @@ impl Renderer for Html {
     fn render(
         &self,
         docs: &Documents,
+        plots: &Plots,
         cx: &Context,
-        out: &mut Rendered,
-    ) -> Result<(), RenderError> {
-        html(docs, cx, out)
+    ) -> Result<Rendered, RenderError> {
+        let mut out = Rendered::default();
+        html(docs, plots, cx, &mut out)?;
+        Ok(out)
     }
 }
 
@@ -213,17 +239,21 @@ struct PageMade {
     note: Option<String>,
 }
 
-fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), RenderError> {
+fn html(
+    docs: &Documents,
+    plots: &Plots,
+    cx: &Context,
+    out: &mut Rendered,
+) -> Result<(), RenderError> {
     let course = cx.course;
     let (tera, css) = Templates::new(cx.templates);
     add(&mut out.files, PathBuf::from("style.css"), css.into_bytes())?;
-    for (i, file, fig) in &docs.figures {
-        let name = file.replace('/', ".");
-        let (svg, kept) = memo::recall_or(cx.memo, name, memo::key(&[&"plot", fig]), || {
-            plot::svg(fig).map_err(|e| e.in_scene(&docs.pages[*i].source))
-        })?;
-        out.kept.extend(kept);
-        add(&mut out.files, PathBuf::from(file), svg.into_bytes())?;
+    for (file, svg) in plots {
+        add(
+            &mut out.files,
+            PathBuf::from(file),
+            svg.clone().into_bytes(),
+        )?;
     }
     // Each page on its own, on both cores; added in the pages' order.
     let indices: Vec<usize> = (0..docs.pages.len()).collect();
@@ -287,15 +317,17 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
                         .parts
                         .iter()
                         .map(|p| {
-                            super::handout::part_view(p, &docs.pages[p.page], &pages[p.page])
+                            handout::part_view(p, &docs.pages[p.page], &pages[p.page])
                                 .map_err(|e| e.in_scene(&docs.pages[p.page].source))
                         })
                         .collect::<Result<Vec<_>, RenderError>>()?;
                     ctx.insert("parts", &parts);
-                    ctx.insert(
-                        "pdf",
-                        &super::pdf::ENABLED.then(|| format!("pdf/{name}.pdf")),
-                    );
+                    let pdf = if handout.instructor {
+                        &lecture.pdfs.instructor
+                    } else {
+                        &lecture.pdfs.student
+                    };
+                    ctx.insert("pdf", &PDFS.then_some(pdf));
                     tera.render("handout.html", &ctx)
                 })?;
             out.kept.extend(kept);
@@ -306,14 +338,12 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
             )?;
         }
         let problems = problem_sheets(&tera, cx, docs, lecture, out)?;
-        let sheet_variants = lecture.sheet.as_ref().map(|s| s.variants.len());
         lectures.push(LectureView {
             name: lecture.name.clone(),
             heading: lecture.heading.clone(),
             student: format!("handouts/{slug}-student.html"),
             instructor: format!("handouts/{slug}-instructor.html"),
-            pdf: super::pdf::ENABLED
-                .then(|| super::pdf::lecture_pdfs(slug, sheet_variants, course)),
+            pdf: PDFS.then(|| lecture.pdfs.clone()),
             problems,
             pages: lecture
                 .pages
@@ -322,7 +352,7 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
                     Ok(PageLink {
                         href: docs.files[i].clone(),
                         title: crate::model::prose::plain(&pages[i].title),
-                        title_html: super::author_html(&pages[i].title)?,
+                        title_html: prose::author_html(&pages[i].title)?,
                         errata: pages[i].errata,
                         problem: docs.is_problem(i),
                     })
@@ -345,7 +375,7 @@ fn html(docs: &Documents, cx: &Context, out: &mut Rendered) -> Result<(), Render
 /// (its first characters) and its size, read from the page as written (`math::scaled`).
 fn phone_scaled(page: &crate::document::Page, html: &[u8]) -> Option<String> {
     let html = String::from_utf8_lossy(html);
-    let scaled = super::math::scaled_formulas(&html);
+    let scaled = math::scaled_formulas(&html);
     if scaled.is_empty() {
         return None;
     }

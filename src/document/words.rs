@@ -1,0 +1,125 @@
+//! What every renderer says of a page in the same words: a result's heading and equation, a
+//! numeric check's sentence, the scene's values, the entries of a result at its numbers, and
+//! how a claim leads into its formula. Decided here once, so that the page and the paper agree.
+
+use super::{At, Page, Quantity};
+use crate::base::format::sci;
+use crate::cas::Expr;
+use crate::model::value::Value;
+use crate::notation::{Formula, Op};
+
+/// A result's heading: a catalogue quantity's name in words; none for a step's result, whose
+/// equation names it (`ẍ₁ = …`).
+pub fn result_heading(q: &Quantity) -> String {
+    match q.symbol {
+        Some(_) => String::new(),
+        None => crate::model::catalogue::heading(&q.name),
+    }
+}
+
+/// A step's result as the page states it: `symbol = value`.
+pub fn result_equation(symbol: &Expr, value: &Value) -> Formula {
+    Formula::equation(Formula::Expr(symbol.clone()), value.to_expr())
+}
+
+/// Formulas one after another, set apart by a comma and a space: `a = 1,\; b = 2`.
+pub fn listed(items: impl IntoIterator<Item = Formula>) -> Formula {
+    let mut row = Vec::new();
+    for item in items {
+        if !row.is_empty() {
+            row.extend([Formula::Op(Op::Comma), Formula::Op(Op::Medium)]);
+        }
+        row.push(item);
+    }
+    Formula::Row(row)
+}
+
+/// Numbers (`n`, row-major) in the shape of `v`: a number, a column or a matrix.
+pub fn numbers_formula(v: &Value, mut n: Vec<Formula>) -> Formula {
+    match v {
+        Value::Scalar(_) => n.swap_remove(0),
+        Value::Vector(_) => Formula::Matrix(vec![n]),
+        Value::Matrix(_) => Formula::Matrix(n.chunks(3).map(<[Formula]>::to_vec).collect()),
+    }
+}
+
+/// An author's step's numeric check in one sentence, for every printer.
+pub fn check_sentence(c: &crate::verify::StepCheck) -> String {
+    match &c.problem {
+        Some(p) => format!("Not checked numerically: {p}"),
+        None => format!(
+            "Checked numerically, by {}: {} {} (within {}), {} evaluations.",
+            c.method,
+            if c.passed() {
+                "agrees to"
+            } else {
+                "FAILS, differs by"
+            },
+            sci(c.error),
+            sci(c.tolerance),
+            c.evaluations
+        ),
+    }
+}
+
+/// A result's entries at the scene's numbers, an entry below the rounding of the largest
+/// (cos(π/2) in floats, 6e-17) made zero.
+pub fn at_entries(at: &At) -> Vec<f64> {
+    let largest = at.numbers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    at.numbers
+        .iter()
+        .map(|x| {
+            if x.abs() <= 64.0 * f64::EPSILON * largest {
+                0.0
+            } else {
+                *x
+            }
+        })
+        .collect()
+}
+
+/// The scene's values, `M = 1, α = 0.6`, as one formula.
+pub fn values_at(values: &[(String, f64)]) -> Formula {
+    let mut row = Vec::new();
+    for (k, (name, x)) in values.iter().enumerate() {
+        if k > 0 {
+            row.extend([Formula::Op(Op::Comma), Formula::Op(Op::Quad)]);
+        }
+        row.extend([
+            Formula::Expr(Expr::sym(name)),
+            Formula::Op(Op::Equals),
+            Formula::decimal(&x.to_string()),
+        ]);
+    }
+    Formula::Row(row)
+}
+
+/// A claim's statement as the lead of its formula ("The tension in the string: T = …"): its
+/// first letter a capital, its closing full stop dropped; `None` where the statement writes an
+/// equation of its own ("$\\beta^2 = …$: the linearised equations …"), which the formula
+/// would repeat.
+pub fn claim_lead(statement: &str) -> Option<String> {
+    let math_has_equation = statement
+        .split('$')
+        .skip(1)
+        .step_by(2)
+        .any(|m| m.contains('=') || m.contains("\\approx"));
+    if math_has_equation {
+        return None;
+    }
+    let s = statement.trim_end();
+    let s = s.strip_suffix('.').unwrap_or(s);
+    let mut chars = s.chars();
+    chars
+        .next()
+        .map(|first| first.to_uppercase().chain(chars).collect())
+}
+
+/// Whether an agreeing claim's list item prints its formula after its statement: a scalar
+/// claim with a left side, or one whose statement holds no mathematics (a statement that
+/// writes "$|\\vec L|^2$ is constant: $I_1^2 A^2 + …$" is not followed by "I₁²A² + …" again).
+pub fn claim_shows_formula(page: &Page, i: usize) -> bool {
+    let c = &page.claims[i];
+    let has_left = matches!(page.claim_left(i), Ok(Some(_)));
+    matches!(c.derived, Some(Value::Scalar(_))) && (has_left || !c.statement.contains('$'))
+}

@@ -1,0 +1,405 @@
+//! A scene's page as the HTML templates see it ([`PageView`]): its steps, results, numbers,
+//! claims and figures, each formula converted to MathML.
+
+use super::claim_view::ClaimView;
+use super::prose::{author_html, number, prose_html, unit_html};
+use super::{guard, math};
+use crate::base::format::sci;
+use crate::cas::Expr;
+use crate::derive::ExactBasis;
+use crate::document::words::{
+    at_entries, check_sentence, listed, numbers_formula, result_equation, result_heading, values_at,
+};
+use crate::document::{At, Link, Page, PrincipalValues};
+use crate::model::value::Value;
+use crate::notation::{Formula, Op};
+use crate::render::RenderError;
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct StepView {
+    pub title: String,
+    pub math: String,
+    pub why: String,
+    /// A result at the scene's numbers: "at m = 1, a = 2:" and its MathML (empty for a step,
+    /// for a number, or where a symbol has no value).
+    pub at: String,
+    /// An author's step's numeric check, as HTML (empty for a built-in step).
+    pub check: String,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct NumericRow {
+    pub body: String,
+    pub method: String,
+    pub points: usize,
+    pub error: String,
+    pub predicted: String,
+    pub within_law: bool,
+    /// Where the method left its ladder at this fidelity (empty for a rung below the last).
+    pub stop: String,
+    /// Measured wall time, only when the build asks for timings (it makes pages vary).
+    pub seconds: Option<String>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct AccuracyRow {
+    pub result: String,
+    pub method: String,
+    pub true_error: String,
+    pub estimated_error: String,
+    pub cost: String,
+    pub seconds: Option<String>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct FigureView {
+    /// Relative to the site root: `plots/<scene>-<slug>.svg`.
+    pub file: String,
+    pub title: String,
+    pub desc: String,
+    /// The error and cost of each numeric result drawn.
+    pub accuracy: Vec<AccuracyRow>,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PageView {
+    /// How many of its formulas the build's guard read back and checked, and could not read
+    /// (in this build; none for a page recalled from the cache, checked when it was made).
+    #[serde(skip)]
+    pub guarded: guard::Counts,
+    pub id: String,
+    pub title: String,
+    /// The title as HTML: its `$…$` mathematics as MathML.
+    pub title_html: String,
+    pub lecture: String,
+    pub section: String,
+    pub equations: String,
+    /// The scene's file name only: the build machine's paths never reach a page.
+    pub source: String,
+    /// The numeric fidelity, with its target and cost cap.
+    pub fidelity: String,
+    pub fidelity_name: String,
+    /// Each symbol as MathML, its meaning as written, and its meaning as HTML with its unit.
+    pub symbols: Vec<(String, String, String)>,
+    /// Each abbreviation the scene defines, as MathML: `λ = M/(2πR)`.
+    pub definitions: Vec<String>,
+    /// Each coordinate as MathML, and what it measures as HTML.
+    pub coordinates: Vec<(String, String)>,
+    /// Each body in words, as HTML.
+    pub bodies: Vec<String>,
+    /// One per `Page::steps`.
+    pub steps: Vec<StepView>,
+    /// The results the page lists: `quantities` that are results, then `principal`.
+    pub results: Vec<StepView>,
+    /// One per `Page::quantities`: `None` for working quantities (an integrand, a position).
+    pub quantities: Vec<Option<StepView>>,
+    /// The exact principal axes, then the principal moments at the scene's values.
+    pub principal: Vec<StepView>,
+    pub numeric: Vec<NumericRow>,
+    pub claims: Vec<ClaimView>,
+    pub figures: Vec<FigureView>,
+    pub errata: usize,
+    pub passed: bool,
+    pub prev: Option<Link>,
+    pub next: Option<Link>,
+}
+
+/// A link whose text is a page's title, the title's mathematics as plain text (a link's text
+/// in the page's navigation holds no markup).
+pub(super) fn plain_link(l: &Link) -> Link {
+    Link {
+        href: l.href.clone(),
+        title: crate::model::prose::plain(&l.title),
+    }
+}
+
+/// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
+/// of the symbols it contains) and the number, vector or matrix as MathML.
+fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
+    let n: Vec<Formula> = at_entries(at).into_iter().map(|x| number(x, 6)).collect();
+    let symbols = at.symbols.iter().map(|(k, x)| {
+        with_unit(
+            Formula::Row(vec![
+                Formula::Expr(Expr::sym(k)),
+                Formula::Op(Op::Equals),
+                number(*x, 6),
+            ]),
+            at.units.get(k),
+        )
+    });
+    Ok(format!(
+        "at {}: {}",
+        math::inline(&listed(symbols).to_tex())?,
+        math::inline(&with_unit(numbers_formula(v, n), at.unit.as_ref()).to_tex())?
+    ))
+}
+
+/// A number followed by its unit, a thin space between: 9.81 m/s².
+fn with_unit(f: Formula, unit: Option<&String>) -> Formula {
+    match unit {
+        Some(u) => Formula::Row(vec![
+            f,
+            Formula::Op(Op::Thin),
+            crate::model::units::unit_formula(u),
+        ]),
+        None => f,
+    }
+}
+
+/// An author's step's numeric check in one sentence (escaped for HTML).
+fn check_text(c: &crate::verify::StepCheck) -> String {
+    tera::escape_html(&check_sentence(c))
+}
+
+/// The HTML view of one page, its names typeset as the scene says. `timings` adds measured
+/// seconds to the numeric table.
+pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
+    crate::notation::typeset_as(&page.tex, || scene_page_view(page, timings))
+}
+
+fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
+    let mut guard = guard::Guard::for_page(page);
+    let steps = page
+        .steps
+        .iter()
+        .map(|st| {
+            let tex = st.statement.to_tex();
+            guard.step(st, &tex)?;
+            Ok(StepView {
+                title: author_html(&st.title)?,
+                math: math::block(&tex)?,
+                why: prose_html(&st.why_cited())?,
+                at: String::new(),
+                check: st.check.as_ref().map(check_text).unwrap_or_default(),
+            })
+        })
+        .collect::<Result<Vec<_>, RenderError>>()?;
+    let mut quantities = Vec::new();
+    for q in &page.quantities {
+        quantities.push(match q.is_result {
+            true => Some(StepView {
+                title: result_heading(q),
+                math: match &q.symbol {
+                    Some(symbol) => {
+                        let tex = result_equation(symbol, &q.value).to_tex();
+                        if let Value::Scalar(derived) = &q.derived {
+                            guard.printed(&tex, derived, page.line)?;
+                        }
+                        math::block(&tex)?
+                    }
+                    None => {
+                        let tex = q.formula().to_tex();
+                        guard.printed_value(&tex, &q.derived, page.line)?;
+                        math::block(&tex)?
+                    }
+                },
+                why: String::new(),
+                at: match &q.at {
+                    Some(at) => at_numbers_html(&q.value, at)?,
+                    None => String::new(),
+                },
+                check: String::new(),
+            }),
+            false => None,
+        });
+    }
+    let mut principal = Vec::new();
+    for sp in &page.principal_axes {
+        let vector = |v: &[Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
+        let mut row = vec![Formula::Expr(sp.value.clone())];
+        match &sp.basis {
+            ExactBasis::Axis(a) => row.extend([Formula::Text(" along ".into()), vector(a)]),
+            ExactBasis::PlaneNormalTo(n) => row.extend([
+                Formula::Text(", every axis ".into()),
+                Formula::Op(Op::Perp),
+                vector(n),
+            ]),
+            ExactBasis::All => row.push(Formula::Text(", every axis".into())),
+        }
+        principal.push(StepView {
+            title: format!("Principal moment (multiplicity {})", sp.multiplicity),
+            math: math::block(&Formula::Row(row).to_tex())?,
+            why: String::new(),
+            at: String::new(),
+            check: String::new(),
+        });
+    }
+    if let Some(p) = &page.principal_values {
+        principal.push(principal_values_view(p)?);
+    }
+    let results = quantities
+        .iter()
+        .flatten()
+        .chain(&principal)
+        .cloned()
+        .collect();
+    let numeric = page
+        .numeric
+        .iter()
+        .map(|q| NumericRow {
+            body: q.body.clone(),
+            method: q.method.into(),
+            points: q.points,
+            error: sci(q.error),
+            predicted: sci(q.predicted_error),
+            within_law: q.within_law,
+            stop: q.stop.into(),
+            seconds: timings.then(|| format!("{:.1e}", q.seconds)),
+        })
+        .collect();
+    let claims = (0..page.claims.len())
+        .map(|i| super::claim_view::claim_view(page, i, &mut guard))
+        .collect::<Result<_, RenderError>>()?;
+    Ok(PageView {
+        guarded: guard.counts,
+        id: page.id.clone(),
+        title: crate::model::prose::plain(&page.title),
+        title_html: author_html(&page.title)?,
+        lecture: page.lecture.clone(),
+        section: page.section.clone(),
+        equations: page.equations.join(", "),
+        source: page
+            .source
+            .file_name()
+            .map(|f| f.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+        fidelity: page.fidelity.to_string(),
+        fidelity_name: page.fidelity.name(),
+        symbols: page
+            .symbols
+            .iter()
+            .map(|(k, v)| {
+                let unit = page
+                    .units
+                    .get(k)
+                    .map_or(String::new(), |u| format!(" ({})", unit_html(u)));
+                Ok((
+                    math::mathml(&Expr::sym(k).to_tex(), false)?,
+                    v.clone(),
+                    format!("{}{unit}", author_html(v)?),
+                ))
+            })
+            .collect::<Result<_, RenderError>>()?,
+        definitions: page
+            .definitions
+            .iter()
+            .map(|(k, e)| {
+                math::inline(&Formula::equation(Formula::Expr(Expr::sym(k)), e.clone()).to_tex())
+            })
+            .collect::<Result<_, RenderError>>()?,
+        coordinates: page
+            .coordinates
+            .iter()
+            .map(|(k, v)| {
+                // With its unit, as the PDF's setup and the symbols give theirs.
+                let unit = page
+                    .units
+                    .get(k)
+                    .map_or(String::new(), |u| format!(" ({})", unit_html(u)));
+                Ok((
+                    math::mathml(&Expr::sym(k).to_tex(), false)?,
+                    format!("{}{unit}", author_html(v)?),
+                ))
+            })
+            .collect::<Result<_, RenderError>>()?,
+        bodies: page
+            .bodies
+            .iter()
+            .map(prose_html)
+            .collect::<Result<_, RenderError>>()?,
+        steps,
+        results,
+        quantities,
+        principal,
+        numeric,
+        errata: page.errata,
+        claims,
+        figures: page
+            .figures
+            .iter()
+            .map(|f| FigureView {
+                file: f.file.clone(),
+                title: f.title.clone(),
+                desc: f.desc.clone(),
+                accuracy: f
+                    .accuracy
+                    .iter()
+                    .map(|a| AccuracyRow {
+                        result: a.result.clone(),
+                        method: a.method.clone(),
+                        true_error: a.true_error.map_or("—".into(), sci),
+                        estimated_error: a.estimated_error.map_or("—".into(), sci),
+                        cost: format!("{} {}", a.cost, a.unit),
+                        seconds: timings.then(|| format!("{:.1e}", a.seconds)),
+                    })
+                    .collect(),
+            })
+            .collect(),
+        passed: page.passed,
+        prev: page.prev.as_ref().map(plain_link),
+        next: page.next.as_ref().map(plain_link),
+    })
+}
+
+/// The principal moments as numbers, with the axes when only the numerics give them, and how
+/// well the two routes agree.
+fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
+    use crate::numeric::eigen::Space;
+    let letter = Formula::Name(crate::notation::Name::letter(&p.letter));
+    let mut row = vec![
+        letter,
+        Formula::Op(Op::Equals),
+        listed(p.exact.iter().map(|v| number(*v, 6))),
+    ];
+    if p.closed_form {
+        let axes: Vec<Formula> = p
+            .numeric
+            .iter()
+            .filter_map(|e| match &e.space {
+                Space::Axis(v) => Some(Formula::Paren(
+                    Box::new(Formula::Row(vec![
+                        number(v.x, 4),
+                        Formula::Op(Op::Comma),
+                        number(v.y, 4),
+                        Formula::Op(Op::Comma),
+                        number(v.z, 4),
+                    ])),
+                    true,
+                )),
+                _ => None,
+            })
+            .collect();
+        if !axes.is_empty() {
+            row.extend([
+                Formula::Op(Op::Quad),
+                Formula::Text("axes ".into()),
+                listed(axes),
+            ]);
+        }
+    }
+    let route = if p.closed_form {
+        "the closed form above"
+    } else {
+        "the exact roots"
+    };
+    Ok(StepView {
+        at: String::new(),
+        check: String::new(),
+        title: "Principal moments at the scene's values".into(),
+        math: math::block(&Formula::Row(row).to_tex())?,
+        why: format!(
+            "at {}: {}",
+            math::inline(&values_at(&p.values).to_tex())?,
+            tera::escape_html(&format!(
+                "{route} evaluated, and the eigen-solver on the exact tensor agrees to {} \
+                 (relative)",
+                sci(p.error)
+            ))
+        ),
+    })
+}
+
+#[cfg(test)]
+#[path = "page_tests.rs"]
+mod tests;

@@ -1,0 +1,48 @@
+//! An author's words and mechbook's numbers and units as HTML, for every page of the site.
+
+use super::math;
+use crate::notation::Formula;
+use crate::render::RenderError;
+
+/// A sentence as HTML: its text escaped, its formulas as MathML.
+pub fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError> {
+    use crate::model::prose::Piece;
+    let mut out = String::new();
+    for piece in &prose.0 {
+        match piece {
+            Piece::Text(t) => out.push_str(&tera::escape_html(t)),
+            // An author's mathematics is set from the tree read at load, mechbook's from the
+            // tree it builds.
+            Piece::Math(f) => out.push_str(&math::inline(&f.to_tex())?),
+        }
+    }
+    Ok(out)
+}
+
+/// An author's text as HTML: escaped, its `$…$` mathematics as MathML.
+pub fn author_html(text: &str) -> Result<String, RenderError> {
+    prose_html(&crate::model::prose::author(text))
+}
+
+/// A computed number to `digits` significant figures (4.6875 × 10⁻⁶, never e-notation).
+pub fn number(x: f64, digits: usize) -> Formula {
+    Formula::decimal(&crate::base::format::significant(x, digits))
+}
+
+/// A unit as HTML: `kg m^2/s` as kg m<sup>2</sup>/s, a `*` as a space.
+pub fn unit_html(text: &str) -> String {
+    let escaped = tera::escape_html(text).replace('*', " ");
+    let mut out = String::new();
+    let mut rest = escaped.as_str();
+    while let Some(i) = rest.find('^') {
+        out.push_str(&rest[..i]);
+        let power: String = rest[i + 1..]
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '-')
+            .collect();
+        out.push_str(&format!("<sup>{}</sup>", power.replace('-', "−")));
+        rest = &rest[i + 1 + power.len()..];
+    }
+    out.push_str(rest);
+    format!("<span class=\"unit\">{out}</span>")
+}
