@@ -150,14 +150,23 @@ fn unexpected_characters_are_named_whole() {
 
 #[test]
 fn latex_forms() {
-    assert_eq!(p("1/2*M*R^2").to_latex(), "\\frac{M R^{2}}{2}");
     assert_eq!(
-        p("sin(alpha)^2").to_latex(),
+        p("1/2*M*R^2").to_latex(crate::notation::Names::none()),
+        "\\frac{M R^{2}}{2}"
+    );
+    assert_eq!(
+        p("sin(alpha)^2").to_latex(crate::notation::Names::none()),
         "\\,{\\sin}^{2}\\left(\\alpha\\right)"
     );
-    assert_eq!(p("w1").to_latex(), "\\omega_{1}");
-    assert_eq!(p("wd2").to_latex(), "\\dot{\\omega}_{2}");
-    assert_eq!(p("w").to_latex(), "w");
+    assert_eq!(
+        p("w1").to_latex(crate::notation::Names::none()),
+        "\\omega_{1}"
+    );
+    assert_eq!(
+        p("wd2").to_latex(crate::notation::Names::none()),
+        "\\dot{\\omega}_{2}"
+    );
+    assert_eq!(p("w").to_latex(crate::notation::Names::none()), "w");
 }
 
 #[test]
@@ -167,7 +176,10 @@ fn a_product_puts_its_coefficient_before_a_root_of_a_number() {
     for factors in [vec![root.clone(), p("1/8")], vec![p("1/8"), root.clone()]] {
         let e = Expr::ordered_product(factors);
         assert_eq!(e.to_text(), "1/8*3^(1/2)");
-        assert_eq!(e.to_latex(), "\\frac{\\sqrt{3}}{8}");
+        assert_eq!(
+            e.to_latex(crate::notation::Names::none()),
+            "\\frac{\\sqrt{3}}{8}"
+        );
     }
     let e = Expr::ordered_product(vec![Expr::sym("M"), root, p("27/32")]);
     assert_eq!(e.to_text(), "27/32*3^(1/2)*M");

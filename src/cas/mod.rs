@@ -24,12 +24,8 @@ mod positive;
 mod present;
 mod print;
 mod print_latex;
-mod print_typst;
 mod symbol_latex;
-pub use symbol_latex::{
-    Head, NameForm, SymbolTex, greek_letter, name_form, numbered, numbered_result, prints_as_word,
-    typeset_as, typesets,
-};
+pub use symbol_latex::{GREEK, Head, NameForm, greek_letter, name_form, numbered, prints_as_word};
 mod radical;
 mod rational;
 mod series_form;
@@ -50,7 +46,9 @@ pub use factor_order::{Declared, order_factors};
 pub use functions::{SCALAR_FUNCTIONS, arity, needs_dimensionless, textbook_name};
 pub use matrix_form::{MatrixForm, factor_and_rows};
 pub use parse::{ParseError, Parsed, parse, parse_input};
-pub use print::{Prec, index_chain, page_fraction, split_sign};
+pub use print::{Prec, Style, index_chain, page_factors, page_fraction, split_sign, write};
+/// The printing walk, for the LaTeX and Typst printers in `notation`.
+pub use print_latex::OwnLatex;
 pub use radical::pull_squares;
 pub use rational::Rational;
 pub use size::ExpansionSize;

@@ -100,7 +100,11 @@ pub(super) fn size(e: &Expr) -> usize {
         }
         _ => None,
     };
-    let latex = factored.as_ref().unwrap_or(e).to_latex();
+    // By the conventions: the pass runs before any page, whatever the scene's own names.
+    let latex = factored
+        .as_ref()
+        .unwrap_or(e)
+        .latex_with(&|_| None, &|_| None);
     let latex = latex.replace("\\left", "").replace("\\right", "");
     latex.chars().filter(|c| !c.is_whitespace()).count()
 }

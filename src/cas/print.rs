@@ -82,7 +82,7 @@ pub fn page_fraction(v: &[Expr]) -> (Vec<Expr>, Vec<Expr>) {
 /// The factors above or below a page's fraction bar, side by side; `times` before a number
 /// (`2 · 3`, where `2 3` would read as 23). A lone factor needs no parentheses:
 /// \frac{a + b}{c}, not \frac{(a + b)}{c}.
-pub(super) fn page_factors(fs: &[Expr], times: &str, out: &mut String, style: &dyn Style) {
+pub fn page_factors(fs: &[Expr], times: &str, out: &mut String, style: &dyn Style) {
     let fs: Vec<&Expr> = fs.iter().filter(|f| !f.is_one()).collect();
     if fs.is_empty() {
         out.push('1');
@@ -141,7 +141,7 @@ pub fn split_sign(e: &Expr) -> (bool, Expr) {
 
 /// One output syntax: how parentheses open and close, and how each kind of node is written.
 /// Sums and negative products are the walk's own.
-pub(super) trait Style {
+pub trait Style {
     fn open(&self) -> &'static str;
     fn close(&self) -> &'static str;
     fn symbol(&self, name: &str, out: &mut String);
@@ -164,7 +164,7 @@ pub(super) trait Style {
     fn index(&self, e: &Expr, out: &mut String);
 }
 
-pub(super) fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
+pub fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
     match e {
         Expr::Num(r) => style.number(r, ctx, out),
         Expr::Sym(s) => style.symbol(s, out),

@@ -1,22 +1,28 @@
 //! The pages' LaTeX style of the printing walk (`print.rs`): what Moodle's quizzes, `--json`
-//! and a formula's source show. The pages set the same walk as a tree (`notation/expr_tree.rs`),
+//! and a formula's source show (through `notation`'s `Expr::to_latex`, which gives it the
+//! scene's names), and what the presentation pass measures a form by (`present::size`). The pages set the same walk as a tree (`notation/expr_tree.rs`),
 //! which a test holds equal to this LaTeX read.
 
 use super::expr::Expr;
+use super::functions::{SCALAR_FUNCTIONS, textbook_name};
 use super::print::{Prec, Style, index_chain, page_factors, page_fraction, write};
 use super::rational::Rational;
-use super::symbol_latex::latex_symbol;
+use super::symbol_latex::{GREEK, Head, NameForm, name_form, numbered};
+
+/// A name's own LaTeX, where the scene gives it one (`notation::Names::latex`).
+pub type OwnLatex<'a> = &'a dyn Fn(&str) -> Option<String>;
 
 impl Expr {
-    pub fn to_latex(&self) -> String {
-        self.to_latex_named(&|_| None)
-    }
-
-    /// LaTeX with some symbols given a symbol of their own: a claim's `inertia_tensor[0][1]`
-    /// prints as I_{xy} when `named("inertia_tensor")` is `I`.
-    pub fn to_latex_named(&self, named: &dyn Fn(&str) -> Option<&'static str>) -> String {
+    /// LaTeX with each name as `own` gives it, else by the conventions, and some symbols
+    /// given a catalogue symbol: a claim's `inertia_tensor[0][1]` prints as I_{xy} when
+    /// `named("inertia_tensor")` is `I`.
+    pub fn latex_with(
+        &self,
+        own: OwnLatex<'_>,
+        named: &dyn Fn(&str) -> Option<&'static str>,
+    ) -> String {
         let mut s = String::new();
-        write(self, &mut s, Prec::Sum, &Latex { named });
+        write(self, &mut s, Prec::Sum, &Latex { own, named });
         s
     }
 }
@@ -78,6 +84,7 @@ fn trailing_scripts(latex: &str) -> Vec<char> {
 
 /// LaTeX for the pages (converted to MathML at build time).
 struct Latex<'a> {
+    own: OwnLatex<'a>,
     named: &'a dyn Fn(&str) -> Option<&'static str>,
 }
 
@@ -146,7 +153,7 @@ impl Style for Latex<'_> {
     fn symbol(&self, name: &str, out: &mut String) {
         match (self.named)(name) {
             Some(symbol) => out.push_str(symbol),
-            None => out.push_str(&latex_symbol(name)),
+            None => out.push_str(&latex_symbol(name, self.own)),
         }
     }
     fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
@@ -243,9 +250,9 @@ impl Style for Latex<'_> {
             out.push_str("\\right|");
             return;
         }
-        if n != "atan2" && super::SCALAR_FUNCTIONS.contains(&n) {
+        if n != "atan2" && SCALAR_FUNCTIONS.contains(&n) {
             // \sin, \arcsin, \ln, \sinh: LaTeX's own operator names.
-            out.push_str(&format!("\\{}\\left(", super::textbook_name(n)));
+            out.push_str(&format!("\\{}\\left(", textbook_name(n)));
         } else {
             out.push_str(&format!("\\operatorname{{{n}}}\\left("));
         }
@@ -302,5 +309,46 @@ impl Style for Latex<'_> {
             write(i, out, Prec::Sum, self);
         }
         out.push('}');
+    }
+}
+
+/// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
+/// `inertia_tensor` -> upright text; a name the scene typesets as it says.
+fn latex_symbol(s: &str, own: OwnLatex<'_>) -> String {
+    if let Some(tex) = own(s) {
+        return tex;
+    }
+    // A numbered result of a step the scene typesets: `acc_2` of `tex = "a"` is a₂.
+    if let Some((base, k)) = numbered(s)
+        && let Some(own) = own(base)
+    {
+        return format!("{{{own}}}_{{{k}}}");
+    }
+    match name_form(s) {
+        // A coordinate's rates: `phi'` is φ̇, `phi''` φ̈.
+        NameForm::Rate(base, second) => format!(
+            "\\{}{{{}}}",
+            if second { "ddot" } else { "dot" },
+            latex_symbol(base, own)
+        ),
+        NameForm::Numeral(digits) => digits.to_string(),
+        NameForm::Word(w) => format!("\\mathrm{{{}}}", w.replace('_', "\\_")),
+        NameForm::Inertia(axes) => format!("I_{{{axes}}}"),
+        NameForm::Head(head, tail) => {
+            let head = match head {
+                Head::Omega => "\\omega".to_string(),
+                Head::OmegaRate => "\\dot{\\omega}".to_string(),
+                Head::Greek(g) => format!("\\{g}"),
+                Head::Upright(u) => format!("\\mathrm{{{u}}}"),
+                Head::Letter(l) => l.to_string(),
+            };
+            if tail.is_empty() {
+                head
+            } else if GREEK.contains(&tail) {
+                format!("{head}_{{\\{tail}}}")
+            } else {
+                format!("{head}_{{{tail}}}")
+            }
+        }
     }
 }

@@ -1,56 +1,6 @@
-//! How a symbol's name is typeset: the conventions a scene's names follow (a Greek letter's
-//! name is the letter, `w1` is ω₁, `Ixx` is I_xx, a longer name upright), or the scene's own
-//! LaTeX for it (`tex = "\\Omega"`), in force while its page is rendered.
-
-use std::cell::RefCell;
-use std::collections::BTreeMap;
-
-/// A name's own typesetting, as the scene's author wrote it (`tex = "\\Omega"`) and as the
-/// one LaTeX reader (`notation/latex.rs`) set it in Typst's math.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SymbolTex {
-    pub latex: String,
-    pub typst: String,
-}
-
-thread_local! {
-    /// The names the scene being rendered typesets itself, read by the LaTeX and Typst
-    /// printers; empty outside [`typeset_as`].
-    static TYPESET: RefCell<BTreeMap<String, SymbolTex>> = const { RefCell::new(BTreeMap::new()) };
-}
-
-/// Runs `f` with the scene's own typesetting of its names, so that every formula of its page
-/// prints them so; the table before is put back after.
-pub fn typeset_as<R>(names: BTreeMap<String, SymbolTex>, f: impl FnOnce() -> R) -> R {
-    let before = TYPESET.with(|t| t.replace(names));
-    let out = f();
-    TYPESET.with(|t| t.replace(before));
-    out
-}
-
-/// The scene's own LaTeX for a name, while its page is rendered.
-pub(super) fn scene_tex(s: &str) -> Option<String> {
-    TYPESET.with(|t| t.borrow().get(s).map(|x| x.latex.clone()))
-}
-
-/// Whether the scene being rendered typesets a name itself (a `tex`).
-pub fn typesets(s: &str) -> bool {
-    TYPESET.with(|t| t.borrow().contains_key(s))
-}
-
-/// The scene's own Typst for a name, while its page is rendered.
-pub(super) fn scene_typst(s: &str) -> Option<String> {
-    TYPESET.with(|t| t.borrow().get(s).map(|x| x.typst.clone()))
-}
-
-/// A numbered result of a step the scene typesets (`acc_2` of a step `acc` with `tex = "a"`):
-/// the step's own typesetting and the number, which prints as its subscript (a₂).
-pub fn numbered_result(s: &str) -> Option<(SymbolTex, &str)> {
-    let (base, k) = numbered(s)?;
-    TYPESET
-        .with(|t| t.borrow().get(base).cloned())
-        .map(|tex| (tex, k))
-}
+//! The conventions a scene's names follow, read from the name alone (a Greek letter's name is
+//! the letter, `w1` is ω₁, `Ixx` is I_xx, a longer name upright), for each printer in
+//! `notation` to set in its own notation beside the scene's own `tex` (`notation::Names`).
 
 /// A name and its number, for a name of the form `step_k` (`acc_2` is `acc` and `2`).
 pub fn numbered(s: &str) -> Option<(&str, &str)> {
@@ -110,7 +60,7 @@ pub fn greek_letter(name: &str) -> Option<&'static str> {
         .map(|(_, c)| *c)
 }
 
-const GREEK: &[&str] = &[
+pub const GREEK: &[&str] = &[
     "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa",
     "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau", "phi", "chi", "psi", "omega", "Gamma",
     "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Phi", "Psi", "Omega",
@@ -207,67 +157,15 @@ pub fn prints_as_word(s: &str, own: &dyn Fn(&str) -> bool) -> bool {
     }
 }
 
-/// `alpha` -> `\alpha`, `w1` -> `\omega_{1}`, `wd1` -> `\dot{\omega}_{1}`, `Ixx` -> `I_{xx}`,
-/// `inertia_tensor` -> upright text.
-pub(super) fn latex_symbol(s: &str) -> String {
-    if let Some(tex) = scene_tex(s) {
-        return tex;
-    }
-    if let Some((own, k)) = numbered_result(s) {
-        return format!("{{{}}}_{{{k}}}", own.latex);
-    }
-    match name_form(s) {
-        // A coordinate's rates: `phi'` is φ̇, `phi''` φ̈.
-        NameForm::Rate(base, second) => format!(
-            "\\{}{{{}}}",
-            if second { "ddot" } else { "dot" },
-            latex_symbol(base)
-        ),
-        NameForm::Numeral(digits) => digits.to_string(),
-        NameForm::Word(w) => format!("\\mathrm{{{}}}", w.replace('_', "\\_")),
-        NameForm::Inertia(axes) => format!("I_{{{axes}}}"),
-        NameForm::Head(head, tail) => {
-            let head = match head {
-                Head::Omega => "\\omega".to_string(),
-                Head::OmegaRate => "\\dot{\\omega}".to_string(),
-                Head::Greek(g) => format!("\\{g}"),
-                Head::Upright(u) => format!("\\mathrm{{{u}}}"),
-                Head::Letter(l) => l.to_string(),
-            };
-            if tail.is_empty() {
-                head
-            } else if GREEK.contains(&tail) {
-                format!("{head}_{{\\{tail}}}")
-            } else {
-                format!("{head}_{{{tail}}}")
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn own(names: &[(&str, &str)]) -> BTreeMap<String, SymbolTex> {
-        names
-            .iter()
-            .map(|(n, latex)| {
-                let tex = SymbolTex {
-                    latex: latex.to_string(),
-                    typst: latex.to_string(),
-                };
-                (n.to_string(), tex)
-            })
-            .collect()
-    }
-
-    /// `acc_2` of a step `acc` with `tex = "a"` prints a₂ in every printer, and is no word;
-    /// without the `tex` it is the word `acc` with its subscript, which `check` warns of.
+    /// `acc_2` of a step `acc` the scene typesets is no word; without its `tex` it is the word
+    /// `acc` with its subscript, which `check` warns of.
     #[test]
-    fn a_numbered_result_prints_with_its_steps_symbol() {
-        let steps = own(&[("acc", "a")]);
-        let typesets = |n: &str| steps.contains_key(n);
+    fn a_numbered_result_of_a_typeset_step_is_no_word() {
+        let typesets = |n: &str| n == "acc";
         assert!(!prints_as_word("acc_2", &typesets));
         assert!(prints_as_word("acc_2", &|_| false));
         assert!(prints_as_word("space_rate", &|_| false));
@@ -276,11 +174,5 @@ mod tests {
         for symbol in ["phi1", "w3", "Ixx", "Omega_2", "p_phi", "x_c", "m2"] {
             assert!(!prints_as_word(symbol, &|_| false), "{symbol}");
         }
-        let (latex, typst) = typeset_as(steps, || {
-            let e = crate::cas::Expr::sym("acc_2");
-            (e.to_latex(), e.to_typst())
-        });
-        assert_eq!(latex, "{a}_{2}");
-        assert_eq!(typst, "attach(a, b: 2)");
     }
 }

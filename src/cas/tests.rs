@@ -225,11 +225,15 @@ fn claim_functions_print_in_their_usual_notation() {
         ("inertia_tensor[0][1]", "{I}_{xy}"),
         ("inertia_tensor[k][1]", "I_{k 1}"),
     ] {
-        assert_eq!(p(text).to_latex_named(&named), latex, "{text}");
+        assert_eq!(
+            p(text).to_latex_named(crate::notation::Names::none(), &named),
+            latex,
+            "{text}"
+        );
     }
     // Without a name the quantity stays an upright word.
     assert_eq!(
-        p("inertia_tensor[0][1]").to_latex(),
+        p("inertia_tensor[0][1]").to_latex(crate::notation::Names::none()),
         "\\mathrm{inertia\\_tensor}_{0 1}"
     );
 }
@@ -246,8 +250,11 @@ fn a_coordinates_rates_survive_the_engine_and_print_with_dots() {
     let s = simplify(&e).unwrap();
     assert_eq!(s.to_text(), "I*phi'*phi''");
     assert_eq!(s.diff("phi'").unwrap().symbols(), vec!["I", "phi''"]);
-    assert_eq!(p("phi''").to_latex(), "\\ddot{\\phi}");
-    assert_eq!(p("x'").to_latex(), "\\dot{x}");
+    assert_eq!(
+        p("phi''").to_latex(crate::notation::Names::none()),
+        "\\ddot{\\phi}"
+    );
+    assert_eq!(p("x'").to_latex(crate::notation::Names::none()), "\\dot{x}");
     // A call is never primed: `f'(x)` is not a name.
     assert_eq!(parse("sin'(x)").unwrap_err().message, "unexpected `(`");
 }

@@ -227,7 +227,7 @@ fn the_eigenvalue_takes_another_letter_where_lambda_is_a_line_density() {
             .derivation
             .steps
             .iter()
-            .map(|s| s.statement.to_latex())
+            .map(|s| s.statement.to_latex(crate::notation::Names::none()))
             .collect();
         (latex.contains("\\lambda"), latex.contains("\\mu"))
     };
@@ -242,7 +242,7 @@ fn the_eigenvalue_takes_another_letter_where_lambda_is_a_line_density() {
         .find(|s| s.title == "Characteristic polynomial")
         .unwrap()
         .statement
-        .to_latex();
+        .to_latex(crate::notation::Names::none());
     assert!(polynomial.contains("- \\mu\\mathbb{1}"), "{polynomial}");
     assert!(!polynomial.contains("\\lambda"), "{polynomial}");
     // A sphere has no line density: λ as usual.
@@ -339,11 +339,17 @@ fn an_integration_steps_name_prints_alike_on_the_page_and_in_the_pdf() {
             .derivation
             .steps
             .iter()
-            .find(|s| s.statement.to_latex().contains("\\int"))
+            .find(|s| {
+                s.statement
+                    .to_latex(crate::notation::Names::none())
+                    .contains("\\int")
+            })
             .expect("the integral's step");
         let (l, t) = (
-            step.statement.to_latex(),
-            step.statement.to_typst().unwrap(),
+            step.statement.to_latex(crate::notation::Names::none()),
+            step.statement
+                .to_typst(crate::notation::Names::none())
+                .unwrap(),
         );
         assert!(l.starts_with(latex), "{l}");
         assert!(t.starts_with(typst), "{t}");

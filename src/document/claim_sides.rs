@@ -73,7 +73,9 @@ impl Page {
             })
         });
         Ok(match q {
-            Some(q) if !names_a_word(&q) => Some(Formula::Tex(q.to_tex_named(&quantity_symbol))),
+            Some(q) if !names_a_word(&q, &self.names) => {
+                Some(Formula::Tex(q.to_tex_named(&self.names, &quantity_symbol)))
+            }
             _ => None,
         })
     }
@@ -108,8 +110,8 @@ impl Page {
 
 /// Whether an expression names something that would print as a word: a derived quantity with
 /// no symbol, or a step's result the scene gives no `tex`.
-fn names_a_word(e: &crate::cas::Expr) -> bool {
+fn names_a_word(e: &crate::cas::Expr, names: &crate::notation::Names) -> bool {
     e.symbols().iter().any(|s| {
-        quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &crate::cas::typesets)
+        quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &|n| names.typesets(n))
     })
 }

@@ -56,6 +56,8 @@ pub struct Page {
     pub signed: std::collections::BTreeSet<String>,
     /// How the scene typesets its names (name -> LaTeX), where it says.
     pub tex: std::collections::BTreeMap<String, String>,
+    /// The same, read once: what every printer of the page sets each name as.
+    pub names: crate::notation::Names,
     /// The scene's abbreviations (`lambda = M/(2*pi*R)`), which its claims and steps use.
     pub definitions: Vec<(String, Expr)>,
     /// Each body in words: its shape, mass, rotations and shift.
@@ -332,6 +334,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect(),
         tex: s.tex.clone(),
+        names: crate::notation::Names::of(&s.tex),
         signed: s.signed_names(),
         units: s
             .units

@@ -27,6 +27,8 @@ pub struct Problem {
     pub variants: Vec<Variant>,
     /// How the scene typesets its names (name -> LaTeX), where it says.
     pub tex: std::collections::BTreeMap<String, String>,
+    /// The same, read once: what every printer of the problem sets each name as.
+    pub names: crate::notation::Names,
 }
 
 #[derive(Debug, Clone)]
@@ -66,6 +68,7 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
         tolerance: p.tolerance,
         answers: p.answers.clone(),
         tex: r.scene.tex.clone(),
+        names: crate::notation::Names::of(&r.scene.tex),
         variants: r
             .verification
             .variants
@@ -128,10 +131,11 @@ pub(super) fn fill_statement(statement: &str, v: &VariantCheck) -> Prose {
 /// with each value's LaTeX in its braces.
 fn filled_math(latex: &str, v: &VariantCheck) -> Formula {
     use crate::notation::{Tex, latex};
-    let source = fill_math(latex, v, &mut |f| format!("{{{}}}", f.to_latex()));
+    let none = crate::notation::Names::none();
+    let source = fill_math(latex, v, &mut |f| format!("{{{}}}", f.to_latex(none)));
     let mut values = Vec::new();
     let marked = fill_math(latex, v, &mut |f| {
-        values.push(f.to_tex().nodes);
+        values.push(f.to_tex(none).nodes);
         latex::mark(values.len() - 1)
     });
     match Tex::read(&marked) {

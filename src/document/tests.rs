@@ -71,6 +71,7 @@ fn problem_of(id: &str, variants: usize) -> Problem {
         tolerance: 0.01,
         answers: Vec::new(),
         tex: Default::default(),
+        names: Default::default(),
         variants: (1..=variants)
             .map(|number| Variant {
                 number,

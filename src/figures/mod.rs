@@ -294,7 +294,7 @@ fn plain_name(name: &str) -> String {
 
 /// An exact result as a reader writes it in plain text: `11/12*m*a^2` is 11ma²/12.
 fn plain_formula(e: &crate::cas::Expr) -> String {
-    crate::notation::Tex::read(&e.to_latex())
+    crate::notation::Tex::read(&e.to_latex(crate::notation::Names::none()))
         .map(|tex| tex.to_plain())
         .unwrap_or_else(|_| e.to_string())
 }

@@ -533,7 +533,9 @@ mod tests {
             "N·m",
             "1/s",
         ] {
-            let tree = unit_formula(unit).to_tex().nodes;
+            let tree = unit_formula(unit)
+                .to_tex(crate::notation::Names::none())
+                .nodes;
             let read = crate::notation::Tex::read(&unit_latex(unit)).unwrap().nodes;
             assert_eq!(tree, read, "{unit}");
         }

@@ -2,6 +2,7 @@
 //! (`cas/print.rs`: signs, parentheses, a product's fraction bar, a sum's common factor), built
 //! as nodes, so that no page reads back LaTeX that mechbook printed. A test holds the two equal.
 
+use super::Names;
 use super::latex::{Node, Tex};
 use super::tree::{
     MINUS, THIN, accent, attach, bin, frac, group, letters, num, ord, parens, pmatrix, punct, rel,
@@ -12,57 +13,41 @@ use crate::cas::{
     printed_common_factor, split_sign,
 };
 use pulldown_latex::event::{Font, ScriptPosition, ScriptType};
-use std::cell::RefCell;
 use std::collections::BTreeMap;
+use std::sync::Mutex;
 
-thread_local! {
-    /// The scene's own typesetting of its names, read once by the one reader while its page is
-    /// rendered (`notation::typeset_as`); empty outside it.
-    static SCENE: RefCell<BTreeMap<String, Vec<Node>>> = const { RefCell::new(BTreeMap::new()) };
-    /// The catalogue's symbols (`R^{\mathrm{cm}}`), constants read once.
-    static CATALOGUE: RefCell<BTreeMap<&'static str, Vec<Node>>> =
-        const { RefCell::new(BTreeMap::new()) };
-}
-
-/// Runs `f` with a scene's names set as `names` (name -> its tree); the table before is put
-/// back after.
-pub(super) fn with_scene_names<R>(names: BTreeMap<String, Vec<Node>>, f: impl FnOnce() -> R) -> R {
-    let before = SCENE.with(|t| t.replace(names));
-    let out = f();
-    SCENE.with(|t| t.replace(before));
-    out
-}
-
-/// A catalogue symbol's LaTeX as a tree; what the reader refuses is set as upright text.
+/// A catalogue symbol's LaTeX as a tree, read once (the catalogue's symbols are constants);
+/// what the reader refuses is set as upright text.
 fn catalogue(latex: &'static str) -> Vec<Node> {
-    CATALOGUE.with(|c| {
-        c.borrow_mut()
-            .entry(latex)
-            .or_insert_with(|| Tex::read(latex).map_or_else(|_| vec![upright(latex)], |t| t.nodes))
-            .clone()
-    })
+    static READ: Mutex<BTreeMap<&'static str, Vec<Node>>> = Mutex::new(BTreeMap::new());
+    let mut read = READ
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    read.entry(latex)
+        .or_insert_with(|| Tex::read(latex).map_or_else(|_| vec![upright(latex)], |t| t.nodes))
+        .clone()
 }
 
 type Named<'a> = &'a dyn Fn(&str) -> Option<&'static str>;
 
 /// The tree of `e`; `named` gives some symbols a catalogue symbol (as `Expr::to_latex_named`).
-pub fn expr_nodes(e: &Expr, named: Named<'_>) -> Vec<Node> {
+pub fn expr_nodes(e: &Expr, names: &Names, named: Named<'_>) -> Vec<Node> {
     let mut out = Vec::new();
-    Walk { named }.write(e, Prec::Sum, &mut out);
+    Walk { names, named }.write(e, Prec::Sum, &mut out);
     out
 }
 
 impl Expr {
     /// The expression as the tree the pages set, with its LaTeX as the source.
-    pub fn to_tex(&self) -> Tex {
-        self.to_tex_named(&|_| None)
+    pub fn to_tex(&self, names: &Names) -> Tex {
+        self.to_tex_named(names, &|_| None)
     }
 
     /// [`Expr::to_tex`], with some symbols given a catalogue symbol (`Expr::to_latex_named`).
-    pub fn to_tex_named(&self, named: Named<'_>) -> Tex {
+    pub fn to_tex_named(&self, names: &Names, named: Named<'_>) -> Tex {
         Tex {
-            source: self.to_latex_named(named),
-            nodes: expr_nodes(self, named),
+            source: self.to_latex_named(names, named),
+            nodes: expr_nodes(self, names, named),
         }
     }
 }
@@ -76,6 +61,7 @@ pub fn symbol_tex(latex: &'static str) -> Tex {
 }
 
 struct Walk<'a> {
+    names: &'a Names,
     named: Named<'a>,
 }
 
@@ -89,7 +75,7 @@ impl Walk<'_> {
     fn write(&self, e: &Expr, ctx: Prec, out: &mut Vec<Node>) {
         match e {
             Expr::Num(r) => self.number(r, ctx, out),
-            Expr::Sym(s) => out.extend(symbol(s, self.named)),
+            Expr::Sym(s) => out.extend(symbol(s, self.names, self.named)),
             Expr::Add(v) => {
                 if ctx == Prec::Sum
                     && let Some((factor, rest)) = printed_common_factor(v)
@@ -351,17 +337,18 @@ fn wrap(parenthesised: bool, inner: Vec<Node>, out: &mut Vec<Node>) {
 
 /// A symbol's tree: the catalogue's, the scene's own, or by the naming conventions (`alpha` is
 /// α, `w1` ω₁, `wd1` ω̇₁, `Ixx` I_xx, `phi'` φ̇, a longer name upright).
-pub fn symbol(s: &str, named: Named<'_>) -> Vec<Node> {
+pub fn symbol(s: &str, names: &Names, named: Named<'_>) -> Vec<Node> {
     if let Some(latex) = named(s) {
         return catalogue(latex);
     }
-    if let Some(nodes) = SCENE.with(|t| t.borrow().get(s).cloned()) {
-        return nodes;
+    if let Some(nodes) = names.nodes(s) {
+        return nodes.to_vec();
     }
     // A numbered result of a step the scene typesets: `acc_2` of `tex = "a"` is a₂.
     if let Some((base, k)) = crate::cas::numbered(s)
-        && let Some(nodes) = SCENE.with(|t| t.borrow().get(base).cloned())
+        && let Some(nodes) = names.nodes(base)
     {
+        let nodes = nodes.to_vec();
         let mut out = if nodes.len() == 1 {
             nodes
         } else {
@@ -373,7 +360,7 @@ pub fn symbol(s: &str, named: Named<'_>) -> Vec<Node> {
     match name_form(s) {
         NameForm::Rate(base, second) => {
             vec![accent(
-                symbol(base, &|_| None),
+                symbol(base, names, &|_| None),
                 if second { '¨' } else { '˙' },
                 false,
             )]
@@ -542,10 +529,11 @@ mod tests {
         .collect();
         let mut g = Gen(0x9E37_79B9_7F4A_7C15);
         let (mut compared, mut unreadable) = (0, Vec::new());
-        crate::notation::typeset_as(&scene, || {
+        let names = Names::of(&scene);
+        {
             for case in 0..CASES {
                 let e = g.expr(4);
-                let latex = e.to_latex_named(&named);
+                let latex = e.to_latex_named(&names, &named);
                 let read = match Tex::read(&latex) {
                     Ok(read) => read,
                     Err(err) => {
@@ -553,25 +541,25 @@ mod tests {
                         continue;
                     }
                 };
-                if expr_nodes(&e, &named) != read.nodes {
-                    let e = smallest_mismatch(&e, &named).unwrap_or(e);
-                    let latex = e.to_latex_named(&named);
+                if expr_nodes(&e, &names, &named) != read.nodes {
+                    let e = smallest_mismatch(&e, &names, &named).unwrap_or(e);
+                    let latex = e.to_latex_named(&names, &named);
                     panic!(
                         "case {case}: {e:?}\n{latex}\nbuilt {:?}\nread  {:?}",
-                        expr_nodes(&e, &named),
+                        expr_nodes(&e, &names, &named),
                         Tex::read(&latex).map(|t| t.nodes)
                     );
                 }
                 compared += 1;
             }
-        });
+        }
         // Every LaTeX the printer writes reads (a script is never put twice on one base).
         assert_eq!(unreadable, Vec::<String>::new());
         assert_eq!(compared, CASES);
     }
 
     /// The smallest part of `e` whose tree and read LaTeX differ, to name a failure plainly.
-    fn smallest_mismatch(e: &Expr, named: Named<'_>) -> Option<Expr> {
+    fn smallest_mismatch(e: &Expr, names: &Names, named: Named<'_>) -> Option<Expr> {
         let children: Vec<Expr> = match e {
             Expr::Add(v) | Expr::Mul(v) | Expr::List(v) | Expr::Call(_, v) => v.clone(),
             Expr::Pow(a, b) | Expr::Index(a, b) => vec![a.as_ref().clone(), b.as_ref().clone()],
@@ -579,11 +567,11 @@ mod tests {
         };
         children
             .iter()
-            .find_map(|c| smallest_mismatch(c, named))
+            .find_map(|c| smallest_mismatch(c, names, named))
             .or_else(|| {
-                let latex = e.to_latex_named(named);
+                let latex = e.to_latex_named(names, named);
                 let read = Tex::read(&latex).ok()?;
-                (expr_nodes(e, named) != read.nodes).then(|| e.clone())
+                (expr_nodes(e, names, named) != read.nodes).then(|| e.clone())
             })
     }
 }

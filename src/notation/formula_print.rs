@@ -1,13 +1,14 @@
 //! The printers of a [`Formula`]: plain text for the terminal and JSON, LaTeX for the pages
 //! (which turn it into MathML). Each prints the tree; neither reads the other's output.
 
+use super::Names;
 use super::formula::{Accent, Formula, GREEK, Name, Op};
 use crate::base::format::superscript;
 
 impl Formula {
-    pub fn to_latex(&self) -> String {
+    pub fn to_latex(&self, names: &Names) -> String {
         let mut out = String::new();
-        latex(self, &mut out);
+        latex(self, names, &mut out);
         out
     }
 
@@ -29,9 +30,9 @@ fn join(out: &mut String, piece: &str) {
     out.push_str(piece);
 }
 
-fn latex(f: &Formula, out: &mut String) {
+fn latex(f: &Formula, names: &Names, out: &mut String) {
     let piece = match f {
-        Formula::Expr(e) => e.to_latex(),
+        Formula::Expr(e) => e.to_latex(names),
         Formula::Name(n) => latex_name(n),
         Formula::Number(s) => s.clone(),
         Formula::Text(s) => format!("\\text{{{s}}}"),
@@ -41,26 +42,26 @@ fn latex(f: &Formula, out: &mut String) {
                 match item {
                     Formula::Op(Op::Minus) if unary(items, i) => join(out, "-"),
                     Formula::Op(op) => join(out, latex_op(*op)),
-                    other => latex(other, out),
+                    other => latex(other, names, out),
                 }
             }
             return;
         }
         Formula::Op(op) => latex_op(*op).to_string(),
-        Formula::Frac(a, b) => format!("\\frac{{{}}}{{{}}}", a.to_latex(), b.to_latex()),
-        Formula::Sqrt(a) => format!("\\sqrt{{{}}}", a.to_latex()),
-        Formula::Sup(a, b) => format!("{}^{{{}}}", a.to_latex(), b.to_latex()),
-        Formula::Paren(a, true) => format!("\\left({}\\right)", a.to_latex()),
-        Formula::Paren(a, false) => format!("({})", a.to_latex()),
-        Formula::Bracket(a) => format!("\\left[{}\\right]", a.to_latex()),
-        Formula::Abs(a) => format!("\\left|{}\\right|", a.to_latex()),
+        Formula::Frac(a, b) => format!("\\frac{{{}}}{{{}}}", a.to_latex(names), b.to_latex(names)),
+        Formula::Sqrt(a) => format!("\\sqrt{{{}}}", a.to_latex(names)),
+        Formula::Sup(a, b) => format!("{}^{{{}}}", a.to_latex(names), b.to_latex(names)),
+        Formula::Paren(a, true) => format!("\\left({}\\right)", a.to_latex(names)),
+        Formula::Paren(a, false) => format!("({})", a.to_latex(names)),
+        Formula::Bracket(a) => format!("\\left[{}\\right]", a.to_latex(names)),
+        Formula::Abs(a) => format!("\\left|{}\\right|", a.to_latex(names)),
         Formula::Identity => "\\mathbb{1}".into(),
         Formula::Matrix(rows) => format!(
             "\\begin{{pmatrix}}{}\\end{{pmatrix}}",
             rows.iter()
                 .map(|row| row
                     .iter()
-                    .map(Formula::to_latex)
+                    .map(|f| f.to_latex(names))
                     .collect::<Vec<_>>()
                     .join(" & "))
                 .collect::<Vec<_>>()
@@ -73,13 +74,16 @@ fn latex(f: &Formula, out: &mut String) {
         Formula::Integral(Some(limits)) => {
             format!(
                 "\\int_{{{}}}^{{{}}}",
-                limits.0.to_latex(),
-                limits.1.to_latex()
+                limits.0.to_latex(names),
+                limits.1.to_latex(names)
             )
         }
         Formula::Nabla(None) => "\\nabla".into(),
         Formula::Nabla(Some(by)) => format!("\\nabla_{{{}}}", latex_base(by)),
-        Formula::At(a, frame) => format!("\\left.{}\\right|_{{\\mathrm{{{frame}}}}}", a.to_latex()),
+        Formula::At(a, frame) => format!(
+            "\\left.{}\\right|_{{\\mathrm{{{frame}}}}}",
+            a.to_latex(names)
+        ),
         Formula::Tex(t) => t.source.clone(),
     };
     join(out, &piece);
@@ -361,12 +365,12 @@ fn text_name(n: &Name) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::Formula;
+    use super::{Formula, Names};
     use crate::cas::Expr;
 
     fn both(notation: &str) -> (String, String) {
         let f = Formula::parse(notation, &[]);
-        (f.to_text(), f.to_latex())
+        (f.to_text(), f.to_latex(Names::none()))
     }
 
     #[test]
@@ -438,8 +442,11 @@ mod tests {
         let e = Expr::over(Expr::sym("a"), Expr::int(2));
         let f = Formula::parse("(a/b)^2 = $0", std::slice::from_ref(&e));
         assert_eq!(
-            f.to_latex(),
-            format!(r"\left(\frac{{a}}{{b}}\right)^{{2}} = {}", e.to_latex())
+            f.to_latex(Names::none()),
+            format!(
+                r"\left(\frac{{a}}{{b}}\right)^{{2}} = {}",
+                e.to_latex(Names::none())
+            )
         );
         assert_eq!(f.to_text(), format!("(a/b)² = {}", e.to_text()));
     }

@@ -2,6 +2,7 @@
 //! `expr_tree`, an author's `$…$` as read at load. Nothing here reads LaTeX; a test holds the
 //! tree equal to what the reader makes of the formula's LaTeX (`formula_print.rs`).
 
+use super::Names;
 use super::expr_tree::expr_nodes;
 use super::formula::{Accent, Formula, GREEK, Name, Op};
 use super::latex::{Node, Tex};
@@ -15,27 +16,27 @@ use pulldown_latex::event::{DelimiterType, Font, ScriptPosition, ScriptType};
 impl Formula {
     /// The formula as the one tree every page printer sets, with its LaTeX (for messages,
     /// Moodle and `--json`) as its source.
-    pub fn to_tex(&self) -> Tex {
+    pub fn to_tex(&self, names: &Names) -> Tex {
         match self {
             Formula::Tex(t) => t.clone(),
             other => Tex {
-                source: other.to_latex(),
-                nodes: nodes(other),
+                source: other.to_latex(names),
+                nodes: nodes(other, names),
             },
         }
     }
 }
 
 /// The tree of a formula.
-pub fn nodes(f: &Formula) -> Vec<Node> {
+pub fn nodes(f: &Formula, names: &Names) -> Vec<Node> {
     let mut out = Vec::new();
-    write(f, &mut out);
+    write(f, names, &mut out);
     out
 }
 
-fn write(f: &Formula, out: &mut Vec<Node>) {
+fn write(f: &Formula, names: &Names, out: &mut Vec<Node>) {
     match f {
-        Formula::Expr(e) => out.extend(expr_nodes(e, &|_| None)),
+        Formula::Expr(e) => out.extend(expr_nodes(e, names, &|_| None)),
         Formula::Name(n) => name(n, out),
         Formula::Number(s) => match s.strip_prefix('-') {
             Some(digits) => out.extend([bin(MINUS), num(digits)]),
@@ -43,26 +44,26 @@ fn write(f: &Formula, out: &mut Vec<Node>) {
         },
         Formula::Text(s) => out.push(Node::Text(s.clone())),
         Formula::Upright(s) => out.push(upright(s)),
-        Formula::Row(items) => items.iter().for_each(|item| write(item, out)),
+        Formula::Row(items) => items.iter().for_each(|item| write(item, names, out)),
         Formula::Op(op) => out.push(operator(*op)),
-        Formula::Frac(a, b) => out.push(frac(nodes(a), nodes(b))),
-        Formula::Sqrt(a) => out.push(sqrt(nodes(a))),
+        Formula::Frac(a, b) => out.push(frac(nodes(a, names), nodes(b, names))),
+        Formula::Sqrt(a) => out.push(sqrt(nodes(a, names))),
         Formula::Sup(a, b) => {
-            write(a, out);
-            attach(out, ScriptType::Superscript, nodes(b));
+            write(a, names, out);
+            attach(out, ScriptType::Superscript, nodes(b, names));
         }
-        Formula::Paren(a, true) => out.push(parens(nodes(a))),
+        Formula::Paren(a, true) => out.push(parens(nodes(a, names))),
         Formula::Paren(a, false) => {
             out.push(delim('(', DelimiterType::Open));
-            write(a, out);
+            write(a, names, out);
             out.push(delim(')', DelimiterType::Close));
         }
-        Formula::Bracket(a) => out.push(grown(Some('['), Some(']'), nodes(a))),
-        Formula::Abs(a) => out.push(grown(Some('|'), Some('|'), nodes(a))),
+        Formula::Bracket(a) => out.push(grown(Some('['), Some(']'), nodes(a, names))),
+        Formula::Abs(a) => out.push(grown(Some('|'), Some('|'), nodes(a, names))),
         Formula::Identity => out.push(in_font(Font::DoubleStruck, vec![num("1")])),
         Formula::Matrix(rows) => out.push(pmatrix(
             rows.iter()
-                .map(|row| row.iter().map(nodes).collect())
+                .map(|row| row.iter().map(|c| nodes(c, names)).collect())
                 .collect(),
         )),
         Formula::Function(name) => out.push(Node::Function(name.clone())),
@@ -81,8 +82,8 @@ fn write(f: &Formula, out: &mut Vec<Node>) {
         Formula::Integral(limits) => {
             out.push(large('∫'));
             if let Some(limits) = limits {
-                attach(out, ScriptType::Subscript, nodes(&limits.0));
-                attach(out, ScriptType::Superscript, nodes(&limits.1));
+                attach(out, ScriptType::Subscript, nodes(&limits.0, names));
+                attach(out, ScriptType::Superscript, nodes(&limits.1, names));
             }
         }
         Formula::Nabla(by) => {
@@ -92,7 +93,7 @@ fn write(f: &Formula, out: &mut Vec<Node>) {
             }
         }
         Formula::At(a, frame) => {
-            out.push(grown(None, Some('|'), nodes(a)));
+            out.push(grown(None, Some('|'), nodes(a, names)));
             attach(out, ScriptType::Subscript, vec![upright(frame)]);
         }
         Formula::Tex(t) => out.extend(t.nodes.iter().cloned()),
@@ -185,20 +186,33 @@ mod tests {
             "r' = omega_3'",
         ] {
             let f = Formula::parse(src, &e);
-            let latex = f.to_latex();
+            let latex = f.to_latex(crate::notation::Names::none());
             let read = Tex::read(&latex).unwrap_or_else(|e| panic!("{latex}: {e}"));
-            assert_eq!(nodes(&f), read.nodes, "{src}\n{latex}");
+            assert_eq!(
+                nodes(&f, crate::notation::Names::none()),
+                read.nodes,
+                "{src}\n{latex}"
+            );
         }
         // A computed number is the tree of its LaTeX (4.6875 × 10⁻⁶, never e-notation).
         for s in ["4.6875e-6", "-1.5e+07", "1e-12", "0.25", "-3", "NaN", "inf"] {
             let latex = crate::base::format::latex_number(s);
             let read = Tex::read(&latex).unwrap().nodes;
-            assert_eq!(nodes(&Formula::decimal(s)), read, "{s}: {latex}");
+            assert_eq!(
+                nodes(&Formula::decimal(s), crate::notation::Names::none()),
+                read,
+                "{s}: {latex}"
+            );
         }
         let f = Formula::Row(vec![
             Formula::Number("-2.25".into()),
             Formula::Text("words".into()),
         ]);
-        assert_eq!(nodes(&f), Tex::read(&f.to_latex()).unwrap().nodes);
+        assert_eq!(
+            nodes(&f, crate::notation::Names::none()),
+            Tex::read(&f.to_latex(crate::notation::Names::none()))
+                .unwrap()
+                .nodes
+        );
     }
 }

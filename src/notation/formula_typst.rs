@@ -1,6 +1,7 @@
 //! The Typst printer of a [`Formula`], for the PDFs: the tree in Typst's math notation, as
 //! `formula_print.rs` prints it in LaTeX for the pages.
 
+use super::Names;
 use super::formula::{Accent, Formula, GREEK, Name, Op};
 use super::latex::TexError;
 use crate::base::typst::typst_string;
@@ -8,18 +9,18 @@ use crate::base::typst::typst_string;
 impl Formula {
     /// Typst's math; `Err` only for an author's LaTeX that has no Typst form (scene
     /// validation refuses it first).
-    pub fn to_typst(&self) -> Result<String, TexError> {
+    pub fn to_typst(&self, names: &Names) -> Result<String, TexError> {
         let mut out = String::new();
-        typst(self, &mut out, false)?;
+        typst(self, names, &mut out, false)?;
         Ok(out)
     }
 
     /// Typst's math for a formula wider than its line, which Typst breaks after its relations
     /// and operators: its vectors as tuples, whose entries' sums can break (a matrix's row
     /// cannot).
-    pub fn to_typst_breakable(&self) -> Result<String, TexError> {
+    pub fn to_typst_breakable(&self, names: &Names) -> Result<String, TexError> {
         let mut out = String::new();
-        typst(self, &mut out, true)?;
+        typst(self, names, &mut out, true)?;
         Ok(out)
     }
 }
@@ -34,10 +35,10 @@ fn join(out: &mut String, piece: &str) {
     out.push_str(piece);
 }
 
-fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError> {
+fn typst(f: &Formula, names: &Names, out: &mut String, breakable: bool) -> Result<(), TexError> {
     let piece = match f {
-        Formula::Expr(e) if breakable => e.to_typst_breakable(),
-        Formula::Expr(e) => e.to_typst(),
+        Formula::Expr(e) if breakable => e.to_typst_breakable(names),
+        Formula::Expr(e) => e.to_typst(names),
         Formula::Name(n) => typst_name(n),
         // A decimal or an integer; a minus sign is Typst's too.
         Formula::Number(s) => s.replace('-', "−"),
@@ -47,43 +48,44 @@ fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError>
             for item in items {
                 match item {
                     Formula::Op(op) => join(out, typst_op(*op)),
-                    other => typst(other, out, breakable)?,
+                    other => typst(other, names, out, breakable)?,
                 }
             }
             return Ok(());
         }
         Formula::Op(op) => typst_op(*op).to_string(),
-        Formula::Frac(a, b) => format!("frac({}, {})", a.to_typst()?, b.to_typst()?),
-        Formula::Sqrt(a) => format!("sqrt({})", a.to_typst()?),
+        Formula::Frac(a, b) => format!("frac({}, {})", a.to_typst(names)?, b.to_typst(names)?),
+        Formula::Sqrt(a) => format!("sqrt({})", a.to_typst(names)?),
         Formula::Sup(a, b) => match a.as_ref() {
             // A paired group with an exponent is one piece: to be broken, its parentheses go
             // unpaired, the exponent on the closing one.
             Formula::Paren(inner, _) if breakable => {
                 let mut opened = String::new();
-                typst(inner, &mut opened, true)?;
-                format!("\\({opened}\\)^({})", b.to_typst()?)
+                typst(inner, names, &mut opened, true)?;
+                format!("\\({opened}\\)^({})", b.to_typst(names)?)
             }
-            _ => format!("{}^({})", a.to_typst()?, b.to_typst()?),
+            _ => format!("{}^({})", a.to_typst(names)?, b.to_typst(names)?),
         },
         // Typst breaks a line inside parentheses too.
         Formula::Paren(a, _) => {
             let mut inner = String::new();
-            typst(a, &mut inner, breakable)?;
+            typst(a, names, &mut inner, breakable)?;
             format!("({inner})")
         }
-        Formula::Bracket(a) => format!("[{}]", a.to_typst()?),
-        Formula::Abs(a) => format!("abs({})", a.to_typst()?),
+        Formula::Bracket(a) => format!("[{}]", a.to_typst(names)?),
+        Formula::Abs(a) => format!("abs({})", a.to_typst(names)?),
         Formula::Identity => "bb(1)".into(),
         Formula::Matrix(rows) => {
             let mut cells = Vec::new();
             for row in rows {
-                let row: Result<Vec<String>, TexError> = row.iter().map(cell).collect();
+                let row: Result<Vec<String>, TexError> =
+                    row.iter().map(|f| cell(f, names)).collect();
                 cells.push(row?.join(", "));
             }
             // A column is one row written down.
             if let [one] = rows.as_slice() {
                 let column: Result<Vec<String>, TexError> =
-                    one.iter().map(Formula::to_typst).collect();
+                    one.iter().map(|f| f.to_typst(names)).collect();
                 format!("vec({})", column?.join(", "))
             } else {
                 format!("mat({})", cells.join("; "))
@@ -96,16 +98,22 @@ fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError>
         Formula::Integral(Some(limits)) => {
             // Limits are set small: their fractions go on the line.
             let limit = |f: &Formula| match f {
-                Formula::Expr(e) => Ok(e.to_typst_on_the_line()),
-                Formula::Frac(a, b) => Ok(format!("{}\\/{}", a.to_typst()?, b.to_typst()?)),
-                other => other.to_typst(),
+                Formula::Expr(e) => Ok(e.to_typst_on_the_line(names)),
+                Formula::Frac(a, b) => {
+                    Ok(format!("{}\\/{}", a.to_typst(names)?, b.to_typst(names)?))
+                }
+                other => other.to_typst(names),
             };
             format!("integral_({})^({}) ", limit(&limits.0)?, limit(&limits.1)?)
         }
         Formula::Nabla(None) => "nabla ".into(),
         Formula::Nabla(Some(by)) => format!("nabla_({}) ", typst_base(by)),
         Formula::At(a, frame) => {
-            format!("lr({} |)_(upright({}))", a.to_typst()?, typst_string(frame))
+            format!(
+                "lr({} |)_(upright({}))",
+                a.to_typst(names)?,
+                typst_string(frame)
+            )
         }
         Formula::Tex(t) => t.to_typst()?,
     };
@@ -115,8 +123,8 @@ fn typst(f: &Formula, out: &mut String, breakable: bool) -> Result<(), TexError>
 
 /// A matrix's cell: a fraction at the size of the line, as the expression printer sets one
 /// (Typst sets a matrix's cells a size smaller, 2/3 too small to read on paper).
-fn cell(f: &Formula) -> Result<String, TexError> {
-    let cell = f.to_typst()?;
+fn cell(f: &Formula, names: &Names) -> Result<String, TexError> {
+    let cell = f.to_typst(names)?;
     Ok(match cell.contains("frac(") {
         true => format!("display({cell})"),
         false => cell,
@@ -187,10 +195,12 @@ fn typst_name(n: &Name) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::Formula;
+    use super::{Formula, Names};
 
     fn t(notation: &str) -> String {
-        Formula::parse(notation, &[]).to_typst().unwrap()
+        Formula::parse(notation, &[])
+            .to_typst(Names::none())
+            .unwrap()
     }
 
     /// Printed to be broken, a parenthesised sum with an exponent opens its parentheses (a
@@ -198,8 +208,11 @@ mod tests {
     #[test]
     fn a_power_of_a_group_opens_where_it_must_break() {
         let f = Formula::parse("(a + b)^2", &[]);
-        assert_eq!(f.to_typst().unwrap(), "(a + b)^(2)");
-        assert_eq!(f.to_typst_breakable().unwrap(), "\\(a + b\\)^(2)");
+        assert_eq!(f.to_typst(Names::none()).unwrap(), "(a + b)^(2)");
+        assert_eq!(
+            f.to_typst_breakable(Names::none()).unwrap(),
+            "\\(a + b\\)^(2)"
+        );
     }
 
     #[test]

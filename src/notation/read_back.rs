@@ -4,6 +4,7 @@
 //! tree (ω₁ is `w1`, the scene's `tex` its step); a number beside a number with no sign between
 //! is one product only when a `⋅` says so, as a reader takes "30.4⁴" for thirty point four.
 
+use super::Names;
 use super::expr_tree::symbol;
 use super::latex::Node;
 use crate::cas::Expr;
@@ -22,19 +23,18 @@ pub enum ReadBackError {
     Unreadable(&'static str),
 }
 
-/// The names a formula may print, each with its printed tree (under the scene's typesetting in
-/// force, `notation::typeset_as`).
-pub struct Names(Vec<(Vec<Node>, String)>);
+/// The names a formula may print, each with its printed tree as the scene typesets it.
+pub struct Readable(Vec<(Vec<Node>, String)>);
 
-impl Names {
-    pub fn new<'a>(names: impl IntoIterator<Item = &'a str>) -> Names {
+impl Readable {
+    pub fn new<'a>(names: impl IntoIterator<Item = &'a str>, typeset: &Names) -> Readable {
         let mut table: Vec<(Vec<Node>, String)> = names
             .into_iter()
-            .map(|n| (symbol(n, &|_| None), n.to_string()))
+            .map(|n| (symbol(n, typeset, &|_| None), n.to_string()))
             .collect();
         // The longest printed form first: `m1` before `m`.
         table.sort_by_key(|(nodes, _)| std::cmp::Reverse(nodes.len()));
-        Names(table)
+        Readable(table)
     }
 
     /// The name whose tree starts `nodes`, and how many nodes it takes.
@@ -47,7 +47,7 @@ impl Names {
 }
 
 /// The expression a printed tree shows.
-pub fn read_back(nodes: &[Node], names: &Names) -> Result<Expr, ReadBackError> {
+pub fn read_back(nodes: &[Node], names: &Readable) -> Result<Expr, ReadBackError> {
     Reader { names }.row(nodes)
 }
 
@@ -79,7 +79,7 @@ enum Token {
 }
 
 struct Reader<'a> {
-    names: &'a Names,
+    names: &'a Readable,
 }
 
 impl Reader<'_> {
@@ -409,12 +409,12 @@ mod tests {
     /// (read by the one reader), each read back and equal to the result at random points.
     #[test]
     fn random_results_read_back_equal_through_the_tree_and_the_latex() {
-        let names = Names::new(NAMES.iter().copied());
+        let names = Readable::new(NAMES.iter().copied(), Names::none());
         let mut g = Gen(crate::base::rng::Rng::new(0x5eed_1234_abcd));
         let mut checked = 0;
         for case in 0..400 {
             let e = g.expr(3);
-            let tree = e.to_tex();
+            let tree = e.to_tex(crate::notation::Names::none());
             let from_tree = read_back(&tree.nodes, &names)
                 .unwrap_or_else(|err| panic!("case {case}: {} ({err})", e.to_text()));
             assert!(
@@ -440,9 +440,9 @@ mod tests {
     /// fourth, which is not 3 ⋅ 0.4⁴; an unknown name is no result's.
     #[test]
     fn a_wrong_print_reads_back_as_what_it_shows() {
-        let names = Names::new(["x"]);
+        let names = Readable::new(["x"], Names::none());
         let right = crate::cas::parse("3*0.4^4").unwrap().expr;
-        let shown = read_back(&right.to_tex().nodes, &names).unwrap();
+        let shown = read_back(&right.to_tex(crate::notation::Names::none()).nodes, &names).unwrap();
         assert!((shown.eval(&|_| None).unwrap() - 0.0768).abs() < 1e-12);
         let wrong = Tex::read("3 0.4^{4}").unwrap();
         let seen = read_back(&wrong.nodes, &names).unwrap();

@@ -321,7 +321,10 @@ mod tests {
         );
         assert!(tex.to_typst().unwrap().contains(r#""body""#));
         // A result named as a word (no `tex`) is one identifier too, spoken as the word.
-        let word = parse("slow_eps + Lfree").unwrap().expr.to_tex();
+        let word = parse("slow_eps + Lfree")
+            .unwrap()
+            .expr
+            .to_tex(crate::notation::Names::none());
         assert_eq!(word.spoken(), "slow_eps plus Lfree");
         assert!(
             word.to_mathml(false)
@@ -330,7 +333,10 @@ mod tests {
         );
         // The second result of a step `acc` with `tex = "a"` is a₂ on the page too.
         let names = [("acc".to_string(), "a".to_string())].into();
-        let second = crate::notation::typeset_as(&names, || parse("acc_2").unwrap().expr.to_tex());
+        let second = parse("acc_2")
+            .unwrap()
+            .expr
+            .to_tex(&crate::notation::Names::of(&names));
         assert_eq!(second.spoken(), "a sub 2");
     }
 
@@ -382,7 +388,7 @@ mod tests {
     fn a_printed_result_is_read_as_it_is_set() {
         let period = parse("2*pi*(2/3*L/g)^(1/2)").unwrap().expr;
         assert_eq!(
-            period.to_tex().spoken(),
+            period.to_tex(crate::notation::Names::none()).spoken(),
             "2 pi the square root of fraction 2 L over 3 g, end fraction, end root"
         );
     }

@@ -9,6 +9,7 @@ use crate::document::course::Documents;
 use crate::document::{Page, Quantity, Step};
 use crate::model::prose::{Piece, Prose};
 use crate::model::value::Value;
+use crate::notation::Names;
 use crate::numeric::eigen::Space;
 use serde_json::{Value as Json, json};
 
@@ -116,11 +117,11 @@ fn vec_text(v: &[crate::cas::Expr; 3]) -> String {
 }
 
 /// A step: its statement and reason, each formula printed as text and as LaTeX.
-fn step_json(st: &Step) -> Json {
+fn step_json(st: &Step, names: &Names) -> Json {
     let mut j = json!({
         "title": st.title,
         "text": st.statement.to_text(),
-        "latex": st.statement.to_latex(),
+        "latex": st.statement.to_latex(names),
         "why": st.why.to_text(),
     });
     if !st.key.is_empty() {
@@ -128,20 +129,22 @@ fn step_json(st: &Step) -> Json {
     }
     // The exact result as derived, where the statement prints it in a textbook's form.
     if let Some(exact) = &st.exact {
-        j["exact"] = json!({ "text": exact.to_text(), "latex": exact.to_latex() });
+        j["exact"] = json!({ "text": exact.to_text(), "latex": exact.to_latex(names) });
     }
     if st.why.0.iter().any(|p| matches!(p, Piece::Math(_))) {
-        j["why_math"] = prose_json(&st.why);
+        j["why_math"] = prose_json(&st.why, names);
     }
     j
 }
 
 /// A sentence: its words, and its formulas as text and LaTeX.
-fn prose_json(p: &Prose) -> Json {
+fn prose_json(p: &Prose, names: &Names) -> Json {
     p.0.iter()
         .map(|piece| match piece {
             Piece::Text(t) => json!({ "Text": t }),
-            Piece::Math(f) => json!({ "Math": { "text": f.to_text(), "latex": f.to_latex() } }),
+            Piece::Math(f) => {
+                json!({ "Math": { "text": f.to_text(), "latex": f.to_latex(names) } })
+            }
         })
         .collect()
 }
@@ -155,11 +158,13 @@ pub fn derived_text(g: &crate::verify::RegressionResult) -> String {
 
 /// One scene's page as JSON, in the shape docs/usage.md gives (`--json`).
 pub fn scene_json(page: &Page) -> Json {
+    // Each name as the scene typesets it, as on the page.
+    let names = &page.names;
     let mut quantities = serde_json::Map::new();
     for q in &page.quantities {
         quantities.insert(
             q.name.clone(),
-            json!({ "exact": q.value.to_text(), "latex": q.value.to_latex(), "numeric": numeric_entries(q) }),
+            json!({ "exact": q.value.to_text(), "latex": q.value.to_latex(names), "numeric": numeric_entries(q) }),
         );
     }
     // A number with no exact form: no `exact` text that would be a float in disguise.
@@ -174,7 +179,7 @@ pub fn scene_json(page: &Page) -> Json {
         let exact = Expr::List(list.entries.clone());
         quantities.insert(
             list.name.clone(),
-            json!({ "exact": exact.to_text(), "latex": exact.to_latex(), "numeric": numbers_json(&list.numbers) }),
+            json!({ "exact": exact.to_text(), "latex": exact.to_latex(names), "numeric": numbers_json(&list.numbers) }),
         );
     }
     let numeric_only = |e: &Expr| {
@@ -279,7 +284,7 @@ pub fn scene_json(page: &Page) -> Json {
             "number": v.number,
             "values": v.values.iter().map(|(name, e)| (name.clone(), json!({
                 "exact": e.to_text(),
-                "latex": e.to_latex(),
+                "latex": e.to_latex(names),
                 "numeric": e.eval(&|_| None).ok().map(num),
             }))).collect::<serde_json::Map<_, _>>(),
             "passed": v.passed(),
@@ -289,8 +294,8 @@ pub fn scene_json(page: &Page) -> Json {
                 "unit": spec.unit.as_ref().map(|u| &u.text),
                 // An answer on a numeric mode has its number at each variant, not an exact form.
                 "exact": (!numeric_only(&spec.value)).then(|| a.exact.to_text()),
-                "latex": (!numeric_only(&spec.value)).then(|| a.exact.to_latex()),
-                "entries": if numeric_only(&spec.value) { Vec::new() } else { a.exact.entries().iter().map(|e| e.to_latex()).collect::<Vec<_>>() },
+                "latex": (!numeric_only(&spec.value)).then(|| a.exact.to_latex(names)),
+                "entries": if numeric_only(&spec.value) { Vec::new() } else { a.exact.entries().iter().map(|e| e.to_latex(names)).collect::<Vec<_>>() },
                 "numeric_only": numeric_only(&spec.value),
                 "numeric": a.exact_numbers.iter().map(|x| num(*x)).collect::<Vec<_>>(),
                 "independent": a.numeric.iter().map(|x| num(*x)).collect::<Vec<_>>(),
@@ -299,7 +304,7 @@ pub fn scene_json(page: &Page) -> Json {
                 "passed": a.passed(),
             })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
-        "steps": page.steps.iter().map(step_json).collect::<Vec<_>>(),
+        "steps": page.steps.iter().map(|s| step_json(s, names)).collect::<Vec<_>>(),
         "step_checks": page.step_checks.iter().map(|c| json!({
             "step": c.step, "method": c.method, "error": num(c.error), "tolerance": num(c.tolerance),
             "evaluations": c.evaluations, "problem": c.problem, "passed": c.passed() })).collect::<Vec<_>>(),

@@ -10,6 +10,7 @@ use crate::document::course::Documents;
 use crate::document::{Problem, Variant};
 use crate::model::prose::{Piece, Prose};
 use crate::model::value::Value;
+use crate::notation::Names;
 use std::fmt::Write;
 
 /// Significant figures of an answer and its tolerance in the file.
@@ -48,8 +49,7 @@ pub fn quiz(problem: &Problem, solution: Option<&str>) -> String {
         xml_text(&problem.id)
     );
     for v in &problem.variants {
-        let q = crate::notation::typeset_as(&problem.tex, || question(problem, v, solution));
-        out.push_str(&q);
+        out.push_str(&question(problem, v, solution));
     }
     out.push_str("</quiz>\n");
     out
@@ -61,7 +61,7 @@ fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
         crate::model::prose::plain(&problem.title),
         v.number
     );
-    let statement = statement_tex(&v.statement);
+    let statement = statement_tex(&v.statement, &problem.names);
     let scalars: usize = v.answers.iter().map(|a| a.exact_numbers.len()).sum();
     let mut out = String::new();
     if let ([a], [spec]) = (v.answers.as_slice(), problem.answers.as_slice())
@@ -153,7 +153,11 @@ fn feedback(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
                 .unit
                 .as_ref()
                 .map_or(String::new(), |u| format!(" {}", html_escape(&u.text)));
-            format!("{}: {}{unit}", label_tex(spec), tex(&a.exact.to_latex()))
+            format!(
+                "{}: {}{unit}",
+                label_tex(spec),
+                tex(&a.exact.to_latex(&problem.names))
+            )
         })
         .collect();
     let link = solution.map_or(String::new(), |url| {
@@ -190,17 +194,17 @@ fn label(spec: &crate::scene::Answer) -> String {
 
 /// A label for Moodle's HTML: escaped, its `$…$` as TeX between `\(` and `\)`.
 fn label_tex(spec: &crate::scene::Answer) -> String {
-    statement_tex(&crate::model::prose::author(&label(spec)))
+    statement_tex(&crate::model::prose::author(&label(spec)), Names::none())
 }
 
 /// The statement with each value as TeX, the rest escaped for HTML.
-fn statement_tex(statement: &Prose) -> String {
+fn statement_tex(statement: &Prose, names: &Names) -> String {
     statement
         .0
         .iter()
         .map(|piece| match piece {
             Piece::Text(t) => html_escape(t),
-            Piece::Math(f) => tex(&f.to_latex()),
+            Piece::Math(f) => tex(&f.to_latex(names)),
         })
         .collect()
 }

@@ -15,18 +15,7 @@ impl Scene {
     /// A name's LaTeX as the scene's pages print it: its own `tex`, else the conventions
     /// (`phi''` is `\ddot{\phi}`).
     pub fn latex_of(&self, name: &str) -> String {
-        let own = self
-            .tex
-            .iter()
-            .map(|(k, latex)| {
-                let tex = crate::cas::SymbolTex {
-                    latex: latex.clone(),
-                    typst: String::new(),
-                };
-                (k.clone(), tex)
-            })
-            .collect();
-        crate::cas::typeset_as(own, || Expr::sym(name).to_latex())
+        Expr::sym(name).to_latex(&crate::notation::Names::of(&self.tex))
     }
 
     /// The names of the several results of the step `step` (numbered, for a name that is no

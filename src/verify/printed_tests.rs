@@ -185,11 +185,14 @@ const TEXTBOOK: &[(&str, &str, usize, &str)] = &[
 /// Each printed form is within 1.3 times the textbook's length and has none of the tell-tales.
 fn assert_textbook(d: &Derivation, what: &str, name: &str, index: usize, textbook: &str) {
     let e = printed(d, name, index);
-    let (ours, theirs) = (measured(&e.to_latex()), measured(textbook));
+    let (ours, theirs) = (
+        measured(&e.to_latex(crate::notation::Names::none())),
+        measured(textbook),
+    );
     assert!(
         ours * 10 <= theirs * 13,
         "{what} `{name}` [{index}]: {} is {ours} long against the textbook's {theirs}",
-        e.to_latex()
+        e.to_latex(crate::notation::Names::none())
     );
     assert!(
         !has_one_minus_square(&e),

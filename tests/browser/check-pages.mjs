@@ -2,7 +2,7 @@
 //   1. the browser logs no console error, page error or failed request;
 //   2. every <math> element is rendered as MathML (a MathMLElement) with a non-zero box, at
 //      1280 px and at 390 px (a formula wider than a phone is set twice, and each screen shows
-//      one of the two: render/math.rs);
+//      one of the two: render/html/math.rs);
 //   3. every <img> (the SVG plots) has loaded with a non-zero natural size;
 //   4. no number in math is in e-notation (4.68750e−6 reads as 4.6875·e − 6): 4.6875 × 10⁻⁶;
 //   5. no sine, cosine or tangent of a rational multiple of π is left unevaluated (cos(π/2)).

@@ -290,3 +290,30 @@ values = { M = 2.0, L = 1.5, g = 9.81 }
         "{err}"
     );
 }
+
+/// `derive --json` (and the site's JSON export) prints each name as the scene typesets it, as
+/// the page does: the puck's Lagrangian `Lag` (`tex = "L"`) is L, its momentum `p`
+/// (`tex = "p_\phi"`) is p_φ. The export used to ignore the scene's `tex` (\mathrm{Lag}).
+#[test]
+fn the_json_report_prints_the_scenes_own_names() {
+    let r = mechbook(&[
+        "derive",
+        "tests/course/dynamics/17-puck-and-hanging-mass.toml",
+        "--json",
+    ]);
+    assert_eq!(r.status.code(), Some(0), "{}", stderr(&r));
+    let text = super::stdout(&r);
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let latex: Vec<String> = json["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|s| s["latex"].as_str().map(str::to_string))
+        .collect();
+    assert!(
+        latex.iter().any(|l| l.starts_with("L = ")),
+        "no step states L = …: {latex:#?}"
+    );
+    assert!(latex.iter().any(|l| l.contains("p_\\phi")), "{latex:#?}");
+    assert!(!text.contains("\\mathrm{Lag}"), "a name printed as a word");
+}

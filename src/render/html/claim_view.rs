@@ -7,7 +7,7 @@ use super::prose::{author_html, number, prose_html};
 use crate::document::words::{claim_lead, claim_shows_formula};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::{Formula, Tex, linebreak};
+use crate::notation::{Formula, Names, Tex, linebreak};
 use crate::render::RenderError;
 use crate::scene::Verdict;
 use serde::{Deserialize, Serialize};
@@ -55,18 +55,22 @@ pub(super) fn claim_view(
     guard: &mut Guard,
 ) -> Result<ClaimView, RenderError> {
     let c = &page.claims[i];
+    let names = &page.names;
     let render = |e: Option<&crate::cas::Expr>| {
-        e.map(|e| math::inline(&e.to_tex_named(&quantity_symbol)))
+        e.map(|e| math::inline(&e.to_tex_named(names, &quantity_symbol)))
             .transpose()
             .map(Option::unwrap_or_default)
     };
-    let notes_tex = c.notes.as_ref().map(|e| e.to_tex_named(&quantity_symbol));
+    let notes_tex = c
+        .notes
+        .as_ref()
+        .map(|e| e.to_tex_named(names, &quantity_symbol));
     // The derived side in the form the page prints its result (`Page::claim_derived`).
     let derived_tex =
         c.derived.as_ref().map(
             |v| match page.claim_derived(i).filter(|_| c.precision.is_none()) {
-                Some(form) => form.to_tex(),
-                None => derived_tex(v, c.precision.is_some()),
+                Some(form) => form.to_tex(names),
+                None => derived_tex(v, c.precision.is_some(), names),
             },
         );
     // Beside a claim that agrees, the derived form is shown when it says something the
@@ -107,7 +111,7 @@ pub(super) fn claim_view(
                 let row = page
                     .claim_row(i, Formula::Tex(tex.clone()))
                     .unwrap_or_else(|_| Formula::Tex(tex.clone()));
-                math::block(&row.to_tex())
+                math::block(&row.to_tex(names))
             }
             _ => Ok(String::new()),
         }
@@ -139,13 +143,13 @@ pub(super) fn claim_view(
         differences: c
             .differences
             .iter()
-            .map(prose_html)
+            .map(|p| prose_html(p, names))
             .collect::<Result<_, _>>()?,
         precision: c.precision.clone(),
         positive: c
             .positive
             .iter()
-            .map(|n| math::inline(&crate::cas::Expr::sym(n).to_tex()))
+            .map(|n| math::inline(&crate::cas::Expr::sym(n).to_tex(names)))
             .collect::<Result<Vec<_>, _>>()?
             .join(", "),
         where_real: c.where_real,
@@ -159,8 +163,9 @@ pub(super) fn claim_view(
 
 /// A claim's left side as MathML (`Page::claim_left`), empty where it has none.
 fn left_side(page: &crate::document::Page, i: usize) -> Result<String, RenderError> {
+    let names = &page.names;
     match page.claim_left(i) {
-        Ok(Some(f)) => math::inline(&f.to_tex()),
+        Ok(Some(f)) => math::inline(&f.to_tex(names)),
         Ok(None) => Ok(String::new()),
         Err(e) => Err(RenderError::Math {
             latex: page.claims[i].tex.clone().unwrap_or_default(),
@@ -171,12 +176,12 @@ fn left_side(page: &crate::document::Page, i: usize) -> Result<String, RenderErr
 
 /// The derived side of a claim; a number the notes give roughly as a decimal (303.6246, not a
 /// fraction of 30 digits).
-fn derived_tex(v: &Value, rough: bool) -> Tex {
+fn derived_tex(v: &Value, rough: bool, names: &Names) -> Tex {
     match v {
         Value::Scalar(e) if rough => match e.eval(&|_| None) {
-            Ok(x) => number(x, 7).to_tex(),
-            Err(_) => v.to_tex(),
+            Ok(x) => number(x, 7).to_tex(names),
+            Err(_) => v.to_tex(names),
         },
-        _ => v.to_tex(),
+        _ => v.to_tex(names),
     }
 }

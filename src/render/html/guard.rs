@@ -8,8 +8,9 @@ use crate::cas::Expr;
 use crate::derive::step_names::Stands;
 use crate::document::Page;
 use crate::model::value::Value;
+use crate::notation::Names;
 use crate::notation::Tex;
-use crate::notation::read_back::{Names, read_back, sides};
+use crate::notation::read_back::{Readable, read_back, sides};
 use crate::render::RenderError;
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -34,7 +35,7 @@ pub struct Counts {
 }
 
 impl<'a> Guard<'a> {
-    /// The guard of one page, under the scene's typesetting in force.
+    /// The guard of one page, its names read as the scene typesets them.
     pub fn for_page(page: &'a Page) -> Guard<'a> {
         let coordinates = page.coordinates.iter().map(|(q, _)| q);
         let varying: BTreeSet<String> = coordinates
@@ -73,11 +74,12 @@ impl<'a> Guard<'a> {
             return None;
         }
         let own: Vec<String> = of.iter().flat_map(|e| e.symbols()).collect();
-        let table = Names::new(
+        let table = Readable::new(
             own.iter()
                 .chain(&self.names)
                 .chain(self.results.keys())
                 .map(String::as_str),
+            &self.page.names,
         );
         let e = read_back(nodes, &table).ok()?;
         Some(e.substitute(&|n| {
@@ -280,7 +282,7 @@ pub fn printed_number(
     let parts = sides(&tex.nodes);
     let Some(shown) = parts
         .last()
-        .and_then(|(_, last)| read_back(last, &Names::new(["pi"])).ok())
+        .and_then(|(_, last)| read_back(last, &Readable::new(["pi"], Names::none())).ok())
     else {
         return Ok(false);
     };

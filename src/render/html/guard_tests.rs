@@ -116,7 +116,12 @@ fn a_printer_that_drops_a_times_sign_fails_the_keys_guard() {
             Box::new(Formula::Number("4".into())),
         ),
     ]);
-    match printed_number(&wrong.to_tex(), value, None, 12) {
+    match printed_number(
+        &wrong.to_tex(crate::notation::Names::none()),
+        value,
+        None,
+        12,
+    ) {
         Err(RenderError::Misprinted { line, read, by, .. }) => {
             assert_eq!(line, 12);
             // Read as a reader reads it: 30.4⁴ = (152/5)⁴, some 11,000 times the answer.
@@ -127,17 +132,33 @@ fn a_printer_that_drops_a_times_sign_fails_the_keys_guard() {
     }
     let right = crate::cas::parse("3*0.4^4").unwrap().expr;
     assert!(matches!(
-        printed_number(&right.to_tex(), value, None, 12),
+        printed_number(
+            &right.to_tex(crate::notation::Names::none()),
+            value,
+            None,
+            12
+        ),
         Ok(true)
     ));
     // Rounded to four figures: within half a unit of the fourth, not beyond.
     let four = Formula::decimal("0.07680");
     assert!(matches!(
-        printed_number(&four.to_tex(), value, Some(4), 12),
+        printed_number(
+            &four.to_tex(crate::notation::Names::none()),
+            value,
+            Some(4),
+            12
+        ),
         Ok(true)
     ));
     let off = Formula::decimal("0.07690");
-    let e = printed_number(&off.to_tex(), value, Some(4), 12).unwrap_err();
+    let e = printed_number(
+        &off.to_tex(crate::notation::Names::none()),
+        value,
+        Some(4),
+        12,
+    )
+    .unwrap_err();
     assert!(matches!(e, RenderError::Misprinted { .. }), "{e:?}");
 }
 

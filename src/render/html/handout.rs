@@ -84,7 +84,10 @@ fn step_view<'a>(
     let (reason, title, why) = if s.reason_first {
         let reason = match first.why.is_empty() {
             true => None,
-            false => Some(prose_html(&first.student_why_cited().capitalised())?),
+            false => Some(prose_html(
+                &first.student_why_cited().capitalised(),
+                &page.names,
+            )?),
         };
         (reason, None, None)
     } else {
@@ -106,9 +109,7 @@ fn step_view<'a>(
                 // A number no student reads exactly is shown to six figures.
                 let math = match approx {
                     // In the scene's own typesetting, as the page's lines are (`turn_1` is ū₁).
-                    Some(f) => {
-                        crate::notation::typeset_as(&page.tex, || super::math::block(&f.to_tex()))?
-                    }
+                    Some(f) => super::math::block(&f.to_tex(&page.names))?,
                     None => view.steps[l].math.clone(),
                 };
                 Ok((math, at))

@@ -12,7 +12,7 @@ use crate::document::words::{
 };
 use crate::document::{At, Link, Page, PrincipalValues};
 use crate::model::value::Value;
-use crate::notation::{Formula, Op};
+use crate::notation::{Formula, Names, Op};
 use crate::render::RenderError;
 use serde::{Deserialize, Serialize};
 
@@ -116,7 +116,7 @@ pub(super) fn plain_link(l: &Link) -> Link {
 
 /// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
 /// of the symbols it contains) and the number, vector or matrix as MathML.
-fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
+fn at_numbers_html(v: &Value, at: &At, names: &Names) -> Result<String, RenderError> {
     let n: Vec<Formula> = at_entries(at).into_iter().map(|x| number(x, 6)).collect();
     let symbols = at.symbols.iter().map(|(k, x)| {
         with_unit(
@@ -130,8 +130,8 @@ fn at_numbers_html(v: &Value, at: &At) -> Result<String, RenderError> {
     });
     Ok(format!(
         "at {}: {}",
-        math::inline(&listed(symbols).to_tex())?,
-        math::inline(&with_unit(numbers_formula(v, n), at.unit.as_ref()).to_tex())?
+        math::inline(&listed(symbols).to_tex(names))?,
+        math::inline(&with_unit(numbers_formula(v, n), at.unit.as_ref()).to_tex(names))?
     ))
 }
 
@@ -155,21 +155,18 @@ fn check_text(c: &crate::verify::StepCheck) -> String {
 /// The HTML view of one page, its names typeset as the scene says. `timings` adds measured
 /// seconds to the numeric table.
 pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
-    crate::notation::typeset_as(&page.tex, || scene_page_view(page, timings))
-}
-
-fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
+    let names = &page.names;
     let mut guard = guard::Guard::for_page(page);
     let steps = page
         .steps
         .iter()
         .map(|st| {
-            let tex = st.statement.to_tex();
+            let tex = st.statement.to_tex(names);
             guard.step(st, &tex)?;
             Ok(StepView {
                 title: author_html(&st.title)?,
                 math: math::block(&tex)?,
-                why: prose_html(&st.why_cited())?,
+                why: prose_html(&st.why_cited(), names)?,
                 at: String::new(),
                 check: st.check.as_ref().map(check_text).unwrap_or_default(),
             })
@@ -182,21 +179,21 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
                 title: result_heading(q),
                 math: match &q.symbol {
                     Some(symbol) => {
-                        let tex = result_equation(symbol, &q.value).to_tex();
+                        let tex = result_equation(symbol, &q.value).to_tex(names);
                         if let Value::Scalar(derived) = &q.derived {
                             guard.printed(&tex, derived, page.line)?;
                         }
                         math::block(&tex)?
                     }
                     None => {
-                        let tex = q.formula().to_tex();
+                        let tex = q.formula().to_tex(names);
                         guard.printed_value(&tex, &q.derived, page.line)?;
                         math::block(&tex)?
                     }
                 },
                 why: String::new(),
                 at: match &q.at {
-                    Some(at) => at_numbers_html(&q.value, at)?,
+                    Some(at) => at_numbers_html(&q.value, at, names)?,
                     None => String::new(),
                 },
                 check: String::new(),
@@ -219,14 +216,14 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         }
         principal.push(StepView {
             title: format!("Principal moment (multiplicity {})", sp.multiplicity),
-            math: math::block(&Formula::Row(row).to_tex())?,
+            math: math::block(&Formula::Row(row).to_tex(names))?,
             why: String::new(),
             at: String::new(),
             check: String::new(),
         });
     }
     if let Some(p) = &page.principal_values {
-        principal.push(principal_values_view(p)?);
+        principal.push(principal_values_view(p, names)?);
     }
     let results = quantities
         .iter()
@@ -275,7 +272,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
                     .get(k)
                     .map_or(String::new(), |u| format!(" ({})", unit_html(u)));
                 Ok((
-                    math::mathml(&Expr::sym(k).to_tex(), false)?,
+                    math::mathml(&Expr::sym(k).to_tex(names), false)?,
                     v.clone(),
                     format!("{}{unit}", author_html(v)?),
                 ))
@@ -285,7 +282,9 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
             .definitions
             .iter()
             .map(|(k, e)| {
-                math::inline(&Formula::equation(Formula::Expr(Expr::sym(k)), e.clone()).to_tex())
+                math::inline(
+                    &Formula::equation(Formula::Expr(Expr::sym(k)), e.clone()).to_tex(names),
+                )
             })
             .collect::<Result<_, RenderError>>()?,
         coordinates: page
@@ -298,7 +297,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
                     .get(k)
                     .map_or(String::new(), |u| format!(" ({})", unit_html(u)));
                 Ok((
-                    math::mathml(&Expr::sym(k).to_tex(), false)?,
+                    math::mathml(&Expr::sym(k).to_tex(names), false)?,
                     format!("{}{unit}", author_html(v)?),
                 ))
             })
@@ -306,7 +305,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
         bodies: page
             .bodies
             .iter()
-            .map(prose_html)
+            .map(|p| prose_html(p, names))
             .collect::<Result<_, RenderError>>()?,
         steps,
         results,
@@ -344,7 +343,7 @@ fn scene_page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> 
 
 /// The principal moments as numbers, with the axes when only the numerics give them, and how
 /// well the two routes agree.
-fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
+fn principal_values_view(p: &PrincipalValues, names: &Names) -> Result<StepView, RenderError> {
     use crate::numeric::eigen::Space;
     let letter = Formula::Name(crate::notation::Name::letter(&p.letter));
     let mut row = vec![
@@ -387,10 +386,10 @@ fn principal_values_view(p: &PrincipalValues) -> Result<StepView, RenderError> {
         at: String::new(),
         check: String::new(),
         title: "Principal moments at the scene's values".into(),
-        math: math::block(&Formula::Row(row).to_tex())?,
+        math: math::block(&Formula::Row(row).to_tex(names))?,
         why: format!(
             "at {}: {}",
-            math::inline(&values_at(&p.values).to_tex())?,
+            math::inline(&values_at(&p.values).to_tex(names))?,
             tera::escape_html(&format!(
                 "{route} evaluated, and the eigen-solver on the exact tensor agrees to {} \
                  (relative)",

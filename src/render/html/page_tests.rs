@@ -15,7 +15,7 @@ fn a_result_at_the_numbers_prints_six_figures_and_names_its_symbols() {
         units: [("R".to_string(), "m".to_string())].into(),
         unit: Some("m".into()),
     };
-    let html = at_numbers_html(&v, &at).unwrap();
+    let html = at_numbers_html(&v, &at, Names::none()).unwrap();
     assert!(html.starts_with("at <math"), "{html}");
     assert!(html.contains("<mi>R</mi>"), "{html}");
     assert!(html.contains("<mn>12.5664</mn>"), "{html}");

@@ -11,7 +11,7 @@ use crate::document::{KEY_FIGURES, Problem, ROUNDED_FIGURES, Sheet, Variant, ans
 use crate::model::catalogue::{quantity, quantity_symbol};
 use crate::model::prose::Prose;
 use crate::model::value::Value;
-use crate::notation::{Formula, Op};
+use crate::notation::{Formula, Names, Op};
 use crate::render::RenderError;
 use crate::render::memo::Recall;
 use serde::de::DeserializeOwned;
@@ -61,8 +61,8 @@ pub struct KeyAnswer {
 }
 
 /// A statement as HTML: the text escaped, each value as MathML.
-pub fn statement_html(statement: &Prose) -> Result<String, RenderError> {
-    prose_html(statement)
+pub fn statement_html(statement: &Prose, names: &Names) -> Result<String, RenderError> {
+    prose_html(statement, names)
 }
 
 /// The sheet's variants, each with every problem's `make` at its variant on that sheet. Each
@@ -83,13 +83,11 @@ fn sheet_views<P: Serialize + DeserializeOwned>(
             .map(|sp| (sp.variant, sp.shared))
             .collect();
         let column = memo.recall_or(&format!("{number}"), &[p, &cells], || {
-            crate::notation::typeset_as(&p.tex, || {
-                cells
-                    .iter()
-                    .map(|&(v, shared)| make(number, p, &p.variants[v], shared))
-                    .collect::<Result<Vec<P>, RenderError>>()
-            })
-            .map_err(|e| e.in_scene(&p.source))
+            cells
+                .iter()
+                .map(|&(v, shared)| make(number, p, &p.variants[v], shared))
+                .collect::<Result<Vec<P>, RenderError>>()
+                .map_err(|e| e.in_scene(&p.source))
         })?;
         columns.push(column.into_iter());
     }
@@ -121,7 +119,7 @@ pub fn student_sheet(
             title: p.title.clone(),
             title_html: author_html(&p.title)?,
             variant: v.number,
-            statement: statement_html(&v.statement)?,
+            statement: statement_html(&v.statement, &p.names)?,
         })
     })
 }
@@ -155,10 +153,8 @@ pub fn answer_key(sheet: &Sheet, memo: &mut Recall) -> Result<AnswerKey, RenderE
         .iter()
         .map(|a| {
             let (number, p) = sheet.problem(a.problem);
-            let mut answered = crate::notation::typeset_as(&p.tex, || {
-                key_problem(number, p, &p.variants[a.variant])
-            })
-            .map_err(|e| e.in_scene(&p.source))?;
+            let mut answered = key_problem(number, p, &p.variants[a.variant])
+                .map_err(|e| e.in_scene(&p.source))?;
             answered.serves = a.serves.clone();
             Ok(answered)
         })
@@ -179,6 +175,7 @@ pub fn answer_key(sheet: &Sheet, memo: &mut Recall) -> Result<AnswerKey, RenderE
 }
 
 fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, RenderError> {
+    let names = &p.names;
     let values = v.given.iter().map(|g| {
         let mut row = vec![
             Formula::Expr(Expr::sym(&g.name)),
@@ -198,19 +195,19 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
             .map_or(String::new(), |u| format!(" {}", unit_html(&u.text)));
         let (exact, figures) = match a.rounded {
             true => (
-                decimals(&a.exact, &a.exact_numbers, ROUNDED_FIGURES).to_tex(),
+                decimals(&a.exact, &a.exact_numbers, ROUNDED_FIGURES).to_tex(names),
                 Some(ROUNDED_FIGURES),
             ),
-            false => (a.shown_or_exact().to_tex(), None),
+            false => (a.shown_or_exact().to_tex(names), None),
         };
-        let decimal = decimals(&a.exact, &a.exact_numbers, KEY_FIGURES).to_tex();
+        let decimal = decimals(&a.exact, &a.exact_numbers, KEY_FIGURES).to_tex(names);
         // Each column read back: the number a grader reads is the variant's answer.
         if let [value] = a.exact_numbers.as_slice() {
             super::guard::printed_number(&exact, *value, figures, spec.line)?;
             super::guard::printed_number(&decimal, *value, Some(KEY_FIGURES), spec.line)?;
         }
         answers.push(KeyAnswer {
-            label: spec_label(spec)?,
+            label: spec_label(spec, names)?,
             exact: format!(
                 "{}{}{unit}",
                 if a.rounded { "≈ " } else { "" },
@@ -224,7 +221,7 @@ fn key_problem(number: usize, p: &Problem, v: &Variant) -> Result<KeyProblem, Re
         title: p.title.clone(),
         title_html: author_html(&p.title)?,
         variant: v.number,
-        values: math::inline(&listed(values).to_tex())?,
+        values: math::inline(&listed(values).to_tex(names))?,
         answers,
         page: p.page.clone(),
         checked: crate::base::format::sci(v.worst_error()),
@@ -242,11 +239,11 @@ pub fn decimals(shape: &Value, numbers: &[f64], digits: usize) -> Formula {
 }
 
 /// An answer's label as HTML: the author's words, a bare quantity's own, or the expression.
-fn spec_label(a: &crate::scene::Answer) -> Result<String, RenderError> {
+fn spec_label(a: &crate::scene::Answer, names: &Names) -> Result<String, RenderError> {
     match (&a.label, a.bare_quantity()) {
         (Some(words), _) => author_html(&crate::base::format::capitalised(words)),
         (None, Some(q)) => answer_label(q),
-        (None, None) => math::inline(&a.value.to_tex()),
+        (None, None) => math::inline(&a.value.to_tex(names)),
     }
 }
 

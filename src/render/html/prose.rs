@@ -1,11 +1,14 @@
 //! An author's words and mechbook's numbers and units as HTML, for every page of the site.
 
 use super::math;
-use crate::notation::Formula;
+use crate::notation::{Formula, Names};
 use crate::render::RenderError;
 
 /// A sentence as HTML: its text escaped, its formulas as MathML.
-pub fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderError> {
+pub fn prose_html(
+    prose: &crate::model::prose::Prose,
+    names: &Names,
+) -> Result<String, RenderError> {
     use crate::model::prose::Piece;
     let mut out = String::new();
     for piece in &prose.0 {
@@ -13,15 +16,16 @@ pub fn prose_html(prose: &crate::model::prose::Prose) -> Result<String, RenderEr
             Piece::Text(t) => out.push_str(&tera::escape_html(t)),
             // An author's mathematics is set from the tree read at load, mechbook's from the
             // tree it builds.
-            Piece::Math(f) => out.push_str(&math::inline(&f.to_tex())?),
+            Piece::Math(f) => out.push_str(&math::inline(&f.to_tex(names))?),
         }
     }
     Ok(out)
 }
 
-/// An author's text as HTML: escaped, its `$…$` mathematics as MathML.
+/// An author's text as HTML: escaped, its `$…$` mathematics as MathML (read at load, so set
+/// as the author wrote it).
 pub fn author_html(text: &str) -> Result<String, RenderError> {
-    prose_html(&crate::model::prose::author(text))
+    prose_html(&crate::model::prose::author(text), Names::none())
 }
 
 /// A computed number to `digits` significant figures (4.6875 × 10⁻⁶, never e-notation).

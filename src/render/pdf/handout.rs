@@ -14,7 +14,7 @@ use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
 use crate::document::{At, Page, words};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::{Formula, symbol_tex};
+use crate::notation::{Formula, Names, symbol_tex};
 use crate::render::RenderError;
 
 /// The body of a handout: one section per page.
@@ -31,8 +31,8 @@ pub fn handout(
         m.raw("#outline(title: [Contents], depth: 2)\n#pagebreak(weak: true)\n");
     }
     for (part, page) in parts {
-        m.scene_part(&page.source, page.line, |m| {
-            crate::notation::typeset_as(&page.tex, || section(m, part, page))
+        m.scene_part(&page.source, page.line, &page.names, |m| {
+            section(m, part, page)
         })
         .map_err(|e| e.in_scene(&page.source))?;
     }
@@ -40,6 +40,7 @@ pub fn handout(
 }
 
 fn section(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
+    let names = &page.names;
     m.heading(2, &page.title)?;
     if !page.section.is_empty() || !page.equations.is_empty() {
         m.raw("#text(9pt)[");
@@ -66,8 +67,8 @@ fn section(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
     for (name, e) in &page.definitions {
         m.raw("- ")
             .inline(
-                &format!("{} = {}", symbol(name), e.to_typst()),
-                &said_equation(name, &e.to_tex().spoken()),
+                &format!("{} = {}", symbol(name, names), e.to_typst(names)),
+                &said_equation(name, &e.to_tex(names).spoken(), names),
             )
             .line();
     }
@@ -90,13 +91,14 @@ fn section(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
 
 /// The coordinates and symbols, each with what it stands for (and its unit).
 fn setup(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
+    let names = &page.names;
     if page.coordinates.is_empty() && page.symbols.is_empty() {
         return Ok(());
     }
     m.raw("#grid(columns: (auto, 1fr), column-gutter: 1em, row-gutter: 0.5em,\n");
     for (name, meaning) in page.coordinates.iter().chain(&page.symbols) {
         m.raw("[")
-            .inline(&symbol(name), &said_symbol(name))
+            .inline(&symbol(name, names), &said_symbol(name, names))
             .raw("], [");
         m.author(meaning)?;
         if let Some(u) = page.units.get(name) {
@@ -114,6 +116,7 @@ fn setup(m: &mut Markup, page: &Page) -> Result<(), RenderError> {
 /// A step: the student's under its reason; the instructor's under its title, with its reason
 /// and numeric check below.
 fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<(), RenderError> {
+    let names = &page.names;
     let first = &page.steps[s.lines[0]];
     let last = &page.steps[*s.lines.last().unwrap()];
     m.raw(&format!("\n#block(width: 100%, breakable: true)[*{n}.* "));
@@ -126,12 +129,12 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
     for ((&l, at), approx) in s.lines.iter().zip(&s.at).zip(&s.approx) {
         // A number no student reads exactly is shown to six figures.
         let statement = approx.as_ref().unwrap_or(&page.steps[l].statement);
-        let (whole, broken) = formula_and_broken(statement)?;
-        m.block(&whole, &broken, &statement.to_tex().spoken());
+        let (whole, broken) = formula_and_broken(statement, names)?;
+        m.block(&whole, &broken, &statement.to_tex(names).spoken());
         if let Some(q) = at.map(|q| &page.quantities[q])
             && let Some(at) = &q.at
         {
-            at_numbers(m, &q.value, at);
+            at_numbers(m, &q.value, at, names);
         }
     }
     if !s.reason_first {
@@ -151,7 +154,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
                     None => "As in the notes".to_string(),
                 });
                 // The symbols whose positivity the agreement rests on.
-                positive(m, &page.claims[c.claim]);
+                positive(m, &page.claims[c.claim], names);
                 m.text(".");
                 m.raw("]\n");
             }
@@ -163,35 +166,36 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
 }
 
 fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
+    let names = &page.names;
     for q in part.results.iter().map(|&i| &page.quantities[i]) {
         match &q.symbol {
             // A step's result, named by its own equation (`ẍ₁ = …`).
             Some(symbol) => {
                 let statement = words::result_equation(symbol, &q.value);
-                let (whole, broken) = formula_and_broken(&statement)?;
-                m.block(&whole, &broken, &statement.to_tex().spoken());
+                let (whole, broken) = formula_and_broken(&statement, names)?;
+                m.block(&whole, &broken, &statement.to_tex(names).spoken());
             }
             None => {
                 m.heading(3, &words::result_heading(q))?;
                 match &q.matrix {
                     Some(_) => {
                         let value = q.formula();
-                        let (whole, broken) = formula_and_broken(&value)?;
-                        m.block(&whole, &broken, &value.to_tex().spoken());
+                        let (whole, broken) = formula_and_broken(&value, names)?;
+                        m.block(&whole, &broken, &value.to_tex(names).spoken());
                     }
                     None => {
                         let value = q.value.to_expr();
                         m.block(
-                            &value.to_typst(),
-                            &value.to_typst_breakable(),
-                            &value.to_tex().spoken(),
+                            &value.to_typst(names),
+                            &value.to_typst_breakable(names),
+                            &value.to_tex(names).spoken(),
                         );
                     }
                 }
             }
         }
         if let Some(at) = &q.at {
-            at_numbers(m, &q.value, at);
+            at_numbers(m, &q.value, at, names);
         }
     }
     if !part.principal {
@@ -205,34 +209,45 @@ fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
         let vector = |v: &[crate::cas::Expr; 3]| Value::Vector(v.clone()).to_expr();
         let (dir, said) = match &sp.basis {
             ExactBasis::Axis(a) => (
-                format!("quad \"along\" {}", vector(a).to_typst()),
-                format!("along {}", vector(a).to_tex().spoken()),
+                format!("quad \"along\" {}", vector(a).to_typst(names)),
+                format!("along {}", vector(a).to_tex(names).spoken()),
             ),
             ExactBasis::PlaneNormalTo(n) => (
-                format!("quad \"every axis\" perp {}", vector(n).to_typst()),
+                format!("quad \"every axis\" perp {}", vector(n).to_typst(names)),
                 format!(
                     "every axis perpendicular to {}",
-                    vector(n).to_tex().spoken()
+                    vector(n).to_tex(names).spoken()
                 ),
             ),
             ExactBasis::All => ("quad \"every axis\"".into(), "every axis".into()),
         };
-        let line = format!("{} {dir}", sp.value.to_typst());
+        let line = format!("{} {dir}", sp.value.to_typst(names));
         m.block(
             &line,
             &line,
-            &format!("{}, {said}", sp.value.to_tex().spoken()),
+            &format!("{}, {said}", sp.value.to_tex(names).spoken()),
         );
     }
     if let Some(p) = &page.principal_values {
         m.heading(3, "Principal moments at the scene's values")?;
         let values: Vec<String> = p.exact.iter().map(|v| number(*v, 6)).collect();
-        let line = format!("{} = {}", symbol(&p.letter), values.join("\\, thin "));
+        let line = format!(
+            "{} = {}",
+            symbol(&p.letter, names),
+            values.join("\\, thin ")
+        );
         let said: Vec<String> = p.exact.iter().map(|v| said_number(*v, 6)).collect();
-        m.block(&line, &line, &said_equation(&p.letter, &said.join(", ")));
+        m.block(
+            &line,
+            &line,
+            &said_equation(&p.letter, &said.join(", "), names),
+        );
         m.raw("#text(9.5pt)[").text("at ");
         let values = words::values_at(&p.values);
-        m.inline(&super::markup::formula(&values)?, &values.to_tex().spoken());
+        m.inline(
+            &super::markup::formula(&values, names)?,
+            &values.to_tex(names).spoken(),
+        );
         m.text(&format!(
             ": the eigen-solver on the exact tensor agrees to {} (relative)",
             sci(p.error)
@@ -243,7 +258,7 @@ fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
 }
 
 /// A result at the scene's numbers, to six significant figures.
-fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
+fn at_numbers(m: &mut Markup, v: &Value, at: &At, names: &Names) {
     let n: Vec<String> = words::at_entries(at)
         .into_iter()
         .map(|x| number(x, 6))
@@ -251,7 +266,14 @@ fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
     let symbols: Vec<String> = at
         .symbols
         .iter()
-        .map(|(k, x)| format!("{} = {}{}", symbol(k), number(*x, 6), unit(at.units.get(k))))
+        .map(|(k, x)| {
+            format!(
+                "{} = {}{}",
+                symbol(k, names),
+                number(*x, 6),
+                unit(at.units.get(k))
+            )
+        })
         .collect();
     let spoken_unit =
         |u: Option<&String>| u.map_or(String::new(), |u| format!(" {}", said_unit(u)));
@@ -262,6 +284,7 @@ fn at_numbers(m: &mut Markup, v: &Value, at: &At) {
             said_equation(
                 k,
                 &format!("{}{}", said_number(*x, 6), spoken_unit(at.units.get(k))),
+                names,
             )
         })
         .collect();
@@ -303,6 +326,7 @@ fn claims(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
 /// A claim: in a list, with its verdict for the instructor, or with its formula as in the
 /// notes for the student; or boxed with both forms.
 fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), RenderError> {
+    let names = &page.names;
     let i = shown.claim;
     let c = &page.claims[i];
     // A scalar claim's notes' side after its left side; a vector's or a matrix's as a column
@@ -330,13 +354,13 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
             m.raw("#block[");
             m.author(&lead)?.text(":");
             let notes = notes?;
-            let (whole, broken) = formula_and_broken(&notes)?;
-            m.block(&whole, &broken, &notes.to_tex().spoken());
+            let (whole, broken) = formula_and_broken(&notes, names)?;
+            m.block(&whole, &broken, &notes.to_tex(names).spoken());
             m.text("As in the notes");
             if let Some(eq) = page.claim_equation(i) {
                 m.text(&format!(", eq. ({eq})"));
             }
-            positive(m, c);
+            positive(m, c, names);
             m.text(".");
             m.raw("]");
             m.line();
@@ -370,18 +394,27 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
     m.text(&format!("{wrong}: "));
     if let Some(notes) = notes {
         let notes = notes?;
-        let (whole, broken) = formula_and_broken(&notes)?;
-        m.block(&whole, &broken, &notes.to_tex().spoken());
+        let (whole, broken) = formula_and_broken(&notes, names)?;
+        m.block(&whole, &broken, &notes.to_tex(names).spoken());
     } else if let Some(e) = &c.notes {
-        let typst =
-            e.to_typst_named(&|q| quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok()));
-        m.block(&typst, &typst, &e.to_tex_named(&quantity_symbol).spoken());
+        let typst = e.to_typst_named(names, &|q| {
+            quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok())
+        });
+        m.block(
+            &typst,
+            &typst,
+            &e.to_tex_named(names, &quantity_symbol).spoken(),
+        );
     }
     m.text(&format!("{right}: "));
     let derived = c.derived.as_ref().map(|v| match v {
         Value::Scalar(e) if c.precision.is_some() => match e.eval(&|_| None) {
             Ok(x) => Ok((number(x, 7), number(x, 7), said_number(x, 7))),
-            Err(_) => Ok((e.to_typst(), e.to_typst(), e.to_tex().spoken())),
+            Err(_) => Ok((
+                e.to_typst(names),
+                e.to_typst(names),
+                e.to_tex(names).spoken(),
+            )),
         },
         // The form the page prints for the result (`Page::claim_derived`).
         Value::Scalar(_) => {
@@ -389,8 +422,8 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
                 .claim_derived(i)
                 .unwrap_or_else(|| Formula::Expr(v.to_expr()));
             let f = claim_formula(page, i, side)?;
-            let (whole, broken) = formula_and_broken(&f)?;
-            Ok((whole, broken, f.to_tex().spoken()))
+            let (whole, broken) = formula_and_broken(&f, names)?;
+            Ok((whole, broken, f.to_tex(names).spoken()))
         }
         // A vector or a matrix as a column of its own, without a left side; a matrix with its
         // factor out as its result prints.
@@ -399,12 +432,16 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
             .filter(|_| matches!(v, Value::Matrix(_)))
         {
             Some(f) => {
-                let (whole, broken) = formula_and_broken(&f)?;
-                Ok((whole, broken, f.to_tex().spoken()))
+                let (whole, broken) = formula_and_broken(&f, names)?;
+                Ok((whole, broken, f.to_tex(names).spoken()))
             }
             None => {
                 let e = v.to_expr();
-                Ok((e.to_typst(), e.to_typst_breakable(), e.to_tex().spoken()))
+                Ok((
+                    e.to_typst(names),
+                    e.to_typst_breakable(names),
+                    e.to_tex(names).spoken(),
+                ))
             }
         },
     });
@@ -426,11 +463,11 @@ fn claim_formula(page: &Page, i: usize, side: Formula) -> Result<Formula, Render
 
 /// ", for positive g, l": the symbols an agreement rests on being positive, and ", where both
 /// sides are real" where it rests on that.
-fn positive(m: &mut Markup, c: &crate::verify::ClaimResult) {
+fn positive(m: &mut Markup, c: &crate::verify::ClaimResult, names: &Names) {
     for (k, name) in c.positive.iter().enumerate() {
         m.text(if k == 0 { ", for positive " } else { ", " });
         let e = crate::cas::Expr::sym(name);
-        m.inline(&e.to_typst(), &e.to_tex().spoken());
+        m.inline(&e.to_typst(names), &e.to_tex(names).spoken());
     }
     if c.where_real {
         m.text(", where both sides are real");

@@ -6,7 +6,7 @@ use super::super::RenderError;
 use crate::base::typst::typst_string;
 use crate::cas::Expr;
 use crate::model::prose::{Piece, Prose};
-use crate::notation::Formula;
+use crate::notation::{Formula, Names};
 use crate::scene::{Course, Paper};
 
 /// A document being written, and where each scene's part of it starts (for Typst's errors).
@@ -16,6 +16,9 @@ pub struct Markup {
     origins: Vec<(usize, String)>,
     /// Whether the sheets' heading rules are set (`sheet::sheet_headings`): once a document.
     pub sheet_headings: bool,
+    /// The names of the scene whose part is being written ([`Markup::scene_part`]), as it
+    /// typesets them; none between scenes.
+    names: Names,
 }
 
 impl Markup {
@@ -24,20 +27,33 @@ impl Markup {
             text: preamble,
             origins: Vec::new(),
             sheet_headings: false,
+            names: Names::default(),
         }
     }
 
-    /// The markup `write` adds comes from the scene at `source`, line `line`.
+    /// An empty part of a scene's markup, its formulas setting the scene's names as `names`.
+    pub fn of_scene(names: &Names) -> Markup {
+        Markup {
+            names: names.clone(),
+            ..Markup::default()
+        }
+    }
+
+    /// The markup `write` adds comes from the scene at `source`, line `line`, whose formulas
+    /// set its names as `names`.
     pub fn scene_part<T>(
         &mut self,
         source: &std::path::Path,
         line: usize,
+        names: &Names,
         write: impl FnOnce(&mut Self) -> T,
     ) -> T {
         self.origins
             .push((self.text.len(), format!("{}:{line}", source.display())));
+        self.names = names.clone();
         let out = write(self);
         // What follows is mechbook's own, until the next scene.
+        self.names = Names::default();
         self.origins.push((self.text.len(), String::new()));
         out
     }
@@ -138,7 +154,10 @@ impl Markup {
         for piece in &prose.0 {
             match piece {
                 Piece::Text(t) => self.text(t),
-                Piece::Math(f) => self.inline(&formula(f)?, &f.to_tex().spoken()),
+                Piece::Math(f) => {
+                    let (typst, said) = (formula(f, &self.names)?, f.to_tex(&self.names).spoken());
+                    self.inline(&typst, &said)
+                }
             };
         }
         Ok(self)
@@ -168,31 +187,33 @@ impl Markup {
 }
 
 /// A formula in Typst's math.
-pub fn formula(f: &Formula) -> Result<String, RenderError> {
-    f.to_typst().map_err(|e| math_error(f, e))
+pub fn formula(f: &Formula, names: &Names) -> Result<String, RenderError> {
+    f.to_typst(names).map_err(|e| math_error(f, names, e))
 }
 
 /// A formula in Typst's math, and as it is printed to be broken across lines.
-pub fn formula_and_broken(f: &Formula) -> Result<(String, String), RenderError> {
-    let broken = f.to_typst_breakable().map_err(|e| math_error(f, e))?;
-    Ok((formula(f)?, broken))
+pub fn formula_and_broken(f: &Formula, names: &Names) -> Result<(String, String), RenderError> {
+    let broken = f
+        .to_typst_breakable(names)
+        .map_err(|e| math_error(f, names, e))?;
+    Ok((formula(f, names)?, broken))
 }
 
-fn math_error(f: &Formula, e: crate::notation::TexError) -> RenderError {
+fn math_error(f: &Formula, names: &Names, e: crate::notation::TexError) -> RenderError {
     RenderError::Math {
-        latex: f.to_latex(),
+        latex: f.to_latex(names),
         message: e.to_string(),
     }
 }
 
 /// A symbol's name in words.
-pub fn said_symbol(name: &str) -> String {
-    Expr::sym(name).to_tex().spoken()
+pub fn said_symbol(name: &str, names: &Names) -> String {
+    Expr::sym(name).to_tex(names).spoken()
 }
 
 /// `name = value` in words.
-pub fn said_equation(name: &str, value: &str) -> String {
-    format!("{} equals {value}", said_symbol(name))
+pub fn said_equation(name: &str, value: &str, names: &Names) -> String {
+    format!("{} equals {value}", said_symbol(name, names))
 }
 
 /// A computed number in words, as [`number`] sets it: "4.6875 times 10 to the power minus 6".
@@ -206,8 +227,8 @@ pub fn said_number(x: f64, digits: usize) -> String {
 }
 
 /// A symbol's name in Typst's math.
-pub fn symbol(name: &str) -> String {
-    Expr::sym(name).to_typst()
+pub fn symbol(name: &str, names: &Names) -> String {
+    Expr::sym(name).to_typst(names)
 }
 
 /// A computed number to `digits` significant figures, in Typst's math (4.6875 × 10⁻⁶).

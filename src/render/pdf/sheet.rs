@@ -90,7 +90,7 @@ pub fn student_sheet(
         for sp in &sheet.variants[*k].problems {
             let (_, p) = sheet.problem(sp.problem);
             let part = columns.next(sp.problem);
-            m.scene_part(&p.source, p.line, |m| {
+            m.scene_part(&p.source, p.line, &p.names, |m| {
                 m.raw(&part);
             });
         }
@@ -136,8 +136,8 @@ pub fn key(
             let (n, p) = sheet.problem(answer.problem);
             let v = &p.variants[answer.variant];
             let heading = format!("Problem {n}, its variant {}", v.number);
-            m.scene_part(&p.source, p.line, |m| {
-                crate::notation::typeset_as(&p.tex, || key_problem(m, &heading, p, v))
+            m.scene_part(&p.source, p.line, &p.names, |m| {
+                key_problem(m, &heading, p, v)
             })
             .map_err(|e| e.in_scene(&p.source))?;
         }
@@ -148,7 +148,7 @@ pub fn key(
         for sp in &sheet.variants[*k].problems {
             let (_, p) = sheet.problem(sp.problem);
             let part = columns.next(sp.problem);
-            m.scene_part(&p.source, p.line, |m| {
+            m.scene_part(&p.source, p.line, &p.names, |m| {
                 m.raw(&part);
             });
         }
@@ -202,17 +202,15 @@ impl Columns {
                 .copied()
                 .collect();
             let make = || {
-                crate::notation::typeset_as(&p.tex, || {
-                    cells
-                        .iter()
-                        .map(|sp| {
-                            let mut m = Markup::default();
-                            write(&mut m, n, p, &p.variants[sp.variant], sp)?;
-                            Ok(m.text)
-                        })
-                        .collect::<Result<Vec<String>, RenderError>>()
-                })
-                .map_err(|e| e.in_scene(&p.source))
+                cells
+                    .iter()
+                    .map(|sp| {
+                        let mut m = Markup::of_scene(&p.names);
+                        write(&mut m, n, p, &p.variants[sp.variant], sp)?;
+                        Ok(m.text)
+                    })
+                    .collect::<Result<Vec<String>, RenderError>>()
+                    .map_err(|e| e.in_scene(&p.source))
             };
             let column = match recall.as_deref_mut() {
                 Some(r) => r.recall_or(&format!("{n}"), &[p, &cells], make)?,
@@ -251,6 +249,7 @@ fn shared_pointer(
 }
 
 fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Result<(), RenderError> {
+    let names = &p.names;
     m.raw("\n#heading(level: 2)[").text(&format!("{heading}: "));
     m.author(&p.title)?;
     m.raw("]\n");
@@ -263,8 +262,12 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
                 .as_deref()
                 .map_or(String::new(), |u| format!(" thin {}", unit_typst(u)));
             let said_unit = g.unit.as_deref().map_or(String::new(), said_unit);
-            let typst = format!("{} = {}{unit}", symbol(&g.name), formula(&g.value)?);
-            let said = said_equation(&g.name, &g.value.to_tex().spoken());
+            let typst = format!(
+                "{} = {}{unit}",
+                symbol(&g.name, names),
+                formula(&g.value, names)?
+            );
+            let said = said_equation(&g.name, &g.value.to_tex(names).spoken(), names);
             Ok((typst, format!("{said}{said_unit}")))
         })
         .collect::<Result<_, RenderError>>()?;
@@ -293,7 +296,10 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
                 m.text(answer_words(q));
             }
             (None, None) => {
-                m.inline(&spec.value.to_typst(), &spec.value.to_tex().spoken());
+                m.inline(
+                    &spec.value.to_typst(names),
+                    &spec.value.to_tex(names).spoken(),
+                );
             }
         }
         let said_unit = spec
@@ -311,8 +317,8 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
             );
         } else {
             m.display(
-                &format!("{}{unit}", exact.to_typst()),
-                &format!("{}{said_unit}", exact.to_tex().spoken()),
+                &format!("{}{unit}", exact.to_typst(names)),
+                &format!("{}{said_unit}", exact.to_tex(names).spoken()),
             );
         }
         m.raw("], [")

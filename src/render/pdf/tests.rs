@@ -54,11 +54,16 @@ fn a_formula_wider_than_the_paper_is_broken_onto_it_and_text_past_the_edge_is_fo
     // The same formula set without `fit`, in a block wider than the paper, runs off it; the
     // scene whose part it is in is named.
     let unbroken = typeset(&doc(Paper::A4, |m| {
-        m.scene_part(std::path::Path::new("x.toml"), 7, |m| {
-            m.raw("#block(width: 400mm)[#set math.equation(alt: \"a sum\");$ ")
-                .raw(&long)
-                .raw(" $]");
-        });
+        m.scene_part(
+            std::path::Path::new("x.toml"),
+            7,
+            crate::notation::Names::none(),
+            |m| {
+                m.raw("#block(width: 400mm)[#set math.equation(alt: \"a sum\");$ ")
+                    .raw(&long)
+                    .raw(" $]");
+            },
+        );
     }))
     .unwrap();
     assert_eq!(unbroken.past_the_edge, vec![1]);
@@ -177,9 +182,15 @@ fn every_kind_of_name_a_scene_may_write_is_typeset() {
     let out = typeset(&doc(Paper::A4, |m| {
         for name in names {
             let e = crate::cas::Expr::sym(name);
-            m.inline(&e.to_typst(), &e.to_tex().spoken());
+            m.inline(
+                &e.to_typst(crate::notation::Names::none()),
+                &e.to_tex(crate::notation::Names::none()).spoken(),
+            );
             let rate = crate::cas::Expr::sym(&format!("{name}'"));
-            m.inline(&rate.to_typst(), &rate.to_tex().spoken());
+            m.inline(
+                &rate.to_typst(crate::notation::Names::none()),
+                &rate.to_tex(crate::notation::Names::none()).spoken(),
+            );
         }
     }));
     assert!(

@@ -121,7 +121,7 @@ fn holds_equations(of: &Expr, steps: &[AuthorStep]) -> bool {
 fn printed_latex(name: &str, tex: &BTreeMap<String, String>) -> String {
     match tex.get(name) {
         Some(own) => own.split_whitespace().collect::<Vec<_>>().join(" "),
-        None => Expr::sym(name).to_latex(),
+        None => Expr::sym(name).to_latex(crate::notation::Names::none()),
     }
 }
 

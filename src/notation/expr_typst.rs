@@ -1,35 +1,38 @@
 //! The Typst printer of an expression, for the PDFs: the same walk as the text and LaTeX
 //! printers (`print.rs`), writing Typst's math notation (`frac(1, 12) m a^(2)`, `mat(…)`).
 
-use super::expr::Expr;
-use super::print::{Prec, Style, index_chain, page_factors, page_fraction, write};
-use super::rational::Rational;
+use super::Names;
 use crate::base::typst::typst_string;
+use crate::cas::{
+    Expr, Head, NameForm, Prec, Rational, SCALAR_FUNCTIONS, Style, greek_letter, index_chain,
+    name_form, numbered, page_factors, page_fraction, textbook_name, write,
+};
 
 impl Expr {
-    pub fn to_typst(&self) -> String {
-        self.to_typst_named(&|_| None)
+    pub fn to_typst(&self, names: &Names) -> String {
+        self.to_typst_named(names, &|_| None)
     }
 
     /// Typst with some symbols given a symbol of their own (the catalogue's, in Typst): a
     /// claim's `inertia_tensor[0][1]` prints as I_xy when `named("inertia_tensor")` is `I`.
-    pub fn to_typst_named(&self, named: &dyn Fn(&str) -> Option<String>) -> String {
-        self.typst_in(named, Layout::Whole)
+    pub fn to_typst_named(&self, names: &Names, named: &dyn Fn(&str) -> Option<String>) -> String {
+        self.typst_in(names, named, Layout::Whole)
     }
 
     /// Typst for a formula wider than its line, which Typst breaks after the operators inside
     /// what it does not keep as one piece: a vector as a tuple `(a, b, c)` (not `mat(…)`), a
     /// root of a sum and a sum over a bar opened.
-    pub fn to_typst_breakable(&self) -> String {
-        self.typst_in(&|_| None, Layout::Breakable)
+    pub fn to_typst_breakable(&self, names: &Names) -> String {
+        self.typst_in(names, &|_| None, Layout::Breakable)
     }
 
     /// Typst for an integral's limit: its fractions on the line (`a\/2`), where a fraction
     /// would be set at half the body's size, and its exponents at the limit's own size (a
     /// script's script is half the body, too small to read on paper).
-    pub fn to_typst_on_the_line(&self) -> String {
+    pub fn to_typst_on_the_line(&self, names: &Names) -> String {
         let mut s = String::new();
         let style = Typst {
+            names,
             named: &|_| None,
             layout: Layout::OnTheLine,
             limit: true,
@@ -38,9 +41,15 @@ impl Expr {
         s
     }
 
-    fn typst_in(&self, named: &dyn Fn(&str) -> Option<String>, layout: Layout) -> String {
+    fn typst_in(
+        &self,
+        names: &Names,
+        named: &dyn Fn(&str) -> Option<String>,
+        layout: Layout,
+    ) -> String {
         let mut s = String::new();
         let style = Typst {
+            names,
             named,
             layout,
             limit: false,
@@ -51,20 +60,22 @@ impl Expr {
 }
 
 /// A symbol's name in Typst's math: the scene's own `tex` for it if it has one, else the
-/// conventions of [`super::symbol_latex`] (`w1` is ω₁, `Ixx` is I_xx, a word is upright).
-pub(super) fn typst_symbol(s: &str) -> String {
-    use super::symbol_latex::{Head, NameForm, name_form};
-    if let Some(t) = super::symbol_latex::scene_typst(s) {
-        return t;
+/// conventions of `cas::name_form` (`w1` is ω₁, `Ixx` is I_xx, a word is upright).
+fn typst_symbol(s: &str, names: &Names) -> String {
+    if let Some(t) = names.typst(s) {
+        return t.to_string();
     }
-    if let Some((own, k)) = super::symbol_latex::numbered_result(s) {
-        return format!("attach({}, b: {k})", own.typst);
+    // A numbered result of a step the scene typesets: `acc_2` of `tex = "a"` is a₂.
+    if let Some((base, k)) = numbered(s)
+        && let Some(own) = names.typst(base)
+    {
+        return format!("attach({own}, b: {k})");
     }
     match name_form(s) {
         NameForm::Rate(base, second) => format!(
             "{}({})",
             if second { "dot.double" } else { "dot" },
-            typst_symbol(base)
+            typst_symbol(base, names)
         ),
         NameForm::Numeral(digits) => digits.to_string(),
         NameForm::Word(w) => format!("upright({})", typst_string(w)),
@@ -76,15 +87,13 @@ pub(super) fn typst_symbol(s: &str) -> String {
             let head = match head {
                 Head::Omega => "ω".to_string(),
                 Head::OmegaRate => "dot(ω)".to_string(),
-                Head::Greek(g) => super::symbol_latex::greek_letter(g)
-                    .unwrap_or(g)
-                    .to_string(),
+                Head::Greek(g) => greek_letter(g).unwrap_or(g).to_string(),
                 Head::Upright(u) => format!("upright({})", typst_string(u)),
                 Head::Letter(l) => l.to_string(),
             };
             if tail.is_empty() {
                 head
-            } else if let Some(g) = super::symbol_latex::greek_letter(tail) {
+            } else if let Some(g) = greek_letter(tail) {
                 format!("{head}_({g})")
             } else if tail.chars().all(|c| c.is_ascii_digit()) {
                 format!("{head}_({tail})")
@@ -147,6 +156,7 @@ fn slashed(r: &Rational) -> String {
 
 /// Typst's math for the PDFs.
 struct Typst<'a> {
+    names: &'a Names,
     named: &'a dyn Fn(&str) -> Option<String>,
     layout: Layout,
     /// In an integral's limit: exponents are set in the script style (`script(2)`).
@@ -158,6 +168,7 @@ impl Typst<'_> {
     /// textbooks write it, where Typst would set it at half the body's size.
     fn in_a_fraction(&self) -> Typst<'_> {
         Typst {
+            names: self.names,
             named: self.named,
             layout: Layout::OnTheLine,
             limit: self.limit,
@@ -280,7 +291,7 @@ impl Style for Typst<'_> {
     fn symbol(&self, name: &str, out: &mut String) {
         match (self.named)(name) {
             Some(symbol) => out.push_str(&symbol),
-            None => out.push_str(&typst_symbol(name)),
+            None => out.push_str(&typst_symbol(name, self.names)),
         }
     }
     fn number(&self, r: &Rational, ctx: Prec, out: &mut String) {
@@ -417,9 +428,7 @@ impl Style for Typst<'_> {
         match n {
             "tan" | "arcsin" | "arccos" | "arctan" => out.push_str(n),
             // Typst's own operators: sin, arcsin, ln, sinh, exp.
-            n if n != "atan2" && super::SCALAR_FUNCTIONS.contains(&n) => {
-                out.push_str(super::textbook_name(n))
-            }
+            n if n != "atan2" && SCALAR_FUNCTIONS.contains(&n) => out.push_str(textbook_name(n)),
             _ => out.push_str(&format!("op({})", typst_string(n))),
         }
         out.push_str(" (");
@@ -510,11 +519,11 @@ fn diagonal(rows: &[Expr]) -> Option<Vec<&Expr>> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::parse::parse;
-    use crate::cas::Expr;
+    use crate::cas::{Expr, parse};
+    use crate::notation::Names;
 
     fn typst(text: &str) -> String {
-        parse(text).unwrap().expr.to_typst()
+        parse(text).unwrap().expr.to_typst(Names::none())
     }
 
     /// A variant's decimal is a numeral: after a number, it and a whole power of it take a dot
@@ -525,13 +534,17 @@ mod tests {
             Expr::int(3),
             Expr::pow(Expr::numeral("0.4"), Expr::int(4)),
         ]);
-        assert_eq!(e.to_typst(), "3 dot.op 0.4^(4)");
-        assert_eq!(e.to_latex(), "3 \\cdot 0.4^{4}");
+        assert_eq!(e.to_typst(Names::none()), "3 dot.op 0.4^(4)");
+        assert_eq!(e.to_latex(Names::none()), "3 \\cdot 0.4^{4}");
         let root = Expr::mul(vec![
             Expr::int(3),
             Expr::pow(Expr::numeral("0.4"), Expr::rat(1, 2)),
         ]);
-        assert!(!root.to_typst().contains("dot"), "{}", root.to_typst());
+        assert!(
+            !root.to_typst(Names::none()).contains("dot"),
+            "{}",
+            root.to_typst(Names::none())
+        );
     }
 
     #[test]
@@ -553,21 +566,33 @@ mod tests {
     #[test]
     fn a_vector_as_a_tuple_where_a_formula_must_break() {
         let e = parse("[a + b, c]").unwrap().expr;
-        assert_eq!(e.to_typst(), "mat(a + b; c)");
-        assert_eq!(e.to_typst_breakable(), "(a + b, c)");
+        assert_eq!(e.to_typst(Names::none()), "mat(a + b; c)");
+        assert_eq!(e.to_typst_breakable(Names::none()), "(a + b, c)");
         // A root of a sum opens into a power, a root of a product does not.
         let root = parse("sqrt(m*(a + b))").unwrap().expr;
-        assert_eq!(root.to_typst_breakable(), "\\(m (a + b)\\)^(1\\/2)");
         assert_eq!(
-            parse("sqrt(m*a)").unwrap().expr.to_typst_breakable(),
+            root.to_typst_breakable(Names::none()),
+            "\\(m (a + b)\\)^(1\\/2)"
+        );
+        assert_eq!(
+            parse("sqrt(m*a)")
+                .unwrap()
+                .expr
+                .to_typst_breakable(Names::none()),
             "sqrt(m a)"
         );
         // A sum over a denominator goes after 1/d.
         let fraction = parse("(a + b)/(2*c)").unwrap().expr;
-        assert_eq!(fraction.to_typst_breakable(), "frac(1, 2 c) (a + b)");
+        assert_eq!(
+            fraction.to_typst_breakable(Names::none()),
+            "frac(1, 2 c) (a + b)"
+        );
         // A matrix stays a matrix: its rows cannot break.
         let m = parse("[[a, b], [c, d]]").unwrap().expr;
-        assert_eq!(m.to_typst_breakable(), m.to_typst());
+        assert_eq!(
+            m.to_typst_breakable(Names::none()),
+            m.to_typst(Names::none())
+        );
     }
 
     /// A long factor with a bar is joined to its sum by a dot, where Typst may break the line
@@ -579,16 +604,28 @@ mod tests {
         let long = parse(&format!("m^3*a*x/(46656*{p}) + m^3*b*y/(46656*{p})"))
             .unwrap()
             .expr;
-        let broken = long.to_typst_breakable();
+        let broken = long.to_typst_breakable(Names::none());
         assert!(broken.contains(") dot.op (a x + b y)"), "{broken}");
-        assert!(!long.to_typst().contains("dot.op"), "{}", long.to_typst());
+        assert!(
+            !long.to_typst(Names::none()).contains("dot.op"),
+            "{}",
+            long.to_typst(Names::none())
+        );
         let short = parse("m*a*x/12 + m*b*y/12").unwrap().expr;
-        assert_eq!(short.to_typst_breakable(), "frac(m, 12) (a x + b y)");
+        assert_eq!(
+            short.to_typst_breakable(Names::none()),
+            "frac(m, 12) (a x + b y)"
+        );
     }
 
     #[test]
     fn fractions_on_the_line() {
-        let line = |text: &str| parse(text).unwrap().expr.to_typst_on_the_line();
+        let line = |text: &str| {
+            parse(text)
+                .unwrap()
+                .expr
+                .to_typst_on_the_line(Names::none())
+        };
         assert_eq!(line("-a/2"), "-a\\/2");
         assert_eq!(line("1/2"), "1\\/2");
         assert_eq!(line("(a + b)/(2*c)"), "(a + b)\\/(2 c)");
@@ -598,14 +635,14 @@ mod tests {
         // An exponent in a limit at the limit's size, not half the body's (tests/course's
         // h r²/R² was set at 50 %); elsewhere as written.
         assert_eq!(line("h*r^2/R^2"), "h r^(script(2))\\/R^(script(2))");
-        assert_eq!(parse("r^2").unwrap().expr.to_typst(), "r^(2)");
+        assert_eq!(parse("r^2").unwrap().expr.to_typst(Names::none()), "r^(2)");
     }
 
     /// Inside a fraction, a fraction goes on the line, as textbooks write it: Typst would set
     /// it at half the body's size (the roots of a cubic, in tests/course's top).
     #[test]
     fn a_fraction_inside_a_fraction_is_on_the_line() {
-        let typst = |text: &str| parse(text).unwrap().expr.to_typst();
+        let typst = |text: &str| parse(text).unwrap().expr.to_typst(Names::none());
         assert_eq!(typst("a/(7*(3/5)^(3/2))"), "frac(a, 7 (3\\/5)^(3\\/2))");
         assert_eq!(typst("a/(b/c + d)"), "frac(a, b\\/c + d)");
         assert_eq!(typst("a/b"), "frac(a, b)");
@@ -615,7 +652,7 @@ mod tests {
     fn a_dot_or_cross_product_as_a_factor_takes_parentheses() {
         assert_eq!(typst("B*dot(A, C)"), "B (A dot.op C)");
         assert_eq!(typst("dot(A, C) + 1"), "A dot.op C + 1");
-        let tex = parse("B*cross(A, C)").unwrap().expr.to_tex();
+        let tex = parse("B*cross(A, C)").unwrap().expr.to_tex(Names::none());
         assert!(
             tex.source.contains("\\left(A \\times C\\right)"),
             "{}",
