@@ -147,6 +147,22 @@ fn with_unit(f: Formula, unit: Option<&String>) -> Formula {
     }
 }
 
+/// A symbol or coordinate as MathML, and what it stands for as HTML with its unit.
+fn named_with_unit(
+    page: &Page,
+    name: &str,
+    meaning: &str,
+) -> Result<(String, String), RenderError> {
+    let unit = page
+        .units
+        .get(name)
+        .map_or(String::new(), |u| format!(" ({})", unit_html(u)));
+    Ok((
+        math::mathml(&Expr::sym(name).to_tex(&page.names), false)?,
+        format!("{}{unit}", author_html(meaning)?),
+    ))
+}
+
 /// An author's step's numeric check in one sentence (escaped for HTML).
 fn check_text(c: &crate::verify::StepCheck) -> String {
     tera::escape_html(&check_sentence(c))
@@ -267,15 +283,8 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
             .symbols
             .iter()
             .map(|(k, v)| {
-                let unit = page
-                    .units
-                    .get(k)
-                    .map_or(String::new(), |u| format!(" ({})", unit_html(u)));
-                Ok((
-                    math::mathml(&Expr::sym(k).to_tex(names), false)?,
-                    v.clone(),
-                    format!("{}{unit}", author_html(v)?),
-                ))
+                let (symbol, meaning) = named_with_unit(page, k, v)?;
+                Ok((symbol, v.clone(), meaning))
             })
             .collect::<Result<_, RenderError>>()?,
         definitions: page
@@ -290,17 +299,8 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
         coordinates: page
             .coordinates
             .iter()
-            .map(|(k, v)| {
-                // With its unit, as the PDF's setup and the symbols give theirs.
-                let unit = page
-                    .units
-                    .get(k)
-                    .map_or(String::new(), |u| format!(" ({})", unit_html(u)));
-                Ok((
-                    math::mathml(&Expr::sym(k).to_tex(names), false)?,
-                    format!("{}{unit}", author_html(v)?),
-                ))
-            })
+            // With its unit, as the PDF's setup and the symbols give theirs.
+            .map(|(k, v)| named_with_unit(page, k, v))
             .collect::<Result<_, RenderError>>()?,
         bodies: page
             .bodies
