@@ -23,7 +23,10 @@ pub struct OdeRun {
     pub evaluations: u64,
 }
 
-const A: [[f64; 6]; 6] = [
+/// The Dormand–Prince 5(4) tableau (Hairer, Nørsett & Wanner, Solving ODE I, II.5): the stages'
+/// weights, the sixth row the fifth-order solution's; shared with the free rigid body's
+/// integrator (`integrators.rs`).
+pub(super) const A: [[f64; 6]; 6] = [
     [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
     [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
     [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
@@ -54,7 +57,7 @@ const A: [[f64; 6]; 6] = [
 ];
 const C: [f64; 6] = [1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
 /// b5 − b4, for the error estimate (the seventh stage is f at the new point).
-const E: [f64; 7] = [
+pub(super) const E: [f64; 7] = [
     71.0 / 57600.0,
     0.0,
     -71.0 / 16695.0,
