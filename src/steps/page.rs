@@ -62,151 +62,243 @@ fn headed_by_symbol(scene: &Scene, step: &AuthorStep) -> bool {
     crate::scene::prints_its_name(step, &scene.steps) && !is_word(scene, &step.name)
 }
 
+/// What an author's step states on the page, line by line, for each kind of result.
 fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec<Step> {
-    // The author's reason, its `$…$` mathematics typeset.
-    let why = crate::model::prose::author(&step.why);
     let by_symbol = headed_by_symbol(scene, step);
-    let cited = |s: String| match &step.eq {
-        Some(eq) => format!("{s} (eq {eq})"),
-        None => s,
+    let mut lines = Lines {
+        scene,
+        step,
+        by_symbol,
+        title: String::new(),
+        names: step.result_names(),
     };
-    let title = cited(if by_symbol {
+    lines.title = lines.cited(if by_symbol {
         typeset(scene, &step.name)
     } else {
         step.op.heading().to_string()
     });
-    let named = |e: &Expr| Formula::equation(Formula::Expr(Expr::sym(&step.name)), e.clone());
-    // What each line states, by the derivation's name for it: the build reads it back.
-    let own = || StandsFor::Result(step.name.clone());
-    let names = step.result_names();
-    let kth = |k: usize| StandsFor::Result(names.kth(k));
+    // The author's reason, its `$…$` mathematics typeset.
+    let why = &crate::model::prose::author(&step.why);
     match result {
-        StepResult::Expr(e) => vec![Step::note(&title, named(e), why).standing_for(own())],
-        StepResult::Conserved { value, conserved } => {
-            let of = match &step.op {
-                Operation::Momentum { coordinate, .. } => coordinate.as_str(),
-                _ => "t",
-            };
-            // The derivation's verdict after the author's reason, said once: a reason that
-            // says it is conserved is enough; one that already says why ("$L$ does not depend
-            // on $x$") takes "conserved"; any other, the verdict with its why.
-            let says_why = ["does not depend on", "cyclic", "does not appear in"]
-                .iter()
-                .any(|w| step.why.contains(w));
-            let why = if *conserved && step.why.contains("conserved") {
-                why
-            } else if *conserved && says_why {
-                with_reason(step, &why, Prose::default().text("conserved"))
-            } else {
-                let verdict = if *conserved {
-                    "conserved: the Lagrangian does not depend on "
-                } else {
-                    "not conserved: the Lagrangian depends on "
-                };
-                with_reason(
-                    step,
-                    &why,
-                    Prose::default().text(verdict).expr(&Expr::sym(of)),
-                )
-            };
-            vec![Step::note(&title, named(value), why).standing_for(own())]
+        StepResult::Expr(e) => {
+            vec![Step::note(&lines.title, lines.named(e), why.clone()).standing_for(lines.own())]
         }
+        StepResult::Conserved { value, conserved } => vec![lines.conserved(value, *conserved, why)],
         StepResult::Equilibria {
             coordinate,
             zeros,
             excluded,
-        } => {
-            // The roots set aside, named after the last state of rest.
-            let pairs: Vec<(String, Expr)> = excluded
-                .iter()
-                .map(|e| (coordinate.clone(), e.clone()))
-                .collect();
-            let last_why = with_set_aside(step, &why, &pairs);
-            let n = zeros.len();
-            zeros
-                .iter()
-                .enumerate()
-                .map(|(k, z)| {
-                    let line = Step::note(
-                        &format!("{title}: equilibrium {}", k + 1),
-                        Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
-                        if k + 1 == n { last_why.clone() } else { why.clone() },
-                    )
-                    .standing_for(kth(k));
-                    // The roots set aside are the instructor's working.
-                    match k + 1 == n && !excluded.is_empty() {
-                        true => line.for_students(why.clone()),
-                        false => line,
-                    }
-                })
-                .collect()
-        }
-        StepResult::Stability { coordinate, cases } => {
-            let omega2 = Formula::Expr(Expr::pow(Expr::sym("Omega"), Expr::int(2)));
-            cases
-                .iter()
-                .enumerate()
-                .map(|(k, c)| {
-                    let verdict = match c.verdict {
-                        Stable::Always => "stable for all values",
-                        Stable::Never => "unstable for all values",
-                        Stable::Where => "stable where the right-hand side is positive",
-                        Stable::Unknown => {
-                            "its exact Ω² would expand beyond the engine's budget; where this \
-                         state of rest exists at the scene's values, the numeric check gives Ω²"
-                        }
-                    };
-                    let at = Prose::default()
-                        .text("about ")
-                        .formula(Formula::equation(
-                            Formula::Expr(Expr::sym(coordinate)),
-                            c.at.value.clone(),
-                        ))
-                        .text(&format!(": {verdict}"));
-                    let why = with_reason(step, &why, at);
-                    match &c.omega_squared {
-                        Some(w2) => {
-                            let line = Formula::equation(omega2.clone(), w2.clone());
-                            Step::note(&title, line, why).standing_for(kth(k))
-                        }
-                        // No exact Ω² to print: the line states the state of rest, and
-                        // its reason says why.
-                        None => Step::note(
-                            &title,
-                            Formula::equation(
-                                Formula::Expr(Expr::sym(coordinate)),
-                                c.at.value.clone(),
-                            ),
-                            why,
-                        ),
-                    }
-                })
-                .collect()
-        }
+        } => lines.equilibria(coordinate, zeros, excluded, why),
+        StepResult::Stability { coordinate, cases } => lines.stability(coordinate, cases, why),
         StepResult::RestStates {
             coordinates,
             states,
             excluded,
-        } => {
-            let last_why = with_set_aside(step, &why, excluded);
-            let n = states.len();
-            states
-                .iter()
-                .enumerate()
-                .map(|(k, state)| {
-                    let line = Step::note(
-                        &format!("{title}: equilibrium {}", k + 1),
-                        state_formula(coordinates, state),
-                        if k + 1 == n { last_why.clone() } else { why.clone() },
-                    );
-                    match k + 1 == n && !excluded.is_empty() {
-                        true => line.for_students(why.clone()),
-                        false => line,
-                    }
-                })
-                .collect()
+        } => lines.rest_states(coordinates, states, excluded, why),
+        StepResult::RestStability { coordinates, cases } => {
+            lines.rest_stability(coordinates, cases, why)
         }
-        StepResult::RestStability { coordinates, cases } => cases
+        StepResult::Solution(pairs) => lines.solution(pairs, why),
+        StepResult::Modes(values) => lines.modes_or_roots(values, true, why),
+        StepResult::Roots(values) => lines.modes_or_roots(values, false, why),
+        StepResult::NumericModes {
+            frequencies,
+            reason,
+        } => lines.numeric_modes(frequencies, reason, why),
+        StepResult::Equations(eqs) => lines.equations(eqs, why),
+    }
+}
+
+/// The page's lines of one author's step: its title, and the names its results go by.
+struct Lines<'a> {
+    scene: &'a Scene,
+    step: &'a AuthorStep,
+    /// Headed by the symbol its result prints as, not by what it does.
+    by_symbol: bool,
+    title: String,
+    names: crate::scene::ResultNames<'a>,
+}
+
+impl Lines<'_> {
+    /// A title with the notes' equation number, where the step cites one.
+    fn cited(&self, s: String) -> String {
+        match &self.step.eq {
+            Some(eq) => format!("{s} (eq {eq})"),
+            None => s,
+        }
+    }
+
+    /// `name = e`.
+    fn named(&self, e: &Expr) -> Formula {
+        Formula::equation(Formula::Expr(Expr::sym(&self.step.name)), e.clone())
+    }
+
+    /// What a line states, by the derivation's name for it: the build reads it back.
+    fn own(&self) -> StandsFor {
+        StandsFor::Result(self.step.name.clone())
+    }
+
+    /// The k-th of the step's several results.
+    fn kth(&self, k: usize) -> StandsFor {
+        StandsFor::Result(self.names.kth(k))
+    }
+
+    fn conserved(&self, value: &Expr, conserved: bool, why: &Prose) -> Step {
+        let step = self.step;
+        let of = match &step.op {
+            Operation::Momentum { coordinate, .. } => coordinate.as_str(),
+            _ => "t",
+        };
+        // The derivation's verdict after the author's reason, said once: a reason that
+        // says it is conserved is enough; one that already says why ("$L$ does not depend
+        // on $x$") takes "conserved"; any other, the verdict with its why.
+        let says_why = ["does not depend on", "cyclic", "does not appear in"]
+            .iter()
+            .any(|w| step.why.contains(w));
+        let why = if conserved && step.why.contains("conserved") {
+            why.clone()
+        } else if conserved && says_why {
+            with_reason(step, why, Prose::default().text("conserved"))
+        } else {
+            let verdict = if conserved {
+                "conserved: the Lagrangian does not depend on "
+            } else {
+                "not conserved: the Lagrangian depends on "
+            };
+            with_reason(
+                step,
+                why,
+                Prose::default().text(verdict).expr(&Expr::sym(of)),
+            )
+        };
+        Step::note(&self.title, self.named(value), why).standing_for(self.own())
+    }
+
+    fn equilibria(
+        &self,
+        coordinate: &str,
+        zeros: &[crate::cas::Zero],
+        excluded: &[Expr],
+        why: &Prose,
+    ) -> Vec<Step> {
+        let title = &self.title;
+        let step = self.step;
+        // The roots set aside, named after the last state of rest.
+        let pairs: Vec<(String, Expr)> = excluded
+            .iter()
+            .map(|e| (coordinate.to_string(), e.clone()))
+            .collect();
+        let last_why = with_set_aside(step, why, &pairs);
+        let n = zeros.len();
+        zeros
+            .iter()
+            .enumerate()
+            .map(|(k, z)| {
+                let line = Step::note(
+                    &format!("{title}: equilibrium {}", k + 1),
+                    Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
+                    if k + 1 == n {
+                        last_why.clone()
+                    } else {
+                        why.clone()
+                    },
+                )
+                .standing_for(self.kth(k));
+                // The roots set aside are the instructor's working.
+                match k + 1 == n && !excluded.is_empty() {
+                    true => line.for_students(why.clone()),
+                    false => line,
+                }
+            })
+            .collect()
+    }
+
+    fn stability(
+        &self,
+        coordinate: &str,
+        cases: &[crate::derive::step_names::Stability],
+        why: &Prose,
+    ) -> Vec<Step> {
+        let step = self.step;
+        let omega2 = Formula::Expr(Expr::pow(Expr::sym("Omega"), Expr::int(2)));
+        cases
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                let verdict = match c.verdict {
+                    Stable::Always => "stable for all values",
+                    Stable::Never => "unstable for all values",
+                    Stable::Where => "stable where the right-hand side is positive",
+                    Stable::Unknown => {
+                        "its exact Ω² would expand beyond the engine's budget; where this \
+                     state of rest exists at the scene's values, the numeric check gives Ω²"
+                    }
+                };
+                let at = Prose::default()
+                    .text("about ")
+                    .formula(Formula::equation(
+                        Formula::Expr(Expr::sym(coordinate)),
+                        c.at.value.clone(),
+                    ))
+                    .text(&format!(": {verdict}"));
+                let why = with_reason(step, why, at);
+                match &c.omega_squared {
+                    Some(w2) => {
+                        let line = Formula::equation(omega2.clone(), w2.clone());
+                        Step::note(&self.title, line, why).standing_for(self.kth(k))
+                    }
+                    // No exact Ω² to print: the line states the state of rest, and
+                    // its reason says why.
+                    None => Step::note(
+                        &self.title,
+                        Formula::equation(Formula::Expr(Expr::sym(coordinate)), c.at.value.clone()),
+                        why,
+                    ),
+                }
+            })
+            .collect()
+    }
+
+    fn rest_states(
+        &self,
+        coordinates: &[String],
+        states: &[Vec<crate::cas::Zero>],
+        excluded: &[(String, Expr)],
+        why: &Prose,
+    ) -> Vec<Step> {
+        let title = &self.title;
+        let step = self.step;
+        let last_why = with_set_aside(step, why, excluded);
+        let n = states.len();
+        states
+            .iter()
+            .enumerate()
+            .map(|(k, state)| {
+                let line = Step::note(
+                    &format!("{title}: equilibrium {}", k + 1),
+                    state_formula(coordinates, state),
+                    if k + 1 == n {
+                        last_why.clone()
+                    } else {
+                        why.clone()
+                    },
+                );
+                match k + 1 == n && !excluded.is_empty() {
+                    true => line.for_students(why.clone()),
+                    false => line,
+                }
+            })
+            .collect()
+    }
+
+    fn rest_stability(
+        &self,
+        coordinates: &[String],
+        cases: &[crate::derive::step_names::StateStability],
+        why: &Prose,
+    ) -> Vec<Step> {
+        let step = self.step;
+        cases
             .iter()
             .map(|c| {
                 let verdict = match c.verdict {
@@ -215,14 +307,14 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     Stable::Where | Stable::Unknown => "stable where every minor is positive",
                 };
                 let at = Prose::default()
-                    .text("about ")
-                    .formula(state_formula(coordinates, &c.at))
-                    .text(": the leading minors of the stiffness ")
-                    .formula(Formula::author(r"K = \partial R / \partial q"))
-                    .text(&format!(
-                        " there; every squared frequency is positive exactly when they all are (the \
-                         mass matrix being positive definite): {verdict}"
-                    ));
+                .text("about ")
+                .formula(state_formula(coordinates, &c.at))
+                .text(": the leading minors of the stiffness ")
+                .formula(Formula::author(r"K = \partial R / \partial q"))
+                .text(&format!(
+                    " there; every squared frequency is positive exactly when they all are (the \
+                     mass matrix being positive definite): {verdict}"
+                ));
                 let mut row = Vec::new();
                 for (k, m) in c.minors.iter().enumerate() {
                     if k > 0 {
@@ -237,20 +329,21 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     row.push(Formula::Op(crate::notation::Op::Equals));
                     row.push(Formula::Expr(m.clone()));
                 }
-                Step::note(
-                    &title,
-                    Formula::Row(row),
-                    with_reason(step, &why, at),
-                )
+                Step::note(&self.title, Formula::Row(row), with_reason(step, why, at))
             })
-            .collect(),
-        // Each unknown = its value, titled with the name later steps use.
-        StepResult::Solution(pairs) => pairs
+            .collect()
+    }
+
+    /// Each unknown = its value, titled with the name later steps use.
+    fn solution(&self, pairs: &[(String, Expr)], why: &Prose) -> Vec<Step> {
+        let title = &self.title;
+        let scene = self.scene;
+        pairs
             .iter()
             .enumerate()
             .map(|(k, (unknown, value))| {
                 // The name later steps give it, where it prints as a symbol (a₁ of `tex = "a"`).
-                let named = names.kth(k);
+                let named = self.names.kth(k);
                 let own = if is_word(scene, &named) {
                     String::new()
                 } else {
@@ -261,38 +354,44 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                     Formula::equation(Formula::Expr(Expr::sym(unknown)), value.clone()),
                     why.clone(),
                 )
-                .standing_for(kth(k))
+                .standing_for(self.kth(k))
             })
-            .collect(),
-        StepResult::Modes(values) | StepResult::Roots(values) => values
+            .collect()
+    }
+
+    fn modes_or_roots(&self, values: &[Expr], modes: bool, why: &Prose) -> Vec<Step> {
+        let title = &self.title;
+        values
             .iter()
             .enumerate()
             .map(|(k, w)| {
-                let sub = Expr::sym(&names.kth(k));
-                let what = match result {
-                    StepResult::Modes(_) => "normal mode",
-                    _ => "root",
-                };
-                let zero = matches!(result, StepResult::Modes(_)) && w.is_zero();
+                let sub = Expr::sym(&self.names.kth(k));
+                let what = if modes { "normal mode" } else { "root" };
+                let zero = modes && w.is_zero();
                 Step::note(
-                    &format!("{title}: {what} {}{}", k + 1, if zero { ZERO_MODE } else { "" }),
+                    &format!(
+                        "{title}: {what} {}{}",
+                        k + 1,
+                        if zero { ZERO_MODE } else { "" }
+                    ),
                     Formula::equation(Formula::Expr(sub), w.clone()),
                     why.clone(),
                 )
-                .standing_for(kth(k))
+                .standing_for(self.kth(k))
             })
-            .collect(),
-        // Ω_k ≈ its value: no closed form, so a number, with the reason beside it.
-        StepResult::NumericModes {
-            frequencies,
-            reason,
-        } => frequencies
+            .collect()
+    }
+
+    /// Ω_k ≈ its value: no closed form, so a number, with the reason beside it.
+    fn numeric_modes(&self, frequencies: &[f64], reason: &Prose, why: &Prose) -> Vec<Step> {
+        let title = &self.title;
+        let step = self.step;
+        frequencies
             .iter()
             .enumerate()
             .map(|(k, w)| {
-                let mut added = Prose::default().text(
-                    "at the scene's values, the eigenvalues of K and M by Sturm bisection: ",
-                );
+                let mut added = Prose::default()
+                    .text("at the scene's values, the eigenvalues of K and M by Sturm bisection: ");
                 added.0.extend(reason.0.iter().cloned());
                 Step::note(
                     &format!(
@@ -301,17 +400,21 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                         if *w == 0.0 { ZERO_MODE } else { "" }
                     ),
                     Formula::Row(vec![
-                        Formula::Expr(Expr::sym(&names.kth(k))),
+                        Formula::Expr(Expr::sym(&self.names.kth(k))),
                         Formula::Op(crate::notation::Op::Approx),
                         Formula::Number(crate::base::format::significant(*w, 6)),
                     ]),
-                    with_reason(step, &why, added),
+                    with_reason(step, why, added),
                 )
-                .standing_for(kth(k))
+                .standing_for(self.kth(k))
             })
-            .collect(),
-        StepResult::Equations(eqs) => eqs
-            .iter()
+            .collect()
+    }
+
+    fn equations(&self, eqs: &[(String, Expr)], why: &Prose) -> Vec<Step> {
+        let title = &self.title;
+        let (scene, step, by_symbol) = (self.scene, self.step, self.by_symbol);
+        eqs.iter()
             .map(|(coordinate, e)| {
                 let q = coordinate;
                 // A constraint on the coordinates is differentiated twice to reach the
@@ -347,13 +450,15 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                 let line = if by_symbol {
                     format!("{title}: {what}")
                 } else {
-                    cited(crate::base::format::capitalised(&what))
+                    self.cited(crate::base::format::capitalised(&what))
                 };
                 let parameter = |s: &str| scene.symbols.contains_key(s);
                 Step::note(
                     &line,
                     Formula::Row(vec![
-                        Formula::Expr(super::equation_form::equation_form(e, coordinate, &parameter)),
+                        Formula::Expr(super::equation_form::equation_form(
+                            e, coordinate, &parameter,
+                        )),
                         Formula::Op(crate::notation::Op::Equals),
                         Formula::Number("0".into()),
                     ]),
@@ -361,7 +466,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
                 )
                 .standing_for(StandsFor::Equation(coordinate.clone()))
             })
-            .collect(),
+            .collect()
     }
 }
 
