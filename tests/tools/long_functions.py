@@ -28,4 +28,4 @@ for d,_,fs in os.walk(root):
             else: i+=1
 out.sort(reverse=True)
 print(len(out))
-for o in out[:10]: print(o)
+for o in out[:int(sys.argv[3]) if len(sys.argv)>3 else 10]: print(o)

@@ -255,7 +255,35 @@ fn html(
             svg.clone().into_bytes(),
         )?;
     }
-    // Each page on its own, on both cores; added in the pages' order.
+    let pages = scene_pages(&tera, docs, cx, out)?;
+    let mut lectures: Vec<LectureView> = Vec::new();
+    for lecture in &docs.lectures {
+        for handout in &lecture.handouts {
+            handout_page(&tera, docs, cx, lecture, handout, &pages, out)?;
+        }
+        let problems = problem_sheets(&tera, cx, docs, lecture, out)?;
+        lectures.push(lecture_view(docs, lecture, &pages, problems)?);
+    }
+    let mut ctx = tera::Context::new();
+    ctx.insert("site", course);
+    ctx.insert("lectures", &lectures);
+    add(
+        &mut out.files,
+        PathBuf::from("index.html"),
+        tera.render("index.html", &ctx)?.into_bytes(),
+    )?;
+    Ok(())
+}
+
+/// Each scene's page, made on both cores and added in the pages' order; their views, which
+/// the handouts and the index read.
+fn scene_pages(
+    tera: &Templates,
+    docs: &Documents,
+    cx: &Context,
+    out: &mut Rendered,
+) -> Result<Vec<PageView>, RenderError> {
+    let course = cx.course;
     let indices: Vec<usize> = (0..docs.pages.len()).collect();
     let made = crate::base::in_order::map_in_order(&indices, |&i| {
         let page = &docs.pages[i];
@@ -285,90 +313,99 @@ fn html(
         add(&mut out.files, PathBuf::from(file), made.html.into_bytes())?;
         pages.push(made.view);
     }
-    let mut lectures: Vec<LectureView> = Vec::new();
-    for lecture in &docs.lectures {
-        let slug = &lecture.slug;
-        for handout in &lecture.handouts {
-            let kind = handout.kind();
-            let name = format!("{slug}-{kind}");
-            // Its parts, and the pages they are parts of (their views follow from them).
-            let parts = cx.keys.of_parts(docs, &handout.parts);
-            let unit = memo::key(&[
-                &"handout",
-                &name,
-                &lecture.name,
-                &lecture.heading,
-                &handout.instructor,
-                &parts,
-                course,
-                cx.templates,
-                &cx.timings,
-            ]);
-            let (html, kept) =
-                memo::recall_or(cx.memo, format!("handouts.{name}.html"), unit, || {
-                    let mut ctx = tera::Context::new();
-                    ctx.insert("site", course);
-                    ctx.insert(
-                        "lecture",
-                        &serde_json::json!({ "name": lecture.name, "heading": lecture.heading }),
-                    );
-                    ctx.insert("instructor", &handout.instructor);
-                    let parts = handout
-                        .parts
-                        .iter()
-                        .map(|p| {
-                            handout::part_view(p, &docs.pages[p.page], &pages[p.page])
-                                .map_err(|e| e.in_scene(&docs.pages[p.page].source))
-                        })
-                        .collect::<Result<Vec<_>, RenderError>>()?;
-                    ctx.insert("parts", &parts);
-                    let pdf = if handout.instructor {
-                        &lecture.pdfs.instructor
-                    } else {
-                        &lecture.pdfs.student
-                    };
-                    ctx.insert("pdf", &PDFS.then_some(pdf));
-                    tera.render("handout.html", &ctx)
-                })?;
-            out.kept.extend(kept);
-            add(
-                &mut out.files,
-                PathBuf::from(format!("handouts/{name}.html")),
-                html.into_bytes(),
-            )?;
-        }
-        let problems = problem_sheets(&tera, cx, docs, lecture, out)?;
-        lectures.push(LectureView {
-            name: lecture.name.clone(),
-            heading: lecture.heading.clone(),
-            student: format!("handouts/{slug}-student.html"),
-            instructor: format!("handouts/{slug}-instructor.html"),
-            pdf: PDFS.then(|| lecture.pdfs.clone()),
-            problems,
-            pages: lecture
-                .pages
-                .iter()
-                .map(|&i| {
-                    Ok(PageLink {
-                        href: docs.files[i].clone(),
-                        title: crate::model::prose::plain(&pages[i].title),
-                        title_html: prose::author_html(&pages[i].title)?,
-                        errata: pages[i].errata,
-                        problem: docs.is_problem(i),
-                    })
-                })
-                .collect::<Result<_, RenderError>>()?,
-        });
-    }
-    let mut ctx = tera::Context::new();
-    ctx.insert("site", course);
-    ctx.insert("lectures", &lectures);
+    Ok(pages)
+}
+
+/// A lecture's handout as a page of the site.
+fn handout_page(
+    tera: &Templates,
+    docs: &Documents,
+    cx: &Context,
+    lecture: &Lecture,
+    handout: &crate::document::course::Handout,
+    pages: &[PageView],
+    out: &mut Rendered,
+) -> Result<(), RenderError> {
+    let course = cx.course;
+    let slug = &lecture.slug;
+    let kind = handout.kind();
+    let name = format!("{slug}-{kind}");
+    // Its parts, and the pages they are parts of (their views follow from them).
+    let parts = cx.keys.of_parts(docs, &handout.parts);
+    let unit = memo::key(&[
+        &"handout",
+        &name,
+        &lecture.name,
+        &lecture.heading,
+        &handout.instructor,
+        &parts,
+        course,
+        cx.templates,
+        &cx.timings,
+    ]);
+    let (html, kept) = memo::recall_or(cx.memo, format!("handouts.{name}.html"), unit, || {
+        let mut ctx = tera::Context::new();
+        ctx.insert("site", course);
+        ctx.insert(
+            "lecture",
+            &serde_json::json!({ "name": lecture.name, "heading": lecture.heading }),
+        );
+        ctx.insert("instructor", &handout.instructor);
+        let parts = handout
+            .parts
+            .iter()
+            .map(|p| {
+                handout::part_view(p, &docs.pages[p.page], &pages[p.page])
+                    .map_err(|e| e.in_scene(&docs.pages[p.page].source))
+            })
+            .collect::<Result<Vec<_>, RenderError>>()?;
+        ctx.insert("parts", &parts);
+        let pdf = if handout.instructor {
+            &lecture.pdfs.instructor
+        } else {
+            &lecture.pdfs.student
+        };
+        ctx.insert("pdf", &PDFS.then_some(pdf));
+        tera.render("handout.html", &ctx)
+    })?;
+    out.kept.extend(kept);
     add(
         &mut out.files,
-        PathBuf::from("index.html"),
-        tera.render("index.html", &ctx)?.into_bytes(),
+        PathBuf::from(format!("handouts/{name}.html")),
+        html.into_bytes(),
     )?;
     Ok(())
+}
+
+/// A lecture as the index lists it: its handouts, problem sheets, PDFs and pages.
+fn lecture_view(
+    docs: &Documents,
+    lecture: &Lecture,
+    pages: &[PageView],
+    problems: Option<(String, Option<String>)>,
+) -> Result<LectureView, RenderError> {
+    let slug = &lecture.slug;
+    Ok(LectureView {
+        name: lecture.name.clone(),
+        heading: lecture.heading.clone(),
+        student: format!("handouts/{slug}-student.html"),
+        instructor: format!("handouts/{slug}-instructor.html"),
+        pdf: PDFS.then(|| lecture.pdfs.clone()),
+        problems,
+        pages: lecture
+            .pages
+            .iter()
+            .map(|&i| {
+                Ok(PageLink {
+                    href: docs.files[i].clone(),
+                    title: crate::model::prose::plain(&pages[i].title),
+                    title_html: prose::author_html(&pages[i].title)?,
+                    errata: pages[i].errata,
+                    problem: docs.is_problem(i),
+                })
+            })
+            .collect::<Result<_, RenderError>>()?,
+    })
 }
 
 /// What the build says of a page whose formulas a phone sets smaller to fit: each such formula

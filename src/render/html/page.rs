@@ -173,94 +173,16 @@ fn check_text(c: &crate::verify::StepCheck) -> String {
 pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
     let names = &page.names;
     let mut guard = guard::Guard::for_page(page);
-    let steps = page
-        .steps
-        .iter()
-        .map(|st| {
-            let tex = st.statement.to_tex(names);
-            guard.step(st, &tex)?;
-            Ok(StepView {
-                title: author_html(&st.title)?,
-                math: math::block(&tex)?,
-                why: prose_html(&st.why_cited(), names)?,
-                at: String::new(),
-                check: st.check.as_ref().map(check_text).unwrap_or_default(),
-            })
-        })
-        .collect::<Result<Vec<_>, RenderError>>()?;
-    let mut quantities = Vec::new();
-    for q in &page.quantities {
-        quantities.push(match q.is_result {
-            true => Some(StepView {
-                title: result_heading(q),
-                math: match &q.symbol {
-                    Some(symbol) => {
-                        let tex = result_equation(symbol, &q.value).to_tex(names);
-                        if let Value::Scalar(derived) = &q.derived {
-                            guard.printed(&tex, derived, page.line)?;
-                        }
-                        math::block(&tex)?
-                    }
-                    None => {
-                        let tex = q.formula().to_tex(names);
-                        guard.printed_value(&tex, &q.derived, page.line)?;
-                        math::block(&tex)?
-                    }
-                },
-                why: String::new(),
-                at: match &q.at {
-                    Some(at) => at_numbers_html(&q.value, at, names)?,
-                    None => String::new(),
-                },
-                check: String::new(),
-            }),
-            false => None,
-        });
-    }
-    let mut principal = Vec::new();
-    for sp in &page.principal_axes {
-        let vector = |v: &[Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
-        let mut row = vec![Formula::Expr(sp.value.clone())];
-        match &sp.basis {
-            ExactBasis::Axis(a) => row.extend([Formula::Text(" along ".into()), vector(a)]),
-            ExactBasis::PlaneNormalTo(n) => row.extend([
-                Formula::Text(", every axis ".into()),
-                Formula::Op(Op::Perp),
-                vector(n),
-            ]),
-            ExactBasis::All => row.push(Formula::Text(", every axis".into())),
-        }
-        principal.push(StepView {
-            title: format!("Principal moment (multiplicity {})", sp.multiplicity),
-            math: math::block(&Formula::Row(row).to_tex(names))?,
-            why: String::new(),
-            at: String::new(),
-            check: String::new(),
-        });
-    }
-    if let Some(p) = &page.principal_values {
-        principal.push(principal_values_view(p, names)?);
-    }
+    let steps = step_views(page, &mut guard)?;
+    let quantities = quantity_views(page, &mut guard)?;
+    let principal = principal_views(page)?;
     let results = quantities
         .iter()
         .flatten()
         .chain(&principal)
         .cloned()
         .collect();
-    let numeric = page
-        .numeric
-        .iter()
-        .map(|q| NumericRow {
-            body: q.body.clone(),
-            method: q.method.into(),
-            points: q.points,
-            error: sci(q.error),
-            predicted: sci(q.predicted_error),
-            within_law: q.within_law,
-            stop: q.stop.into(),
-            seconds: timings.then(|| format!("{:.1e}", q.seconds)),
-        })
-        .collect();
+    let numeric = numeric_rows(page, timings);
     let claims = (0..page.claims.len())
         .map(|i| super::claim_view::claim_view(page, i, &mut guard))
         .collect::<Result<_, RenderError>>()?;
@@ -314,31 +236,140 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
         numeric,
         errata: page.errata,
         claims,
-        figures: page
-            .figures
-            .iter()
-            .map(|f| FigureView {
-                file: f.file.clone(),
-                title: f.title.clone(),
-                desc: f.desc.clone(),
-                accuracy: f
-                    .accuracy
-                    .iter()
-                    .map(|a| AccuracyRow {
-                        result: a.result.clone(),
-                        method: a.method.clone(),
-                        true_error: a.true_error.map_or("—".into(), sci),
-                        estimated_error: a.estimated_error.map_or("—".into(), sci),
-                        cost: format!("{} {}", a.cost, a.unit),
-                        seconds: timings.then(|| format!("{:.1e}", a.seconds)),
-                    })
-                    .collect(),
-            })
-            .collect(),
+        figures: figure_views(page, timings),
         passed: page.passed,
         prev: page.prev.as_ref().map(plain_link),
         next: page.next.as_ref().map(plain_link),
     })
+}
+
+/// The derivation's lines, each read back by the guard.
+fn step_views(page: &Page, guard: &mut guard::Guard) -> Result<Vec<StepView>, RenderError> {
+    let names = &page.names;
+    page.steps
+        .iter()
+        .map(|st| {
+            let tex = st.statement.to_tex(names);
+            guard.step(st, &tex)?;
+            Ok(StepView {
+                title: author_html(&st.title)?,
+                math: math::block(&tex)?,
+                why: prose_html(&st.why_cited(), names)?,
+                at: String::new(),
+                check: st.check.as_ref().map(check_text).unwrap_or_default(),
+            })
+        })
+        .collect()
+}
+
+/// Each quantity the page lists as a result (none for a working quantity), read back by the
+/// guard.
+fn quantity_views(
+    page: &Page,
+    guard: &mut guard::Guard,
+) -> Result<Vec<Option<StepView>>, RenderError> {
+    let names = &page.names;
+    let mut quantities = Vec::new();
+    for q in &page.quantities {
+        quantities.push(match q.is_result {
+            true => Some(StepView {
+                title: result_heading(q),
+                math: match &q.symbol {
+                    Some(symbol) => {
+                        let tex = result_equation(symbol, &q.value).to_tex(names);
+                        if let Value::Scalar(derived) = &q.derived {
+                            guard.printed(&tex, derived, page.line)?;
+                        }
+                        math::block(&tex)?
+                    }
+                    None => {
+                        let tex = q.formula().to_tex(names);
+                        guard.printed_value(&tex, &q.derived, page.line)?;
+                        math::block(&tex)?
+                    }
+                },
+                why: String::new(),
+                at: match &q.at {
+                    Some(at) => at_numbers_html(&q.value, at, names)?,
+                    None => String::new(),
+                },
+                check: String::new(),
+            }),
+            false => None,
+        });
+    }
+    Ok(quantities)
+}
+
+/// The exact principal axes, then the principal moments at the scene's values.
+fn principal_views(page: &Page) -> Result<Vec<StepView>, RenderError> {
+    let names = &page.names;
+    let mut principal = Vec::new();
+    for sp in &page.principal_axes {
+        let vector = |v: &[Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
+        let mut row = vec![Formula::Expr(sp.value.clone())];
+        match &sp.basis {
+            ExactBasis::Axis(a) => row.extend([Formula::Text(" along ".into()), vector(a)]),
+            ExactBasis::PlaneNormalTo(n) => row.extend([
+                Formula::Text(", every axis ".into()),
+                Formula::Op(Op::Perp),
+                vector(n),
+            ]),
+            ExactBasis::All => row.push(Formula::Text(", every axis".into())),
+        }
+        principal.push(StepView {
+            title: format!("Principal moment (multiplicity {})", sp.multiplicity),
+            math: math::block(&Formula::Row(row).to_tex(names))?,
+            why: String::new(),
+            at: String::new(),
+            check: String::new(),
+        });
+    }
+    if let Some(p) = &page.principal_values {
+        principal.push(principal_values_view(p, names)?);
+    }
+    Ok(principal)
+}
+
+/// The numeric table: each quadrature's body, method, points and errors.
+fn numeric_rows(page: &Page, timings: bool) -> Vec<NumericRow> {
+    page.numeric
+        .iter()
+        .map(|q| NumericRow {
+            body: q.body.clone(),
+            method: q.method.into(),
+            points: q.points,
+            error: sci(q.error),
+            predicted: sci(q.predicted_error),
+            within_law: q.within_law,
+            stop: q.stop.into(),
+            seconds: timings.then(|| format!("{:.1e}", q.seconds)),
+        })
+        .collect()
+}
+
+/// Each plot with the error and cost of each numeric result it draws.
+fn figure_views(page: &Page, timings: bool) -> Vec<FigureView> {
+    page.figures
+        .iter()
+        .map(|f| FigureView {
+            file: f.file.clone(),
+            title: f.title.clone(),
+            desc: f.desc.clone(),
+            accuracy: f
+                .accuracy
+                .iter()
+                .map(|a| AccuracyRow {
+                    result: a.result.clone(),
+                    method: a.method.clone(),
+                    true_error: a.true_error.map_or("—".into(), sci),
+                    estimated_error: a.estimated_error.map_or("—".into(), sci),
+                    cost: format!("{} {}", a.cost, a.unit),
+                    seconds: timings.then(|| format!("{:.1e}", a.seconds)),
+                })
+                .collect(),
+        })
+        .collect()
 }
 
 /// The principal moments as numbers, with the axes when only the numerics give them, and how
