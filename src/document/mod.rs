@@ -313,7 +313,6 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
             title: o.scene.title.clone(),
         })
     };
-    let within_law = &r.verification.within_law;
     Page {
         id: s.id.clone(),
         title: s.title.clone(),
@@ -347,103 +346,13 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
             .map(|(k, e)| (k.clone(), e.clone()))
             .collect(),
         bodies: s.bodies.iter().map(describe_body).collect(),
-        steps: r
-            .derivation
-            .steps
-            .iter()
-            .enumerate()
-            .map(|(i, st)| {
-                let last = r
-                    .derivation
-                    .steps
-                    .get(i + 1)
-                    .and_then(|n| n.author.as_ref())
-                    != st.author.as_ref();
-                let author = st
-                    .author
-                    .as_ref()
-                    .and_then(|name| s.steps.iter().position(|a| &a.name == name));
-                Step {
-                    title: st.title.clone(),
-                    statement: st.statement.clone(),
-                    exact: st.exact.clone(),
-                    second_route: st.second_route,
-                    working: st.working,
-                    student_why: st.student_why.clone(),
-                    line: author.map_or(0, |k| s.steps[k].line),
-                    stands_for: match (&st.author, &st.stands_for) {
-                        (Some(name), Some(stands)) => r
-                            .derivation
-                            .named
-                            .get(name)
-                            .and_then(|result| result.stood_for(s.result_names(name), stands)),
-                        _ => None,
-                    },
-                    result: match &st.stands_for {
-                        Some(crate::derive::step_names::StandsFor::Result(n)) => Some(n.clone()),
-                        _ => None,
-                    },
-                    why: st.why.clone(),
-                    key: st.cite.clone(),
-                    citation: st.citation(&s.cite).map(str::to_string),
-                    // An author's step of several lines (equilibria, modes) shows its one check
-                    // under its last line.
-                    check: if st.author.is_none() {
-                        // A built-in step's check is of its printed form, in the steps' order.
-                        let k = r.derivation.steps[..i]
-                            .iter()
-                            .filter(|s| s.author.is_none() && s.exact.is_some())
-                            .count();
-                        st.exact
-                            .as_ref()
-                            .and_then(|_| r.verification.printed.get(k).cloned())
-                    } else {
-                        st.author
-                            .as_ref()
-                            .filter(|name| {
-                                r.derivation
-                                    .steps
-                                    .get(i + 1)
-                                    .and_then(|n| n.author.as_ref())
-                                    != Some(*name)
-                            })
-                            .and_then(|name| {
-                                r.verification
-                                    .steps
-                                    .iter()
-                                    .find(|c| &c.step == name)
-                                    .cloned()
-                            })
-                    },
-                    author: st.author.clone(),
-                    eq: author.and_then(|k| s.steps[k].eq.clone()),
-                    claims: match author {
-                        Some(k) if last => (0..r.verification.claims.len())
-                            .filter(|&j| r.verification.claims[j].step == Some(k))
-                            .collect(),
-                        _ => Vec::new(),
-                    },
-                }
-            })
+        steps: (0..r.derivation.steps.len())
+            .map(|i| page_step(r, i))
             .collect(),
         quantities: results::quantities(r),
         principal_axes: results::principal_axes(r),
         principal_values: results::principal_values(r),
-        numeric: r
-            .numeric
-            .iter()
-            .flat_map(|n| n.runs.iter().zip(within_law))
-            .map(|(q, ok)| NumericRow {
-                body: q.body.clone(),
-                method: q.method.name(),
-                points: q.points,
-                error: q.error,
-                predicted_error: q.predicted_error,
-                within_law: *ok,
-                stop: q.stop.describe(),
-                seconds: q.seconds,
-            })
-            .collect(),
+        numeric: numeric_rows(r),
         eigen: r.verification.eigen.clone(),
         claims: r.verification.claims.clone(),
         exact_vs_numeric: r.verification.quantities.clone(),
@@ -457,17 +366,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
             .as_ref()
             .map_or(Vec::new(), |p| p.answers.clone()),
         step_checks: r.verification.steps.clone(),
-        figures: r
-            .figures
-            .iter()
-            .map(|f| FigureBlock {
-                slug: f.slug.clone(),
-                file: figure_file(r, f),
-                title: f.title.clone(),
-                desc: f.desc.clone(),
-                accuracy: f.accuracy.clone(),
-            })
-            .collect(),
+        figures: figure_blocks(r),
         stages: r
             .plan
             .explain()
@@ -485,6 +384,117 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
         prev: link(prev),
         next: link(next),
     }
+}
+
+/// The derivation's line `i` as the page shows it: what it states and stands for, its check,
+/// and the claims under an author's step's last line.
+fn page_step(r: &SceneReport, i: usize) -> Step {
+    let s = &r.scene;
+    let st = &r.derivation.steps[i];
+    let last = r
+        .derivation
+        .steps
+        .get(i + 1)
+        .and_then(|n| n.author.as_ref())
+        != st.author.as_ref();
+    let author = st
+        .author
+        .as_ref()
+        .and_then(|name| s.steps.iter().position(|a| &a.name == name));
+    Step {
+        title: st.title.clone(),
+        statement: st.statement.clone(),
+        exact: st.exact.clone(),
+        second_route: st.second_route,
+        working: st.working,
+        student_why: st.student_why.clone(),
+        line: author.map_or(0, |k| s.steps[k].line),
+        stands_for: match (&st.author, &st.stands_for) {
+            (Some(name), Some(stands)) => r
+                .derivation
+                .named
+                .get(name)
+                .and_then(|result| result.stood_for(s.result_names(name), stands)),
+            _ => None,
+        },
+        result: match &st.stands_for {
+            Some(crate::derive::step_names::StandsFor::Result(n)) => Some(n.clone()),
+            _ => None,
+        },
+        why: st.why.clone(),
+        key: st.cite.clone(),
+        citation: st.citation(&s.cite).map(str::to_string),
+        // An author's step of several lines (equilibria, modes) shows its one check
+        // under its last line.
+        check: if st.author.is_none() {
+            // A built-in step's check is of its printed form, in the steps' order.
+            let k = r.derivation.steps[..i]
+                .iter()
+                .filter(|s| s.author.is_none() && s.exact.is_some())
+                .count();
+            st.exact
+                .as_ref()
+                .and_then(|_| r.verification.printed.get(k).cloned())
+        } else {
+            st.author
+                .as_ref()
+                .filter(|name| {
+                    r.derivation
+                        .steps
+                        .get(i + 1)
+                        .and_then(|n| n.author.as_ref())
+                        != Some(*name)
+                })
+                .and_then(|name| {
+                    r.verification
+                        .steps
+                        .iter()
+                        .find(|c| &c.step == name)
+                        .cloned()
+                })
+        },
+        author: st.author.clone(),
+        eq: author.and_then(|k| s.steps[k].eq.clone()),
+        claims: match author {
+            Some(k) if last => (0..r.verification.claims.len())
+                .filter(|&j| r.verification.claims[j].step == Some(k))
+                .collect(),
+            _ => Vec::new(),
+        },
+    }
+}
+
+/// Each quadrature of the numeric table, with whether its error is within its law.
+fn numeric_rows(r: &SceneReport) -> Vec<NumericRow> {
+    let within_law = &r.verification.within_law;
+    r.numeric
+        .iter()
+        .flat_map(|n| n.runs.iter().zip(within_law))
+        .map(|(q, ok)| NumericRow {
+            body: q.body.clone(),
+            method: q.method.name(),
+            points: q.points,
+            error: q.error,
+            predicted_error: q.predicted_error,
+            within_law: *ok,
+            stop: q.stop.describe(),
+            seconds: q.seconds,
+        })
+        .collect()
+}
+
+/// Each plot of the scene, with its file and the accuracy of what it draws.
+fn figure_blocks(r: &SceneReport) -> Vec<FigureBlock> {
+    r.figures
+        .iter()
+        .map(|f| FigureBlock {
+            slug: f.slug.clone(),
+            file: figure_file(r, f),
+            title: f.title.clone(),
+            desc: f.desc.clone(),
+            accuracy: f.accuracy.clone(),
+        })
+        .collect()
 }
 
 /// Every scene's page, each linked to its neighbours in the order given.

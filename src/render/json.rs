@@ -160,59 +160,8 @@ pub fn derived_text(g: &crate::verify::RegressionResult) -> String {
 pub fn scene_json(page: &Page) -> Json {
     // Each name as the scene typesets it, as on the page.
     let names = &page.names;
-    let mut quantities = serde_json::Map::new();
-    for q in &page.quantities {
-        quantities.insert(
-            q.name.clone(),
-            json!({ "exact": q.value.to_text(), "latex": q.value.to_latex(names), "numeric": numeric_entries(q) }),
-        );
-    }
-    // A number with no exact form: no `exact` text that would be a float in disguise.
-    for (name, w) in &page.numeric_results {
-        quantities.insert(
-            name.clone(),
-            json!({ "exact": null, "latex": null, "numeric": [num(*w)], "numeric_only": true }),
-        );
-    }
-    // A state of rest of several coordinates, or the minors about it: a list, and its numbers.
-    for list in &page.list_results {
-        let exact = Expr::List(list.entries.clone());
-        quantities.insert(
-            list.name.clone(),
-            json!({ "exact": exact.to_text(), "latex": exact.to_latex(names), "numeric": numbers_json(&list.numbers) }),
-        );
-    }
-    let numeric_only = |e: &Expr| {
-        e.symbols()
-            .iter()
-            .any(|s| page.numeric_results.iter().any(|(n, _)| n == s))
-    };
-    let claims: Vec<Json> = page
-        .claims
-        .iter()
-        .map(|c| {
-            let mut claim = json!({
-                "eq": c.eq,
-                "statement": c.statement,
-                "notes": c.notes.as_ref().map(Expr::to_text).unwrap_or_default(),
-                "derived": c.derived.as_ref().map(Value::to_text).unwrap_or_default(),
-                "verdict": c.verdict.as_str(),
-                "expected": c.expected.map(|v| v.as_str()),
-                "passed": c.passed(),
-                "differences": c.differences.iter().map(|d| d.to_text()).collect::<Vec<_>>(),
-                "problem": c.problem,
-                "precision": c.precision,
-            });
-            // The symbols an agreement takes to be positive, where it rests on that.
-            if c.where_real {
-                claim["where_real"] = json!(true);
-            }
-            if !c.positive.is_empty() {
-                claim["positive"] = json!(c.positive);
-            }
-            claim
-        })
-        .collect();
+    let quantities = quantities_json(page);
+    let claims = claims_json(page);
     let numeric_checks: Vec<Json> = page
         .numeric
         .iter()
@@ -280,30 +229,7 @@ pub fn scene_json(page: &Page) -> Json {
             "value_error": num(e.value_error), "axis_error": num(e.axis_error), "passed": e.passed })),
         "regressions": page.regressions.iter().map(|g| json!({
             "quantity": g.quantity, "recorded": g.recorded.as_ref().map(Expr::to_text), "derived": derived_text(g),  "unchanged": g.unchanged })).collect::<Vec<_>>(),
-        "variants": page.variants.iter().map(|v| json!({
-            "number": v.number,
-            "values": v.values.iter().map(|(name, e)| (name.clone(), json!({
-                "exact": e.to_text(),
-                "latex": e.to_latex(names),
-                "numeric": e.eval(&|_| None).ok().map(num),
-            }))).collect::<serde_json::Map<_, _>>(),
-            "passed": v.passed(),
-            "answers": v.answers.iter().zip(&page.answers).map(|(a, spec)| json!({
-                "quantity": a.quantity,
-                "label": spec.label,
-                "unit": spec.unit.as_ref().map(|u| &u.text),
-                // An answer on a numeric mode has its number at each variant, not an exact form.
-                "exact": (!numeric_only(&spec.value)).then(|| a.exact.to_text()),
-                "latex": (!numeric_only(&spec.value)).then(|| a.exact.to_latex(names)),
-                "entries": if numeric_only(&spec.value) { Vec::new() } else { a.exact.entries().iter().map(|e| e.to_latex(names)).collect::<Vec<_>>() },
-                "numeric_only": numeric_only(&spec.value),
-                "numeric": a.exact_numbers.iter().map(|x| num(*x)).collect::<Vec<_>>(),
-                "independent": a.numeric.iter().map(|x| num(*x)).collect::<Vec<_>>(),
-                "error": num(a.error),
-                "tolerance": num(a.tolerance),
-                "passed": a.passed(),
-            })).collect::<Vec<_>>(),
-        })).collect::<Vec<_>>(),
+        "variants": variants_json(page),
         "steps": page.steps.iter().map(|s| step_json(s, names)).collect::<Vec<_>>(),
         "step_checks": page.step_checks.iter().map(|c| json!({
             "step": c.step, "method": c.method, "error": num(c.error), "tolerance": num(c.tolerance),
@@ -321,4 +247,96 @@ pub fn scene_json(page: &Page) -> Json {
                 "seconds": num(a.seconds) })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
     })
+}
+
+/// Each quantity's exact form, LaTeX and numbers; a number with no exact form, and a list.
+fn quantities_json(page: &Page) -> serde_json::Map<String, Json> {
+    let names = &page.names;
+    let mut quantities = serde_json::Map::new();
+    for q in &page.quantities {
+        quantities.insert(
+            q.name.clone(),
+            json!({ "exact": q.value.to_text(), "latex": q.value.to_latex(names), "numeric": numeric_entries(q) }),
+        );
+    }
+    // A number with no exact form: no `exact` text that would be a float in disguise.
+    for (name, w) in &page.numeric_results {
+        quantities.insert(
+            name.clone(),
+            json!({ "exact": null, "latex": null, "numeric": [num(*w)], "numeric_only": true }),
+        );
+    }
+    // A state of rest of several coordinates, or the minors about it: a list, and its numbers.
+    for list in &page.list_results {
+        let exact = Expr::List(list.entries.clone());
+        quantities.insert(
+            list.name.clone(),
+            json!({ "exact": exact.to_text(), "latex": exact.to_latex(names), "numeric": numbers_json(&list.numbers) }),
+        );
+    }
+    quantities
+}
+
+/// Each claim, its sides as text and its verdict.
+fn claims_json(page: &Page) -> Vec<Json> {
+    page.claims
+        .iter()
+        .map(|c| {
+            let mut claim = json!({
+                "eq": c.eq,
+                "statement": c.statement,
+                "notes": c.notes.as_ref().map(Expr::to_text).unwrap_or_default(),
+                "derived": c.derived.as_ref().map(Value::to_text).unwrap_or_default(),
+                "verdict": c.verdict.as_str(),
+                "expected": c.expected.map(|v| v.as_str()),
+                "passed": c.passed(),
+                "differences": c.differences.iter().map(|d| d.to_text()).collect::<Vec<_>>(),
+                "problem": c.problem,
+                "precision": c.precision,
+            });
+            // The symbols an agreement takes to be positive, where it rests on that.
+            if c.where_real {
+                claim["where_real"] = json!(true);
+            }
+            if !c.positive.is_empty() {
+                claim["positive"] = json!(c.positive);
+            }
+            claim
+        })
+        .collect()
+}
+
+/// Each variant's values and answers, exact and in numbers, with their tolerance.
+fn variants_json(page: &Page) -> Vec<Json> {
+    let names = &page.names;
+    // An answer on a numeric result has a number at each variant, not an exact form.
+    let numeric_only = |e: &Expr| {
+        e.symbols()
+            .iter()
+            .any(|s| page.numeric_results.iter().any(|(n, _)| n == s))
+    };
+    page.variants.iter().map(|v| json!({
+        "number": v.number,
+        "values": v.values.iter().map(|(name, e)| (name.clone(), json!({
+            "exact": e.to_text(),
+            "latex": e.to_latex(names),
+            "numeric": e.eval(&|_| None).ok().map(num),
+        }))).collect::<serde_json::Map<_, _>>(),
+        "passed": v.passed(),
+        "answers": v.answers.iter().zip(&page.answers).map(|(a, spec)| json!({
+            "quantity": a.quantity,
+            "label": spec.label,
+            "unit": spec.unit.as_ref().map(|u| &u.text),
+            // An answer on a numeric mode has its number at each variant, not an exact form.
+            "exact": (!numeric_only(&spec.value)).then(|| a.exact.to_text()),
+            "latex": (!numeric_only(&spec.value)).then(|| a.exact.to_latex(names)),
+            "entries": if numeric_only(&spec.value) { Vec::new() } else { a.exact.entries().iter().map(|e| e.to_latex(names)).collect::<Vec<_>>() },
+            "numeric_only": numeric_only(&spec.value),
+            "numeric": a.exact_numbers.iter().map(|x| num(*x)).collect::<Vec<_>>(),
+            "independent": a.numeric.iter().map(|x| num(*x)).collect::<Vec<_>>(),
+            "error": num(a.error),
+            "tolerance": num(a.tolerance),
+            "passed": a.passed(),
+        })).collect::<Vec<_>>(),
+    })).collect::<Vec<_>>()
 }

@@ -63,43 +63,59 @@ fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
     );
     let statement = statement_tex(&v.statement, &problem.names);
     let scalars: usize = v.answers.iter().map(|a| a.exact_numbers.len()).sum();
-    let mut out = String::new();
-    if let ([a], [spec]) = (v.answers.as_slice(), problem.answers.as_slice())
-        && scalars == 1
-    {
-        let units = match &spec.unit {
-            // Graded: a missing or wrong unit costs a tenth of the mark, typed after the number
-            // (Moodle's qtype_numerical: unitgradingtype 1 = UNITGRADEDOUTOFMARK, showunits
-            // 0 = UNITINPUT, read by its XML import's import_numerical).
-            Some(u) => format!(
-                "    <unitgradingtype>1</unitgradingtype>\n    <unitpenalty>0.1</unitpenalty>\n    \
-                 <showunits>0</showunits>\n    <unitsleft>0</unitsleft>\n    <units><unit>\
-                 <multiplier>1</multiplier><unit_name>{}</unit_name></unit></units>\n",
-                xml_text(&u.text)
-            ),
-            None => String::new(),
-        };
-        let _ = write!(
-            out,
-            "  <question type=\"numerical\">\n    <name><text>{}</text></name>\n    \
-             <questiontext format=\"html\"><text>{}</text></questiontext>\n    \
-             <generalfeedback format=\"html\"><text>{}</text></generalfeedback>\n    \
-             <defaultgrade>1</defaultgrade>\n    <penalty>0.3333333</penalty>\n    <hidden>0</hidden>\n    \
-             <answer fraction=\"100\" format=\"moodle_auto_format\"><text>{}</text>\
-             <feedback format=\"html\"><text></text></feedback><tolerance>{}</tolerance></answer>\n\
-             {units}  </question>\n",
-            xml_text(&name),
-            cdata(&format!("<p>{statement}</p>")),
-            cdata(&feedback(problem, v, solution)),
-            number(a.exact_numbers[0]),
-            number(tolerance(spec.tolerance, &a.exact_numbers)),
-        );
-        return out;
+    let feedback = feedback(problem, v, solution);
+    match (v.answers.as_slice(), problem.answers.as_slice()) {
+        ([a], [spec]) if scalars == 1 => numerical(&name, &statement, &feedback, a, spec),
+        _ => cloze(&name, &statement, &feedback, problem, v),
     }
+}
+
+/// A variant of one number: Moodle's numerical question, its unit graded.
+fn numerical(
+    name: &str,
+    statement: &str,
+    feedback: &str,
+    a: &crate::verify::variants::AnswerCheck,
+    spec: &crate::scene::Answer,
+) -> String {
+    let mut out = String::new();
+    let units = match &spec.unit {
+        // Graded: a missing or wrong unit costs a tenth of the mark, typed after the number
+        // (Moodle's qtype_numerical: unitgradingtype 1 = UNITGRADEDOUTOFMARK, showunits
+        // 0 = UNITINPUT, read by its XML import's import_numerical).
+        Some(u) => format!(
+            "    <unitgradingtype>1</unitgradingtype>\n    <unitpenalty>0.1</unitpenalty>\n    \
+             <showunits>0</showunits>\n    <unitsleft>0</unitsleft>\n    <units><unit>\
+             <multiplier>1</multiplier><unit_name>{}</unit_name></unit></units>\n",
+            xml_text(&u.text)
+        ),
+        None => String::new(),
+    };
+    let _ = write!(
+        out,
+        "  <question type=\"numerical\">\n    <name><text>{}</text></name>\n    \
+         <questiontext format=\"html\"><text>{}</text></questiontext>\n    \
+         <generalfeedback format=\"html\"><text>{}</text></generalfeedback>\n    \
+         <defaultgrade>1</defaultgrade>\n    <penalty>0.3333333</penalty>\n    <hidden>0</hidden>\n    \
+         <answer fraction=\"100\" format=\"moodle_auto_format\"><text>{}</text>\
+         <feedback format=\"html\"><text></text></feedback><tolerance>{}</tolerance></answer>\n\
+         {units}  </question>\n",
+        xml_text(name),
+        cdata(&format!("<p>{statement}</p>")),
+        cdata(feedback),
+        number(a.exact_numbers[0]),
+        number(tolerance(spec.tolerance, &a.exact_numbers)),
+    );
+    out
+}
+
+/// A variant of several numbers: a cloze question, a blank for each.
+fn cloze(name: &str, statement: &str, feedback: &str, problem: &Problem, v: &Variant) -> String {
+    let mut out = String::new();
     // Moodle reads a blank wherever the text has `{N:TYPE:`, so what the author wrote (the
     // statement, a label, a unit) has its braces as character references: shown and typeset
     // the same, never read as a blank the key does not have.
-    let mut text = format!("<p>{}</p>\n", no_blanks(&statement));
+    let mut text = format!("<p>{}</p>\n", no_blanks(statement));
     for (spec, a) in problem.answers.iter().zip(&v.answers) {
         let tol = tolerance(spec.tolerance, &a.exact_numbers);
         let unit = spec.unit.as_ref().map_or(String::new(), |u| {
@@ -134,9 +150,9 @@ fn question(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
          <questiontext format=\"html\"><text>{}</text></questiontext>\n    \
          <generalfeedback format=\"html\"><text>{}</text></generalfeedback>\n    \
          <penalty>0.3333333</penalty>\n    <hidden>0</hidden>\n  </question>\n",
-        xml_text(&name),
+        xml_text(name),
         cdata(&text),
-        cdata(&feedback(problem, v, solution)),
+        cdata(feedback),
     );
     out
 }
