@@ -10,6 +10,7 @@ use crate::model::value::Value;
 use crate::notation::{Formula, Names, Tex, linebreak};
 use crate::render::RenderError;
 use crate::scene::Verdict;
+use crate::verify::ClaimResult;
 use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -73,51 +74,14 @@ pub(super) fn claim_view(
                 None => derived_tex(v, c.precision.is_some(), names),
             },
         );
-    // Beside a claim that agrees, the derived form is shown when it says something the
-    // notes' form does not and is about as short; a longer one is equal to the notes' form
-    // (their difference simplifies to 0), which the page says instead. It is in
-    // `check --json` either way.
-    let notes_width = notes_tex.as_ref().map_or(0.0, math::width);
-    let agrees = c.verdict == Verdict::Agrees && c.precision.is_none();
-    let same = agrees
-        && derived_tex.as_ref().map(|t| &t.source)
-            == Some(notes_tex.as_ref().map_or(&String::new(), |t| &t.source));
-    let derived_equal = agrees
-        && !same
-        && match &derived_tex {
-            Some(tex) => math::width(tex) > (2.0 * notes_width).max(linebreak::PHONE),
-            None => false,
-        };
-    // Each side read back and checked to be what it prints (the notes' formula as the scene
-    // writes it; the derived value), the rounded decimal aside.
-    if let (Some(tex), Some(e)) = (&notes_tex, &c.notes) {
-        guard.printed(tex, e, c.line)?;
-    }
-    match (&derived_tex, &c.derived, &c.precision) {
-        (Some(tex), Some(Value::Scalar(e)), None) => guard.printed(tex, e, c.line)?,
-        (Some(tex), Some(v @ Value::Matrix(_)), None) => guard.printed_value(tex, v, c.line)?,
-        _ => {}
-    }
+    let (same, derived_equal) = derived_beside(c, notes_tex.as_ref(), derived_tex.as_ref());
+    read_back_sides(guard, c, notes_tex.as_ref(), derived_tex.as_ref())?;
     let mut derived = match &derived_tex {
         Some(tex) if !derived_equal && !same => math::inline(tex)?,
         _ => String::new(),
     };
-    // A scalar claim's sides as displayed formulas with their left side (`T = …`), which the
-    // handouts set on lines of their own: an inline fraction is small on paper and phones.
-    let displayed = |side: &Option<Tex>| -> Result<String, RenderError> {
-        let scalar = matches!(c.derived, Some(Value::Scalar(_))) && c.sign_words().is_none();
-        match (side, scalar) {
-            (Some(tex), true) => {
-                let row = page
-                    .claim_row(i, Formula::Tex(tex.clone()))
-                    .unwrap_or_else(|_| Formula::Tex(tex.clone()));
-                math::block(&row.to_tex(names))
-            }
-            _ => Ok(String::new()),
-        }
-    };
-    let notes_block = displayed(&notes_tex)?;
-    let derived_block = displayed(&derived_tex)?;
+    let notes_block = displayed(page, i, notes_tex.as_ref())?;
+    let derived_block = displayed(page, i, derived_tex.as_ref())?;
     let mut notes = render(c.notes.as_ref())?;
     let words = c.sign_words().is_some();
     if let Some((said, found)) = c.sign_words() {
@@ -159,6 +123,64 @@ pub(super) fn claim_view(
         }
         .into(),
     })
+}
+
+/// Whether the derived side is the notes' own (`same`), or is equal to them but much wider
+/// (`derived_equal`), beside a claim that agrees. The derived form is shown when it says
+/// something the notes' form does not and is about as short; a longer one is equal to the
+/// notes' form (their difference simplifies to 0), which the page says instead. It is in
+/// `check --json` either way.
+fn derived_beside(c: &ClaimResult, notes: Option<&Tex>, derived: Option<&Tex>) -> (bool, bool) {
+    let notes_width = notes.map_or(0.0, math::width);
+    let agrees = c.verdict == Verdict::Agrees && c.precision.is_none();
+    let same =
+        agrees && derived.map(|t| &t.source) == Some(notes.map_or(&String::new(), |t| &t.source));
+    let derived_equal = agrees
+        && !same
+        && match derived {
+            Some(tex) => math::width(tex) > (2.0 * notes_width).max(linebreak::PHONE),
+            None => false,
+        };
+    (same, derived_equal)
+}
+
+/// Each side read back and checked to be what it prints (the notes' formula as the scene
+/// writes it; the derived value), the rounded decimal aside.
+fn read_back_sides(
+    guard: &mut Guard,
+    c: &ClaimResult,
+    notes: Option<&Tex>,
+    derived: Option<&Tex>,
+) -> Result<(), RenderError> {
+    if let (Some(tex), Some(e)) = (notes, &c.notes) {
+        guard.printed(tex, e, c.line)?;
+    }
+    match (derived, &c.derived, &c.precision) {
+        (Some(tex), Some(Value::Scalar(e)), None) => guard.printed(tex, e, c.line)?,
+        (Some(tex), Some(v @ Value::Matrix(_)), None) => guard.printed_value(tex, v, c.line)?,
+        _ => {}
+    }
+    Ok(())
+}
+
+/// A scalar claim's side as a displayed formula with its left side (`T = …`), which the
+/// handouts set on a line of its own: an inline fraction is small on paper and phones.
+fn displayed(
+    page: &crate::document::Page,
+    i: usize,
+    side: Option<&Tex>,
+) -> Result<String, RenderError> {
+    let c = &page.claims[i];
+    let scalar = matches!(c.derived, Some(Value::Scalar(_))) && c.sign_words().is_none();
+    match (side, scalar) {
+        (Some(tex), true) => {
+            let row = page
+                .claim_row(i, Formula::Tex(tex.clone()))
+                .unwrap_or_else(|_| Formula::Tex(tex.clone()));
+            math::block(&row.to_tex(&page.names))
+        }
+        _ => Ok(String::new()),
+    }
 }
 
 /// A claim's left side as MathML (`Page::claim_left`), empty where it has none.

@@ -344,37 +344,7 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
         verdict,
     } = &shown.mark
     else {
-        let lead = words::claim_lead(&c.statement).filter(|_| words::claim_shows_formula(page, i));
-        if let (Mark::Agrees, Some(notes), None, Some(lead)) =
-            (&shown.mark, notes, c.sign_words(), lead)
-        {
-            // "The tension in the string:", T = 2m₁m₂g/(m₁ + m₂) displayed, "As in the notes,
-            // eq. (9.1)."
-            // One block, so that the formula and the sentence after it stay in the list item.
-            m.raw("#block[");
-            m.author(&lead)?.text(":");
-            let notes = notes?;
-            let (whole, broken) = formula_and_broken(&notes, names)?;
-            m.block(&whole, &broken, &notes.to_tex(names).spoken());
-            m.text("As in the notes");
-            if let Some(eq) = page.claim_equation(i) {
-                m.text(&format!(", eq. ({eq})"));
-            }
-            positive(m, c, names);
-            m.text(".");
-            m.raw("]");
-            m.line();
-            return Ok(());
-        }
-        if let Some(eq) = page.claim_equation(i) {
-            m.text(&format!("({eq}) "));
-        }
-        m.author(&c.statement)?;
-        if shown.mark == Mark::Verdict {
-            m.text(&format!(" — {}", c.verdict.as_str()));
-        }
-        m.line();
-        return Ok(());
+        return claim_in_list(m, page, shown, notes);
     };
     m.raw("#block(stroke: 0.6pt, inset: 6pt, radius: 2pt, breakable: false)[*")
         .text(heading)
@@ -407,7 +377,64 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
         );
     }
     m.text(&format!("{right}: "));
-    let derived = c.derived.as_ref().map(|v| match v {
+    let derived = derived_side(page, i);
+    if let Some(derived) = derived {
+        let (whole, broken, said) = derived?;
+        m.block(&whole, &broken, &said);
+    }
+    m.raw("]\n");
+    Ok(())
+}
+
+/// A claim in the list of claims: the statement and its verdict, or, where it agrees and
+/// leads into its formula, the statement, the formula displayed and "As in the notes".
+fn claim_in_list(
+    m: &mut Markup,
+    page: &Page,
+    shown: &ShownClaim,
+    notes: Option<Result<Formula, RenderError>>,
+) -> Result<(), RenderError> {
+    let names = &page.names;
+    let i = shown.claim;
+    let c = &page.claims[i];
+    let lead = words::claim_lead(&c.statement).filter(|_| words::claim_shows_formula(page, i));
+    if let (Mark::Agrees, Some(notes), None, Some(lead)) =
+        (&shown.mark, notes, c.sign_words(), lead)
+    {
+        // "The tension in the string:", T = 2m₁m₂g/(m₁ + m₂) displayed, "As in the notes,
+        // eq. (9.1)."
+        // One block, so that the formula and the sentence after it stay in the list item.
+        m.raw("#block[");
+        m.author(&lead)?.text(":");
+        let notes = notes?;
+        let (whole, broken) = formula_and_broken(&notes, names)?;
+        m.block(&whole, &broken, &notes.to_tex(names).spoken());
+        m.text("As in the notes");
+        if let Some(eq) = page.claim_equation(i) {
+            m.text(&format!(", eq. ({eq})"));
+        }
+        positive(m, c, names);
+        m.text(".");
+        m.raw("]");
+        m.line();
+        return Ok(());
+    }
+    if let Some(eq) = page.claim_equation(i) {
+        m.text(&format!("({eq}) "));
+    }
+    m.author(&c.statement)?;
+    if shown.mark == Mark::Verdict {
+        m.text(&format!(" — {}", c.verdict.as_str()));
+    }
+    m.line();
+    Ok(())
+}
+
+/// A boxed claim's derived side: its Typst whole and to be broken, and in words.
+fn derived_side(page: &Page, i: usize) -> Option<Result<(String, String, String), RenderError>> {
+    let names = &page.names;
+    let c = &page.claims[i];
+    c.derived.as_ref().map(|v| match v {
         Value::Scalar(e) if c.precision.is_some() => match e.eval(&|_| None) {
             Ok(x) => Ok((number(x, 7), number(x, 7), said_number(x, 7))),
             Err(_) => Ok((
@@ -444,13 +471,7 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
                 ))
             }
         },
-    });
-    if let Some(derived) = derived {
-        let (whole, broken, said) = derived?;
-        m.block(&whole, &broken, &said);
-    }
-    m.raw("]\n");
-    Ok(())
+    })
 }
 
 /// `left = side` for claim `i` (`Page::claim_row`), or `side` where it has no left side.

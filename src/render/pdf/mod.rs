@@ -152,105 +152,128 @@ fn lecture_documents(
     cx: &Context,
     lecture: &crate::document::course::Lecture,
 ) -> Result<Vec<Lectured>, RenderError> {
-    let course = cx.course;
     let mut out = Vec::new();
-    let heading = &lecture.heading;
-    let sheet = &lecture.sheet;
-    let paths = &lecture.pdfs;
     for handout in &lecture.handouts {
-        let instructor = handout.instructor;
-        let (title, right, path) = if instructor {
-            (
-                format!("{heading}: worked solutions and errata"),
-                "Instructor",
-                &paths.instructor,
-            )
-        } else {
-            (format!("{heading}: summary"), "Student", &paths.student)
-        };
-        let parts: Vec<(&crate::document::handout::Part, &crate::document::Page)> = handout
-            .parts
-            .iter()
-            .map(|p| (p, &docs.pages[p.page]))
-            .collect();
-        let keyed = cx.keys.of_parts(docs, &handout.parts);
-        let made = written(cx, path, &[&title, heading, &right, &keyed], || {
-            let mut m = Markup::new(preamble(
-                course,
-                &title,
-                &course_head(course, heading),
-                right,
-            ));
-            m.heading(1, &title)?;
-            handout::handout(&mut m, &parts, instructor)?;
-            Ok(m)
-        })?;
-        let Some((made, kept)) = made else {
-            out.push(Lectured::Later(path.clone()));
-            continue;
-        };
-        let images = if instructor {
-            parts
-                .iter()
-                .filter(|(part, _)| part.figures)
-                .flat_map(|(_, p)| &p.figures)
-                .filter_map(|f| {
-                    let svg = plots.get(&f.file)?;
-                    Some((f.file.clone(), svg.clone().into_bytes()))
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
-        out.push(Lectured::Written(
-            made.source(path, images),
-            kept.into_iter().collect(),
-        ));
+        out.push(handout_document(docs, plots, cx, lecture, handout)?);
     }
-    if let Some(sheet) = sheet {
-        let parts = &lecture.pdfs.sheets;
-        let in_parts = parts.len() > 1;
-        for part in parts {
-            let which: Vec<(usize, Option<&Student>)> =
-                (part.first - 1..part.last).map(|k| (k, None)).collect();
-            // Which variants, when the sheet is in parts.
-            let of = if in_parts {
-                format!(", {}", which_of("variant", part.first, part.last))
-            } else {
-                String::new()
-            };
-            // The sheet, then its key (none when the answers are private): written alike.
-            let documents: [(Option<&String>, &str, WriteSheet); 2] = [
-                (Some(&part.sheet), "problem sheet", sheet::student_sheet),
-                (part.key.as_ref(), "answer key", sheet::key),
-            ];
-            for (path, title, write) in documents {
-                let Some(path) = path else { continue };
-                let mut columns = Recall::of(cx.memo, path);
-                let made = written(cx, path, &[heading, sheet], || {
-                    let head = format!("{} · {heading}: {title}{of}", course.title);
-                    let mut m = Markup::new(preamble(
-                        course,
-                        &format!("{heading}: {title}{of}"),
-                        &head,
-                        "",
-                    ));
-                    write(&mut m, &head, sheet, &which, Some(&mut columns))?;
-                    Ok(m)
-                })?;
-                let Some((made, kept)) = made else {
-                    out.push(Lectured::Later(path.clone()));
-                    continue;
-                };
-                columns.kept.extend(kept);
-                out.push(Lectured::Written(
-                    made.source(path, Vec::new()),
-                    columns.kept,
-                ));
-            }
-        }
+    if let Some(sheet) = &lecture.sheet {
+        sheet_documents(cx, lecture, sheet, &mut out)?;
     }
     Ok(out)
+}
+
+/// A lecture's handout for the student or the instructor, with the plots the instructor's
+/// shows.
+fn handout_document(
+    docs: &Documents,
+    plots: &Plots,
+    cx: &Context,
+    lecture: &crate::document::course::Lecture,
+    handout: &crate::document::course::Handout,
+) -> Result<Lectured, RenderError> {
+    let course = cx.course;
+    let heading = &lecture.heading;
+    let paths = &lecture.pdfs;
+    let instructor = handout.instructor;
+    let (title, right, path) = if instructor {
+        (
+            format!("{heading}: worked solutions and errata"),
+            "Instructor",
+            &paths.instructor,
+        )
+    } else {
+        (format!("{heading}: summary"), "Student", &paths.student)
+    };
+    let parts: Vec<(&crate::document::handout::Part, &crate::document::Page)> = handout
+        .parts
+        .iter()
+        .map(|p| (p, &docs.pages[p.page]))
+        .collect();
+    let keyed = cx.keys.of_parts(docs, &handout.parts);
+    let made = written(cx, path, &[&title, heading, &right, &keyed], || {
+        let mut m = Markup::new(preamble(
+            course,
+            &title,
+            &course_head(course, heading),
+            right,
+        ));
+        m.heading(1, &title)?;
+        handout::handout(&mut m, &parts, instructor)?;
+        Ok(m)
+    })?;
+    let Some((made, kept)) = made else {
+        return Ok(Lectured::Later(path.clone()));
+    };
+    let images = if instructor {
+        parts
+            .iter()
+            .filter(|(part, _)| part.figures)
+            .flat_map(|(_, p)| &p.figures)
+            .filter_map(|f| {
+                let svg = plots.get(&f.file)?;
+                Some((f.file.clone(), svg.clone().into_bytes()))
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    Ok(Lectured::Written(
+        made.source(path, images),
+        kept.into_iter().collect(),
+    ))
+}
+
+/// The lecture's problem sheet and its key, in parts when it is long.
+fn sheet_documents(
+    cx: &Context,
+    lecture: &crate::document::course::Lecture,
+    sheet: &crate::document::Sheet,
+    out: &mut Vec<Lectured>,
+) -> Result<(), RenderError> {
+    let course = cx.course;
+    let heading = &lecture.heading;
+    let parts = &lecture.pdfs.sheets;
+    let in_parts = parts.len() > 1;
+    for part in parts {
+        let which: Vec<(usize, Option<&Student>)> =
+            (part.first - 1..part.last).map(|k| (k, None)).collect();
+        // Which variants, when the sheet is in parts.
+        let of = if in_parts {
+            format!(", {}", which_of("variant", part.first, part.last))
+        } else {
+            String::new()
+        };
+        // The sheet, then its key (none when the answers are private): written alike.
+        let documents: [(Option<&String>, &str, WriteSheet); 2] = [
+            (Some(&part.sheet), "problem sheet", sheet::student_sheet),
+            (part.key.as_ref(), "answer key", sheet::key),
+        ];
+        for (path, title, write) in documents {
+            let Some(path) = path else { continue };
+            let mut columns = Recall::of(cx.memo, path);
+            let made = written(cx, path, &[heading, sheet], || {
+                let head = format!("{} · {heading}: {title}{of}", course.title);
+                let mut m = Markup::new(preamble(
+                    course,
+                    &format!("{heading}: {title}{of}"),
+                    &head,
+                    "",
+                ));
+                write(&mut m, &head, sheet, &which, Some(&mut columns))?;
+                Ok(m)
+            })?;
+            let Some((made, kept)) = made else {
+                out.push(Lectured::Later(path.clone()));
+                continue;
+            };
+            columns.kept.extend(kept);
+            out.push(Lectured::Written(
+                made.source(path, Vec::new()),
+                columns.kept,
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn course_head(course: &Course, heading: &str) -> String {
