@@ -56,6 +56,14 @@ impl std::fmt::Display for Failure {
 /// What failed in one scene: the reasons `check` and `derive` exit with 1.
 pub fn failures(r: &SceneReport) -> Vec<Failure> {
     let mut failures = Vec::new();
+    claim_failures(r, &mut failures);
+    record_failures(r, &mut failures);
+    numeric_failures(r, &mut failures);
+    failures
+}
+
+/// Each claim whose verdict is not the one recorded, or has a problem.
+fn claim_failures(r: &SceneReport, failures: &mut Vec<Failure>) {
     let src = r.scene.source.display();
     for c in r.verification.claims.iter().filter(|c| !c.passed()) {
         let recordable = c.problem.is_none();
@@ -81,6 +89,11 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
             new_step: false,
         });
     }
+}
+
+/// Each result, step and variant pin that differs from what the scene records.
+fn record_failures(r: &SceneReport, failures: &mut Vec<Failure>) {
+    let src = r.scene.source.display();
     for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
         let text = match &g.recorded {
             Some(recorded) => format!(
@@ -148,6 +161,11 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
             new_step: false,
         });
     }
+}
+
+/// Each exact result that its numeric route does not confirm, and each quadrature beyond its law.
+fn numeric_failures(r: &SceneReport, failures: &mut Vec<Failure>) {
+    let src = r.scene.source.display();
     for q in r.verification.quantities.iter().filter(|q| !q.passed) {
         failures.push(unrecordable(format!(
             "{src}: `{}`: exact and numeric differ by {} (relative)",
@@ -203,7 +221,6 @@ pub fn failures(r: &SceneReport) -> Vec<Failure> {
             }
         }
     }
-    failures
 }
 
 fn unrecordable(text: String) -> Failure {
@@ -216,6 +233,15 @@ fn unrecordable(text: String) -> Failure {
 
 /// The summary table printed by `check`, with the notes' errata and every failure below it.
 pub fn check_table(reports: &[SceneReport]) -> String {
+    let mut out = scene_rows(reports);
+    claims_and_failures(&mut out, reports);
+    problems_line(&mut out, reports);
+    totals_line(&mut out, reports);
+    out
+}
+
+/// The table's header and a row per scene.
+fn scene_rows(reports: &[SceneReport]) -> String {
     let mut out = String::new();
     // Columns as wide as their longest entry: a course may name its lectures in words.
     let id_width = reports
@@ -253,15 +279,16 @@ pub fn check_table(reports: &[SceneReport]) -> String {
             if r.passed() { "ok" } else { "FAILED" }
         );
     }
+    out
+}
+
+/// The errata, the undecided claims, and the failures with what to do about them.
+fn claims_and_failures(out: &mut String, reports: &[SceneReport]) {
     let errata: Vec<_> = reports
         .iter()
         .flat_map(|r| r.verification.errata().map(move |c| (r, c)))
         .collect();
-    list_claims(
-        &mut out,
-        "Where the notes disagree with the derivation",
-        &errata,
-    );
+    list_claims(out, "Where the notes disagree with the derivation", &errata);
     let undecided: Vec<_> = reports
         .iter()
         .flat_map(|r| {
@@ -273,7 +300,7 @@ pub fn check_table(reports: &[SceneReport]) -> String {
         })
         .collect();
     list_claims(
-        &mut out,
+        out,
         "Undecided: the symbolic and random-point tests disagree",
         &undecided,
     );
@@ -289,6 +316,10 @@ pub fn check_table(reports: &[SceneReport]) -> String {
              and verdicts in the scenes."
         );
     }
+}
+
+/// The problems' line: their variants, and how their answers were cross-checked.
+fn problems_line(out: &mut String, reports: &[SceneReport]) {
     let problems = reports.iter().filter(|r| r.scene.problem.is_some()).count();
     if problems > 0 {
         let variants: usize = reports.iter().map(|r| r.verification.variants.len()).sum();
@@ -335,6 +366,10 @@ pub fn check_table(reports: &[SceneReport]) -> String {
             )
         };
     }
+}
+
+/// The course's totals: scenes, claims by verdict, the symbolic stage's cost, and the status.
+fn totals_line(out: &mut String, reports: &[SceneReport]) {
     let claims: usize = reports.iter().map(|r| r.verification.claims.len()).sum();
     // A fold from +0: an empty f64 sum is −0, printed "-0.0 ms".
     let symbolic = reports.iter().fold(0.0, |acc, r| acc + r.symbolic_seconds);
@@ -369,7 +404,6 @@ pub fn check_table(reports: &[SceneReport]) -> String {
             "FAILED"
         }
     );
-    out
 }
 
 /// `derive` without --json: the steps, the results and the checks of one scene.
@@ -390,6 +424,16 @@ pub fn derivation_text(page: &Page) -> String {
             step.why_cited()
         );
     }
+    numeric_text(&mut out, page);
+    step_checks_text(&mut out, page);
+    eigen_text(&mut out, page);
+    claims_text(&mut out, page);
+    variants_text(&mut out, page);
+    out
+}
+
+/// The numeric cross-check of the inertia tensor, quadrature by quadrature.
+fn numeric_text(out: &mut String, page: &Page) {
     if !page.numeric.is_empty() {
         let _ = writeln!(
             out,
@@ -413,6 +457,10 @@ pub fn derivation_text(page: &Page) -> String {
             );
         }
     }
+}
+
+/// Each author's step against its numeric route.
+fn step_checks_text(out: &mut String, page: &Page) {
     if !page.step_checks.is_empty() {
         let _ = writeln!(out, "\nSteps against their numeric routes:");
         for c in &page.step_checks {
@@ -435,6 +483,10 @@ pub fn derivation_text(page: &Page) -> String {
             };
         }
     }
+}
+
+/// The principal axes the eigen-solver finds, and how they agree with the exact ones.
+fn eigen_text(out: &mut String, page: &Page) {
     if let Some(e) = &page.eigen {
         let _ = writeln!(out, "\nPrincipal axes, numeric (SymmetricEigen):");
         for sp in &e.numeric {
@@ -454,6 +506,10 @@ pub fn derivation_text(page: &Page) -> String {
             sci(e.axis_error)
         );
     }
+}
+
+/// The notes' claims with their verdicts.
+fn claims_text(out: &mut String, page: &Page) {
     if !page.claims.is_empty() {
         let _ = writeln!(out, "\nClaims of the notes:");
         for c in &page.claims {
@@ -481,6 +537,10 @@ pub fn derivation_text(page: &Page) -> String {
             }
         }
     }
+}
+
+/// A problem's variants: their values and answers.
+fn variants_text(out: &mut String, page: &Page) {
     if !page.variants.is_empty() {
         let _ = writeln!(
             out,
@@ -509,7 +569,6 @@ pub fn derivation_text(page: &Page) -> String {
             }
         }
     }
-    out
 }
 
 /// `derive --explain`: which stages ran, and why; which were skipped.
