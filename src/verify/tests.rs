@@ -117,7 +117,7 @@ fn rough_numbers_agree_only_at_the_precision_given() {
 
 #[test]
 fn rounded_claims_tell_apart_every_figure_they_state() {
-    use super::rounded_agreement;
+    use super::rounding::rounded_agreement;
     use crate::cas::parse;
     use crate::model::value::Value;
     let value = |t: &str| Value::Scalar(parse(t).unwrap().expr);
