@@ -110,23 +110,8 @@ const UPRIGHT_LABEL: usize = 2;
 
 fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
-    let ((x0, x1), (y0, y1)) = fig.bounds().ok_or("the figure has no finite points")?;
     let (xs, ys) = (fig.x_scale, fig.y_scale);
-    let (mut xr, mut yr) = (
-        padded(to_axis(x0, xs), to_axis(x1, xs), xs),
-        padded(to_axis(y0, ys), to_axis(y1, ys), ys),
-    );
-    if fig.equal_aspect {
-        // Same units per pixel on both axes: widen the narrower range about its centre.
-        let plot = (SIZE.0 as f64 - 80.0, SIZE.1 as f64 - 80.0);
-        let per_px = ((xr.1 - xr.0) / plot.0).max((yr.1 - yr.0) / plot.1);
-        let grow = |(a, b): (f64, f64), px: f64| {
-            let c = 0.5 * (a + b);
-            (c - 0.5 * per_px * px, c + 0.5 * per_px * px)
-        };
-        xr = grow(xr, plot.0);
-        yr = grow(yr, plot.1);
-    }
+    let (xr, yr) = ranges(fig)?;
     let mut chart = ChartBuilder::on(root)
         .caption(&fig.title, ("sans-serif", 18).into_font().color(&BLACK))
         .margin(14)
@@ -134,73 +119,10 @@ fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>>
         .y_label_area_size(if fig.equal_aspect { 0 } else { 64 })
         .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)?;
     if !fig.equal_aspect {
-        let xf = |v: &f64| tick(*v, xs);
-        let yf = |v: &f64| tick(*v, ys);
-        let decades = |(a, b): (f64, f64)| ((b - a).round() as usize + 1).clamp(2, 12);
-        // A label of a letter or two (ω) is set upright beside the axis below: turned on its
-        // side it reads as another letter.
-        let upright = fig.y_label.chars().count() <= UPRIGHT_LABEL;
-        let mut mesh = chart.configure_mesh();
-        if !upright {
-            mesh.y_desc(fig.y_label.as_str());
-        }
-        mesh.x_desc(fig.x_label.as_str())
-            .x_label_formatter(&xf)
-            .y_label_formatter(&yf)
-            .label_style(("sans-serif", 13).into_font().color(&BLACK))
-            .axis_desc_style(("sans-serif", 14).into_font().color(&BLACK))
-            .light_line_style(RGBColor(235, 235, 235))
-            .bold_line_style(RGBColor(210, 210, 210));
-        if xs == Scale::Log {
-            mesh.x_labels(decades(xr));
-        }
-        if ys == Scale::Log {
-            mesh.y_labels(decades(yr));
-        }
-        mesh.draw()?;
-        if upright {
-            let (_, rows) = chart.plotting_area().get_pixel_range();
-            root.draw(&Text::new(
-                fig.y_label.clone(),
-                (16, (rows.start + rows.end) / 2),
-                ("sans-serif", 14)
-                    .into_font()
-                    .color(&BLACK)
-                    .pos(Pos::new(HPos::Left, VPos::Center)),
-            ))?;
-        }
+        axes(&mut chart, fig, root, xr, yr)?;
     }
     for s in &fig.series {
-        let colour = PALETTE[s.colour % PALETTE.len()];
-        let pts: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .filter(|(x, y)| {
-                x.is_finite()
-                    && y.is_finite()
-                    && (xs == Scale::Linear || *x > 0.0)
-                    && (ys == Scale::Linear || *y > 0.0)
-            })
-            .map(|(x, y)| (to_axis(*x, xs), to_axis(*y, ys)))
-            .collect();
-        let style = colour.stroke_width(2);
-        let anno = match s.mark {
-            Mark::Line => chart.draw_series(LineSeries::new(pts, style))?,
-            Mark::Dashed => chart.draw_series(DashedLineSeries::new(pts, 6, 4, style))?,
-            Mark::Points => chart.draw_series(
-                pts.into_iter()
-                    .map(|p| Circle::new(p, 4, colour.filled()).into_dyn()),
-            )?,
-        };
-        if !s.name.is_empty() {
-            let mark = s.mark;
-            anno.label(s.name.as_str())
-                .legend(move |(x, y)| match mark {
-                    Mark::Points => Circle::new((x + 10, y), 4, colour.filled()).into_dyn(),
-                    _ => PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                        .into_dyn(),
-                });
-        }
+        series(&mut chart, s, xs, ys)?;
     }
     for (text, (x, y)) in &fig.labels {
         let at = (to_axis(*x, xs), to_axis(*y, ys));
@@ -224,6 +146,124 @@ fn draw(fig: &Figure, root: &Area<'_>) -> Result<(), Box<dyn std::error::Error>>
             .border_style(RGBColor(160, 160, 160))
             .label_font(("sans-serif", 13).into_font().color(&BLACK))
             .draw()?;
+    }
+    Ok(())
+}
+
+/// The plot's ranges on its axes, padded; with equal aspect, the same units per pixel on both.
+fn ranges(fig: &Figure) -> Result<Range2, Box<dyn std::error::Error>> {
+    let ((x0, x1), (y0, y1)) = fig.bounds().ok_or("the figure has no finite points")?;
+    let (xs, ys) = (fig.x_scale, fig.y_scale);
+    let (mut xr, mut yr) = (
+        padded(to_axis(x0, xs), to_axis(x1, xs), xs),
+        padded(to_axis(y0, ys), to_axis(y1, ys), ys),
+    );
+    if fig.equal_aspect {
+        // Same units per pixel on both axes: widen the narrower range about its centre.
+        let plot = (SIZE.0 as f64 - 80.0, SIZE.1 as f64 - 80.0);
+        let per_px = ((xr.1 - xr.0) / plot.0).max((yr.1 - yr.0) / plot.1);
+        let grow = |(a, b): (f64, f64), px: f64| {
+            let c = 0.5 * (a + b);
+            (c - 0.5 * per_px * px, c + 0.5 * per_px * px)
+        };
+        xr = grow(xr, plot.0);
+        yr = grow(yr, plot.1);
+    }
+    Ok((xr, yr))
+}
+
+/// The ranges of the two axes, in the axes' own units (log10 on a log axis).
+type Range2 = ((f64, f64), (f64, f64));
+
+/// The chart the series are drawn on.
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// The grid, the ticks and the axes' labels; a short y label upright beside its axis.
+fn axes(
+    chart: &mut Chart<'_, '_>,
+    fig: &Figure,
+    root: &Area<'_>,
+    xr: (f64, f64),
+    yr: (f64, f64),
+) -> Result<(), Box<dyn std::error::Error>> {
+    let (xs, ys) = (fig.x_scale, fig.y_scale);
+    let xf = |v: &f64| tick(*v, xs);
+    let yf = |v: &f64| tick(*v, ys);
+    let decades = |(a, b): (f64, f64)| ((b - a).round() as usize + 1).clamp(2, 12);
+    // A label of a letter or two (ω) is set upright beside the axis below: turned on its
+    // side it reads as another letter.
+    let upright = fig.y_label.chars().count() <= UPRIGHT_LABEL;
+    let mut mesh = chart.configure_mesh();
+    if !upright {
+        mesh.y_desc(fig.y_label.as_str());
+    }
+    mesh.x_desc(fig.x_label.as_str())
+        .x_label_formatter(&xf)
+        .y_label_formatter(&yf)
+        .label_style(("sans-serif", 13).into_font().color(&BLACK))
+        .axis_desc_style(("sans-serif", 14).into_font().color(&BLACK))
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(210, 210, 210));
+    if xs == Scale::Log {
+        mesh.x_labels(decades(xr));
+    }
+    if ys == Scale::Log {
+        mesh.y_labels(decades(yr));
+    }
+    mesh.draw()?;
+    if upright {
+        let (_, rows) = chart.plotting_area().get_pixel_range();
+        root.draw(&Text::new(
+            fig.y_label.clone(),
+            (16, (rows.start + rows.end) / 2),
+            ("sans-serif", 14)
+                .into_font()
+                .color(&BLACK)
+                .pos(Pos::new(HPos::Left, VPos::Center)),
+        ))?;
+    }
+    Ok(())
+}
+
+/// One series, in its colour and mark, with its legend entry where it is named.
+fn series<'a>(
+    chart: &mut Chart<'a, 'a>,
+    s: &crate::model::figure::Series,
+    xs: Scale,
+    ys: Scale,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let colour = PALETTE[s.colour % PALETTE.len()];
+    let pts: Vec<(f64, f64)> = s
+        .points
+        .iter()
+        .filter(|(x, y)| {
+            x.is_finite()
+                && y.is_finite()
+                && (xs == Scale::Linear || *x > 0.0)
+                && (ys == Scale::Linear || *y > 0.0)
+        })
+        .map(|(x, y)| (to_axis(*x, xs), to_axis(*y, ys)))
+        .collect();
+    let style = colour.stroke_width(2);
+    let anno = match s.mark {
+        Mark::Line => chart.draw_series(LineSeries::new(pts, style))?,
+        Mark::Dashed => chart.draw_series(DashedLineSeries::new(pts, 6, 4, style))?,
+        Mark::Points => chart.draw_series(
+            pts.into_iter()
+                .map(|p| Circle::new(p, 4, colour.filled()).into_dyn()),
+        )?,
+    };
+    if !s.name.is_empty() {
+        let mark = s.mark;
+        anno.label(s.name.as_str())
+            .legend(move |(x, y)| match mark {
+                Mark::Points => Circle::new((x + 10, y), 4, colour.filled()).into_dyn(),
+                _ => PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)).into_dyn(),
+            });
     }
     Ok(())
 }
