@@ -67,6 +67,33 @@ pub fn run(args: SpinArgs) -> Result<ExitCode> {
 
 /// Runs one integration and formats it; every bad input is an error message.
 pub fn text(a: &SpinArgs) -> Result<String> {
+    let (i, w) = inputs(a)?;
+    let w0 = Vector3::from(w);
+    let (method, resolution) = method_of(a)?;
+    let r = integrate_capped(&i, w0, a.t, method, resolution, 0, a.max_steps)?;
+    let exact = ExactSolution::new(&i, w0).omega(a.t);
+    // Whatever slipped past the checks above: never print NaN as an answer.
+    if let Some(bad) = [r.omega, exact]
+        .iter()
+        .flat_map(|v| v.iter())
+        .find(|x| !x.is_finite())
+    {
+        return Err(anyhow!(
+            "the result is not a finite number ({bad}): the inputs are beyond what double \
+             precision can integrate; rescale the moments or ω(0)"
+        ));
+    }
+    // Divided by the largest component first: |ω|² of ω ~ 1e200 would overflow.
+    let scale = exact.amax().max(f64::MIN_POSITIVE);
+    let error = ((r.omega - exact) / scale).norm() / (exact / scale).norm();
+    if a.json {
+        return spin_json(a, &i, w, method, resolution, &r, exact, error);
+    }
+    Ok(spin_table(method, &r, error))
+}
+
+/// The moments and ω(0), each refused with what to do where double precision cannot hold them.
+fn inputs(a: &SpinArgs) -> Result<(Moments, [f64; 3])> {
     let i = Moments::new(three("inertia", &a.inertia)?)?;
     let w = three("omega", &a.omega)?;
     if let Some(k) = w.iter().position(|x| !x.is_finite()) {
@@ -94,10 +121,14 @@ pub fn text(a: &SpinArgs) -> Result<String> {
             a.t
         ));
     }
-    let w0 = Vector3::from(w);
-    if let Some(why) = crate::model::moments::beyond_double_precision(&i, &w0) {
+    if let Some(why) = crate::model::moments::beyond_double_precision(&i, &Vector3::from(w)) {
         return Err(why.into());
     }
+    Ok((i, w))
+}
+
+/// The integrator asked for, and its step or tolerance.
+fn method_of(a: &SpinArgs) -> Result<(Method, Resolution)> {
     let method = Method::ALL
         .iter()
         .find(|(n, _)| *n == a.method)
@@ -118,42 +149,43 @@ pub fn text(a: &SpinArgs) -> Result<String> {
         (_, _, Some(_)) => return Err(anyhow!("{} takes --step, not --tol", a.method)),
         (_, step, None) => Resolution::Step(step.unwrap_or(0.01)),
     };
-    let r = integrate_capped(&i, w0, a.t, method, resolution, 0, a.max_steps)?;
-    let exact = ExactSolution::new(&i, w0).omega(a.t);
-    // Whatever slipped past the checks above: never print NaN as an answer.
-    if let Some(bad) = [r.omega, exact]
-        .iter()
-        .flat_map(|v| v.iter())
-        .find(|x| !x.is_finite())
-    {
-        return Err(anyhow!(
-            "the result is not a finite number ({bad}): the inputs are beyond what double \
-             precision can integrate; rescale the moments or ω(0)"
-        ));
-    }
-    // Divided by the largest component first: |ω|² of ω ~ 1e200 would overflow.
-    let scale = exact.amax().max(f64::MIN_POSITIVE);
-    let error = ((r.omega - exact) / scale).norm() / (exact / scale).norm();
-    if a.json {
-        let j = serde_json::json!({
-            "method": method.name(),
-            "inertia": i.0,
-            "omega0": w,
-            "t": a.t,
-            "step": match resolution { Resolution::Step(h) if method != Method::Exact => Some(h), _ => None },
-            "tol": match resolution { Resolution::Tolerance(t) => Some(t), _ => None },
-            "omega": [r.omega.x, r.omega.y, r.omega.z],
-            "omega_exact": [exact.x, exact.y, exact.z],
-            "error": error,
-            "energy_drift": r.energy_drift,
-            "momentum_drift": r.momentum_drift,
-            "space_momentum_drift": if r.space_momentum_drift.is_finite() { Some(r.space_momentum_drift) } else { None },
-            "steps": r.steps,
-            "rhs_evaluations": r.rhs_evaluations,
-            "seconds": r.seconds,
-        });
-        return Ok(serde_json::to_string_pretty(&j)? + "\n");
-    }
+    Ok((method, resolution))
+}
+
+/// `spin --json`: the run, its error against the exact solution, its drifts and its cost.
+#[allow(clippy::too_many_arguments)]
+fn spin_json(
+    a: &SpinArgs,
+    i: &Moments,
+    w: [f64; 3],
+    method: Method,
+    resolution: Resolution,
+    r: &Run,
+    exact: Vector3<f64>,
+    error: f64,
+) -> Result<String> {
+    let j = serde_json::json!({
+        "method": method.name(),
+        "inertia": i.0,
+        "omega0": w,
+        "t": a.t,
+        "step": match resolution { Resolution::Step(h) if method != Method::Exact => Some(h), _ => None },
+        "tol": match resolution { Resolution::Tolerance(t) => Some(t), _ => None },
+        "omega": [r.omega.x, r.omega.y, r.omega.z],
+        "omega_exact": [exact.x, exact.y, exact.z],
+        "error": error,
+        "energy_drift": r.energy_drift,
+        "momentum_drift": r.momentum_drift,
+        "space_momentum_drift": if r.space_momentum_drift.is_finite() { Some(r.space_momentum_drift) } else { None },
+        "steps": r.steps,
+        "rhs_evaluations": r.rhs_evaluations,
+        "seconds": r.seconds,
+    });
+    Ok(serde_json::to_string_pretty(&j)? + "\n")
+}
+
+/// The run as a table of lines for the terminal.
+fn spin_table(method: Method, r: &Run, error: f64) -> String {
     let mut out = format!(
         "method           {}\nomega(T)         [{:.17e}, {:.17e}, {:.17e}]\n",
         method.name(),
@@ -179,7 +211,7 @@ pub fn text(a: &SpinArgs) -> Result<String> {
         "steps            {}\nrhs evaluations  {}\nseconds          {:.3e}\n",
         r.steps, r.rhs_evaluations, r.seconds
     ));
-    Ok(out)
+    out
 }
 
 /// One row of the integrator table.
