@@ -425,7 +425,7 @@ fn the_checker_finds_a_circle_between_the_children_of_a_module() {
 
 /// The renderers, each a child of `render/`: none may import another, so that each prints
 /// the documents alone (what they share is `renderer`, `memo` and `plot`).
-const RENDERERS: &[&str] = &["html", "json", "moodle", "pdf"];
+const RENDERERS: &[&str] = &["html", "json", "lms", "moodle", "pdf"];
 
 /// Every import from one renderer into another, as `from -> to (file)`.
 fn between_renderers(files: &BTreeMap<String, String>) -> Vec<String> {

@@ -10,3 +10,4 @@ pub mod pencil;
 pub mod rng;
 pub mod suggest;
 pub mod typst;
+pub mod zip;

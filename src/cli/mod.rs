@@ -50,8 +50,9 @@ pub enum Command {
     /// test for the derivations. It writes no files, unless `--bless` is given.
     Check(check::CheckArgs),
     /// Build the course site: an index, one page per scene, and per lecture a student and an
-    /// instructor handout for printing, a problem sheet with its answer key, and a Moodle quiz
-    /// per problem.
+    /// instructor handout for printing, a problem sheet with its answer key, a Moodle quiz per
+    /// problem, and each lecture's problems for Canvas, Blackboard and QTI 2.1 systems
+    /// (docs/lms.md).
     ///
     /// Course settings (title, author, base_url, output) come from mechbook.toml when it
     /// exists. The site is written to a temporary folder beside the output and renamed into

@@ -9,6 +9,7 @@ pub mod course;
 pub mod files;
 pub mod handout;
 mod problems;
+pub mod quiz;
 mod results;
 pub mod roster;
 pub mod words;

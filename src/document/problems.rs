@@ -29,6 +29,9 @@ pub struct Problem {
     pub tex: std::collections::BTreeMap<String, String>,
     /// The same, read once: what every printer of the problem sets each name as.
     pub names: crate::notation::Names,
+    /// The statement with each value's place marked `[name]`, for the LMSs that put in each
+    /// variant's values themselves (Canvas's calculated question).
+    pub template: Prose,
 }
 
 #[derive(Debug, Clone)]
@@ -46,6 +49,8 @@ pub struct Variant {
 pub struct Given {
     pub name: String,
     pub value: Formula,
+    /// The value in f64, for the LMSs that store it as a number.
+    pub number: f64,
     pub unit: Option<String>,
 }
 
@@ -69,6 +74,7 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
         answers: p.answers.clone(),
         tex: r.scene.tex.clone(),
         names: crate::notation::Names::of(&r.scene.tex),
+        template: template_statement(&p.statement, &p.given),
         variants: r
             .verification
             .variants
@@ -83,6 +89,7 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
                     .filter_map(|name| {
                         Some(Given {
                             value: shown(v, &name)?,
+                            number: number(v, &name)?,
                             unit: r.scene.units.get(&name).map(|u| u.text.clone()),
                             name,
                         })
@@ -171,6 +178,44 @@ fn fill_math(latex: &str, v: &VariantCheck, paste: &mut dyn FnMut(Formula) -> St
         }
     }
     out.push_str(rest);
+    out
+}
+
+/// A variant's value in f64.
+fn number(v: &VariantCheck, name: &str) -> Option<f64> {
+    let (_, e) = v.values.iter().find(|(n, _)| n == name)?;
+    e.eval(&|_| None).ok()
+}
+
+/// The statement with each `{name}` of a value given (`given`) as `[name]`: in text as
+/// written, in `$…$` as `\text{[name]}`.
+fn template_statement(statement: &str, given: &[String]) -> Prose {
+    let mark = |part: &str, math: bool| {
+        given.iter().fold(part.to_string(), |s, name| {
+            let place = format!("[{name}]");
+            s.replace(
+                &format!("{{{name}}}"),
+                &if math {
+                    format!("\\text{{{place}}}")
+                } else {
+                    place
+                },
+            )
+        })
+    };
+    let mut out = Prose::default();
+    for (k, part) in crate::model::prose::dollar_split(statement)
+        .iter()
+        .enumerate()
+    {
+        out = if k % 2 == 1 {
+            out.formula(Formula::author(&mark(part, true)))
+        } else if part.is_empty() {
+            out
+        } else {
+            out.text(&mark(part, false))
+        };
+    }
     out
 }
 

@@ -72,6 +72,7 @@ fn problem_of(id: &str, variants: usize) -> Problem {
         answers: Vec::new(),
         tex: Default::default(),
         names: Default::default(),
+        template: Prose::default(),
         variants: (1..=variants)
             .map(|number| Variant {
                 number,

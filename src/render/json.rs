@@ -336,6 +336,8 @@ fn variants_json(page: &Page) -> Vec<Json> {
             "independent": a.numeric.iter().map(|x| num(*x)).collect::<Vec<_>>(),
             "error": num(a.error),
             "tolerance": num(a.tolerance),
+            // A quiz's agreement, relative to the answer's largest entry (the LMS exports').
+            "quiz_tolerance": num(spec.tolerance),
             "passed": a.passed(),
         })).collect::<Vec<_>>(),
     })).collect::<Vec<_>>()

@@ -1,11 +1,12 @@
 //! The renderers of the course's documents, siblings behind one trait (`renderer.rs`): the
-//! HTML site (`html/`), Moodle's quizzes (`moodle.rs`), the JSON export (`json.rs`) and the
-//! PDFs (`pdf/`, with their typesetting). None imports another: what they share is the
+//! HTML site (`html/`), Moodle's quizzes (`moodle.rs`), the other LMSs' (`lms/`), the JSON
+//! export (`json.rs`) and the PDFs (`pdf/`, with their typesetting). None imports another: what they share is the
 //! documents, the plots drawn once (`plot.rs`) and the memo (`memo.rs`). The files are made in
 //! memory: no file I/O here.
 
 pub mod html;
 pub mod json;
+pub mod lms;
 pub mod memo;
 pub mod moodle;
 pub mod pdf;
@@ -16,8 +17,13 @@ pub use html::template_names;
 pub use renderer::{Context, Rendered, Renderer, SiteFiles, TemplateTexts};
 
 /// Every format a build writes.
-pub const RENDERERS: &[&dyn Renderer] =
-    &[&html::Html, &moodle::Moodle, &json::JsonReport, &pdf::Pdf];
+pub const RENDERERS: &[&dyn Renderer] = &[
+    &html::Html,
+    &moodle::Moodle,
+    &lms::Lms,
+    &json::JsonReport,
+    &pdf::Pdf,
+];
 
 /// The documents printed by every renderer, with the plots drawn once for all of them.
 pub fn render(

@@ -7,6 +7,7 @@
 use super::RenderError;
 use super::renderer::{Context, Plots, Rendered, Renderer};
 use crate::document::course::Documents;
+use crate::document::quiz::{answer_label, tolerance};
 use crate::document::{Problem, Variant};
 use crate::model::prose::{Piece, Prose};
 use crate::model::value::Value;
@@ -185,32 +186,12 @@ fn feedback(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
     format!("<p>Exactly: {}.</p>{link}", parts.join("; "))
 }
 
-/// An answer's absolute tolerance: `relative` to its largest entry.
-pub fn tolerance(relative: f64, numbers: &[f64]) -> f64 {
-    let scale = numbers.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    relative * scale
-}
-
-/// An answer's words, as on the key, with the order its blanks take when it has several:
-/// "Principal moments (in ascending order, I1 ≤ I2 ≤ I3)". An expression without a label is
-/// shown as written.
-fn label(spec: &crate::scene::Answer) -> String {
-    if let Some(words) = &spec.label {
-        return crate::base::format::capitalised(words);
-    }
-    let Some(name) = spec.bare_quantity() else {
-        return spec.written.clone();
-    };
-    let words = crate::document::answer_words(name);
-    match crate::document::answer_order(name) {
-        Some(order) => format!("{words} ({order})"),
-        None => words.to_string(),
-    }
-}
-
 /// A label for Moodle's HTML: escaped, its `$…$` as TeX between `\(` and `\)`.
 fn label_tex(spec: &crate::scene::Answer) -> String {
-    statement_tex(&crate::model::prose::author(&label(spec)), Names::none())
+    statement_tex(
+        &crate::model::prose::author(&answer_label(spec)),
+        Names::none(),
+    )
 }
 
 /// The statement with each value as TeX, the rest escaped for HTML.

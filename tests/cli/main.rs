@@ -16,6 +16,7 @@ mod domain;
 mod functions;
 mod handouts;
 mod hostile;
+mod lms;
 mod lock;
 mod names;
 mod output;

@@ -261,6 +261,14 @@ fn author_mathematics_is_escaped_in_moodle_and_never_markup_on_a_page() {
         );
     let (site, out) = build_problem(&dir, &text);
     assert!(out.status.success(), "{}", stderr(&out));
+    // The LMS exports are among the files read (a zip's files are stored as written).
+    for export in [
+        "qti21/lecture-Rotational-dynamics.zip",
+        "canvas/lecture-Rotational-dynamics.zip",
+        "blackboard/lecture-Rotational-dynamics.txt",
+    ] {
+        assert!(site.join("export").join(export).is_file(), "{export}");
+    }
     for (path, bytes) in read_tree(&site) {
         // The JSON report is data, not markup: it keeps the author's text as written, in
         // JSON strings, for the tools that read it.

@@ -1,5 +1,6 @@
 //! insta snapshots of the main content of a few pages, and of tests/course's documents of every
-//! kind (a student's handout, a problem sheet, its key, a Moodle quiz, a scene's JSON): a change
+//! kind (a student's handout, a problem sheet, its key, a Moodle quiz, a scene's JSON, a QTI 2.1
+//! item, a Canvas quiz, a Blackboard upload): a change
 //! in a derivation, its MathML, a verdict or a plot's description shows up as a reviewable diff
 //! (`cargo insta review`). The PDFs' Typst markup has its own snapshot beside the renderer
 //! (`src/render/pdf/tests.rs`).
@@ -59,5 +60,18 @@ fn every_kind_of_document_of_the_course() {
     insta::assert_snapshot!("moodle", read("export/moodle/problem-centre-of-mass.xml"));
     let json: serde_json::Value = serde_json::from_str(&read("export/json/l-plate.json")).unwrap();
     insta::assert_snapshot!("json", serde_json::to_string_pretty(&json).unwrap());
+    // The other LMSs': a QTI 2.1 item, Canvas's assessment and Blackboard's upload.
+    let unzip = |path: &str| super::lms::unzip(&std::fs::read(out.join(path)).unwrap());
+    let qti = unzip("export/qti21/lecture-Composite-bodies.zip");
+    insta::assert_snapshot!("qti21", qti["items/item-problem-centre-of-mass-1-v1.xml"]);
+    let canvas = unzip("export/canvas/lecture-Composite-bodies.zip");
+    insta::assert_snapshot!(
+        "canvas",
+        canvas["lecture-Composite-bodies/lecture-Composite-bodies.xml"]
+    );
+    insta::assert_snapshot!(
+        "blackboard",
+        read("export/blackboard/lecture-Composite-bodies.txt")
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -256,7 +256,7 @@ impl Build {
         let papers = papers.map_or(String::new(), |(dir, students)| {
             format!(
                 "; {students} students' papers and their key into {} (the site leaves out the \
-                 answer keys and Moodle quizzes, since each paper names its variant)",
+                 answer keys and LMS quizzes, since each paper names its variant)",
                 dir.display()
             )
         });
