@@ -476,13 +476,7 @@ fn numeric_stage(d: Derived, fidelity: Option<Fidelity>) -> Result<SceneReport, 
         None
     };
     let figures = if plan.runs(Stage::Plots) {
-        crate::figures::figures(&scene, derivation, &fidelity).map_err(|e| RunError {
-            path: scene.source.clone(),
-            id: scene.id.clone(),
-            at: scene.plot_at.get(e.index).copied().unwrap_or(scene.id_at),
-            plot: Some(e.index),
-            source: Box::new(e.source.into()),
-        })?
+        scene_figures(&scene, derivation, &fidelity)?
     } else {
         Vec::new()
     };
@@ -524,6 +518,21 @@ fn numeric_stage(d: Derived, fidelity: Option<Fidelity>) -> Result<SceneReport, 
         numeric_work: numeric::Work::since(work_before),
         seconds: symbolic_wall + start.elapsed().as_secs_f64(),
         from_cache,
+    })
+}
+
+/// The scene's plots, a failure located at its `[[plot]]`.
+fn scene_figures(
+    scene: &Scene,
+    derivation: &Derivation,
+    fidelity: &Fidelity,
+) -> Result<Vec<Figure>, RunError> {
+    crate::figures::figures(scene, derivation, fidelity).map_err(|e| RunError {
+        path: scene.source.clone(),
+        id: scene.id.clone(),
+        at: scene.plot_at.get(e.index).copied().unwrap_or(scene.id_at),
+        plot: Some(e.index),
+        source: Box::new(e.source.into()),
     })
 }
 

@@ -223,3 +223,22 @@ mod latex_number_tests {
         assert_eq!(latex_number("-3"), "-3");
     }
 }
+
+/// A unit's text, already escaped for markup, with its powers raised: `kg m^2/s` as
+/// `kg m<sup>2</sup>/s`, a power's minus as −, a `*` as a space.
+pub fn unit_powers(escaped: &str) -> String {
+    let escaped = escaped.replace('*', " ");
+    let mut out = String::new();
+    let mut rest = escaped.as_str();
+    while let Some(i) = rest.find('^') {
+        out.push_str(&rest[..i]);
+        let power: String = rest[i + 1..]
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '-')
+            .collect();
+        out.push_str(&format!("<sup>{}</sup>", power.replace('-', "−")));
+        rest = &rest[i + 1 + power.len()..];
+    }
+    out.push_str(rest);
+    out
+}

@@ -89,8 +89,18 @@ pub fn normal_modes(
             }
         }
     }
+    frequencies(roots.roots, n, values)
+}
+
+/// The angular frequencies √λ of the `n` roots λ (with their multiplicities), each a square
+/// pulled out of its root, ordered by their value at `values`.
+fn frequencies(
+    roots: Vec<(Expr, u32)>,
+    n: usize,
+    values: &BTreeMap<String, f64>,
+) -> Result<StepResult, DeriveError> {
     let mut modes = Vec::new();
-    for (root, multiplicity) in roots.roots {
+    for (root, multiplicity) in roots {
         // Every symbol of a scene is positive: √(8 g² l²) = 2√2 g l.
         let root = cas::pull_squares(&cas::simplify(&root)?, &|_| true);
         let omega = cas::simplify(&Expr::pow(root, Expr::rat(1, 2)))?;

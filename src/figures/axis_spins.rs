@@ -54,6 +54,28 @@ pub(super) fn axis_spins(
             points,
         });
     }
+    let desc = description(i, spin, wobble, t_end, largest, [small, middle, large]);
+    let mut f = fig(
+        "axis-spins",
+        "Spin about each principal axis".into(),
+        desc,
+        "t",
+        "angle from the starting axis / degrees",
+        series,
+    );
+    f.accuracy = vec![merged("angle from each axis", exact_runs)];
+    Ok(f)
+}
+
+/// The caption: the start, and each axis's largest angle with its rank among the moments.
+fn description(
+    i: &Moments,
+    spin: f64,
+    wobble: [f64; 2],
+    t_end: f64,
+    largest: [f64; 3],
+    [small, middle, large]: [usize; 3],
+) -> String {
     let rank = |k: usize| {
         if k == middle {
             "intermediate, unstable"
@@ -64,7 +86,7 @@ pub(super) fn axis_spins(
             "largest, stable"
         }
     };
-    let desc = format!(
+    format!(
         "Spin {spin} about each principal axis of I = ({}, {}, {}) in turn, with {} and {} on the \
          other two axes; the exact solution gives the angle between ω and the axis it started on \
          (180° is a full reversal). Largest angle over t ≤ {t_end}: axis 1 ({}) {:.3}°, axis 2 \
@@ -81,15 +103,5 @@ pub(super) fn axis_spins(
         largest[1],
         rank(2),
         largest[2]
-    );
-    let mut f = fig(
-        "axis-spins",
-        "Spin about each principal axis".into(),
-        desc,
-        "t",
-        "angle from the starting axis / degrees",
-        series,
-    );
-    f.accuracy = vec![merged("angle from each axis", exact_runs)];
-    Ok(f)
+    )
 }

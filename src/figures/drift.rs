@@ -19,24 +19,7 @@ pub(super) fn drift(
 ) -> Result<Figure, FigureError> {
     let (t0, l0) = invariants(i, &w0);
     let (h, tol) = (fid.ode_step(0.05), fid.ode_tolerance(1e-9));
-    let runs = [
-        (format!("RK4 h = {h}"), Method::Rk4, Resolution::Step(h)),
-        (
-            format!("Dormand–Prince tol {}", short(tol)),
-            Method::Dopri,
-            Resolution::Tolerance(tol),
-        ),
-        (
-            format!("Strang splitting h = {h}"),
-            Method::Splitting,
-            Resolution::Step(h),
-        ),
-        (
-            format!("triple jump h = {h}"),
-            Method::Splitting4,
-            Resolution::Step(h),
-        ),
-    ];
+    let runs = runs(h, tol);
     let mut series = Vec::new();
     let mut parts = Vec::new();
     let mut accuracy = Vec::new();
@@ -94,4 +77,26 @@ pub(super) fn drift(
     f.legend = Legend::LowerRight;
     f.accuracy = accuracy;
     Ok(f)
+}
+
+/// The four integrators compared: RK4 and the splittings at step `h`, Dormand–Prince at `tol`.
+fn runs(h: f64, tol: f64) -> [(String, Method, Resolution); 4] {
+    [
+        (format!("RK4 h = {h}"), Method::Rk4, Resolution::Step(h)),
+        (
+            format!("Dormand–Prince tol {}", short(tol)),
+            Method::Dopri,
+            Resolution::Tolerance(tol),
+        ),
+        (
+            format!("Strang splitting h = {h}"),
+            Method::Splitting,
+            Resolution::Step(h),
+        ),
+        (
+            format!("triple jump h = {h}"),
+            Method::Splitting4,
+            Resolution::Step(h),
+        ),
+    ]
 }

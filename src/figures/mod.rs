@@ -169,20 +169,7 @@ fn plot(
             } => out.push(tensor_sweep::tensor_sweep(
                 scene, d, over, *from, *to, *samples,
             )?),
-            PlotRequest::Convergence => {
-                for (i, body) in scene.bodies.iter().enumerate() {
-                    let nb = NumBody::from_scene(body, &scene.values)?;
-                    let exact = d.part_tensors[i].matrix_at(&scene.values)?;
-                    let slug = if scene.bodies.len() == 1 {
-                        "convergence".to_string()
-                    } else {
-                        format!("convergence-{}", i + 1)
-                    };
-                    out.push(convergence::convergence(
-                        &nb, &exact, scene.seed, slug, fidelity,
-                    )?);
-                }
-            }
+            PlotRequest::Convergence => out.extend(convergences(scene, d, fidelity)?),
             PlotRequest::PrincipalAxes => out.push(principal_axes::principal_view(scene, d)?),
             PlotRequest::FreeBody {
                 kind,
@@ -226,16 +213,43 @@ fn plot(
                 at,
             )?),
         }
-        // Two plots of one kind in a scene get distinct file names.
-        let last = out.len() - 1;
-        let taken = |slug: &str| out[..last].iter().any(|f| f.slug == slug);
-        if taken(&out[last].slug) {
-            let base = out[last].slug.clone();
-            let n = (2..).find(|n| !taken(&format!("{base}-{n}"))).unwrap();
-            out[last].slug = format!("{base}-{n}");
-        }
+        distinct_slug(out);
     }
     Ok(())
+}
+
+/// The quadrature's convergence for each body: `convergence`, or `convergence-k` of several.
+fn convergences(
+    scene: &Scene,
+    d: &Derivation,
+    fidelity: &Fidelity,
+) -> Result<Vec<Figure>, FigureError> {
+    let mut out = Vec::new();
+    for (i, body) in scene.bodies.iter().enumerate() {
+        let nb = NumBody::from_scene(body, &scene.values)?;
+        let exact = d.part_tensors[i].matrix_at(&scene.values)?;
+        let slug = if scene.bodies.len() == 1 {
+            "convergence".to_string()
+        } else {
+            format!("convergence-{}", i + 1)
+        };
+        out.push(convergence::convergence(
+            &nb, &exact, scene.seed, slug, fidelity,
+        )?);
+    }
+    Ok(out)
+}
+
+/// Two plots of one kind in a scene get distinct file names: the last one's slug takes the
+/// first free `-n`.
+fn distinct_slug(out: &mut [Figure]) {
+    let last = out.len() - 1;
+    let taken = |slug: &str| out[..last].iter().any(|f| f.slug == slug);
+    if taken(&out[last].slug) {
+        let base = out[last].slug.clone();
+        let n = (2..).find(|n| !taken(&format!("{base}-{n}"))).unwrap();
+        out[last].slug = format!("{base}-{n}");
+    }
 }
 
 /// A free-body figure: each kind is drawn by its own file.

@@ -28,29 +28,7 @@ pub(super) fn segment(a: Vector3<f64>, b: Vector3<f64>) -> [(f64, f64); 2] {
 /// Polylines of the body's outline in the scene frame, broken into separate segments.
 pub(super) fn outline(nb: &NumBody) -> Vec<Vec<Vector3<f64>>> {
     match &nb.shape {
-        NumShape::Box { size, centred } => {
-            let lo = if *centred {
-                -size / 2.0
-            } else {
-                Vector3::zeros()
-            };
-            let corner = |k: usize| {
-                Vector3::new(
-                    lo.x + size.x * (k & 1) as f64,
-                    lo.y + size.y * ((k >> 1) & 1) as f64,
-                    lo.z + size.z * ((k >> 2) & 1) as f64,
-                )
-            };
-            let mut edges = Vec::new();
-            for a in 0..8usize {
-                for bit in [1, 2, 4] {
-                    if a & bit == 0 {
-                        edges.push(vec![nb.place(&corner(a)), nb.place(&corner(a | bit))]);
-                    }
-                }
-            }
-            edges
-        }
+        NumShape::Box { size, centred } => box_edges(nb, size, *centred),
         NumShape::Plate { size, centred } => {
             let lo = if *centred { -size / 2.0 } else { size * 0.0 };
             let corners = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.0, 0.0)];
@@ -107,6 +85,31 @@ pub(super) fn outline(nb: &NumBody) -> Vec<Vec<Vector3<f64>>> {
         }
         _ => Vec::new(),
     }
+}
+
+/// A box's twelve edges, in the scene frame.
+fn box_edges(nb: &NumBody, size: &Vector3<f64>, centred: bool) -> Vec<Vec<Vector3<f64>>> {
+    let lo = if centred {
+        -size / 2.0
+    } else {
+        Vector3::zeros()
+    };
+    let corner = |k: usize| {
+        Vector3::new(
+            lo.x + size.x * (k & 1) as f64,
+            lo.y + size.y * ((k >> 1) & 1) as f64,
+            lo.z + size.z * ((k >> 2) & 1) as f64,
+        )
+    };
+    let mut edges = Vec::new();
+    for a in 0..8usize {
+        for bit in [1, 2, 4] {
+            if a & bit == 0 {
+                edges.push(vec![nb.place(&corner(a)), nb.place(&corner(a | bit))]);
+            }
+        }
+    }
+    edges
 }
 
 /// A circle of radius `r` about the z axis at height `z`, in the scene frame.

@@ -162,21 +162,7 @@ impl<'a> AnswerRoutes<'a> {
                 let k = (0..modes.len())
                     .position(|k| step.result_names().kth(k) == name)
                     .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
-                let rank = match self.d.named.get(&step.name) {
-                    Some(crate::derive::step_names::StepResult::Modes(exact)) => {
-                        let at = |e: &Expr| {
-                            e.eval(&|s| self.numbers.get(s).copied())
-                                .map_err(CheckError::from)
-                        };
-                        let own = at(&exact[k])?;
-                        let mut below = 0;
-                        for e in exact {
-                            below += usize::from(at(e)? < own);
-                        }
-                        below
-                    }
-                    _ => k,
-                };
+                let rank = self.mode_rank(&step.name, k)?;
                 let value = *modes
                     .get(rank)
                     .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
@@ -227,6 +213,25 @@ impl<'a> AnswerRoutes<'a> {
             }
             _ => Err(AnswerRouteError::NoStepRoute(name.to_string())),
         }
+    }
+
+    /// The rank, slowest first at the variant's numbers, of the `k`-th exact mode of the step
+    /// `step`; a mode with no closed form keeps its own `k`.
+    fn mode_rank(&self, step: &str, k: usize) -> Result<usize, AnswerRouteError> {
+        let Some(crate::derive::step_names::StepResult::Modes(exact)) = self.d.named.get(step)
+        else {
+            return Ok(k);
+        };
+        let at = |e: &Expr| {
+            e.eval(&|s| self.numbers.get(s).copied())
+                .map_err(CheckError::from)
+        };
+        let own = at(&exact[k])?;
+        let mut below = 0;
+        for e in exact {
+            below += usize::from(at(e)? < own);
+        }
+        Ok(below)
     }
 
     /// The derived value of a step's result at the variant's numbers: where Newton's method

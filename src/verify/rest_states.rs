@@ -117,29 +117,13 @@ pub(crate) fn states_check(
     );
     let mut found: Vec<Vec<f64>> = Vec::new();
     for index in 0..per.pow(n as u32) {
-        let mut x: Vec<f64> = (0..n)
+        let start: Vec<f64> = (0..n)
             .map(|k| {
                 -PI + 2.0 * PI * (((index / per.pow(k as u32)) % per) as f64 + 0.5) / per as f64
             })
             .collect();
-        for _ in 0..40 {
-            let r = residuals(eqs, values, &x, &zero)?;
-            let j = jacobian(eqs, values, &x, 1e-6)?;
-            check.evaluations += 1 + 2 * n as u64;
-            let Some(step) = j.lu().solve(&nalgebra::DVector::from_vec(r)) else {
-                break;
-            };
-            for k in 0..n {
-                x[k] = wrap(x[k] - step[k]);
-            }
-            if step.amax() < 1e-14 {
-                break;
-            }
-        }
-        let r = residuals(eqs, values, &x, &zero)?;
-        let scale = jacobian(eqs, values, &x, H)?.amax().max(1.0);
-        let converged = r.iter().all(|v| v.abs() < 1e-12 * scale);
-        if converged && !found.iter().any(|f| apart(f, &x, true) < 1e-6) {
+        let x = newton_on_torus(eqs, values, start, check)?;
+        if let Some(x) = x.filter(|x| !found.iter().any(|f| apart(f, x, true) < 1e-6)) {
             found.push(x);
         }
     }
@@ -163,6 +147,35 @@ pub(crate) fn states_check(
         }
     }
     Ok(())
+}
+
+/// Newton's method on the static equations from `x`, each angle kept in (−π, π]: the state it
+/// converges to, or none.
+fn newton_on_torus(
+    eqs: &[(String, Expr)],
+    values: &BTreeMap<String, f64>,
+    mut x: Vec<f64>,
+    check: &mut StepCheck,
+) -> Result<Option<Vec<f64>>, CheckError> {
+    let n = eqs.len();
+    let zero = vec![0.0; n];
+    for _ in 0..40 {
+        let r = residuals(eqs, values, &x, &zero)?;
+        let j = jacobian(eqs, values, &x, 1e-6)?;
+        check.evaluations += 1 + 2 * n as u64;
+        let Some(step) = j.lu().solve(&nalgebra::DVector::from_vec(r)) else {
+            break;
+        };
+        for k in 0..n {
+            x[k] = wrap(x[k] - step[k]);
+        }
+        if step.amax() < 1e-14 {
+            break;
+        }
+    }
+    let r = residuals(eqs, values, &x, &zero)?;
+    let scale = jacobian(eqs, values, &x, H)?.amax().max(1.0);
+    Ok(r.iter().all(|v| v.abs() < 1e-12 * scale).then_some(x))
 }
 
 /// About each state real at the scene's values: K by central differences (Richardson) against

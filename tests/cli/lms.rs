@@ -139,11 +139,11 @@ fn crc32(data: &[u8]) -> u32 {
     })
 }
 
-/// An element's text with `<sup>k</sup>` as `^k`: a unit as written.
+/// An element's text with `<sup>k</sup>` as `^k` (and `−` as `-`): a unit as written.
 fn unit_text(node: roxmltree::Node) -> String {
     node.children()
         .map(|c| match c.tag_name().name() {
-            "sup" => format!("^{}", c.text().unwrap_or("")),
+            "sup" => format!("^{}", c.text().unwrap_or("").replace('−', "-")),
             _ => c.text().unwrap_or("").to_string(),
         })
         .collect::<String>()

@@ -35,18 +35,6 @@ pub fn number(x: f64, digits: usize) -> Formula {
 
 /// A unit as HTML: `kg m^2/s` as kg m<sup>2</sup>/s, a `*` as a space.
 pub fn unit_html(text: &str) -> String {
-    let escaped = tera::escape_html(text).replace('*', " ");
-    let mut out = String::new();
-    let mut rest = escaped.as_str();
-    while let Some(i) = rest.find('^') {
-        out.push_str(&rest[..i]);
-        let power: String = rest[i + 1..]
-            .chars()
-            .take_while(|c| c.is_ascii_digit() || *c == '-')
-            .collect();
-        out.push_str(&format!("<sup>{}</sup>", power.replace('-', "−")));
-        rest = &rest[i + 1 + power.len()..];
-    }
-    out.push_str(rest);
-    format!("<span class=\"unit\">{out}</span>")
+    let units = crate::base::format::unit_powers(&tera::escape_html(text));
+    format!("<span class=\"unit\">{units}</span>")
 }

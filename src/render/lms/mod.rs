@@ -71,20 +71,7 @@ fn xhtml(prose: &Prose, names: &Names) -> Result<String, RenderError> {
 
 /// A unit as XHTML: `kg m^2/s` as kg m<sup>2</sup>/s, a `*` as a space.
 fn unit_xhtml(text: &str) -> String {
-    let escaped = escape(text).replace('*', " ");
-    let mut out = String::new();
-    let mut rest = escaped.as_str();
-    while let Some(i) = rest.find('^') {
-        out.push_str(&rest[..i]);
-        let power: String = rest[i + 1..]
-            .chars()
-            .take_while(|c| c.is_ascii_digit() || *c == '-')
-            .collect();
-        out.push_str(&format!("<sup>{power}</sup>"));
-        rest = &rest[i + 1 + power.len()..];
-    }
-    out.push_str(rest);
-    out
+    crate::base::format::unit_powers(&escape(text))
 }
 
 /// A number as every format here reads it back exactly: the shortest decimal that is the
@@ -128,6 +115,6 @@ mod tests {
             xhtml(&prose, Names::none()).unwrap(),
             "a &lt;b&gt; &amp; &quot;c&quot;"
         );
-        assert_eq!(unit_xhtml("kg*m^2/s^-1"), "kg m<sup>2</sup>/s<sup>-1</sup>");
+        assert_eq!(unit_xhtml("kg*m^2/s^-1"), "kg m<sup>2</sup>/s<sup>−1</sup>");
     }
 }

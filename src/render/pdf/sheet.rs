@@ -253,24 +253,7 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
     m.raw("\n#heading(level: 2)[").text(&format!("{heading}: "));
     m.author(&p.title)?;
     m.raw("]\n");
-    let given: Vec<(String, String)> = v
-        .given
-        .iter()
-        .map(|g| {
-            let unit = g
-                .unit
-                .as_deref()
-                .map_or(String::new(), |u| format!(" thin {}", unit_typst(u)));
-            let said_unit = g.unit.as_deref().map_or(String::new(), said_unit);
-            let typst = format!(
-                "{} = {}{unit}",
-                symbol(&g.name, names),
-                formula(&g.value, names)?
-            );
-            let said = said_equation(&g.name, &g.value.to_tex(names).spoken(), names);
-            Ok((typst, format!("{said}{said_unit}")))
-        })
-        .collect::<Result<_, RenderError>>()?;
+    let given = given_values(v, names)?;
     if !given.is_empty() {
         let (typst, said): (Vec<String>, Vec<String>) = given.into_iter().unzip();
         // Kept on the page of the table that follows, as the heading is kept with it.
@@ -335,6 +318,30 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
     ));
     m.raw("]\n");
     Ok(())
+}
+
+/// Each value a variant gives, as Typst and as it is said: `m = 2 thin "kg"`.
+fn given_values(
+    v: &Variant,
+    names: &crate::notation::Names,
+) -> Result<Vec<(String, String)>, RenderError> {
+    v.given
+        .iter()
+        .map(|g| {
+            let unit = g
+                .unit
+                .as_deref()
+                .map_or(String::new(), |u| format!(" thin {}", unit_typst(u)));
+            let said_unit = g.unit.as_deref().map_or(String::new(), said_unit);
+            let typst = format!(
+                "{} = {}{unit}",
+                symbol(&g.name, names),
+                formula(&g.value, names)?
+            );
+            let said = said_equation(&g.name, &g.value.to_tex(names).spoken(), names);
+            Ok((typst, format!("{said}{said_unit}")))
+        })
+        .collect()
 }
 
 /// The answer's numbers to `digits` figures, in Typst's math.

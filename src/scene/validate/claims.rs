@@ -114,24 +114,7 @@ impl Validator<'_> {
                 return Err(self.err(
                     name.span().start,
                     &format!("expect.{n}"),
-                    format!(
-                        "`{n}` is not a derived quantity or a step{}; the quantities are {}, {}{}",
-                        crate::base::suggest::did_you_mean(
-                            n,
-                            steps.iter().map(String::as_str).chain(
-                                body_quantities()
-                                    .chain(free_body_quantities())
-                                    .map(|q| -> &str { q })
-                            )
-                        ),
-                        body_quantities().collect::<Vec<_>>().join(", "),
-                        free_body_quantities().collect::<Vec<_>>().join(", "),
-                        if steps.is_empty() {
-                            String::new()
-                        } else {
-                            format!("; the steps are {}", steps.join(", "))
-                        }
-                    ),
+                    not_a_quantity(n, steps),
                 ));
             }
             // A scene written before the rename records the top's L² under Poinsot's name:
@@ -484,4 +467,26 @@ pub(super) fn check_calls(e: &Expr, claim_language: bool) -> Result<(), CallErro
     }
     walk(e, allowed, claim_language, &mut result);
     result
+}
+
+/// Why `n` in `[expect]` is neither a quantity nor one of `steps`, with the names it may be.
+fn not_a_quantity(n: &str, steps: &[String]) -> String {
+    format!(
+        "`{n}` is not a derived quantity or a step{}; the quantities are {}, {}{}",
+        crate::base::suggest::did_you_mean(
+            n,
+            steps.iter().map(String::as_str).chain(
+                body_quantities()
+                    .chain(free_body_quantities())
+                    .map(|q| -> &str { q })
+            )
+        ),
+        body_quantities().collect::<Vec<_>>().join(", "),
+        free_body_quantities().collect::<Vec<_>>().join(", "),
+        if steps.is_empty() {
+            String::new()
+        } else {
+            format!("; the steps are {}", steps.join(", "))
+        }
+    )
 }
