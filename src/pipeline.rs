@@ -63,6 +63,19 @@ pub struct RunError {
     pub source: Box<StageError>,
 }
 
+impl RunError {
+    /// `source`, located at the scene's `id`.
+    fn in_scene(scene: &Scene, source: StageError) -> RunError {
+        RunError {
+            path: scene.source.clone(),
+            id: scene.id.clone(),
+            at: scene.id_at,
+            plot: None,
+            source: Box::new(source),
+        }
+    }
+}
+
 /// What failed inside a scene's run: the symbolic stage, an evaluation at the scene's values,
 /// or a figure.
 #[derive(Debug, thiserror::Error)]
@@ -107,13 +120,7 @@ pub enum FromCache {
 /// The symbolic stage: the derivation, then the claims and the recorded results checked on it.
 pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> {
     let (engine_before, calls_before) = crate::cas::stats();
-    let fail = |source: StageError| RunError {
-        path: scene.source.clone(),
-        id: scene.id.clone(),
-        at: scene.id_at,
-        plot: None,
-        source: Box::new(source),
-    };
+    let fail = |source: StageError| RunError::in_scene(scene, source);
     // The built-in derivation, then the author's own steps on it.
     let derivation = derive::derive(scene, plan).and_then(|mut d| {
         if plan.runs(Stage::Steps) {
@@ -455,13 +462,7 @@ fn numeric_stage(d: Derived, fidelity: Option<Fidelity>) -> Result<SceneReport, 
     let fidelity = scene.fidelity_given(fidelity);
     let start = Instant::now();
     let work_before = numeric::Work::so_far();
-    let fail = |source: StageError| RunError {
-        path: scene.source.clone(),
-        id: scene.id.clone(),
-        at: scene.id_at,
-        plot: None,
-        source: Box::new(source),
-    };
+    let fail = |source: StageError| RunError::in_scene(&scene, source);
     let derivation = &symbolic.derivation;
     let numeric = if plan.runs(Stage::Quadrature) {
         let parts = &derivation.part_tensors;
@@ -476,7 +477,11 @@ fn numeric_stage(d: Derived, fidelity: Option<Fidelity>) -> Result<SceneReport, 
         None
     };
     let figures = if plan.runs(Stage::Plots) {
-        scene_figures(&scene, derivation, &fidelity)?
+        crate::figures::figures(&scene, derivation, &fidelity).map_err(|e| RunError {
+            at: scene.plot_at.get(e.index).copied().unwrap_or(scene.id_at),
+            plot: Some(e.index),
+            ..RunError::in_scene(&scene, e.source.into())
+        })?
     } else {
         Vec::new()
     };
@@ -518,21 +523,6 @@ fn numeric_stage(d: Derived, fidelity: Option<Fidelity>) -> Result<SceneReport, 
         numeric_work: numeric::Work::since(work_before),
         seconds: symbolic_wall + start.elapsed().as_secs_f64(),
         from_cache,
-    })
-}
-
-/// The scene's plots, a failure located at its `[[plot]]`.
-fn scene_figures(
-    scene: &Scene,
-    derivation: &Derivation,
-    fidelity: &Fidelity,
-) -> Result<Vec<Figure>, RunError> {
-    crate::figures::figures(scene, derivation, fidelity).map_err(|e| RunError {
-        path: scene.source.clone(),
-        id: scene.id.clone(),
-        at: scene.plot_at.get(e.index).copied().unwrap_or(scene.id_at),
-        plot: Some(e.index),
-        source: Box::new(e.source.into()),
     })
 }
 

@@ -126,23 +126,7 @@ fn solve_static(
             _ => None,
         })
     else {
-        // Coupled, but linear in the coordinates: one state, by Cramer's rule.
-        let named: Vec<(String, Expr)> = eqs.iter().map(|e| (String::new(), e.clone())).collect();
-        return match super::solve::solve_system(&named, free) {
-            Ok(solution) => Ok(vec![
-                solution
-                    .into_iter()
-                    .map(|(q, value)| (q, Zero { value, trig: None }))
-                    .collect(),
-            ]),
-            Err(_) => Err(DeriveError::NotDerivable(format!(
-                "each static equation holds several of {}, and they are not linear in them: \
-                 `equilibria` solves equations that give one coordinate at a time (a static \
-                 equation in one coordinate alone, then the others with it put in), or a \
-                 linear system",
-                free.join(", ")
-            ))),
-        };
+        return coupled_state(&eqs, free);
     };
     let found = cas::zeros(&eqs[k], &q)?;
     if let Some(f) = found.unsolved.first() {
@@ -176,6 +160,27 @@ fn solve_static(
         }
     }
     Ok(states)
+}
+
+/// The one state of static equations that each hold several coordinates, linearly: by
+/// Cramer's rule; not linear, refused.
+fn coupled_state(eqs: &[Expr], free: &[String]) -> Result<Vec<Vec<(String, Zero)>>, DeriveError> {
+    let named: Vec<(String, Expr)> = eqs.iter().map(|e| (String::new(), e.clone())).collect();
+    match super::solve::solve_system(&named, free) {
+        Ok(solution) => Ok(vec![
+            solution
+                .into_iter()
+                .map(|(q, value)| (q, Zero { value, trig: None }))
+                .collect(),
+        ]),
+        Err(_) => Err(DeriveError::NotDerivable(format!(
+            "each static equation holds several of {}, and they are not linear in them: \
+             `equilibria` solves equations that give one coordinate at a time (a static \
+             equation in one coordinate alone, then the others with it put in), or a linear \
+             system",
+            free.join(", ")
+        ))),
+    }
 }
 
 /// About each state: K = ∂R/∂q there, its leading principal minors, and the verdict. A natural

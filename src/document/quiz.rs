@@ -70,6 +70,16 @@ pub fn lecture_quizzes<'a>(docs: &'a Documents) -> Vec<(&'a Lecture, Vec<QuizPar
     out
 }
 
+/// The name of the `k`-th (0-based) of the files a long lecture's export is split into:
+/// `lecture-1.txt`, then `lecture-1-2.txt`, ….
+pub fn split_file(slug: &str, k: usize, extension: &str) -> String {
+    if k == 0 {
+        format!("{slug}.{extension}")
+    } else {
+        format!("{slug}-{}.{extension}", k + 1)
+    }
+}
+
 /// A problem's quiz parts: each entry of each answer.
 pub fn quiz_parts(problem: &Problem) -> Vec<QuizPart<'_>> {
     let Some(first) = problem.variants.first() else {

@@ -116,17 +116,7 @@ impl NumBody {
                 origin,
             } => {
                 let h = ev(height)?;
-                let (apex, direction) = match origin {
-                    ConeOrigin::Apex => (0.0, 1.0),
-                    ConeOrigin::Base => (h, -1.0),
-                    ConeOrigin::Centre => (0.75 * h, -1.0),
-                };
-                NumShape::Cone {
-                    radius: ev(radius)?,
-                    height: h,
-                    apex,
-                    direction,
-                }
+                cone(ev(radius)?, h, origin)
             }
             Shape::Hemisphere { radius, centred } => {
                 let r = ev(radius)?;
@@ -184,4 +174,21 @@ pub fn tensor_of_points(points: impl Iterator<Item = (f64, Vector3<f64>)>) -> Ma
 /// Relative max-norm distance between two tensors, scaled by the larger entry of `exact`.
 pub fn relative_error(approx: &Matrix3<f64>, exact: &Matrix3<f64>) -> f64 {
     crate::base::float::max_relative_error(approx.as_slice(), exact.as_slice())
+}
+
+/// A cone of `radius` and height `h` whose frame's origin is its apex, its base or its centre
+/// of mass (a quarter of the height up from the base): its apex's height and the direction of
+/// its axis from there.
+fn cone(radius: f64, h: f64, origin: &ConeOrigin) -> NumShape {
+    let (apex, direction) = match origin {
+        ConeOrigin::Apex => (0.0, 1.0),
+        ConeOrigin::Base => (h, -1.0),
+        ConeOrigin::Centre => (0.75 * h, -1.0),
+    };
+    NumShape::Cone {
+        radius,
+        height: h,
+        apex,
+        direction,
+    }
 }

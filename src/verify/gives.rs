@@ -185,6 +185,19 @@ fn same_equation(
         &|p| scene.in_domain(p),
     )
     .map(|z| z[0] && state_free && !ratio.is_zero());
+    decide(&mut r, symbolic, numeric, residual, &notes)?;
+    Ok(r)
+}
+
+/// The verdict on two equations found the same or not by the engine (`symbolic`) and at random
+/// points (`numeric`): two routes that disagree leave it undecided.
+fn decide(
+    r: &mut ClaimResult,
+    symbolic: bool,
+    numeric: Result<bool, crate::cas::EvalError>,
+    residual: &Expr,
+    notes: &Expr,
+) -> Result<(), cas::CasError> {
     match numeric {
         Ok(n) if n != symbolic => {
             r.verdict = Verdict::Undecided;
@@ -197,7 +210,7 @@ fn same_equation(
                 )
                 .into(),
             );
-            return Ok(r);
+            return Ok(());
         }
         Ok(_) => {}
         Err(e) => r.problem = Some(format!("cannot evaluate at random points: {e}")),
@@ -213,9 +226,9 @@ fn same_equation(
                 .text("derived ")
                 .expr(residual)
                 .text(" = 0, notes ")
-                .expr(&cas::simplify(&notes)?)
+                .expr(&cas::simplify(notes)?)
                 .text(" = 0: not one a constant multiple of the other"),
         );
     }
-    Ok(r)
+    Ok(())
 }

@@ -6,7 +6,7 @@
 //! text, then what to give and its unit, with `&`, `<` and `>` as HTML's entities.
 
 use super::number;
-use crate::document::quiz::QuizPart;
+use crate::document::quiz::{QuizPart, split_file};
 use crate::model::prose::{Piece, Prose};
 use crate::notation::Names;
 
@@ -42,14 +42,7 @@ pub fn files(slug: &str, parts: &[QuizPart]) -> Vec<(String, Vec<u8>)> {
     records
         .chunks(RECORDS_A_FILE)
         .enumerate()
-        .map(|(k, chunk)| {
-            let name = if k == 0 {
-                format!("{slug}.txt")
-            } else {
-                format!("{slug}-{}.txt", k + 1)
-            };
-            (name, chunk.concat().into_bytes())
-        })
+        .map(|(k, chunk)| (split_file(slug, k, "txt"), chunk.concat().into_bytes()))
         .collect()
 }
 

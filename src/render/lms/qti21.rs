@@ -7,7 +7,7 @@
 //! absolute). Each item is valid against the QTI 2.1 schema (tests/cli/lms.rs).
 
 use super::{escape, number, unit_xhtml, xhtml};
-use crate::document::quiz::{PartVariant, QuizPart};
+use crate::document::quiz::{PartVariant, QuizPart, split_file};
 use crate::model::prose::author;
 use crate::render::RenderError;
 use std::fmt::Write;
@@ -29,14 +29,7 @@ pub fn packages(slug: &str, parts: &[QuizPart]) -> Result<Vec<(String, Vec<u8>)>
     items
         .chunks(ITEMS_A_PACKAGE)
         .enumerate()
-        .map(|(k, chunk)| {
-            let name = if k == 0 {
-                format!("{slug}.zip")
-            } else {
-                format!("{slug}-{}.zip", k + 1)
-            };
-            Ok((name, package(slug, chunk)?))
-        })
+        .map(|(k, chunk)| Ok((split_file(slug, k, "zip"), package(slug, chunk)?)))
         .collect()
 }
 

@@ -306,21 +306,7 @@ pub fn roster_documents(
     roster: &Roster,
     seed: u64,
 ) -> Result<(Vec<PdfSource>, Vec<u8>), RosterPapersError> {
-    let mut sheets = Vec::new();
-    for (k, lecture) in docs.lectures.iter().enumerate() {
-        if let Some(sheet) = &lecture.sheet {
-            let given = crate::document::roster::assign(
-                roster,
-                sheet,
-                &lecture.name,
-                seed.wrapping_add(k as u64),
-            )?;
-            sheets.push((&lecture.name, sheet, given));
-        }
-    }
-    if sheets.is_empty() {
-        return Err(RosterPapersError::NoSheet(roster.source.clone()));
-    }
+    let sheets = dealt_sheets(docs, roster, seed)?;
     let mut out = Vec::new();
     let mut csv = String::from("name,id,lecture,variant,paper\n");
     // The class key, in parts of at most VARIANTS_A_DOCUMENT students (`key-2.pdf` holds
@@ -388,6 +374,34 @@ pub fn roster_documents(
     keys.push(key.source(&key_file(key_parts.len() - 1), Vec::new()));
     out.extend(keys);
     Ok((out, csv.into_bytes()))
+}
+
+/// A lecture's name, its sheet, and each student's variant of it (by the roster's order).
+type DealtSheet<'a> = (&'a String, &'a crate::document::Sheet, Vec<usize>);
+
+/// Each lecture's sheet with the variant each student of the roster has of it; none is an
+/// error, since a roster is for the problem sheets.
+fn dealt_sheets<'a>(
+    docs: &'a Documents,
+    roster: &Roster,
+    seed: u64,
+) -> Result<Vec<DealtSheet<'a>>, RosterPapersError> {
+    let mut sheets = Vec::new();
+    for (k, lecture) in docs.lectures.iter().enumerate() {
+        if let Some(sheet) = &lecture.sheet {
+            let given = crate::document::roster::assign(
+                roster,
+                sheet,
+                &lecture.name,
+                seed.wrapping_add(k as u64),
+            )?;
+            sheets.push((&lecture.name, sheet, given));
+        }
+    }
+    if sheets.is_empty() {
+        return Err(RosterPapersError::NoSheet(roster.source.clone()));
+    }
+    Ok(sheets)
 }
 
 /// An id as part of a file name: letters, digits, `-`, `_` and `.` kept, the rest `_`.

@@ -51,34 +51,7 @@ impl Validator<'_> {
                 ),
             ));
         }
-        for name in value.symbols() {
-            if find(&name).is_some() && !routed_quantities().any(|q| q == name) {
-                return Err(self.err(
-                    at,
-                    field,
-                    format!(
-                        "`{name}` has no numeric route to check each variant's answer on; an \
-                         answer may use {}, the scene's symbols and the results of `be`, \
-                         `frequency`, `solve` and `integrate` steps",
-                        routed_quantities().collect::<Vec<_>>().join(", ")
-                    ),
-                ));
-            }
-            if let Some(step) = step_named(steps, coordinates, &name)
-                && !step_has_route(&step.op)
-            {
-                return Err(self.err(
-                    at,
-                    field,
-                    format!(
-                        "the step `{}` (line {}) has no numeric value of its own to check each \
-                         variant's answer on; an answer may use the results of `be`, \
-                         `frequency`, `solve` and `integrate` steps",
-                        step.name, step.line
-                    ),
-                ));
-            }
-        }
+        self.routed(&value, at, field, (steps, coordinates))?;
         let unit = match &raw.unit {
             Some(u) => Some(Unit::parse(u.get_ref()).map_err(|e| {
                 self.err(content_start(u), &format!("{field}.unit"), e.to_string())
@@ -112,6 +85,46 @@ impl Validator<'_> {
             tolerance,
             line: self.loc.line_col(at).0,
         })
+    }
+
+    /// Every name of an answer has a numeric route to check each variant on: a routed
+    /// quantity, a symbol, or a step with a value of its own.
+    fn routed(
+        &self,
+        value: &Expr,
+        at: usize,
+        field: &str,
+        (steps, coordinates): (&[AuthorStep], usize),
+    ) -> Result<(), SceneError> {
+        for name in value.symbols() {
+            if find(&name).is_some() && !routed_quantities().any(|q| q == name) {
+                return Err(self.err(
+                    at,
+                    field,
+                    format!(
+                        "`{name}` has no numeric route to check each variant's answer on; an \
+                         answer may use {}, the scene's symbols and the results of `be`, \
+                         `frequency`, `solve` and `integrate` steps",
+                        routed_quantities().collect::<Vec<_>>().join(", ")
+                    ),
+                ));
+            }
+            if let Some(step) = step_named(steps, coordinates, &name)
+                && !step_has_route(&step.op)
+            {
+                return Err(self.err(
+                    at,
+                    field,
+                    format!(
+                        "the step `{}` (line {}) has no numeric value of its own to check each \
+                         variant's answer on; an answer may use the results of `be`, \
+                         `frequency`, `solve` and `integrate` steps",
+                        step.name, step.line
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// `"0.5%"`, or a number such as 0.005: relative to the answer.

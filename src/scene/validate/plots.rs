@@ -342,14 +342,24 @@ impl Validator<'_> {
                 _ => return Err(wrong()),
             };
         }
+        self.full_precision(arr, at, &field)
+    }
+
+    /// Three numbers that are finite and keep their digits: a subnormal one has lost some, and
+    /// every product with it is wrong.
+    fn full_precision(
+        &self,
+        arr: [f64; 3],
+        at: usize,
+        field: &str,
+    ) -> Result<[f64; 3], SceneError> {
         if arr.iter().any(|x| !x.is_finite()) {
-            return Err(self.err(at, &field, "the values must be finite numbers"));
+            return Err(self.err(at, field, "the values must be finite numbers"));
         }
-        // Subnormal numbers have lost digits: every product with them is wrong.
         if let Some(x) = crate::base::float::first_subnormal(&arr).map(|k| arr[k]) {
             return Err(self.err(
                 at,
-                &field,
+                field,
                 format!(
                     "{x:e} is below {:e}, where double precision keeps its digits: write 0, or \
                      use other units",
