@@ -89,7 +89,7 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
                     .filter_map(|name| {
                         Some(Given {
                             value: shown(v, &name)?,
-                            number: number(v, &name)?,
+                            number: number(v, &name),
                             unit: r.scene.units.get(&name).map(|u| u.text.clone()),
                             name,
                         })
@@ -181,10 +181,14 @@ fn fill_math(latex: &str, v: &VariantCheck, paste: &mut dyn FnMut(Formula) -> St
     out
 }
 
-/// A variant's value in f64.
-fn number(v: &VariantCheck, name: &str) -> Option<f64> {
-    let (_, e) = v.values.iter().find(|(n, _)| n == name)?;
-    e.eval(&|_| None).ok()
+/// A variant's value in f64 (every value a variant draws is a number; NaN would say otherwise,
+/// and no LMS export could hold it).
+fn number(v: &VariantCheck, name: &str) -> f64 {
+    v.values
+        .iter()
+        .find(|(n, _)| n == name)
+        .and_then(|(_, e)| e.eval(&|_| None).ok())
+        .unwrap_or(f64::NAN)
 }
 
 /// The statement with each `{name}` of a value given (`given`) as `[name]`: in text as

@@ -48,7 +48,7 @@ impl QuizPart<'_> {
     pub fn relative_is_exact(&self) -> bool {
         self.variants
             .iter()
-            .all(|v| v.answer != 0.0 && (v.tolerance - self.relative * v.answer.abs()).abs() == 0.0)
+            .all(|v| v.answer != 0.0 && v.tolerance == self.relative * v.answer.abs())
     }
 }
 
