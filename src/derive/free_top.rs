@@ -2,7 +2,7 @@
 //! its closed-form solution checked by substitution, the precession rate βω3, and the body and
 //! space cones, with the inequality between their half-angles worked out from the formulas.
 
-use super::algebra::{Value, Vec3, cross, diag, dot, mat_vec};
+use super::algebra::{Mat3, Value, Vec3, cross, diag, dot, mat_vec};
 use super::euler::{omega, rate_along, torque_free_rates};
 use super::sign::{Sign, sign_over_positive};
 use super::{
@@ -38,8 +38,19 @@ fn sign_words(sign: Sign) -> &'static str {
 pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let i = [s("I1"), s("I1"), s("I3")];
     let inertia = diag(i.clone());
+    let beta = symmetric_rates(d, &i)?;
+    let (solution, derivative) = closed_form(d, &inertia, &beta)?;
+    let omega_squared = magnitude_and_precession(d, &solution, &derivative)?;
+    let l = mat_vec(&inertia, &solution);
+    let (two_t, l_squared) = cones(d, &solution, &l, &omega_squared)?;
+    wider_cone(d, two_t, l_squared)
+}
+
+/// Euler's equations with I2 = I1 and no torque, with β (eqs 66–68), and ω1's second
+/// derivative: an oscillator (eq 69). Returns β.
+fn symmetric_rates(d: &mut Derivation, i: &Vec3) -> Result<Expr, DeriveError> {
     let w = omega();
-    let r = simplify_vec(&torque_free_rates(&i, &w))?;
+    let r = simplify_vec(&torque_free_rates(i, &w))?;
     let rates = Value::Vector(r.clone());
     d.steps.push(Step::equation(
         "Euler's equations with $I_2 = I_1$ and $\\vec N = 0$",
@@ -87,7 +98,16 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         ),
     ));
     d.set(quantity::W1_SECOND_DERIVATIVE, Value::Scalar(second))?;
+    Ok(beta)
+}
 
+/// The closed form the notes give after eq 69, substituted into Euler's equations; returns ω
+/// and its rate.
+fn closed_form(
+    d: &mut Derivation,
+    inertia: &Mat3,
+    beta: &Expr,
+) -> Result<(Vec3, Vec3), DeriveError> {
     // The closed form, substituted back into all three of Euler's equations.
     let phase = Expr::add(vec![
         Expr::mul(vec![beta.clone(), s("w3"), s("t")]),
@@ -101,8 +121,8 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let derivative: Vec3 = solution
         .clone()
         .map(|e| e.diff("t").expect("sin, cos and powers differentiate"));
-    let l = mat_vec(&inertia, &solution);
-    let residual: Vec<Expr> = mat_vec(&inertia, &derivative)
+    let l = mat_vec(inertia, &solution);
+    let residual: Vec<Expr> = mat_vec(inertia, &derivative)
         .iter()
         .zip(cross(&solution, &l))
         .map(|(a, b)| Expr::add(vec![a.clone(), b]))
@@ -129,8 +149,16 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         Value::Vector(solution.clone()),
     )?;
     d.set(quantity::SYMMETRIC_RESIDUAL, residual)?;
+    Ok((solution, derivative))
+}
 
-    let omega_squared = scalar(dot(&solution, &solution))?;
+/// |ω|² constant (eq 70), and ω's precession about the axis at βω3; returns ω².
+fn magnitude_and_precession(
+    d: &mut Derivation,
+    solution: &Vec3,
+    derivative: &Vec3,
+) -> Result<Expr, DeriveError> {
+    let omega_squared = scalar(dot(solution, solution))?;
     d.steps.push(Step::equation(
         "Magnitude of $\\vec\\omega$",
         "omega^2",
@@ -166,9 +194,18 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         "the angle of $(\\omega_1, \\omega_2)$ in the body advances at $\\beta\\omega_3$: the body cone",
     ));
     d.set(quantity::PRECESSION_RATE, Value::Scalar(precession))?;
+    Ok(omega_squared)
+}
 
-    let two_t = scalar(dot(&solution, &l))?;
-    let l_squared = scalar(dot(&l, &l))?;
+/// 2T and L² along the solution, and the body and space cones (eq 71); returns 2T and L².
+fn cones(
+    d: &mut Derivation,
+    solution: &Vec3,
+    l: &Vec3,
+    omega_squared: &Expr,
+) -> Result<(Expr, Expr), DeriveError> {
+    let two_t = scalar(dot(solution, l))?;
+    let l_squared = scalar(dot(l, l))?;
     d.steps.push(Step::equation(
         "Twice the kinetic energy",
         "2T = vec(omega) · vec(L)",
@@ -191,7 +228,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         Value::Scalar(l_squared.clone()),
     )?;
 
-    let body_tan2 = scalar(tan_squared_from_axis(&solution))?;
+    let body_tan2 = scalar(tan_squared_from_axis(solution))?;
     d.steps.push(Step::equation(
         "Body cone",
         "tan^2 alpha_b",
@@ -217,7 +254,7 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
                 .math("cos alpha_s = (vec(omega) · vec(L))/(omega L) = (2T)/(omega L)"),
         ),
     ));
-    let tilt_tan2 = scalar(tan_squared_from_axis(&l))?;
+    let tilt_tan2 = scalar(tan_squared_from_axis(l))?;
     d.steps.push(Step::equation(
         "Tilt of $\\vec L$ from the symmetry axis",
         "tan^2 theta_L",
@@ -231,7 +268,11 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
         quantity::MOMENTUM_TILT_TAN_SQUARED,
         Value::Scalar(tilt_tan2),
     )?;
+    Ok((two_t, l_squared))
+}
 
+/// Which cone is wider, for an oblate and a prolate top.
+fn wider_cone(d: &mut Derivation, two_t: Expr, l_squared: Expr) -> Result<(), DeriveError> {
     // α_b > α_s ⟺ cos α_s > cos α_b = ω3/ω ⟺ 2T > ω3 L ⟺ (2T)² − ω3² L² > 0 (both sides positive).
     let cone_order = scalar(Expr::minus(
         Expr::pow(two_t, Expr::int(2)),

@@ -2,7 +2,7 @@
 //! ∇F parallel to L, the fixed distance √(2T)/L to the invariable plane, the energy ellipsoid and
 //! the L-sphere in L-space, the bounds on L², and which polhodes close.
 
-use super::algebra::{Value, Vec3, diag, dot, mat_vec};
+use super::algebra::{Mat3, Value, Vec3, diag, dot, mat_vec};
 use super::euler::{moments, omega, rate_along, torque_free_rates};
 use super::stability::classify;
 use super::{Derivation, DeriveError, Step, cited, factored};
@@ -23,9 +23,18 @@ fn sq(e: &Expr) -> Expr {
 
 pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let i = moments();
-    let w = omega();
     let inertia = diag(i.clone());
-    let l = mat_vec(&inertia, &w);
+    let (two_t, l_squared) = invariants(d, &i, &inertia)?;
+    ellipsoid(d, &i, &inertia, &two_t, &l_squared)?;
+    let conic = momentum_space(d, &i, &two_t, &l_squared)?;
+    let product = polhode_conics(d, &conic)?;
+    closure_and_separatrix(d, &conic, &product)
+}
+
+/// 2T and L², both constant along the torque-free motion (eq 78).
+fn invariants(d: &mut Derivation, i: &Vec3, inertia: &Mat3) -> Result<(Expr, Expr), DeriveError> {
+    let w = omega();
+    let l = mat_vec(inertia, &w);
     let two_t = scalar(d, quantity::TWICE_ENERGY, dot(&w, &l))?;
     let l_squared = scalar(d, quantity::MOMENTUM_SQUARED, dot(&l, &l))?;
     d.steps.push(Step::equation(
@@ -46,7 +55,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
             Prose::default().math("L_i = I_i ~ omega_i"),
         ),
     ));
-    let rates = torque_free_rates(&i, &w);
+    let rates = torque_free_rates(i, &w);
     let invariant_rates = cas::simplify_all(vec![
         rate_along(&two_t, &rates)?,
         rate_along(&l_squared, &rates)?,
@@ -62,7 +71,18 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         "differentiated along the torque-free Euler equations by the chain rule: both vanish \
          identically",
     ));
+    Ok((two_t, l_squared))
+}
 
+/// Poinsot's point on the inertia ellipsoid, its normal along L and the invariable plane's
+/// distance (eqs 77, 79–81).
+fn ellipsoid(
+    d: &mut Derivation,
+    i: &Vec3,
+    inertia: &Mat3,
+    two_t: &Expr,
+    l_squared: &Expr,
+) -> Result<(), DeriveError> {
     // ρ = c ω with c = 1/√(2T); every result below is even in c, so c² = 1/(2T) is exact.
     let c2 = Expr::pow(two_t.clone(), Expr::int(-1));
     let f = scalar(
@@ -82,7 +102,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     ));
     // ∇F = 2Iρ = 2c L: the factor squared is 4c² = 2/T.
     let rho_names = ["r1", "r2", "r3"].map(Expr::sym);
-    let f_rho = dot(&rho_names, &mat_vec(&inertia, &rho_names));
+    let f_rho = dot(&rho_names, &mat_vec(inertia, &rho_names));
     let grad: Vec<Expr> = ["r1", "r2", "r3"]
         .iter()
         .map(|x| f_rho.diff(x).map_err(DeriveError::from))
@@ -120,7 +140,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let distance = scalar(
         d,
         quantity::PLANE_DISTANCE_SQUARED,
-        Expr::over(Expr::mul(vec![c2.clone(), sq(&two_t)]), l_squared.clone()),
+        Expr::over(Expr::mul(vec![c2.clone(), sq(two_t)]), l_squared.clone()),
     )?;
     d.steps.push(Step::equation(
         "Distance to the invariable plane",
@@ -133,7 +153,17 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
                 .words(", constant because $T$ and $L$ are"),
         ),
     ));
+    Ok(())
+}
 
+/// The energy ellipsoid in L-space and L² − 2T I_k as a conic in the other two components
+/// (eqs 82–85); returns the conics.
+fn momentum_space(
+    d: &mut Derivation,
+    i: &Vec3,
+    two_t: &Expr,
+    l_squared: &Expr,
+) -> Result<Vec<Expr>, DeriveError> {
     // L-space: ω_i = L_i/I_i.
     let big_l = ["L1", "L2", "L3"].map(Expr::sym);
     let in_l = |e: &Expr| {
@@ -146,7 +176,7 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
     let energy = scalar(
         d,
         quantity::ENERGY_FROM_MOMENTUM,
-        Expr::mul(vec![Expr::rat(1, 2), in_l(&two_t)]),
+        Expr::mul(vec![Expr::rat(1, 2), in_l(two_t)]),
     )?;
     d.steps.push(Step::equation(
         "Energy in terms of L",
@@ -182,10 +212,14 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
             .math("2T ~ I_min <= L^2 <= 2T ~ I_max")
             .text(" (eq 85)"),
     ));
+    // L² − 2T I_k in L-space: a conic in the two components other than L_k.
+    Ok(cas::simplify_all(gap.iter().map(&in_l).collect())?)
+}
 
+/// The product of each conic's two coefficients: an ellipse where positive.
+fn polhode_conics(d: &mut Derivation, conic: &[Expr]) -> Result<Vec3, DeriveError> {
     // Near axis k, eliminate L_k: L² − 2T I_k = Σ_{i≠k} L_i² (1 − I_k/I_i), a conic in the
     // other two components. An ellipse (closed polhode) when both coefficients share a sign.
-    let conic: Vec<Expr> = cas::simplify_all(gap.iter().map(&in_l).collect())?;
     let mut product: [Expr; 3] = std::array::from_fn(|_| Expr::int(0));
     for k in 0..3 {
         let coeff = |x: usize| -> Result<Expr, DeriveError> {
@@ -227,8 +261,16 @@ pub fn poinsot(d: &mut Derivation) -> Result<(), DeriveError> {
         quantity::POLHODE_CONIC_PRODUCT,
         Value::Vector(product.clone()),
     )?;
+    Ok(product)
+}
 
-    let (closure, _) = classify(&product, "the polhode conic")?;
+/// Which polhodes close (eqs 86, 87), and the separatrix through the intermediate axis.
+fn closure_and_separatrix(
+    d: &mut Derivation,
+    conic: &[Expr],
+    product: &Vec3,
+) -> Result<(), DeriveError> {
+    let (closure, _) = classify(product, "the polhode conic")?;
     d.steps.push(Step::equation(
         "Which polhodes close",
         "rm(closure)",

@@ -24,6 +24,14 @@ pub const BODY_KINDS: &[&str] = &[
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
 
+/// Where a body is and what it may name, for its fields' errors.
+struct BodyAt<'a> {
+    start: usize,
+    field: &'a str,
+    kind: &'a str,
+    allowed: &'a BTreeSet<String>,
+}
+
 impl Validator<'_> {
     /// Every body. Its integration variables are its own: where the scene names a symbol,
     /// coordinate, definition, vector, step or step's integration variable `r`, the body
@@ -73,20 +81,56 @@ impl Validator<'_> {
         field: &str,
         allowed: &BTreeSet<String>,
     ) -> Result<Body, SceneError> {
-        let start = b.span().start;
         let rb = b.get_ref();
-        let kind = rb.kind.get_ref().as_str();
-        let req = |t: &Option<Text>, name: &str| -> Result<Expr, SceneError> {
-            match t {
-                Some(t) => self.expr(t, &format!("{field}.{name}"), allowed),
-                None => Err(self.err(
-                    start,
-                    &format!("{field}.{name}"),
-                    format!("missing field `{name}` for a {kind}"),
-                )),
-            }
+        let at = BodyAt {
+            start: b.span().start,
+            field,
+            kind: rb.kind.get_ref().as_str(),
+            allowed,
         };
-        // Fields that do not apply to this kind are errors, not silently ignored.
+        self.fields_apply(rb, &at)?;
+        let shape = self.shape(rb, &at)?;
+        let subtract = rb.subtract.unwrap_or(false);
+        // A hole carries its removed mass with a minus sign, so every sum over bodies is right.
+        let signed = |m: Expr| if subtract { Expr::negate(m) } else { m };
+        let (shape, mass) = match shape {
+            Shape::Points(pts) => {
+                let pts: Vec<(Expr, [Expr; 3])> =
+                    pts.into_iter().map(|(m, at)| (signed(m), at)).collect();
+                let mass = Expr::add(pts.iter().map(|(m, _)| m.clone()).collect());
+                (Shape::Points(pts), mass)
+            }
+            shape => (shape, signed(self.required(&rb.mass, "mass", &at)?)),
+        };
+        let mut rotations = Vec::new();
+        for (j, r) in rb.rotate.iter().enumerate() {
+            let f = format!("{field}.rotate[{j}]");
+            rotations.push((
+                self.axis(&r.get_ref().axis, &format!("{f}.axis"))?,
+                self.expr(&r.get_ref().angle, &format!("{f}.angle"), allowed)?,
+            ));
+        }
+        let shift = match &rb.shift {
+            Some(s) => self.vec3(s, &format!("{field}.shift"), allowed)?,
+            None => [Expr::int(0), Expr::int(0), Expr::int(0)],
+        };
+        Ok(Body {
+            label: rb
+                .label
+                .as_ref()
+                .map_or_else(|| shape.kind().to_string(), |l| l.get_ref().clone()),
+            shape,
+            mass,
+            subtract,
+            rotations,
+            shift,
+            variables: Vec::new(),
+        })
+    }
+
+    /// Refuses a field that does not apply to the body's kind, and a kind that is not one.
+    fn fields_apply(&self, rb: &RawBody, at: &BodyAt) -> Result<(), SceneError> {
+        let (field, kind) = (at.field, at.kind);
         let present: Vec<(&str, bool)> = vec![
             ("size", rb.size.is_some()),
             ("radius", rb.radius.is_some()),
@@ -121,62 +165,45 @@ impl Validator<'_> {
         };
         if let Some((name, _)) = present.iter().find(|(n, p)| *p && !applies.contains(n)) {
             return Err(self.err(
-                start,
+                at.start,
                 &format!("{field}.{name}"),
                 format!("field `{name}` does not apply to a {kind}"),
             ));
         }
-        // The first choice is the default; `center` is accepted for `centre`.
-        let origin_choice = |choices: &[&str]| -> Result<usize, SceneError> {
-            let Some(o) = &rb.origin else { return Ok(0) };
-            let given = match o.get_ref().as_str() {
-                "center" => "centre",
-                g => g,
-            };
-            choices.iter().position(|c| *c == given).ok_or_else(|| {
-                let quoted: Vec<String> = choices.iter().map(|c| format!("`{c}`")).collect();
-                let (last, rest) = quoted.split_last().expect("two choices or more");
-                self.err(
-                    content_start(o),
-                    &format!("{field}.origin"),
-                    format!("expected {} or {last} for a {kind}", rest.join(", ")),
-                )
-            })
+        Ok(())
+    }
+
+    /// The body's shape with its dimensions, by its kind (one that `fields_apply` let through).
+    fn shape(&self, rb: &RawBody, at: &BodyAt) -> Result<Shape, SceneError> {
+        let (field, allowed) = (at.field, at.allowed);
+        let req = |t: &Option<Text>, name: &str| self.required(t, name, at);
+        let origin = |choices: [&str; 2]| -> Result<bool, SceneError> {
+            Ok(self.origin_choice(rb, &choices, at)? == 1)
         };
-        let origin =
-            |choices: [&str; 2]| -> Result<bool, SceneError> { Ok(origin_choice(&choices)? == 1) };
         let inner = || -> Result<Option<Expr>, SceneError> {
             rb.inner_radius
                 .as_ref()
                 .map(|t| self.expr(t, &format!("{field}.inner_radius"), allowed))
                 .transpose()
         };
-        let shape = match kind {
-            "box" => {
-                let Some(size) = &rb.size else {
-                    return Err(self.err(
-                        start,
-                        &format!("{field}.size"),
-                        "missing field `size` for a box",
-                    ));
-                };
-                Shape::Box {
-                    size: self.vec3(size, &format!("{field}.size"), allowed)?,
-                    centred: origin(["corner", "centre"])?,
-                }
-            }
+        let size = |what: &str| {
+            rb.size.as_ref().ok_or_else(|| {
+                self.err(
+                    at.start,
+                    &format!("{field}.size"),
+                    format!("missing field `{what}` for a {}", at.kind),
+                )
+            })
+        };
+        Ok(match at.kind {
+            "box" => Shape::Box {
+                size: self.vec3(size("size")?, &format!("{field}.size"), allowed)?,
+                centred: origin(["corner", "centre"])?,
+            },
             "rod" => {
-                let along = match rb.along.as_ref().map(|a| a.get_ref().as_str()) {
-                    None | Some("z") => Axis::Z,
-                    Some("x") => Axis::X,
-                    Some("y") => Axis::Y,
-                    Some(_) => {
-                        return Err(self.err(
-                            content_start(rb.along.as_ref().unwrap()),
-                            &format!("{field}.along"),
-                            "expected x, y or z",
-                        ));
-                    }
+                let along = match &rb.along {
+                    None => Axis::Z,
+                    Some(a) => self.axis(a, &format!("{field}.along"))?,
                 };
                 Shape::Rod {
                     length: req(&rb.length, "length")?,
@@ -184,19 +211,10 @@ impl Validator<'_> {
                     centred: origin(["end", "centre"])?,
                 }
             }
-            "plate" => {
-                let Some(size) = &rb.size else {
-                    return Err(self.err(
-                        start,
-                        &format!("{field}.size"),
-                        "missing field `size = [a, b]` for a plate",
-                    ));
-                };
-                Shape::Plate {
-                    size: self.vec2(size, &format!("{field}.size"), allowed)?,
-                    centred: origin(["corner", "centre"])?,
-                }
-            }
+            "plate" => Shape::Plate {
+                size: self.vec2(size("size = [a, b]")?, &format!("{field}.size"), allowed)?,
+                centred: origin(["corner", "centre"])?,
+            },
             "hoop" | "ring" => Shape::Hoop {
                 radius: req(&rb.radius, "radius")?,
             },
@@ -217,7 +235,7 @@ impl Validator<'_> {
                 radius: req(&rb.radius, "radius")?,
                 height: req(&rb.height, "height")?,
                 origin: [ConeOrigin::Apex, ConeOrigin::Base, ConeOrigin::Centre]
-                    [origin_choice(&["apex", "base", "centre"])?],
+                    [self.origin_choice(rb, &["apex", "base", "centre"], at)?],
             },
             "hemisphere" => Shape::Hemisphere {
                 radius: req(&rb.radius, "radius")?,
@@ -226,73 +244,74 @@ impl Validator<'_> {
             "shell" => Shape::Shell {
                 radius: req(&rb.radius, "radius")?,
             },
-            _ => {
-                if rb.points.is_empty() {
-                    return Err(self.err(
-                        start,
-                        &format!("{field}.points"),
-                        "a point set needs at least one [[body.points]]",
-                    ));
-                }
-                let mut pts = Vec::new();
-                for (j, p) in rb.points.iter().enumerate() {
-                    let f = format!("{field}.points[{j}]");
-                    pts.push((
-                        self.expr(&p.get_ref().mass, &format!("{f}.mass"), allowed)?,
-                        self.vec3(&p.get_ref().at, &format!("{f}.at"), allowed)?,
-                    ));
-                }
-                Shape::Points(pts)
-            }
-        };
-        let subtract = rb.subtract.unwrap_or(false);
-        // A hole carries its removed mass with a minus sign, so every sum over bodies is right.
-        let signed = |m: Expr| if subtract { Expr::negate(m) } else { m };
-        let (shape, mass) = match shape {
-            Shape::Points(pts) => {
-                let pts: Vec<(Expr, [Expr; 3])> =
-                    pts.into_iter().map(|(m, at)| (signed(m), at)).collect();
-                let mass = Expr::add(pts.iter().map(|(m, _)| m.clone()).collect());
-                (Shape::Points(pts), mass)
-            }
-            shape => (shape, signed(req(&rb.mass, "mass")?)),
-        };
-        let mut rotations = Vec::new();
-        for (j, r) in rb.rotate.iter().enumerate() {
-            let f = format!("{field}.rotate[{j}]");
-            let axis = match r.get_ref().axis.get_ref().as_str() {
-                "x" => Axis::X,
-                "y" => Axis::Y,
-                "z" => Axis::Z,
-                _ => {
-                    return Err(self.err(
-                        content_start(&r.get_ref().axis),
-                        &format!("{f}.axis"),
-                        "expected x, y or z",
-                    ));
-                }
-            };
-            rotations.push((
-                axis,
-                self.expr(&r.get_ref().angle, &format!("{f}.angle"), allowed)?,
+            _ => self.point_set(rb, at)?,
+        })
+    }
+
+    /// A point set's masses and places: at least one.
+    fn point_set(&self, rb: &RawBody, at: &BodyAt) -> Result<Shape, SceneError> {
+        if rb.points.is_empty() {
+            return Err(self.err(
+                at.start,
+                &format!("{}.points", at.field),
+                "a point set needs at least one [[body.points]]",
             ));
         }
-        let shift = match &rb.shift {
-            Some(s) => self.vec3(s, &format!("{field}.shift"), allowed)?,
-            None => [Expr::int(0), Expr::int(0), Expr::int(0)],
+        let mut pts = Vec::new();
+        for (j, p) in rb.points.iter().enumerate() {
+            let f = format!("{}.points[{j}]", at.field);
+            pts.push((
+                self.expr(&p.get_ref().mass, &format!("{f}.mass"), at.allowed)?,
+                self.vec3(&p.get_ref().at, &format!("{f}.at"), at.allowed)?,
+            ));
+        }
+        Ok(Shape::Points(pts))
+    }
+
+    /// A field the body's kind needs.
+    fn required(&self, t: &Option<Text>, name: &str, at: &BodyAt) -> Result<Expr, SceneError> {
+        match t {
+            Some(t) => self.expr(t, &format!("{}.{name}", at.field), at.allowed),
+            None => Err(self.err(
+                at.start,
+                &format!("{}.{name}", at.field),
+                format!("missing field `{name}` for a {}", at.kind),
+            )),
+        }
+    }
+
+    /// Which of `choices` the body's `origin` is; the first is the default, and `center` is
+    /// accepted for `centre`.
+    fn origin_choice(
+        &self,
+        rb: &RawBody,
+        choices: &[&str],
+        at: &BodyAt,
+    ) -> Result<usize, SceneError> {
+        let Some(o) = &rb.origin else { return Ok(0) };
+        let given = match o.get_ref().as_str() {
+            "center" => "centre",
+            g => g,
         };
-        Ok(Body {
-            label: rb
-                .label
-                .as_ref()
-                .map_or_else(|| shape.kind().to_string(), |l| l.get_ref().clone()),
-            shape,
-            mass,
-            subtract,
-            rotations,
-            shift,
-            variables: Vec::new(),
+        choices.iter().position(|c| *c == given).ok_or_else(|| {
+            let quoted: Vec<String> = choices.iter().map(|c| format!("`{c}`")).collect();
+            let (last, rest) = quoted.split_last().expect("two choices or more");
+            self.err(
+                content_start(o),
+                &format!("{}.origin", at.field),
+                format!("expected {} or {last} for a {}", rest.join(", "), at.kind),
+            )
         })
+    }
+
+    /// An axis named x, y or z.
+    fn axis(&self, t: &Text, at: &str) -> Result<Axis, SceneError> {
+        match t.get_ref().as_str() {
+            "x" => Ok(Axis::X),
+            "y" => Ok(Axis::Y),
+            "z" => Ok(Axis::Z),
+            _ => Err(self.err(content_start(t), at, "expected x, y or z")),
+        }
     }
 
     /// The first rule of the bodies that `values` break, if any: sizes and masses positive
