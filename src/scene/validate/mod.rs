@@ -17,6 +17,7 @@ mod steps;
 mod symbol_names;
 mod symbols;
 mod text;
+mod variants;
 
 pub use answers::{step_has_route, step_named};
 pub use claims::PINNED_VARIANTS;
