@@ -32,7 +32,7 @@ mod step_result;
 pub(crate) mod undefined;
 pub mod variants;
 
-pub use principal::{ExactBasis, ExactEigen, ExactSpace, LAMBDA};
+pub use principal::{CubicRoots, ExactBasis, ExactEigen, ExactSpace, LAMBDA};
 
 use crate::cas::{self, CasError, DiffError, EvalError, Expr};
 use crate::model::catalogue::quantity;

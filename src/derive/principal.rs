@@ -236,24 +236,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     let lambda = Expr::sym(LAMBDA);
     let characteristic = cas::simplify(&det(&shifted(&tensor, &lambda)))?;
     let shown = |e: &Expr| e.substitute(&|s| (s == LAMBDA).then(|| Expr::sym(ev_name)));
-    let mut roots = cas::roots(&characteristic, LAMBDA)?;
-    for (value, _) in roots.roots.iter_mut() {
-        *value = pull_squares(value, &positive);
-    }
-    // The factoriser's order of factors differs between builds: put the moments in ascending
-    // order at the scene's values (those it cannot evaluate last), ties by their text.
-    let key = |e: &Expr| (eval_at(e, &scene.values).ok(), e.to_text());
-    roots.roots.sort_by(|(a, _), (b, _)| {
-        let ((va, ta), (vb, tb)) = (key(a), key(b));
-        let by_value = match (va, vb) {
-            (Some(x), Some(y)) => x.total_cmp(&y),
-            _ => std::cmp::Ordering::Equal,
-        };
-        (va.is_none().cmp(&vb.is_none()))
-            .then(by_value)
-            .then(ta.cmp(&tb))
-    });
-    roots.unsolved.sort_by_key(|(factor, _)| factor.to_text());
+    let roots = sorted_roots(scene, &characteristic, &positive)?;
     d.steps.push(characteristic_step(
         scene,
         &characteristic,
@@ -262,63 +245,13 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     )?);
     let mut spaces = Vec::new();
     for (value, multiplicity) in &roots.roots {
-        let m = shifted(&tensor, value);
-        let basis = match multiplicity {
-            1 => match first_nonzero(vec![
-                cross(&m[0], &m[1]),
-                cross(&m[0], &m[2]),
-                cross(&m[1], &m[2]),
-            ])? {
-                Some(axis) => ExactBasis::Axis(axis),
-                None => {
-                    return Err(DeriveError::Inconsistent(format!(
-                        "no eigenvector for the simple root {value}"
-                    )));
-                }
-            },
-            2 => match first_nonzero(m.to_vec())? {
-                Some(normal) => ExactBasis::PlaneNormalTo(normal),
-                None => {
-                    return Err(DeriveError::Inconsistent(format!(
-                        "I − λ𝟙 vanishes at the double root {value}"
-                    )));
-                }
-            },
-            _ => ExactBasis::All,
-        };
-        let (space, vector, why) = match &basis {
-            ExactBasis::Axis(a) => (
-                "\"axis along \" $1",
-                Some(Value::Vector(a.clone()).to_expr()),
-                cited(
-                    "principal-axis",
-                    format!("the cross product of two independent rows of $\\overleftrightarrow{{I}} - \\{ev_name}\\mathbb{{1}}$ spans its null space"),
-                ),
-            ),
-            ExactBasis::PlaneNormalTo(n) => (
-                "\"every axis\" perp $1",
-                Some(Value::Vector(n.clone()).to_expr()),
-                format!("a double root: $\\overleftrightarrow{{I}} - \\{ev_name}\\mathbb{{1}}$ has rank 1, so its null space is the plane normal to its one independent row").as_str().into(),
-            ),
-            ExactBasis::All => (
-                "\"every axis\"",
-                None,
-                "a triple root: $\\overleftrightarrow{I}$ is a multiple of the identity".into(),
-            ),
-        };
-        d.steps.push(Step::note(
-            &format!(
-                "Principal moment {} (multiplicity {multiplicity})",
-                spaces.len() + 1
-            ),
-            Formula::parse(
-                &format!("{ev_name} = $0: ~~ {space}"),
-                &[value.clone()]
-                    .into_iter()
-                    .chain(vector)
-                    .collect::<Vec<_>>(),
-            ),
-            why,
+        let basis = eigenspace(&tensor, value, *multiplicity)?;
+        d.steps.push(space_step(
+            ev_name,
+            spaces.len() + 1,
+            value,
+            *multiplicity,
+            &basis,
         ));
         spaces.push(ExactSpace {
             value: value.clone(),
@@ -347,28 +280,7 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
     // A symmetric tensor's cubic has three real roots: when it does not factor, Viète's
     // trigonometric form gives them exactly.
     let closed_form = if roots.roots.is_empty() && roots.unsolved.len() == 1 {
-        let c = cubic_roots(&tensor, &positive)?;
-        let two_rho = Expr::mul(vec![Expr::int(2), c.rho.clone()]);
-        // In the form a textbook prints: the masses cancel from cos φ, squares leave the root.
-        let parts = vec![c.centre.clone(), two_rho, c.cos_phi.clone()];
-        let signed = parts
-            .iter()
-            .flat_map(|e| e.symbols())
-            .filter(|s| !positive(s))
-            .collect();
-        let parts = cas::present_all(parts, signed, scene.declared.clone())?;
-        d.steps.push(Step::note(
-            "Principal moments in closed form",
-            Formula::parse(
-                &format!(
-                    "{ev_name}_k = $0 + big($1) cos big(varphi/3 - (2pi k)/3), ~~ k = 0, 1, 2, \
-                     quad cos varphi = $2"
-                ),
-                &parts,
-            ),
-            format!("three real roots ($\\overleftrightarrow{{I}}$ is symmetric): depress the cubic by $\\{ev_name} = t + \\operatorname{{tr}} \\overleftrightarrow{{I}}/3$ to $t^3 + pt + q$, then $t = 2\\rho\\cos\\theta$ with $\\rho = \\sqrt{{-p/3}}$ turns it into $\\cos 3\\theta = -q/(2\\rho^3)$ (Viète)").as_str(),
-        ));
-        Some(c)
+        Some(closed_form(scene, d, &tensor, &positive, ev_name)?)
     } else {
         None
     };
@@ -392,4 +304,133 @@ pub fn derive_principal(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         letter: ev_name.to_string(),
     });
     Ok(())
+}
+
+/// The characteristic polynomial's roots, squares pulled out of roots where the symbols are
+/// positive. The factoriser's order of factors differs between builds: the moments are put in
+/// ascending order at the scene's values (those it cannot evaluate last), ties by their text.
+fn sorted_roots(
+    scene: &Scene,
+    characteristic: &Expr,
+    positive: &dyn Fn(&str) -> bool,
+) -> Result<cas::Roots, DeriveError> {
+    let mut roots = cas::roots(characteristic, LAMBDA)?;
+    for (value, _) in roots.roots.iter_mut() {
+        *value = pull_squares(value, positive);
+    }
+    let key = |e: &Expr| (eval_at(e, &scene.values).ok(), e.to_text());
+    roots.roots.sort_by(|(a, _), (b, _)| {
+        let ((va, ta), (vb, tb)) = (key(a), key(b));
+        let by_value = match (va, vb) {
+            (Some(x), Some(y)) => x.total_cmp(&y),
+            _ => std::cmp::Ordering::Equal,
+        };
+        (va.is_none().cmp(&vb.is_none()))
+            .then(by_value)
+            .then(ta.cmp(&tb))
+    });
+    roots.unsolved.sort_by_key(|(factor, _)| factor.to_text());
+    Ok(roots)
+}
+
+/// The null space of I − λ𝟙 at a root of `multiplicity`: an axis, a plane, or every axis.
+fn eigenspace(tensor: &Mat3, value: &Expr, multiplicity: u32) -> Result<ExactBasis, DeriveError> {
+    let m = shifted(tensor, value);
+    Ok(match multiplicity {
+        1 => match first_nonzero(vec![
+            cross(&m[0], &m[1]),
+            cross(&m[0], &m[2]),
+            cross(&m[1], &m[2]),
+        ])? {
+            Some(axis) => ExactBasis::Axis(axis),
+            None => {
+                return Err(DeriveError::Inconsistent(format!(
+                    "no eigenvector for the simple root {value}"
+                )));
+            }
+        },
+        2 => match first_nonzero(m.to_vec())? {
+            Some(normal) => ExactBasis::PlaneNormalTo(normal),
+            None => {
+                return Err(DeriveError::Inconsistent(format!(
+                    "I − λ𝟙 vanishes at the double root {value}"
+                )));
+            }
+        },
+        _ => ExactBasis::All,
+    })
+}
+
+/// The step that states the `number`th principal moment and its eigenspace.
+fn space_step(
+    ev_name: &str,
+    number: usize,
+    value: &Expr,
+    multiplicity: u32,
+    basis: &ExactBasis,
+) -> Step {
+    let (space, vector, why) = match basis {
+        ExactBasis::Axis(a) => (
+            "\"axis along \" $1",
+            Some(Value::Vector(a.clone()).to_expr()),
+            cited(
+                "principal-axis",
+                format!("the cross product of two independent rows of $\\overleftrightarrow{{I}} - \\{ev_name}\\mathbb{{1}}$ spans its null space"),
+            ),
+        ),
+        ExactBasis::PlaneNormalTo(n) => (
+            "\"every axis\" perp $1",
+            Some(Value::Vector(n.clone()).to_expr()),
+            format!("a double root: $\\overleftrightarrow{{I}} - \\{ev_name}\\mathbb{{1}}$ has rank 1, so its null space is the plane normal to its one independent row").as_str().into(),
+        ),
+        ExactBasis::All => (
+            "\"every axis\"",
+            None,
+            "a triple root: $\\overleftrightarrow{I}$ is a multiple of the identity".into(),
+        ),
+    };
+    Step::note(
+        &format!("Principal moment {number} (multiplicity {multiplicity})"),
+        Formula::parse(
+            &format!("{ev_name} = $0: ~~ {space}"),
+            &[value.clone()]
+                .into_iter()
+                .chain(vector)
+                .collect::<Vec<_>>(),
+        ),
+        why,
+    )
+}
+
+/// The three real roots of a cubic that does not factor, in Viète's trigonometric form, and
+/// their step.
+fn closed_form(
+    scene: &Scene,
+    d: &mut Derivation,
+    tensor: &Mat3,
+    positive: &dyn Fn(&str) -> bool,
+    ev_name: &str,
+) -> Result<CubicRoots, DeriveError> {
+    let c = cubic_roots(tensor, positive)?;
+    let two_rho = Expr::mul(vec![Expr::int(2), c.rho.clone()]);
+    // In the form a textbook prints: the masses cancel from cos φ, squares leave the root.
+    let parts = vec![c.centre.clone(), two_rho, c.cos_phi.clone()];
+    let signed = parts
+        .iter()
+        .flat_map(|e| e.symbols())
+        .filter(|s| !positive(s))
+        .collect();
+    let parts = cas::present_all(parts, signed, scene.declared.clone())?;
+    d.steps.push(Step::note(
+        "Principal moments in closed form",
+        Formula::parse(
+            &format!(
+                "{ev_name}_k = $0 + big($1) cos big(varphi/3 - (2pi k)/3), ~~ k = 0, 1, 2, \
+                 quad cos varphi = $2"
+            ),
+            &parts,
+        ),
+        format!("three real roots ($\\overleftrightarrow{{I}}$ is symmetric): depress the cubic by $\\{ev_name} = t + \\operatorname{{tr}} \\overleftrightarrow{{I}}/3$ to $t^3 + pt + q$, then $t = 2\\rho\\cos\\theta$ with $\\rho = \\sqrt{{-p/3}}$ turns it into $\\cos 3\\theta = -q/(2\\rho^3)$ (Viète)").as_str(),
+    ));
+    Ok(c)
 }

@@ -194,10 +194,23 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
         source: Box::new(e),
     })?;
     let mut changes = Vec::new();
+    bless_verdicts(&mut doc, r, &mut changes)?;
+    bless_quantities(&mut doc, r, &mut changes)?;
+    bless_step_records(&mut doc, r, &mut changes)?;
+    bless_pinned_variants(&mut doc, r, &mut changes)?;
+    Ok((doc.to_string(), changes))
+}
 
-    // A `[[claim]]`'s verdict goes in its table, a step's `gives` verdict in its `[[step]]`.
+/// The verdicts that changed: a `[[claim]]`'s in its table, a step's `gives` verdict in its
+/// `[[step]]`.
+fn bless_verdicts(
+    doc: &mut DocumentMut,
+    r: &SceneReport,
+    changes: &mut Vec<Blessed>,
+) -> Result<(), BlessError> {
+    let path = &r.scene.source;
     for key in ["claim", "step"] {
-        let mut tables = array_tables(&mut doc, key).ok_or_else(|| BlessError::Shape {
+        let mut tables = array_tables(doc, key).ok_or_else(|| BlessError::Shape {
             path: path.clone(),
             field: key,
         })?;
@@ -238,7 +251,17 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
             });
         }
     }
+    Ok(())
+}
 
+/// The recorded quantities that changed, under `[expect]`; all of them in a new `[expect]`
+/// where the scene has none.
+fn bless_quantities(
+    doc: &mut DocumentMut,
+    r: &SceneReport,
+    changes: &mut Vec<Blessed>,
+) -> Result<(), BlessError> {
+    let path = &r.scene.source;
     let quantities = &r.derivation.quantities;
     match doc.get_mut("expect") {
         Some(item) => {
@@ -296,9 +319,17 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
             }
         }
     }
+    Ok(())
+}
 
-    // Each step's results under its name, after the quantities: `check` reports a change at
-    // the step's line.
+/// Each step's results under its name, after the quantities: `check` reports a change at the
+/// step's line.
+fn bless_step_records(
+    doc: &mut DocumentMut,
+    r: &SceneReport,
+    changes: &mut Vec<Blessed>,
+) -> Result<(), BlessError> {
+    let path = &r.scene.source;
     let steps: Vec<_> = r
         .verification
         .step_records
@@ -306,7 +337,7 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
         .filter(|s| !s.unchanged())
         .collect();
     if !steps.is_empty() {
-        let table = expect_table(&mut doc, path)?;
+        let table = expect_table(doc, path)?;
         for s in steps {
             if s.derived.is_empty() {
                 table.remove(&s.step);
@@ -331,10 +362,18 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
             });
         }
     }
+    Ok(())
+}
 
-    // The problem's variants, pinned: one hash a variant, so that `check` sees a sheet change.
+/// The problem's variants, pinned: one hash a variant, so that `check` sees a sheet change.
+fn bless_pinned_variants(
+    doc: &mut DocumentMut,
+    r: &SceneReport,
+    changes: &mut Vec<Blessed>,
+) -> Result<(), BlessError> {
+    let path = &r.scene.source;
     if let Some(pin) = r.verification.pin.as_ref().filter(|p| !p.unchanged()) {
-        let table = expect_table(&mut doc, path)?;
+        let table = expect_table(doc, path)?;
         set_keeping_decor(table, PINNED_VARIANTS, &pin.derived.join(" "));
         changes.push(Blessed {
             line: pin.line,
@@ -348,7 +387,7 @@ pub fn blessed_text(text: &str, r: &SceneReport) -> Result<(String, Vec<Blessed>
             },
         });
     }
-    Ok((doc.to_string(), changes))
+    Ok(())
 }
 
 /// The scene's `[expect]`, made (with its comment) where there is none.
