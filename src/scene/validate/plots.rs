@@ -78,73 +78,7 @@ impl Validator<'_> {
                     "`over`, `range` and `samples` belong to a tensor-sweep",
                 ));
             }
-            let inertia = match rp.inertia.as_ref() {
-                Some(v) if v.get_ref().as_str() == Some("principal") => FreeInertia::Principal,
-                _ => {
-                    let inertia = self.free_body_triple(p, field, "inertia", symbols, values)?;
-                    crate::model::moments::Moments::new(inertia).map_err(|m| {
-                        self.err(
-                            rp.inertia.as_ref().map_or(start, |v| v.span().start),
-                            &format!("{field}.inertia"),
-                            m.to_string(),
-                        )
-                    })?;
-                    FreeInertia::Given(inertia)
-                }
-            };
-            let omega = self.free_body_triple(p, field, "omega", symbols, values)?;
-            let omega_at = rp.omega.as_ref().map_or(start, |v| v.span().start);
-            if omega.iter().all(|x| *x == 0.0) {
-                return Err(self.err(
-                    omega_at,
-                    &format!("{field}.omega"),
-                    "omega must not be zero",
-                ));
-            }
-            // The scene's own moments are checked against ω(0) when they are known (figures).
-            if let FreeInertia::Given(inertia) = inertia {
-                let moments = crate::model::moments::Moments(inertia);
-                let w0 = nalgebra::Vector3::from(omega);
-                if let Some(why) = crate::model::moments::beyond_double_precision(&moments, &w0) {
-                    return Err(self.err(omega_at, &format!("{field}.omega"), why.to_string()));
-                }
-            }
-            let t = rp.t.as_ref().ok_or_else(|| {
-                self.err(
-                    start,
-                    &format!("{field}.t"),
-                    format!("a {} plot needs `t`, the end time", kind.name()),
-                )
-            })?;
-            if !(t.get_ref().is_finite() && *t.get_ref() > 0.0) {
-                return Err(self.err(
-                    t.span().start,
-                    &format!("{field}.t"),
-                    "the end time must be a positive number",
-                ));
-            }
-            // The plots integrate with fixed steps of about 0.05 (a quarter of that at
-            // reference fidelity) and draw a few hundred points: these bounds keep every plot
-            // within a few million steps and its curves readable.
-            let turns = t.get_ref() * omega.iter().fold(0.0f64, |m, w| m.max(w.abs()));
-            if *t.get_ref() > MAX_PLOT_TIME || turns > MAX_PLOT_RADIANS {
-                return Err(self.err(
-                    t.span().start,
-                    &format!("{field}.t"),
-                    format!(
-                        "t = {} (t·|ω| = {turns:.3e} radians) is beyond what a plot integrates: \
-                         keep t ≤ {MAX_PLOT_TIME:e} and t·|ω| ≤ {MAX_PLOT_RADIANS:e}, or use \
-                         `mechbook spin` for long runs",
-                        t.get_ref()
-                    ),
-                ));
-            }
-            return Ok(PlotRequest::FreeBody {
-                kind: *kind,
-                inertia,
-                omega,
-                t: *t.get_ref(),
-            });
+            return self.free_body_plot(p, field, *kind, symbols, values);
         }
         if body_fields {
             return Err(self.err(
@@ -154,30 +88,7 @@ impl Validator<'_> {
             ));
         }
         let request = match rp.kind.get_ref().as_str() {
-            "tensor-sweep" => {
-                let over = rp.over.as_ref().ok_or_else(|| {
-                    self.err(
-                        start,
-                        &format!("{field}.over"),
-                        "a tensor-sweep needs `over`, the symbol on the x axis",
-                    )
-                })?;
-                if !symbols.contains_key(over.get_ref()) {
-                    return Err(self.err(
-                        content_start(over),
-                        &format!("{field}.over"),
-                        format!("`{}` is not a declared symbol", over.get_ref()),
-                    ));
-                }
-                let (from, to) = self.plot_range(p, field, "a tensor-sweep")?;
-                let samples = self.plot_samples(p, field, 7)?;
-                PlotRequest::TensorSweep {
-                    over: over.get_ref().clone(),
-                    from,
-                    to,
-                    samples,
-                }
-            }
+            "tensor-sweep" => self.tensor_sweep(p, field, symbols)?,
             "convergence" => PlotRequest::Convergence,
             "principal-axes" => PlotRequest::PrincipalAxes,
             other => {
@@ -206,6 +117,120 @@ impl Validator<'_> {
             ));
         }
         Ok(request)
+    }
+
+    /// A plot of the free body's motion: its moments (given, or the scene's principal ones),
+    /// ω(0) and the end time, each within what a plot integrates.
+    fn free_body_plot(
+        &self,
+        p: &Spanned<RawPlot>,
+        field: &str,
+        kind: FreeBodyPlot,
+        symbols: &BTreeMap<String, String>,
+        values: &BTreeMap<String, f64>,
+    ) -> Result<PlotRequest, SceneError> {
+        let rp = p.get_ref();
+        let start = p.span().start;
+        let inertia = match rp.inertia.as_ref() {
+            Some(v) if v.get_ref().as_str() == Some("principal") => FreeInertia::Principal,
+            _ => {
+                let inertia = self.free_body_triple(p, field, "inertia", symbols, values)?;
+                crate::model::moments::Moments::new(inertia).map_err(|m| {
+                    self.err(
+                        rp.inertia.as_ref().map_or(start, |v| v.span().start),
+                        &format!("{field}.inertia"),
+                        m.to_string(),
+                    )
+                })?;
+                FreeInertia::Given(inertia)
+            }
+        };
+        let omega = self.free_body_triple(p, field, "omega", symbols, values)?;
+        let omega_at = rp.omega.as_ref().map_or(start, |v| v.span().start);
+        if omega.iter().all(|x| *x == 0.0) {
+            return Err(self.err(
+                omega_at,
+                &format!("{field}.omega"),
+                "omega must not be zero",
+            ));
+        }
+        // The scene's own moments are checked against ω(0) when they are known (figures).
+        if let FreeInertia::Given(inertia) = inertia {
+            let moments = crate::model::moments::Moments(inertia);
+            let w0 = nalgebra::Vector3::from(omega);
+            if let Some(why) = crate::model::moments::beyond_double_precision(&moments, &w0) {
+                return Err(self.err(omega_at, &format!("{field}.omega"), why.to_string()));
+            }
+        }
+        let t = rp.t.as_ref().ok_or_else(|| {
+            self.err(
+                start,
+                &format!("{field}.t"),
+                format!("a {} plot needs `t`, the end time", kind.name()),
+            )
+        })?;
+        if !(t.get_ref().is_finite() && *t.get_ref() > 0.0) {
+            return Err(self.err(
+                t.span().start,
+                &format!("{field}.t"),
+                "the end time must be a positive number",
+            ));
+        }
+        // The plots integrate with fixed steps of about 0.05 (a quarter of that at
+        // reference fidelity) and draw a few hundred points: these bounds keep every plot
+        // within a few million steps and its curves readable.
+        let turns = t.get_ref() * omega.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+        if *t.get_ref() > MAX_PLOT_TIME || turns > MAX_PLOT_RADIANS {
+            return Err(self.err(
+                t.span().start,
+                &format!("{field}.t"),
+                format!(
+                    "t = {} (t·|ω| = {turns:.3e} radians) is beyond what a plot integrates: \
+                     keep t ≤ {MAX_PLOT_TIME:e} and t·|ω| ≤ {MAX_PLOT_RADIANS:e}, or use \
+                     `mechbook spin` for long runs",
+                    t.get_ref()
+                ),
+            ));
+        }
+        Ok(PlotRequest::FreeBody {
+            kind,
+            inertia,
+            omega,
+            t: *t.get_ref(),
+        })
+    }
+
+    /// A tensor-sweep over a declared symbol's range.
+    fn tensor_sweep(
+        &self,
+        p: &Spanned<RawPlot>,
+        field: &str,
+        symbols: &BTreeMap<String, String>,
+    ) -> Result<PlotRequest, SceneError> {
+        let start = p.span().start;
+        let rp = p.get_ref();
+        let over = rp.over.as_ref().ok_or_else(|| {
+            self.err(
+                start,
+                &format!("{field}.over"),
+                "a tensor-sweep needs `over`, the symbol on the x axis",
+            )
+        })?;
+        if !symbols.contains_key(over.get_ref()) {
+            return Err(self.err(
+                content_start(over),
+                &format!("{field}.over"),
+                format!("`{}` is not a declared symbol", over.get_ref()),
+            ));
+        }
+        let (from, to) = self.plot_range(p, field, "a tensor-sweep")?;
+        let samples = self.plot_samples(p, field, 7)?;
+        Ok(PlotRequest::TensorSweep {
+            over: over.get_ref().clone(),
+            from,
+            to,
+            samples,
+        })
     }
 
     /// A plot's `range = [from, to]`: two expressions of numbers and π, from < to.
