@@ -15,11 +15,11 @@ use std::collections::BTreeMap;
 /// extrapolation (error O(h⁴) ≈ 1e-12 of the scale).
 const H: f64 = 1e-3;
 
+/// A route's value at the names' values.
+type AtValues<'a> = dyn Fn(&BTreeMap<String, f64>) -> Result<f64, FigureError> + 'a;
+
 /// How the dots are computed, and the function they evaluate at a value of `over`.
-type Route<'a> = (
-    String,
-    Box<dyn Fn(&BTreeMap<String, f64>) -> Result<f64, FigureError> + 'a>,
-);
+type Route<'a> = (String, Box<AtValues<'a>>);
 
 /// The second route of a step, where it has one.
 fn second_route<'a>(scene: &'a Scene, d: &'a Derivation, step: &str) -> Option<Route<'a>> {
@@ -89,64 +89,29 @@ pub(super) fn expression(
             })?;
     let mut env = scene.values.clone();
     env.extend(at.iter().map(|(k, v)| (k.clone(), *v)));
-    let with = |x: f64| {
-        let mut e = env.clone();
-        e.insert(over.to_string(), x);
-        e
+    let curve_of = CurveOf {
+        exact,
+        env: &env,
+        step,
+        over,
+        from,
+        to,
     };
-    let located = |e: FigureError| match e {
-        FigureError::Eval(crate::cas::EvalError::NoValue(name))
-        | FigureError::NoValueAt { name, .. } => FigureError::NoValueAt {
-            step: step.to_string(),
-            name,
-        },
-        other => other,
-    };
-    let value = |x: f64| -> Result<f64, FigureError> {
-        let env = with(x);
-        Ok(exact.eval(&|n| env.get(n).copied().filter(|_| n != "pi"))?)
-    };
-    let x_at = |k: usize, n: usize| from + (to - from) * k as f64 / (n - 1) as f64;
-    let mut curve = Vec::new();
-    let mut poles = 0;
-    for k in 0..CURVE_POINTS {
-        let x = x_at(k, CURVE_POINTS);
-        match value(x).map_err(located)? {
-            y if y.is_finite() => curve.push((x, y)),
-            _ => poles += 1,
-        }
-    }
+    let Sampled {
+        curve,
+        poles,
+        low,
+        high,
+    } = curve_of.sample()?;
     let started = std::time::Instant::now();
-    let mut dots = Vec::new();
-    let mut worst: f64 = 0.0;
     let route = second_route(scene, d, step);
-    if let Some((_, f)) = &route {
-        for k in 0..samples {
-            let x = x_at(k, samples);
-            let (a, b) = (f(&with(x)).map_err(located)?, value(x).map_err(located)?);
-            if a.is_finite() && b.is_finite() {
-                worst = worst.max((a - b).abs() / a.abs().max(b.abs()).max(1.0));
-                dots.push((x, a));
-            }
-        }
-    }
+    let (dots, worst) = match &route {
+        Some((_, f)) => curve_of.second_route(f.as_ref(), samples)?,
+        None => (Vec::new(), 0.0),
+    };
     let seconds = started.elapsed().as_secs_f64();
-    let (low, high) = curve.iter().fold(
-        ((f64::NAN, f64::INFINITY), (f64::NAN, f64::NEG_INFINITY)),
-        |(lo, hi), &(x, y)| {
-            (
-                if y < lo.1 { (x, y) } else { lo },
-                if y > hi.1 { (x, y) } else { hi },
-            )
-        },
-    );
-    let fixed: Vec<String> = env
-        .iter()
-        .filter(|(k, _)| k.as_str() != over && exact.symbols().contains(k))
-        .map(|(k, v)| format!("{} = {v}", super::plain_name(k)))
-        .collect();
     // The file keeps the names as written; the reader sees them as symbols.
-    let file_name = format!("{step}-vs-{over}");
+    let slug = slug(&format!("{step}-vs-{over}"));
     let (step, over) = (&super::plain_name(step), &super::plain_name(over));
     let dotted = match &route {
         Some((method, _)) => format!(
@@ -158,28 +123,7 @@ pub(super) fn expression(
                  derivation."
             .to_string(),
     };
-    let desc = format!(
-        "{step} against {over} from {} to {}{}. Lowest {:.4} at {over} = {:.4}, highest {:.4} at \
-         {over} = {:.4}.{}{dotted}",
-        trim_num(from),
-        trim_num(to),
-        if fixed.is_empty() {
-            String::new()
-        } else {
-            format!(", at {}", fixed.join(", "))
-        },
-        low.1,
-        low.0,
-        high.1,
-        high.0,
-        if poles > 0 {
-            format!(
-                " {poles} of {CURVE_POINTS} points have no finite value (a pole) and are left out."
-            )
-        } else {
-            String::new()
-        },
-    );
+    let desc = curve_of.description((low, high), poles, &dotted);
     let legend = free_corner(&curve, (from, to), (low.1, high.1));
     let mut series = vec![Series {
         name: format!("{step} exact"),
@@ -205,16 +149,6 @@ pub(super) fn expression(
             seconds,
         });
     }
-    let slug: String = file_name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '-'
-            }
-        })
-        .collect();
     Ok(Figure {
         slug,
         title: format!("{step} against {over}"),
@@ -229,6 +163,166 @@ pub(super) fn expression(
         legend,
         accuracy,
     })
+}
+
+/// The exact curve, and where it is lowest and highest.
+struct Sampled {
+    curve: Vec<(f64, f64)>,
+    poles: usize,
+    low: (f64, f64),
+    high: (f64, f64),
+}
+
+/// A step's exact result as a function of `over` from `from` to `to`, the other names at
+/// their values in `env`.
+struct CurveOf<'a> {
+    exact: &'a Expr,
+    env: &'a BTreeMap<String, f64>,
+    step: &'a str,
+    over: &'a str,
+    from: f64,
+    to: f64,
+}
+
+impl CurveOf<'_> {
+    /// The `k`th of `n` evenly spaced values of `over`, ends included.
+    fn x_at(&self, k: usize, n: usize) -> f64 {
+        self.from + (self.to - self.from) * k as f64 / (n - 1) as f64
+    }
+
+    /// The exact result at [`CURVE_POINTS`] values of `over`, its poles left out, and its
+    /// lowest and highest points.
+    fn sample(&self) -> Result<Sampled, FigureError> {
+        let mut curve = Vec::new();
+        let mut poles = 0;
+        for k in 0..CURVE_POINTS {
+            let x = self.x_at(k, CURVE_POINTS);
+            match self.value(x)? {
+                y if y.is_finite() => curve.push((x, y)),
+                _ => poles += 1,
+            }
+        }
+        let (low, high) = curve.iter().fold(
+            ((f64::NAN, f64::INFINITY), (f64::NAN, f64::NEG_INFINITY)),
+            |(lo, hi), &(x, y)| {
+                (
+                    if y < lo.1 { (x, y) } else { lo },
+                    if y > hi.1 { (x, y) } else { hi },
+                )
+            },
+        );
+        Ok(Sampled {
+            curve,
+            poles,
+            low,
+            high,
+        })
+    }
+
+    /// What the figure shows, in words: the range, the other names' values, the lowest and
+    /// highest points, the poles, and the dots (`dotted`).
+    fn description(
+        &self,
+        (low, high): ((f64, f64), (f64, f64)),
+        poles: usize,
+        dotted: &str,
+    ) -> String {
+        let fixed: Vec<String> = self
+            .env
+            .iter()
+            .filter(|(k, _)| k.as_str() != self.over && self.exact.symbols().contains(k))
+            .map(|(k, v)| format!("{} = {v}", super::plain_name(k)))
+            .collect();
+        let (step, over) = (&super::plain_name(self.step), &super::plain_name(self.over));
+        let (from, to) = (self.from, self.to);
+        format!(
+            "{step} against {over} from {} to {}{}. Lowest {:.4} at {over} = {:.4}, highest {:.4} at \
+             {over} = {:.4}.{}{dotted}",
+            trim_num(from),
+            trim_num(to),
+            if fixed.is_empty() {
+                String::new()
+            } else {
+                format!(", at {}", fixed.join(", "))
+            },
+            low.1,
+            low.0,
+            high.1,
+            high.0,
+            if poles > 0 {
+                format!(
+                    " {poles} of {CURVE_POINTS} points have no finite value (a pole) and are left out."
+                )
+            } else {
+                String::new()
+            },
+        )
+    }
+
+    /// The names' values with `over` at `x`.
+    fn env_at(&self, x: f64) -> BTreeMap<String, f64> {
+        let mut e = self.env.clone();
+        e.insert(self.over.to_string(), x);
+        e
+    }
+
+    /// A missing value, said with the step it is missing from.
+    fn located(&self, e: FigureError) -> FigureError {
+        match e {
+            FigureError::Eval(crate::cas::EvalError::NoValue(name))
+            | FigureError::NoValueAt { name, .. } => FigureError::NoValueAt {
+                step: self.step.to_string(),
+                name,
+            },
+            other => other,
+        }
+    }
+
+    fn value(&self, x: f64) -> Result<f64, FigureError> {
+        let env = self.env_at(x);
+        let exact = || -> Result<f64, FigureError> {
+            Ok(self
+                .exact
+                .eval(&|n| env.get(n).copied().filter(|_| n != "pi"))?)
+        };
+        exact().map_err(|e| self.located(e))
+    }
+
+    /// The second route at `samples` values of `over` where both are finite, and its largest
+    /// distance (relative, at least to 1) from the exact result.
+    fn second_route(
+        &self,
+        f: &AtValues<'_>,
+        samples: usize,
+    ) -> Result<(Vec<(f64, f64)>, f64), FigureError> {
+        let mut dots = Vec::new();
+        let mut worst: f64 = 0.0;
+        for k in 0..samples {
+            let x = self.x_at(k, samples);
+            let (a, b) = (
+                f(&self.env_at(x)).map_err(|e| self.located(e))?,
+                self.value(x)?,
+            );
+            if a.is_finite() && b.is_finite() {
+                worst = worst.max((a - b).abs() / a.abs().max(b.abs()).max(1.0));
+                dots.push((x, a));
+            }
+        }
+        Ok((dots, worst))
+    }
+}
+
+/// A file's name made of letters, digits, `-` and `_`.
+fn slug(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect()
 }
 
 /// The first corner the curve leaves empty (the outer third across, quarter up or down), so
