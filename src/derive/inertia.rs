@@ -5,7 +5,7 @@ use super::algebra::{
     Mat3, Value, Vec3, inertia_kernel, mat_add, mat_scale, scale_vec, sub_vec, sum_mats, sum_vecs,
     zero3,
 };
-use super::bodies::{MassModel, mass_model, place};
+use super::bodies::{Continuum, MassModel, mass_model, place};
 use super::{
     Derivation, DeriveError, Step, cited, simplify_mat, simplify_value, simplify_vec, values_equal,
 };
@@ -131,130 +131,173 @@ fn body_part(
 ) -> Result<Part, DeriveError> {
     let label = format!("{} (body {})", body.label, index + 1);
     match mass_model(body) {
-        MassModel::Points(points) => {
-            let placed: Vec<(Expr, Vec3)> = points
-                .iter()
-                .map(|(m, r)| (m.clone(), place(body, r)))
-                .collect();
-            let tensor = sum_mats(placed.iter().map(|(m, r)| mat_scale(m, &inertia_kernel(r))));
-            let tensor = simplify_mat(&tensor)?;
-            d.steps.push(
-                Step::equation(
-                    &format!("{label}: sum over the point masses"),
-                    "I",
-                    &Value::Matrix(tensor.clone()),
-                    cited(
-                        "point-tensor",
-                        Prose::default()
-                            .text("the tensor's integral replaced by ")
-                            .math("sum_i m_i big(r_i^2 one - vec(r_i) vec(r_i)^T)"),
-                    ),
-                )
-                .working(),
-            );
-            let moment =
-                first_moment.then(|| sum_vecs(placed.iter().map(|(m, r)| scale_vec(m, r))));
-            Ok(Part {
-                mass: body.mass.clone(),
-                tensor,
-                first_moment: moment,
-            })
-        }
-        MassModel::Continuum(c) => {
-            let r = simplify_vec(&place(body, &c.local))?;
-            let position = Value::Vector(r.clone());
-            d.steps.push(
-                Step::equation(
-                    &format!("{label}: position of a mass element"),
-                    "vec(r)",
-                    &position,
-                    &if body.rotations.is_empty() {
-                        "the body's own parametrisation".to_string()
-                    } else {
-                        "the body's parametrisation, rotated as the scene says, then shifted"
-                            .to_string()
-                    },
-                )
-                .working(),
-            );
-            let shown = cas::simplify_all(vec![c.density.clone(), c.jacobian.clone()])?;
-            let (density, jacobian) = (&shown[0], &shown[1]);
-            d.steps.push(Step::note(
-                &format!("{label}: mass element"),
-                Formula::parse(
-                    "dm = $0 · $1, quad $0 = $2",
-                    &[Expr::sym(c.density_name), jacobian.clone(), density.clone()],
-                ),
-                "uniform density: the mass divided by the length, area or volume; times the Jacobian",
-            )
-            .working());
-            let kernel = inertia_kernel(&r);
-            let integrands: Vec<Expr> = UNIQUE
-                .iter()
-                .map(|(i, j)| Expr::mul(vec![c.density_jacobian.clone(), kernel[*i][*j].clone()]))
-                .collect();
-            let integrands = cas::simplify_all(integrands)?;
+        MassModel::Points(points) => point_part(d, body, &label, &points, first_moment),
+        MassModel::Continuum(c) => continuum_part(d, body, index, &label, &c, first_moment),
+    }
+}
 
-            // ∫dm must give back the mass: a check of the parametrisation, not a formality.
-            let mut jobs = vec![c.density_jacobian.clone()];
-            jobs.extend(integrands.iter().cloned());
-            if first_moment {
-                jobs.extend(
-                    r.iter()
-                        .map(|x| Expr::mul(vec![c.density_jacobian.clone(), x.clone()])),
-                );
-            }
-            let results = cas::simplify_all(cas::integrate_all(jobs, c.domain.clone())?)?;
-            if !cas::is_zero_all(vec![Expr::minus(results[0].clone(), body.mass.clone())])?[0] {
-                return Err(DeriveError::Inconsistent(format!(
-                    "∫dm over {} gives {}, not the mass {}",
-                    body.label, results[0], body.mass
-                )));
-            }
-            d.steps.push(
-                Step::equation(
-                    &format!("{label}: total mass"),
-                    "int dm",
-                    &Value::Scalar(results[0].clone()),
-                    why_integrate(&c.domain),
-                )
-                .working(),
-            );
-            for (k, (i, j)) in UNIQUE.iter().enumerate() {
-                let name = format!("I{}{}", AXES[*i], AXES[*j]);
-                // Titled as a page sets it (I_xx typeset, not the name `Ixx`).
-                let what = if i == j {
-                    "moment"
-                } else {
-                    "product of inertia"
-                };
-                let typeset = format!("${}_{{{}}}$", &name[..1], &name[1..]);
-                d.steps.push(
-                    Step::note(
-                        &format!("{label}: the {what} {typeset}"),
-                        integral_formula(
-                            Formula::parse(&format!("{}_{}", &name[..1], &name[1..]), &[]),
-                            &integrands[k],
-                            &c.domain,
-                            &results[k + 1],
-                        ),
-                        why_integrate(&c.domain),
-                    )
-                    .working(),
-                );
-            }
-            if index == 0 {
-                // The first body's integrand and position, for claims about the notes' integrals.
-                d.set(quantity::INTEGRAND, Value::Matrix(symmetric(&integrands)))?;
-                d.set(quantity::POSITION, position)?;
-            }
-            let moment = first_moment.then(|| std::array::from_fn(|i| results[7 + i].clone()));
-            Ok(Part {
-                mass: results[0].clone(),
-                tensor: symmetric(&results[1..7]),
-                first_moment: moment,
-            })
-        }
+/// A point set's tensor: the sum over its masses.
+fn point_part(
+    d: &mut Derivation,
+    body: &Body,
+    label: &str,
+    points: &[(Expr, Vec3)],
+    first_moment: bool,
+) -> Result<Part, DeriveError> {
+    let placed: Vec<(Expr, Vec3)> = points
+        .iter()
+        .map(|(m, r)| (m.clone(), place(body, r)))
+        .collect();
+    let tensor = sum_mats(placed.iter().map(|(m, r)| mat_scale(m, &inertia_kernel(r))));
+    let tensor = simplify_mat(&tensor)?;
+    d.steps.push(
+        Step::equation(
+            &format!("{label}: sum over the point masses"),
+            "I",
+            &Value::Matrix(tensor.clone()),
+            cited(
+                "point-tensor",
+                Prose::default()
+                    .text("the tensor's integral replaced by ")
+                    .math("sum_i m_i big(r_i^2 one - vec(r_i) vec(r_i)^T)"),
+            ),
+        )
+        .working(),
+    );
+    let moment = first_moment.then(|| sum_vecs(placed.iter().map(|(m, r)| scale_vec(m, r))));
+    Ok(Part {
+        mass: body.mass.clone(),
+        tensor,
+        first_moment: moment,
+    })
+}
+
+/// A continuum's tensor: the integrals of each entry over its domain, with ∫dm checked against
+/// its mass.
+fn continuum_part(
+    d: &mut Derivation,
+    body: &Body,
+    index: usize,
+    label: &str,
+    c: &Continuum,
+    first_moment: bool,
+) -> Result<Part, DeriveError> {
+    let r = simplify_vec(&place(body, &c.local))?;
+    let position = element_steps(d, body, label, c, &r)?;
+    let kernel = inertia_kernel(&r);
+    let integrands: Vec<Expr> = UNIQUE
+        .iter()
+        .map(|(i, j)| Expr::mul(vec![c.density_jacobian.clone(), kernel[*i][*j].clone()]))
+        .collect();
+    let integrands = cas::simplify_all(integrands)?;
+
+    // ∫dm must give back the mass: a check of the parametrisation, not a formality.
+    let mut jobs = vec![c.density_jacobian.clone()];
+    jobs.extend(integrands.iter().cloned());
+    if first_moment {
+        jobs.extend(
+            r.iter()
+                .map(|x| Expr::mul(vec![c.density_jacobian.clone(), x.clone()])),
+        );
+    }
+    let results = cas::simplify_all(cas::integrate_all(jobs, c.domain.clone())?)?;
+    if !cas::is_zero_all(vec![Expr::minus(results[0].clone(), body.mass.clone())])?[0] {
+        return Err(DeriveError::Inconsistent(format!(
+            "∫dm over {} gives {}, not the mass {}",
+            body.label, results[0], body.mass
+        )));
+    }
+    d.steps.push(
+        Step::equation(
+            &format!("{label}: total mass"),
+            "int dm",
+            &Value::Scalar(results[0].clone()),
+            why_integrate(&c.domain),
+        )
+        .working(),
+    );
+    entry_steps(d, label, &integrands, &results, &c.domain);
+    if index == 0 {
+        // The first body's integrand and position, for claims about the notes' integrals.
+        d.set(quantity::INTEGRAND, Value::Matrix(symmetric(&integrands)))?;
+        d.set(quantity::POSITION, position)?;
+    }
+    let moment = first_moment.then(|| std::array::from_fn(|i| results[7 + i].clone()));
+    Ok(Part {
+        mass: results[0].clone(),
+        tensor: symmetric(&results[1..7]),
+        first_moment: moment,
+    })
+}
+
+/// The steps that place a mass element and give its mass; the element's position.
+fn element_steps(
+    d: &mut Derivation,
+    body: &Body,
+    label: &str,
+    c: &Continuum,
+    r: &Vec3,
+) -> Result<Value, DeriveError> {
+    let position = Value::Vector(r.clone());
+    d.steps.push(
+        Step::equation(
+            &format!("{label}: position of a mass element"),
+            "vec(r)",
+            &position,
+            &if body.rotations.is_empty() {
+                "the body's own parametrisation".to_string()
+            } else {
+                "the body's parametrisation, rotated as the scene says, then shifted".to_string()
+            },
+        )
+        .working(),
+    );
+    let shown = cas::simplify_all(vec![c.density.clone(), c.jacobian.clone()])?;
+    let (density, jacobian) = (&shown[0], &shown[1]);
+    d.steps.push(
+        Step::note(
+            &format!("{label}: mass element"),
+            Formula::parse(
+                "dm = $0 · $1, quad $0 = $2",
+                &[Expr::sym(c.density_name), jacobian.clone(), density.clone()],
+            ),
+            "uniform density: the mass divided by the length, area or volume; times the Jacobian",
+        )
+        .working(),
+    );
+    Ok(position)
+}
+
+/// One step a unique entry of the tensor: its integral and value.
+fn entry_steps(
+    d: &mut Derivation,
+    label: &str,
+    integrands: &[Expr],
+    results: &[Expr],
+    domain: &[Integral],
+) {
+    for (k, (i, j)) in UNIQUE.iter().enumerate() {
+        let name = format!("I{}{}", AXES[*i], AXES[*j]);
+        // Titled as a page sets it (I_xx typeset, not the name `Ixx`).
+        let what = if i == j {
+            "moment"
+        } else {
+            "product of inertia"
+        };
+        let typeset = format!("${}_{{{}}}$", &name[..1], &name[1..]);
+        d.steps.push(
+            Step::note(
+                &format!("{label}: the {what} {typeset}"),
+                integral_formula(
+                    Formula::parse(&format!("{}_{}", &name[..1], &name[1..]), &[]),
+                    &integrands[k],
+                    domain,
+                    &results[k + 1],
+                ),
+                why_integrate(domain),
+            )
+            .working(),
+        );
     }
 }
 

@@ -98,74 +98,10 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
             "Euler's equations with $\\vec N = 0$, solved for the rates",
         ),
     ));
-    let name = |k: usize| format!("w{}", k + 1);
     let mut omega_sq: [Expr; 3] = std::array::from_fn(|_| Expr::int(0));
     let mut ratio: [Expr; 3] = std::array::from_fn(|_| Expr::int(0));
     for k in 0..3 {
-        let (a, b) = ((k + 1) % 3, (k + 2) % 3);
-        // First order in the small components ω_a, ω_b: the Jacobian at ω = ω_k e_k.
-        let on_axis =
-            |e: &Expr| e.substitute(&|s| (s == name(a) || s == name(b)).then(|| Expr::int(0)));
-        let partial = |f: &Expr, x: usize| -> Result<Expr, DeriveError> {
-            Ok(on_axis(&f.diff(&name(x)).map_err(DeriveError::from)?))
-        };
-        let entries = vec![
-            partial(&r[a], a)?,
-            partial(&r[a], b)?,
-            partial(&r[b], a)?,
-            partial(&r[b], b)?,
-            partial(&r[k], a)?,
-            partial(&r[k], b)?,
-        ];
-        let j = cas::simplify_all(entries)?;
-        if !(j[0].is_zero() && j[3].is_zero() && j[4].is_zero() && j[5].is_zero()) {
-            return Err(DeriveError::Inconsistent(format!(
-                "the linearisation about axis {} has unexpected terms",
-                k + 1
-            )));
-        }
-        let (jab, jba) = (j[1].clone(), j[2].clone());
-        let shown = cas::factor_all(vec![jab.clone(), jba.clone()])?;
-        let (ta, tb) = (a + 1, b + 1);
-        d.steps.push(Step::note(
-            &format!("Linearised about axis {}", k + 1),
-            Formula::parse(
-                &format!(
-                    "dot(omega_{ta}) = $0 ~ omega_{tb}, quad dot(omega_{tb}) = $1 ~ omega_{ta}"
-                ),
-                &shown,
-            ),
-            format!(
-                "$\\vec\\omega = \\omega_{} \\hat e_{}$ plus small $\\omega_{ta}$, $\\omega_{tb}$: keep \
-                 first-order terms; $\\dot\\omega_{}$, of order $\\omega_{ta}\\omega_{tb}$, is second \
-                 order and dropped",
-                k + 1,
-                k + 1,
-                k + 1
-            ),
-        ));
-        // ω_a = a cos(Ωt + θ), ω_b = b sin(Ωt + θ): −aΩ = J_ab b and bΩ = J_ba a.
-        let both = cas::simplify_all(vec![
-            Expr::negate(Expr::mul(vec![jab.clone(), jba.clone()])),
-            Expr::negate(Expr::over(jab, jba)),
-        ])?;
-        omega_sq[k] = both[0].clone();
-        ratio[k] = both[1].clone();
-        d.steps.push(Step::equation(
-            &format!("Frequency about axis {}", k + 1),
-            &format!("Omega_{}^2", k + 1),
-            &factored(&Value::Scalar(omega_sq[k].clone()))?,
-            {
-                let ratio = factored(&Value::Scalar(ratio[k].clone()))?;
-                Prose::default()
-                    .words(&format!(
-                        "$\\omega_{ta} = a\\cos(\\Omega t + \\theta)$, \
-                         $\\omega_{tb} = b\\sin(\\Omega t + \\theta)$ solve the pair when \
-                         $\\Omega^2$ is minus the product of the two coefficients; then "
-                    ))
-                    .formula(Formula::parse("(a/b)^2 = $0", &[ratio.to_expr()]))
-            },
-        ));
+        (omega_sq[k], ratio[k]) = about_axis(d, &r, k)?;
     }
     d.set(
         quantity::OSCILLATION_FREQUENCY_SQUARED,
@@ -173,7 +109,107 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
     )?;
     d.set(quantity::AMPLITUDE_RATIO_SQUARED, Value::Vector(ratio))?;
 
-    let (stability, by_order) = classify(&omega_sq, "Ω²")?;
+    let stability = by_ordering(d, &omega_sq)?;
+    d.steps.push(Step::equation(
+        "Stability of each axis",
+        "rm(stability)",
+        &Value::Matrix(stability.clone()),
+        "row k: axis k; columns: its moment is the largest, the smallest, the intermediate; \
+         1 stable, −1 unstable. The same for every axis: only the intermediate axis is unstable",
+    ));
+    d.set(quantity::STABILITY, Value::Matrix(stability))?;
+    let growth = cas::simplify(&Expr::negate(omega_sq[1].clone()))?;
+    d.steps.push(Step::equation(
+        "Growth rate about the intermediate axis 2",
+        "sigma^2",
+        &factored(&Value::Scalar(growth.clone()))?,
+        Prose::default()
+            .text("for ")
+            .math("I_1 < I_2 < I_3")
+            .text(", ")
+            .math("Omega_2^2 < 0")
+            .text(" and a small deviation grows as ")
+            .math("e^(sigma t)")
+            .text(" with ")
+            .math("sigma^2 = -Omega_2^2"),
+    ));
+    d.set(quantity::GROWTH_RATE_SQUARED, Value::Scalar(growth))?;
+    Ok(())
+}
+
+/// The rates linearised about rotation on axis `k` (a Jacobian of first-order terms), and the
+/// frequency squared and amplitude ratio squared of the motion they give.
+fn about_axis(d: &mut Derivation, r: &[Expr; 3], k: usize) -> Result<(Expr, Expr), DeriveError> {
+    let name = |k: usize| format!("w{}", k + 1);
+    let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+    // First order in the small components ω_a, ω_b: the Jacobian at ω = ω_k e_k.
+    let on_axis =
+        |e: &Expr| e.substitute(&|s| (s == name(a) || s == name(b)).then(|| Expr::int(0)));
+    let partial = |f: &Expr, x: usize| -> Result<Expr, DeriveError> {
+        Ok(on_axis(&f.diff(&name(x)).map_err(DeriveError::from)?))
+    };
+    let entries = vec![
+        partial(&r[a], a)?,
+        partial(&r[a], b)?,
+        partial(&r[b], a)?,
+        partial(&r[b], b)?,
+        partial(&r[k], a)?,
+        partial(&r[k], b)?,
+    ];
+    let j = cas::simplify_all(entries)?;
+    if !(j[0].is_zero() && j[3].is_zero() && j[4].is_zero() && j[5].is_zero()) {
+        return Err(DeriveError::Inconsistent(format!(
+            "the linearisation about axis {} has unexpected terms",
+            k + 1
+        )));
+    }
+    let (jab, jba) = (j[1].clone(), j[2].clone());
+    let shown = cas::factor_all(vec![jab.clone(), jba.clone()])?;
+    let (ta, tb) = (a + 1, b + 1);
+    d.steps.push(Step::note(
+        &format!("Linearised about axis {}", k + 1),
+        Formula::parse(
+            &format!(
+                "dot(omega_{ta}) = $0 ~ omega_{tb}, quad dot(omega_{tb}) = $1 ~ omega_{ta}"
+            ),
+            &shown,
+        ),
+        format!(
+            "$\\vec\\omega = \\omega_{} \\hat e_{}$ plus small $\\omega_{ta}$, $\\omega_{tb}$: keep \
+             first-order terms; $\\dot\\omega_{}$, of order $\\omega_{ta}\\omega_{tb}$, is second \
+             order and dropped",
+            k + 1,
+            k + 1,
+            k + 1
+        ),
+    ));
+    // ω_a = a cos(Ωt + θ), ω_b = b sin(Ωt + θ): −aΩ = J_ab b and bΩ = J_ba a.
+    let both = cas::simplify_all(vec![
+        Expr::negate(Expr::mul(vec![jab.clone(), jba.clone()])),
+        Expr::negate(Expr::over(jab, jba)),
+    ])?;
+    d.steps.push(Step::equation(
+        &format!("Frequency about axis {}", k + 1),
+        &format!("Omega_{}^2", k + 1),
+        &factored(&Value::Scalar(both[0].clone()))?,
+        {
+            let ratio = factored(&Value::Scalar(both[1].clone()))?;
+            Prose::default()
+                .words(&format!(
+                    "$\\omega_{ta} = a\\cos(\\Omega t + \\theta)$, \
+                     $\\omega_{tb} = b\\sin(\\Omega t + \\theta)$ solve the pair when \
+                     $\\Omega^2$ is minus the product of the two coefficients; then "
+                ))
+                .formula(Formula::parse("(a/b)^2 = $0", &[ratio.to_expr()]))
+        },
+    ));
+    Ok((both[0].clone(), both[1].clone()))
+}
+
+/// Each axis's verdict for each ordering of the moments, by the signs of Ω²; the stability
+/// matrix.
+fn by_ordering(d: &mut Derivation, omega_sq: &[Expr; 3]) -> Result<Mat3, DeriveError> {
+    let (stability, by_order) = classify(omega_sq, "Ω²")?;
     // `I2` as LaTeX, `I_2`, for the titles and reasons.
     let tex = |label: &str| label.replace('I', "I_");
     for (order, signs) in by_order {
@@ -208,29 +244,5 @@ pub fn axis_stability(d: &mut Derivation) -> Result<(), DeriveError> {
             ),
         ));
     }
-    d.steps.push(Step::equation(
-        "Stability of each axis",
-        "rm(stability)",
-        &Value::Matrix(stability.clone()),
-        "row k: axis k; columns: its moment is the largest, the smallest, the intermediate; \
-         1 stable, −1 unstable. The same for every axis: only the intermediate axis is unstable",
-    ));
-    d.set(quantity::STABILITY, Value::Matrix(stability))?;
-    let growth = cas::simplify(&Expr::negate(omega_sq[1].clone()))?;
-    d.steps.push(Step::equation(
-        "Growth rate about the intermediate axis 2",
-        "sigma^2",
-        &factored(&Value::Scalar(growth.clone()))?,
-        Prose::default()
-            .text("for ")
-            .math("I_1 < I_2 < I_3")
-            .text(", ")
-            .math("Omega_2^2 < 0")
-            .text(" and a small deviation grows as ")
-            .math("e^(sigma t)")
-            .text(" with ")
-            .math("sigma^2 = -Omega_2^2"),
-    ));
-    d.set(quantity::GROWTH_RATE_SQUARED, Value::Scalar(growth))?;
-    Ok(())
+    Ok(stability)
 }

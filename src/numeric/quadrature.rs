@@ -255,45 +255,25 @@ fn circle(n: usize) -> Vec<(f64, f64)> {
 
 /// The rule's weighted points in body coordinates (weights sum to 1).
 fn rule(shape: &NumShape, method: Method, n: usize, rng: &mut Rng) -> Vec<(f64, Vector3<f64>)> {
-    let mut pts = Vec::new();
     if method == Method::MonteCarlo {
         let w = 1.0 / n as f64;
-        for _ in 0..n {
-            pts.push((w, sample(shape, rng)));
-        }
-        return pts;
+        return (0..n).map(|_| (w, sample(shape, rng))).collect();
     }
     match shape {
-        NumShape::Box { size, centred } => {
-            let lo = if *centred {
-                -size / 2.0
-            } else {
-                Vector3::zeros()
-            };
-            let (lx, ly, lz) = (
-                line(method, n, lo.x, size.x),
-                line(method, n, lo.y, size.y),
-                line(method, n, lo.z, size.z),
-            );
-            for (wx, x) in &lx {
-                for (wy, y) in &ly {
-                    for (wz, z) in &lz {
-                        pts.push((wx * wy * wz, Vector3::new(*x, *y, *z)));
-                    }
-                }
-            }
-        }
+        NumShape::Box { size, centred } => box_rule(size, *centred, method, n),
         NumShape::Plate { size, centred } => {
             let lo = if *centred {
                 -size / 2.0
             } else {
                 Vector2::zeros()
             };
+            let mut pts = Vec::new();
             for (wx, x) in line(method, n, lo.x, size.x) {
                 for (wy, y) in line(method, n, lo.y, size.y) {
                     pts.push((wx * wy, Vector3::new(x, y, 0.0)));
                 }
             }
+            pts
         }
         NumShape::Rod {
             length,
@@ -301,91 +281,143 @@ fn rule(shape: &NumShape, method: Method, n: usize, rng: &mut Rng) -> Vec<(f64, 
             centred,
         } => {
             let lo = if *centred { -length / 2.0 } else { 0.0 };
-            for (w, s) in line(method, n, lo, *length) {
-                pts.push((w, Vector3::ith(*along, s)));
-            }
+            line(method, n, lo, *length)
+                .into_iter()
+                .map(|(w, s)| (w, Vector3::ith(*along, s)))
+                .collect()
         }
-        NumShape::Hoop { radius } => {
-            for (w, t) in circle(n) {
-                pts.push((w, Vector3::new(radius * t.cos(), radius * t.sin(), 0.0)));
-            }
-        }
-        NumShape::Disk { radius, inner } | NumShape::Cylinder { radius, inner, .. } => {
-            let height = if let NumShape::Cylinder { height, .. } = shape {
-                Some(*height)
-            } else {
-                None
-            };
-            // Area element r dr dθ on [inner, R]: the radial weight carries r / ((R² − inner²)/2).
-            let radial = line(Method::GaussLegendre, n, *inner, radius - inner);
-            let area = (radius * radius - inner * inner) / 2.0;
-            let zs = match height {
-                Some(h) => line(Method::GaussLegendre, n, -h / 2.0, h),
-                None => vec![(1.0, 0.0)],
-            };
-            for (wr, r) in &radial {
-                for (wt, t) in circle(4) {
-                    for (wz, z) in &zs {
-                        let w = wr * r * (radius - inner) / area * wt * wz;
-                        pts.push((w, Vector3::new(r * t.cos(), r * t.sin(), *z)));
-                    }
-                }
-            }
-        }
+        NumShape::Hoop { radius } => circle(n)
+            .into_iter()
+            .map(|(w, t)| (w, Vector3::new(radius * t.cos(), radius * t.sin(), 0.0)))
+            .collect(),
+        NumShape::Disk { radius, inner } => round_rule(*radius, *inner, None, n),
+        NumShape::Cylinder {
+            radius,
+            height,
+            inner,
+        } => round_rule(*radius, *inner, Some(*height), n),
         NumShape::Cone {
             radius,
             height,
             apex,
             direction,
-        } => {
-            // t = distance from the apex: the section's area grows as t², so t carries 3t²/h³;
-            // the radius within the section is a fraction f of Rt/h, with weight 2f.
-            for (wt, t) in line(Method::GaussLegendre, n, 0.0, *height) {
-                let wt = wt * 3.0 * t * t / (height * height);
-                for (wf, f) in line(Method::GaussLegendre, n, 0.0, 1.0) {
-                    let r = f * radius * t / height;
-                    for (wa, a) in circle(4) {
-                        pts.push((
-                            wt * wf * 2.0 * f * wa,
-                            Vector3::new(r * a.cos(), r * a.sin(), apex + direction * t),
-                        ));
-                    }
-                }
-            }
-        }
-        NumShape::Sphere { .. } | NumShape::Shell { .. } | NumShape::Hemisphere { .. } => {
-            let (radius, inner, solid, u_lo, lift) = match shape {
-                NumShape::Sphere { radius, inner } => (*radius, *inner, true, -1.0, 0.0),
-                NumShape::Hemisphere { radius, face } => (*radius, 0.0, true, 0.0, *face),
-                NumShape::Shell { radius } => (*radius, 0.0, false, -1.0, 0.0),
-                _ => unreachable!(),
-            };
-            // u = cos θ is uniform on [u_lo, 1] for all three; r² dr carries 3r²/(R³ − inner³)
-            // for the solids.
-            let radial = if solid {
-                line(Method::GaussLegendre, n, inner, radius - inner)
-            } else {
-                vec![(1.0, radius)]
-            };
-            let volume = (radius.powi(3) - inner.powi(3)) / 3.0;
-            for (wr, r) in &radial {
-                let wr = if solid {
-                    wr * r * r * (radius - inner) / volume
-                } else {
-                    *wr
-                };
-                for (wu, u) in line(Method::GaussLegendre, n, u_lo, 1.0 - u_lo) {
-                    let s = (1.0 - u * u).sqrt();
-                    for (wp, p) in circle(4) {
-                        pts.push((
-                            wr * wu * wp,
-                            Vector3::new(r * s * p.cos(), r * s * p.sin(), r * u + lift),
-                        ));
-                    }
-                }
-            }
-        }
+        } => cone_rule(*radius, *height, (*apex, *direction), n),
+        NumShape::Sphere { radius, inner } => spherical_rule(*radius, *inner, true, -1.0, 0.0, n),
+        NumShape::Hemisphere { radius, face } => spherical_rule(*radius, 0.0, true, 0.0, *face, n),
+        NumShape::Shell { radius } => spherical_rule(*radius, 0.0, false, -1.0, 0.0, n),
         NumShape::Points(_) => unreachable!("point sets are summed directly"),
+    }
+}
+
+/// A box's product rule: `n` points a side.
+fn box_rule(
+    size: &Vector3<f64>,
+    centred: bool,
+    method: Method,
+    n: usize,
+) -> Vec<(f64, Vector3<f64>)> {
+    let lo = if centred {
+        -size / 2.0
+    } else {
+        Vector3::zeros()
+    };
+    let (lx, ly, lz) = (
+        line(method, n, lo.x, size.x),
+        line(method, n, lo.y, size.y),
+        line(method, n, lo.z, size.z),
+    );
+    let mut pts = Vec::new();
+    for (wx, x) in &lx {
+        for (wy, y) in &ly {
+            for (wz, z) in &lz {
+                pts.push((wx * wy * wz, Vector3::new(*x, *y, *z)));
+            }
+        }
+    }
+    pts
+}
+
+/// A disk's rule, or a cylinder's of `height`, annular from `inner`: Gauss–Legendre in r (and
+/// z), four points in the angle.
+fn round_rule(radius: f64, inner: f64, height: Option<f64>, n: usize) -> Vec<(f64, Vector3<f64>)> {
+    // Area element r dr dθ on [inner, R]: the radial weight carries r / ((R² − inner²)/2).
+    let radial = line(Method::GaussLegendre, n, inner, radius - inner);
+    let area = (radius * radius - inner * inner) / 2.0;
+    let zs = match height {
+        Some(h) => line(Method::GaussLegendre, n, -h / 2.0, h),
+        None => vec![(1.0, 0.0)],
+    };
+    let mut pts = Vec::new();
+    for (wr, r) in &radial {
+        for (wt, t) in circle(4) {
+            for (wz, z) in &zs {
+                let w = wr * r * (radius - inner) / area * wt * wz;
+                pts.push((w, Vector3::new(r * t.cos(), r * t.sin(), *z)));
+            }
+        }
+    }
+    pts
+}
+
+/// A solid cone's rule, its apex at `apex` on z and opening towards `direction` (±1).
+fn cone_rule(
+    radius: f64,
+    height: f64,
+    (apex, direction): (f64, f64),
+    n: usize,
+) -> Vec<(f64, Vector3<f64>)> {
+    // t = distance from the apex: the section's area grows as t², so t carries 3t²/h³;
+    // the radius within the section is a fraction f of Rt/h, with weight 2f.
+    let mut pts = Vec::new();
+    for (wt, t) in line(Method::GaussLegendre, n, 0.0, height) {
+        let wt = wt * 3.0 * t * t / (height * height);
+        for (wf, f) in line(Method::GaussLegendre, n, 0.0, 1.0) {
+            let r = f * radius * t / height;
+            for (wa, a) in circle(4) {
+                pts.push((
+                    wt * wf * 2.0 * f * wa,
+                    Vector3::new(r * a.cos(), r * a.sin(), apex + direction * t),
+                ));
+            }
+        }
+    }
+    pts
+}
+
+/// A ball's rule (`solid`, hollow from `inner`), a hemisphere's (u from `u_lo` = 0, raised by
+/// `lift`) or a thin shell's.
+fn spherical_rule(
+    radius: f64,
+    inner: f64,
+    solid: bool,
+    u_lo: f64,
+    lift: f64,
+    n: usize,
+) -> Vec<(f64, Vector3<f64>)> {
+    // u = cos θ is uniform on [u_lo, 1] for all three; r² dr carries 3r²/(R³ − inner³)
+    // for the solids.
+    let radial = if solid {
+        line(Method::GaussLegendre, n, inner, radius - inner)
+    } else {
+        vec![(1.0, radius)]
+    };
+    let volume = (radius.powi(3) - inner.powi(3)) / 3.0;
+    let mut pts = Vec::new();
+    for (wr, r) in &radial {
+        let wr = if solid {
+            wr * r * r * (radius - inner) / volume
+        } else {
+            *wr
+        };
+        for (wu, u) in line(Method::GaussLegendre, n, u_lo, 1.0 - u_lo) {
+            let s = (1.0 - u * u).sqrt();
+            for (wp, p) in circle(4) {
+                pts.push((
+                    wr * wu * wp,
+                    Vector3::new(r * s * p.cos(), r * s * p.sin(), r * u + lift),
+                ));
+            }
+        }
     }
     pts
 }
