@@ -75,17 +75,7 @@ pub(super) fn motion(
         t_end,
         MOTION_TOLERANCE / 100.0,
     )?;
-    let size = states
-        .iter()
-        .flat_map(|y| y[..n].iter())
-        .fold(0.0f64, |m, v| m.max(v.abs()))
-        .max(f64::MIN_POSITIVE);
-    let error = states
-        .iter()
-        .zip(&finer)
-        .flat_map(|(a, b)| a[..n].iter().zip(&b[..n]))
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
-        / size;
+    let error = largest_difference(&states, &finer, n);
     let time = |j: usize| t_end * j as f64 / SAMPLES as f64;
     let mut series = Vec::new();
     for (k, (q, _)) in full.iter().take(n).enumerate() {
@@ -100,56 +90,22 @@ pub(super) fn motion(
                 .collect(),
         });
     }
-    let mut apart = String::new();
-    if let Some(linear) = linear {
-        let eqs = equations(d, linear)?;
-        let (lin, _) = sampled(eqs, &scene.coordinates, &params, t_end, MOTION_TOLERANCE)?;
-        let mut gap = 0.0f64;
-        for (k, (q, _)) in eqs.iter().enumerate() {
-            let Some(kf) = full.iter().position(|(p, _)| p == q) else {
-                continue;
-            };
-            gap = states
-                .iter()
-                .zip(&lin)
-                .fold(gap, |m, (a, b)| m.max((a[kf] - b[k]).abs()));
-            series.push(Series {
-                name: format!("{} (linear)", super::plain_name(q)),
-                mark: Mark::Dashed,
-                colour: kf,
-                points: lin
-                    .iter()
-                    .enumerate()
-                    .map(|(j, y)| (time(j), y[k]))
-                    .collect(),
-            });
+    let apart = match linear {
+        Some(linear) => {
+            let eqs = equations(d, linear)?;
+            let lin = sampled(eqs, &scene.coordinates, &params, t_end, MOTION_TOLERANCE)?.0;
+            linear_overlay(full, eqs, &states, &lin, t_end, &mut series)
         }
-        apart = format!(
-            " Dashed: the linear equations from the same start, at most {} from the full \
-             motion.",
-            sci(gap)
-        );
-    }
-    let start_text: Vec<String> = full
-        .iter()
-        .enumerate()
-        .map(|(k, (q, _))| {
-            format!(
-                "{} = {}, {} = {}",
-                super::plain_name(q),
-                states[0][k],
-                super::plain_name(&format!("{q}'")),
-                states[0][n + k]
-            )
-        })
-        .collect();
+        None => String::new(),
+    };
+    let start_text = start_words(full, &states[0], n);
     let coordinates: Vec<String> = full.iter().map(|(q, _)| super::plain_name(q)).collect();
     let coordinates = coordinates.join(", ");
     let desc = format!(
         "The equations of motion integrated from {} over 0 ≤ t ≤ {} at the scene's values \
          (Dormand–Prince 5(4), tolerance {}, {cost} right-hand sides; against a run at a \
          hundredth of the tolerance the coordinates differ by at most {} of their size).{apart}",
-        start_text.join(", "),
+        start_text,
         t_end,
         short(MOTION_TOLERANCE),
         sci(error)
@@ -173,4 +129,76 @@ pub(super) fn motion(
         seconds: 0.0,
     }];
     Ok(f)
+}
+
+/// The largest difference between two runs' coordinates (the first `n` entries of each state),
+/// relative to the largest coordinate.
+fn largest_difference(states: &[Vec<f64>], finer: &[Vec<f64>], n: usize) -> f64 {
+    let size = states
+        .iter()
+        .flat_map(|y| y[..n].iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    states
+        .iter()
+        .zip(finer)
+        .flat_map(|(a, b)| a[..n].iter().zip(&b[..n]))
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        / size
+}
+
+/// The linear equations' motion (`lin`) dashed beside the full one's, each coordinate in its
+/// colour; the words that say how far apart they are.
+fn linear_overlay(
+    full: &[(String, crate::cas::Expr)],
+    eqs: &[(String, crate::cas::Expr)],
+    states: &[Vec<f64>],
+    lin: &[Vec<f64>],
+    t_end: f64,
+    series: &mut Vec<Series>,
+) -> String {
+    let time = |j: usize| t_end * j as f64 / SAMPLES as f64;
+    let mut gap = 0.0f64;
+    for (k, (q, _)) in eqs.iter().enumerate() {
+        let Some(kf) = full.iter().position(|(p, _)| p == q) else {
+            continue;
+        };
+        gap = states
+            .iter()
+            .zip(lin)
+            .fold(gap, |m, (a, b)| m.max((a[kf] - b[k]).abs()));
+        series.push(Series {
+            name: format!("{} (linear)", super::plain_name(q)),
+            mark: Mark::Dashed,
+            colour: kf,
+            points: lin
+                .iter()
+                .enumerate()
+                .map(|(j, y)| (time(j), y[k]))
+                .collect(),
+        });
+    }
+    format!(
+        " Dashed: the linear equations from the same start, at most {} from the full \
+         motion.",
+        sci(gap)
+    )
+}
+
+/// The start, in words: each coordinate's value and rate.
+fn start_words(full: &[(String, crate::cas::Expr)], start: &[f64], n: usize) -> String {
+    let words: Vec<String> = full
+        .iter()
+        .enumerate()
+        .map(|(k, (q, _))| {
+            format!(
+                "{} = {}, {} = {}",
+                super::plain_name(q),
+                start[k],
+                super::plain_name(&format!("{q}'")),
+                start[n + k]
+            )
+        })
+        .collect();
+    words.join(", ")
 }
