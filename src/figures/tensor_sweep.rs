@@ -7,6 +7,7 @@ use crate::cas::EvalError;
 use crate::derive::Derivation;
 use crate::model::catalogue::quantity;
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::model::value::Value;
 use crate::numeric::body::NumBody;
 use crate::numeric::quadrature::{reference_rule, run};
 use crate::scene::Scene;
@@ -46,12 +47,83 @@ pub(super) fn tensor_sweep(
             Ok((x, exact.matrix_at(&values_with(scene, over, x))?))
         })
         .collect::<Result<_, EvalError>>()?;
-    let mut numeric = Vec::new();
-    let mut worst: f64 = 0.0;
-    let mut rule_names = Vec::new();
-    let (mut points, mut predicted, mut seconds) = (0u64, 0.0f64, 0.0);
-    for k in 0..samples {
-        let x = at(k, samples);
+    let q = quadrature_sweep(scene, d, exact, over, (0..samples).map(|k| at(k, samples)))?;
+    let scale = curve.iter().map(|(_, m)| m.amax()).fold(0.0, f64::max);
+    let mut series = Vec::new();
+    let (shown, zero) = entry_series(&curve, &q.numeric, scale, &mut series);
+    let fixed: Vec<String> = scene
+        .values
+        .iter()
+        .filter(|(k, _)| k.as_str() != over)
+        .map(|(k, v)| format!("{k} = {v}"))
+        .collect();
+    let desc = format!(
+        "Inertia tensor entries of {} against {over} from {} to {}, at {}. Over this range {}{}. \
+         Dots: {samples} values of {over} by quadrature with {}, at most {} from the exact curves.",
+        crate::model::prose::plain(&scene.title).to_lowercase(),
+        trim_num(from),
+        trim_num(to),
+        fixed.join(", "),
+        shown.join("; "),
+        if zero.is_empty() {
+            String::new()
+        } else {
+            format!("; {} stay zero", zero.join(", "))
+        },
+        q.rule_names.join(", "),
+        sci(q.worst),
+    );
+    Ok(Figure {
+        slug: format!("tensor-vs-{over}"),
+        title: format!("Tensor entries against {over}"),
+        desc,
+        x_label: over.to_string(),
+        y_label: "entry".into(),
+        x_scale: Scale::Linear,
+        y_scale: Scale::Linear,
+        equal_aspect: false,
+        series,
+        labels: Vec::new(),
+        legend: Legend::MiddleRight,
+        accuracy: vec![Accuracy {
+            result: format!("tensor at {samples} values of {over}"),
+            method: q.rule_names.join(", "),
+            true_error: Some(q.worst / scale.max(f64::MIN_POSITIVE)),
+            estimated_error: Some(q.predicted),
+            cost: q.points,
+            unit: "points".into(),
+            seconds: q.seconds,
+        }],
+    })
+}
+
+/// The tensor by each body's reference quadrature at each value of the swept symbol, its
+/// largest distance from the exact one, and its cost.
+struct Sweep {
+    numeric: Vec<(f64, Matrix3<f64>)>,
+    worst: f64,
+    rule_names: Vec<String>,
+    points: u64,
+    predicted: f64,
+    seconds: f64,
+}
+
+fn quadrature_sweep(
+    scene: &Scene,
+    d: &Derivation,
+    exact: &Value,
+    over: &str,
+    xs: impl Iterator<Item = f64>,
+) -> Result<Sweep, FigureError> {
+    let mut q = Sweep {
+        numeric: Vec::new(),
+        worst: 0.0,
+        rule_names: Vec::new(),
+        points: 0,
+        predicted: 0.0,
+        seconds: 0.0,
+    };
+    for (k, x) in xs.enumerate() {
         let values = values_with(scene, over, x);
         let mut total = Matrix3::zeros();
         for (i, body) in scene.bodies.iter().enumerate() {
@@ -59,19 +131,29 @@ pub(super) fn tensor_sweep(
             let (method, level) = reference_rule(&nb.shape);
             let part = d.part_tensors[i].matrix_at(&values)?;
             let r = run(&nb, method, level, &part, scene.seed);
-            points += r.points as u64;
-            predicted = predicted.max(r.predicted_error);
-            seconds += r.seconds;
+            q.points += r.points as u64;
+            q.predicted = q.predicted.max(r.predicted_error);
+            q.seconds += r.seconds;
             if k == 0 {
-                rule_names.push(format!("{}, {} points", method.name(), r.points));
+                q.rule_names
+                    .push(format!("{}, {} points", method.name(), r.points));
             }
             total += r.tensor;
         }
-        worst = worst.max((total - exact.matrix_at(&values)?).amax());
-        numeric.push((x, total));
+        q.worst = q.worst.max((total - exact.matrix_at(&values)?).amax());
+        q.numeric.push((x, total));
     }
-    let scale = curve.iter().map(|(_, m)| m.amax()).fold(0.0, f64::max);
-    let mut series = Vec::new();
+    Ok(q)
+}
+
+/// Each entry that is not zero along the range, exact as a line and by quadrature as dots, into
+/// `series`; the entries shown, with their ranges, and those that stay zero.
+fn entry_series(
+    curve: &[(f64, Matrix3<f64>)],
+    numeric: &[(f64, Matrix3<f64>)],
+    scale: f64,
+    series: &mut Vec<Series>,
+) -> (Vec<String>, Vec<&'static str>) {
     let mut shown = Vec::new();
     let mut zero = Vec::new();
     for (colour, (i, j, name)) in ENTRIES.iter().enumerate() {
@@ -103,48 +185,5 @@ pub(super) fn tensor_sweep(
             points: numeric.iter().map(|(x, m)| (*x, m[(*i, *j)])).collect(),
         });
     }
-    let fixed: Vec<String> = scene
-        .values
-        .iter()
-        .filter(|(k, _)| k.as_str() != over)
-        .map(|(k, v)| format!("{k} = {v}"))
-        .collect();
-    let desc = format!(
-        "Inertia tensor entries of {} against {over} from {} to {}, at {}. Over this range {}{}. \
-         Dots: {samples} values of {over} by quadrature with {}, at most {} from the exact curves.",
-        crate::model::prose::plain(&scene.title).to_lowercase(),
-        trim_num(from),
-        trim_num(to),
-        fixed.join(", "),
-        shown.join("; "),
-        if zero.is_empty() {
-            String::new()
-        } else {
-            format!("; {} stay zero", zero.join(", "))
-        },
-        rule_names.join(", "),
-        sci(worst),
-    );
-    Ok(Figure {
-        slug: format!("tensor-vs-{over}"),
-        title: format!("Tensor entries against {over}"),
-        desc,
-        x_label: over.to_string(),
-        y_label: "entry".into(),
-        x_scale: Scale::Linear,
-        y_scale: Scale::Linear,
-        equal_aspect: false,
-        series,
-        labels: Vec::new(),
-        legend: Legend::MiddleRight,
-        accuracy: vec![Accuracy {
-            result: format!("tensor at {samples} values of {over}"),
-            method: rule_names.join(", "),
-            true_error: Some(worst / scale.max(f64::MIN_POSITIVE)),
-            estimated_error: Some(predicted),
-            cost: points,
-            unit: "points".into(),
-            seconds,
-        }],
-    })
+    (shown, zero)
 }
