@@ -18,101 +18,15 @@ pub struct Plan {
 impl Plan {
     pub fn for_scene(scene: &Scene) -> Plan {
         let mut wanted: Vec<(Stage, String)> = Vec::new();
-        for w in &scene.wants {
-            let why = format!("output `{}`", w.name());
-            let stages: &[Stage] = match w {
-                Output::InertiaTensor => &[Stage::Tensor],
-                Output::ParallelAxis => &[Stage::ParallelAxis],
-                Output::PrincipalAxes => &[Stage::Principal],
-                Output::AngularMomentum => &[Stage::AngularMomentum],
-                Output::KineticEnergy => &[Stage::KineticEnergy],
-                Output::MomentAboutAxis => &[Stage::MomentAboutAxis],
-                Output::Gyration => &[Stage::Gyration],
-                Output::Numeric => &[Stage::Quadrature],
-                Output::EulerEquations => &[Stage::EulerEquations],
-                Output::SymmetricTop => &[Stage::SymmetricTop],
-                Output::AxisStability => &[Stage::AxisStability],
-                Output::Poinsot => &[Stage::Poinsot],
-                Output::EarthPrecession => &[Stage::EarthPrecession],
-            };
-            wanted.extend(stages.iter().map(|s| (*s, why.clone())));
-        }
-        // Numeric eigenvalues only when both the principal axes and the numerics are wanted.
-        if scene.wants.contains(&Output::Numeric) && scene.wants.contains(&Output::PrincipalAxes) {
-            wanted.push((
-                Stage::NumericEigen,
-                "outputs `principal_axes` and `numeric`".into(),
-            ));
-        }
+        wanted_by_outputs(scene, &mut wanted);
         if scene.moments_from_bodies {
             wanted.push((
                 Stage::ParallelAxis,
                 "`inertia = \"principal\"`: the free top's moments about the centre of mass".into(),
             ));
         }
-        for p in &scene.plots {
-            let why = format!("plot `{}`", p.kind());
-            wanted.push((Stage::Plots, why.clone()));
-            if p.needs_body() {
-                wanted.push((Stage::Tensor, why.clone()));
-            }
-            if *p == PlotRequest::PrincipalAxes {
-                wanted.push((Stage::Principal, why.clone()));
-            }
-            // The body's own moments are taken about its centre of mass.
-            if let PlotRequest::FreeBody {
-                inertia: FreeInertia::Principal,
-                ..
-            } = p
-            {
-                wanted.push((Stage::CentreOfMass, why));
-            }
-        }
-        for c in &scene.claims {
-            for e in c.quantity.iter().chain(c.value.iter()) {
-                for name in referenced_quantities(e) {
-                    if let Some(s) = stage_for_quantity(&name) {
-                        wanted.push((s, format!("claim ({}) uses `{name}`", c.eq)));
-                    }
-                }
-            }
-        }
-        for s in &scene.steps {
-            let exprs = match &s.op {
-                crate::scene::Operation::Be(e) => vec![e],
-                crate::scene::Operation::Differentiate { of, .. } => vec![of],
-                crate::scene::Operation::Linearise { about, .. } => about.values().collect(),
-                crate::scene::Operation::Series { of, about, .. } => vec![of, about],
-                crate::scene::Operation::Integrate { of, over } => std::iter::once(of)
-                    .chain(over.iter().flat_map(|(_, lo, hi)| [lo, hi]))
-                    .collect(),
-                crate::scene::Operation::Substitute { of, set } => {
-                    std::iter::once(of).chain(set.values()).collect()
-                }
-                crate::scene::Operation::Lagrange { .. }
-                | crate::scene::Operation::Routh { .. }
-                | crate::scene::Operation::Frequency { .. }
-                | crate::scene::Operation::Solve { .. }
-                | crate::scene::Operation::Momentum { .. }
-                | crate::scene::Operation::Energy { .. }
-                | crate::scene::Operation::Equilibria { .. }
-                | crate::scene::Operation::Stability { .. } => vec![],
-            };
-            for e in exprs.into_iter().chain(s.gives.iter()).chain(&s.gives_each) {
-                for name in referenced_quantities(e) {
-                    if let Some(st) = stage_for_quantity(&name) {
-                        wanted.push((st, format!("step `{}` uses `{name}`", s.name)));
-                    }
-                }
-            }
-        }
-        for a in scene.problem.iter().flat_map(|p| &p.answers) {
-            for name in referenced_quantities(&a.value) {
-                if let Some(st) = stage_for_quantity(&name) {
-                    wanted.push((st, format!("the answer `{}` uses `{name}`", a.written)));
-                }
-            }
-        }
+        wanted_by_plots(scene, &mut wanted);
+        wanted_by_names(scene, &mut wanted);
         if !scene.steps.is_empty() {
             wanted.push((Stage::Steps, format!("{} step(s)", scene.steps.len())));
         }
@@ -172,6 +86,112 @@ impl Plan {
                 (*s, self.runs(*s).then_some(reasons))
             })
             .collect()
+    }
+}
+
+/// The stages each wanted output needs.
+fn wanted_by_outputs(scene: &Scene, wanted: &mut Vec<(Stage, String)>) {
+    for w in &scene.wants {
+        let why = format!("output `{}`", w.name());
+        let stages: &[Stage] = match w {
+            Output::InertiaTensor => &[Stage::Tensor],
+            Output::ParallelAxis => &[Stage::ParallelAxis],
+            Output::PrincipalAxes => &[Stage::Principal],
+            Output::AngularMomentum => &[Stage::AngularMomentum],
+            Output::KineticEnergy => &[Stage::KineticEnergy],
+            Output::MomentAboutAxis => &[Stage::MomentAboutAxis],
+            Output::Gyration => &[Stage::Gyration],
+            Output::Numeric => &[Stage::Quadrature],
+            Output::EulerEquations => &[Stage::EulerEquations],
+            Output::SymmetricTop => &[Stage::SymmetricTop],
+            Output::AxisStability => &[Stage::AxisStability],
+            Output::Poinsot => &[Stage::Poinsot],
+            Output::EarthPrecession => &[Stage::EarthPrecession],
+        };
+        wanted.extend(stages.iter().map(|s| (*s, why.clone())));
+    }
+    // Numeric eigenvalues only when both the principal axes and the numerics are wanted.
+    if scene.wants.contains(&Output::Numeric) && scene.wants.contains(&Output::PrincipalAxes) {
+        wanted.push((
+            Stage::NumericEigen,
+            "outputs `principal_axes` and `numeric`".into(),
+        ));
+    }
+}
+
+/// The stages each plot needs.
+fn wanted_by_plots(scene: &Scene, wanted: &mut Vec<(Stage, String)>) {
+    for p in &scene.plots {
+        let why = format!("plot `{}`", p.kind());
+        wanted.push((Stage::Plots, why.clone()));
+        if p.needs_body() {
+            wanted.push((Stage::Tensor, why.clone()));
+        }
+        if *p == PlotRequest::PrincipalAxes {
+            wanted.push((Stage::Principal, why.clone()));
+        }
+        // The body's own moments are taken about its centre of mass.
+        if let PlotRequest::FreeBody {
+            inertia: FreeInertia::Principal,
+            ..
+        } = p
+        {
+            wanted.push((Stage::CentreOfMass, why));
+        }
+    }
+}
+
+/// The stages of the quantities that claims, steps and answers name.
+fn wanted_by_names(scene: &Scene, wanted: &mut Vec<(Stage, String)>) {
+    for c in &scene.claims {
+        for e in c.quantity.iter().chain(c.value.iter()) {
+            for name in referenced_quantities(e) {
+                if let Some(s) = stage_for_quantity(&name) {
+                    wanted.push((s, format!("claim ({}) uses `{name}`", c.eq)));
+                }
+            }
+        }
+    }
+    for s in &scene.steps {
+        let exprs = operands(&s.op);
+        for e in exprs.into_iter().chain(s.gives.iter()).chain(&s.gives_each) {
+            for name in referenced_quantities(e) {
+                if let Some(st) = stage_for_quantity(&name) {
+                    wanted.push((st, format!("step `{}` uses `{name}`", s.name)));
+                }
+            }
+        }
+    }
+    for a in scene.problem.iter().flat_map(|p| &p.answers) {
+        for name in referenced_quantities(&a.value) {
+            if let Some(st) = stage_for_quantity(&name) {
+                wanted.push((st, format!("the answer `{}` uses `{name}`", a.written)));
+            }
+        }
+    }
+}
+
+/// The expressions a step's operation is given, which may name a quantity.
+fn operands(op: &crate::scene::Operation) -> Vec<&crate::cas::Expr> {
+    match op {
+        crate::scene::Operation::Be(e) => vec![e],
+        crate::scene::Operation::Differentiate { of, .. } => vec![of],
+        crate::scene::Operation::Linearise { about, .. } => about.values().collect(),
+        crate::scene::Operation::Series { of, about, .. } => vec![of, about],
+        crate::scene::Operation::Integrate { of, over } => std::iter::once(of)
+            .chain(over.iter().flat_map(|(_, lo, hi)| [lo, hi]))
+            .collect(),
+        crate::scene::Operation::Substitute { of, set } => {
+            std::iter::once(of).chain(set.values()).collect()
+        }
+        crate::scene::Operation::Lagrange { .. }
+        | crate::scene::Operation::Routh { .. }
+        | crate::scene::Operation::Frequency { .. }
+        | crate::scene::Operation::Solve { .. }
+        | crate::scene::Operation::Momentum { .. }
+        | crate::scene::Operation::Energy { .. }
+        | crate::scene::Operation::Equilibria { .. }
+        | crate::scene::Operation::Stability { .. } => vec![],
     }
 }
 

@@ -84,31 +84,8 @@ pub fn convergence(
                 .map(|r| (r.points as f64, r.predicted_error.max(ERROR_FLOOR)))
                 .collect(),
         });
-        let (first, last) = (&runs[0], &runs[runs.len() - 1]);
-        accuracy.push(Accuracy {
-            result: format!("{} runs, the finest", runs.len()),
-            method: method.name().into(),
-            true_error: Some(last.error),
-            estimated_error: Some(last.predicted_error),
-            cost: runs.iter().map(|r| r.points as u64).sum(),
-            unit: "points".into(),
-            seconds: runs.iter().map(|r| r.seconds).sum(),
-        });
-        let mut s = format!(
-            "{}: {} at {} point(s) to {} at {}",
-            method.name(),
-            sci(first.error),
-            first.points,
-            sci(last.error),
-            last.points
-        );
-        if let Some(k) = slope(&runs) {
-            s.push_str(&format!(", slope {k:.2}"));
-        }
-        if let Some(exact_from) = runs.iter().find(|r| r.error <= 1e-13) {
-            s.push_str(&format!(", round-off from {} points", exact_from.points));
-        }
-        sentences.push(s);
+        accuracy.push(method_accuracy(method, &runs));
+        sentences.push(method_sentence(method, &runs));
     }
     let all: Vec<(f64, f64)> = series
         .iter()
@@ -142,4 +119,38 @@ pub fn convergence(
         legend: Legend::LowerRight,
         accuracy,
     })
+}
+
+/// A rule's accuracy at its finest level, and the cost of all its levels.
+fn method_accuracy(method: Method, runs: &[QuadratureRun]) -> Accuracy {
+    let last = &runs[runs.len() - 1];
+    Accuracy {
+        result: format!("{} runs, the finest", runs.len()),
+        method: method.name().into(),
+        true_error: Some(last.error),
+        estimated_error: Some(last.predicted_error),
+        cost: runs.iter().map(|r| r.points as u64).sum(),
+        unit: "points".into(),
+        seconds: runs.iter().map(|r| r.seconds).sum(),
+    }
+}
+
+/// A rule's errors from its coarsest to its finest level, its slope, and where round-off starts.
+fn method_sentence(method: Method, runs: &[QuadratureRun]) -> String {
+    let (first, last) = (&runs[0], &runs[runs.len() - 1]);
+    let mut s = format!(
+        "{}: {} at {} point(s) to {} at {}",
+        method.name(),
+        sci(first.error),
+        first.points,
+        sci(last.error),
+        last.points
+    );
+    if let Some(k) = slope(runs) {
+        s.push_str(&format!(", slope {k:.2}"));
+    }
+    if let Some(exact_from) = runs.iter().find(|r| r.error <= 1e-13) {
+        s.push_str(&format!(", round-off from {} points", exact_from.points));
+    }
+    s
 }

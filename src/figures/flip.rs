@@ -57,25 +57,7 @@ pub(super) fn flip(
         None
     };
     let n = fid.samples(600);
-    let series = vec![
-        Series {
-            name: format!("ω{} exact", b + 1),
-            mark: Mark::Line,
-            colour: colour::PRIMARY,
-            points: (0..=n)
-                .map(|j| {
-                    let t = t_end * j as f64 / n as f64;
-                    (t, sol.omega(t)[b])
-                })
-                .collect(),
-        },
-        Series {
-            name: "flips measured (Dormand–Prince)".into(),
-            mark: Mark::Points,
-            colour: colour::CONTRAST,
-            points: flips.iter().map(|t| (*t, 0.0)).collect(),
-        },
-    ];
+    let series = flip_series(&sol, b, t_end, n, &flips);
     let desc = format!(
         "Tennis racket: spin started near the middle axis (I{} = {}) of I = ({}, {}, {}), \
          ω(0) = ({}, {}, {}). The component ω{} reverses again and again. Measured from Dormand–Prince \
@@ -120,4 +102,27 @@ pub(super) fn flip(
         flip_period,
     ];
     Ok(f)
+}
+
+/// The exact middle component over the window, and the flips measured, as dots on the axis.
+fn flip_series(sol: &ExactSolution, b: usize, t_end: f64, n: usize, flips: &[f64]) -> Vec<Series> {
+    vec![
+        Series {
+            name: format!("ω{} exact", b + 1),
+            mark: Mark::Line,
+            colour: colour::PRIMARY,
+            points: (0..=n)
+                .map(|j| {
+                    let t = t_end * j as f64 / n as f64;
+                    (t, sol.omega(t)[b])
+                })
+                .collect(),
+        },
+        Series {
+            name: "flips measured (Dormand–Prince)".into(),
+            mark: Mark::Points,
+            colour: colour::CONTRAST,
+            points: flips.iter().map(|t| (*t, 0.0)).collect(),
+        },
+    ]
 }

@@ -48,33 +48,10 @@ pub fn integrator_pareto(
         } else {
             steps.iter().map(|h| Resolution::Step(*h)).collect()
         };
-        let mut points = Vec::new();
-        let mut runs = Vec::new();
-        for r in settings {
-            let run = integrate(i, w0, t_end, method, r, 0)?;
-            let error = (run.omega - exact).norm() / w0.norm();
-            points.push((run.rhs_evaluations as f64, error.max(ERROR_FLOOR)));
-            runs.push((r, run, error));
-        }
-        let (r, finest, error) = runs.last().ok_or(FigureError::NoSettings)?;
-        let setting = match r {
-            Resolution::Step(h) => format!("{name}, h = {h}"),
-            Resolution::Tolerance(t) => format!("{name}, tol {}", short(*t)),
-        };
-        sentences.push(format!(
-            "{setting}: {} in {} right-hand sides",
-            sci(*error),
-            finest.rhs_evaluations
-        ));
-        accuracy.push(Accuracy {
-            result: format!("ω({t_end}), {} settings, the finest", runs.len()),
-            method: setting,
-            true_error: Some(*error),
-            estimated_error: Some(finest.energy_drift.max(finest.momentum_drift)),
-            cost: runs.iter().map(|(_, r, _)| r.rhs_evaluations).sum(),
-            unit: "right-hand sides".into(),
-            seconds: runs.iter().map(|(_, r, _)| r.seconds).sum(),
-        });
+        let (points, sentence, run_accuracy) =
+            method_runs(i, w0, (t_end, exact), name, method, settings)?;
+        sentences.push(sentence);
+        accuracy.push(run_accuracy);
         all.extend(points.iter().copied());
         series.push(Series {
             name: name.into(),
@@ -124,4 +101,48 @@ pub fn integrator_pareto(
     f.legend = Legend::LowerLeft;
     f.accuracy = accuracy;
     Ok(f)
+}
+
+/// An integrator's (cost, error) points, the sentence on its finest setting, and that setting's
+/// accuracy.
+type MethodRuns = (Vec<(f64, f64)>, String, Accuracy);
+
+/// One integrator at each of its settings: its (cost, error) points, the sentence on its finest
+/// setting, and that setting's accuracy.
+fn method_runs(
+    i: &Moments,
+    w0: Vector3<f64>,
+    (t_end, exact): (f64, Vector3<f64>),
+    name: &str,
+    method: Method,
+    settings: Vec<Resolution>,
+) -> Result<MethodRuns, FigureError> {
+    let mut points = Vec::new();
+    let mut runs = Vec::new();
+    for r in settings {
+        let run = integrate(i, w0, t_end, method, r, 0)?;
+        let error = (run.omega - exact).norm() / w0.norm();
+        points.push((run.rhs_evaluations as f64, error.max(ERROR_FLOOR)));
+        runs.push((r, run, error));
+    }
+    let (r, finest, error) = runs.last().ok_or(FigureError::NoSettings)?;
+    let setting = match r {
+        Resolution::Step(h) => format!("{name}, h = {h}"),
+        Resolution::Tolerance(t) => format!("{name}, tol {}", short(*t)),
+    };
+    let sentence = format!(
+        "{setting}: {} in {} right-hand sides",
+        sci(*error),
+        finest.rhs_evaluations
+    );
+    let accuracy = Accuracy {
+        result: format!("ω({t_end}), {} settings, the finest", runs.len()),
+        method: setting,
+        true_error: Some(*error),
+        estimated_error: Some(finest.energy_drift.max(finest.momentum_drift)),
+        cost: runs.iter().map(|(_, r, _)| r.rhs_evaluations).sum(),
+        unit: "right-hand sides".into(),
+        seconds: runs.iter().map(|(_, r, _)| r.seconds).sum(),
+    };
+    Ok((points, sentence, accuracy))
 }
