@@ -103,27 +103,11 @@ pub(super) fn expression(
         low,
         high,
     } = curve_of.sample()?;
-    let started = std::time::Instant::now();
-    let route = second_route(scene, d, step);
-    let (dots, worst) = match &route {
-        Some((_, f)) => curve_of.second_route(f.as_ref(), samples)?,
-        None => (Vec::new(), 0.0),
-    };
-    let seconds = started.elapsed().as_secs_f64();
+    let dotted = curve_of.dotted(second_route(scene, d, step), samples)?;
     // The file keeps the names as written; the reader sees them as symbols.
     let slug = slug(&format!("{step}-vs-{over}"));
     let (step, over) = (&super::plain_name(step), &super::plain_name(over));
-    let dotted = match &route {
-        Some((method, _)) => format!(
-            " Dots: {} values of {over} by {method}, at most {} (relative) from the curve.",
-            dots.len(),
-            sci(worst)
-        ),
-        None => " The curve is the exact result; the step's own numeric check is in its \
-                 derivation."
-            .to_string(),
-    };
-    let desc = curve_of.description((low, high), poles, &dotted);
+    let desc = curve_of.description((low, high), poles, dotted.as_ref());
     let legend = free_corner(&curve, (from, to), (low.1, high.1));
     let mut series = vec![Series {
         name: format!("{step} exact"),
@@ -132,21 +116,21 @@ pub(super) fn expression(
         points: curve,
     }];
     let mut accuracy = Vec::new();
-    if let Some((method, _)) = route {
+    if let Some(d) = dotted {
         series.push(Series {
             name: "second route".into(),
             mark: Mark::Points,
             colour: super::colour::ACCENT,
-            points: dots,
+            points: d.dots,
         });
         accuracy.push(Accuracy {
             result: format!("{step} at {samples} values of {over}"),
-            method,
-            true_error: Some(worst),
+            method: d.method,
+            true_error: Some(d.worst),
             estimated_error: None,
             cost: samples as u64,
             unit: "values".into(),
-            seconds,
+            seconds: d.seconds,
         });
     }
     Ok(Figure {
@@ -163,6 +147,15 @@ pub(super) fn expression(
         legend,
         accuracy,
     })
+}
+
+/// The second route's values as dots: how they are computed, their largest distance from the
+/// curve, and their time.
+struct Dotted {
+    method: String,
+    dots: Vec<(f64, f64)>,
+    worst: f64,
+    seconds: f64,
 }
 
 /// The exact curve, and where it is lowest and highest.
@@ -225,7 +218,7 @@ impl CurveOf<'_> {
         &self,
         (low, high): ((f64, f64), (f64, f64)),
         poles: usize,
-        dotted: &str,
+        dotted: Option<&Dotted>,
     ) -> String {
         let fixed: Vec<String> = self
             .env
@@ -235,6 +228,17 @@ impl CurveOf<'_> {
             .collect();
         let (step, over) = (&super::plain_name(self.step), &super::plain_name(self.over));
         let (from, to) = (self.from, self.to);
+        let dotted = match dotted {
+            Some(d) => format!(
+                " Dots: {} values of {over} by {}, at most {} (relative) from the curve.",
+                d.dots.len(),
+                d.method,
+                sci(d.worst)
+            ),
+            None => " The curve is the exact result; the step's own numeric check is in its \
+                     derivation."
+                .to_string(),
+        };
         format!(
             "{step} against {over} from {} to {}{}. Lowest {:.4} at {over} = {:.4}, highest {:.4} at \
              {over} = {:.4}.{}{dotted}",
@@ -286,6 +290,21 @@ impl CurveOf<'_> {
                 .eval(&|n| env.get(n).copied().filter(|_| n != "pi"))?)
         };
         exact().map_err(|e| self.located(e))
+    }
+
+    /// The dots of the step's second route, where it has one, timed.
+    fn dotted(&self, route: Option<Route>, samples: usize) -> Result<Option<Dotted>, FigureError> {
+        let started = std::time::Instant::now();
+        let Some((method, f)) = route else {
+            return Ok(None);
+        };
+        let (dots, worst) = self.second_route(f.as_ref(), samples)?;
+        Ok(Some(Dotted {
+            method,
+            dots,
+            worst,
+            seconds: started.elapsed().as_secs_f64(),
+        }))
     }
 
     /// The second route at `samples` values of `over` where both are finite, and its largest

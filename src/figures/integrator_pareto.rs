@@ -12,6 +12,14 @@ use crate::numeric::integrators::{Method, Resolution, integrate};
 use crate::numeric::pareto::pareto_front;
 use nalgebra::Vector3;
 
+/// The integrators compared, as the figure names them.
+const METHODS: [(&str, Method); 4] = [
+    ("RK4", Method::Rk4),
+    ("Strang splitting", Method::Splitting),
+    ("triple jump", Method::Splitting4),
+    ("Dormand–Prince 5(4)", Method::Dopri),
+];
+
 /// Every integrator over a ladder of steps (tolerances for Dormand–Prince): its error at
 /// `t_end` against the exact solution, relative to |ω(0)|, against its right-hand-side
 /// evaluations, and the Pareto front over all of them. The fidelity sets the finest rung.
@@ -22,27 +30,12 @@ pub fn integrator_pareto(
     fid: &Fidelity,
 ) -> Result<Figure, FigureError> {
     let exact = ExactSolution::new(i, w0).omega(t_end);
-    let finest_step = fid.ode_step(0.005) * 0.999;
-    let finest_tol = fid.ode_tolerance(1e-12) * 0.999;
-    let steps: Vec<f64> = [0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.0025, 0.00125]
-        .into_iter()
-        .filter(|h| *h >= finest_step)
-        .collect();
-    let tols: Vec<f64> = [1e-3, 1e-5, 1e-7, 1e-9, 1e-11, 1e-13]
-        .into_iter()
-        .filter(|t| *t >= finest_tol)
-        .collect();
-    let methods = [
-        ("RK4", Method::Rk4),
-        ("Strang splitting", Method::Splitting),
-        ("triple jump", Method::Splitting4),
-        ("Dormand–Prince 5(4)", Method::Dopri),
-    ];
+    let (steps, tols) = settings(fid);
     let mut series = Vec::new();
     let mut accuracy = Vec::new();
     let mut sentences = Vec::new();
     let mut all = Vec::new();
-    for (colour, (name, method)) in methods.into_iter().enumerate() {
+    for (colour, (name, method)) in METHODS.into_iter().enumerate() {
         let settings: Vec<Resolution> = if method == Method::Dopri {
             tols.iter().map(|t| Resolution::Tolerance(*t)).collect()
         } else {
@@ -145,4 +138,19 @@ fn method_runs(
         seconds: runs.iter().map(|(_, r, _)| r.seconds).sum(),
     };
     Ok((points, sentence, accuracy))
+}
+
+/// The fixed steps and the tolerances tried, down to the fidelity's finest.
+fn settings(fid: &Fidelity) -> (Vec<f64>, Vec<f64>) {
+    let finest_step = fid.ode_step(0.005) * 0.999;
+    let finest_tol = fid.ode_tolerance(1e-12) * 0.999;
+    let steps: Vec<f64> = [0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.0025, 0.00125]
+        .into_iter()
+        .filter(|h| *h >= finest_step)
+        .collect();
+    let tols: Vec<f64> = [1e-3, 1e-5, 1e-7, 1e-9, 1e-11, 1e-13]
+        .into_iter()
+        .filter(|t| *t >= finest_tol)
+        .collect();
+    (steps, tols)
 }
