@@ -101,9 +101,29 @@ impl Validator<'_> {
         }
         let (from, to) = self.plot_range(p, field, "an expression plot")?;
         let samples = self.plot_samples(p, field, 9)?;
+        let at = self.values_at(rp, field, over.get_ref(), &is_name)?;
+        Ok(PlotRequest::Expression {
+            step: step.get_ref().clone(),
+            over: over.get_ref().clone(),
+            from,
+            to,
+            samples,
+            at,
+        })
+    }
+
+    /// An expression plot's `at`: a finite value for each name it gives, a coordinate, a rate
+    /// or a declared symbol other than `over`.
+    fn values_at(
+        &self,
+        rp: &RawPlot,
+        field: &str,
+        over: &str,
+        is_name: &dyn Fn(&str) -> bool,
+    ) -> Result<BTreeMap<String, f64>, SceneError> {
         let mut at = BTreeMap::new();
         for (k, v) in &rp.at {
-            if !is_name(k.get_ref()) || k.get_ref() == over.get_ref() {
+            if !is_name(k.get_ref()) || k.get_ref() == over {
                 return Err(self.err(
                     k.span().start,
                     &format!("{field}.at"),
@@ -122,13 +142,6 @@ impl Validator<'_> {
             }
             at.insert(k.get_ref().clone(), *v.get_ref());
         }
-        Ok(PlotRequest::Expression {
-            step: step.get_ref().clone(),
-            over: over.get_ref().clone(),
-            from,
-            to,
-            samples,
-            at,
-        })
+        Ok(at)
     }
 }

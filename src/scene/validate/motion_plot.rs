@@ -76,26 +76,7 @@ impl Validator<'_> {
             .as_ref()
             .map(|l| name(l, true, "linear"))
             .transpose()?;
-        let mut from = BTreeMap::new();
-        for (k, v) in &rp.start {
-            let q = k.get_ref();
-            let base = q.trim_end_matches('\'');
-            if !coordinates.contains_key(base) || q.len() > base.len() + 1 {
-                return Err(self.err(
-                    k.span().start,
-                    &format!("{field}.start"),
-                    format!("`{q}` is not a coordinate or its rate (q or q')"),
-                ));
-            }
-            if !v.get_ref().is_finite() {
-                return Err(self.err(
-                    v.span().start,
-                    &format!("{field}.start"),
-                    "a start must be a finite number",
-                ));
-            }
-            from.insert(q.clone(), *v.get_ref());
-        }
+        let from = self.motion_start(rp, field, coordinates)?;
         let t = rp.t.as_ref().ok_or_else(|| {
             self.err(
                 start,
@@ -116,5 +97,35 @@ impl Validator<'_> {
             start: from,
             t: *t.get_ref(),
         })
+    }
+
+    /// A motion plot's `start`: a finite value for each coordinate or rate it gives.
+    fn motion_start(
+        &self,
+        rp: &RawPlot,
+        field: &str,
+        coordinates: &BTreeMap<String, String>,
+    ) -> Result<BTreeMap<String, f64>, SceneError> {
+        let mut from = BTreeMap::new();
+        for (k, v) in &rp.start {
+            let q = k.get_ref();
+            let base = q.trim_end_matches('\'');
+            if !coordinates.contains_key(base) || q.len() > base.len() + 1 {
+                return Err(self.err(
+                    k.span().start,
+                    &format!("{field}.start"),
+                    format!("`{q}` is not a coordinate or its rate (q or q')"),
+                ));
+            }
+            if !v.get_ref().is_finite() {
+                return Err(self.err(
+                    v.span().start,
+                    &format!("{field}.start"),
+                    "a start must be a finite number",
+                ));
+            }
+            from.insert(q.clone(), *v.get_ref());
+        }
+        Ok(from)
     }
 }
