@@ -172,42 +172,12 @@ impl Validator<'_> {
                 coordinates,
             },
         )?;
-        let mut start = BTreeMap::new();
-        for (k, v) in &s.start {
-            if !scope.contains(k.get_ref()) || !v.get_ref().is_finite() {
-                return Err(self.err(
-                    k.span().start,
-                    &format!("{field}.start.{}", k.get_ref()),
-                    "`start` gives finite values of the coordinates and their rates (`\"phi'\" = \
-                     0.1`)",
-                ));
-            }
-            start.insert(k.get_ref().clone(), *v.get_ref());
-        }
+        let start = self.step_start(s, field, scope)?;
         let gives = match &s.single_gives() {
             None => None,
             Some(g) => Some(self.gives(g, &format!("{field}.gives"), scope)?),
         };
-        let listed = s.listed_gives();
-        if let Some(first) = listed.first()
-            && !matches!(op.kind().several, Several::Modes | Several::Roots)
-        {
-            return Err(self.err(
-                first.span().start,
-                &format!("{field}.gives"),
-                format!(
-                    "a list in `gives` is for a step with several results (the modes of \
-                     `frequency`, the roots or unknowns of `solve`); `{}` gives one: write its \
-                     form alone",
-                    op.name()
-                ),
-            ));
-        }
-        let gives_each = listed
-            .iter()
-            .enumerate()
-            .map(|(k, g)| self.claim_expr(g, &format!("{field}.gives[{k}]"), scope))
-            .collect::<Result<Vec<_>, _>>()?;
+        let gives_each = self.gives_each(s, &op, field, scope)?;
         let names = self.result_names(s, &op, field, scope)?;
         Ok(AuthorStep {
             name: name.clone(),
@@ -230,6 +200,58 @@ impl Validator<'_> {
             line: self.loc.line_col(offset).0,
             op,
         })
+    }
+
+    /// A step's `start`: finite values of names in scope (the coordinates and their rates).
+    fn step_start(
+        &self,
+        s: &RawStep,
+        field: &str,
+        scope: &BTreeSet<String>,
+    ) -> Result<BTreeMap<String, f64>, SceneError> {
+        let mut start = BTreeMap::new();
+        for (k, v) in &s.start {
+            if !scope.contains(k.get_ref()) || !v.get_ref().is_finite() {
+                return Err(self.err(
+                    k.span().start,
+                    &format!("{field}.start.{}", k.get_ref()),
+                    "`start` gives finite values of the coordinates and their rates (`\"phi'\" = \
+                     0.1`)",
+                ));
+            }
+            start.insert(k.get_ref().clone(), *v.get_ref());
+        }
+        Ok(start)
+    }
+
+    /// A `gives` list, one form a result, for a step with several results.
+    fn gives_each(
+        &self,
+        s: &RawStep,
+        op: &Operation,
+        field: &str,
+        scope: &BTreeSet<String>,
+    ) -> Result<Vec<Expr>, SceneError> {
+        let listed = s.listed_gives();
+        if let Some(first) = listed.first()
+            && !matches!(op.kind().several, Several::Modes | Several::Roots)
+        {
+            return Err(self.err(
+                first.span().start,
+                &format!("{field}.gives"),
+                format!(
+                    "a list in `gives` is for a step with several results (the modes of \
+                     `frequency`, the roots or unknowns of `solve`); `{}` gives one: write its \
+                     form alone",
+                    op.name()
+                ),
+            ));
+        }
+        listed
+            .iter()
+            .enumerate()
+            .map(|(k, g)| self.claim_expr(g, &format!("{field}.gives[{k}]"), scope))
+            .collect()
     }
 
     /// The author's names for a step's several results: each new, for a step that gives
