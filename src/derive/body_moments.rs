@@ -31,6 +31,34 @@ pub fn moments_from_bodies(d: &mut Derivation) -> Result<(), DeriveError> {
         ));
     }
     let m = [cm[0][0].clone(), cm[1][1].clone(), cm[2][2].clone()];
+    let (three, moments) = named_moments(d, &m)?;
+    let values: Vec<Expr> = moments.iter().map(|(_, e)| e.clone()).collect();
+    d.steps.push(if three {
+        Step::note(
+            "The bodies' own moments",
+            Formula::parse("I_1 = $0, quad I_2 = $1, quad I_3 = $2", &values),
+            "the moments are the bodies' own: the body turns about its centre of mass, where its \
+             tensor is diagonal; $I_1$, $I_2$ and $I_3$ are its moments about $x$, $y$ and $z$, \
+             and every result above takes them",
+        )
+    } else {
+        Step::note(
+            "The bodies' own moments",
+            Formula::parse("I_1 = I_2 = $0, quad I_3 = $1", &values),
+            "the moments are the bodies' own: the free top is the scene's body, turning about its \
+             centre of mass; its moments come from the tensor there, and every result above takes \
+             them",
+        )
+    });
+    put_in_families(d, &moments)
+}
+
+/// Moments by the names the families' results use.
+type Named = Vec<(&'static str, Expr)>;
+
+/// The moments the families take, by name: I1, I2 and I3 about x, y and z when a family other
+/// than the symmetric top's is derived (then `true`), else the top's I1 = I2 and I3.
+fn named_moments(d: &Derivation, m: &[Expr; 3]) -> Result<(bool, Named), DeriveError> {
     let derived = |s: Stage| {
         d.quantities
             .keys()
@@ -80,24 +108,11 @@ pub fn moments_from_bodies(d: &mut Derivation) -> Result<(), DeriveError> {
         };
         vec![("I1", i1), ("I3", i3)]
     };
-    let values: Vec<Expr> = moments.iter().map(|(_, e)| e.clone()).collect();
-    d.steps.push(if three {
-        Step::note(
-            "The bodies' own moments",
-            Formula::parse("I_1 = $0, quad I_2 = $1, quad I_3 = $2", &values),
-            "the moments are the bodies' own: the body turns about its centre of mass, where its \
-             tensor is diagonal; $I_1$, $I_2$ and $I_3$ are its moments about $x$, $y$ and $z$, \
-             and every result above takes them",
-        )
-    } else {
-        Step::note(
-            "The bodies' own moments",
-            Formula::parse("I_1 = I_2 = $0, quad I_3 = $1", &values),
-            "the moments are the bodies' own: the free top is the scene's body, turning about its \
-             centre of mass; its moments come from the tensor there, and every result above takes \
-             them",
-        )
-    });
+    Ok((three, moments))
+}
+
+/// Every result of the families with the moments put in.
+fn put_in_families(d: &mut Derivation, moments: &[(&str, Expr)]) -> Result<(), DeriveError> {
     let put = |e: &Expr| {
         e.substitute(&|s| {
             moments
