@@ -65,6 +65,26 @@ fn fmt_decimal(v: f64) -> String {
 }
 
 pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
+    let beta = beta_from_ellipticity(d)?;
+    let at_h = |e: &Expr| {
+        cas::simplify(&e.substitute(&|n| (n == "H").then(|| rat(DYNAMICAL_ELLIPTICITY))))
+    };
+    let beta_value = at_h(&beta)?;
+    number_step(
+        d,
+        quantity::EARTH_BETA,
+        "$\\beta$ from the measured $H$",
+        "beta",
+        beta_value.clone(),
+        "$H = 3.2737949 \\times 10^{-3}$ (IERS Conventions 2010, Table 1.1, via REFERENCE.md)",
+    )?;
+    euler_periods(d, beta_value)?;
+    bulge(d)?;
+    Ok(())
+}
+
+/// β = (C − A)/A, from the dynamical ellipticity H = (C − A)/C solved for C.
+fn beta_from_ellipticity(d: &mut Derivation) -> Result<Expr, DeriveError> {
     let (a, c, h) = (Expr::sym("A"), Expr::sym("C"), Expr::sym("H"));
     // H = (C − A)/C, solved for C: the root of H C − (C − A) = 0.
     let roots = cas::roots(
@@ -100,18 +120,11 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
                 .math("I_3 = C"),
         ),
     ));
-    let at_h = |e: &Expr| {
-        cas::simplify(&e.substitute(&|n| (n == "H").then(|| rat(DYNAMICAL_ELLIPTICITY))))
-    };
-    let beta_value = at_h(&beta)?;
-    number_step(
-        d,
-        quantity::EARTH_BETA,
-        "$\\beta$ from the measured $H$",
-        "beta",
-        beta_value.clone(),
-        "$H = 3.2737949 \\times 10^{-3}$ (IERS Conventions 2010, Table 1.1, via REFERENCE.md)",
-    )?;
+    Ok(beta)
+}
+
+/// The Euler period, in sidereal and in solar days, and the observed Chandler period over it.
+fn euler_periods(d: &mut Derivation, beta_value: Expr) -> Result<(), DeriveError> {
     // The body-frame wobble has angular frequency βω3 (eq 69), so its period is 2π/(βω3); with
     // ω3 = 2π per sidereal day that is 1/β sidereal days.
     let sidereal = cas::simplify(&Expr::over(Expr::int(1), beta_value))?;
@@ -144,6 +157,11 @@ pub fn earth_precession(d: &mut Derivation) -> Result<(), DeriveError> {
         "the observed wobble (about 433 days, Malkin & Miller 2010) is slower: Earth is not rigid \
          (elastic mantle, oceans, fluid core)",
     )?;
+    Ok(())
+}
+
+/// The equatorial bulge, in km and as a fraction of the radius.
+fn bulge(d: &mut Derivation) -> Result<(), DeriveError> {
     let flattening = Expr::over(Expr::int(1), rat(INVERSE_FLATTENING));
     let bulge = cas::simplify(&Expr::mul(vec![
         rat(EQUATORIAL_RADIUS_KM),
