@@ -97,39 +97,7 @@ pub(crate) fn equilibria_check(
          bisected, poles set aside), at the scene's values, against the exact equilibria\
          {skipped}; their cosines and sines against the angles'"
     );
-    let grid: Vec<f64> = (0..SCAN_POINTS)
-        .map(|i| -PI + 2.0 * PI * i as f64 / SCAN_POINTS as f64)
-        .collect();
-    let samples: Vec<f64> = grid.iter().map(|x| f(*x)).collect::<Result<_, _>>()?;
-    check.evaluations += SCAN_POINTS as u64;
-    let mut found = Vec::new();
-    for i in 0..SCAN_POINTS {
-        let (a, b) = (grid[i], grid[i] + 2.0 * PI / SCAN_POINTS as f64);
-        let (fa, fb) = (samples[i], samples[(i + 1) % SCAN_POINTS]);
-        if fa == 0.0 {
-            found.push(a);
-        } else if fa * fb < 0.0 {
-            let (mut lo, mut hi, mut flo) = (a, b, fa);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                let fm = f(mid)?;
-                check.evaluations += 1;
-                if (fm < 0.0) == (flo < 0.0) {
-                    (lo, flo) = (mid, fm);
-                } else {
-                    hi = mid;
-                }
-            }
-            // A sign change through a pole (1/(1 + cos θ) at π) is not a zero: there the
-            // equation grows without bound instead of vanishing.
-            let x = 0.5 * (lo + hi);
-            let ends = [fa, fb].into_iter().filter(|y| y.is_finite());
-            let bound = ends.fold(0.0f64, |m, y| m.max(y.abs()));
-            if f(x)?.abs() <= POLE_RATIO * bound {
-                found.push(wrap(x));
-            }
-        }
-    }
+    let found = zeros_over_one_turn(&f, &mut check.evaluations)?;
     for x in &found {
         let nearest = exact
             .iter()
@@ -146,6 +114,48 @@ pub(crate) fn equilibria_check(
         }
     }
     Ok(())
+}
+
+/// The zeros of `f` over one turn: sign changes on [`SCAN_POINTS`] points, bisected, those
+/// through a pole set aside. Counts its evaluations.
+fn zeros_over_one_turn(
+    f: &dyn Fn(f64) -> Result<f64, CheckError>,
+    evaluations: &mut u64,
+) -> Result<Vec<f64>, CheckError> {
+    let grid: Vec<f64> = (0..SCAN_POINTS)
+        .map(|i| -PI + 2.0 * PI * i as f64 / SCAN_POINTS as f64)
+        .collect();
+    let samples: Vec<f64> = grid.iter().map(|x| f(*x)).collect::<Result<_, _>>()?;
+    *evaluations += SCAN_POINTS as u64;
+    let mut found = Vec::new();
+    for i in 0..SCAN_POINTS {
+        let (a, b) = (grid[i], grid[i] + 2.0 * PI / SCAN_POINTS as f64);
+        let (fa, fb) = (samples[i], samples[(i + 1) % SCAN_POINTS]);
+        if fa == 0.0 {
+            found.push(a);
+        } else if fa * fb < 0.0 {
+            let (mut lo, mut hi, mut flo) = (a, b, fa);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                let fm = f(mid)?;
+                *evaluations += 1;
+                if (fm < 0.0) == (flo < 0.0) {
+                    (lo, flo) = (mid, fm);
+                } else {
+                    hi = mid;
+                }
+            }
+            // A sign change through a pole (1/(1 + cos θ) at π) is not a zero: there the
+            // equation grows without bound instead of vanishing.
+            let x = 0.5 * (lo + hi);
+            let ends = [fa, fb].into_iter().filter(|y| y.is_finite());
+            let bound = ends.fold(0.0f64, |m, y| m.max(y.abs()));
+            if f(x)?.abs() <= POLE_RATIO * bound {
+                found.push(wrap(x));
+            }
+        }
+    }
+    Ok(found)
 }
 
 /// Each equilibrium's Ω² at the scene's values against k/m by differences: k a central
