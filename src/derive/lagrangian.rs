@@ -200,51 +200,9 @@ pub fn equilibria(
         )));
     };
     let at_rest = cas::simplify(&at_rest(r, q))?;
-    // Zeros are found of polynomials in q, sin q and cos q only: exp(−a(x − x₀)) = 1 is solved
-    // by no rule here.
-    let mut other = None;
-    at_rest.walk(&mut |e| {
-        if let Expr::Call(f, args) = e
-            && !["sin", "cos", "sqrt"].contains(&f.as_str())
-            && args.iter().any(|a| a.symbols().iter().any(|s| s == q))
-        {
-            other.get_or_insert_with(|| e.to_text());
-        }
-    });
-    if let Some(call) = other {
-        return Err(DeriveError::NotDerivable(format!(
-            "the static equation {} = 0 holds `{call}`: its states of rest are found for a \
-             polynomial in `{q}`, sin({q}) and cos({q}) only; give the state in a `linearise` \
-             step's `about` (an error there says when it is not at rest)",
-            at_rest.to_text()
-        )));
-    }
+    polynomial_in_trig(&at_rest, q)?;
     let mut found = cas::zeros(&at_rest, q)?;
-    // A cubic or quartic factor of a polynomial: its roots real at the scene's values, in the
-    // closed form `solve` gives (r³ = p: r = ∛p).
-    for f in std::mem::take(&mut found.unsolved) {
-        let polynomial = f.symbols().iter().any(|s| s == q) && !has_call_of(&f, q);
-        let closed = if polynomial {
-            closed_roots(&f, q, values)?.ok()
-        } else {
-            None
-        };
-        match closed {
-            Some(roots) => found.zeros.extend(
-                roots
-                    .into_iter()
-                    .map(|value| cas::Zero { value, trig: None }),
-            ),
-            None => {
-                return Err(DeriveError::NotDerivable(format!(
-                    "the static equation has the factor {} = 0, whose solutions have no closed \
-                     form here (a polynomial of degree at most 4 in `{q}`, or of degree 2 in \
-                     sin({q}) or cos({q}))",
-                    f.to_text()
-                )));
-            }
-        }
-    }
+    close_factors(&mut found, q, values)?;
     // A root that is real for no positive values (√(−3r₀²)) is no state of rest: set aside,
     // named. One real for some values only (arccos(I₃ω₃/√(MglI₁) − 1)) stays.
     let mut zeros = Vec::new();
@@ -280,6 +238,62 @@ pub fn equilibria(
         zeros,
         excluded: excluded.into_iter().map(|z| z.value).collect(),
     })
+}
+
+/// Refuses a static equation that is not a polynomial in q, sin q and cos q: zeros are found
+/// of those only (exp(−a(x − x₀)) = 1 is solved by no rule here).
+fn polynomial_in_trig(at_rest: &Expr, q: &str) -> Result<(), DeriveError> {
+    let mut other = None;
+    at_rest.walk(&mut |e| {
+        if let Expr::Call(f, args) = e
+            && !["sin", "cos", "sqrt"].contains(&f.as_str())
+            && args.iter().any(|a| a.symbols().iter().any(|s| s == q))
+        {
+            other.get_or_insert_with(|| e.to_text());
+        }
+    });
+    if let Some(call) = other {
+        return Err(DeriveError::NotDerivable(format!(
+            "the static equation {} = 0 holds `{call}`: its states of rest are found for a \
+             polynomial in `{q}`, sin({q}) and cos({q}) only; give the state in a `linearise` \
+             step's `about` (an error there says when it is not at rest)",
+            at_rest.to_text()
+        )));
+    }
+    Ok(())
+}
+
+/// The roots of each cubic or quartic factor of a polynomial left unsolved, real at the
+/// scene's values, in the closed form `solve` gives (r³ = p: r = ∛p), among the zeros.
+fn close_factors(
+    found: &mut cas::Zeros,
+    q: &str,
+    values: &BTreeMap<String, f64>,
+) -> Result<(), DeriveError> {
+    for f in std::mem::take(&mut found.unsolved) {
+        let polynomial = f.symbols().iter().any(|s| s == q) && !has_call_of(&f, q);
+        let closed = if polynomial {
+            closed_roots(&f, q, values)?.ok()
+        } else {
+            None
+        };
+        match closed {
+            Some(roots) => found.zeros.extend(
+                roots
+                    .into_iter()
+                    .map(|value| cas::Zero { value, trig: None }),
+            ),
+            None => {
+                return Err(DeriveError::NotDerivable(format!(
+                    "the static equation has the factor {} = 0, whose solutions have no closed \
+                     form here (a polynomial of degree at most 4 in `{q}`, or of degree 2 in \
+                     sin({q}) or cos({q}))",
+                    f.to_text()
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The states of rest of one coordinate, and the roots of its static equation that are not
