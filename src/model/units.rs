@@ -417,34 +417,7 @@ pub fn measure_of(
         Expr::Num(_) => Some(Measure::none()),
         Expr::Sym(s) if s == "pi" => Some(Measure::none()),
         Expr::Sym(s) => names(s),
-        Expr::Add(terms) => {
-            let mut known: Option<(Measure, &Expr)> = None;
-            for t in terms {
-                let Some(m) = measure_of(t, names)? else {
-                    continue;
-                };
-                match &known {
-                    None => known = Some((m, t)),
-                    Some((k, first)) if k.dimension != m.dimension => {
-                        return Err(DimensionError::UnlikeSum {
-                            left: first.to_text(),
-                            left_dim: k.dimension.to_string(),
-                            right: t.to_text(),
-                            right_dim: m.dimension.to_string(),
-                        });
-                    }
-                    Some((k, first)) if k.scale != m.scale => {
-                        return Err(DimensionError::UnlikeUnits {
-                            left: first.to_text(),
-                            right: t.to_text(),
-                            dimension: m.dimension.to_string(),
-                        });
-                    }
-                    Some(_) => {}
-                }
-            }
-            known.map(|(m, _)| m)
-        }
+        Expr::Add(terms) => sum_measure(terms, names)?,
         Expr::Mul(factors) => {
             let mut out = Some(Measure::none());
             for f in factors {
@@ -456,60 +429,105 @@ pub fn measure_of(
             }
             out
         }
-        Expr::Pow(b, x) => {
-            let base = measure_of(b, names)?;
-            let power = measure_of(x, names)?;
-            if let Some(p) = &power
-                && !p.dimension.is_none()
-            {
-                return Err(DimensionError::Power {
-                    base: b.to_text(),
-                    power: x.to_text(),
-                    dimension: p.dimension.to_string(),
-                });
-            }
-            match (base, x.as_ref()) {
-                (Some(m), Expr::Num(p)) => m.power(p),
-                // A pure number to any power; its scale (c/L in cm over m) then is unknown.
-                (Some(m), _) if m.dimension.is_none() => {
-                    (m.scale == Rational::ONE).then(Measure::none)
-                }
-                (Some(m), _) => {
-                    return Err(DimensionError::Power {
-                        base: b.to_text(),
-                        power: x.to_text(),
-                        dimension: m.dimension.to_string(),
-                    });
-                }
-                (None, _) => None,
-            }
-        }
-        Expr::Call(f, args) if args.len() == 1 => {
-            let m = measure_of(&args[0], names)?;
-            match f.as_str() {
-                "sqrt" => m.and_then(|m| m.power(&Rational::new(1, 2).expect("two is not zero"))),
-                "abs" => m,
-                f if crate::cas::needs_dimensionless(f) => {
-                    if let Some(m) = &m
-                        && !m.dimension.is_none()
-                    {
-                        return Err(DimensionError::Function {
-                            function: f.to_string(),
-                            argument: args[0].to_text(),
-                            dimension: m.dimension.to_string(),
-                        });
-                    }
-                    Some(Measure::none())
-                }
-                "sign" => Some(Measure::none()),
-                _ => None,
-            }
-        }
+        Expr::Pow(b, x) => power_measure(b, x, names)?,
+        Expr::Call(f, args) if args.len() == 1 => function_measure(f, &args[0], names)?,
         // atan2(y, x): the angle of a point, whose two coordinates share a unit, as a sum's terms.
         Expr::Call(f, args) if f == "atan2" => {
             measure_of(&Expr::add(args.clone()), names)?;
             Some(Measure::none())
         }
+        _ => None,
+    })
+}
+
+/// A sum's measure: its terms' (those known), which must agree in dimension and unit.
+fn sum_measure(
+    terms: &[Expr],
+    names: &dyn Fn(&str) -> Option<Measure>,
+) -> Result<Option<Measure>, DimensionError> {
+    let mut known: Option<(Measure, &Expr)> = None;
+    for t in terms {
+        let Some(m) = measure_of(t, names)? else {
+            continue;
+        };
+        match &known {
+            None => known = Some((m, t)),
+            Some((k, first)) if k.dimension != m.dimension => {
+                return Err(DimensionError::UnlikeSum {
+                    left: first.to_text(),
+                    left_dim: k.dimension.to_string(),
+                    right: t.to_text(),
+                    right_dim: m.dimension.to_string(),
+                });
+            }
+            Some((k, first)) if k.scale != m.scale => {
+                return Err(DimensionError::UnlikeUnits {
+                    left: first.to_text(),
+                    right: t.to_text(),
+                    dimension: m.dimension.to_string(),
+                });
+            }
+            Some(_) => {}
+        }
+    }
+    Ok(known.map(|(m, _)| m))
+}
+
+/// A power's measure: a rational power of a measure, or any power of a pure number; the power itself dimensionless.
+fn power_measure(
+    b: &Expr,
+    x: &Expr,
+    names: &dyn Fn(&str) -> Option<Measure>,
+) -> Result<Option<Measure>, DimensionError> {
+    let base = measure_of(b, names)?;
+    let power = measure_of(x, names)?;
+    if let Some(p) = &power
+        && !p.dimension.is_none()
+    {
+        return Err(DimensionError::Power {
+            base: b.to_text(),
+            power: x.to_text(),
+            dimension: p.dimension.to_string(),
+        });
+    }
+    Ok(match (base, x) {
+        (Some(m), Expr::Num(p)) => m.power(p),
+        // A pure number to any power; its scale (c/L in cm over m) then is unknown.
+        (Some(m), _) if m.dimension.is_none() => (m.scale == Rational::ONE).then(Measure::none),
+        (Some(m), _) => {
+            return Err(DimensionError::Power {
+                base: b.to_text(),
+                power: x.to_text(),
+                dimension: m.dimension.to_string(),
+            });
+        }
+        (None, _) => None,
+    })
+}
+
+/// A function of one argument: √ halves the dimension, |x| keeps it, the others take and give pure numbers.
+fn function_measure(
+    f: &str,
+    arg: &Expr,
+    names: &dyn Fn(&str) -> Option<Measure>,
+) -> Result<Option<Measure>, DimensionError> {
+    let m = measure_of(arg, names)?;
+    Ok(match f {
+        "sqrt" => m.and_then(|m| m.power(&Rational::new(1, 2).expect("two is not zero"))),
+        "abs" => m,
+        f if crate::cas::needs_dimensionless(f) => {
+            if let Some(m) = &m
+                && !m.dimension.is_none()
+            {
+                return Err(DimensionError::Function {
+                    function: f.to_string(),
+                    argument: arg.to_text(),
+                    dimension: m.dimension.to_string(),
+                });
+            }
+            Some(Measure::none())
+        }
+        "sign" => Some(Measure::none()),
         _ => None,
     })
 }
