@@ -323,89 +323,100 @@ impl Parser<'_> {
                 self.expect(b']')?;
                 Ok(Expr::List(items))
             }
-            Some(c) if c.is_ascii_digit() || c == b'.' => {
-                let s = self.pos;
-                while self.pos < self.src.len()
-                    && (self.src[self.pos].is_ascii_digit() || self.src[self.pos] == b'.')
-                {
-                    self.pos += 1;
-                }
-                // An exponent `e-3` only when a digit follows.
-                if self.pos + 1 < self.src.len() && matches!(self.src[self.pos], b'e' | b'E') {
-                    let mut q = self.pos + 1;
-                    if matches!(self.src[q], b'+' | b'-') {
-                        q += 1;
-                    }
-                    if q < self.src.len() && self.src[q].is_ascii_digit() {
-                        self.pos = q;
-                        while self.pos < self.src.len() && self.src[self.pos].is_ascii_digit() {
-                            self.pos += 1;
-                        }
-                    }
-                }
-                let text = std::str::from_utf8(&self.src[s..self.pos]).unwrap_or("?");
-                Rational::parse_decimal_within(text, self.max_digits)
-                    .map(Expr::Num)
-                    .ok_or(ParseError {
-                        offset: s,
-                        message: format!(
-                            "malformed number `{}` (at most {} digits, exponents within ±{})",
-                            short(text),
-                            self.max_digits,
-                            super::rational::MAX_EXPONENT
-                        ),
-                    })
-            }
-            Some(c) if c.is_ascii_alphabetic() => {
-                let s = self.pos;
-                while self.pos < self.src.len()
-                    && (self.src[self.pos].is_ascii_alphanumeric() || self.src[self.pos] == b'_')
-                {
-                    self.pos += 1;
-                }
-                // A coordinate's rates: `phi'` and `phi''` (d/dt and d²/dt²).
-                let mut primes = 0;
-                while primes < 2 && self.src.get(self.pos) == Some(&b'\'') {
-                    self.pos += 1;
-                    primes += 1;
-                }
-                let name = String::from_utf8_lossy(&self.src[s..self.pos]).into_owned();
-                if primes == 0 && self.peek() == Some(b'(') {
-                    self.pos += 1;
-                    if self.peek() == Some(b')') {
-                        self.pos += 1;
-                        return Ok(Expr::Call(name, Vec::new()));
-                    }
-                    let mut args = vec![self.sum()?];
-                    while self.peek() == Some(b',') {
-                        self.pos += 1;
-                        args.push(self.sum()?);
-                    }
-                    self.expect(b')')?;
-                    // tan x is read as sin x / cos x, tanh x as sinh x / cosh x, ln as log, so
-                    // that every later stage knows them.
-                    if let ("tan" | "tanh", 1) = (name.as_str(), args.len()) {
-                        let x = args.remove(0);
-                        let h = if name == "tanh" { "h" } else { "" };
-                        return Ok(Expr::over(
-                            Expr::call(&format!("sin{h}"), x.clone()),
-                            Expr::call(&format!("cos{h}"), x),
-                        ));
-                    }
-                    let name = if name == "ln" {
-                        "log".to_string()
-                    } else {
-                        name
-                    };
-                    return Ok(Expr::Call(name, args));
-                }
-                self.symbols.push((name.clone(), s));
-                Ok(Expr::Sym(name))
-            }
+            Some(c) if c.is_ascii_digit() || c == b'.' => self.number(),
+            Some(c) if c.is_ascii_alphabetic() => self.name_or_call(),
             Some(c) => {
                 self.pos = start.max(self.pos);
                 Err(self.error(&unexpected(&self.src[self.pos..], c)))
             }
         }
+    }
+
+    /// A decimal number, with an exponent (`e-3`) only when a digit follows the `e`.
+    fn number(&mut self) -> Result<Expr, ParseError> {
+        let s = self.pos;
+        while self.pos < self.src.len()
+            && (self.src[self.pos].is_ascii_digit() || self.src[self.pos] == b'.')
+        {
+            self.pos += 1;
+        }
+        // An exponent `e-3` only when a digit follows.
+        if self.pos + 1 < self.src.len() && matches!(self.src[self.pos], b'e' | b'E') {
+            let mut q = self.pos + 1;
+            if matches!(self.src[q], b'+' | b'-') {
+                q += 1;
+            }
+            if q < self.src.len() && self.src[q].is_ascii_digit() {
+                self.pos = q;
+                while self.pos < self.src.len() && self.src[self.pos].is_ascii_digit() {
+                    self.pos += 1;
+                }
+            }
+        }
+        let text = std::str::from_utf8(&self.src[s..self.pos]).unwrap_or("?");
+        Rational::parse_decimal_within(text, self.max_digits)
+            .map(Expr::Num)
+            .ok_or(ParseError {
+                offset: s,
+                message: format!(
+                    "malformed number `{}` (at most {} digits, exponents within ±{})",
+                    short(text),
+                    self.max_digits,
+                    super::rational::MAX_EXPONENT
+                ),
+            })
+    }
+
+    /// A name, with a coordinate's rate primes, or a function's call.
+    fn name_or_call(&mut self) -> Result<Expr, ParseError> {
+        let s = self.pos;
+        while self.pos < self.src.len()
+            && (self.src[self.pos].is_ascii_alphanumeric() || self.src[self.pos] == b'_')
+        {
+            self.pos += 1;
+        }
+        // A coordinate's rates: `phi'` and `phi''` (d/dt and d²/dt²).
+        let mut primes = 0;
+        while primes < 2 && self.src.get(self.pos) == Some(&b'\'') {
+            self.pos += 1;
+            primes += 1;
+        }
+        let name = String::from_utf8_lossy(&self.src[s..self.pos]).into_owned();
+        if primes == 0 && self.peek() == Some(b'(') {
+            return self.call(name);
+        }
+        self.symbols.push((name.clone(), s));
+        Ok(Expr::Sym(name))
+    }
+
+    /// A call of `name`: its arguments in parentheses, read on from the opening one.
+    fn call(&mut self, name: String) -> Result<Expr, ParseError> {
+        self.pos += 1;
+        if self.peek() == Some(b')') {
+            self.pos += 1;
+            return Ok(Expr::Call(name, Vec::new()));
+        }
+        let mut args = vec![self.sum()?];
+        while self.peek() == Some(b',') {
+            self.pos += 1;
+            args.push(self.sum()?);
+        }
+        self.expect(b')')?;
+        // tan x is read as sin x / cos x, tanh x as sinh x / cosh x, ln as log, so
+        // that every later stage knows them.
+        if let ("tan" | "tanh", 1) = (name.as_str(), args.len()) {
+            let x = args.remove(0);
+            let h = if name == "tanh" { "h" } else { "" };
+            return Ok(Expr::over(
+                Expr::call(&format!("sin{h}"), x.clone()),
+                Expr::call(&format!("cos{h}"), x),
+            ));
+        }
+        let name = if name == "ln" {
+            "log".to_string()
+        } else {
+            name
+        };
+        Ok(Expr::Call(name, args))
     }
 }
