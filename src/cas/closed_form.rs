@@ -115,50 +115,62 @@ fn cubic(
         ),
     };
     let roots = if three_real {
-        // Left as −(q/2)·(−p/3)^(−3/2): expanded, each term would repeat the power.
-        let cos_phi = Expr::mul(vec![
-            Expr::rat(-1, 2),
-            q.clone(),
-            Expr::pow(minus_p_third.clone(), Expr::rat(-3, 2)),
-        ]);
-        let phi = Expr::call("acos", cos_phi);
-        (0..3)
-            .map(|k| {
-                let angle = Expr::over(
-                    Expr::minus(
-                        phi.clone(),
-                        Expr::mul(vec![Expr::int(2 * k), Expr::sym("pi")]),
-                    ),
-                    Expr::int(3),
-                );
-                Expr::add(vec![
-                    shift.clone(),
-                    Expr::mul(vec![
-                        Expr::int(2),
-                        sqrt(minus_p_third.clone()),
-                        Expr::call("cos", angle),
-                    ]),
-                ])
-            })
-            .collect()
+        trigonometric_roots(&q, &minus_p_third, &shift)
     } else {
-        let sign = if q_positive { -1 } else { 1 };
-        let radicand = simplify(&Expr::add(vec![
-            Expr::over(Expr::pow(q.clone(), Expr::int(2)), Expr::int(4)),
-            Expr::over(Expr::pow(p.clone(), Expr::int(3)), Expr::int(27)),
-        ]))?;
-        let under_cube = Expr::add(vec![
-            Expr::mul(vec![Expr::rat(-sign, 2), q.clone()]),
-            sqrt(radicand),
-        ]);
-        let u = Expr::pow(under_cube, Expr::rat(1, 3));
-        let t = Expr::minus(
-            u.clone(),
-            Expr::over(p.clone(), Expr::mul(vec![Expr::int(3), u])),
-        );
-        vec![Expr::add(vec![shift, Expr::mul(vec![Expr::int(sign), t])])]
+        vec![cardano_root(&p, &q, shift, q_positive)?]
     };
     Ok(Ok(roots))
+}
+
+/// Three real roots, in Viète's trigonometric form: shift + 2√(−p/3) cos((φ − 2πk)/3), with
+/// cos φ = −(q/2)(−p/3)^(−3/2).
+fn trigonometric_roots(q: &Expr, minus_p_third: &Expr, shift: &Expr) -> Vec<Expr> {
+    // Left as −(q/2)·(−p/3)^(−3/2): expanded, each term would repeat the power.
+    let cos_phi = Expr::mul(vec![
+        Expr::rat(-1, 2),
+        q.clone(),
+        Expr::pow(minus_p_third.clone(), Expr::rat(-3, 2)),
+    ]);
+    let phi = Expr::call("acos", cos_phi);
+    (0..3)
+        .map(|k| {
+            let angle = Expr::over(
+                Expr::minus(
+                    phi.clone(),
+                    Expr::mul(vec![Expr::int(2 * k), Expr::sym("pi")]),
+                ),
+                Expr::int(3),
+            );
+            Expr::add(vec![
+                shift.clone(),
+                Expr::mul(vec![
+                    Expr::int(2),
+                    sqrt(minus_p_third.clone()),
+                    Expr::call("cos", angle),
+                ]),
+            ])
+        })
+        .collect()
+}
+
+/// The one real root, by Cardano's formula, with the sign that q's sign chooses so that the two
+/// terms under the cube root do not cancel.
+fn cardano_root(p: &Expr, q: &Expr, shift: Expr, q_positive: bool) -> Result<Expr, EngineError> {
+    let sign = if q_positive { -1 } else { 1 };
+    let radicand = simplify(&Expr::add(vec![
+        Expr::over(Expr::pow(q.clone(), Expr::int(2)), Expr::int(4)),
+        Expr::over(Expr::pow(p.clone(), Expr::int(3)), Expr::int(27)),
+    ]))?;
+    let under_cube = Expr::add(vec![
+        Expr::mul(vec![Expr::rat(-sign, 2), q.clone()]),
+        sqrt(radicand),
+    ]);
+    let u = Expr::pow(under_cube, Expr::rat(1, 3));
+    let t = Expr::minus(
+        u.clone(),
+        Expr::over(p.clone(), Expr::mul(vec![Expr::int(3), u])),
+    );
+    Ok(Expr::add(vec![shift, Expr::mul(vec![Expr::int(sign), t])]))
 }
 
 /// c₄x⁴ + … + c₀ with x = y − c₃/(4c₄): y⁴ + p y² + q y + r. With q = 0 a quadratic in y²;
