@@ -418,105 +418,120 @@ fn child_build(args: &[&str]) -> Result<(f64, f64)> {
 /// Whole-site builds of a copy of `lectures`, each in a fresh child process.
 fn builds(lectures: &Path, repeats: usize, progress: &mut impl FnMut(&str)) -> Result<String> {
     let dir = scratch::folder("bench")?;
-    let result = (|| {
-        let scenes = dir.join("lectures");
-        scratch::copy_tree(lectures, &scenes)?;
-        let s = |p: &PathBuf| p.to_string_lossy().into_owned();
-        let (scenes_arg, site, cache) = (s(&scenes), s(&dir.join("site")), s(&dir.join("cache")));
-        let base = [
-            scenes_arg.as_str(),
-            "--out",
-            site.as_str(),
-            "--cache",
-            cache.as_str(),
-        ];
-        let with = |extra: &[&str]| -> Vec<String> {
-            base.iter().chain(extra).map(|x| x.to_string()).collect()
-        };
-        let build = |args: Vec<String>| {
-            let a: Vec<&str> = args.iter().map(String::as_str).collect();
-            child_build(&a)
-        };
-        let mut rows: Vec<(String, Timing)> = Vec::new();
-        for (name, fidelity) in [
-            ("cold, draft", "draft"),
-            ("cold, standard", "standard"),
-            ("cold, reference", "reference"),
-        ] {
-            progress(name);
-            rows.push((
-                format!("{name}: no cache, every stage runs"),
-                timed(repeats, || {
-                    build(with(&["--no-cache", "--fidelity", fidelity]))
-                })?,
-            ));
-        }
-        progress("warm");
-        build(with(&[]))?;
-        rows.push((
-            "warm, standard: every scene from the cache".into(),
-            timed(repeats, || build(with(&[])))?,
-        ));
-        progress("one scene changed");
-        // The last scene in name order: the same one on every machine.
-        let edited = crate::scene::find_scenes(std::slice::from_ref(&scenes))?
-            .pop()
-            .context("no scene to edit")?;
-        let mut edits = 0;
-        rows.push((
-            format!(
-                "one scene edited ({}), standard: it alone runs",
-                edited.file_name().unwrap_or_default().to_string_lossy()
-            ),
-            timed(repeats, || {
-                edits += 1;
-                scratch::append_line(&edited, &format!("# bench edit {edits}"))?;
-                build(with(&[]))
-            })?,
-        ));
-        for fidelity in ["draft", "reference"] {
-            progress(fidelity);
-            rows.push((
-                format!("{fidelity}, symbolic results cached: only the numerics run"),
-                timed(repeats, || {
-                    scratch::drop_reports(&dir.join("cache"))?;
-                    build(with(&["--fidelity", fidelity]))
-                })?,
-            ));
-        }
-        let mut md = format!(
-            "## Whole-site builds\n\nEach build is a separate `mechbook build` process of the {} \
-             lecture scenes, timed from outside (start-up included); {repeats} run(s) each. Peak \
-             memory is the largest the build printed (Linux VmHWM).\n\n\
-             | build | fastest s | median s | peak MiB |\n|---|---|---|---|\n",
-            crate::scene::find_scenes(std::slice::from_ref(&scenes)).map_or(0, |v| v.len())
-        );
-        for (name, t) in &rows {
-            let _ = writeln!(
-                md,
-                "| {name} | {:.3} | {:.3} | {:.0} |",
-                t.fastest, t.median, t.peak
-            );
-        }
-        let ratio = |a: &str, b: &str| {
-            let get = |k: &str| {
-                rows.iter()
-                    .find(|(n, _)| n.starts_with(k))
-                    .map(|(_, t)| t.median)
-            };
-            get(a).zip(get(b)).map_or(f64::NAN, |(x, y)| x / y)
-        };
-        let _ = writeln!(
-            md,
-            "\nReference over draft (medians): {:.1}× with no cache, {:.1}× with the symbolic \
-             results cached.",
-            ratio("cold, reference", "cold, draft"),
-            ratio("reference, symbolic", "draft, symbolic")
-        );
-        Ok(md)
-    })();
+    let result = build_rows(lectures, &dir, repeats, progress);
     scratch::remove(&dir);
     result
+}
+
+/// Each build's timing, on a copy of the lectures in `dir`, as the section's Markdown.
+fn build_rows(
+    lectures: &Path,
+    dir: &Path,
+    repeats: usize,
+    progress: &mut impl FnMut(&str),
+) -> Result<String> {
+    let scenes = dir.join("lectures");
+    scratch::copy_tree(lectures, &scenes)?;
+    let s = |p: &PathBuf| p.to_string_lossy().into_owned();
+    let (scenes_arg, site, cache) = (s(&scenes), s(&dir.join("site")), s(&dir.join("cache")));
+    let base = [
+        scenes_arg.as_str(),
+        "--out",
+        site.as_str(),
+        "--cache",
+        cache.as_str(),
+    ];
+    let with = |extra: &[&str]| -> Vec<String> {
+        base.iter().chain(extra).map(|x| x.to_string()).collect()
+    };
+    let build = |args: Vec<String>| {
+        let a: Vec<&str> = args.iter().map(String::as_str).collect();
+        child_build(&a)
+    };
+    let mut rows: Vec<(String, Timing)> = Vec::new();
+    for (name, fidelity) in [
+        ("cold, draft", "draft"),
+        ("cold, standard", "standard"),
+        ("cold, reference", "reference"),
+    ] {
+        progress(name);
+        rows.push((
+            format!("{name}: no cache, every stage runs"),
+            timed(repeats, || {
+                build(with(&["--no-cache", "--fidelity", fidelity]))
+            })?,
+        ));
+    }
+    progress("warm");
+    build(with(&[]))?;
+    rows.push((
+        "warm, standard: every scene from the cache".into(),
+        timed(repeats, || build(with(&[])))?,
+    ));
+    progress("one scene changed");
+    // The last scene in name order: the same one on every machine.
+    let edited = crate::scene::find_scenes(std::slice::from_ref(&scenes))?
+        .pop()
+        .context("no scene to edit")?;
+    let mut edits = 0;
+    rows.push((
+        format!(
+            "one scene edited ({}), standard: it alone runs",
+            edited.file_name().unwrap_or_default().to_string_lossy()
+        ),
+        timed(repeats, || {
+            edits += 1;
+            scratch::append_line(&edited, &format!("# bench edit {edits}"))?;
+            build(with(&[]))
+        })?,
+    ));
+    for fidelity in ["draft", "reference"] {
+        progress(fidelity);
+        rows.push((
+            format!("{fidelity}, symbolic results cached: only the numerics run"),
+            timed(repeats, || {
+                scratch::drop_reports(&dir.join("cache"))?;
+                build(with(&["--fidelity", fidelity]))
+            })?,
+        ));
+    }
+    let count = crate::scene::find_scenes(std::slice::from_ref(&scenes)).map_or(0, |v| v.len());
+    Ok(builds_table(count, repeats, &rows))
+}
+
+/// The builds' rows as a Markdown table under the section's heading, and the ratios of the
+/// reference fidelity's time to the draft's.
+fn builds_table(count: usize, repeats: usize, rows: &[(String, Timing)]) -> String {
+    let mut md = format!(
+        "## Whole-site builds\n\nEach build is a separate `mechbook build` process of the {} \
+         lecture scenes, timed from outside (start-up included); {repeats} run(s) each. Peak \
+         memory is the largest the build printed (Linux VmHWM).\n\n\
+         | build | fastest s | median s | peak MiB |\n|---|---|---|---|\n",
+        count
+    );
+    for (name, t) in rows {
+        let _ = writeln!(
+            md,
+            "| {name} | {:.3} | {:.3} | {:.0} |",
+            t.fastest, t.median, t.peak
+        );
+    }
+    let ratio = |a: &str, b: &str| {
+        let get = |k: &str| {
+            rows.iter()
+                .find(|(n, _)| n.starts_with(k))
+                .map(|(_, t)| t.median)
+        };
+        get(a).zip(get(b)).map_or(f64::NAN, |(x, y)| x / y)
+    };
+    let _ = writeln!(
+        md,
+        "\nReference over draft (medians): {:.1}× with no cache, {:.1}× with the symbolic \
+         results cached.",
+        ratio("cold, reference", "cold, draft"),
+        ratio("reference, symbolic", "draft, symbolic")
+    );
+    md
 }
 
 /// The symbolic stage alone: derivation, claims and recorded results of every scene, in this
