@@ -165,46 +165,15 @@ fn measure(
         }
         let reference = textbook_modes(n);
         let ours_error = worst(&mechbook_modes(&file)?, &reference);
-        let mut sympy: Option<SympyRun> = None;
-        if sympy_missing.is_none() {
-            for _ in 0..repeats {
-                match sympy_run(python, &script, n) {
-                    Ok(run) => {
-                        if sympy.as_ref().is_none_or(|best| run.seconds < best.seconds) {
-                            sympy = Some(run);
-                        }
-                    }
-                    Err(e) => {
-                        sympy_missing = Some(e.to_string());
-                        break;
-                    }
-                }
-            }
-        }
-        let (whole, mechanics, ratio, ratio_mechanics, theirs, their_peak) = match &sympy {
-            Some(s) => (
-                format!("{:.3} s", s.seconds),
-                format!("{:.3} s", s.mechanics),
-                format!("{:.0}×", s.seconds / ours),
-                format!("{:.0}×", s.mechanics / ours),
-                crate::base::format::sci(worst(&s.frequencies, &reference)),
-                format!("{:.0} MiB", s.peak),
-            ),
-            None => Default::default(),
+        let sympy = if sympy_missing.is_none() {
+            fastest_sympy(python, &script, n, repeats, &mut sympy_missing)
+        } else {
+            None
         };
-        let dash = |s: String| if s.is_empty() { "—".to_string() } else { s };
         let _ = writeln!(
             md,
-            "| {n} | {:.3} s | {} | {} | {} | {} | {} | {} | {:.0} MiB | {} |",
-            ours,
-            dash(whole),
-            dash(mechanics),
-            dash(ratio),
-            dash(ratio_mechanics),
-            crate::base::format::sci(ours_error),
-            dash(theirs),
-            our_peak,
-            dash(their_peak),
+            "{}",
+            row(n, (ours, our_peak, ours_error), sympy.as_ref(), &reference)
         );
     }
     if let Some(seconds) = largest {
@@ -228,4 +197,64 @@ fn measure(
         );
     }
     Ok(md)
+}
+
+/// SymPy's fastest of `repeats` runs on the `n`-link pendulum; none, with why in `missing`, when
+/// it does not run.
+fn fastest_sympy(
+    python: &Path,
+    script: &Path,
+    n: usize,
+    repeats: usize,
+    missing: &mut Option<String>,
+) -> Option<SympyRun> {
+    let mut sympy: Option<SympyRun> = None;
+    for _ in 0..repeats {
+        match sympy_run(python, script, n) {
+            Ok(run) => {
+                if sympy.as_ref().is_none_or(|best| run.seconds < best.seconds) {
+                    sympy = Some(run);
+                }
+            }
+            Err(e) => {
+                *missing = Some(e.to_string());
+                break;
+            }
+        }
+    }
+    sympy
+}
+
+/// One row of the table: mechbook's time, peak and error against M⁻¹K's modes, and SymPy's
+/// where it ran.
+fn row(
+    n: usize,
+    (ours, our_peak, ours_error): (f64, f64, f64),
+    sympy: Option<&SympyRun>,
+    reference: &[f64],
+) -> String {
+    let (whole, mechanics, ratio, ratio_mechanics, theirs, their_peak) = match sympy {
+        Some(s) => (
+            format!("{:.3} s", s.seconds),
+            format!("{:.3} s", s.mechanics),
+            format!("{:.0}×", s.seconds / ours),
+            format!("{:.0}×", s.mechanics / ours),
+            crate::base::format::sci(worst(&s.frequencies, reference)),
+            format!("{:.0} MiB", s.peak),
+        ),
+        None => Default::default(),
+    };
+    let dash = |s: String| if s.is_empty() { "—".to_string() } else { s };
+    format!(
+        "| {n} | {:.3} s | {} | {} | {} | {} | {} | {} | {:.0} MiB | {} |",
+        ours,
+        dash(whole),
+        dash(mechanics),
+        dash(ratio),
+        dash(ratio_mechanics),
+        crate::base::format::sci(ours_error),
+        dash(theirs),
+        our_peak,
+        dash(their_peak),
+    )
 }
