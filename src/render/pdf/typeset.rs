@@ -155,11 +155,7 @@ fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
         main: Source::detached(source.markup.clone()),
         source,
     };
-    let fail = |messages: Vec<String>, scene: Option<String>| TypesetError {
-        path: source.path.clone(),
-        messages,
-        scene,
-    };
+    let fail = |messages: Vec<String>, scene: Option<String>| failed(source, messages, scene);
     let Warned { output, .. } = typst::compile::<PagedDocument>(&world);
     let document = output.map_err(|errors| {
         let ranges: Vec<_> = errors
@@ -185,42 +181,7 @@ fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
             scene,
         )
     })?;
-    // Tagged for PDF/UA-1: a reader's assistive technology gets the structure, the language
-    // and each formula's spoken form (its alternative description).
-    let standards = typst_pdf::PdfStandards::new(&[typst_pdf::PdfStandard::Ua_1])
-        .map_err(|e| fail(vec![e.message().to_string()], None))?;
-    let options = typst_pdf::PdfOptions {
-        ident: Smart::Custom(source.path.clone()),
-        creator: Smart::Custom(Some("mechbook (Typst)".into())),
-        timestamp: None,
-        standards,
-        ..Default::default()
-    };
-    let pdf = match typst_pdf::pdf(&document, &options) {
-        Ok(pdf) => pdf,
-        // A character no font has (a student's name in another script) cannot be set as
-        // PDF/UA-1 asks: the PDF is still tagged, without the claim, and the character is
-        // named in a warning below.
-        Err(errors)
-            if errors
-                .iter()
-                .all(|e| e.message.contains("could not be displayed with font")) =>
-        {
-            let tagged = typst_pdf::PdfOptions {
-                standards: typst_pdf::PdfStandards::default(),
-                ..options
-            };
-            typst_pdf::pdf(&document, &tagged).map_err(|errors| {
-                fail(errors.iter().map(|e| e.message.to_string()).collect(), None)
-            })?
-        }
-        Err(errors) => {
-            return Err(fail(
-                errors.iter().map(|e| e.message.to_string()).collect(),
-                None,
-            ));
-        }
-    };
+    let pdf = tagged_pdf(&document, source)?;
     // A character no font has is set as the font's "notdef": found in the laid-out pages, not
     // in Typst's warnings' wording.
     let mut missing = missing_glyphs_in(&document);
@@ -244,6 +205,56 @@ fn typeset_here(source: &PdfSource) -> Result<Typeset, TypesetError> {
         past_the_edge: overflow.iter().map(|(page, _)| *page).collect(),
         past_the_edge_in,
     })
+}
+
+/// A typesetting error of `source`'s PDF.
+fn failed(source: &PdfSource, messages: Vec<String>, scene: Option<String>) -> TypesetError {
+    TypesetError {
+        path: source.path.clone(),
+        messages,
+        scene,
+    }
+}
+
+/// The laid-out document as a PDF, tagged for PDF/UA-1: a reader's assistive technology gets the
+/// structure, the language and each formula's spoken form (its alternative description).
+fn tagged_pdf(document: &PagedDocument, source: &PdfSource) -> Result<Vec<u8>, TypesetError> {
+    let fail = |messages: Vec<String>, scene: Option<String>| failed(source, messages, scene);
+    let standards = typst_pdf::PdfStandards::new(&[typst_pdf::PdfStandard::Ua_1])
+        .map_err(|e| fail(vec![e.message().to_string()], None))?;
+    let options = typst_pdf::PdfOptions {
+        ident: Smart::Custom(source.path.clone()),
+        creator: Smart::Custom(Some("mechbook (Typst)".into())),
+        timestamp: None,
+        standards,
+        ..Default::default()
+    };
+    let pdf = match typst_pdf::pdf(document, &options) {
+        Ok(pdf) => pdf,
+        // A character no font has (a student's name in another script) cannot be set as
+        // PDF/UA-1 asks: the PDF is still tagged, without the claim, and the character is
+        // named in a warning (`missing_glyphs`).
+        Err(errors)
+            if errors
+                .iter()
+                .all(|e| e.message.contains("could not be displayed with font")) =>
+        {
+            let tagged = typst_pdf::PdfOptions {
+                standards: typst_pdf::PdfStandards::default(),
+                ..options
+            };
+            typst_pdf::pdf(document, &tagged).map_err(|errors| {
+                fail(errors.iter().map(|e| e.message.to_string()).collect(), None)
+            })?
+        }
+        Err(errors) => {
+            return Err(fail(
+                errors.iter().map(|e| e.message.to_string()).collect(),
+                None,
+            ));
+        }
+    };
+    Ok(pdf)
 }
 
 /// The pages (from 1) where a piece of text reaches past the paper's left or right edge, each
