@@ -159,33 +159,7 @@ fn text(f: &Formula, out: &mut String) {
         Formula::Expr(e) => out.push_str(&e.to_text()),
         Formula::Name(n) => out.push_str(&text_name(n)),
         Formula::Number(s) | Formula::Text(s) | Formula::Upright(s) => out.push_str(s),
-        Formula::Row(items) => {
-            for (i, item) in items.iter().enumerate() {
-                match item {
-                    Formula::Op(Op::Minus) if unary(items, i) => out.push('−'),
-                    Formula::Op(op) => push_spaced(out, text_op(*op)),
-                    other => {
-                        // Side by side, factors are set apart by a space, but a number
-                        // runs into what it multiplies (2T), and a function or ∇ into its
-                        // argument: det(A), ∇F.
-                        let joined = i == 0
-                            || out.ends_with(' ')
-                            || matches!(
-                                items[i - 1],
-                                Formula::Op(_) | Formula::Number(_) | Formula::Nabla(_)
-                            )
-                            || matches!(
-                                (&items[i - 1], other),
-                                (Formula::Function(_), Formula::Paren(..))
-                            );
-                        if !joined {
-                            out.push(' ');
-                        }
-                        text(other, out);
-                    }
-                }
-            }
-        }
+        Formula::Row(items) => text_row(items, out),
         Formula::Op(op) => out.push_str(text_op(*op)),
         Formula::Frac(a, b) if is_number(a, "1") && is_number(b, "2") => out.push('½'),
         Formula::Frac(a, b) => {
@@ -197,24 +171,7 @@ fn text(f: &Formula, out: &mut String) {
             out.push('√');
             text_operand(a, out);
         }
-        Formula::Sup(a, b) => {
-            text_operand(a, out);
-            match b.as_ref() {
-                // Digits only: a minus stays as it is written.
-                Formula::Number(s) => out.extend(s.chars().map(|c| {
-                    if c.is_ascii_digit() {
-                        superscript(c)
-                    } else {
-                        c
-                    }
-                })),
-                Formula::Name(n) if n.base == "T" && n.sub.is_none() => out.push('ᵀ'),
-                other => {
-                    out.push('^');
-                    text_operand(other, out);
-                }
-            }
-        }
+        Formula::Sup(a, b) => text_sup(a, b, out),
         Formula::Paren(a, _) => {
             out.push('(');
             text(a, out);
@@ -226,19 +183,7 @@ fn text(f: &Formula, out: &mut String) {
             out.push(']');
         }
         Formula::Identity => out.push('𝟙'),
-        Formula::Matrix(rows) => {
-            let row = |r: &Vec<Formula>| {
-                let cells: Vec<String> = r.iter().map(Formula::to_text).collect();
-                format!("({})", cells.join(", "))
-            };
-            match rows.as_slice() {
-                [one] => out.push_str(&row(one)),
-                rows => {
-                    let rows: Vec<String> = rows.iter().map(row).collect();
-                    out.push_str(&format!("({})", rows.join(", ")));
-                }
-            }
-        }
+        Formula::Matrix(rows) => text_matrix(rows, out),
         Formula::Abs(a) => {
             out.push('|');
             text(a, out);
@@ -274,6 +219,70 @@ fn text(f: &Formula, out: &mut String) {
             out.push('$');
             out.push_str(&t.source);
             out.push('$');
+        }
+    }
+}
+
+/// A row's items side by side, its operators spaced.
+fn text_row(items: &[Formula], out: &mut String) {
+    for (i, item) in items.iter().enumerate() {
+        match item {
+            Formula::Op(Op::Minus) if unary(items, i) => out.push('−'),
+            Formula::Op(op) => push_spaced(out, text_op(*op)),
+            other => {
+                // Side by side, factors are set apart by a space, but a number
+                // runs into what it multiplies (2T), and a function or ∇ into its
+                // argument: det(A), ∇F.
+                let joined = i == 0
+                    || out.ends_with(' ')
+                    || matches!(
+                        items[i - 1],
+                        Formula::Op(_) | Formula::Number(_) | Formula::Nabla(_)
+                    )
+                    || matches!(
+                        (&items[i - 1], other),
+                        (Formula::Function(_), Formula::Paren(..))
+                    );
+                if !joined {
+                    out.push(' ');
+                }
+                text(other, out);
+            }
+        }
+    }
+}
+
+/// A power: its exponent in superscript digits where it is a number, ᵀ for a transpose.
+fn text_sup(a: &Formula, b: &Formula, out: &mut String) {
+    text_operand(a, out);
+    match b {
+        // Digits only: a minus stays as it is written.
+        Formula::Number(s) => out.extend(s.chars().map(|c| {
+            if c.is_ascii_digit() {
+                superscript(c)
+            } else {
+                c
+            }
+        })),
+        Formula::Name(n) if n.base == "T" && n.sub.is_none() => out.push('ᵀ'),
+        other => {
+            out.push('^');
+            text_operand(other, out);
+        }
+    }
+}
+
+/// A matrix row by row in parentheses, a single row as one tuple.
+fn text_matrix(rows: &[Vec<Formula>], out: &mut String) {
+    let row = |r: &Vec<Formula>| {
+        let cells: Vec<String> = r.iter().map(Formula::to_text).collect();
+        format!("({})", cells.join(", "))
+    };
+    match rows {
+        [one] => out.push_str(&row(one)),
+        rows => {
+            let rows: Vec<String> = rows.iter().map(row).collect();
+            out.push_str(&format!("({})", rows.join(", ")));
         }
     }
 }

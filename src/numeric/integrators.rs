@@ -401,8 +401,8 @@ fn dopri(
     max_steps: u64,
 ) -> Result<Run, IntegrationError> {
     // The system is autonomous, so the nodes c_i are not needed. Fifth-order weights are A[5];
-    // E = b5 − b4 for the error estimate (7 stages with FSAL).
-    use super::ode::{A, E};
+    // E = b5 − b4 gives the error estimate (`scaled_error`; 7 stages with FSAL).
+    use super::ode::A;
     let mut s = State {
         w: w0,
         q: Matrix3::identity(),
@@ -441,20 +441,7 @@ fn dopri(
             if st == 6 {
                 // The 5th-order solution is stage 7's argument (FSAL).
                 k[6] = deriv(i, &y);
-                let mut err_w = Vector3::zeros();
-                let mut err_q = Matrix3::zeros();
-                for (j, kj) in k.iter().enumerate() {
-                    err_w += kj.w * (h * E[j]);
-                    err_q += kj.q * (h * E[j]);
-                }
-                let norm = |e: f64, y: f64, y0: f64| e / (tol * (1.0 + y.abs().max(y0.abs())));
-                let mut err: f64 = 0.0;
-                for c in 0..3 {
-                    err = err.max(norm(err_w[c], y.w[c], s.w[c]));
-                }
-                for c in 0..9 {
-                    err = err.max(norm(err_q[c], y.q[c], s.q[c]));
-                }
+                let err = scaled_error(&k, h, tol, &y, &s);
                 rhs += 6;
                 let factor = (0.9 * err.max(1e-10).powf(-0.2)).clamp(0.2, 5.0);
                 if err <= 1.0 {
@@ -475,6 +462,27 @@ fn dopri(
         }
     }
     Ok(finish(Method::Dopri, s, steps, rhs, drift, trace, samples))
+}
+
+/// The embedded error estimate of a step of size `h` from `s` to `y` (stages `k`), each entry
+/// over `tol` times (1 + the larger size of its two values): a step is taken when at most 1.
+fn scaled_error(k: &[State; 7], h: f64, tol: f64, y: &State, s: &State) -> f64 {
+    use super::ode::E;
+    let mut err_w = Vector3::zeros();
+    let mut err_q = Matrix3::zeros();
+    for (j, kj) in k.iter().enumerate() {
+        err_w += kj.w * (h * E[j]);
+        err_q += kj.q * (h * E[j]);
+    }
+    let norm = |e: f64, y: f64, y0: f64| e / (tol * (1.0 + y.abs().max(y0.abs())));
+    let mut err: f64 = 0.0;
+    for c in 0..3 {
+        err = err.max(norm(err_w[c], y.w[c], s.w[c]));
+    }
+    for c in 0..9 {
+        err = err.max(norm(err_q[c], y.q[c], s.q[c]));
+    }
+    err
 }
 
 /// The exact flow of H_a = L_a²/(2 I_a) for time τ: with θ = L_a τ / I_a, L turns by −θ about

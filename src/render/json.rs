@@ -162,40 +162,8 @@ pub fn scene_json(page: &Page) -> Json {
     let names = &page.names;
     let quantities = quantities_json(page);
     let claims = claims_json(page);
-    let numeric_checks: Vec<Json> = page
-        .numeric
-        .iter()
-        .map(|q| {
-            json!({
-                "body": q.body,
-                "method": q.method,
-                "points": q.points,
-                "error": num(q.error),
-                "predicted_error": num(q.predicted_error),
-                "seconds": num(q.seconds),
-                "within_law": q.within_law,
-                "stop": q.stop,
-            })
-        })
-        .collect();
-    let principal: Vec<Json> = page
-        .principal_axes
-        .iter()
-        .map(|sp| {
-            let (kind, dir) = match &sp.basis {
-                ExactBasis::Axis(a) => ("axis", Some(vec_text(a))),
-                ExactBasis::PlaneNormalTo(n) => ("plane-normal-to", Some(vec_text(n))),
-                ExactBasis::All => ("all", None),
-            };
-            json!({
-                "value": sp.value.to_text(),
-                "numeric": sp.number.map(num).unwrap_or(Json::Null),
-                "multiplicity": sp.multiplicity,
-                "eigenspace": kind,
-                "direction": dir,
-            })
-        })
-        .collect();
+    let numeric_checks = numeric_checks_json(page);
+    let principal = principal_axes_json(page);
     let stages: Vec<Json> = page
         .stages
         .iter()
@@ -210,17 +178,7 @@ pub fn scene_json(page: &Page) -> Json {
         "passed": page.passed,
         "quantities": quantities,
         "principal_axes": principal,
-        "principal_moments": page.principal_values.as_ref().map(|p| json!({
-            "values": p.exact.iter().map(|v| num(*v)).collect::<Vec<_>>(),
-            "closed_form": p.closed_form,
-            "numeric": p.numeric.iter().flat_map(|e| std::iter::repeat_n(num(e.value), e.multiplicity)).collect::<Vec<_>>(),
-            "axes": p.numeric.iter().map(|e| match &e.space {
-                Space::Axis(v) => json!({ "axis": ([v.x, v.y, v.z].map(num)) }),
-                Space::PlaneNormalTo(v) => json!({ "plane_normal_to": ([v.x, v.y, v.z].map(num)) }),
-                Space::All => json!("all"),
-            }).collect::<Vec<_>>(),
-            "error": num(p.error),
-        })),
+        "principal_moments": principal_moments_json(page),
         "claims": claims,
         "numeric_checks": numeric_checks,
         "exact_vs_numeric": page.exact_vs_numeric.iter().map(|q| json!({
@@ -247,6 +205,61 @@ pub fn scene_json(page: &Page) -> Json {
                 "seconds": num(a.seconds) })).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
     })
+}
+
+/// Each body's quadrature: its rule, points, errors and time.
+fn numeric_checks_json(page: &Page) -> Vec<Json> {
+    page.numeric
+        .iter()
+        .map(|q| {
+            json!({
+                "body": q.body,
+                "method": q.method,
+                "points": q.points,
+                "error": num(q.error),
+                "predicted_error": num(q.predicted_error),
+                "seconds": num(q.seconds),
+                "within_law": q.within_law,
+                "stop": q.stop,
+            })
+        })
+        .collect()
+}
+
+/// Each principal moment, exact and at the scene's values, with its eigenspace.
+fn principal_axes_json(page: &Page) -> Vec<Json> {
+    page.principal_axes
+        .iter()
+        .map(|sp| {
+            let (kind, dir) = match &sp.basis {
+                ExactBasis::Axis(a) => ("axis", Some(vec_text(a))),
+                ExactBasis::PlaneNormalTo(n) => ("plane-normal-to", Some(vec_text(n))),
+                ExactBasis::All => ("all", None),
+            };
+            json!({
+                "value": sp.value.to_text(),
+                "numeric": sp.number.map(num).unwrap_or(Json::Null),
+                "multiplicity": sp.multiplicity,
+                "eigenspace": kind,
+                "direction": dir,
+            })
+        })
+        .collect()
+}
+
+/// The principal moments at the scene's values, exact and by the eigen-solver, with its axes.
+fn principal_moments_json(page: &Page) -> Option<Json> {
+    page.principal_values.as_ref().map(|p| json!({
+        "values": p.exact.iter().map(|v| num(*v)).collect::<Vec<_>>(),
+        "closed_form": p.closed_form,
+        "numeric": p.numeric.iter().flat_map(|e| std::iter::repeat_n(num(e.value), e.multiplicity)).collect::<Vec<_>>(),
+        "axes": p.numeric.iter().map(|e| match &e.space {
+            Space::Axis(v) => json!({ "axis": ([v.x, v.y, v.z].map(num)) }),
+            Space::PlaneNormalTo(v) => json!({ "plane_normal_to": ([v.x, v.y, v.z].map(num)) }),
+            Space::All => json!("all"),
+        }).collect::<Vec<_>>(),
+        "error": num(p.error),
+    }))
 }
 
 /// Each quantity's exact form, LaTeX and numbers; a number with no exact form, and a list.

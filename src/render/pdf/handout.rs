@@ -11,7 +11,7 @@ use super::quantities::{numbers_typst, said_unit, unit_typst};
 use crate::base::format::sci;
 use crate::derive::ExactBasis;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
-use crate::document::{At, Page, words};
+use crate::document::{At, Page, PrincipalAxis, PrincipalValues, Quantity, words};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
 use crate::notation::{Formula, Names, symbol_tex};
@@ -168,92 +168,111 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
 fn results(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {
     let names = &page.names;
     for q in part.results.iter().map(|&i| &page.quantities[i]) {
-        match &q.symbol {
-            // A step's result, named by its own equation (`ẍ₁ = …`).
-            Some(symbol) => {
-                let statement = words::result_equation(symbol, &q.value);
-                let (whole, broken) = formula_and_broken(&statement, names)?;
-                m.block(&whole, &broken, &statement.to_tex(names).spoken());
-            }
-            None => {
-                m.heading(3, &words::result_heading(q))?;
-                match &q.matrix {
-                    Some(_) => {
-                        let value = q.formula();
-                        let (whole, broken) = formula_and_broken(&value, names)?;
-                        m.block(&whole, &broken, &value.to_tex(names).spoken());
-                    }
-                    None => {
-                        let value = q.value.to_expr();
-                        m.block(
-                            &value.to_typst(names),
-                            &value.to_typst_breakable(names),
-                            &value.to_tex(names).spoken(),
-                        );
-                    }
-                }
-            }
-        }
-        if let Some(at) = &q.at {
-            at_numbers(m, &q.value, at, names);
-        }
+        quantity(m, q, names)?;
     }
     if !part.principal {
         return Ok(());
     }
     for sp in &page.principal_axes {
-        m.heading(
-            3,
-            &format!("Principal moment (multiplicity {})", sp.multiplicity),
-        )?;
-        let vector = |v: &[crate::cas::Expr; 3]| Value::Vector(v.clone()).to_expr();
-        let (dir, said) = match &sp.basis {
-            ExactBasis::Axis(a) => (
-                format!("quad \"along\" {}", vector(a).to_typst(names)),
-                format!("along {}", vector(a).to_tex(names).spoken()),
-            ),
-            ExactBasis::PlaneNormalTo(n) => (
-                format!("quad \"every axis\" perp {}", vector(n).to_typst(names)),
-                format!(
-                    "every axis perpendicular to {}",
-                    vector(n).to_tex(names).spoken()
-                ),
-            ),
-            ExactBasis::All => ("quad \"every axis\"".into(), "every axis".into()),
-        };
-        let line = format!("{} {dir}", sp.value.to_typst(names));
-        m.block(
-            &line,
-            &line,
-            &format!("{}, {said}", sp.value.to_tex(names).spoken()),
-        );
+        principal_axis(m, sp, names)?;
     }
     if let Some(p) = &page.principal_values {
-        m.heading(3, "Principal moments at the scene's values")?;
-        let values: Vec<String> = p.exact.iter().map(|v| number(*v, 6)).collect();
-        let line = format!(
-            "{} = {}",
-            symbol(&p.letter, names),
-            values.join("\\, thin ")
-        );
-        let said: Vec<String> = p.exact.iter().map(|v| said_number(*v, 6)).collect();
-        m.block(
-            &line,
-            &line,
-            &said_equation(&p.letter, &said.join(", "), names),
-        );
-        m.raw("#text(9.5pt)[").text("at ");
-        let values = words::values_at(&p.values);
-        m.inline(
-            &super::markup::formula(&values, names)?,
-            &values.to_tex(names).spoken(),
-        );
-        m.text(&format!(
-            ": the eigen-solver on the exact tensor agrees to {} (relative)",
-            sci(p.error)
-        ));
-        m.raw("]\n");
+        principal_values(m, p, names)?;
     }
+    Ok(())
+}
+
+/// One result: a step's by its own equation, any other under its heading; at the scene's
+/// numbers where it has them.
+fn quantity(m: &mut Markup, q: &Quantity, names: &Names) -> Result<(), RenderError> {
+    match &q.symbol {
+        // A step's result, named by its own equation (`ẍ₁ = …`).
+        Some(symbol) => {
+            let statement = words::result_equation(symbol, &q.value);
+            let (whole, broken) = formula_and_broken(&statement, names)?;
+            m.block(&whole, &broken, &statement.to_tex(names).spoken());
+        }
+        None => {
+            m.heading(3, &words::result_heading(q))?;
+            match &q.matrix {
+                Some(_) => {
+                    let value = q.formula();
+                    let (whole, broken) = formula_and_broken(&value, names)?;
+                    m.block(&whole, &broken, &value.to_tex(names).spoken());
+                }
+                None => {
+                    let value = q.value.to_expr();
+                    m.block(
+                        &value.to_typst(names),
+                        &value.to_typst_breakable(names),
+                        &value.to_tex(names).spoken(),
+                    );
+                }
+            }
+        }
+    }
+    if let Some(at) = &q.at {
+        at_numbers(m, &q.value, at, names);
+    }
+    Ok(())
+}
+
+/// A principal moment with its axis, its plane of axes, or every axis.
+fn principal_axis(m: &mut Markup, sp: &PrincipalAxis, names: &Names) -> Result<(), RenderError> {
+    m.heading(
+        3,
+        &format!("Principal moment (multiplicity {})", sp.multiplicity),
+    )?;
+    let vector = |v: &[crate::cas::Expr; 3]| Value::Vector(v.clone()).to_expr();
+    let (dir, said) = match &sp.basis {
+        ExactBasis::Axis(a) => (
+            format!("quad \"along\" {}", vector(a).to_typst(names)),
+            format!("along {}", vector(a).to_tex(names).spoken()),
+        ),
+        ExactBasis::PlaneNormalTo(n) => (
+            format!("quad \"every axis\" perp {}", vector(n).to_typst(names)),
+            format!(
+                "every axis perpendicular to {}",
+                vector(n).to_tex(names).spoken()
+            ),
+        ),
+        ExactBasis::All => ("quad \"every axis\"".into(), "every axis".into()),
+    };
+    let line = format!("{} {dir}", sp.value.to_typst(names));
+    m.block(
+        &line,
+        &line,
+        &format!("{}, {said}", sp.value.to_tex(names).spoken()),
+    );
+    Ok(())
+}
+
+/// The principal moments at the scene's values, and the eigen-solver's agreement with them.
+fn principal_values(m: &mut Markup, p: &PrincipalValues, names: &Names) -> Result<(), RenderError> {
+    m.heading(3, "Principal moments at the scene's values")?;
+    let values: Vec<String> = p.exact.iter().map(|v| number(*v, 6)).collect();
+    let line = format!(
+        "{} = {}",
+        symbol(&p.letter, names),
+        values.join("\\, thin ")
+    );
+    let said: Vec<String> = p.exact.iter().map(|v| said_number(*v, 6)).collect();
+    m.block(
+        &line,
+        &line,
+        &said_equation(&p.letter, &said.join(", "), names),
+    );
+    m.raw("#text(9.5pt)[").text("at ");
+    let values = words::values_at(&p.values);
+    m.inline(
+        &super::markup::formula(&values, names)?,
+        &values.to_tex(names).spoken(),
+    );
+    m.text(&format!(
+        ": the eigen-solver on the exact tensor agrees to {} (relative)",
+        sci(p.error)
+    ));
+    m.raw("]\n");
     Ok(())
 }
 
