@@ -232,33 +232,8 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
             let (Node::Group(_, num), Node::Group(_, den)) = (&parts[0], &parts[1]) else {
                 return vec![seg];
             };
-            let bracketed_if_cut = |v: &[Node]| {
-                if has_cut(v) {
-                    vec![bracket(v.to_vec())]
-                } else {
-                    v.to_vec()
-                }
-            };
             let mut reshaped = before.to_vec();
-            if width(num) >= width(den) {
-                // \frac{n}{d} → \frac{1}{d} (n): the numerator's terms can then wrap.
-                reshaped.push(Node::Visual(
-                    Visual::Fraction(None),
-                    vec![group(vec![number("1")]), group(den.clone())],
-                ));
-                reshaped.extend(bracketed_if_cut(num));
-            } else {
-                // \frac{n}{d} → n (d)^{-1}, a sum n in brackets.
-                if num.as_slice() != [number("1")] {
-                    reshaped.extend(bracketed_if_cut(num));
-                }
-                let base = if takes_a_power(den) {
-                    den[0].clone()
-                } else {
-                    bracket(den.clone())
-                };
-                reshaped.push(power(base, vec![binary('−'), number("1")]));
-            }
+            reshaped.extend(fraction_reshaped(num, den));
             reshaped.extend(after.iter().cloned());
             return open_segment(reshaped, fit);
         }
@@ -292,16 +267,7 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
     // turn) when it would make the bracket's first or last piece too wide; a power stays on
     // its bracket.
     let open = delimiter('(', size, DelimiterType::Open);
-    let mut close = delimiter(')', size, DelimiterType::Close);
-    if let Some((ty, position, scripts)) = scripts {
-        let mut parts = vec![close];
-        parts.extend(scripts);
-        close = Node::Script {
-            ty,
-            position,
-            parts,
-        };
-    }
+    let close = closing(size, scripts);
     // The content is cut to leave room on its first piece for the opening bracket, and for
     // a short factor before it (`A cos`), which stays with it.
     let short_before = width(before) <= SHORT_BEFORE;
@@ -310,7 +276,68 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
         limit: room.max(fit.limit / 2.0),
         ..fit
     };
-    let mut inner_pieces = pieces_of(&inner, inner_fit);
+    let inner_pieces = pieces_of(&inner, inner_fit);
+    placed(before, (open, inner_pieces, close), after, fit)
+}
+
+/// A fraction reshaped so that a bracket can break: \frac{n}{d} → \frac{1}{d} (n) when the
+/// numerator is the wider, else n (d)^{-1}; a part that can be cut goes in brackets.
+fn fraction_reshaped(num: &[Node], den: &[Node]) -> Vec<Node> {
+    let bracketed_if_cut = |v: &[Node]| {
+        if has_cut(v) {
+            vec![bracket(v.to_vec())]
+        } else {
+            v.to_vec()
+        }
+    };
+    let mut reshaped = Vec::new();
+    if width(num) >= width(den) {
+        // \frac{n}{d} → \frac{1}{d} (n): the numerator's terms can then wrap.
+        reshaped.push(Node::Visual(
+            Visual::Fraction(None),
+            vec![group(vec![number("1")]), group(den.to_vec())],
+        ));
+        reshaped.extend(bracketed_if_cut(num));
+    } else {
+        // \frac{n}{d} → n (d)^{-1}, a sum n in brackets.
+        if num != [number("1")] {
+            reshaped.extend(bracketed_if_cut(num));
+        }
+        let base = if takes_a_power(den) {
+            den[0].clone()
+        } else {
+            bracket(den.to_vec())
+        };
+        reshaped.push(power(base, vec![binary('−'), number("1")]));
+    }
+    reshaped
+}
+
+/// The closing bracket of `size`, carrying the scripts its content had.
+fn closing(size: DelimiterSize, scripts: Option<Scripts>) -> Node {
+    let close = delimiter(')', size, DelimiterType::Close);
+    match scripts {
+        Some((ty, position, scripts)) => {
+            let mut parts = vec![close];
+            parts.extend(scripts);
+            Node::Script {
+                ty,
+                position,
+                parts,
+            }
+        }
+        None => close,
+    }
+}
+
+/// The bracket's pieces with what stands before and after it: each on a piece of its own
+/// (opened in turn) where it would make the bracket's first or last piece too wide.
+fn placed(
+    before: &[Node],
+    (open, mut inner_pieces, close): (Node, Vec<Vec<Node>>, Node),
+    after: &[Node],
+    fit: Fit,
+) -> Vec<Vec<Node>> {
     let last = inner_pieces.len() - 1;
     let after_width = width(after) + node_width(&close);
     let mut out = Vec::new();
