@@ -38,57 +38,10 @@ fn add(n: &Node, w: &mut f32) {
             }
             return;
         }
-        Node::Function(f) => match f.as_str() {
-            "sin" | "cos" | "det" | "tan" => 4.0,
-            // LaTeX's other operator names, `\arccos`, `\min`: one command each.
-            "arccos" | "arcsin" | "arctan" | "arg" | "cosh" | "cot" | "coth" | "csc" | "deg"
-            | "dim" | "exp" | "gcd" | "hom" | "inf" | "ker" | "lg" | "lim" | "liminf"
-            | "limsup" | "ln" | "log" | "max" | "min" | "Pr" | "sec" | "sinh" | "sup" | "tanh" => {
-                1.0
-            }
-            // `\operatorname{…}`: its letters.
-            other => other.chars().count() as f32,
-        },
-        Node::Atom(c) => match c {
-            Content::BinaryOp {
-                content: '+' | '−' | '×',
-                ..
-            } => 2.0,
-            Content::Relation { content, .. }
-                if relation_is(content, &['=', '<', '>', '≈', '⟂']) =>
-            {
-                2.0
-            }
-            // `\Bigl` and its bracket.
-            Content::Delimiter { size: Some(_), .. } => {
-                *w += 1.0;
-                1.0
-            }
-            _ => 1.0,
-        },
-        Node::Group(Grouping::Normal, inner) => match inner.first() {
-            // `\mathrm{…}`, `\mathbb{…}`: the letters of the word.
-            Some(Node::State(StateChange::Font(Some(Font::UpRight | Font::DoubleStruck)))) => {
-                written_length(&inner[1..])
-            }
-            Some(Node::State(StateChange::Font(Some(_)))) => {
-                *w += 1.0;
-                width(&inner[1..])
-            }
-            _ => width(inner),
-        },
-        Node::Group(Grouping::LeftRight(..), inner) => match matrix(n) {
-            Some((_, body)) => table_width(body, true),
-            // Brackets stretched around a fraction are wider (measured in Chromium: a phone's
-            // (5ma²/4 − λ)(19ma²/4 − λ)(6ma² − λ) ran 1.3 % past its line).
-            None if inner
-                .iter()
-                .any(|n| matches!(n, Node::Visual(Visual::Fraction(_), _))) =>
-            {
-                width(inner) + 2.0
-            }
-            None => width(inner) + 1.0,
-        },
+        Node::Function(f) => function_width(f),
+        Node::Atom(c) => atom_width(c, w),
+        Node::Group(Grouping::Normal, inner) => normal_group_width(inner, w),
+        Node::Group(Grouping::LeftRight(..), inner) => stretched_width(n, inner),
         Node::Group(Grouping::Aligned, body) => table_width(body, false),
         Node::Group(_, body) => table_width(body, true),
         Node::Visual(v, parts) => match v {
@@ -103,14 +56,7 @@ fn add(n: &Node, w: &mut f32) {
         Node::Script {
             position, parts, ..
         } => {
-            add(&parts[0], w);
-            for s in &parts[1..] {
-                match s {
-                    _ if *position == ScriptPosition::AboveBelow && accent_mark(s) => {}
-                    Node::Group(Grouping::Normal, inner) => *w += width(inner) * 0.7,
-                    other => add(other, w),
-                }
-            }
+            add_script(*position, parts, w);
             return;
         }
         Node::Space(Some(Dimension {
@@ -124,6 +70,82 @@ fn add(n: &Node, w: &mut f32) {
         Node::Space(_) => 1.0,
         Node::State(_) | Node::Flow(_) => 0.0,
     };
+}
+
+/// An operator name: four for the common ones, one for LaTeX's other commands, else its letters.
+fn function_width(f: &str) -> f32 {
+    match f {
+        "sin" | "cos" | "det" | "tan" => 4.0,
+        // LaTeX's other operator names, `\arccos`, `\min`: one command each.
+        "arccos" | "arcsin" | "arctan" | "arg" | "cosh" | "cot" | "coth" | "csc" | "deg"
+        | "dim" | "exp" | "gcd" | "hom" | "inf" | "ker" | "lg" | "lim" | "liminf" | "limsup"
+        | "ln" | "log" | "max" | "min" | "Pr" | "sec" | "sinh" | "sup" | "tanh" => 1.0,
+        // `\operatorname{…}`: its letters.
+        other => other.chars().count() as f32,
+    }
+}
+
+/// An atom: two for `+`, `−`, `×` and the wide relations; a sized delimiter adds one for its
+/// `\Bigl` (to `w`).
+fn atom_width(c: &Content, w: &mut f32) -> f32 {
+    match c {
+        Content::BinaryOp {
+            content: '+' | '−' | '×',
+            ..
+        } => 2.0,
+        Content::Relation { content, .. } if relation_is(content, &['=', '<', '>', '≈', '⟂']) => {
+            2.0
+        }
+        // `\Bigl` and its bracket.
+        Content::Delimiter { size: Some(_), .. } => {
+            *w += 1.0;
+            1.0
+        }
+        _ => 1.0,
+    }
+}
+
+/// A group: a font's word by its letters, another font adding one (to `w`).
+fn normal_group_width(inner: &[Node], w: &mut f32) -> f32 {
+    match inner.first() {
+        // `\mathrm{…}`, `\mathbb{…}`: the letters of the word.
+        Some(Node::State(StateChange::Font(Some(Font::UpRight | Font::DoubleStruck)))) => {
+            written_length(&inner[1..])
+        }
+        Some(Node::State(StateChange::Font(Some(_)))) => {
+            *w += 1.0;
+            width(&inner[1..])
+        }
+        _ => width(inner),
+    }
+}
+
+/// Brackets stretched around their content, or a matrix.
+fn stretched_width(n: &Node, inner: &[Node]) -> f32 {
+    match matrix(n) {
+        Some((_, body)) => table_width(body, true),
+        // Brackets stretched around a fraction are wider (measured in Chromium: a phone's
+        // (5ma²/4 − λ)(19ma²/4 − λ)(6ma² − λ) ran 1.3 % past its line).
+        None if inner
+            .iter()
+            .any(|n| matches!(n, Node::Visual(Visual::Fraction(_), _))) =>
+        {
+            width(inner) + 2.0
+        }
+        None => width(inner) + 1.0,
+    }
+}
+
+/// A base with its scripts: sub- and superscripts at 0.7 of their width, an accent at none.
+fn add_script(position: ScriptPosition, parts: &[Node], w: &mut f32) {
+    add(&parts[0], w);
+    for s in &parts[1..] {
+        match s {
+            _ if position == ScriptPosition::AboveBelow && accent_mark(s) => {}
+            Node::Group(Grouping::Normal, inner) => *w += width(inner) * 0.7,
+            other => add(other, w),
+        }
+    }
 }
 
 /// A fraction's part: a group's content, else the element.
