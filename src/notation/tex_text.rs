@@ -38,20 +38,7 @@ fn node(n: &Node, out: &mut String) {
     match n {
         Node::Text(t) => out.push_str(&t.replace("&nbsp;", " ")),
         Node::Number(s) | Node::Function(s) => out.push_str(s),
-        Node::Atom(c) => match c {
-            Content::BinaryOp { content: '/', .. } => out.push('/'),
-            // A sign with nothing before it to act on is a number's own: (−1, 1, 0), = −a.
-            Content::BinaryOp { content, .. } if is_unary(out, *content) => out.push(*content),
-            Content::BinaryOp { content, .. } => out.push_str(&format!(" {content} ")),
-            Content::Relation { content, .. } => {
-                out.push_str(&format!(" {} ", relation_text(content)));
-            }
-            Content::Punctuation(p) => out.push_str(&format!("{p} ")),
-            Content::Ordinary { content, .. }
-            | Content::LargeOp { content, .. }
-            | Content::Delimiter { content, .. } => out.push(*content),
-            other => out.push_str(&format!("{other:?}")),
-        },
+        Node::Atom(c) => atom(c, out),
         Node::Group(g, inner) => {
             let (open, close) = match g {
                 Grouping::LeftRight(open, close) => (*open, *close),
@@ -61,71 +48,98 @@ fn node(n: &Node, out: &mut String) {
             row(inner, out);
             out.extend(close);
         }
-        Node::Visual(v, parts) => match (v, parts.as_slice()) {
-            // A space after: 2/3 m, not 2/3m. A product over a number needs no parentheses
-            // (MR²/2); a sum above, or anything but one factor below, does ((a + b)/(2c)).
-            (Visual::Fraction(_), [a, b]) => {
-                let (top, bottom) = (text_of(a), text_of(b));
-                let top = if top.contains(' ') || top.contains('/') {
-                    format!("({top})")
-                } else {
-                    top
-                };
-                out.push_str(&format!("{top}/{} ", operand_text(&bottom)));
-            }
-            (Visual::SquareRoot, [a]) => {
-                out.push_str(&format!("√{}", operand(std::slice::from_ref(a))));
-            }
-            (Visual::Root, [a, index]) => {
-                let index: String = text_of(index).chars().map(superscript).collect();
-                out.push_str(&format!("{index}√{}", operand(std::slice::from_ref(a))));
-            }
-            _ => row(parts, out),
-        },
-        Node::Script { ty, parts, .. } => {
-            let base = parts.first().map(text_of).unwrap_or_default();
-            // An accent: the base with the accent's combining mark.
-            if let (ScriptType::Superscript, Some(Node::Atom(Content::Ordinary { content, .. }))) =
-                (ty, parts.get(1))
-                && let Some(mark) = combining(*content)
-            {
-                out.push_str(&base);
-                out.push(mark);
-                return;
-            }
-            out.push_str(&base);
-            let (sub, sup) = match (ty, &parts[1..]) {
-                (ScriptType::Subscript, [s]) => (Some(s), None),
-                (ScriptType::Superscript, [s]) => (None, Some(s)),
-                (ScriptType::SubSuperscript, [s, t]) => (Some(s), Some(t)),
-                _ => (None, None),
-            };
-            if let Some(s) = sub {
-                out.push('_');
-                out.push_str(&text_of(s));
-            }
-            if let Some(s) = sup {
-                let s = text_of(s);
-                let tight: String = s.chars().filter(|c| !c.is_whitespace()).collect();
-                if tight
-                    .chars()
-                    .all(|c| c.is_ascii_digit() || c == '−' || c == '-')
-                {
-                    let s = tight;
-                    out.extend(
-                        s.chars()
-                            .map(|c| if c == '−' { '⁻' } else { superscript(c) }),
-                    );
-                } else {
-                    out.push('^');
-                    out.push_str(&operand_text(&s));
-                }
-            }
-        }
+        Node::Visual(v, parts) => visual(v, parts, out),
+        Node::Script { ty, parts, .. } => script(*ty, parts, out),
         Node::Space(_) => out.push(' '),
         Node::State(_) => {}
         Node::Flow(EnvironmentFlow::Alignment) => out.push_str(", "),
         Node::Flow(_) => out.push_str("; "),
+    }
+}
+
+/// An atom: operators spaced, except a sign that is a number's own.
+fn atom(c: &Content, out: &mut String) {
+    match c {
+        Content::BinaryOp { content: '/', .. } => out.push('/'),
+        // A sign with nothing before it to act on is a number's own: (−1, 1, 0), = −a.
+        Content::BinaryOp { content, .. } if is_unary(out, *content) => out.push(*content),
+        Content::BinaryOp { content, .. } => out.push_str(&format!(" {content} ")),
+        Content::Relation { content, .. } => {
+            out.push_str(&format!(" {} ", relation_text(content)));
+        }
+        Content::Punctuation(p) => out.push_str(&format!("{p} ")),
+        Content::Ordinary { content, .. }
+        | Content::LargeOp { content, .. }
+        | Content::Delimiter { content, .. } => out.push(*content),
+        other => out.push_str(&format!("{other:?}")),
+    }
+}
+
+/// A fraction, a square root or a root.
+fn visual(v: &Visual, parts: &[Node], out: &mut String) {
+    match (v, parts) {
+        // A space after: 2/3 m, not 2/3m. A product over a number needs no parentheses
+        // (MR²/2); a sum above, or anything but one factor below, does ((a + b)/(2c)).
+        (Visual::Fraction(_), [a, b]) => {
+            let (top, bottom) = (text_of(a), text_of(b));
+            let top = if top.contains(' ') || top.contains('/') {
+                format!("({top})")
+            } else {
+                top
+            };
+            out.push_str(&format!("{top}/{} ", operand_text(&bottom)));
+        }
+        (Visual::SquareRoot, [a]) => {
+            out.push_str(&format!("√{}", operand(std::slice::from_ref(a))));
+        }
+        (Visual::Root, [a, index]) => {
+            let index: String = text_of(index).chars().map(superscript).collect();
+            out.push_str(&format!("{index}√{}", operand(std::slice::from_ref(a))));
+        }
+        _ => row(parts, out),
+    }
+}
+
+/// A base with its scripts: an accent as a combining mark, a subscript after `_`, a
+/// superscript of digits in superscript digits.
+fn script(ty: ScriptType, parts: &[Node], out: &mut String) {
+    let base = parts.first().map(text_of).unwrap_or_default();
+    // An accent: the base with the accent's combining mark.
+    if let (ScriptType::Superscript, Some(Node::Atom(Content::Ordinary { content, .. }))) =
+        (ty, parts.get(1))
+        && let Some(mark) = combining(*content)
+    {
+        out.push_str(&base);
+        out.push(mark);
+        return;
+    }
+    out.push_str(&base);
+    let (sub, sup) = match (ty, &parts[1..]) {
+        (ScriptType::Subscript, [s]) => (Some(s), None),
+        (ScriptType::Superscript, [s]) => (None, Some(s)),
+        (ScriptType::SubSuperscript, [s, t]) => (Some(s), Some(t)),
+        _ => (None, None),
+    };
+    if let Some(s) = sub {
+        out.push('_');
+        out.push_str(&text_of(s));
+    }
+    if let Some(s) = sup {
+        let s = text_of(s);
+        let tight: String = s.chars().filter(|c| !c.is_whitespace()).collect();
+        if tight
+            .chars()
+            .all(|c| c.is_ascii_digit() || c == '−' || c == '-')
+        {
+            let s = tight;
+            out.extend(
+                s.chars()
+                    .map(|c| if c == '−' { '⁻' } else { superscript(c) }),
+            );
+        } else {
+            out.push('^');
+            out.push_str(&operand_text(&s));
+        }
     }
 }
 
