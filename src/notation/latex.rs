@@ -368,40 +368,7 @@ fn element(events: &mut Events<'_>, depth: usize) -> Result<Option<Node>, TexErr
     };
     Ok(Some(match event {
         Event::End => return Ok(None),
-        Event::Content(c) => match c {
-            Content::Text(s) => match s.chars().find(|c| forbidden_control(*c)) {
-                Some(c) => return Err(TexError::Control(c as u32)),
-                None => Node::Text(s.to_string()),
-            },
-            Content::Number(s) => Node::Number(s.to_string()),
-            Content::Function(s) => Node::Function(s.to_string()),
-            // pulldown-latex sets `\mu` as U+00B5, the micro sign; mechbook's printers and
-            // the PDFs set the Greek letter, U+03BC, as Unicode recommends for both.
-            Content::Ordinary {
-                content: '\u{b5}',
-                stretchy,
-            } => Node::Atom(Content::Ordinary {
-                content: 'μ',
-                stretchy,
-            }),
-            Content::Ordinary { content, .. } if forbidden_control(content) => {
-                return Err(TexError::Control(content as u32));
-            }
-            Content::Ordinary { content, stretchy } => {
-                Node::Atom(Content::Ordinary { content, stretchy })
-            }
-            Content::LargeOp { content, small } => Node::Atom(Content::LargeOp { content, small }),
-            Content::BinaryOp { content, small } => {
-                Node::Atom(Content::BinaryOp { content, small })
-            }
-            Content::Relation { content, small } => {
-                Node::Atom(Content::Relation { content, small })
-            }
-            Content::Delimiter { content, size, ty } => {
-                Node::Atom(Content::Delimiter { content, size, ty })
-            }
-            Content::Punctuation(c) => Node::Atom(Content::Punctuation(c)),
-        },
+        Event::Content(c) => content_node(c)?,
         Event::Begin(g) => {
             let mut inner = Vec::new();
             while let Some(n) = element(events, depth + 1)? {
@@ -442,6 +409,41 @@ fn element(events: &mut Events<'_>, depth: usize) -> Result<Option<Node>, TexErr
         Event::StateChange(s) => Node::State(s),
         Event::EnvironmentFlow(f) => Node::Flow(f),
     }))
+}
+
+/// A piece of content as a node: text and characters without control characters, and `\mu`
+/// as the Greek letter.
+fn content_node(c: Content<'_>) -> Result<Node, TexError> {
+    Ok(match c {
+        Content::Text(s) => match s.chars().find(|c| forbidden_control(*c)) {
+            Some(c) => return Err(TexError::Control(c as u32)),
+            None => Node::Text(s.to_string()),
+        },
+        Content::Number(s) => Node::Number(s.to_string()),
+        Content::Function(s) => Node::Function(s.to_string()),
+        // pulldown-latex sets `\mu` as U+00B5, the micro sign; mechbook's printers and
+        // the PDFs set the Greek letter, U+03BC, as Unicode recommends for both.
+        Content::Ordinary {
+            content: '\u{b5}',
+            stretchy,
+        } => Node::Atom(Content::Ordinary {
+            content: 'μ',
+            stretchy,
+        }),
+        Content::Ordinary { content, .. } if forbidden_control(content) => {
+            return Err(TexError::Control(content as u32));
+        }
+        Content::Ordinary { content, stretchy } => {
+            Node::Atom(Content::Ordinary { content, stretchy })
+        }
+        Content::LargeOp { content, small } => Node::Atom(Content::LargeOp { content, small }),
+        Content::BinaryOp { content, small } => Node::Atom(Content::BinaryOp { content, small }),
+        Content::Relation { content, small } => Node::Atom(Content::Relation { content, small }),
+        Content::Delimiter { content, size, ty } => {
+            Node::Atom(Content::Delimiter { content, size, ty })
+        }
+        Content::Punctuation(c) => Node::Atom(Content::Punctuation(c)),
+    })
 }
 
 fn flatten<'a>(nodes: &'a [Node], out: &mut Vec<Event<'a>>) {
