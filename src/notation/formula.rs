@@ -369,6 +369,12 @@ impl Reader<'_> {
         }
         assert!(c.is_ascii_alphabetic(), "formula: unexpected `{c}`");
         let word = self.take(|c| c.is_ascii_alphabetic());
+        self.word(word)
+    }
+
+    /// What a word read by `atom` stands for: an accent on a name, a function, a command
+    /// (`big`, `sqrt`, `rm`, `sum`, `int`, …), else a name with its subscript.
+    fn word(&mut self, word: String) -> Formula {
         let accent = match word.as_str() {
             "vec" => Some(Accent::Vector),
             "ten" => Some(Accent::Tensor),
