@@ -75,37 +75,12 @@ fn typst(f: &Formula, names: &Names, out: &mut String, breakable: bool) -> Resul
         Formula::Bracket(a) => format!("[{}]", a.to_typst(names)?),
         Formula::Abs(a) => format!("abs({})", a.to_typst(names)?),
         Formula::Identity => "bb(1)".into(),
-        Formula::Matrix(rows) => {
-            let mut cells = Vec::new();
-            for row in rows {
-                let row: Result<Vec<String>, TexError> =
-                    row.iter().map(|f| cell(f, names)).collect();
-                cells.push(row?.join(", "));
-            }
-            // A column is one row written down.
-            if let [one] = rows.as_slice() {
-                let column: Result<Vec<String>, TexError> =
-                    one.iter().map(|f| f.to_typst(names)).collect();
-                format!("vec({})", column?.join(", "))
-            } else {
-                format!("mat({})", cells.join("; "))
-            }
-        }
+        Formula::Matrix(rows) => typst_matrix(rows, names)?,
         Formula::Function(name) => format!("{name} "),
         Formula::Sum(Some(i)) => format!("sum_({})", typst_base(i)),
         Formula::Sum(None) => "sum ".into(),
         Formula::Integral(None) => "integral ".into(),
-        Formula::Integral(Some(limits)) => {
-            // Limits are set small: their fractions go on the line.
-            let limit = |f: &Formula| match f {
-                Formula::Expr(e) => Ok(e.to_typst_on_the_line(names)),
-                Formula::Frac(a, b) => {
-                    Ok(format!("{}\\/{}", a.to_typst(names)?, b.to_typst(names)?))
-                }
-                other => other.to_typst(names),
-            };
-            format!("integral_({})^({}) ", limit(&limits.0)?, limit(&limits.1)?)
-        }
+        Formula::Integral(Some(limits)) => typst_integral(&limits.0, &limits.1, names)?,
         Formula::Nabla(None) => "nabla ".into(),
         Formula::Nabla(Some(by)) => format!("nabla_({}) ", typst_base(by)),
         Formula::At(a, frame) => {
@@ -119,6 +94,32 @@ fn typst(f: &Formula, names: &Names, out: &mut String, breakable: bool) -> Resul
     };
     join(out, &piece);
     Ok(())
+}
+
+/// A matrix, or a column vector when it has one row.
+fn typst_matrix(rows: &[Vec<Formula>], names: &Names) -> Result<String, TexError> {
+    let mut cells = Vec::new();
+    for row in rows {
+        let row: Result<Vec<String>, TexError> = row.iter().map(|f| cell(f, names)).collect();
+        cells.push(row?.join(", "));
+    }
+    // A column is one row written down.
+    if let [one] = rows {
+        let column: Result<Vec<String>, TexError> = one.iter().map(|f| f.to_typst(names)).collect();
+        Ok(format!("vec({})", column?.join(", ")))
+    } else {
+        Ok(format!("mat({})", cells.join("; ")))
+    }
+}
+
+/// An integral with its limits, set small: their fractions go on the line.
+fn typst_integral(lo: &Formula, hi: &Formula, names: &Names) -> Result<String, TexError> {
+    let limit = |f: &Formula| match f {
+        Formula::Expr(e) => Ok(e.to_typst_on_the_line(names)),
+        Formula::Frac(a, b) => Ok(format!("{}\\/{}", a.to_typst(names)?, b.to_typst(names)?)),
+        other => other.to_typst(names),
+    };
+    Ok(format!("integral_({})^({}) ", limit(lo)?, limit(hi)?))
 }
 
 /// A matrix's cell: a fraction at the size of the line, as the expression printer sets one
