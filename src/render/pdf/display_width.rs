@@ -450,44 +450,6 @@ fn read_glyphs() -> Option<Glyphs> {
     if faces.is_empty() {
         return Option::None;
     }
-    // Each glyph's widest advance and largest italic correction over the math fonts, its
-    // larger forms and their pieces.
-    let glyph = |c: char| -> Option<(f64, f64)> {
-        let mut found: Option<(f64, f64)> = Option::None;
-        for f in &faces {
-            let Some(id) = f.glyph_index(c) else { continue };
-            let per_em = f64::from(f.units_per_em());
-            let math = f.tables().math;
-            let measure = |id| {
-                let advance = f64::from(f.glyph_hor_advance(id).unwrap_or(0)) / per_em;
-                let italic = math
-                    .and_then(|m| m.glyph_info)
-                    .and_then(|i| i.italic_corrections)
-                    .and_then(|i| i.get(id))
-                    .map_or(0.0, |v| f64::from(v.value).max(0.0) / per_em);
-                (advance, italic)
-            };
-            let mut ids = vec![id];
-            if let Some(v) = math.and_then(|m| m.variants)
-                && let Some(c) = v.vertical_constructions.get(id)
-            {
-                ids.extend(c.variants.into_iter().map(|v| v.variant_glyph));
-                ids.extend(
-                    c.assembly
-                        .map(|a| a.parts)
-                        .into_iter()
-                        .flatten()
-                        .map(|p| p.glyph_id),
-                );
-            }
-            for id in ids {
-                let (w, i) = measure(id);
-                let (fw, fi) = found.unwrap_or((0.0, 0.0));
-                found = Some((fw.max(w), fi.max(i)));
-            }
-        }
-        found
-    };
     let mut widest = HashMap::new();
     let mut italic = HashMap::new();
     // Every character of the Basic Latin to Mathematical Operators blocks, arrows, brackets and
@@ -499,7 +461,7 @@ fn read_glyphs() -> Option<Glyphs> {
         0x1D400..=0x1D7FF,
     ];
     for c in ranges.into_iter().flatten().filter_map(char::from_u32) {
-        if let Some((w, i)) = glyph(c) {
+        if let Some((w, i)) = glyph(&faces, c) {
             widest.insert(c, w);
             italic.insert(c, i);
         }
@@ -529,6 +491,45 @@ fn read_glyphs() -> Option<Glyphs> {
         italic,
         most_italic,
     })
+}
+
+/// A glyph's widest advance and largest italic correction over the math fonts, its larger
+/// forms and their pieces.
+fn glyph(faces: &[ttf_parser::Face], c: char) -> Option<(f64, f64)> {
+    let mut found: Option<(f64, f64)> = Option::None;
+    for f in faces {
+        let Some(id) = f.glyph_index(c) else { continue };
+        let per_em = f64::from(f.units_per_em());
+        let math = f.tables().math;
+        let measure = |id| {
+            let advance = f64::from(f.glyph_hor_advance(id).unwrap_or(0)) / per_em;
+            let italic = math
+                .and_then(|m| m.glyph_info)
+                .and_then(|i| i.italic_corrections)
+                .and_then(|i| i.get(id))
+                .map_or(0.0, |v| f64::from(v.value).max(0.0) / per_em);
+            (advance, italic)
+        };
+        let mut ids = vec![id];
+        if let Some(v) = math.and_then(|m| m.variants)
+            && let Some(c) = v.vertical_constructions.get(id)
+        {
+            ids.extend(c.variants.into_iter().map(|v| v.variant_glyph));
+            ids.extend(
+                c.assembly
+                    .map(|a| a.parts)
+                    .into_iter()
+                    .flatten()
+                    .map(|p| p.glyph_id),
+            );
+        }
+        for id in ids {
+            let (w, i) = measure(id);
+            let (fw, fi) = found.unwrap_or((0.0, 0.0));
+            found = Some((fw.max(w), fi.max(i)));
+        }
+    }
+    found
 }
 
 /// Each letter and digit with its styled forms (Unicode's Mathematical Alphanumeric Symbols,
