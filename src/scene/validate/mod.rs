@@ -18,6 +18,7 @@ mod symbol_names;
 mod symbols;
 mod text;
 mod variants;
+mod whole;
 
 pub use answers::{step_has_route, step_named};
 pub use claims::PINNED_VARIANTS;
@@ -26,7 +27,7 @@ pub use text::control_character;
 
 use super::error::{Locator, SceneError};
 use super::raw::{RawScene, Text};
-use super::types::{Claim, NotesRef, Scene};
+use super::types::Claim;
 use crate::cas::{Expr, parse_input as parse_expr};
 use crate::model::catalogue::{Output, find};
 pub use claims::CLAIM_FUNCTIONS;
@@ -81,142 +82,6 @@ fn is_identifier(s: &str) -> bool {
 type Citations = BTreeMap<String, String>;
 
 impl Validator<'_> {
-    /// The scene, its parts validated in the order a reader meets them, so that the first
-    /// error reported is the first in the file's logic.
-    pub(super) fn scene(&self, raw: RawScene) -> Result<Scene, SceneError> {
-        self.names(&raw)?;
-        self.prose_fields(&raw)?;
-        let mut warnings = self.ascii_math_warnings(&raw);
-        let symbols = self.symbols(&raw)?;
-        let mut allowed: BTreeSet<String> = symbols.keys().cloned().collect();
-        allowed.insert("pi".into());
-        // Bodies first: their integration variables are names a claim may use.
-        let bodies = self.bodies(&raw, &allowed)?;
-        let variables: BTreeSet<String> = bodies
-            .iter()
-            .flat_map(|b| b.variables.iter().cloned())
-            .collect();
-        let (definitions, vectors, mut claim_names) =
-            self.definitions_and_vectors(&raw, &allowed, &variables)?;
-        let omega = raw
-            .omega
-            .as_ref()
-            .map(|v| self.vec3(v, "omega", &allowed))
-            .transpose()?;
-        let axis = raw
-            .axis
-            .as_ref()
-            .map(|v| self.vec3(v, "axis", &allowed))
-            .transpose()?;
-        if omega.is_some() {
-            claim_names.insert("omega".into());
-        }
-        if axis.is_some() {
-            claim_names.insert("axis".into());
-        }
-        let coordinates = self.coordinates(&raw, &claim_names)?;
-        let steps = self.steps(&raw, &claim_names, &coordinates)?;
-        // A claim may name a step's result.
-        claim_names.extend(steps.iter().flat_map(|s| s.names_given(coordinates.len())));
-        // A claim may also name a coordinate and its rates (p = M L² φ'/3): it is checked at
-        // random values of them, as a step's `gives` is. An answer, one number, may not.
-        let mut with_coordinates = claim_names.clone();
-        with_coordinates.extend(
-            coordinates
-                .keys()
-                .flat_map(|q| [q.clone(), format!("{q}'"), format!("{q}''")]),
-        );
-        let claims = self.claims(&raw, &with_coordinates)?;
-        let wants = self.wants(&raw)?;
-        // Values before plots: a free-body plot's inertia and omega may be expressions.
-        let values = self.values(&raw, &symbols, &bodies, omega.iter().chain(axis.iter()))?;
-        let plots = self.plots(&raw, &symbols, &values, &steps, &coordinates)?;
-        let mut domain_names = allowed.clone();
-        domain_names.extend(coordinates.keys().cloned());
-        let assumptions = self.assumptions(&raw, &domain_names, &values)?;
-        self.requests(
-            &raw,
-            &symbols,
-            &bodies,
-            &claims,
-            &wants,
-            &plots,
-            [omega.is_some(), axis.is_some()],
-        )?;
-        if let (Some(n), Some(raw_axis)) = (&axis, &raw.axis) {
-            self.unit_axis(n, raw_axis.span().start, &values)?;
-        }
-        let fidelity = match &raw.numeric.fidelity {
-            Some(f) => Some(
-                crate::model::fidelity::Fidelity::parse(f.get_ref())
-                    .map_err(|m| self.err(content_start(f), "numeric.fidelity", m.to_string()))?,
-            ),
-            None => None,
-        };
-        let step_names: Vec<String> = steps.iter().map(|s| s.name.clone()).collect();
-        let (expect, expect_lines, step_records) =
-            self.expect(&raw, &allowed, &variables, &step_names)?;
-        let cite = self.cites(&raw)?;
-        let problem = self.problem(
-            &raw,
-            &symbols,
-            &values,
-            &wants,
-            &bodies,
-            (&claim_names, &steps, coordinates.len()),
-        )?;
-        let units = self.units(&raw)?;
-        let tex = self.typesetting(&raw)?;
-        warnings.extend(self.symbol_name_warnings(&raw, &steps, &tex));
-        let moments_from_bodies = self.moments_from_bodies(&raw, &symbols, &bodies, &wants)?;
-        let pinned_variants = self.pinned_variants(&raw, problem.is_some())?;
-        let declared = symbols::declared_order(&raw);
-        Ok(Scene {
-            declared,
-            id_at: self.loc.line_col(content_start(&raw.id)),
-            lecture_at: self.loc.line_col(content_start(&raw.notes.lecture)),
-            id: raw.id.into_inner(),
-            title: raw.title.into_inner(),
-            warnings,
-            source: self.loc.path.to_path_buf(),
-            content_hash: crate::base::hash::content_hash(self.loc.text.as_bytes()),
-            notes: NotesRef {
-                lecture: raw.notes.lecture.into_inner(),
-                section: raw.notes.section,
-                equations: raw.notes.equations,
-            },
-            symbols,
-            definitions,
-            vectors,
-            omega,
-            axis,
-            bodies,
-            claims,
-            coordinates,
-            steps,
-            wants,
-            plots,
-            expect_lines,
-            plot_at: raw
-                .plots
-                .iter()
-                .map(|p| self.loc.line_col(p.span().start))
-                .collect(),
-            values,
-            seed: raw.numeric.seed.unwrap_or(1),
-            fidelity,
-            expect,
-            step_records,
-            cite,
-            problem,
-            moments_from_bodies,
-            pinned_variants,
-            units,
-            tex,
-            assumptions,
-        })
-    }
-
     /// `axis` is a direction: a non-unit vector would scale I_n by its squared length.
     fn unit_axis(
         &self,
