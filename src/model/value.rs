@@ -86,10 +86,6 @@ impl Value {
         self.to_expr().to_text()
     }
 
-    pub fn to_latex(&self, names: &crate::notation::Names) -> String {
-        self.to_expr().to_latex(names)
-    }
-
     /// The value as the tree the pages set.
     pub fn to_tex(&self, names: &crate::notation::Names) -> crate::notation::Tex {
         self.to_expr().to_tex(names)

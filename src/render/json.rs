@@ -269,7 +269,7 @@ fn quantities_json(page: &Page) -> serde_json::Map<String, Json> {
     for q in &page.quantities {
         quantities.insert(
             q.name.clone(),
-            json!({ "exact": q.value.to_text(), "latex": q.value.to_latex(names), "numeric": numeric_entries(q) }),
+            json!({ "exact": q.value.to_text(), "latex": q.value.to_expr().to_latex(names), "numeric": numeric_entries(q) }),
         );
     }
     // A number with no exact form: no `exact` text that would be a float in disguise.
@@ -342,7 +342,7 @@ fn variants_json(page: &Page) -> Vec<Json> {
             "unit": spec.unit.as_ref().map(|u| &u.text),
             // An answer on a numeric mode has its number at each variant, not an exact form.
             "exact": (!numeric_only(&spec.value)).then(|| a.exact.to_text()),
-            "latex": (!numeric_only(&spec.value)).then(|| a.exact.to_latex(names)),
+            "latex": (!numeric_only(&spec.value)).then(|| a.exact.to_expr().to_latex(names)),
             "entries": if numeric_only(&spec.value) { Vec::new() } else { a.exact.entries().iter().map(|e| e.to_latex(names)).collect::<Vec<_>>() },
             "numeric_only": numeric_only(&spec.value),
             "numeric": a.exact_numbers.iter().map(|x| num(*x)).collect::<Vec<_>>(),

@@ -173,7 +173,7 @@ fn feedback(problem: &Problem, v: &Variant, solution: Option<&str>) -> String {
             format!(
                 "{}: {}{unit}",
                 label_tex(spec),
-                tex(&a.exact.to_latex(&problem.names))
+                tex(&a.exact.to_expr().to_latex(&problem.names))
             )
         })
         .collect();
