@@ -39,9 +39,8 @@ pub fn symmetric_top(d: &mut Derivation) -> Result<(), DeriveError> {
     let i = [s("I1"), s("I1"), s("I3")];
     let inertia = diag(i.clone());
     let beta = symmetric_rates(d, &i)?;
-    let (solution, derivative) = closed_form(d, &inertia, &beta)?;
+    let (solution, derivative, l) = closed_form(d, &inertia, &beta)?;
     let omega_squared = magnitude_and_precession(d, &solution, &derivative)?;
-    let l = mat_vec(&inertia, &solution);
     let (two_t, l_squared) = cones(d, &solution, &l, &omega_squared)?;
     wider_cone(d, two_t, l_squared)
 }
@@ -102,12 +101,12 @@ fn symmetric_rates(d: &mut Derivation, i: &Vec3) -> Result<Expr, DeriveError> {
 }
 
 /// The closed form the notes give after eq 69, substituted into Euler's equations; returns ω
-/// and its rate.
+/// its rate and L = Iω.
 fn closed_form(
     d: &mut Derivation,
     inertia: &Mat3,
     beta: &Expr,
-) -> Result<(Vec3, Vec3), DeriveError> {
+) -> Result<(Vec3, Vec3, Vec3), DeriveError> {
     // The closed form, substituted back into all three of Euler's equations.
     let phase = Expr::add(vec![
         Expr::mul(vec![beta.clone(), s("w3"), s("t")]),
@@ -149,7 +148,7 @@ fn closed_form(
         Value::Vector(solution.clone()),
     )?;
     d.set(quantity::SYMMETRIC_RESIDUAL, residual)?;
-    Ok((solution, derivative))
+    Ok((solution, derivative, l))
 }
 
 /// |ω|² constant (eq 70), and ω's precession about the axis at βω3; returns ω².

@@ -284,12 +284,9 @@ impl CurveOf<'_> {
 
     fn value(&self, x: f64) -> Result<f64, FigureError> {
         let env = self.env_at(x);
-        let exact = || -> Result<f64, FigureError> {
-            Ok(self
-                .exact
-                .eval(&|n| env.get(n).copied().filter(|_| n != "pi"))?)
-        };
-        exact().map_err(|e| self.located(e))
+        self.exact
+            .eval(&|n| env.get(n).copied().filter(|_| n != "pi"))
+            .map_err(|e| self.located(e.into()))
     }
 
     /// The dots of the step's second route, where it has one, timed.

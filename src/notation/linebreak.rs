@@ -263,9 +263,7 @@ fn open_segment(seg: Vec<Node>, fit: Fit) -> Vec<Vec<Node>> {
     } else {
         DelimiterSize::Big
     };
-    // What stands before the bracket, and after it, goes on a piece of its own (opened in
-    // turn) when it would make the bracket's first or last piece too wide; a power stays on
-    // its bracket.
+    // A power stays on its bracket.
     let open = delimiter('(', size, DelimiterType::Open);
     let close = closing(size, scripts);
     // The content is cut to leave room on its first piece for the opening bracket, and for
