@@ -46,7 +46,8 @@ use std::collections::BTreeMap;
 
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Step {
-    pub title: String,
+    /// The step's heading: words, and its formulas as trees (an author's `$…$` read once).
+    pub title: Prose,
     /// What the step finds, as a formula each output prints with its own printer.
     pub statement: Formula,
     /// Why it follows, in one line, in general terms: no course's equation numbers.
@@ -121,10 +122,15 @@ impl Step {
         Step::note(title, statement, why)
     }
 
+    /// A step headed by `title`, written as an author writes (its formulas in `$…$`).
     pub fn note(title: &str, statement: Formula, why: impl Into<Why>) -> Step {
+        Step::titled(crate::model::prose::author(title), statement, why)
+    }
+
+    pub fn titled(title: Prose, statement: Formula, why: impl Into<Why>) -> Step {
         let why = why.into();
         Step {
-            title: title.to_string(),
+            title,
             statement,
             why: why.prose,
             cite: why.key.to_string(),

@@ -239,7 +239,7 @@ fn the_eigenvalue_takes_another_letter_where_lambda_is_a_line_density() {
         .derivation
         .steps
         .iter()
-        .find(|s| s.title == "Characteristic polynomial")
+        .find(|s| s.title.to_text() == "Characteristic polynomial")
         .unwrap()
         .statement
         .to_latex(crate::notation::Names::none());

@@ -102,7 +102,7 @@ pub struct Page {
 /// A derivation step: its statement, and its reason after the scene's citation for it.
 #[derive(Debug, Clone)]
 pub struct Step {
-    pub title: String,
+    pub title: Prose,
     pub statement: Formula,
     pub why: Prose,
     /// The step's citation key, and the scene's citation for it ("eq (51)") if it has one.

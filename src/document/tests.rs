@@ -18,7 +18,7 @@ fn every_printer_reads_the_page_not_the_report() {
         !page.steps.is_empty() && !page.claims.is_empty(),
         "{page:?}"
     );
-    page.steps[0].title = "STEP-MARK".into();
+    page.steps[0].title = Prose::from("STEP-MARK".to_string());
     page.steps[0].why = Prose::from("WHY-MARK".to_string());
     page.claims[0].statement = "CLAIM-MARK".into();
     page.title = "TITLE-MARK".into();
@@ -36,7 +36,7 @@ fn every_printer_reads_the_page_not_the_report() {
 #[test]
 fn a_cited_step_gives_its_reason_after_the_citation() {
     let step = Step {
-        title: "t".into(),
+        title: Prose::from("t".to_string()),
         statement: Formula::parse("x = 1", &[]),
         why: Prose::from("expand".to_string()),
         key: "k".into(),

@@ -2,7 +2,7 @@
 //! prints it: as text for the terminal and JSON, as LaTeX (then MathML) for the pages.
 
 use crate::cas::Expr;
-use crate::notation::Formula;
+use crate::notation::{Formula, Names};
 
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Prose(pub Vec<Piece>);
@@ -54,6 +54,59 @@ impl Prose {
             }
         }
         self
+    }
+
+    /// Text run on into the last piece where that is text, as an author's sentence is one
+    /// piece between its formulas: a heading built in parts sets as one written whole.
+    pub fn run_on(mut self, s: &str) -> Prose {
+        if s.is_empty() {
+            return self;
+        }
+        match self.0.last_mut() {
+            Some(Piece::Text(t)) => t.push_str(s),
+            _ => self.0.push(Piece::Text(s.to_string())),
+        }
+        self
+    }
+
+    /// `other` after this sentence, its first text run on (see [`Prose::run_on`]).
+    pub fn then(mut self, other: Prose) -> Prose {
+        for piece in other.0 {
+            self = match piece {
+                Piece::Text(t) => self.run_on(&t),
+                math => {
+                    self.0.push(math);
+                    self
+                }
+            };
+        }
+        self
+    }
+
+    /// The sentence as an author writes one: its formulas in `$…$` (an author's as written,
+    /// mechbook's in its LaTeX with the scene's `names`), a dollar sign in the text as `\$`.
+    /// `author` reads it back.
+    pub fn to_author_text(&self, names: &Names) -> String {
+        self.0
+            .iter()
+            .map(|p| match p {
+                Piece::Text(s) => s.replace('$', "\\$"),
+                Piece::Math(Formula::Tex(t)) => format!("${}$", t.source),
+                Piece::Math(f) => format!("${}$", f.to_latex(names)),
+            })
+            .collect()
+    }
+
+    /// The sentence as plain Unicode, for where markup cannot go (see [`plain`]).
+    pub fn to_plain(&self, names: &Names) -> String {
+        self.0
+            .iter()
+            .map(|p| match p {
+                Piece::Text(s) => s.clone(),
+                Piece::Math(Formula::Text(s)) => s.clone(),
+                Piece::Math(f) => f.to_tex(names).to_plain(),
+            })
+            .collect()
     }
 
     /// The sentence as plain text, formulas in their text form.

@@ -119,7 +119,7 @@ fn vec_text(v: &[crate::cas::Expr; 3]) -> String {
 /// A step: its statement and reason, each formula printed as text and as LaTeX.
 fn step_json(st: &Step, names: &Names) -> Json {
     let mut j = json!({
-        "title": st.title,
+        "title": st.title.to_author_text(names),
         "text": st.statement.to_text(),
         "latex": st.statement.to_latex(names),
         "why": st.why.to_text(),

@@ -19,7 +19,7 @@ pub fn derivation_text(page: &Page) -> String {
             out,
             "\n{:>2}. {}\n    {}\n    because: {}",
             i + 1,
-            crate::model::prose::plain(&step.title),
+            step.title.to_plain(&page.names),
             step.statement.to_text(),
             step.why_cited()
         );

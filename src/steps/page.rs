@@ -44,10 +44,9 @@ pub(super) fn page_steps(scene: &Scene, step: &AuthorStep, result: &StepResult) 
     steps
 }
 
-/// A name as the page typesets it, for a title (`$\phi_{1}$`, the scene's own LaTeX where it
-/// gives one): a title is the author's kind of text, its mathematics read by every renderer.
-fn typeset(scene: &Scene, name: &str) -> String {
-    format!("${}$", scene.latex_of(name))
+/// A name as the page typesets it, for a title: its symbol (φ₁, or the scene's own `tex`).
+fn typeset(name: &str) -> Prose {
+    Prose::default().expr(&Expr::sym(name))
 }
 
 /// Whether a name prints as a word on the scene's pages (see `cas::prints_as_word`).
@@ -69,19 +68,22 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
         scene,
         step,
         by_symbol,
-        title: String::new(),
+        title: Prose::default(),
         names: step.result_names(),
     };
     lines.title = lines.cited(if by_symbol {
-        typeset(scene, &step.name)
+        typeset(&step.name)
     } else {
-        step.op.heading().to_string()
+        Prose::default().text(step.op.heading())
     });
     // The author's reason, its `$…$` mathematics typeset.
     let why = &crate::model::prose::author(&step.why);
     match result {
         StepResult::Expr(e) => {
-            vec![Step::note(&lines.title, lines.named(e), why.clone()).standing_for(lines.own())]
+            vec![
+                Step::titled(lines.title.clone(), lines.named(e), why.clone())
+                    .standing_for(lines.own()),
+            ]
         }
         StepResult::Conserved { value, conserved } => vec![lines.conserved(value, *conserved, why)],
         StepResult::Equilibria {
@@ -115,17 +117,22 @@ struct Lines<'a> {
     step: &'a AuthorStep,
     /// Headed by the symbol its result prints as, not by what it does.
     by_symbol: bool,
-    title: String,
+    title: Prose,
     names: crate::scene::ResultNames<'a>,
 }
 
 impl Lines<'_> {
     /// A title with the notes' equation number, where the step cites one.
-    fn cited(&self, s: String) -> String {
+    fn cited(&self, s: Prose) -> Prose {
         match &self.step.eq {
-            Some(eq) => format!("{s} (eq {eq})"),
+            Some(eq) => s.run_on(&format!(" (eq {eq})")),
             None => s,
         }
+    }
+
+    /// The title, then `more` after a colon: `L: the equation of motion of φ`.
+    fn title_and(&self, more: Prose) -> Prose {
+        self.title.clone().run_on(": ").then(more)
     }
 
     /// `name = e`.
@@ -171,7 +178,7 @@ impl Lines<'_> {
                 Prose::default().text(verdict).expr(&Expr::sym(of)),
             )
         };
-        Step::note(&self.title, self.named(value), why).standing_for(self.own())
+        Step::titled(self.title.clone(), self.named(value), why).standing_for(self.own())
     }
 
     fn equilibria(
@@ -181,7 +188,6 @@ impl Lines<'_> {
         excluded: &[Expr],
         why: &Prose,
     ) -> Vec<Step> {
-        let title = &self.title;
         let step = self.step;
         // The roots set aside, named after the last state of rest.
         let pairs: Vec<(String, Expr)> = excluded
@@ -194,8 +200,8 @@ impl Lines<'_> {
             .iter()
             .enumerate()
             .map(|(k, z)| {
-                let line = Step::note(
-                    &format!("{title}: equilibrium {}", k + 1),
+                let line = Step::titled(
+                    self.title_and(Prose::default().text(&format!("equilibrium {}", k + 1))),
                     Formula::equation(Formula::Expr(Expr::sym(coordinate)), z.value.clone()),
                     if k + 1 == n {
                         last_why.clone()
@@ -245,12 +251,12 @@ impl Lines<'_> {
                 match &c.omega_squared {
                     Some(w2) => {
                         let line = Formula::equation(omega2.clone(), w2.clone());
-                        Step::note(&self.title, line, why).standing_for(self.kth(k))
+                        Step::titled(self.title.clone(), line, why).standing_for(self.kth(k))
                     }
                     // No exact Ω² to print: the line states the state of rest, and
                     // its reason says why.
-                    None => Step::note(
-                        &self.title,
+                    None => Step::titled(
+                        self.title.clone(),
                         Formula::equation(Formula::Expr(Expr::sym(coordinate)), c.at.value.clone()),
                         why,
                     ),
@@ -266,7 +272,6 @@ impl Lines<'_> {
         excluded: &[(String, Expr)],
         why: &Prose,
     ) -> Vec<Step> {
-        let title = &self.title;
         let step = self.step;
         let last_why = with_set_aside(step, why, excluded);
         let n = states.len();
@@ -274,8 +279,8 @@ impl Lines<'_> {
             .iter()
             .enumerate()
             .map(|(k, state)| {
-                let line = Step::note(
-                    &format!("{title}: equilibrium {}", k + 1),
+                let line = Step::titled(
+                    self.title_and(Prose::default().text(&format!("equilibrium {}", k + 1))),
                     state_formula(coordinates, state),
                     if k + 1 == n {
                         last_why.clone()
@@ -329,14 +334,17 @@ impl Lines<'_> {
                     row.push(Formula::Op(crate::notation::Op::Equals));
                     row.push(Formula::Expr(m.clone()));
                 }
-                Step::note(&self.title, Formula::Row(row), with_reason(step, why, at))
+                Step::titled(
+                    self.title.clone(),
+                    Formula::Row(row),
+                    with_reason(step, why, at),
+                )
             })
             .collect()
     }
 
     /// Each unknown = its value, titled with the name later steps use.
     fn solution(&self, pairs: &[(String, Expr)], why: &Prose) -> Vec<Step> {
-        let title = &self.title;
         let scene = self.scene;
         pairs
             .iter()
@@ -345,12 +353,13 @@ impl Lines<'_> {
                 // The name later steps give it, where it prints as a symbol (a₁ of `tex = "a"`).
                 let named = self.names.kth(k);
                 let own = if is_word(scene, &named) {
-                    String::new()
+                    Prose::default()
                 } else {
-                    format!("{}, ", typeset(scene, &named))
+                    typeset(&named).text(", ")
                 };
-                Step::note(
-                    &format!("{title}: {own}the value of {}", typeset(scene, unknown)),
+                let what = own.run_on("the value of ").then(typeset(unknown));
+                Step::titled(
+                    self.title_and(what),
                     Formula::equation(Formula::Expr(Expr::sym(unknown)), value.clone()),
                     why.clone(),
                 )
@@ -360,7 +369,6 @@ impl Lines<'_> {
     }
 
     fn modes_or_roots(&self, values: &[Expr], modes: bool, why: &Prose) -> Vec<Step> {
-        let title = &self.title;
         values
             .iter()
             .enumerate()
@@ -368,12 +376,12 @@ impl Lines<'_> {
                 let sub = Expr::sym(&self.names.kth(k));
                 let what = if modes { "normal mode" } else { "root" };
                 let zero = modes && w.is_zero();
-                Step::note(
-                    &format!(
-                        "{title}: {what} {}{}",
+                Step::titled(
+                    self.title_and(Prose::default().text(&format!(
+                        "{what} {}{}",
                         k + 1,
                         if zero { ZERO_MODE } else { "" }
-                    ),
+                    ))),
                     Formula::equation(Formula::Expr(sub), w.clone()),
                     why.clone(),
                 )
@@ -384,7 +392,6 @@ impl Lines<'_> {
 
     /// Ω_k ≈ its value: no closed form, so a number, with the reason beside it.
     fn numeric_modes(&self, frequencies: &[f64], reason: &Prose, why: &Prose) -> Vec<Step> {
-        let title = &self.title;
         let step = self.step;
         frequencies
             .iter()
@@ -393,12 +400,12 @@ impl Lines<'_> {
                 let mut added = Prose::default()
                     .text("at the scene's values, the eigenvalues of K and M by Sturm bisection: ");
                 added.0.extend(reason.0.iter().cloned());
-                Step::note(
-                    &format!(
-                        "{title}: normal mode {}{}",
+                Step::titled(
+                    self.title_and(Prose::default().text(&format!(
+                        "normal mode {}{}",
                         k + 1,
                         if *w == 0.0 { ZERO_MODE } else { "" }
-                    ),
+                    ))),
                     Formula::Row(vec![
                         Formula::Expr(Expr::sym(&self.names.kth(k))),
                         Formula::Op(crate::notation::Op::Approx),
@@ -412,7 +419,6 @@ impl Lines<'_> {
     }
 
     fn equations(&self, eqs: &[(String, Expr)], why: &Prose) -> Vec<Step> {
-        let title = &self.title;
         let (scene, step, by_symbol) = (self.scene, self.step, self.by_symbol);
         eqs.iter()
             .map(|(coordinate, e)| {
@@ -431,30 +437,35 @@ impl Lines<'_> {
                         }),
                     _ => None,
                 };
-                let q = typeset(scene, q);
+                let q = typeset(q);
                 let (of, after) = match &step.op {
                     Operation::Linearise { .. } => ("linearised equation", ""),
                     Operation::Substitute { .. } => ("equation", ", substituted"),
                     _ => ("equation", ""),
                 };
                 let what = match constraint {
-                    Some(false) => {
-                        format!("the constraint of the multiplier {q}, differentiated twice")
-                    }
-                    Some(true) => {
-                        format!("the constraint of the multiplier {q}, differentiated once")
-                    }
-                    None => format!("the {of} of motion of {q}{after}"),
+                    Some(on_rates) => Prose::default()
+                        .text("the constraint of the multiplier ")
+                        .then(q)
+                        .run_on(if on_rates {
+                            ", differentiated once"
+                        } else {
+                            ", differentiated twice"
+                        }),
+                    None => Prose::default()
+                        .text(&format!("the {of} of motion of "))
+                        .then(q)
+                        .run_on(after),
                 };
                 // Under a symbol, `L: the equation of motion of φ`; else the words alone.
                 let line = if by_symbol {
-                    format!("{title}: {what}")
+                    self.title_and(what)
                 } else {
-                    self.cited(crate::base::format::capitalised(&what))
+                    self.cited(what.capitalised())
                 };
                 let parameter = |s: &str| scene.symbols.contains_key(s);
-                Step::note(
-                    &line,
+                Step::titled(
+                    line,
                     Formula::Row(vec![
                         Formula::Expr(super::equation_form::equation_form(
                             e, coordinate, &parameter,

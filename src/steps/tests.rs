@@ -457,7 +457,7 @@ fn a_free_system_has_a_zero_mode() {
     let step = r.scene.steps.iter().find(|s| s.name == "Omega").unwrap();
     let titles: Vec<String> = super::page::page_steps(&r.scene, step, &r.derivation.named["Omega"])
         .into_iter()
-        .map(|s| s.title)
+        .map(|s| s.title.to_author_text(crate::notation::Names::none()))
         .collect();
     assert!(
         titles[0].ends_with("normal mode 1, a zero mode: a free motion, with no restoring force")
@@ -1012,7 +1012,7 @@ values = {{ m = 1.0, k = 2.0, {symbol} = {value} }}
                 .derivation
                 .steps
                 .iter()
-                .find(|s| s.title.contains("equilibrium 1"));
+                .find(|s| s.title.to_text().contains("equilibrium 1"));
             let why = format!("{:?}", page.unwrap().why);
             assert!(why.contains("real for no values of the symbols"), "{why}");
             // The instructor's working: the student's summary gives the reason alone.
@@ -1303,14 +1303,14 @@ fn a_list_gives_states_each_result_of_a_step() {
 #[test]
 fn step_titles_typeset_coordinates_and_say_how_a_constraint_is_differentiated() {
     let disk = run(&std::fs::read_to_string("tests/course/dynamics/16-rolling-disk.toml").unwrap());
-    let titles: Vec<&str> = disk
+    let titles: Vec<String> = disk
         .derivation
         .steps
         .iter()
-        .map(|s| s.title.as_str())
+        .map(|s| s.title.to_author_text(crate::notation::Names::none()))
         .collect();
     assert!(
-        titles.contains(&"The equation of motion of $q_{1}$"),
+        titles.contains(&"The equation of motion of $q_{1}$".to_string()),
         "{titles:?}"
     );
     assert!(titles.iter().all(|t| !t.contains("of q1")), "{titles:?}");
@@ -1320,7 +1320,7 @@ fn step_titles_typeset_coordinates_and_say_how_a_constraint_is_differentiated() 
             .all(|t| !t.starts_with("eom") && !t.starts_with("Lag")),
         "{titles:?}"
     );
-    let once: Vec<&&str> = titles
+    let once: Vec<&String> = titles
         .iter()
         .filter(|t| t.contains("constraint of the multiplier"))
         .collect();
@@ -1334,15 +1334,15 @@ fn step_titles_typeset_coordinates_and_say_how_a_constraint_is_differentiated() 
         .derivation
         .steps
         .iter()
-        .find(|s| s.title.contains("constraint of the multiplier"))
+        .find(|s| s.title.to_text().contains("constraint of the multiplier"))
         .unwrap();
     assert!(
-        twice.title.ends_with("differentiated twice"),
+        twice.title.to_text().ends_with("differentiated twice"),
         "{}",
         twice.title
     );
     // The page reads the title's mathematics: no dollar sign reaches it.
-    let plain = crate::model::prose::plain(titles[titles.len() - 1]);
+    let plain = crate::model::prose::plain(&titles[titles.len() - 1]);
     assert!(!plain.contains('$'), "{plain}");
 }
 

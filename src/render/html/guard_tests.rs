@@ -23,7 +23,7 @@ fn coupled() -> Page {
 fn line_of(page: &Page, name: &str, what: &str) -> usize {
     page.steps
         .iter()
-        .position(|s| s.author.as_deref() == Some(name) && s.title.contains(what))
+        .position(|s| s.author.as_deref() == Some(name) && s.title.to_text().contains(what))
         .unwrap_or_else(|| panic!("no line `{what}` of {name}"))
 }
 

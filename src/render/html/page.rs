@@ -252,7 +252,7 @@ fn step_views(page: &Page, guard: &mut guard::Guard) -> Result<Vec<StepView>, Re
             let tex = st.statement.to_tex(names);
             guard.step(st, &tex)?;
             Ok(StepView {
-                title: author_html(&st.title)?,
+                title: prose_html(&st.title, names)?,
                 math: math::block(&tex)?,
                 why: prose_html(&st.why_cited(), names)?,
                 at: String::new(),

@@ -124,7 +124,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
         m.prose(&first.student_why_cited().capitalised())?;
         m.raw("\n");
     } else {
-        m.raw("*").author(&last.title)?.raw("*");
+        m.raw("*").prose(&last.title)?.raw("*");
     }
     for ((&l, at), approx) in s.lines.iter().zip(&s.at).zip(&s.approx) {
         // A number no student reads exactly is shown to six figures.
