@@ -306,11 +306,10 @@ fn plain_name(name: &str) -> String {
     plain_formula(&crate::cas::Expr::sym(name))
 }
 
-/// An exact result as a reader writes it in plain text: `11/12*m*a^2` is 11ma²/12.
+/// An exact result as a reader writes it in plain text: `11/12*m*a^2` is 11ma²/12, from the
+/// tree the pages set.
 fn plain_formula(e: &crate::cas::Expr) -> String {
-    crate::notation::Tex::read(&e.to_latex(crate::notation::Names::none()))
-        .map(|tex| tex.to_plain())
-        .unwrap_or_else(|_| e.to_string())
+    e.to_tex(crate::notation::Names::none()).to_plain()
 }
 
 /// An exact vector in plain text: (−1, 1, 0).
