@@ -5,6 +5,8 @@
 //! under `validate/operation/`, and its exact rule beside its numeric route in one file under
 //! `src/steps/`.
 
+use super::raw::{RawStep, Text};
+
 /// What a step holds for the steps after it, which decides the operations that can take it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Holds {
@@ -32,11 +34,36 @@ pub enum Several {
     States,
 }
 
-/// One step operation.
+/// Which operation a row is: the one list the compiler checks each dispatch against (a
+/// `match` on it names every operation, or fails to build).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OperationId {
+    Be,
+    Differentiate,
+    Substitute,
+    Lagrange,
+    Routh,
+    Momentum,
+    Energy,
+    Linearise,
+    Frequency,
+    Solve,
+    Series,
+    Integrate,
+    Equilibria,
+    Stability,
+}
+
+/// One step operation.
+#[derive(Debug, Clone, Copy)]
 pub struct OperationKind {
+    pub id: OperationId,
     /// The key that names it in a `[[step]]`.
     pub name: &'static str,
+    /// What the step does, in words: its heading on a page where its name is no symbol.
+    pub heading: &'static str,
+    /// The key's text in a step, where the step gives it.
+    pub key: fn(&RawStep) -> Option<&Text>,
     /// The fields it takes besides its own key and the ones every step has (`name`, `gives`,
     /// `why`, `eq`, `expect`, `role`, `tex`).
     pub fields: &'static [&'static str],
@@ -48,111 +75,223 @@ pub struct OperationKind {
     pub graded: bool,
 }
 
-const fn kind(
-    name: &'static str,
-    fields: &'static [&'static str],
-    holds: Holds,
-    several: Several,
-    graded: bool,
-) -> OperationKind {
-    OperationKind {
-        name,
-        fields,
-        holds,
-        several,
-        graded,
-    }
-}
-
-/// Every operation, in the order an error lists them.
+/// Every operation, in the order an error lists them, each row at its id's place.
 pub const OPERATIONS: [OperationKind; 14] = [
-    kind("be", &[], Holds::Expression, Several::None, true),
-    kind(
-        "differentiate",
-        &["by"],
-        Holds::Expression,
-        Several::None,
-        false,
-    ),
-    kind("substitute", &["set"], Holds::Operand, Several::None, false),
-    kind(
-        "lagrange",
-        &["constraints", "start"],
-        Holds::Motion,
-        Several::None,
-        false,
-    ),
-    kind(
-        "routh",
-        &["cyclic", "start"],
-        Holds::Expression,
-        Several::None,
-        false,
-    ),
-    kind(
-        "momentum",
-        &["of", "start"],
-        Holds::Expression,
-        Several::None,
-        false,
-    ),
-    kind(
-        "energy",
-        &["start"],
-        Holds::Expression,
-        Several::None,
-        false,
-    ),
-    kind("linearise", &["about"], Holds::Linear, Several::None, false),
-    kind("frequency", &[], Holds::Expression, Several::Modes, true),
-    kind("solve", &["for"], Holds::Expression, Several::Roots, true),
-    kind(
-        "series",
-        &["about", "order"],
-        Holds::Expression,
-        Several::None,
-        false,
-    ),
-    kind(
-        "integrate",
-        &["over"],
-        Holds::Expression,
-        Several::None,
-        true,
-    ),
-    kind("equilibria", &[], Holds::Equilibria, Several::States, false),
-    kind("stability", &[], Holds::Expression, Several::States, false),
+    OperationKind {
+        id: OperationId::Be,
+        name: "be",
+        heading: "Definition",
+        key: |s| s.be.as_ref(),
+        fields: &[],
+        holds: Holds::Expression,
+        several: Several::None,
+        graded: true,
+    },
+    OperationKind {
+        id: OperationId::Differentiate,
+        name: "differentiate",
+        heading: "Derivative",
+        key: |s| s.differentiate.as_ref(),
+        fields: &["by"],
+        holds: Holds::Expression,
+        several: Several::None,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Substitute,
+        name: "substitute",
+        heading: "Substitution",
+        key: |s| s.substitute.as_ref(),
+        fields: &["set"],
+        holds: Holds::Operand,
+        several: Several::None,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Lagrange,
+        name: "lagrange",
+        heading: "Equations of motion",
+        key: |s| s.lagrange.as_ref(),
+        fields: &["constraints", "start"],
+        holds: Holds::Motion,
+        several: Several::None,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Routh,
+        name: "routh",
+        heading: "Routhian",
+        key: |s| s.routh.as_ref(),
+        fields: &["cyclic", "start"],
+        holds: Holds::Expression,
+        several: Several::None,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Momentum,
+        name: "momentum",
+        heading: "Generalised momentum",
+        key: |s| s.momentum.as_ref(),
+        fields: &["of", "start"],
+        holds: Holds::Expression,
+        several: Several::None,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Energy,
+        name: "energy",
+        heading: "Energy function",
+        key: |s| s.energy.as_ref(),
+        fields: &["start"],
+        holds: Holds::Expression,
+        several: Several::None,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Linearise,
+        name: "linearise",
+        heading: "Linearised equations of motion",
+        key: |s| s.linearise.as_ref(),
+        fields: &["about"],
+        holds: Holds::Linear,
+        several: Several::None,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Frequency,
+        name: "frequency",
+        heading: "Frequency of small oscillations",
+        key: |s| s.frequency.as_ref(),
+        fields: &[],
+        holds: Holds::Expression,
+        several: Several::Modes,
+        graded: true,
+    },
+    OperationKind {
+        id: OperationId::Solve,
+        name: "solve",
+        heading: "Solution",
+        key: |s| s.solve.as_ref(),
+        fields: &["for"],
+        holds: Holds::Expression,
+        several: Several::Roots,
+        graded: true,
+    },
+    OperationKind {
+        id: OperationId::Series,
+        name: "series",
+        heading: "Series",
+        key: |s| s.series.as_ref(),
+        fields: &["about", "order"],
+        holds: Holds::Expression,
+        several: Several::None,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Integrate,
+        name: "integrate",
+        heading: "Integral",
+        key: |s| s.integrate.as_ref(),
+        fields: &["over"],
+        holds: Holds::Expression,
+        several: Several::None,
+        graded: true,
+    },
+    OperationKind {
+        id: OperationId::Equilibria,
+        name: "equilibria",
+        heading: "States of rest",
+        key: |s| s.equilibria.as_ref(),
+        fields: &[],
+        holds: Holds::Equilibria,
+        several: Several::States,
+        graded: false,
+    },
+    OperationKind {
+        id: OperationId::Stability,
+        name: "stability",
+        heading: "Stability",
+        key: |s| s.stability.as_ref(),
+        fields: &[],
+        holds: Holds::Expression,
+        several: Several::States,
+        graded: false,
+    },
 ];
 
-/// The fields that belong to some operations and not others, each with what it is: `{ops}` is
-/// replaced by the operations that take it, from the table (`a `linearise` or `series``).
-/// A step that gives one of them and has another operation is refused with this sentence, in
-/// this order.
-pub const OPERATION_FIELDS: [(&str, &str); 10] = [
-    ("by", "`by` names what {ops} step differentiates by"),
-    ("set", "`set` gives the replacements of {ops} step"),
-    ("for", "`for` names the unknown of {ops} step"),
-    ("about", "`about` is the state {ops} step expands about"),
-    ("over", "`over` gives the ranges of {ops} step"),
-    ("order", "`order` is the last power of {ops} step"),
-    (
-        "cyclic",
-        "`cyclic` names the cyclic coordinates of {ops} step",
-    ),
-    (
-        "constraints",
-        "`constraints` gives the constraints of {ops} step, each under its multiplier's name",
-    ),
-    ("of", "`of` names the Lagrangian of {ops} step"),
-    (
-        "start",
-        "`start` is the initial state of the motion {ops} step's numeric check integrates",
-    ),
+/// A field that belongs to some operations and not others: its key, what it is (`{ops}` is
+/// replaced by the operations that take it, from the table: "a `linearise` or `series`"), and
+/// whether a step gives it. A step that gives one and has another operation is refused with
+/// its sentence, in this order.
+pub struct OperationField {
+    pub name: &'static str,
+    pub what: &'static str,
+    pub given: fn(&RawStep) -> bool,
+}
+
+pub const OPERATION_FIELDS: [OperationField; 10] = [
+    OperationField {
+        name: "by",
+        what: "`by` names what {ops} step differentiates by",
+        given: |s| s.by.is_some(),
+    },
+    OperationField {
+        name: "set",
+        what: "`set` gives the replacements of {ops} step",
+        given: |s| !s.set.is_empty(),
+    },
+    OperationField {
+        name: "for",
+        what: "`for` names the unknown of {ops} step",
+        given: |s| s.unknown.is_some(),
+    },
+    OperationField {
+        name: "about",
+        what: "`about` is the state {ops} step expands about",
+        given: |s| !s.about.is_empty(),
+    },
+    OperationField {
+        name: "over",
+        what: "`over` gives the ranges of {ops} step",
+        given: |s| !s.over.is_empty(),
+    },
+    OperationField {
+        name: "order",
+        what: "`order` is the last power of {ops} step",
+        given: |s| s.order.is_some(),
+    },
+    OperationField {
+        name: "cyclic",
+        what: "`cyclic` names the cyclic coordinates of {ops} step",
+        given: |s| !s.cyclic.is_empty(),
+    },
+    OperationField {
+        name: "constraints",
+        what: "`constraints` gives the constraints of {ops} step, each under its multiplier's name",
+        given: |s| !s.constraints.is_empty(),
+    },
+    OperationField {
+        name: "of",
+        what: "`of` names the Lagrangian of {ops} step",
+        given: |s| s.of.is_some(),
+    },
+    OperationField {
+        name: "start",
+        what: "`start` is the initial state of the motion {ops} step's numeric check integrates",
+        given: |s| !s.start.is_empty(),
+    },
 ];
 
 /// The row of the operation named `name`.
 pub fn operation_kind(name: &str) -> Option<&'static OperationKind> {
     OPERATIONS.iter().find(|k| k.name == name)
+}
+
+impl OperationId {
+    /// Its row of the table.
+    pub fn kind(self) -> &'static OperationKind {
+        &OPERATIONS[self as usize]
+    }
 }
 
 /// The operations that take `field`, as a sentence's noun: "a `linearise` or `series`".
@@ -171,10 +310,10 @@ pub fn taken_by(field: &str) -> String {
 
 /// The sentence that refuses `field` on a step of another operation.
 pub fn stray_field_message(field: &str) -> Option<String> {
-    let (_, what) = OPERATION_FIELDS.iter().find(|(f, _)| *f == field)?;
+    let f = OPERATION_FIELDS.iter().find(|f| f.name == field)?;
     Some(format!(
         "{}; this step has none",
-        what.replace("{ops}", &taken_by(field))
+        f.what.replace("{ops}", &taken_by(field))
     ))
 }
 
@@ -184,20 +323,24 @@ mod tests {
 
     #[test]
     fn every_operation_field_is_taken_by_an_operation_and_every_taken_field_is_listed() {
-        for (field, what) in OPERATION_FIELDS {
+        for f in OPERATION_FIELDS {
             assert!(
-                !taken_by(field).is_empty(),
-                "`{field}` belongs to no operation"
+                !taken_by(f.name).is_empty(),
+                "`{}` belongs to no operation",
+                f.name
             );
             assert!(
-                what.contains("{ops}"),
-                "`{field}`'s sentence names no operation"
+                f.what.contains("{ops}"),
+                "`{}`'s sentence names no operation",
+                f.name
             );
         }
-        for k in OPERATIONS {
+        for (i, k) in OPERATIONS.iter().enumerate() {
+            assert_eq!(k.id as usize, i, "`{}` is not at its id's place", k.name);
+            assert!(std::ptr::eq(k.id.kind(), k));
             for f in k.fields {
                 assert!(
-                    OPERATION_FIELDS.iter().any(|(g, _)| g == f),
+                    OPERATION_FIELDS.iter().any(|g| g.name == *f),
                     "`{}` takes `{f}`, which has no sentence",
                     k.name
                 );

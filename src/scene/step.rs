@@ -1,7 +1,7 @@
 //! A step of the author's own derivation, as validated: its name, its one operation and the
 //! notes' form of its result.
 
-use super::operations::{OperationKind, Several, operation_kind};
+use super::operations::{OperationId, OperationKind, Several};
 use super::verdict::{ClaimRole, Verdict};
 use crate::cas::Expr;
 use std::collections::BTreeMap;
@@ -162,47 +162,37 @@ pub enum Operation {
 }
 
 impl Operation {
+    /// Which operation it is.
+    pub fn id(&self) -> OperationId {
+        match self {
+            Operation::Be(_) => OperationId::Be,
+            Operation::Differentiate { .. } => OperationId::Differentiate,
+            Operation::Lagrange { .. } => OperationId::Lagrange,
+            Operation::Routh { .. } => OperationId::Routh,
+            Operation::Linearise { .. } => OperationId::Linearise,
+            Operation::Frequency { .. } => OperationId::Frequency,
+            Operation::Substitute { .. } => OperationId::Substitute,
+            Operation::Solve { .. } => OperationId::Solve,
+            Operation::Momentum { .. } => OperationId::Momentum,
+            Operation::Energy { .. } => OperationId::Energy,
+            Operation::Series { .. } => OperationId::Series,
+            Operation::Integrate { .. } => OperationId::Integrate,
+            Operation::Equilibria { .. } => OperationId::Equilibria,
+            Operation::Stability { .. } => OperationId::Stability,
+        }
+    }
+
     /// The operation's row in the table of operations.
     pub fn kind(&self) -> &'static OperationKind {
-        operation_kind(self.name()).expect("every operation has a row in the table")
+        self.id().kind()
     }
 
     /// What the step does, in words: its heading on a page where its name is no symbol.
     pub fn heading(&self) -> &'static str {
-        match self {
-            Operation::Be(_) => "Definition",
-            Operation::Differentiate { .. } => "Derivative",
-            Operation::Lagrange { .. } => "Equations of motion",
-            Operation::Routh { .. } => "Routhian",
-            Operation::Linearise { .. } => "Linearised equations of motion",
-            Operation::Frequency { .. } => "Frequency of small oscillations",
-            Operation::Substitute { .. } => "Substitution",
-            Operation::Solve { .. } => "Solution",
-            Operation::Momentum { .. } => "Generalised momentum",
-            Operation::Energy { .. } => "Energy function",
-            Operation::Series { .. } => "Series",
-            Operation::Integrate { .. } => "Integral",
-            Operation::Equilibria { .. } => "States of rest",
-            Operation::Stability { .. } => "Stability",
-        }
+        self.kind().heading
     }
 
     pub fn name(&self) -> &'static str {
-        match self {
-            Operation::Be(_) => "be",
-            Operation::Differentiate { .. } => "differentiate",
-            Operation::Lagrange { .. } => "lagrange",
-            Operation::Routh { .. } => "routh",
-            Operation::Linearise { .. } => "linearise",
-            Operation::Frequency { .. } => "frequency",
-            Operation::Substitute { .. } => "substitute",
-            Operation::Solve { .. } => "solve",
-            Operation::Momentum { .. } => "momentum",
-            Operation::Energy { .. } => "energy",
-            Operation::Series { .. } => "series",
-            Operation::Integrate { .. } => "integrate",
-            Operation::Equilibria { .. } => "equilibria",
-            Operation::Stability { .. } => "stability",
-        }
+        self.kind().name
     }
 }

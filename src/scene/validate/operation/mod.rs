@@ -16,7 +16,7 @@ use super::{Validator, content_start};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
 use crate::scene::operations::{
-    Holds, OPERATION_FIELDS, OPERATIONS, OperationKind, Several, stray_field_message,
+    Holds, OPERATION_FIELDS, OPERATIONS, OperationId, OperationKind, Several, stray_field_message,
 };
 use crate::scene::raw::{RawStep, Text};
 use crate::scene::step::Operation;
@@ -32,50 +32,12 @@ pub(super) struct StepContext<'a> {
     pub coordinates: &'a BTreeMap<String, String>,
 }
 
-/// Whether the step gives the key of the operation `name`.
-fn gives_key(s: &RawStep, name: &str) -> bool {
-    match name {
-        "be" => s.be.is_some(),
-        "differentiate" => s.differentiate.is_some(),
-        "substitute" => s.substitute.is_some(),
-        "lagrange" => s.lagrange.is_some(),
-        "routh" => s.routh.is_some(),
-        "momentum" => s.momentum.is_some(),
-        "energy" => s.energy.is_some(),
-        "linearise" => s.linearise.is_some(),
-        "frequency" => s.frequency.is_some(),
-        "solve" => s.solve.is_some(),
-        "series" => s.series.is_some(),
-        "integrate" => s.integrate.is_some(),
-        "equilibria" => s.equilibria.is_some(),
-        "stability" => s.stability.is_some(),
-        _ => unreachable!("`{name}` is not in the table of operations"),
-    }
-}
-
-/// Whether the step gives the field `name` of some operations (`OPERATION_FIELDS`).
-fn gives_field(s: &RawStep, name: &str) -> bool {
-    match name {
-        "by" => s.by.is_some(),
-        "set" => !s.set.is_empty(),
-        "for" => s.unknown.is_some(),
-        "about" => !s.about.is_empty(),
-        "over" => !s.over.is_empty(),
-        "order" => s.order.is_some(),
-        "cyclic" => !s.cyclic.is_empty(),
-        "constraints" => !s.constraints.is_empty(),
-        "of" => s.of.is_some(),
-        "start" => !s.start.is_empty(),
-        _ => unreachable!("`{name}` is not a field of the table of operations"),
-    }
-}
-
 impl Validator<'_> {
     /// The one operation of a step.
     pub(super) fn operation(&self, s: &RawStep, cx: &StepContext) -> Result<Operation, SceneError> {
         let (offset, field) = (cx.offset, cx.field);
         let given: Vec<&OperationKind> =
-            OPERATIONS.iter().filter(|k| gives_key(s, k.name)).collect();
+            OPERATIONS.iter().filter(|k| (k.key)(s).is_some()).collect();
         let [kind] = given[..] else {
             return Err(self.err(
                 offset,
@@ -97,10 +59,10 @@ impl Validator<'_> {
         };
         let op = self.operand_of(s, kind, cx)?;
         // A field of another operation than this step's: said before anything else about it.
-        for (name, _) in OPERATION_FIELDS {
-            if gives_field(s, name) && !kind.fields.contains(&name) {
-                let message = stray_field_message(name).expect("a field of the table");
-                return Err(self.err(offset, &format!("{field}.{name}"), message));
+        for f in OPERATION_FIELDS {
+            if (f.given)(s) && !kind.fields.contains(&f.name) {
+                let message = stray_field_message(f.name).expect("a field of the table");
+                return Err(self.err(offset, &format!("{field}.{}", f.name), message));
             }
         }
         // (A `frequency` of several coordinates is known only once derived: its `gives` is
@@ -128,38 +90,37 @@ impl Validator<'_> {
         kind: &OperationKind,
         cx: &StepContext,
     ) -> Result<Operation, SceneError> {
-        // The key's own text: `gives_key` found it.
-        let key = |t: &Option<Text>| t.clone().expect("the step gives its operation's key");
-        Ok(match kind.name {
-            "be" => Operation::Be(self.operand(&key(&s.be), "be", cx)?),
-            "differentiate" => self.differentiate(&key(&s.differentiate), s, cx)?,
-            "substitute" => self.substitute(&key(&s.substitute), s, cx)?,
-            "lagrange" => Operation::Lagrange {
-                of: self.lagrangian(&key(&s.lagrange), "lagrange", cx)?,
+        use OperationId as Id;
+        let key = (kind.key)(s).expect("the step gives its operation's key");
+        Ok(match kind.id {
+            Id::Be => Operation::Be(self.operand(key, "be", cx)?),
+            Id::Differentiate => self.differentiate(key, s, cx)?,
+            Id::Substitute => self.substitute(key, s, cx)?,
+            Id::Lagrange => Operation::Lagrange {
+                of: self.lagrangian(key, "lagrange", cx)?,
                 constraints: self.constraints(s, cx)?,
             },
-            "routh" => Operation::Routh {
-                of: self.lagrangian(&key(&s.routh), "routh", cx)?,
+            Id::Routh => Operation::Routh {
+                of: self.lagrangian(key, "routh", cx)?,
                 cyclic: self.cyclic(s, cx)?,
             },
-            "momentum" => self.momentum(&key(&s.momentum), s, cx)?,
-            "energy" => Operation::Energy {
-                of: self.lagrangian(&key(&s.energy), "energy", cx)?,
+            Id::Momentum => self.momentum(key, s, cx)?,
+            Id::Energy => Operation::Energy {
+                of: self.lagrangian(key, "energy", cx)?,
             },
-            "linearise" => self.linearise(&key(&s.linearise), s, cx)?,
-            "frequency" => Operation::Frequency {
-                of: self.taken(&key(&s.frequency), "frequency", Holds::Linear, cx)?,
+            Id::Linearise => self.linearise(key, s, cx)?,
+            Id::Frequency => Operation::Frequency {
+                of: self.taken(key, "frequency", Holds::Linear, cx)?,
             },
-            "solve" => self.solve(&key(&s.solve), s, cx)?,
-            "series" => self.series(&key(&s.series), s, cx)?,
-            "integrate" => self.integrate(&key(&s.integrate), s, cx)?,
-            "equilibria" => Operation::Equilibria {
-                of: self.taken(&key(&s.equilibria), "equilibria", Holds::Motion, cx)?,
+            Id::Solve => self.solve(key, s, cx)?,
+            Id::Series => self.series(key, s, cx)?,
+            Id::Integrate => self.integrate(key, s, cx)?,
+            Id::Equilibria => Operation::Equilibria {
+                of: self.taken(key, "equilibria", Holds::Motion, cx)?,
             },
-            "stability" => Operation::Stability {
-                of: self.taken(&key(&s.stability), "stability", Holds::Equilibria, cx)?,
+            Id::Stability => Operation::Stability {
+                of: self.taken(key, "stability", Holds::Equilibria, cx)?,
             },
-            other => unreachable!("`{other}` is not in the table of operations"),
         })
     }
 
@@ -211,26 +172,6 @@ fn names_only(cx: &StepContext) -> BTreeSet<String> {
         .filter(|n| *n != "t" && !n.ends_with('\'') && !cx.coordinates.contains_key(*n))
         .cloned()
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{gives_field, gives_key};
-    use crate::scene::operations::{OPERATION_FIELDS, OPERATIONS};
-    use crate::scene::raw::RawStep;
-
-    /// Every row of the table has its key read from a step, and every field too (an unknown
-    /// name panics).
-    #[test]
-    fn every_operation_and_field_of_the_table_is_read_from_a_step() {
-        let step: RawStep = toml::from_str("name = \"x\"").unwrap();
-        for k in OPERATIONS {
-            assert!(!gives_key(&step, k.name));
-        }
-        for (f, _) in OPERATION_FIELDS {
-            assert!(!gives_field(&step, f));
-        }
-    }
 }
 
 #[cfg(test)]
