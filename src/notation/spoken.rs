@@ -23,9 +23,31 @@ pub fn spoken(nodes: &[Node]) -> String {
 }
 
 fn say(nodes: &[Node], out: &mut Vec<String>) {
-    for n in nodes {
+    for (k, n) in nodes.iter().enumerate() {
+        // 5.4 × 10⁻⁵ is a number "times" a power of ten, not a cross product; so is a piece
+        // of a broken line that opens with "× 10⁻⁵".
+        if is_cross(n)
+            && matches!(
+                k.checked_sub(1).map(|j| &nodes[j]),
+                None | Some(Node::Number(_))
+            )
+            && nodes.get(k + 1).is_some_and(is_power_of_ten)
+        {
+            out.push("times".into());
+            continue;
+        }
         node(n, out);
     }
+}
+
+fn is_cross(n: &Node) -> bool {
+    matches!(n, Node::Atom(Content::BinaryOp { content: '×', .. }))
+}
+
+/// 10 to a power: the second half of a number in scientific notation.
+fn is_power_of_ten(n: &Node) -> bool {
+    matches!(n, Node::Script { ty: ScriptType::Superscript, parts, .. }
+        if matches!(parts.first(), Some(Node::Number(d)) if d == "10"))
 }
 
 /// The words of a part (a numerator, a radicand) and whether it is more than one item, which
@@ -36,7 +58,13 @@ fn part(n: &Node) -> (String, bool) {
         other => std::slice::from_ref(other),
     };
     let words = spoken(inner);
-    let long = words.split(' ').count() > 1;
+    // A negative number ("minus 5") is one item to a listener.
+    let long = words
+        .strip_prefix("minus ")
+        .unwrap_or(&words)
+        .split(' ')
+        .count()
+        > 1;
     (words, long)
 }
 
@@ -367,6 +395,26 @@ mod tests {
         assert_eq!(
             said(r"\int_{0}^{L} s \, d s"),
             "the integral from 0 to L of s d s"
+        );
+    }
+
+    /// A number in scientific notation is a number times a power of ten: "cross" and "end
+    /// power" had been said for 5.4 × 10⁻⁵ on every page and paper.
+    #[test]
+    fn a_number_times_a_power_of_ten_is_said_as_a_number() {
+        let number = crate::notation::Formula::decimal("5.4e-5");
+        assert_eq!(
+            number.to_tex(crate::notation::Names::none()).spoken(),
+            "5.4 times 10 to the power minus 5"
+        );
+        assert_eq!(said(r"10^{-12}"), "10 to the power minus 12");
+        // A cross product stays one, and a longer power still says where it ends.
+        assert_eq!(said(r"a \times b"), "a cross b");
+        assert_eq!(said(r"2 \times 10"), "2 cross 10");
+        assert_eq!(said(r"\times 10^{-3}"), "times 10 to the power minus 3");
+        assert_eq!(
+            said(r"e^{-t/T}"),
+            "e to the power minus t over T, end power"
         );
     }
 

@@ -216,14 +216,19 @@ pub fn said_equation(name: &str, value: &str, names: &Names) -> String {
     format!("{} equals {value}", said_symbol(name, names))
 }
 
-/// A computed number in words, as [`number`] sets it: "4.6875 times 10 to the power minus 6".
+/// A computed number in words, from the tree [`number`] sets: "4.6875 times 10 to the power
+/// minus 6".
 pub fn said_number(x: f64, digits: usize) -> String {
-    let s = crate::base::format::significant(x, digits);
-    let words = match crate::base::format::power_of_ten(&s) {
-        Some((mantissa, power)) => format!("{mantissa} times 10 to the power {power}"),
-        None => s,
-    };
-    words.replace('-', "minus ")
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    decimal_formula(x, digits).to_tex(Names::none()).spoken()
+}
+
+/// A computed number to `digits` significant figures as a formula: its digits, and its power
+/// of ten as a power (4.6875 × 10⁻⁶, never e-notation).
+fn decimal_formula(x: f64, digits: usize) -> Formula {
+    Formula::decimal(&crate::base::format::significant(x, digits))
 }
 
 /// A symbol's name in Typst's math.
@@ -236,13 +241,14 @@ pub fn number(x: f64, digits: usize) -> String {
     if !x.is_finite() {
         return typst_string(&x.to_string());
     }
-    let s = crate::base::format::significant(x, digits);
-    match crate::base::format::power_of_ten(&s) {
-        Some(("1", power)) => format!("10^({power})"),
-        Some((mantissa, power)) => format!("{mantissa} times 10^({power})"),
-        None => s,
-    }
-    .replace('-', "−")
+    decimal_typst(&decimal_formula(x, digits))
+}
+
+/// A number's formula in Typst's math: digits, signs and powers, which every printer sets.
+pub fn decimal_typst(f: &Formula) -> String {
+    // A number's formula is digits, a sign and a power: no LaTeX in it for Typst to refuse.
+    f.to_typst(Names::none())
+        .unwrap_or_else(|_| typst_string(&f.to_text()))
 }
 
 /// Whether Typst surely sets `whole` narrower than any line (`display_width`).

@@ -352,12 +352,8 @@ pub fn decimals(numbers: &[f64], digits: usize) -> Vec<String> {
             if !x.is_finite() {
                 return crate::base::typst::typst_string(&x.to_string());
             }
-            let s = crate::base::format::figures(*x, digits);
-            match crate::base::format::power_of_ten(&s) {
-                Some((mantissa, power)) => format!("{mantissa} times 10^({power})"),
-                None => s,
-            }
-            .replace('-', "−")
+            let f = crate::notation::Formula::decimal(&crate::base::format::figures(*x, digits));
+            super::markup::decimal_typst(&f)
         })
         .collect()
 }
