@@ -5,7 +5,7 @@
 
 use super::Page;
 use crate::model::catalogue::quantity_symbol;
-use crate::notation::{Formula, Op, Tex, TexError};
+use crate::notation::{Formula, Op};
 
 impl Page {
     /// The line that states result `name` as `symbol = value`: the line of the author's step
@@ -56,14 +56,13 @@ impl Page {
     /// states its result (T for `acc_3`), else its quantity where every name in it prints as a
     /// symbol (I₁₁, L², the scene's own), else none, and the page prints the claim's formula
     /// alone: never a name of mechbook's (`plane_distance_squared`) as a word.
-    pub fn claim_left(&self, i: usize) -> Result<Option<Formula>, TexError> {
+    pub fn claim_left(&self, i: usize) -> Option<Formula> {
         let c = &self.claims[i];
-        if let Some(latex) = &c.tex {
-            // Scene validation read it; a claim from elsewhere (a cache) is read again here.
-            return Tex::read(latex).map(|t| Some(Formula::Tex(t)));
+        if let Some(tex) = &c.tex {
+            return Some(Formula::Tex(tex.clone()));
         }
         if let Some((symbol, _)) = self.claim_line(i) {
-            return Ok(Some(symbol.clone()));
+            return Some(symbol.clone());
         }
         // Each result the page states by its line's symbol: acc₁ + acc₂ is ẍ₁ + ẍ₂.
         let q = c.quantity.as_ref().map(|q| {
@@ -72,21 +71,21 @@ impl Page {
                 _ => None,
             })
         });
-        Ok(match q {
+        match q {
             Some(q) if !names_a_word(&q, &self.names) => {
                 Some(Formula::Tex(q.to_tex_named(&self.names, &quantity_symbol)))
             }
             _ => None,
-        })
+        }
     }
 
     /// `left = side` for claim `i` (its left side by [`Page::claim_left`]), or `side` alone
     /// where it has none: the row both handouts display for each side of a scalar claim.
-    pub fn claim_row(&self, i: usize, side: Formula) -> Result<Formula, TexError> {
-        Ok(match self.claim_left(i)? {
+    pub fn claim_row(&self, i: usize, side: Formula) -> Formula {
+        match self.claim_left(i) {
             Some(left) => Formula::Row(vec![left, Formula::Op(Op::Equals), side]),
             None => side,
-        })
+        }
     }
 
     /// Claim `i`'s derived side as the page prints it: the form of the line that states its

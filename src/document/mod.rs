@@ -334,7 +334,7 @@ fn derived_page(r: &SceneReport, prev: Option<&SceneReport>, next: Option<&Scene
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect(),
         tex: s.tex.clone(),
-        names: crate::notation::Names::of(&s.tex),
+        names: s.names(),
         signed: s.signed_names(),
         units: s
             .units

@@ -73,7 +73,7 @@ pub fn problem(r: &SceneReport) -> Option<Problem> {
         tolerance: p.tolerance,
         answers: p.answers.clone(),
         tex: r.scene.tex.clone(),
-        names: crate::notation::Names::of(&r.scene.tex),
+        names: r.scene.names(),
         template: template_statement(&p.statement, &p.given),
         variants: r
             .verification

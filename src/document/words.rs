@@ -120,6 +120,6 @@ pub fn claim_lead(statement: &str) -> Option<String> {
 /// writes "$|\\vec L|^2$ is constant: $I_1^2 A^2 + …$" is not followed by "I₁²A² + …" again).
 pub fn claim_shows_formula(page: &Page, i: usize) -> bool {
     let c = &page.claims[i];
-    let has_left = matches!(page.claim_left(i), Ok(Some(_)));
+    let has_left = page.claim_left(i).is_some();
     matches!(c.derived, Some(Value::Scalar(_))) && (has_left || !c.statement.contains('$'))
 }

@@ -12,10 +12,9 @@ use std::collections::BTreeSet;
 pub const SAMPLE_FROM: f64 = 0.4;
 
 impl Scene {
-    /// A name's LaTeX as the scene's pages print it: its own `tex`, else the conventions
-    /// (`phi''` is `\ddot{\phi}`).
-    pub fn latex_of(&self, name: &str) -> String {
-        Expr::sym(name).to_latex(&crate::notation::Names::of(&self.tex))
+    /// How the scene typesets its names (its `tex`), for the printers.
+    pub fn names(&self) -> crate::notation::Names {
+        crate::notation::Names::of(&self.tex)
     }
 
     /// The names of the several results of the step `step` (numbered, for a name that is no

@@ -385,8 +385,8 @@ pub struct Claim {
     /// `check --bless` records the derived one).
     pub expect: Option<Verdict>,
     pub role: ClaimRole,
-    /// The symbol its quantity is printed as (LaTeX), where the author gives one.
-    pub tex: Option<String>,
+    /// The symbol its quantity is printed as, where the author gives one: its LaTeX read.
+    pub tex: Option<crate::notation::Tex>,
     pub line: usize,
 }
 

@@ -100,7 +100,7 @@ fn check_gives_each(
             // Several unknowns print as themselves (T = …, ẍ = …), not as the step's `sol_2`.
             tex: match &step.op {
                 crate::scene::Operation::Solve { unknowns, .. } if unknowns.len() > 1 => {
-                    unknowns.get(k).map(|u| scene.latex_of(u))
+                    unknowns.get(k).map(|u| Expr::sym(u).to_tex(&scene.names()))
                 }
                 _ => None,
             },

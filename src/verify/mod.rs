@@ -76,9 +76,10 @@ pub struct ClaimResult {
     /// being never negative (`squares.rs`); said beside the verdict.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub where_real: bool,
-    /// The symbol the author gives its quantity (LaTeX), printed as its left side.
+    /// The symbol the author gives its quantity, printed as its left side: its tree (stored
+    /// as its LaTeX), or a symbol's as mechbook sets it (`T` for a `solve` step's unknown).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub tex: Option<String>,
+    pub tex: Option<crate::notation::Tex>,
     /// The derived side in the form a textbook prints, where a box shows it and it differs
     /// from `derived` (`claim_form.rs`).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -174,9 +174,7 @@ fn displayed(
     let scalar = matches!(c.derived, Some(Value::Scalar(_))) && c.sign_words().is_none();
     match (side, scalar) {
         (Some(tex), true) => {
-            let row = page
-                .claim_row(i, Formula::Tex(tex.clone()))
-                .unwrap_or_else(|_| Formula::Tex(tex.clone()));
+            let row = page.claim_row(i, Formula::Tex(tex.clone()));
             math::block(&row.to_tex(&page.names))
         }
         _ => Ok(String::new()),
@@ -187,12 +185,8 @@ fn displayed(
 fn left_side(page: &crate::document::Page, i: usize) -> Result<String, RenderError> {
     let names = &page.names;
     match page.claim_left(i) {
-        Ok(Some(f)) => math::inline(&f.to_tex(names)),
-        Ok(None) => Ok(String::new()),
-        Err(e) => Err(RenderError::Math {
-            latex: page.claims[i].tex.clone().unwrap_or_default(),
-            message: e.to_string(),
-        }),
+        Some(f) => math::inline(&f.to_tex(names)),
+        None => Ok(String::new()),
     }
 }
 

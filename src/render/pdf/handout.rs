@@ -355,7 +355,7 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
         .notes
         .as_ref()
         .filter(|_| scalar)
-        .map(|e| claim_formula(page, i, Formula::Expr(e.clone())));
+        .map(|e| page.claim_row(i, Formula::Expr(e.clone())));
     let Mark::Boxed {
         heading,
         wrong,
@@ -382,7 +382,6 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
     }
     m.text(&format!("{wrong}: "));
     if let Some(notes) = notes {
-        let notes = notes?;
         let (whole, broken) = formula_and_broken(&notes, names)?;
         m.block(&whole, &broken, &notes.to_tex(names).spoken());
     } else if let Some(e) = &c.notes {
@@ -411,7 +410,7 @@ fn claim_in_list(
     m: &mut Markup,
     page: &Page,
     shown: &ShownClaim,
-    notes: Option<Result<Formula, RenderError>>,
+    notes: Option<Formula>,
 ) -> Result<(), RenderError> {
     let names = &page.names;
     let i = shown.claim;
@@ -425,7 +424,6 @@ fn claim_in_list(
         // One block, so that the formula and the sentence after it stay in the list item.
         m.raw("#block[");
         m.author(&lead)?.text(":");
-        let notes = notes?;
         let (whole, broken) = formula_and_broken(&notes, names)?;
         m.block(&whole, &broken, &notes.to_tex(names).spoken());
         m.text("As in the notes");
@@ -467,7 +465,7 @@ fn derived_side(page: &Page, i: usize) -> Option<Result<(String, String, String)
             let side = page
                 .claim_derived(i)
                 .unwrap_or_else(|| Formula::Expr(v.to_expr()));
-            let f = claim_formula(page, i, side)?;
+            let f = page.claim_row(i, side);
             let (whole, broken) = formula_and_broken(&f, names)?;
             Ok((whole, broken, f.to_tex(names).spoken()))
         }
@@ -490,14 +488,6 @@ fn derived_side(page: &Page, i: usize) -> Option<Result<(String, String, String)
                 ))
             }
         },
-    })
-}
-
-/// `left = side` for claim `i` (`Page::claim_row`), or `side` where it has no left side.
-fn claim_formula(page: &Page, i: usize, side: Formula) -> Result<Formula, RenderError> {
-    page.claim_row(i, side).map_err(|e| RenderError::Math {
-        latex: page.claims[i].tex.clone().unwrap_or_default(),
-        message: e.to_string(),
     })
 }
 

@@ -258,15 +258,15 @@ impl Validator<'_> {
             }
         };
         let tex = match &c.tex {
-            Some(t) => match super::text::latex_problem(t.get_ref()) {
-                Some(why) => {
+            Some(t) => match super::text::typeset_latex(t.get_ref().trim()) {
+                Err(why) => {
                     return Err(self.err(
                         content_start(t),
                         &format!("{field}.tex"),
                         format!("`{}` cannot be typeset: {why}", t.get_ref()),
                     ));
                 }
-                None => Some(t.get_ref().trim().to_string()),
+                Ok(tex) => Some(tex),
             },
             None => None,
         };
