@@ -6,7 +6,7 @@
 use super::engine::{self, EngineError};
 use super::expr::Expr;
 use super::positive::is_zero;
-use super::present::{Positive, present, size};
+use super::present::{Positive, PrintedLength, present, size};
 use super::print::split_sign;
 use super::written::as_written;
 
@@ -69,6 +69,7 @@ pub fn matrix_form(
     rows_as_derived: &[Vec<Expr>],
     written: Option<&Expr>,
     positive: Positive,
+    length: PrintedLength,
 ) -> Result<Option<MatrixForm>, EngineError> {
     if let Some((factor, cells)) = written.and_then(factor_and_rows)
         && !factor.is_one()
@@ -103,7 +104,7 @@ pub fn matrix_form(
             row.iter()
                 .map(|e| {
                     let entry = engine::simplify(&Expr::over(e.clone(), factor.clone()))?;
-                    present(&entry, positive)
+                    present(&entry, positive, length)
                 })
                 .collect::<Result<Vec<_>, _>>()
         })
@@ -113,20 +114,20 @@ pub fn matrix_form(
     if factor.symbols().is_empty() && rows.iter().flatten().any(|e| !e.symbols().is_empty()) {
         return Ok(None);
     }
-    let factor = present(&factor, positive)?;
+    let factor = present(&factor, positive, length)?;
     // Taken out only where the matrix prints narrower.
-    let narrower = size(&factor) + width(&rows) < width(rows_as_derived);
+    let narrower = size(&factor, length) + width(&rows, length) < width(rows_as_derived, length);
     Ok(narrower.then_some(MatrixForm { factor, rows }))
 }
 
 /// A matrix's printed width, roughly: its columns' widest entries side by side.
-fn width(rows: &[Vec<Expr>]) -> usize {
+fn width(rows: &[Vec<Expr>], length: PrintedLength) -> usize {
     let columns = rows.iter().map(Vec::len).max().unwrap_or(0);
     (0..columns)
         .map(|j| {
             rows.iter()
                 .filter_map(|r| r.get(j))
-                .map(size)
+                .map(|e| size(e, length))
                 .max()
                 .unwrap_or(0)
         })

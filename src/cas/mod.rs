@@ -23,7 +23,6 @@ mod polynomial;
 mod positive;
 mod present;
 mod print;
-mod print_latex;
 mod symbol_latex;
 pub use symbol_latex::{GREEK, Head, NameForm, greek_letter, name_form, numbered, prints_as_word};
 mod radical;
@@ -46,9 +45,9 @@ pub use factor_order::{Declared, order_factors};
 pub use functions::{SCALAR_FUNCTIONS, arity, needs_dimensionless, textbook_name};
 pub use matrix_form::{MatrixForm, factor_and_rows};
 pub use parse::{ParseError, Parsed, parse, parse_input};
+pub use present::PrintedLength;
 pub use print::{Prec, Style, index_chain, page_factors, page_fraction, split_sign, write};
 /// The printing walk, for the LaTeX and Typst printers in `notation`.
-pub use print_latex::OwnLatex;
 pub use radical::pull_squares;
 pub use rational::Rational;
 pub use size::ExpansionSize;
@@ -411,12 +410,13 @@ pub fn present_all(
     exprs: Vec<Expr>,
     signed: std::collections::BTreeSet<String>,
     declared: Declared,
+    length: PrintedLength,
 ) -> Result<Vec<Expr>, CasError> {
     run(move || {
         let positive = |s: &str| !signed.contains(s);
         exprs
             .iter()
-            .map(|e| present::present(e, &positive).map(|f| order_factors(&f, &declared)))
+            .map(|e| present::present(e, &positive, length).map(|f| order_factors(&f, &declared)))
             .collect()
     })
 }
@@ -428,6 +428,7 @@ pub fn matrix_forms(
     matrices: Vec<(Vec<Vec<Expr>>, Option<Expr>)>,
     signed: std::collections::BTreeSet<String>,
     declared: Declared,
+    length: PrintedLength,
 ) -> Result<Vec<Option<MatrixForm>>, CasError> {
     run(move || {
         let positive = |s: &str| !signed.contains(s);
@@ -435,7 +436,7 @@ pub fn matrix_forms(
         matrices
             .iter()
             .map(|(rows, written)| {
-                matrix_form::matrix_form(rows, written.as_ref(), &positive).map(|form| {
+                matrix_form::matrix_form(rows, written.as_ref(), &positive, length).map(|form| {
                     form.map(|f| MatrixForm {
                         factor: order(&f.factor),
                         rows: f
@@ -458,10 +459,12 @@ pub fn present_written(
     exact: Expr,
     signed: std::collections::BTreeSet<String>,
     declared: Declared,
+    length: PrintedLength,
 ) -> Result<Expr, CasError> {
     run(move || {
         let positive = |s: &str| !signed.contains(s);
-        written::present_written(&written, &exact, &positive).map(|f| order_factors(&f, &declared))
+        written::present_written(&written, &exact, &positive, length)
+            .map(|f| order_factors(&f, &declared))
     })
 }
 

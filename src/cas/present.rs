@@ -23,12 +23,16 @@ use super::series_form::leading_term;
 
 pub(super) type Positive<'a> = &'a dyn Fn(&str) -> bool;
 
+/// How long a form prints: the characters of the LaTeX a page sets for it, without spaces and
+/// `\left`/`\right` (`notation::printed_length`; the engine's side prints no LaTeX).
+pub type PrintedLength = fn(&Expr) -> usize;
+
 /// The printed form of `e`: the shortest proven-equal candidate, else `e` itself.
-pub fn present(e: &Expr, positive: Positive) -> Result<Expr, EngineError> {
+pub fn present(e: &Expr, positive: Positive, length: PrintedLength) -> Result<Expr, EngineError> {
     if matches!(e, Expr::Num(_) | Expr::Sym(_)) || has_list(e) {
         return Ok(e.clone());
     }
-    let original = size(e);
+    let original = size(e, length);
     let mut candidates = vec![(tidy(e, positive), true)];
     let (simplified, factored) = (engine::simplify(e), engine::factor(e));
     // A series as its leading term times 1 + …, from the result or its factored form: the
@@ -38,7 +42,7 @@ pub fn present(e: &Expr, positive: Positive) -> Result<Expr, EngineError> {
         .flatten()
     {
         if let Some(series) = leading_term(&form).map(|s| tidy(&s, positive))
-            && size(&series) * 2 <= original * 3
+            && size(&series, length) * 2 <= original * 3
             && positive::is_zero(
                 &Expr::add(vec![series.clone(), Expr::negate(e.clone())]),
                 positive,
@@ -67,7 +71,7 @@ pub fn present(e: &Expr, positive: Positive) -> Result<Expr, EngineError> {
     let mut sized: Vec<(usize, Expr)> = candidates
         .into_iter()
         .filter(|(c, _)| c != e)
-        .map(|(c, tidied)| (size(&c), c, tidied))
+        .map(|(c, tidied)| (size(&c, length), c, tidied))
         // The tidied form is what a physicist writes, kept even a little longer: a²(1 − cos θ)²
         // for (a − a cos θ)². The engine's forms are taken where they are clearly shorter.
         .filter(|(n, _, tidied)| {
@@ -90,23 +94,17 @@ pub fn present(e: &Expr, positive: Positive) -> Result<Expr, EngineError> {
     Ok(e.clone())
 }
 
-/// The length of the LaTeX a page sets, without spaces and `\left`/`\right`. A sum is
-/// measured with its common factor out, as the shortest a printer could set it, whether or not
-/// the printer takes it out (it keeps a sum of bracketed terms term by term).
-pub(super) fn size(e: &Expr) -> usize {
+/// The printed length of a form (`length`). A sum is measured with its common factor out, as
+/// the shortest a printer could set it, whether or not the printer takes it out (it keeps a sum
+/// of bracketed terms term by term).
+pub(super) fn size(e: &Expr, length: PrintedLength) -> usize {
     let factored = match e {
         Expr::Add(terms) => {
             common_factor(terms).map(|(f, rest)| Expr::mul(vec![f, Expr::Add(rest)]))
         }
         _ => None,
     };
-    // By the conventions: the pass runs before any page, whatever the scene's own names.
-    let latex = factored
-        .as_ref()
-        .unwrap_or(e)
-        .latex_with(&|_| None, &|_| None);
-    let latex = latex.replace("\\left", "").replace("\\right", "");
-    latex.chars().filter(|c| !c.is_whitespace()).count()
+    length(factored.as_ref().unwrap_or(e))
 }
 
 fn has_list(e: &Expr) -> bool {

@@ -79,7 +79,13 @@ fn the_engines_forms_are_taken_where_clearly_shorter() {
     ];
     let signed = ["theta".to_string()].into_iter().collect();
     let exprs: Vec<Expr> = cases.iter().map(|(from, _)| p(from)).collect();
-    let out = present_all(exprs, signed, Default::default()).unwrap();
+    let out = present_all(
+        exprs,
+        signed,
+        Default::default(),
+        crate::notation::printed_length,
+    )
+    .unwrap();
     for ((from, to), got) in cases.iter().zip(&out) {
         assert_eq!(got.to_text(), *to, "{from}");
         assert!(

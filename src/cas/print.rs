@@ -1,7 +1,8 @@
 //! Printing an expression: one walk over the tree, shared by the plain text the parser and the
-//! engine read back, LaTeX (`print_latex.rs`) and Typst (`print_typst.rs`). The walk decides what
-//! they agree on (signs in sums, negative products, where parentheses go); a [`Style`] writes
-//! each node's own syntax. The pages' tree (`notation/expr_tree.rs`) follows the same walk.
+//! engine read back (here) and by `notation`'s LaTeX and Typst styles (`expr_latex.rs`,
+//! `expr_typst.rs`). The walk decides what they agree on (signs in sums, negative products,
+//! where parentheses go); a [`Style`] writes each node's own syntax. The pages' tree
+//! (`notation/expr_tree.rs`) follows the same walk.
 
 use super::expr::Expr;
 use super::factor::printed_common_factor;

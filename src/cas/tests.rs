@@ -443,6 +443,7 @@ fn a_matrix_prints_with_its_common_factor_out_where_that_is_narrower() {
         vec![(box_123.clone(), None), (cone, None), (single, None)],
         Default::default(),
         Default::default(),
+        crate::notation::printed_length,
     )
     .unwrap();
     let f = forms[0]
@@ -473,6 +474,7 @@ fn an_authors_matrix_form_wins_where_it_is_equal() {
         vec![(cube.clone(), Some(notes)), (cube, Some(wrong))],
         Default::default(),
         Default::default(),
+        crate::notation::printed_length,
     )
     .unwrap();
     let written = forms[0].as_ref().unwrap();

@@ -5,7 +5,7 @@
 use super::engine::EngineError;
 use super::expr::Expr;
 use super::positive;
-use super::present::{Positive, present, size};
+use super::present::{Positive, PrintedLength, present, size};
 use super::rational::Rational;
 
 /// `written` as a page prints it: like factors merged and numbers multiplied out in the
@@ -17,10 +17,11 @@ pub fn present_written(
     written: &Expr,
     exact: &Expr,
     positive: Positive,
+    length: PrintedLength,
 ) -> Result<Expr, EngineError> {
-    let presented = present(exact, positive)?;
-    let form = present(&light(written, true), positive)?;
-    if form == presented || size(&form) * 4 > size(&presented) * 5 + 8 {
+    let presented = present(exact, positive, length)?;
+    let form = present(&light(written, true), positive, length)?;
+    if form == presented || size(&form, length) * 4 > size(&presented, length) * 5 + 8 {
         return Ok(presented);
     }
     let difference = Expr::add(vec![form.clone(), Expr::negate(exact.clone())]);

@@ -29,7 +29,13 @@ pub fn present_builtin_steps(
     if exprs.is_empty() {
         return Ok(());
     }
-    let mut forms = cas::present_all(exprs, signed, declared.clone())?.into_iter();
+    let mut forms = cas::present_all(
+        exprs,
+        signed,
+        declared.clone(),
+        crate::notation::printed_length,
+    )?
+    .into_iter();
     for step in d.steps.iter_mut().filter(|s| s.author.is_none()) {
         let exact = step.statement.clone();
         let mut changed = false;
@@ -103,7 +109,13 @@ fn present_matrices(
         .iter()
         .flat_map(|(rows, _)| rows.iter().flatten().flat_map(Expr::symbols))
         .collect();
-    let mut forms = cas::matrix_forms(matrices, signed, declared.clone())?.into_iter();
+    let mut forms = cas::matrix_forms(
+        matrices,
+        signed,
+        declared.clone(),
+        crate::notation::printed_length,
+    )?
+    .into_iter();
     for i in in_steps {
         let form = forms.next().expect("one form for each matrix");
         if let (Some(form), Formula::Row(items)) = (form, &d.steps[i].statement) {

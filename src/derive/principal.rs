@@ -215,6 +215,7 @@ fn characteristic_step(
         roots.roots.iter().map(|(v, _)| v.clone()).collect(),
         scene.signed_names(),
         scene.declared.clone(),
+        crate::notation::printed_length,
     )?;
     let ev = Expr::sym(ev_name);
     let shown_product = Expr::mul(
@@ -420,7 +421,12 @@ fn closed_form(
         .flat_map(|e| e.symbols())
         .filter(|s| !positive(s))
         .collect();
-    let parts = cas::present_all(parts, signed, scene.declared.clone())?;
+    let parts = cas::present_all(
+        parts,
+        signed,
+        scene.declared.clone(),
+        crate::notation::printed_length,
+    )?;
     d.steps.push(Step::note(
         "Principal moments in closed form",
         Formula::parse(

@@ -309,8 +309,13 @@ pub fn shown_answers(
         .map(|(name, _)| name.to_string())
         .collect();
     let flat: Vec<Expr> = pending.iter().flat_map(|(_, row)| row.clone()).collect();
-    let mut presented =
-        cas::present_all(cas::simplify_all(flat)?, signed, Default::default())?.into_iter();
+    let mut presented = cas::present_all(
+        cas::simplify_all(flat)?,
+        signed,
+        Default::default(),
+        crate::notation::printed_length,
+    )?
+    .into_iter();
     let at = |s: &str| written.get(s).map(|(r, _)| r.to_f64());
     for (i, row) in pending {
         let mut row: Vec<Expr> = presented.by_ref().take(row.len()).collect();

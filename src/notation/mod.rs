@@ -25,6 +25,7 @@ mod tree;
 pub mod typst;
 mod width;
 
+pub use expr_latex::printed_length;
 pub use expr_tree::{expr_nodes, symbol_tex};
 pub use formula::{Accent, Formula, Name, Op};
 pub use latex::{Node, Tex, TexError};

@@ -79,6 +79,7 @@ pub(super) fn printed(cx: Context, e: &Expr, exact: &Expr) -> Result<Expr, Deriv
         exact.clone(),
         cx.scene.signed_names(),
         cx.scene.declared.clone(),
+        crate::notation::printed_length,
     )?)
 }
 

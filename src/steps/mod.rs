@@ -134,7 +134,12 @@ fn printed_form(scene: &Scene, result: &StepResult) -> Result<Option<StepResult>
         .into_iter()
         .map(|e| e.clone())
         .collect();
-    let forms = cas::present_all(exact.clone(), scene.signed_names(), scene.declared.clone())?;
+    let forms = cas::present_all(
+        exact.clone(),
+        scene.signed_names(),
+        scene.declared.clone(),
+        crate::notation::printed_length,
+    )?;
     if forms == exact {
         return Ok(None);
     }

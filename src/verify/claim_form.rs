@@ -30,7 +30,12 @@ pub fn present_claims(scene: &Scene, claims: &mut [ClaimResult]) -> Result<(), C
         return Ok(());
     }
     let exprs = wanted.iter().map(|(_, e)| e.clone()).collect();
-    let forms = cas::present_all(exprs, scene.signed_names(), scene.declared.clone())?;
+    let forms = cas::present_all(
+        exprs,
+        scene.signed_names(),
+        scene.declared.clone(),
+        crate::notation::printed_length,
+    )?;
     for ((i, derived), form) in wanted.into_iter().zip(forms) {
         if form != derived {
             claims[i].shown = Some(form);

@@ -258,16 +258,21 @@ impl Validator<'_> {
             }
         };
         let tex = match &c.tex {
-            Some(t) => match super::text::typeset_latex(t.get_ref().trim()) {
-                Err(why) => {
-                    return Err(self.err(
+            Some(t) => {
+                let refused = |why: String| {
+                    self.err(
                         content_start(t),
                         &format!("{field}.tex"),
                         format!("`{}` cannot be typeset: {why}", t.get_ref()),
-                    ));
+                    )
+                };
+                if let Some(why) = super::text::latex_problem(t.get_ref()) {
+                    return Err(refused(why));
                 }
-                Ok(tex) => Some(tex),
-            },
+                // Read once, here: every printer takes the tree.
+                let read = crate::notation::Tex::read(t.get_ref().trim());
+                Some(read.map_err(|e| refused(e.to_string()))?)
+            }
             None => None,
         };
         Ok(Claim {

@@ -101,20 +101,17 @@ fn basic_escape_before_letter(source: &str, letter: char) -> Option<String> {
 /// Why LaTeX between `$` signs cannot be typeset, if it cannot: empty, or what the one LaTeX
 /// reader says of it, or why the page's MathML or the PDF's Typst cannot be made from it.
 pub(super) fn latex_problem(latex: &str) -> Option<String> {
-    typeset_latex(latex).err()
-}
-
-/// LaTeX between `$` signs read into its tree, or why it cannot be typeset
-/// ([`latex_problem`]).
-pub(super) fn typeset_latex(latex: &str) -> Result<crate::notation::Tex, String> {
     if latex.trim().is_empty() {
-        return Err("it is empty".into());
+        return Some("it is empty".into());
     }
-    let tex = crate::notation::Tex::read(latex).map_err(|e| e.to_string())?;
+    let tex = match crate::notation::Tex::read(latex) {
+        Ok(tex) => tex,
+        Err(e) => return Some(e.to_string()),
+    };
     // Every formula is spoken (the page's alttext, the tagged PDF's alternative text, which
     // PDF/UA refuses empty): one that says nothing sets nothing a reader can see either.
     if tex.spoken().trim().is_empty() {
-        return Err(if latex.contains('%') && !latex.contains("\\%") {
+        return Some(if latex.contains('%') && !latex.contains("\\%") {
             "it sets nothing: `%` starts a LaTeX comment, which runs to the end; write `\\%` \
              for a percent sign"
                 .into()
@@ -122,9 +119,10 @@ pub(super) fn typeset_latex(latex: &str) -> Result<crate::notation::Tex, String>
             "it sets nothing but space: write what it stands for, or leave it out".into()
         });
     }
-    tex.to_mathml(false).map_err(|e| e.to_string())?;
-    tex.to_typst().map_err(|e| e.to_string())?;
-    Ok(tex)
+    if let Err(e) = tex.to_mathml(false) {
+        return Some(e.to_string());
+    }
+    tex.to_typst().err().map(|e| e.to_string())
 }
 
 /// The longest title, meaning or label, in characters: a heading, not a page.
