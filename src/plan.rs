@@ -153,7 +153,7 @@ fn wanted_by_names(scene: &Scene, wanted: &mut Vec<(Stage, String)>) {
         }
     }
     for s in &scene.steps {
-        let exprs = operands(&s.op);
+        let exprs = s.op.operands();
         for e in exprs.into_iter().chain(s.gives.iter()).chain(&s.gives_each) {
             for name in referenced_quantities(e) {
                 if let Some(st) = stage_for_quantity(&name) {
@@ -168,30 +168,6 @@ fn wanted_by_names(scene: &Scene, wanted: &mut Vec<(Stage, String)>) {
                 wanted.push((st, format!("the answer `{}` uses `{name}`", a.written)));
             }
         }
-    }
-}
-
-/// The expressions a step's operation is given, which may name a quantity.
-fn operands(op: &crate::scene::Operation) -> Vec<&crate::cas::Expr> {
-    match op {
-        crate::scene::Operation::Be(e) => vec![e],
-        crate::scene::Operation::Differentiate { of, .. } => vec![of],
-        crate::scene::Operation::Linearise { about, .. } => about.values().collect(),
-        crate::scene::Operation::Series { of, about, .. } => vec![of, about],
-        crate::scene::Operation::Integrate { of, over } => std::iter::once(of)
-            .chain(over.iter().flat_map(|(_, lo, hi)| [lo, hi]))
-            .collect(),
-        crate::scene::Operation::Substitute { of, set } => {
-            std::iter::once(of).chain(set.values()).collect()
-        }
-        crate::scene::Operation::Lagrange { .. }
-        | crate::scene::Operation::Routh { .. }
-        | crate::scene::Operation::Frequency { .. }
-        | crate::scene::Operation::Solve { .. }
-        | crate::scene::Operation::Momentum { .. }
-        | crate::scene::Operation::Energy { .. }
-        | crate::scene::Operation::Equilibria { .. }
-        | crate::scene::Operation::Stability { .. } => vec![],
     }
 }
 

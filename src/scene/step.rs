@@ -1,7 +1,7 @@
 //! A step of the author's own derivation, as validated: its name, its one operation and the
 //! notes' form of its result.
 
-use super::operations::{OperationId, OperationKind, Several};
+use super::operations::{Holds, OperationId, OperationKind, Several};
 use super::verdict::{ClaimRole, Verdict};
 use crate::cas::Expr;
 use std::collections::BTreeMap;
@@ -54,6 +54,27 @@ impl AuthorStep {
         std::iter::once(self.name.clone())
             .chain((0..more).map(|k| mode_name(&self.name, k)))
             .collect()
+    }
+
+    /// What it holds for later steps (`operations.rs`), a substitution's resolved from its
+    /// operand among `earlier`: equations with names replaced are still equations of their
+    /// kind; any other substitution gives an expression.
+    pub fn holding(&self, earlier: &[AuthorStep]) -> Holds {
+        match (self.op.kind().holds, &self.op) {
+            (
+                Holds::Operand,
+                Operation::Substitute {
+                    of: Expr::Sym(n), ..
+                },
+            ) => earlier
+                .iter()
+                .find(|s| s.name == *n)
+                .map(|s| s.holding(earlier))
+                .filter(|h| matches!(h, Holds::Motion | Holds::Linear))
+                .unwrap_or(Holds::Expression),
+            (Holds::Operand, _) => Holds::Expression,
+            (holds, _) => holds,
+        }
     }
 
     /// The names of its several results.
@@ -194,5 +215,29 @@ impl Operation {
 
     pub fn name(&self) -> &'static str {
         self.kind().name
+    }
+
+    /// The expressions the author wrote as its operands (an integral's limits, a series'
+    /// point, a substitution's replacements): an operation that takes an earlier step by
+    /// name has none.
+    pub fn operands(&self) -> Vec<&Expr> {
+        match self {
+            Operation::Be(e) => vec![e],
+            Operation::Differentiate { of, .. } => vec![of],
+            Operation::Linearise { about, .. } => about.values().collect(),
+            Operation::Series { of, about, .. } => vec![of, about],
+            Operation::Integrate { of, over } => std::iter::once(of)
+                .chain(over.iter().flat_map(|(_, lo, hi)| [lo, hi]))
+                .collect(),
+            Operation::Substitute { of, set } => std::iter::once(of).chain(set.values()).collect(),
+            Operation::Lagrange { .. }
+            | Operation::Routh { .. }
+            | Operation::Frequency { .. }
+            | Operation::Solve { .. }
+            | Operation::Momentum { .. }
+            | Operation::Energy { .. }
+            | Operation::Equilibria { .. }
+            | Operation::Stability { .. } => vec![],
+        }
     }
 }

@@ -4,30 +4,30 @@
 use super::{Validator, content_start};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
+use crate::scene::operations::{Holds, Several};
 use crate::scene::raw::RawPlot;
 use crate::scene::step::{AuthorStep, Operation};
 use crate::scene::types::PlotRequest;
 use std::collections::BTreeMap;
 use toml::Spanned;
 
-/// Whether a step's result is one expression (not equations, states or several roots).
+/// Whether a step's result is one expression (not equations, states or several roots), from
+/// the table of operations.
 fn gives_an_expression(steps: &[AuthorStep], name: &str) -> bool {
     let Some(step) = steps.iter().find(|s| s.name == name) else {
         return false;
     };
-    match &step.op {
-        Operation::Be(_)
-        | Operation::Differentiate { .. }
-        | Operation::Integrate { .. }
-        | Operation::Series { .. }
-        | Operation::Routh { .. }
-        | Operation::Momentum { .. }
-        | Operation::Energy { .. } => true,
+    let kind = step.op.kind();
+    match (kind.holds, &step.op) {
         // `substitute` of a step of equations gives equations.
-        Operation::Substitute { of, .. } => match of {
-            Expr::Sym(n) if steps.iter().any(|s| s.name == *n) => gives_an_expression(steps, n),
-            _ => true,
-        },
+        (
+            Holds::Operand,
+            Operation::Substitute {
+                of: Expr::Sym(n), ..
+            },
+        ) if steps.iter().any(|s| s.name == *n) => gives_an_expression(steps, n),
+        (Holds::Operand, _) => true,
+        (Holds::Expression, _) => kind.several == Several::None,
         _ => false,
     }
 }

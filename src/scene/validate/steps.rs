@@ -105,18 +105,7 @@ impl Validator<'_> {
                 &earlier,
                 coordinates,
             )?;
-            let holds = match (step.op.kind().holds, &step.op) {
-                // Equations with names replaced are still equations of their kind.
-                (
-                    Holds::Operand,
-                    Operation::Substitute {
-                        of: crate::cas::Expr::Sym(n),
-                        ..
-                    },
-                ) if matches!(earlier.get(n), Some(Holds::Motion | Holds::Linear)) => earlier[n],
-                (Holds::Operand, _) => Holds::Expression,
-                (holds, _) => holds,
-            };
+            let holds = step.holding(&steps);
             // An equation `gives` is compared as an equation of motion; on a step that gives an
             // expression it would be read as `lhs - rhs` and compared with the expression.
             if let Some(g) = &s.get_ref().single_gives()

@@ -6,6 +6,7 @@
 use super::{Validator, content_start};
 use crate::cas::{Expr, greek_letter, prints_as_word};
 use crate::scene::error::SceneError;
+use crate::scene::operations::Holds;
 use crate::scene::raw::RawScene;
 use crate::scene::{AuthorStep, Operation};
 use std::collections::BTreeMap;
@@ -110,11 +111,7 @@ fn holds_equations(of: &Expr, steps: &[AuthorStep]) -> bool {
     steps
         .iter()
         .find(|s| s.name == *name)
-        .is_some_and(|s| match &s.op {
-            Operation::Lagrange { .. } | Operation::Linearise { .. } => true,
-            Operation::Substitute { of, .. } => holds_equations(of, steps),
-            _ => false,
-        })
+        .is_some_and(|s| matches!(s.holding(steps), Holds::Motion | Holds::Linear))
 }
 
 /// The LaTeX a name prints as: the scene's own, else the conventions' (`w1` is `\omega_{1}`).
