@@ -356,7 +356,7 @@ fn roots_over_positive_symbols_decide_what_a_student_would() {
     )
     .unwrap();
     assert_eq!(zero, [true, false, false, true]);
-    // A rate takes either sign: √(2 I T) with T = I p²/2 is |I p|, not I p (issue 41).
+    // A rate takes either sign: √(2 I T) with T = I p²/2 is |I p|, not I p.
     let signed: std::collections::BTreeSet<String> = ["p".to_string()].into();
     let zero = is_zero_over_positive(
         vec![

@@ -556,7 +556,7 @@ mod tests {
         assert_eq!(typst("inertia_tensor"), "upright(\"inertia_tensor\")");
         assert_eq!(typst("sin(x)^2"), "sin^(2) (x)");
         assert_eq!(typst("x^(3/2)"), "x^(3\\/2)");
-        // A digit then letters: each letter apart, never a variable `cone` (issue 41).
+        // A digit then letters: each letter apart, never a variable `cone`.
         assert_eq!(
             typst("I1cone + d2U + w12"),
             "I_(1 c o n e) + d_(2 U) + ω_(12)"

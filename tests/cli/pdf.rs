@@ -266,7 +266,7 @@ fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
     let run = build("1", &papers);
     assert!(run.status.success(), "{}", stderr(&run));
     // Each paper names its variant: the site, which may be published, holds no variant's
-    // answers (issue 41): no key, page or PDF, no Moodle quiz or other LMS export, no link to
+    // answers: no key, page or PDF, no Moodle quiz or other LMS export, no link to
     // one, and no JSON report of a scene with variants.
     let published = super::read_tree(&site);
     for (path, bytes) in &published {

@@ -10,7 +10,7 @@ use crate::render::RenderError;
 use crate::scene::Scene;
 use std::path::Path;
 
-/// Two pendulums joined by a spring (issue 69's reproducer), its modes given as a list.
+/// Two pendulums joined by a spring, its modes given as a list.
 const COUPLED: &str = include_str!("../../../tests/fixtures/coupled-modes-list.toml");
 
 fn coupled() -> Page {

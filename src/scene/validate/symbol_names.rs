@@ -6,7 +6,7 @@
 use super::{Validator, content_start};
 use crate::cas::{Expr, greek_letter, prints_as_word};
 use crate::scene::error::SceneError;
-use crate::scene::operations::Holds;
+use crate::scene::operations::{Holds, Several};
 use crate::scene::raw::RawScene;
 use crate::scene::{AuthorStep, Operation};
 use std::collections::BTreeMap;
@@ -85,33 +85,18 @@ impl Validator<'_> {
 
 /// Whether a step's page prints its name: `name = result`, or its results `name_1`, `name_2`, ….
 /// Equations of motion print `… = 0`, states of rest and several unknowns their coordinates'
-/// names, a stability its Ω².
+/// names, a stability its Ω². Read from the table of operations.
 pub fn prints_its_name(step: &AuthorStep, steps: &[AuthorStep]) -> bool {
-    match &step.op {
-        Operation::Be(_)
-        | Operation::Differentiate { .. }
-        | Operation::Routh { .. }
-        | Operation::Momentum { .. }
-        | Operation::Energy { .. }
-        | Operation::Series { .. }
-        | Operation::Integrate { .. }
-        | Operation::Frequency { .. } => true,
-        Operation::Solve { unknowns, .. } => unknowns.len() == 1,
-        Operation::Substitute { of, .. } => !holds_equations(of, steps),
-        Operation::Lagrange { .. }
-        | Operation::Linearise { .. }
-        | Operation::Equilibria { .. }
-        | Operation::Stability { .. } => false,
+    let kind = step.op.kind();
+    match (kind.holds, kind.several) {
+        (Holds::Operand, _) => !matches!(step.holding(steps), Holds::Motion | Holds::Linear),
+        (_, Several::States) => false,
+        (_, Several::Roots) => {
+            !matches!(&step.op, Operation::Solve { unknowns, .. } if unknowns.len() > 1)
+        }
+        (Holds::Expression, _) => true,
+        (Holds::Motion | Holds::Linear | Holds::Equilibria, _) => false,
     }
-}
-
-/// Whether `of` names a step of equations (`lagrange`, `linearise`, a substitution in one).
-fn holds_equations(of: &Expr, steps: &[AuthorStep]) -> bool {
-    let Expr::Sym(name) = of else { return false };
-    steps
-        .iter()
-        .find(|s| s.name == *name)
-        .is_some_and(|s| matches!(s.holding(steps), Holds::Motion | Holds::Linear))
 }
 
 /// The LaTeX a name prints as: the scene's own, else the conventions' (`w1` is `\omega_{1}`).
