@@ -186,3 +186,60 @@ impl std::fmt::Display for Prose {
         f.write_str(&self.to_text())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cas::Expr;
+    use crate::notation::{Formula, Names};
+
+    /// An author's sentence printed back as an author writes it reads the same: its formulas
+    /// as written, a dollar sign escaped.
+    #[test]
+    fn an_authors_sentence_prints_back_as_written() {
+        for text in [
+            r"Rate of $\vec L$ relative to the body",
+            r"$H = (C - A)/C$ solved for $C$",
+            r"costs \$3, with $x$",
+            "no mathematics at all",
+        ] {
+            let prose = author(text);
+            assert_eq!(prose.to_author_text(Names::none()), text);
+            assert_eq!(author(&prose.to_author_text(Names::none())), prose);
+        }
+    }
+
+    /// A heading built in parts is one text between its formulas, as the author's would be,
+    /// and a name put in as an expression prints with the scene's own `tex`.
+    #[test]
+    fn a_heading_built_in_parts_runs_its_text_on() {
+        let q = Prose::default().expr(&Expr::sym("q1"));
+        let title = Prose::default()
+            .text("L")
+            .run_on(": ")
+            .then(Prose::default().text("the equation of motion of ").then(q))
+            .run_on("")
+            .run_on(" (eq 3)");
+        assert_eq!(title.0.len(), 3, "{title:?}");
+        assert_eq!(
+            title.to_author_text(Names::none()),
+            "L: the equation of motion of $q_{1}$ (eq 3)"
+        );
+        assert_eq!(
+            title.to_plain(Names::none()),
+            "L: the equation of motion of q_1 (eq 3)"
+        );
+        let names = Names::of(&[("q1".to_string(), r"\theta".to_string())].into());
+        assert_eq!(
+            title.to_author_text(&names),
+            r"L: the equation of motion of $\theta$ (eq 3)"
+        );
+        assert_eq!(
+            title.to_plain(&names),
+            "L: the equation of motion of θ (eq 3)"
+        );
+        // A formula the reader refused stays as written in plain text.
+        let refused = Prose::default().formula(Formula::Text(r"\frac{".into()));
+        assert_eq!(refused.to_plain(Names::none()), r"\frac{");
+    }
+}
