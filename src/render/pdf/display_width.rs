@@ -443,7 +443,8 @@ fn glyphs() -> Option<&'static Glyphs> {
 }
 
 fn read_glyphs() -> Option<Glyphs> {
-    let faces: Vec<ttf_parser::Face> = typst_assets::fonts()
+    let faces: Vec<ttf_parser::Face> = super::typeset::font_files()
+        .iter()
         .filter_map(|data| ttf_parser::Face::parse(data, 0).ok())
         .filter(|f| f.tables().math.is_some())
         .collect();

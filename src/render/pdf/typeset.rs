@@ -43,12 +43,22 @@ fn scene_at(origins: &[(usize, String)], at: usize) -> Option<String> {
         .filter(|scene| !scene.is_empty())
 }
 
-/// The fonts, read once: New Computer Modern (text and math), Libertinus and DejaVu Sans Mono.
+/// The font files built into the binary: New Computer Modern (text and math), Libertinus and
+/// DejaVu Sans Mono. Every reader of them goes through here: `typst_assets::fonts()` is made of
+/// constants, which the compiler copies into each part of the program that names them, and the
+/// binary had carried them twice (9.7 MB).
+pub(super) fn font_files() -> &'static [&'static [u8]] {
+    static FILES: OnceLock<Vec<&'static [u8]>> = OnceLock::new();
+    FILES.get_or_init(|| typst_assets::fonts().collect())
+}
+
+/// The fonts, read once.
 fn fonts() -> &'static (LazyHash<FontBook>, Vec<Font>) {
     static FONTS: OnceLock<(LazyHash<FontBook>, Vec<Font>)> = OnceLock::new();
     FONTS.get_or_init(|| {
-        let fonts: Vec<Font> = typst_assets::fonts()
-            .flat_map(|data| Font::iter(Bytes::new(data)))
+        let fonts: Vec<Font> = font_files()
+            .iter()
+            .flat_map(|data| Font::iter(Bytes::new(*data)))
             .collect();
         (LazyHash::new(FontBook::from_fonts(&fonts)), fonts)
     })
