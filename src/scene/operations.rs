@@ -282,11 +282,6 @@ pub const OPERATION_FIELDS: [OperationField; 10] = [
     },
 ];
 
-/// The row of the operation named `name`.
-pub fn operation_kind(name: &str) -> Option<&'static OperationKind> {
-    OPERATIONS.iter().find(|k| k.name == name)
-}
-
 impl OperationId {
     /// Its row of the table.
     pub fn kind(self) -> &'static OperationKind {
