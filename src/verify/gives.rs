@@ -79,6 +79,7 @@ fn check_gives_each(
         .get(&step.name)
         .map_or(0, |r| r.count(step.result_names()));
     let numeric = d.numeric_names(scene);
+    let names = scene.names();
     let mut out = Vec::new();
     for (k, value) in step.gives_each.iter().enumerate() {
         let name = step.result_names().kth(k);
@@ -100,7 +101,7 @@ fn check_gives_each(
             // Several unknowns print as themselves (T = …, ẍ = …), not as the step's `sol_2`.
             tex: match &step.op {
                 crate::scene::Operation::Solve { unknowns, .. } if unknowns.len() > 1 => {
-                    unknowns.get(k).map(|u| Expr::sym(u).to_tex(&scene.names()))
+                    unknowns.get(k).map(|u| Expr::sym(u).to_tex(&names))
                 }
                 _ => None,
             },
