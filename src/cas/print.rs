@@ -1,8 +1,8 @@
 //! Printing an expression: one walk over the tree, shared by the plain text the parser and the
-//! engine read back (here) and by `notation`'s LaTeX and Typst styles (`expr_latex.rs`,
-//! `expr_typst.rs`). The walk decides what they agree on (signs in sums, negative products,
-//! where parentheses go); a [`Style`] writes each node's own syntax. The pages' tree
-//! (`notation/expr_tree.rs`) follows the same walk.
+//! engine read back (here) and by `notation`'s LaTeX style (`expr_latex.rs`). The walk decides
+//! what they agree on (signs in sums, negative products, where parentheses go); a [`Style`]
+//! writes each node's own syntax. The pages' tree (`notation/expr_tree.rs`) follows the same
+//! walk.
 
 use super::expr::Expr;
 use super::factor::printed_common_factor;
@@ -156,11 +156,6 @@ pub trait Style {
     fn factors_sums(&self) -> bool {
         false
     }
-    /// What stands between a sum's common factor and the sum's parentheses: a space (c (a + b)).
-    /// `printed` is the factor as just written.
-    fn before_factored_sum(&self, _factor: &Expr, _printed: &str) -> &'static str {
-        " "
-    }
     fn list(&self, v: &[Expr], out: &mut String);
     fn index(&self, e: &Expr, out: &mut String);
 }
@@ -180,10 +175,9 @@ pub fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
                     out.push('-');
                 }
                 if !factor.is_one() {
-                    let start = out.len();
                     write(&factor, out, Prec::Product, style);
-                    let joint = style.before_factored_sum(&factor, &out[start..]);
-                    out.push_str(joint);
+                    // A space between the factor and the sum's parentheses: c (a + b).
+                    out.push(' ');
                 }
                 out.push_str(style.open());
                 write(&Expr::Add(rest), out, Prec::Sum, style);

@@ -325,8 +325,8 @@ fn a_quantity_is_set_once_by_its_kind_and_only_if_catalogued() {
 #[test]
 fn an_integration_steps_name_prints_alike_on_the_page_and_in_the_pdf() {
     for (name, latex, typst) in [
-        ("Ix", "I_{x} = ", "I_(x) = "),
-        ("I1cone", "I_{1cone} = ", "I_(1 c o n e) = "),
+        ("Ix", "I_{x} = ", "attach(I, b: x)\\="),
+        ("I1cone", "I_{1cone} = ", "attach(I, b: 1 c o n e)\\="),
     ] {
         let text = format!(
             "id = \"t\"\ntitle = \"t\"\nnotes = {{ lecture = \"x\" }}\nsymbols = {{ M = \"mass\", R = \"radius\" }}\n\
@@ -348,7 +348,8 @@ fn an_integration_steps_name_prints_alike_on_the_page_and_in_the_pdf() {
         let (l, t) = (
             step.statement.to_latex(crate::notation::Names::none()),
             step.statement
-                .to_typst(crate::notation::Names::none())
+                .to_tex(crate::notation::Names::none())
+                .to_typst()
                 .unwrap(),
         );
         assert!(l.starts_with(latex), "{l}");

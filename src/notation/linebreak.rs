@@ -10,8 +10,8 @@
 //!
 //! Widths are estimated in characters of a typical formula: about 0.66 em each.
 
-use super::latex::Node;
 use super::latex::cells;
+use super::latex::{Node, relation_text};
 pub use super::width::width;
 use super::width::{matrix, node_width, relation_is, table_width};
 use pulldown_latex::event::{
@@ -549,6 +549,26 @@ pub fn phone_pieces(formula: &[Node]) -> Vec<Vec<Node>> {
         .into_iter()
         .flat_map(split_words)
         .collect()
+}
+
+/// A piece after the first that starts with +, −, =, ·, × or ≈ keeps the spacing of a binary
+/// operator: an empty group before it, else MathML and Typst set it as a sign.
+pub fn set_apart(k: usize, piece: &[Node]) -> Vec<Node> {
+    let operator = match piece.first() {
+        Some(Node::Atom(Content::BinaryOp { content, .. })) => {
+            matches!(content, '+' | '−' | '⋅' | '×')
+        }
+        Some(Node::Atom(Content::Relation { content, .. })) => {
+            matches!(relation_text(content).as_str(), "=" | "≈")
+        }
+        _ => false,
+    };
+    let mut out = Vec::with_capacity(piece.len() + 1);
+    if k > 0 && operator {
+        out.push(Node::Group(Grouping::Normal, Vec::new()));
+    }
+    out.extend(piece.iter().cloned());
+    out
 }
 
 fn pieces_within(formula: &[Node], fit: Fit, room: f32) -> Vec<Vec<Node>> {

@@ -6,11 +6,9 @@
 
 mod expr_latex;
 mod expr_tree;
-mod expr_typst;
 mod formula;
 mod formula_print;
 mod formula_tree;
-mod formula_typst;
 pub mod latex;
 pub mod linebreak;
 #[cfg(test)]

@@ -1,18 +1,16 @@
 //! How a scene typesets its names, as one value built once per scene and handed to every
 //! printer: each name the scene gives a `tex` (`Omega = "\\Omega"`) read once by the one LaTeX
-//! reader into its tree, its LaTeX and its Typst; every other name follows the conventions
+//! reader into its tree and its LaTeX; every other name follows the conventions
 //! (`w1` is ω₁, `Ixx` is I_xx, a longer name upright). No printer reads a name's form from
 //! anywhere else.
 
 use super::latex::{Node, Tex};
-use crate::base::typst::typst_string;
 use std::collections::BTreeMap;
 
 /// A name the scene typesets itself.
 #[derive(Debug, Clone, PartialEq)]
 struct Own {
     latex: String,
-    typst: String,
     nodes: Vec<Node>,
 }
 
@@ -29,16 +27,14 @@ impl Names {
             .iter()
             .map(|(name, latex)| {
                 // Scene validation refuses a `tex` the reader cannot read or set, so the
-                // fallbacks (the LaTeX as text) are never printed.
+                // fallback (the LaTeX as text) is never printed.
                 let own = match Tex::read(latex) {
                     Ok(tex) => Own {
                         latex: latex.clone(),
-                        typst: tex.to_typst().unwrap_or_else(|_| typst_string(latex)),
                         nodes: tex.nodes,
                     },
                     Err(_) => Own {
                         latex: latex.clone(),
-                        typst: typst_string(latex),
                         nodes: vec![Node::Text(latex.clone())],
                     },
                 };
@@ -64,11 +60,6 @@ impl Names {
     /// The scene's LaTeX for `name`, if it gives one.
     pub fn latex(&self, name: &str) -> Option<&str> {
         self.own.get(name).map(|o| o.latex.as_str())
-    }
-
-    /// The scene's Typst for `name`, if it gives one.
-    pub fn typst(&self, name: &str) -> Option<&str> {
-        self.own.get(name).map(|o| o.typst.as_str())
     }
 
     /// The scene's tree for `name`, if it gives one.
@@ -100,8 +91,8 @@ mod tests {
         let e = Expr::add(vec![Expr::sym("acc_2"), Expr::sym("OmE")]);
         assert_eq!(e.to_latex(&names), "{a}_{2} + \\Omega_{\\mathrm{E}}");
         assert_eq!(
-            e.to_typst(&names),
-            "attach(a, b: 2) + attach(Ω, b: upright(\"E\"))"
+            e.to_tex(&names).to_typst().unwrap(),
+            "attach(a, b: 2)\\+attach(Ω, b: upright(\"E\"))"
         );
         // The tree sets a one-node name without the group its LaTeX puts it in: a₂.
         let read = crate::notation::Tex::read("a_{2} + \\Omega_{\\mathrm{E}}").unwrap();

@@ -19,8 +19,41 @@ pub const FUNCTIONS: &[&str] = &[
 impl Tex {
     pub fn to_typst(&self) -> Result<String, TexError> {
         let mut out = String::new();
-        row(&self.nodes, false, &mut out)?;
+        row(&self.nodes, Place::default(), &mut out)?;
         Ok(out.trim().to_string())
+    }
+}
+
+/// Where an element stands, for what paper sets differently from a screen.
+#[derive(Clone, Copy, Default)]
+struct Place {
+    /// Inside `\mathrm{…}`, where a run of letters is one upright word (`"kg"`), not a
+    /// product of italic letters.
+    upright: bool,
+    /// In a fraction's part or a script, where a fraction goes on the line (`3\/2`), as
+    /// textbooks write it: stacked, it would be set at half the body's size.
+    on_the_line: bool,
+    /// In a script, where a script of its own is kept at the script's size (`script(2)`):
+    /// a script's script is half the body, too small to read on paper.
+    in_script: bool,
+}
+
+impl Place {
+    fn upright(self, upright: bool) -> Place {
+        Place { upright, ..self }
+    }
+    fn on_the_line(self) -> Place {
+        Place {
+            on_the_line: true,
+            ..self
+        }
+    }
+    fn in_script(self) -> Place {
+        Place {
+            on_the_line: true,
+            in_script: true,
+            ..self
+        }
     }
 }
 
@@ -30,9 +63,8 @@ fn latex_to_typst(latex: &str) -> Result<String, TexError> {
     Tex::read(latex)?.to_typst()
 }
 
-/// A sequence of elements. `upright`: inside `\mathrm{…}`, where a run of letters is one
-/// upright word (`"kg"`), not a product of italic letters.
-fn row(nodes: &[Node], upright: bool, out: &mut String) -> Result<(), TexError> {
+/// A sequence of elements.
+fn row(nodes: &[Node], place: Place, out: &mut String) -> Result<(), TexError> {
     let mut i = 0;
     while i < nodes.len() {
         let n = &nodes[i];
@@ -40,11 +72,11 @@ fn row(nodes: &[Node], upright: bool, out: &mut String) -> Result<(), TexError> 
             // A change of font or style holds for the rest of its group.
             let (open, upright) = match change {
                 StateChange::Font(font) => (font_function(*font), *font == Some(Font::UpRight)),
-                StateChange::Style(style) => (style_function(*style), upright),
+                StateChange::Style(style) => (style_function(*style), place.upright),
                 StateChange::Color(_) => return Err(TexError::Unprintable("a colour")),
             };
             let mut inner = String::new();
-            row(&nodes[i + 1..], upright, &mut inner)?;
+            row(&nodes[i + 1..], place.upright(upright), &mut inner)?;
             match open {
                 // A switch with nothing after it in its group (`\rm` ending a cell) sets nothing.
                 Some(f) if !inner.trim().is_empty() => push(out, &format!("{f}({})", inner.trim())),
@@ -52,16 +84,36 @@ fn row(nodes: &[Node], upright: bool, out: &mut String) -> Result<(), TexError> 
             }
             return Ok(());
         }
-        if upright && let Some(word) = letters(&nodes[i..]) {
+        if place.upright
+            && let Some(word) = letters(&nodes[i..])
+        {
             i += word.chars().count();
             push(out, &typst_string(&word));
             continue;
         }
-        let piece = node(n, upright)?;
+        if spaced_by_typst(&nodes[i..]) {
+            i += 1;
+            continue;
+        }
+        let piece = node(n, place)?;
         push(out, &piece);
         i += 1;
     }
     Ok(())
+}
+
+/// A thin space that Typst sets itself: before an operator's name with a power (`{\sin}^2`,
+/// whose braces make LaTeX need it), or before a prime.
+fn spaced_by_typst(nodes: &[Node]) -> bool {
+    let [Node::Space(Some(d)), next, ..] = nodes else {
+        return false;
+    };
+    let thin = d.unit == DimensionUnit::Em && (d.value - 1.0 / 6.0).abs() < 1e-4;
+    let named_power = matches!(next, Node::Script { parts, .. }
+        if matches!(parts.first(), Some(Node::Group(Grouping::Normal, g))
+            if matches!(g.as_slice(), [Node::Function(_)])));
+    let prime = matches!(next, Node::Atom(Content::Ordinary { content: '′', .. }));
+    thin && (named_power || prime)
 }
 
 /// The run of Latin letters that starts `nodes`, if any.
@@ -104,7 +156,7 @@ fn style_function(style: Style) -> Option<&'static str> {
 }
 
 /// One element in Typst.
-fn node(n: &Node, upright: bool) -> Result<String, TexError> {
+fn node(n: &Node, place: Place) -> Result<String, TexError> {
     Ok(match n {
         Node::Text(s) if s == "&nbsp;" => "space".into(),
         Node::Text(s) => typst_string(s),
@@ -113,33 +165,71 @@ fn node(n: &Node, upright: bool) -> Result<String, TexError> {
         Node::Function(f) if FUNCTIONS.contains(&f.as_str()) => f.clone(),
         Node::Function(f) => format!("op({})", typst_string(f)),
         Node::Atom(c) => atom(c),
-        Node::Group(g, inner) => group(g, inner, upright)?,
+        Node::Group(g, inner) => group(g, inner, place)?,
+        Node::Visual(Visual::Fraction(_), parts) if place.on_the_line => slashed(parts, place)?,
         Node::Visual(v, parts) => {
-            let part = |k: usize| operand(&parts[k], upright);
+            let inner = match v {
+                Visual::Fraction(_) => place.on_the_line(),
+                _ => place,
+            };
+            let part = |k: usize| operand(&parts[k], inner);
             match v {
                 Visual::Fraction(_) => format!("frac({}, {})", part(0)?, part(1)?),
                 Visual::SquareRoot => format!("sqrt({})", part(0)?),
                 Visual::Root => format!("root({}, {})", part(1)?, part(0)?),
-                Visual::Negation => negated(&parts[0], upright)?,
+                Visual::Negation => negated(&parts[0], place)?,
             }
         }
         Node::Script {
             ty,
             position,
             parts,
-        } => script(*ty, *position, parts, upright)?,
+        } => script(*ty, *position, parts, place)?,
         Node::Space(width) => space(*width),
         // Handled by `row`; a stray one sets nothing.
         Node::State(_) | Node::Flow(_) => String::new(),
     })
 }
 
+/// A fraction on the line: `a\/b`, its numerator bracketed when it is a sum, its denominator
+/// when it is a sum or a product (`I\/(M R^2)`).
+fn slashed(parts: &[Node], place: Place) -> Result<String, TexError> {
+    let part = |n: &Node, below: bool| -> Result<String, TexError> {
+        let text = operand(n, place)?;
+        let items: Vec<&Node> = match n {
+            Node::Group(Grouping::Normal, inner) => inner.iter().collect(),
+            other => vec![other],
+        };
+        let items: Vec<&Node> = items
+            .into_iter()
+            .filter(|n| !matches!(n, Node::Space(_)))
+            .collect();
+        let sum = items.iter().enumerate().any(|(k, n)| {
+            k > 0
+                && matches!(
+                    n,
+                    Node::Atom(Content::BinaryOp { .. } | Content::Relation { .. })
+                )
+        });
+        Ok(if sum || below && items.len() > 1 {
+            format!("lr(\\({text}\\))")
+        } else {
+            text
+        })
+    };
+    Ok(format!(
+        "{}\\/{}",
+        part(&parts[0], false)?,
+        part(&parts[1], true)?
+    ))
+}
+
 /// An element as a call's argument: its content, never empty.
-fn operand(n: &Node, upright: bool) -> Result<String, TexError> {
+fn operand(n: &Node, place: Place) -> Result<String, TexError> {
     let mut out = String::new();
     match n {
-        Node::Group(Grouping::Normal, inner) => row(inner, upright, &mut out)?,
-        other => row(std::slice::from_ref(other), upright, &mut out)?,
+        Node::Group(Grouping::Normal, inner) => row(inner, place, &mut out)?,
+        other => row(std::slice::from_ref(other), place, &mut out)?,
     }
     let out = out.trim();
     Ok(if out.is_empty() {
@@ -192,7 +282,7 @@ fn character(c: char) -> String {
     }
 }
 
-fn negated(n: &Node, upright: bool) -> Result<String, TexError> {
+fn negated(n: &Node, place: Place) -> Result<String, TexError> {
     if let Node::Atom(Content::Relation { content, .. }) = n {
         let negation = match relation_text(content).as_str() {
             "=" => Some('≠'),
@@ -212,16 +302,16 @@ fn negated(n: &Node, upright: bool) -> Result<String, TexError> {
             return Ok(c.to_string());
         }
     }
-    Ok(format!("cancel({})", operand(n, upright)?))
+    Ok(format!("cancel({})", operand(n, place)?))
 }
 
 fn script(
     ty: ScriptType,
     position: ScriptPosition,
     parts: &[Node],
-    upright: bool,
+    place: Place,
 ) -> Result<String, TexError> {
-    let base = operand(&parts[0], upright)?;
+    let base = operand(&parts[0], place)?;
     let (sub, sup) = match ty {
         ScriptType::Subscript => (Some(&parts[1]), None),
         ScriptType::Superscript => (None, Some(&parts[1])),
@@ -247,11 +337,19 @@ fn script(
         _ => base,
     };
     let mut out = format!("attach({base}");
+    let scripted = |s: &Node| -> Result<String, TexError> {
+        let text = operand(s, place.in_script())?;
+        Ok(if place.in_script {
+            format!("script({text})")
+        } else {
+            text
+        })
+    };
     if let Some(s) = sub {
-        out.push_str(&format!(", b: {}", operand(s, upright)?));
+        out.push_str(&format!(", b: {}", scripted(s)?));
     }
     if let Some(s) = sup {
-        out.push_str(&format!(", t: {}", operand(s, upright)?));
+        out.push_str(&format!(", t: {}", scripted(s)?));
     }
     out.push(')');
     Ok(out)
@@ -280,11 +378,13 @@ fn marked(base: &str, under: bool, mark: char) -> Option<String> {
     Some(format!("accent({base}, {accent})"))
 }
 
-fn group(g: &Grouping, inner: &[Node], upright: bool) -> Result<String, TexError> {
+fn group(g: &Grouping, inner: &[Node], place: Place) -> Result<String, TexError> {
     Ok(match g {
+        // An empty group is something to stand beside: `{} + b` keeps the `+` binary.
+        Grouping::Normal if inner.is_empty() => "\"\"".into(),
         Grouping::Normal => {
             let mut out = String::new();
-            row(inner, upright, &mut out)?;
+            row(inner, place, &mut out)?;
             out
         }
         Grouping::LeftRight(open, close) => {
@@ -298,13 +398,13 @@ fn group(g: &Grouping, inner: &[Node], upright: bool) -> Result<String, TexError
                     (Some('‖' | '∥'), _) => "delim: \"‖\", ",
                     _ => "delim: #none, ",
                 };
-                return Ok(format!("mat({delim}{})", rows(body, "; ", ", ", upright)?));
+                return Ok(format!("mat({delim}{})", cells_of(body, place)?));
             }
             let mut out = String::from("lr(");
             if let Some(c) = open {
                 out.push_str(&character(*c));
             }
-            row(inner, upright, &mut out)?;
+            row(inner, place, &mut out)?;
             if let Some(c) = close {
                 push(&mut out, &character(*c));
             }
@@ -312,22 +412,35 @@ fn group(g: &Grouping, inner: &[Node], upright: bool) -> Result<String, TexError
             out
         }
         Grouping::Matrix { .. } | Grouping::Array(_) => {
-            format!("mat(delim: #none, {})", rows(inner, "; ", ", ", upright)?)
+            format!("mat(delim: #none, {})", cells_of(inner, place)?)
         }
         Grouping::Cases { left } => format!(
             "cases({}{})",
             if *left { "" } else { "reverse: #true, " },
             // LaTeX sets a quad between a case's value and its condition.
-            rows(inner, ", ", "&quad ", upright)?
+            rows(inner, ", ", "&quad ", place, false)?
         ),
         // The equation environments: lines and alignment points, as Typst writes them.
-        _ => rows(inner, " \\ ", " & ", upright)?,
+        _ => rows(inner, " \\ ", " & ", place, false)?,
     })
 }
 
+/// A matrix's cells. Typst sets them in the text style, where a fraction's parts are script-sized
+/// (2/3 of the body, too small to read on paper): a cell with a fraction is set in the display
+/// style, as a textbook sets it.
+fn cells_of(body: &[Node], place: Place) -> Result<String, TexError> {
+    rows(body, "; ", ", ", place, true)
+}
+
 /// An environment's content: its rows (split at `\\`) joined by `row_sep`, each row's cells
-/// (split at `&`) by `cell_sep`.
-fn rows(body: &[Node], row_sep: &str, cell_sep: &str, upright: bool) -> Result<String, TexError> {
+/// (split at `&`) by `cell_sep`; `displayed`: a cell with a fraction in the display style.
+fn rows(
+    body: &[Node],
+    row_sep: &str,
+    cell_sep: &str,
+    place: Place,
+    displayed: bool,
+) -> Result<String, TexError> {
     let mut table = cells(body);
     if table.len() > 1
         && table
@@ -342,8 +455,12 @@ fn rows(body: &[Node], row_sep: &str, cell_sep: &str, upright: bool) -> Result<S
         for cell in r {
             // A cell is one group: a switch (`\rm`) holds to its end.
             let mut out = String::new();
-            row(cell, upright, &mut out)?;
-            cells.push(out.trim().to_string());
+            row(cell, place, &mut out)?;
+            let out = out.trim();
+            cells.push(match displayed && out.contains("frac(") {
+                true => format!("display({out})"),
+                false => out.to_string(),
+            });
         }
         lines.push(cells.join(cell_sep));
     }
@@ -473,11 +590,125 @@ mod tests {
         assert_eq!(t("^2"), "attach(\"\", t: 2)");
     }
 
+    /// On paper a fraction inside a fraction or a script goes on the line, as textbooks write
+    /// it (stacked, Typst would set it at half the body's size); a denominator of more than one
+    /// factor, and any part that is a sum, is bracketed.
+    #[test]
+    fn a_fraction_inside_a_fraction_or_a_script_is_on_the_line() {
+        assert_eq!(t("\\frac{a}{b}"), "frac(a, b)");
+        assert_eq!(t("\\frac{a}{\\frac{b}{c} + d}"), "frac(a, b\\/c\\+d)");
+        assert_eq!(
+            t("\\frac{g}{1 + \\frac{I}{M R^2}}"),
+            "frac(g, 1\\+I\\/lr(\\(M attach(R, t: 2)\\)))"
+        );
+        assert_eq!(
+            t("\\frac{1}{\\frac{a+b}{2}}"),
+            "frac(1, lr(\\(a\\+b\\))\\/2)"
+        );
+        assert_eq!(t("x^{\\frac{3}{2}}"), "attach(x, t: 3\\/2)");
+        assert_eq!(
+            t("\\int_{-\\frac{a}{2}}^{a} x"),
+            "attach(scripts(∫), b: −a\\/2, t: a) x"
+        );
+        // A script's script stays at the script's size (half the body is too small to read).
+        assert_eq!(t("e^{x^{2}}"), "attach(e, t: attach(x, t: script(2)))");
+        assert_eq!(t("x^{2}"), "attach(x, t: 2)");
+    }
+
+    /// Typst sets a matrix's cells a size smaller: a cell with a fraction is displayed.
+    #[test]
+    fn a_matrix_cell_with_a_fraction_is_displayed() {
+        assert_eq!(
+            t("\\begin{pmatrix}\\frac{1}{2} + x \\\\ y\\end{pmatrix}"),
+            "mat(display(frac(1, 2)\\+x); y)"
+        );
+        // Cases and aligned lines are set as written.
+        assert_eq!(
+            t("\\begin{cases}\\frac{1}{2} & x\\end{cases}"),
+            "cases(frac(1, 2)&quad x)"
+        );
+    }
+
+    /// A thin space LaTeX needs and Typst sets itself is not set twice: before an operator's
+    /// name with a power (`\\,{\\sin}^{2}`, as mechbook prints sin²θ) and before a prime.
+    #[test]
+    fn a_thin_space_typst_sets_itself_is_not_doubled() {
+        assert_eq!(
+            t("2 - \\,{\\sin}^{2}\\left(x\\right)"),
+            "2−attach(sin, t: 2) lr(\\(x\\))"
+        );
+        assert_eq!(t("\\vec{r}\\,'"), "accent(r, arrow)'");
+        // An author's thin space elsewhere stays.
+        assert_eq!(t("a\\,b"), "a thin b");
+    }
+
     #[test]
     fn a_colour_is_refused() {
         assert_eq!(
             latex_to_typst("\\color{red} x"),
             Err(TexError::Unprintable("a colour"))
         );
+    }
+}
+
+/// The PDFs print an exact expression from the tree the pages set (`Expr::to_tex`), with the
+/// paper's rules above: no second printer to differ from the page.
+#[cfg(test)]
+mod expressions {
+    use crate::cas::{Expr, parse};
+    use crate::notation::Names;
+
+    fn typst(text: &str) -> String {
+        let e = parse(text).unwrap().expr;
+        e.to_tex(Names::none()).to_typst().unwrap()
+    }
+
+    /// A variant's decimal is a numeral: after a number, a power of it takes a dot (3 and
+    /// 0.4⁴ side by side read as 30.4⁴).
+    #[test]
+    fn a_number_before_a_power_of_a_decimal_takes_a_dot() {
+        let e = Expr::mul(vec![
+            Expr::int(3),
+            Expr::pow(Expr::numeral("0.4"), Expr::int(4)),
+        ]);
+        assert_eq!(
+            e.to_tex(Names::none()).to_typst().unwrap(),
+            "3⋅attach(0.4, t: 4)"
+        );
+    }
+
+    #[test]
+    fn fractions_powers_and_names() {
+        assert_eq!(typst("m*a^2/12"), "frac(m attach(a, t: 2), 12)");
+        assert_eq!(
+            typst("w1 + Ixx + phi + Omega"),
+            "attach(ω, b: 1)\\+attach(I, b: x x)\\+ϕ\\+Ω"
+        );
+        assert_eq!(typst("-3/4"), "−frac(3, 4)");
+        assert_eq!(typst("sin(x)^2"), "attach(sin, t: 2) lr(\\(x\\))");
+        // A digit then letters: each letter apart, never a variable `cone`.
+        assert_eq!(
+            typst("I1cone + d2U + w12"),
+            "attach(I, b: 1 c o n e)\\+attach(d, b: 2 U)\\+attach(ω, b: 12)"
+        );
+        assert_eq!(typst("B*dot(A, C)"), "B lr(\\(A⋅C\\))");
+    }
+
+    /// Inside a fraction or an exponent a fraction goes on the line; a matrix's cell with a
+    /// fraction is displayed (the roots of a cubic, in tests/course's top, were set at half
+    /// the body's size).
+    #[test]
+    fn the_papers_rules_hold_for_expressions() {
+        assert_eq!(typst("x^(3/2)"), "attach(x, t: 3\\/2)");
+        assert_eq!(typst("a/(b/c + d)"), "frac(a, b\\/c\\+d)");
+        assert_eq!(
+            typst("a/(7*(3/5)^(3/2))"),
+            "frac(a, 7 attach(lr(\\(3\\/5\\)), t: 3\\/2))"
+        );
+        assert_eq!(
+            typst("[a/2 + x, b, 1]"),
+            "mat(display(frac(a, 2)\\+x); b; 1)"
+        );
+        assert_eq!(typst("[[1, 0], [0, 1]]"), "mat(1, 0; 0, 1)");
     }
 }

@@ -1,11 +1,10 @@
 //! Formulas on the pages: MathML at build time (notation/mathml.rs), a long one in pieces a
 //! browser can wrap, so pages need no JavaScript and no network.
 
-use crate::notation::latex::{Node, relation_text};
+use crate::notation::latex::Node;
 use crate::notation::linebreak;
 use crate::notation::{self, MathmlError, Tex};
 use crate::render::RenderError;
-use pulldown_latex::event::{Content, Grouping};
 
 /// MathML for a formula or a piece of it, displayed as a block or inline. A formula that
 /// cannot be set is an error naming it (`latex`, the whole), never a silently broken page.
@@ -68,7 +67,7 @@ fn set_block(latex: &str, pieces: &[Vec<Node>], phone: bool) -> Result<String, R
         if k > 0 {
             out.push(' ');
         }
-        let m = set(latex, &binary(k, piece), false)?;
+        let m = set(latex, &linebreak::set_apart(k, piece), false)?;
         let m = m.replacen("<math", "<math displaystyle=\"true\"", 1);
         out.push_str(&scaled(m, piece, phone));
     }
@@ -122,26 +121,6 @@ pub fn scaled_formulas(html: &str) -> Vec<(u32, String)> {
     out
 }
 
-/// A piece after the first that starts with +, −, =, ·, × or ≈ keeps the spacing of a binary
-/// operator: an empty group before it, else MathML sets it as a sign.
-fn binary(k: usize, piece: &[Node]) -> Vec<Node> {
-    let operator = match piece.first() {
-        Some(Node::Atom(Content::BinaryOp { content, .. })) => {
-            matches!(content, '+' | '−' | '⋅' | '×')
-        }
-        Some(Node::Atom(Content::Relation { content, .. })) => {
-            matches!(relation_text(content).as_str(), "=" | "≈")
-        }
-        _ => false,
-    };
-    let mut out = Vec::with_capacity(piece.len() + 1);
-    if k > 0 && operator {
-        out.push(Node::Group(Grouping::Normal, Vec::new()));
-    }
-    out.extend(piece.iter().cloned());
-    out
-}
-
 /// A formula within a sentence: inline `<math>` pieces separated by spaces, where the line may
 /// wrap, once it is wider than half a line. Set twice, as a display formula is, when it is
 /// wider than a phone's line.
@@ -152,7 +131,11 @@ pub fn inline(tex: &Tex) -> Result<String, RenderError> {
 fn set_inline(latex: &str, pieces: &[Vec<Node>], phone: bool) -> Result<String, RenderError> {
     let mut out = Vec::with_capacity(pieces.len());
     for (k, piece) in pieces.iter().enumerate() {
-        out.push(scaled(set(latex, &binary(k, piece), false)?, piece, phone));
+        out.push(scaled(
+            set(latex, &linebreak::set_apart(k, piece), false)?,
+            piece,
+            phone,
+        ));
     }
     Ok(out.join(" "))
 }

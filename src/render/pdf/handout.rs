@@ -5,16 +5,17 @@
 //! solutions (contents, every step with its reason and check, the results, the figures).
 
 use super::markup::{
-    Markup, formula_and_broken, number, said_equation, said_number, said_symbol, symbol,
+    Markup, decimal_formula, expr, formula, number, said_equation, said_number, said_symbol, symbol,
 };
 use super::quantities::{numbers_typst, said_unit, unit_typst};
 use crate::base::format::sci;
+use crate::cas::Expr;
 use crate::derive::ExactBasis;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
 use crate::document::{At, Page, PrincipalAxis, PrincipalValues, Quantity, words};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;
-use crate::notation::{Formula, Names, symbol_tex};
+use crate::notation::{Formula, Names, Op, Tex};
 use crate::render::RenderError;
 
 /// The body of a handout: one section per page.
@@ -65,9 +66,14 @@ fn section(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
     }
     setup(m, page)?;
     for (name, e) in &page.definitions {
+        let definition = Formula::Row(vec![
+            Formula::Expr(Expr::sym(name)),
+            Formula::Op(Op::Equals),
+            Formula::Expr(e.clone()),
+        ]);
         m.raw("- ")
             .inline(
-                &format!("{} = {}", symbol(name, names), e.to_typst(names)),
+                &formula(&definition, names)?,
                 &said_equation(name, &e.to_tex(names).spoken(), names),
             )
             .line();
@@ -129,8 +135,8 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
     for ((&l, at), approx) in s.lines.iter().zip(&s.at).zip(&s.approx) {
         // A number no student reads exactly is shown to six figures.
         let statement = approx.as_ref().unwrap_or(&page.steps[l].statement);
-        let (whole, broken) = formula_and_broken(statement, names)?;
-        m.block(&whole, &broken, &statement.to_tex(names).spoken());
+        let tex = statement.to_tex(names);
+        m.block(&tex, &tex.spoken())?;
         if let Some(q) = at.map(|q| &page.quantities[q])
             && let Some(at) = &q.at
         {
@@ -189,24 +195,20 @@ fn quantity(m: &mut Markup, q: &Quantity, names: &Names) -> Result<(), RenderErr
         // A step's result, named by its own equation (`ẍ₁ = …`).
         Some(symbol) => {
             let statement = words::result_equation(symbol, &q.value);
-            let (whole, broken) = formula_and_broken(&statement, names)?;
-            m.block(&whole, &broken, &statement.to_tex(names).spoken());
+            let tex = statement.to_tex(names);
+            m.block(&tex, &tex.spoken())?;
         }
         None => {
             m.heading(3, &words::result_heading(q))?;
             match &q.matrix {
                 Some(_) => {
                     let value = q.formula();
-                    let (whole, broken) = formula_and_broken(&value, names)?;
-                    m.block(&whole, &broken, &value.to_tex(names).spoken());
+                    let tex = value.to_tex(names);
+                    m.block(&tex, &tex.spoken())?;
                 }
                 None => {
-                    let value = q.value.to_expr();
-                    m.block(
-                        &value.to_typst(names),
-                        &value.to_typst_breakable(names),
-                        &value.to_tex(names).spoken(),
-                    );
+                    let tex = q.value.to_expr().to_tex(names);
+                    m.block(&tex, &tex.spoken())?;
                 }
             }
         }
@@ -223,45 +225,34 @@ fn principal_axis(m: &mut Markup, sp: &PrincipalAxis, names: &Names) -> Result<(
         3,
         &format!("Principal moment (multiplicity {})", sp.multiplicity),
     )?;
-    let vector = |v: &[crate::cas::Expr; 3]| Value::Vector(v.clone()).to_expr();
-    let (dir, said) = match &sp.basis {
-        ExactBasis::Axis(a) => (
-            format!("quad \"along\" {}", vector(a).to_typst(names)),
-            format!("along {}", vector(a).to_tex(names).spoken()),
-        ),
-        ExactBasis::PlaneNormalTo(n) => (
-            format!("quad \"every axis\" perp {}", vector(n).to_typst(names)),
-            format!(
-                "every axis perpendicular to {}",
-                vector(n).to_tex(names).spoken()
-            ),
-        ),
-        ExactBasis::All => ("quad \"every axis\"".into(), "every axis".into()),
-    };
-    let line = format!("{} {dir}", sp.value.to_typst(names));
-    m.block(
-        &line,
-        &line,
-        &format!("{}, {said}", sp.value.to_tex(names).spoken()),
-    );
+    let vector = |v: &[crate::cas::Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
+    let mut row = vec![Formula::Expr(sp.value.clone()), Formula::Op(Op::Quad)];
+    match &sp.basis {
+        ExactBasis::Axis(a) => row.extend([Formula::Text("along ".into()), vector(a)]),
+        ExactBasis::PlaneNormalTo(n) => row.extend([
+            Formula::Text("every axis".into()),
+            Formula::Op(Op::Perp),
+            vector(n),
+        ]),
+        ExactBasis::All => row.push(Formula::Text("every axis".into())),
+    }
+    let tex = Formula::Row(row).to_tex(names);
+    m.block(&tex, &tex.spoken())?;
     Ok(())
 }
 
 /// The principal moments at the scene's values, and the eigen-solver's agreement with them.
 fn principal_values(m: &mut Markup, p: &PrincipalValues, names: &Names) -> Result<(), RenderError> {
     m.heading(3, "Principal moments at the scene's values")?;
-    let values: Vec<String> = p.exact.iter().map(|v| number(*v, 6)).collect();
-    let line = format!(
-        "{} = {}",
-        symbol(&p.letter, names),
-        values.join("\\, thin ")
-    );
-    let said: Vec<String> = p.exact.iter().map(|v| said_number(*v, 6)).collect();
-    m.block(
-        &line,
-        &line,
-        &said_equation(&p.letter, &said.join(", "), names),
-    );
+    let mut row = vec![Formula::Expr(Expr::sym(&p.letter)), Formula::Op(Op::Equals)];
+    for (k, v) in p.exact.iter().enumerate() {
+        if k > 0 {
+            row.extend([Formula::Op(Op::Comma), Formula::Op(Op::Thin)]);
+        }
+        row.push(decimal_formula(*v, 6));
+    }
+    let tex = Formula::Row(row).to_tex(names);
+    m.block(&tex, &tex.spoken())?;
     m.raw("#text(9.5pt)[").text("at ");
     let values = words::values_at(&p.values);
     m.inline(
@@ -382,23 +373,17 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
     }
     m.text(&format!("{wrong}: "));
     if let Some(notes) = notes {
-        let (whole, broken) = formula_and_broken(&notes, names)?;
-        m.block(&whole, &broken, &notes.to_tex(names).spoken());
+        let tex = notes.to_tex(names);
+        m.block(&tex, &tex.spoken())?;
     } else if let Some(e) = &c.notes {
-        let typst = e.to_typst_named(names, &|q| {
-            quantity_symbol(q).and_then(|t| symbol_tex(t).to_typst().ok())
-        });
-        m.block(
-            &typst,
-            &typst,
-            &e.to_tex_named(names, &quantity_symbol).spoken(),
-        );
+        let tex = e.to_tex_named(names, &quantity_symbol);
+        m.block(&tex, &tex.spoken())?;
     }
     m.text(&format!("{right}: "));
     let derived = derived_side(page, i);
     if let Some(derived) = derived {
-        let (whole, broken, said) = derived?;
-        m.block(&whole, &broken, &said);
+        let tex = derived?;
+        m.block(&tex, &tex.spoken())?;
     }
     m.raw("]\n");
     Ok(())
@@ -424,8 +409,8 @@ fn claim_in_list(
         // One block, so that the formula and the sentence after it stay in the list item.
         m.raw("#block[");
         m.author(&lead)?.text(":");
-        let (whole, broken) = formula_and_broken(&notes, names)?;
-        m.block(&whole, &broken, &notes.to_tex(names).spoken());
+        let tex = notes.to_tex(names);
+        m.block(&tex, &tex.spoken())?;
         m.text("As in the notes");
         if let Some(eq) = page.claim_equation(i) {
             m.text(&format!(", eq. ({eq})"));
@@ -447,47 +432,33 @@ fn claim_in_list(
     Ok(())
 }
 
-/// A boxed claim's derived side: its Typst whole and to be broken, and in words.
-fn derived_side(page: &Page, i: usize) -> Option<Result<(String, String, String), RenderError>> {
+/// A boxed claim's derived side, as its tree.
+fn derived_side(page: &Page, i: usize) -> Option<Result<Tex, RenderError>> {
     let names = &page.names;
     let c = &page.claims[i];
     c.derived.as_ref().map(|v| match v {
-        Value::Scalar(e) if c.precision.is_some() => match e.eval(&|_| None) {
-            Ok(x) => Ok((number(x, 7), number(x, 7), said_number(x, 7))),
-            Err(_) => Ok((
-                e.to_typst(names),
-                e.to_typst(names),
-                e.to_tex(names).spoken(),
-            )),
-        },
+        Value::Scalar(e) if c.precision.is_some() => Ok(match e.eval(&|_| None) {
+            Ok(x) if x.is_finite() => decimal_formula(x, 7).to_tex(Names::none()),
+            _ => e.to_tex(names),
+        }),
         // The form the page prints for the result (`Page::claim_derived`).
         Value::Scalar(_) => {
             let side = page
                 .claim_derived(i)
                 .unwrap_or_else(|| Formula::Expr(v.to_expr()));
-            let f = page.claim_row(i, side);
-            let (whole, broken) = formula_and_broken(&f, names)?;
-            Ok((whole, broken, f.to_tex(names).spoken()))
+            Ok(page.claim_row(i, side).to_tex(names))
         }
         // A vector or a matrix as a column of its own, without a left side; a matrix with its
         // factor out as its result prints.
-        _ => match page
-            .claim_derived(i)
-            .filter(|_| matches!(v, Value::Matrix(_)))
-        {
-            Some(f) => {
-                let (whole, broken) = formula_and_broken(&f, names)?;
-                Ok((whole, broken, f.to_tex(names).spoken()))
-            }
-            None => {
-                let e = v.to_expr();
-                Ok((
-                    e.to_typst(names),
-                    e.to_typst_breakable(names),
-                    e.to_tex(names).spoken(),
-                ))
-            }
-        },
+        _ => Ok(
+            match page
+                .claim_derived(i)
+                .filter(|_| matches!(v, Value::Matrix(_)))
+            {
+                Some(f) => f.to_tex(names),
+                None => v.to_expr().to_tex(names),
+            },
+        ),
     })
 }
 
@@ -497,7 +468,7 @@ fn positive(m: &mut Markup, c: &crate::verify::ClaimResult, names: &Names) {
     for (k, name) in c.positive.iter().enumerate() {
         m.text(if k == 0 { ", for positive " } else { ", " });
         let e = crate::cas::Expr::sym(name);
-        m.inline(&e.to_typst(names), &e.to_tex(names).spoken());
+        m.inline(&expr(&e, names), &e.to_tex(names).spoken());
     }
     if c.where_real {
         m.text(", where both sides are real");

@@ -6,7 +6,7 @@ use super::super::RenderError;
 use crate::base::typst::typst_string;
 use crate::cas::Expr;
 use crate::model::prose::{Piece, Prose};
-use crate::notation::{Formula, Names};
+use crate::notation::{Formula, Names, Tex, linebreak};
 use crate::scene::{Course, Paper};
 
 /// A document being written, and where each scene's part of it starts (for Typst's errors).
@@ -117,27 +117,47 @@ impl Markup {
         self.inline(&format!("display({typst_math})"), alt)
     }
 
-    /// A formula on a line of its own, centred; one wider than the line is broken after its
-    /// relations and operators, with a hanging indent, as a typesetter would (`fit`, in the
-    /// preamble): Typst breaks a line of inline mathematics there, inside parentheses too.
-    /// `broken` is the same formula printed to be broken (`to_typst_breakable`).
-    /// A formula surely narrower than any line is set as a fitting one is, without measuring
-    /// it first (`narrow`, in the preamble): the same bytes, one layout fewer.
-    pub fn block(&mut self, whole: &str, broken: &str, alt: &str) -> &mut Self {
+    /// A formula on a line of its own, centred. One wider than the line is set in the pieces the
+    /// page cuts it into (`linebreak::pieces`: at its sums and equals signs, a long bracket
+    /// opened, a long numerator as a factor), in a paragraph with a hanging indent that wraps
+    /// between them (`fit`, in the preamble): one line breaker for the page and the paper.
+    /// A formula surely narrower than any line is set as a fitting one is, without measuring it
+    /// first (`narrow`, in the preamble): the same bytes, one layout fewer.
+    pub fn block(&mut self, tex: &Tex, alt: &str) -> Result<&mut Self, RenderError> {
+        let whole = math(tex)?;
         self.text.push('\n');
         self.alt(alt);
-        if surely_narrow(whole) {
+        if surely_narrow(&whole) {
             self.text.push_str("\n#narrow($ ");
-            self.text.push_str(whole);
+            self.text.push_str(&whole);
             self.text.push_str(" $)\n]\n");
-            return self;
+            return Ok(self);
         }
         self.text.push_str("\n#fit($ ");
-        self.text.push_str(whole);
-        self.text.push_str(" $, $display(");
-        self.text.push_str(broken);
-        self.text.push_str(")$)\n]\n");
-        self
+        self.text.push_str(&whole);
+        self.text.push_str(" $, [");
+        for (k, piece) in linebreak::pieces(&tex.nodes, linebreak::LINE)
+            .iter()
+            .enumerate()
+        {
+            let nodes = linebreak::set_apart(k, piece);
+            if k > 0 {
+                // Where the paragraph may break: before an operator, which brings its own
+                // space, with none; after a comma, with a word space, as the page does.
+                let operator = nodes.len() > piece.len();
+                self.text.push_str(if operator { "#sym.zws" } else { " " });
+            }
+            let piece = Tex {
+                source: tex.source.clone(),
+                nodes,
+            };
+            self.alt(&piece.spoken());
+            self.text.push_str("$display(");
+            self.text.push_str(&math(&piece)?);
+            self.text.push_str(")$]");
+        }
+        self.text.push_str("])\n]\n");
+        Ok(self)
     }
 
     /// Opens a scope whose equations carry `alt` as their alternative description (a tagged
@@ -186,24 +206,29 @@ impl Markup {
     }
 }
 
-/// A formula in Typst's math.
+/// A formula in Typst's math, printed from its tree.
 pub fn formula(f: &Formula, names: &Names) -> Result<String, RenderError> {
-    f.to_typst(names).map_err(|e| math_error(f, names, e))
+    math(&f.to_tex(names))
 }
 
-/// A formula in Typst's math, and as it is printed to be broken across lines.
-pub fn formula_and_broken(f: &Formula, names: &Names) -> Result<(String, String), RenderError> {
-    let broken = f
-        .to_typst_breakable(names)
-        .map_err(|e| math_error(f, names, e))?;
-    Ok((formula(f, names)?, broken))
-}
-
-fn math_error(f: &Formula, names: &Names, e: crate::notation::TexError) -> RenderError {
-    RenderError::Math {
-        latex: f.to_latex(names),
+/// A tree in Typst's math; what Typst's math cannot set (an author's colour) is an error naming
+/// the formula.
+pub fn math(t: &Tex) -> Result<String, RenderError> {
+    t.to_typst().map_err(|e| RenderError::Math {
+        latex: t.source.clone(),
         message: e.to_string(),
-    }
+    })
+}
+
+/// An exact expression in Typst's math, printed from its tree.
+pub fn expr(e: &Expr, names: &Names) -> String {
+    typst(&e.to_tex(names))
+}
+
+/// A tree mechbook built, in Typst's math. It holds nothing Typst's math refuses: only an
+/// author's colour is, and scene validation refuses that first.
+pub fn typst(t: &Tex) -> String {
+    t.to_typst().unwrap_or_else(|_| typst_string(&t.source))
 }
 
 /// A symbol's name in words.
@@ -227,13 +252,13 @@ pub fn said_number(x: f64, digits: usize) -> String {
 
 /// A computed number to `digits` significant figures as a formula: its digits, and its power
 /// of ten as a power (4.6875 × 10⁻⁶, never e-notation).
-fn decimal_formula(x: f64, digits: usize) -> Formula {
+pub fn decimal_formula(x: f64, digits: usize) -> Formula {
     Formula::decimal(&crate::base::format::significant(x, digits))
 }
 
 /// A symbol's name in Typst's math.
 pub fn symbol(name: &str, names: &Names) -> String {
-    Expr::sym(name).to_typst(names)
+    expr(&Expr::sym(name), names)
 }
 
 /// A computed number to `digits` significant figures, in Typst's math (4.6875 × 10⁻⁶).
@@ -246,9 +271,7 @@ pub fn number(x: f64, digits: usize) -> String {
 
 /// A number's formula in Typst's math: digits, signs and powers, which every printer sets.
 pub fn decimal_typst(f: &Formula) -> String {
-    // A number's formula is digits, a sign and a power: no LaTeX in it for Typst to refuse.
-    f.to_typst(Names::none())
-        .unwrap_or_else(|_| typst_string(&f.to_text()))
+    typst(&f.to_tex(Names::none()))
 }
 
 /// Whether Typst surely sets `whole` narrower than any line (`display_width`).

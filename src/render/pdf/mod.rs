@@ -6,6 +6,8 @@
 pub mod batch;
 #[cfg(feature = "pdf")]
 mod display_width;
+#[cfg(feature = "pdf")]
+mod glyphs;
 mod handout;
 mod markup;
 mod quantities;

@@ -280,7 +280,7 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
             }
             (None, None) => {
                 m.inline(
-                    &spec.value.to_typst(names),
+                    &super::markup::expr(&spec.value, names),
                     &spec.value.to_tex(names).spoken(),
                 );
             }
@@ -300,7 +300,7 @@ fn key_problem(m: &mut Markup, heading: &str, p: &Problem, v: &Variant) -> Resul
             );
         } else {
             m.display(
-                &format!("{}{unit}", exact.to_typst(names)),
+                &format!("{}{unit}", super::markup::expr(&exact, names)),
                 &format!("{}{said_unit}", exact.to_tex(names).spoken()),
             );
         }

@@ -5,6 +5,7 @@
 use super::PdfSource;
 use super::markup::{Markup, preamble};
 use super::typeset::typeset;
+use crate::notation::Tex;
 use crate::scene::{Course, Paper};
 
 fn course(paper: Paper) -> Course {
@@ -45,9 +46,10 @@ fn an_authors_text_is_text_however_it_reads_as_markup() {
 
 #[test]
 fn a_formula_wider_than_the_paper_is_broken_onto_it_and_text_past_the_edge_is_found() {
-    let long = vec!["a"; 160].join(" + ");
+    let tex = Tex::read(&vec!["a"; 160].join(" + ")).unwrap();
+    let long = tex.to_typst().unwrap();
     let fitted = typeset(&doc(Paper::A4, |m| {
-        m.block(&long, &long, "a plus a and so on");
+        m.block(&tex, "a plus a and so on").unwrap();
     }))
     .unwrap();
     assert!(fitted.past_the_edge.is_empty());
@@ -75,30 +77,32 @@ fn a_formula_wider_than_the_paper_is_broken_onto_it_and_text_past_the_edge_is_fo
 #[test]
 fn a_short_formula_set_without_measuring_gives_the_measured_bytes() {
     let short = [
-        "I_(x x) = frac(2, 5) m a^(2)",
-        "accent(I, arrow) = mat(1, 0; 0, 1)",
-        "p_(ψ) = I_(3) (dot(ψ) + dot(ϕ) cos (θ))",
-    ];
-    let long = vec!["a"; 160].join(" + ");
+        r"I_{xx} = \frac{2}{5} m a^{2}",
+        r"\vec{I} = \begin{pmatrix}1 & 0 \\ 0 & 1\end{pmatrix}",
+        r"p_{\psi} = I_{3} \left(\dot{\psi} + \dot{\phi} \cos\theta\right)",
+    ]
+    .map(|latex| Tex::read(latex).unwrap());
+    let long = Tex::read(&vec!["a"; 160].join(" + ")).unwrap();
     for paper in [Paper::A4, Paper::Letter] {
         let mut markups = Vec::new();
         let unmeasured = typeset(&doc(paper, |m| {
-            for f in short {
-                m.block(f, f, "a formula");
+            for f in &short {
+                m.block(f, "a formula").unwrap();
             }
-            m.block(&long, &long, "a sum");
+            m.block(&long, "a sum").unwrap();
             markups.push(m.text.clone());
         }))
         .unwrap();
         let measured = typeset(&doc(paper, |m| {
-            for f in short {
+            for f in &short {
+                let f = f.to_typst().unwrap();
                 m.raw("\n#[#set math.equation(alt: \"a formula\");\n#fit($ ")
-                    .raw(f)
+                    .raw(&f)
                     .raw(" $, $display(")
-                    .raw(f)
+                    .raw(&f)
                     .raw(")$)\n]\n");
             }
-            m.block(&long, &long, "a sum");
+            m.block(&long, "a sum").unwrap();
         }))
         .unwrap();
         let markup = &markups[0];
@@ -183,12 +187,12 @@ fn every_kind_of_name_a_scene_may_write_is_typeset() {
         for name in names {
             let e = crate::cas::Expr::sym(name);
             m.inline(
-                &e.to_typst(crate::notation::Names::none()),
+                &super::markup::expr(&e, crate::notation::Names::none()),
                 &e.to_tex(crate::notation::Names::none()).spoken(),
             );
             let rate = crate::cas::Expr::sym(&format!("{name}'"));
             m.inline(
-                &rate.to_typst(crate::notation::Names::none()),
+                &super::markup::expr(&rate, crate::notation::Names::none()),
                 &rate.to_tex(crate::notation::Names::none()).spoken(),
             );
         }
