@@ -346,7 +346,8 @@ fn shown_claim(m: &mut Markup, page: &Page, shown: &ShownClaim) -> Result<(), Re
         .notes
         .as_ref()
         .filter(|_| scalar)
-        .map(|e| page.claim_row(i, Formula::Expr(e.clone())));
+        // Its catalogue names as their symbols (I_xx for `inertia_tensor[0][0]`), as the page.
+        .map(|e| page.claim_row(i, Formula::Tex(e.to_tex_named(names, &quantity_symbol))));
     let Mark::Boxed {
         heading,
         wrong,
