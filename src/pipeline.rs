@@ -145,13 +145,13 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
     })?;
     let checks = verify::verify_symbolic(scene, &derivation, plan).map_err(|e| fail(e.into()))?;
     let mut claims = checks.claims;
-    for (line, why) in verify::dimensions::claim_notes(scene, &derivation) {
+    for (line, mismatch) in verify::dimensions::claim_notes(scene, &derivation) {
         if let Some(c) = claims
             .iter_mut()
             .find(|c| c.line == line && c.step.is_none())
         {
-            c.differences
-                .push(format!("the two sides differ in dimension: {why}").into());
+            let why = mismatch.text();
+            c.differences.push(mismatch.said(&scene.names()));
             if c.verdict == crate::scene::Verdict::Agrees {
                 c.problem = Some(format!(
                     "the two sides agree, yet differ in dimension ({why}): check the symbols' \
@@ -634,6 +634,43 @@ mod tests {
         );
         let text = std::fs::read_to_string(path).unwrap();
         Scene::parse(&text, std::path::Path::new(path)).unwrap()
+    }
+
+    /// A claim whose sides differ in dimension says so on the page with the quantity as its
+    /// symbol (the tilted hoop's eq. (45): I_xz), never as mechbook's name for it; the terminal
+    /// keeps the name the author wrote.
+    #[test]
+    fn a_difference_in_dimension_names_the_quantity_by_its_symbol() {
+        use crate::model::prose::Piece;
+        use crate::notation::{Formula, Names};
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/lectures/lecture-3-4/07-tilted-hoop.toml"
+        );
+        let text = std::fs::read_to_string(path).unwrap();
+        let scene = Scene::parse(&text, std::path::Path::new(path)).unwrap();
+        let report = super::run_scene(scene, Some(Fidelity::DRAFT)).unwrap();
+        let claim = report
+            .verification
+            .claims
+            .iter()
+            .find(|c| c.dimension.is_some())
+            .expect("eq. (45) differs in dimension");
+        assert!(
+            claim
+                .dimension
+                .as_deref()
+                .unwrap()
+                .contains("`inertia_tensor[0][2]`")
+        );
+        let said = claim.differences.last().unwrap();
+        let symbol = said.0.iter().find_map(|p| match p {
+            Piece::Math(Formula::Tex(t)) => Some(t.source.clone()),
+            _ => None,
+        });
+        assert_eq!(symbol.as_deref(), Some("{I}_{xz}"));
+        let plain = said.to_plain(Names::none());
+        assert!(!plain.contains("inertia_tensor"), "{plain}");
     }
 
     #[test]

@@ -9,8 +9,11 @@ use crate::derive::Derivation;
 use crate::derive::algebra::evaluate;
 use crate::derive::step_names::{StepResult, expand_names};
 use crate::derive::variants::{general_answer, step_values};
+use crate::model::catalogue::quantity_symbol;
+use crate::model::prose::{Piece, Prose};
 use crate::model::units::{Dimension, DimensionError, Measure, measure_of};
 use crate::model::value::Value;
+use crate::notation::Formula;
 use crate::scene::{Answer, Claim, Operation, Scene};
 
 /// A dimension error at a line of the scene.
@@ -134,9 +137,72 @@ pub fn check_dimensions(scene: &Scene, d: &Derivation) -> Result<(), DimensionFa
     Ok(())
 }
 
+/// Why a claim's two sides differ in dimension: the dimensions, with the quantity that has the
+/// derived one, so that a page can print it as its symbol (I_xz, never `inertia_tensor[0][2]`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Mismatch {
+    /// The claim's value is in `stated`, but `quantity` is in `derived`.
+    Sides {
+        stated: String,
+        quantity: Expr,
+        derived: String,
+        ratio: String,
+    },
+    /// The claim's value cannot be measured (a sum of unlike terms).
+    Value(String),
+}
+
+impl Mismatch {
+    /// In words, the quantity as the author wrote it (for `check` and `--json`).
+    pub fn text(&self) -> String {
+        match self {
+            Mismatch::Sides {
+                stated,
+                quantity,
+                derived,
+                ratio,
+            } => format!(
+                "the claim's value is in {stated}, but `{}` is in {derived}: they differ by \
+                 {ratio}",
+                quantity.to_text()
+            ),
+            Mismatch::Value(why) => why.clone(),
+        }
+    }
+
+    /// As a page says it: the quantity by its symbol in the scene's names (I_xz, never
+    /// `inertia_tensor[0][2]`). A name with no symbol stays as the author wrote it: set as a
+    /// word it reads no better.
+    pub fn said(&self, names: &crate::notation::Names) -> Prose {
+        let plain = || format!("the two sides differ in dimension: {}", self.text()).into();
+        let Mismatch::Sides {
+            stated,
+            quantity,
+            derived,
+            ratio,
+        } = self
+        else {
+            return plain();
+        };
+        let word = quantity.symbols().iter().any(|s| {
+            quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &|n| names.typesets(n))
+        });
+        if word {
+            return plain();
+        }
+        Prose(vec![
+            Piece::Text(format!(
+                "the two sides differ in dimension: the claim's value is in {stated}, but "
+            )),
+            Piece::Math(Formula::Tex(quantity.to_tex_named(names, &quantity_symbol))),
+            Piece::Text(format!(" is in {derived}: they differ by {ratio}")),
+        ])
+    }
+}
+
 /// Why a claim's two sides differ in dimension, if they do (its value's own unlike sum
 /// included).
-fn claim_mismatch(scene: &Scene, env: &crate::derive::algebra::Env, c: &Claim) -> Option<String> {
+fn claim_mismatch(scene: &Scene, env: &crate::derive::algebra::Env, c: &Claim) -> Option<Mismatch> {
     let (Some(q), Some(v)) = (&c.quantity, &c.value) else {
         return None;
     };
@@ -146,20 +212,19 @@ fn claim_mismatch(scene: &Scene, env: &crate::derive::algebra::Env, c: &Claim) -
     for (derived, stated) in q.entries().iter().zip(v.entries()) {
         let stated_m = match measure(scene, &stated) {
             Ok(m) => m,
-            Err(e) => return Some(e.to_string()),
+            Err(e) => return Some(Mismatch::Value(e.to_string())),
         };
         if let (Ok(Some(derived_m)), Some(stated_m)) = (measure(scene, derived), stated_m)
             && derived_m.dimension != stated_m.dimension
             && !stated.is_zero()
             && !derived.is_zero()
         {
-            return Some(format!(
-                "the claim's value is in {}, but `{}` is in {}: they differ by {}",
-                stated_m.dimension,
-                c.quantity.as_ref().map_or(String::new(), |q| q.to_text()),
-                derived_m.dimension,
-                stated_m.dimension.over(&derived_m.dimension)
-            ));
+            return Some(Mismatch::Sides {
+                stated: stated_m.dimension.to_string(),
+                quantity: c.quantity.clone()?,
+                derived: derived_m.dimension.to_string(),
+                ratio: stated_m.dimension.over(&derived_m.dimension).to_string(),
+            });
         }
     }
     None
@@ -167,7 +232,7 @@ fn claim_mismatch(scene: &Scene, env: &crate::derive::algebra::Env, c: &Claim) -
 
 /// The claims whose sides differ in dimension, by line, each with why: such a claim
 /// disagrees, and the reason is a line of its erratum.
-pub fn claim_notes(scene: &Scene, d: &Derivation) -> Vec<(usize, String)> {
+pub fn claim_notes(scene: &Scene, d: &Derivation) -> Vec<(usize, Mismatch)> {
     if scene.units.is_empty() {
         return Vec::new();
     }
