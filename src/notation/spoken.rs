@@ -248,7 +248,7 @@ fn atom(c: &Content) -> String {
                 "→" => "tends to".into(),
                 ":" => ":".into(),
                 "∥" => "is parallel to".into(),
-                "⊥" => "is perpendicular to".into(),
+                "⊥" | "⟂" => "is perpendicular to".into(),
                 other => other.into(),
             }
         }
@@ -330,6 +330,20 @@ mod tests {
 
     fn said(latex: &str) -> String {
         Tex::read(latex).unwrap().spoken()
+    }
+
+    /// Both perpendicular signs are said: mechbook's own rows set ⟂ (U+27C2), LaTeX's `\perp`
+    /// is ⊥; the principal axes' "every axis ⟂ (0, 0, 1)" was read out as the bare sign.
+    #[test]
+    fn both_perpendicular_signs_are_said() {
+        let row = crate::notation::Formula::Row(vec![
+            crate::notation::Formula::Text("every axis".into()),
+            crate::notation::Formula::Op(crate::notation::Op::Perp),
+            crate::notation::Formula::Name(crate::notation::Name::letter("n")),
+        ]);
+        let said_row = row.to_tex(crate::notation::Names::none()).spoken();
+        assert!(said_row.contains("is perpendicular to"), "{said_row}");
+        assert!(said(r"a \perp b").contains("is perpendicular to"));
     }
 
     /// An upright word is one identifier on the page, one text run in Typst, and one word to a
