@@ -13,6 +13,7 @@ mod operation;
 mod outputs;
 mod plots;
 mod problem;
+mod requests;
 mod steps;
 mod symbol_names;
 mod symbols;
@@ -27,12 +28,10 @@ pub use text::control_character;
 
 use super::error::{Locator, SceneError};
 use super::raw::{RawScene, Text};
-use super::types::Claim;
 use crate::cas::{Expr, parse_input as parse_expr};
-use crate::model::catalogue::{Output, find};
+
 pub use claims::CLAIM_FUNCTIONS;
 use claims::check_calls;
-use outputs::body_moments;
 use std::collections::{BTreeMap, BTreeSet};
 use toml::Spanned;
 
@@ -184,106 +183,6 @@ impl Validator<'_> {
                     "a lecture name has a letter or digit and at most {MAX_NAME} characters, \
                      such as \"3/4\""
                 ),
-            ));
-        }
-        Ok(())
-    }
-
-    /// What the requests need from the rest of the scene: a body, symbols, `omega`, `axis`.
-    #[allow(clippy::too_many_arguments)]
-    fn requests(
-        &self,
-        raw: &RawScene,
-        symbols: &BTreeMap<String, String>,
-        bodies: &[super::types::Body],
-        claims: &[Claim],
-        wants: &[Output],
-        plots: &[super::types::PlotRequest],
-        [has_omega, has_axis]: [bool; 2],
-    ) -> Result<(), SceneError> {
-        if let Some(k) = plots.iter().position(|p| p.needs_body())
-            && bodies.is_empty()
-        {
-            let message = if plots[k].is_free_body() {
-                "`inertia = \"principal\"` takes the moments of the scene's body, but there is \
-                 no [[body]]: add one, or give the moments as `inertia = [I1, I2, I3]`"
-                    .to_string()
-            } else {
-                format!("the {} plot needs at least one [[body]]", plots[k].kind())
-            };
-            return Err(self.err(raw.plots[k].span().start, &format!("plot[{k}]"), message));
-        }
-        if wants.is_empty() && claims.is_empty() && plots.is_empty() && raw.steps.is_empty() {
-            return Err(self.err(
-                raw.outputs_span(),
-                "outputs.want",
-                "the scene asks for nothing: list at least one output, claim or step",
-            ));
-        }
-        let from_bodies = raw.outputs.as_ref().is_some_and(|o| o.inertia.is_some());
-        for w in wants {
-            let Some(needed) = w.free_body_symbols() else {
-                continue;
-            };
-            // The principal moments may come from the bodies instead.
-            let given = |n: &str| from_bodies && body_moments(*w).contains(&n);
-            if let Some(missing) = needed
-                .iter()
-                .find(|n| !symbols.contains_key(**n) && !given(n))
-            {
-                return Err(self.err(
-                    raw.outputs_span(),
-                    "outputs.want",
-                    format!(
-                        "output `{}` writes its results in {}; declare `{missing}` under [symbols]",
-                        w.name(),
-                        needed.join(", ")
-                    ),
-                ));
-            }
-        }
-        if bodies.is_empty() {
-            if let Some(w) = wants.iter().find(|w| w.free_body_symbols().is_none()) {
-                return Err(self.err(
-                    raw.outputs_span(),
-                    "outputs.want",
-                    format!("output `{}` needs at least one [[body]]", w.name()),
-                ));
-            }
-            let uses_body = |c: &&Claim| {
-                c.quantity.iter().chain(c.value.iter()).any(|e| {
-                    e.symbols()
-                        .iter()
-                        .any(|s| find(s).is_some_and(|q| q.stage.needs_body()))
-                })
-            };
-            if let Some(c) = claims.iter().find(uses_body) {
-                return Err(self.err(
-                    self.line_offset(c.line),
-                    "claim",
-                    format!(
-                        "claim ({}) uses a derived quantity, but the scene has no [[body]]",
-                        c.eq
-                    ),
-                ));
-            }
-        }
-        if (wants.contains(&Output::AngularMomentum) || wants.contains(&Output::KineticEnergy))
-            && !has_omega
-        {
-            return Err(self.err(
-                raw.outputs_span(),
-                "omega",
-                "angular_momentum and kinetic_energy need `omega = [..]`",
-            ));
-        }
-        if (wants.contains(&Output::MomentAboutAxis) || wants.contains(&Output::Gyration))
-            && !has_axis
-        {
-            return Err(self.err(
-                raw.outputs_span(),
-                "axis",
-                "moment_about_axis and gyration need `axis = [..]`",
             ));
         }
         Ok(())

@@ -76,12 +76,15 @@ impl Validator<'_> {
         let assumptions = self.assumptions(raw, &domain_names, &values)?;
         self.requests(
             raw,
-            &symbols,
-            &bodies,
-            &claims,
-            &wants,
-            &plots,
-            [omega.is_some(), axis.is_some()],
+            &super::requests::Requests {
+                symbols: &symbols,
+                bodies: &bodies,
+                claims: &claims,
+                wants: &wants,
+                plots: &plots,
+                has_omega: omega.is_some(),
+                has_axis: axis.is_some(),
+            },
         )?;
         if let (Some(n), Some(raw_axis)) = (&axis, &raw.axis) {
             self.unit_axis(n, raw_axis.span().start, &values)?;
