@@ -4,7 +4,7 @@
 //!   refused.
 //! - Numeric route: the simplified form against the expression as written at random points.
 
-use super::Context;
+use super::{Checking, Context};
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
@@ -20,14 +20,8 @@ pub(super) fn derive(cx: Context, e: &Expr) -> Result<StepResult, DeriveError> {
     Ok(StepResult::Expr(cas::simplify(&x)?))
 }
 
-pub(super) fn check(
-    cx: Context,
-    e: &Expr,
-    result: &StepResult,
-    seed: u64,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    let StepResult::Expr(r) = result else {
+pub(super) fn check(cx: Checking, e: &Expr, check: &mut StepCheck) -> Result<(), CheckError> {
+    let StepResult::Expr(r) = cx.result else {
         return Err(CheckError::NotDerived);
     };
     let raw = expand_names(cx.scene, cx.d, cx.step, e)?;
@@ -36,7 +30,7 @@ pub(super) fn check(
          random points"
     );
     check.tolerance = NUMERICALLY_ZERO;
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::new(cx.seed);
     let mut compared = 0;
     for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
         if compared == CONFIRMATION_POINTS {

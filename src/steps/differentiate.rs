@@ -6,7 +6,7 @@
 //! - Numeric route: central differences with Richardson extrapolation at random points, along
 //!   x or along the motion through the point.
 
-use super::Context;
+use super::{Checking, Context};
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
@@ -46,14 +46,12 @@ pub(super) fn derive(cx: Context, of: &Expr, by: &str) -> Result<StepResult, Der
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &Expr,
     by: &str,
-    result: &StepResult,
-    seed: u64,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
-    let StepResult::Expr(r) = result else {
+    let StepResult::Expr(r) = cx.result else {
         return Err(CheckError::NotDerived);
     };
     let f = expand_names(cx.scene, cx.d, cx.step, of)?;
@@ -62,7 +60,7 @@ pub(super) fn check(
              random points"
     );
     check.tolerance = DIFFERENCE_AGREEMENT;
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::new(cx.seed);
     let mut checked = 0;
     for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
         if checked == CONFIRMATION_POINTS {

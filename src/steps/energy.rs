@@ -3,7 +3,7 @@
 //! - Exact rule: `derive/lagrangian.rs`.
 //! - Numeric route: the motion of L integrated, the energy's drift watched (`verify/motion.rs`).
 
-use super::{Context, conserved, scalar, scalar_of};
+use super::{Checking, Context, conserved, scalar, scalar_of};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::energy;
 use crate::derive::step_names::StepResult;
@@ -15,13 +15,8 @@ pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     conserved(e, rate)
 }
 
-pub(super) fn check(
-    cx: Context,
-    of: &str,
-    result: &StepResult,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    let StepResult::Conserved { value, conserved } = result else {
+pub(super) fn check(cx: Checking, of: &str, check: &mut StepCheck) -> Result<(), CheckError> {
+    let StepResult::Conserved { value, conserved } = cx.result else {
         return Err(CheckError::NotDerived);
     };
     let lagrangian = scalar_of(cx.d, of)?;

@@ -7,7 +7,7 @@
 //!   scene's values (`verify/rest.rs`); several, each state put into every static equation, and
 //!   Newton's method from a grid finding the same states, no more (`verify/rest_states.rs`).
 
-use super::{Context, free_equations, single_equation};
+use super::{Checking, Context, free_equations, single_equation};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::equilibria;
 use crate::derive::step_names::StepResult;
@@ -33,13 +33,8 @@ pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     })
 }
 
-pub(super) fn check(
-    cx: Context,
-    of: &str,
-    result: &StepResult,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    match result {
+pub(super) fn check(cx: Checking, of: &str, check: &mut StepCheck) -> Result<(), CheckError> {
+    match cx.result {
         StepResult::Equilibria {
             coordinate, zeros, ..
         } => {

@@ -8,7 +8,7 @@
 //!   the state of rest; several, each mode against √λ of M⁻¹K by nalgebra's Schur
 //!   decomposition (`verify/motion.rs`).
 
-use super::{Context, equations};
+use super::{Checking, Context, equations};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::frequency;
 use crate::derive::modes::normal_modes;
@@ -31,14 +31,9 @@ pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     })
 }
 
-pub(super) fn check(
-    cx: Context,
-    of: &str,
-    result: &StepResult,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
+pub(super) fn check(cx: Checking, of: &str, check: &mut StepCheck) -> Result<(), CheckError> {
     let scene = cx.scene;
-    match result {
+    match cx.result {
         StepResult::Modes(modes) => modes_check(scene, equations_of(cx.d, of)?, modes, check),
         StepResult::NumericModes { frequencies, .. } => {
             modes_agreement(scene, equations_of(cx.d, of)?, frequencies, check)

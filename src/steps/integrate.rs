@@ -4,7 +4,7 @@
 //! - Exact rule: `derive/integral.rs`.
 //! - Numeric route: adaptive quadrature at the scene's values (`verify/integral.rs`).
 
-use super::Context;
+use super::{Checking, Context};
 use crate::cas::Expr;
 use crate::derive::DeriveError;
 use crate::derive::step_names::{StepResult, expand_names, expand_ranges};
@@ -32,13 +32,12 @@ pub(super) fn derive(
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &Expr,
     over: &[(String, Expr, Expr)],
-    result: &StepResult,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
-    let StepResult::Expr(exact) = result else {
+    let StepResult::Expr(exact) = cx.result else {
         return Err(CheckError::NotDerived);
     };
     let f = expand_names(cx.scene, cx.d, cx.step, of)?;

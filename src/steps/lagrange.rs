@@ -7,7 +7,7 @@
 //! - Numeric route: the motion integrated from the start, the energy Σ q'·∂L/∂q' − L (found by
 //!   differences) and each constraint's drift watched (`verify/motion.rs`).
 
-use super::{Context, scalar, scalar_of, simplified};
+use super::{Checking, Context, scalar, scalar_of, simplified};
 use crate::cas::Expr;
 use crate::derive::constraints::{does_not_integrate, with_multipliers};
 use crate::derive::lagrangian::euler_lagrange;
@@ -28,13 +28,12 @@ pub(super) fn derive(
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &str,
     constraints: &[(String, Expr)],
-    result: &StepResult,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
-    let StepResult::Equations(eqs) = result else {
+    let StepResult::Equations(eqs) = cx.result else {
         return Err(CheckError::NotDerived);
     };
     energy_check(

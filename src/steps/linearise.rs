@@ -6,7 +6,7 @@
 //! - Numeric route: the full equations against the linear ones at random states near the
 //!   state of rest (`verify/motion.rs`).
 
-use super::{Context, free_equations, simplified};
+use super::{Checking, Context, free_equations, simplified};
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::linearise;
@@ -36,14 +36,12 @@ pub(super) fn derive(
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &str,
     about: &BTreeMap<String, Expr>,
-    result: &StepResult,
-    seed: u64,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
-    let StepResult::Equations(linear) = result else {
+    let StepResult::Equations(linear) = cx.result else {
         return Err(CheckError::NotDerived);
     };
     linear_check(
@@ -51,7 +49,7 @@ pub(super) fn check(
         equations_of(cx.d, of)?,
         linear,
         about,
-        seed,
+        cx.seed,
         check,
     )
 }

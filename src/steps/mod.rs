@@ -44,6 +44,17 @@ struct Context<'a> {
     step: &'a AuthorStep,
 }
 
+/// A step's numeric check at hand: the step in its context, its derived result, and the seed
+/// of its random points.
+#[derive(Clone, Copy)]
+struct Checking<'a> {
+    scene: &'a Scene,
+    d: &'a Derivation,
+    step: &'a AuthorStep,
+    result: &'a StepResult,
+    seed: u64,
+}
+
 /// Derives every step in order, each simplified by the engine, and writes its page steps.
 pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError> {
     let start = std::time::Instant::now();
@@ -348,33 +359,33 @@ fn route(
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
     let result = d.named.get(&step.name).ok_or(CheckError::NotDerived)?;
-    let cx = Context { scene, d, step };
+    let cx = Checking {
+        scene,
+        d,
+        step,
+        result,
+        seed,
+    };
     match &step.op {
-        Operation::Be(e) => be::check(cx, e, result, seed, check),
-        Operation::Differentiate { of, by } => {
-            differentiate::check(cx, of, by, result, seed, check)
-        }
-        Operation::Substitute { of, set } => substitute::check(cx, of, set, result, seed, check),
-        Operation::Lagrange { of, constraints } => {
-            lagrange::check(cx, of, constraints, result, check)
-        }
-        Operation::Routh { of, cyclic } => routh::check(cx, of, cyclic, result, check),
-        Operation::Momentum { of, coordinate } => {
-            momentum::check(cx, of, coordinate, result, check)
-        }
-        Operation::Energy { of } => energy::check(cx, of, result, check),
-        Operation::Linearise { of, about } => linearise::check(cx, of, about, result, seed, check),
-        Operation::Frequency { of } => frequency::check(cx, of, result, check),
-        Operation::Solve { of, unknowns } => solve::check(cx, of, unknowns, result, seed, check),
+        Operation::Be(e) => be::check(cx, e, check),
+        Operation::Differentiate { of, by } => differentiate::check(cx, of, by, check),
+        Operation::Substitute { of, set } => substitute::check(cx, of, set, check),
+        Operation::Lagrange { of, constraints } => lagrange::check(cx, of, constraints, check),
+        Operation::Routh { of, cyclic } => routh::check(cx, of, cyclic, check),
+        Operation::Momentum { of, coordinate } => momentum::check(cx, of, coordinate, check),
+        Operation::Energy { of } => energy::check(cx, of, check),
+        Operation::Linearise { of, about } => linearise::check(cx, of, about, check),
+        Operation::Frequency { of } => frequency::check(cx, of, check),
+        Operation::Solve { of, unknowns } => solve::check(cx, of, unknowns, check),
         Operation::Series {
             of,
             var,
             about,
             order,
-        } => series::check(cx, of, var, about, *order, result, check),
-        Operation::Integrate { of, over } => integrate::check(cx, of, over, result, check),
-        Operation::Equilibria { of } => equilibria::check(cx, of, result, check),
-        Operation::Stability { of } => stability::check(cx, of, result, check),
+        } => series::check(cx, of, var, about, *order, check),
+        Operation::Integrate { of, over } => integrate::check(cx, of, over, check),
+        Operation::Equilibria { of } => equilibria::check(cx, of, check),
+        Operation::Stability { of } => stability::check(cx, of, check),
     }
 }
 

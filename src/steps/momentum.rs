@@ -5,7 +5,7 @@
 //! - Numeric route: the motion of L integrated, the momentum's drift watched (or its change
 //!   against the force, when it is not conserved) (`verify/motion.rs`).
 
-use super::{Context, conserved, scalar, scalar_of};
+use super::{Checking, Context, conserved, scalar, scalar_of};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::momentum;
 use crate::derive::step_names::StepResult;
@@ -18,13 +18,12 @@ pub(super) fn derive(cx: Context, of: &str, coordinate: &str) -> Result<StepResu
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &str,
     coordinate: &str,
-    result: &StepResult,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
-    let StepResult::Conserved { value, conserved } = result else {
+    let StepResult::Conserved { value, conserved } = cx.result else {
         return Err(CheckError::NotDerived);
     };
     let lagrangian = scalar_of(cx.d, of)?;

@@ -5,7 +5,7 @@
 //! - Numeric route: the full motion of L integrated, R against L − p φ' at every state and p's
 //!   drift watched (`verify/routh.rs`).
 
-use super::{Context, scalar, scalar_of};
+use super::{Checking, Context, scalar, scalar_of};
 use crate::derive::DeriveError;
 use crate::derive::step_names::StepResult;
 use crate::verify::step_check::{CheckError, StepCheck};
@@ -22,13 +22,12 @@ pub(super) fn derive(
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &str,
     cyclic: &[(String, String)],
-    result: &StepResult,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
-    let StepResult::Expr(routhian) = result else {
+    let StepResult::Expr(routhian) = cx.result else {
         return Err(CheckError::NotDerived);
     };
     let lagrangian = scalar_of(cx.d, of)?;

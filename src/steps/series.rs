@@ -4,7 +4,7 @@
 //! - Numeric route: the expression as written against its series at four steps h, h/2, h/4,
 //!   h/8 from the point, the remainder shrinking like h^(order+1) (`verify/series.rs`).
 
-use super::Context;
+use super::{Checking, Context};
 use crate::cas::Expr;
 use crate::derive::DeriveError;
 use crate::derive::step_names::{StepResult, expand_names};
@@ -26,15 +26,14 @@ pub(super) fn derive(
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &Expr,
     var: &str,
     about: &Expr,
     order: u32,
-    result: &StepResult,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
-    let StepResult::Expr(s) = result else {
+    let StepResult::Expr(s) = cx.result else {
         return Err(CheckError::NotDerived);
     };
     let f = expand_names(cx.scene, cx.d, cx.step, of)?;

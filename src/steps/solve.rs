@@ -6,7 +6,7 @@
 //! - Numeric route: each solution put back into its equations at random points and at the
 //!   scene's values (`verify/solve.rs`).
 
-use super::Context;
+use super::{Checking, Context};
 use crate::cas::Expr;
 use crate::derive::DeriveError;
 use crate::derive::result_order::{positive_roots, stable_order};
@@ -44,23 +44,21 @@ pub(super) fn derive(
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &str,
     unknowns: &[String],
-    result: &StepResult,
-    seed: u64,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
-    match result {
+    match cx.result {
         StepResult::Expr(_) | StepResult::Roots(_) => {
             let unknown = &unknowns[0];
             let all = solvable_of(cx.d, of)?;
             let eqs = std::slice::from_ref(equation_with(&all, unknown)?);
-            let roots: Vec<&Expr> = match result {
+            let roots: Vec<&Expr> = match cx.result {
                 StepResult::Roots(roots) => roots.iter().collect(),
-                _ => result.scalar().into_iter().collect(),
+                _ => cx.result.scalar().into_iter().collect(),
             };
-            roots_check(cx.scene, eqs, &roots, unknown, seed, check)
+            roots_check(cx.scene, eqs, &roots, unknown, cx.seed, check)
         }
         StepResult::Solution(solution) => {
             let eqs: Vec<(String, Expr)> = solvable_of(cx.d, of)?
@@ -68,7 +66,7 @@ pub(super) fn check(
                 .filter(|(_, e)| e.symbols().iter().any(|s| unknowns.contains(s)))
                 .cloned()
                 .collect();
-            system_check(cx.scene, &eqs, solution, seed, check)
+            system_check(cx.scene, &eqs, solution, cx.seed, check)
         }
         _ => Err(CheckError::NotDerived),
     }

@@ -8,7 +8,7 @@
 //!   (`verify/rest.rs`); several, the stiffness by central differences and the eigenvalues of
 //!   M⁻¹K against the verdict (`verify/rest_states.rs`).
 
-use super::{Context, equations, single_equation};
+use super::{Checking, Context, equations, single_equation};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::stability;
 use crate::derive::sign::{Sign, signs_over_positive};
@@ -63,14 +63,9 @@ pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     })
 }
 
-pub(super) fn check(
-    cx: Context,
-    of: &str,
-    result: &StepResult,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
+pub(super) fn check(cx: Checking, of: &str, check: &mut StepCheck) -> Result<(), CheckError> {
     let motion = equilibria_source(cx.scene, of).ok_or(CheckError::NotDerived)?;
-    match result {
+    match cx.result {
         StepResult::Stability { coordinate, cases } => {
             let r = single_equation(cx.d, motion, coordinate)?;
             stability_check(cx.scene, r, coordinate, cases, check)

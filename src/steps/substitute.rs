@@ -6,7 +6,7 @@
 //! - Numeric route: the expression as written, each replaced name given its replacement's
 //!   value, at random points.
 
-use super::{Context, simplified};
+use super::{Checking, Context, simplified};
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
@@ -51,15 +51,13 @@ pub(super) fn derive(
 }
 
 pub(super) fn check(
-    cx: Context,
+    cx: Checking,
     of: &Expr,
     set: &BTreeMap<String, Expr>,
-    result: &StepResult,
-    seed: u64,
     check: &mut StepCheck,
 ) -> Result<(), CheckError> {
     // Each expression as written beside its result: one, or one per equation.
-    let pairs: Vec<(Expr, &Expr)> = match (substituted_equations(cx.d, of), result) {
+    let pairs: Vec<(Expr, &Expr)> = match (substituted_equations(cx.d, of), cx.result) {
         (Some(before), StepResult::Equations(after)) => before
             .iter()
             .zip(after)
@@ -74,7 +72,7 @@ pub(super) fn check(
          {CONFIRMATION_POINTS} random points"
     );
     check.tolerance = NUMERICALLY_ZERO;
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::new(cx.seed);
     let mut valued = 0;
     for _ in 0..CONFIRMATION_POINTS {
         let exprs: Vec<&Expr> = pairs
@@ -84,7 +82,7 @@ pub(super) fn check(
             .collect();
         let point = random_point(&exprs, &mut rng, cx.scene);
         // All at once, as the exact rule replaces: a replacement that names another
-        // replaced name takes that name's value before the replacement. The result is
+        // replaced name takes that name's value before the replacement. The cx.result is
         // in the names as they were (after a swap, x stands where y stood).
         let mut replaced = point.clone();
         for (name, e) in &values {
