@@ -55,6 +55,18 @@ fn sheet_headings(m: &mut Markup) {
     m.raw("#show heading.where(level: 2): set text(10.5pt)\n");
 }
 
+/// Sheet variant `k`'s problems, each as `columns` wrote it, then the end of its block.
+fn variant_problems(m: &mut Markup, sheet: &Sheet, k: usize, columns: &mut Columns) {
+    for sp in &sheet.variants[k].problems {
+        let (_, p) = sheet.problem(sp.problem);
+        let part = columns.next(sp.problem);
+        m.scene_part(&p.source, p.line, &p.names, |m| {
+            m.raw(&part);
+        });
+    }
+    end_variant(m);
+}
+
 /// Closes the block [`start_variant`] opened.
 fn end_variant(m: &mut Markup) {
     m.raw("\n]\n");
@@ -87,14 +99,7 @@ pub fn student_sheet(
                 );
             }
         }
-        for sp in &sheet.variants[*k].problems {
-            let (_, p) = sheet.problem(sp.problem);
-            let part = columns.next(sp.problem);
-            m.scene_part(&p.source, p.line, &p.names, |m| {
-                m.raw(&part);
-            });
-        }
-        end_variant(m);
+        variant_problems(m, sheet, *k, &mut columns);
     }
     Ok(())
 }
@@ -145,14 +150,7 @@ pub fn key(
     for (i, (k, student)) in which.iter().enumerate() {
         let right = start_variant(m, head, sheet, (i, *k, *student));
         m.raw("\n#heading(level: 1)[").text(&right).raw("]\n");
-        for sp in &sheet.variants[*k].problems {
-            let (_, p) = sheet.problem(sp.problem);
-            let part = columns.next(sp.problem);
-            m.scene_part(&p.source, p.line, &p.names, |m| {
-                m.raw(&part);
-            });
-        }
-        end_variant(m);
+        variant_problems(m, sheet, *k, &mut columns);
     }
     Ok(())
 }
