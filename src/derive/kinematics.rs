@@ -38,8 +38,12 @@ fn two_routes(
     if let Some((direct, what, why)) = direct {
         let direct = simplify_value(&direct)?;
         d.steps.push(
-            Step::equation(&format!("{what}, from the definition"), what, &direct, why)
-                .second_route(),
+            Step::titled(
+                Prose::default().math(what).text(", from the definition"),
+                Formula::equation(Formula::parse(what, &[]), direct.to_expr()),
+                why,
+            )
+            .second_route(),
         );
         if !values_equal(&direct, &from_tensor)? {
             return Err(DeriveError::Inconsistent(format!(
@@ -71,7 +75,7 @@ pub fn angular_momentum(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveE
         );
         (
             Value::Vector(sum),
-            "L",
+            "vec(L)",
             cited(
                 "angular-momentum-direct",
                 Prose::default()

@@ -356,3 +356,45 @@ fn an_integration_steps_name_prints_alike_on_the_page_and_in_the_pdf() {
         assert!(t.starts_with(typst), "{t}");
     }
 }
+
+/// The definition's route is headed by its symbol set as mathematics (`L⃗`, `I_n`), and states
+/// the same vector the tensor's route does: never a name printed as text ("I_n, from the
+/// definition").
+#[test]
+fn the_definitions_route_is_headed_by_its_symbol_as_mathematics() {
+    let text = "id = \"t\"\ntitle = \"t\"\nnotes = { lecture = \"x\" }\n\
+        symbols = { M = \"m\", d = \"d\", w = \"w\" }\n\
+        omega = [\"0\", \"0\", \"w\"]\naxis = [\"0\", \"0\", \"1\"]\n\
+        [[body]]\nkind = \"points\"\n\
+        points = [{ mass = \"M\", at = [\"d\", \"0\", \"0\"] }, { mass = \"2*M\", at = [\"0\", \"d\", \"d\"] }]\n\
+        [outputs]\nwant = [\"angular_momentum\", \"kinetic_energy\", \"moment_about_axis\"]\n\
+        [numeric]\nvalues = { M = 1.0, d = 1.0, w = 2.0 }\n";
+    let scene = Scene::parse(text, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let r = run_scene(scene, None).unwrap();
+    let routes: Vec<_> = r
+        .derivation
+        .steps
+        .iter()
+        .filter(|s| s.second_route)
+        .collect();
+    assert_eq!(routes.len(), 3);
+    let none = crate::notation::Names::none();
+    for s in &routes {
+        let crate::model::prose::Piece::Math(symbol) = &s.title.0[0] else {
+            panic!("a heading that opens with text: {:?}", s.title);
+        };
+        let crate::notation::Formula::Row(sides) = &s.statement else {
+            panic!("not an equation: {:?}", s.statement);
+        };
+        assert_eq!(symbol.to_latex(none), sides[0].to_latex(none));
+    }
+    let symbols: Vec<String> = routes
+        .iter()
+        .map(|s| s.title.0[0].clone())
+        .map(|p| match p {
+            crate::model::prose::Piece::Math(f) => f.to_latex(none),
+            crate::model::prose::Piece::Text(t) => t,
+        })
+        .collect();
+    assert_eq!(symbols, ["\\vec{L}", "T", "I_{n}"]);
+}
