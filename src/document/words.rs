@@ -2,9 +2,10 @@
 //! numeric check's sentence, the scene's values, the entries of a result at its numbers, and
 //! how a claim leads into its formula. Decided here once, so that the page and the paper agree.
 
-use super::{At, Page, Quantity};
+use super::{At, Page, PrincipalAxis, PrincipalValues, Quantity};
 use crate::base::format::sci;
 use crate::cas::Expr;
+use crate::derive::ExactBasis;
 use crate::model::value::Value;
 use crate::notation::{Formula, Op};
 
@@ -20,6 +21,88 @@ pub fn result_heading(q: &Quantity) -> String {
 /// A step's result as the page states it: `symbol = value`.
 pub fn result_equation(symbol: &Expr, value: &Value) -> Formula {
     Formula::equation(Formula::Expr(symbol.clone()), value.to_expr())
+}
+
+/// A computed number to `digits` significant figures as a formula: its digits, and its power
+/// of ten as a power (4.6875 × 10⁻⁶, never e-notation).
+pub fn number(x: f64, digits: usize) -> Formula {
+    Formula::decimal(&crate::base::format::significant(x, digits))
+}
+
+/// A principal moment's heading.
+pub fn principal_axis_heading(sp: &PrincipalAxis) -> String {
+    format!("Principal moment (multiplicity {})", sp.multiplicity)
+}
+
+/// A principal moment with its axis, its plane of axes, or every axis: `λ along (1, 0, 0)`.
+pub fn principal_axis(sp: &PrincipalAxis) -> Formula {
+    let vector = |v: &[Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
+    let mut row = vec![Formula::Expr(sp.value.clone())];
+    match &sp.basis {
+        ExactBasis::Axis(a) => row.extend([Formula::Text(" along ".into()), vector(a)]),
+        ExactBasis::PlaneNormalTo(n) => row.extend([
+            Formula::Text(", every axis ".into()),
+            Formula::Op(Op::Perp),
+            vector(n),
+        ]),
+        ExactBasis::All => row.push(Formula::Text(", every axis".into())),
+    }
+    Formula::Row(row)
+}
+
+/// The heading of the principal moments at the scene's values.
+pub const PRINCIPAL_VALUES_HEADING: &str = "Principal moments at the scene's values";
+
+/// The principal moments at the scene's values, `λ = 1, 2, 3`, and where they come from the
+/// closed form, the eigen-solver's axes to four figures.
+pub fn principal_values(p: &PrincipalValues) -> Formula {
+    use crate::numeric::eigen::Space;
+    let letter = Formula::Name(crate::notation::Name::letter(&p.letter));
+    let mut row = vec![
+        letter,
+        Formula::Op(Op::Equals),
+        listed(p.exact.iter().map(|v| number(*v, 6))),
+    ];
+    if p.closed_form {
+        let axes: Vec<Formula> = p
+            .numeric
+            .iter()
+            .filter_map(|e| match &e.space {
+                Space::Axis(v) => Some(Formula::Paren(
+                    Box::new(Formula::Row(vec![
+                        number(v.x, 4),
+                        Formula::Op(Op::Comma),
+                        number(v.y, 4),
+                        Formula::Op(Op::Comma),
+                        number(v.z, 4),
+                    ])),
+                    true,
+                )),
+                _ => None,
+            })
+            .collect();
+        if !axes.is_empty() {
+            row.extend([
+                Formula::Op(Op::Quad),
+                Formula::Text("axes ".into()),
+                listed(axes),
+            ]);
+        }
+    }
+    Formula::Row(row)
+}
+
+/// How the principal moments at the scene's values were found, and how well the eigen-solver
+/// agrees with them.
+pub fn principal_values_agree(p: &PrincipalValues) -> String {
+    let route = match p.closed_form {
+        true => "the closed form above",
+        false => "the exact roots",
+    };
+    format!(
+        "{route} evaluated, and the eigen-solver on the exact tensor agrees to {} (relative)",
+        sci(p.error)
+    )
 }
 
 /// Formulas one after another, set apart by a comma and a space: `a = 1,\; b = 2`.

@@ -3,7 +3,8 @@
 
 use super::guard::Guard;
 use super::math;
-use super::prose::{author_html, number, prose_html};
+use super::prose::{author_html, prose_html};
+use crate::document::words::number;
 use crate::document::words::{claim_lead, claim_shows_formula};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::value::Value;

@@ -2,13 +2,13 @@
 //! claims and figures, each formula converted to MathML.
 
 use super::claim_view::ClaimView;
-use super::prose::{author_html, number, prose_html, unit_html};
+use super::prose::{author_html, prose_html, unit_html};
 use super::{guard, math};
 use crate::base::format::sci;
 use crate::cas::Expr;
-use crate::derive::ExactBasis;
 use crate::document::words::{
-    at_entries, check_sentence, listed, numbers_formula, result_equation, result_heading, values_at,
+    self, at_entries, check_sentence, listed, number, numbers_formula, result_equation,
+    result_heading, values_at,
 };
 use crate::document::{At, Link, Page, PrincipalValues};
 use crate::model::value::Value;
@@ -306,20 +306,9 @@ fn principal_views(page: &Page) -> Result<Vec<StepView>, RenderError> {
     let names = &page.names;
     let mut principal = Vec::new();
     for sp in &page.principal_axes {
-        let vector = |v: &[Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
-        let mut row = vec![Formula::Expr(sp.value.clone())];
-        match &sp.basis {
-            ExactBasis::Axis(a) => row.extend([Formula::Text(" along ".into()), vector(a)]),
-            ExactBasis::PlaneNormalTo(n) => row.extend([
-                Formula::Text(", every axis ".into()),
-                Formula::Op(Op::Perp),
-                vector(n),
-            ]),
-            ExactBasis::All => row.push(Formula::Text(", every axis".into())),
-        }
         principal.push(StepView {
-            title: format!("Principal moment (multiplicity {})", sp.multiplicity),
-            math: math::block(&Formula::Row(row).to_tex(names))?,
+            title: words::principal_axis_heading(sp),
+            math: math::block(&words::principal_axis(sp).to_tex(names))?,
             why: String::new(),
             at: String::new(),
             check: String::new(),
@@ -375,57 +364,16 @@ fn figure_views(page: &Page, timings: bool) -> Vec<FigureView> {
 /// The principal moments as numbers, with the axes when only the numerics give them, and how
 /// well the two routes agree.
 fn principal_values_view(p: &PrincipalValues, names: &Names) -> Result<StepView, RenderError> {
-    use crate::numeric::eigen::Space;
-    let letter = Formula::Name(crate::notation::Name::letter(&p.letter));
-    let mut row = vec![
-        letter,
-        Formula::Op(Op::Equals),
-        listed(p.exact.iter().map(|v| number(*v, 6))),
-    ];
-    if p.closed_form {
-        let axes: Vec<Formula> = p
-            .numeric
-            .iter()
-            .filter_map(|e| match &e.space {
-                Space::Axis(v) => Some(Formula::Paren(
-                    Box::new(Formula::Row(vec![
-                        number(v.x, 4),
-                        Formula::Op(Op::Comma),
-                        number(v.y, 4),
-                        Formula::Op(Op::Comma),
-                        number(v.z, 4),
-                    ])),
-                    true,
-                )),
-                _ => None,
-            })
-            .collect();
-        if !axes.is_empty() {
-            row.extend([
-                Formula::Op(Op::Quad),
-                Formula::Text("axes ".into()),
-                listed(axes),
-            ]);
-        }
-    }
-    let route = if p.closed_form {
-        "the closed form above"
-    } else {
-        "the exact roots"
-    };
+    let row = words::principal_values(p);
     Ok(StepView {
         at: String::new(),
         check: String::new(),
-        title: "Principal moments at the scene's values".into(),
-        math: math::block(&Formula::Row(row).to_tex(names))?,
+        title: words::PRINCIPAL_VALUES_HEADING.into(),
+        math: math::block(&row.to_tex(names))?,
         why: format!(
             "at {}: {}",
             math::inline(&values_at(&p.values).to_tex(names))?,
-            tera::escape_html(&format!(
-                "{route} evaluated, and the eigen-solver on the exact tensor agrees to {} \
-                 (relative)",
-                sci(p.error)
-            ))
+            tera::escape_html(&words::principal_values_agree(p))
         ),
     })
 }

@@ -1,7 +1,7 @@
 //! An author's words and mechbook's numbers and units as HTML, for every page of the site.
 
 use super::math;
-use crate::notation::{Formula, Names};
+use crate::notation::Names;
 use crate::render::RenderError;
 
 /// A sentence as HTML: its text escaped, its formulas as MathML.
@@ -26,11 +26,6 @@ pub fn prose_html(
 /// as the author wrote it).
 pub fn author_html(text: &str) -> Result<String, RenderError> {
     prose_html(&crate::model::prose::author(text), Names::none())
-}
-
-/// A computed number to `digits` significant figures (4.6875 × 10⁻⁶, never e-notation).
-pub fn number(x: f64, digits: usize) -> Formula {
-    Formula::decimal(&crate::base::format::significant(x, digits))
 }
 
 /// A unit as HTML: `kg m^2/s` as kg m<sup>2</sup>/s, a `*` as a space.

@@ -5,12 +5,10 @@
 //! solutions (contents, every step with its reason and check, the results, the figures).
 
 use super::markup::{
-    Markup, decimal_formula, expr, formula, number, said_equation, said_number, said_symbol, symbol,
+    Markup, expr, formula, number, said_equation, said_number, said_symbol, symbol,
 };
 use super::quantities::{numbers_typst, said_unit, unit_typst};
-use crate::base::format::sci;
 use crate::cas::Expr;
-use crate::derive::ExactBasis;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
 use crate::document::{At, Page, PrincipalAxis, PrincipalValues, Quantity, words};
 use crate::model::catalogue::quantity_symbol;
@@ -219,39 +217,18 @@ fn quantity(m: &mut Markup, q: &Quantity, names: &Names) -> Result<(), RenderErr
     Ok(())
 }
 
-/// A principal moment with its axis, its plane of axes, or every axis.
+/// A principal moment with its axis, its plane of axes, or every axis, as the page prints it.
 fn principal_axis(m: &mut Markup, sp: &PrincipalAxis, names: &Names) -> Result<(), RenderError> {
-    m.heading(
-        3,
-        &format!("Principal moment (multiplicity {})", sp.multiplicity),
-    )?;
-    let vector = |v: &[crate::cas::Expr; 3]| Formula::Expr(Value::Vector(v.clone()).to_expr());
-    let mut row = vec![Formula::Expr(sp.value.clone()), Formula::Op(Op::Quad)];
-    match &sp.basis {
-        ExactBasis::Axis(a) => row.extend([Formula::Text("along ".into()), vector(a)]),
-        ExactBasis::PlaneNormalTo(n) => row.extend([
-            Formula::Text("every axis".into()),
-            Formula::Op(Op::Perp),
-            vector(n),
-        ]),
-        ExactBasis::All => row.push(Formula::Text("every axis".into())),
-    }
-    let tex = Formula::Row(row).to_tex(names);
+    m.heading(3, &words::principal_axis_heading(sp))?;
+    let tex = words::principal_axis(sp).to_tex(names);
     m.block(&tex, &tex.spoken())?;
     Ok(())
 }
 
 /// The principal moments at the scene's values, and the eigen-solver's agreement with them.
 fn principal_values(m: &mut Markup, p: &PrincipalValues, names: &Names) -> Result<(), RenderError> {
-    m.heading(3, "Principal moments at the scene's values")?;
-    let mut row = vec![Formula::Expr(Expr::sym(&p.letter)), Formula::Op(Op::Equals)];
-    for (k, v) in p.exact.iter().enumerate() {
-        if k > 0 {
-            row.extend([Formula::Op(Op::Comma), Formula::Op(Op::Thin)]);
-        }
-        row.push(decimal_formula(*v, 6));
-    }
-    let tex = Formula::Row(row).to_tex(names);
+    m.heading(3, words::PRINCIPAL_VALUES_HEADING)?;
+    let tex = words::principal_values(p).to_tex(names);
     m.block(&tex, &tex.spoken())?;
     m.raw("#text(9.5pt)[").text("at ");
     let values = words::values_at(&p.values);
@@ -259,10 +236,7 @@ fn principal_values(m: &mut Markup, p: &PrincipalValues, names: &Names) -> Resul
         &super::markup::formula(&values, names)?,
         &values.to_tex(names).spoken(),
     );
-    m.text(&format!(
-        ": the eigen-solver on the exact tensor agrees to {} (relative)",
-        sci(p.error)
-    ));
+    m.text(&format!(": {}", words::principal_values_agree(p)));
     m.raw("]\n");
     Ok(())
 }
@@ -439,7 +413,7 @@ fn derived_side(page: &Page, i: usize) -> Option<Result<Tex, RenderError>> {
     let c = &page.claims[i];
     c.derived.as_ref().map(|v| match v {
         Value::Scalar(e) if c.precision.is_some() => Ok(match e.eval(&|_| None) {
-            Ok(x) if x.is_finite() => decimal_formula(x, 7).to_tex(Names::none()),
+            Ok(x) if x.is_finite() => words::number(x, 7).to_tex(Names::none()),
             _ => e.to_tex(names),
         }),
         // The form the page prints for the result (`Page::claim_derived`).

@@ -247,13 +247,9 @@ pub fn said_number(x: f64, digits: usize) -> String {
     if !x.is_finite() {
         return x.to_string();
     }
-    decimal_formula(x, digits).to_tex(Names::none()).spoken()
-}
-
-/// A computed number to `digits` significant figures as a formula: its digits, and its power
-/// of ten as a power (4.6875 × 10⁻⁶, never e-notation).
-pub fn decimal_formula(x: f64, digits: usize) -> Formula {
-    Formula::decimal(&crate::base::format::significant(x, digits))
+    crate::document::words::number(x, digits)
+        .to_tex(Names::none())
+        .spoken()
 }
 
 /// A symbol's name in Typst's math.
@@ -266,7 +262,7 @@ pub fn number(x: f64, digits: usize) -> String {
     if !x.is_finite() {
         return typst_string(&x.to_string());
     }
-    decimal_typst(&decimal_formula(x, digits))
+    decimal_typst(&crate::document::words::number(x, digits))
 }
 
 /// A number's formula in Typst's math: digits, signs and powers, which every printer sets.
