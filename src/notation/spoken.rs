@@ -4,7 +4,7 @@
 
 use super::latex::{Node, Tex};
 use pulldown_latex::event::{
-    Content, EnvironmentFlow, Grouping, ScriptPosition, ScriptType, Visual,
+    Content, EnvironmentFlow, Font, Grouping, ScriptPosition, ScriptType, StateChange, Visual,
 };
 
 impl Tex {
@@ -36,7 +36,34 @@ fn say(nodes: &[Node], out: &mut Vec<String>) {
             out.push("times".into());
             continue;
         }
+        // A slash between two units is "per": "m per s squared".
+        if is_slash(n)
+            && k.checked_sub(1).is_some_and(|j| is_unit(&nodes[j]))
+            && nodes.get(k + 1).is_some_and(is_unit)
+        {
+            out.push("per".into());
+            continue;
+        }
         node(n, out);
+    }
+}
+
+fn is_slash(n: &Node) -> bool {
+    matches!(
+        n,
+        Node::Atom(Content::BinaryOp { content: '/', .. } | Content::Ordinary { content: '/', .. })
+    )
+}
+
+/// An upright symbol, or one raised to a power: a unit's factor (`model::units::unit_formula`).
+fn is_unit(n: &Node) -> bool {
+    match n {
+        Node::Group(_, inner) => matches!(
+            inner.first(),
+            Some(Node::State(StateChange::Font(Some(Font::UpRight))))
+        ),
+        Node::Script { parts, .. } => parts.first().is_some_and(is_unit),
+        _ => false,
     }
 }
 
@@ -344,6 +371,27 @@ mod tests {
         let said_row = row.to_tex(crate::notation::Names::none()).spoken();
         assert!(said_row.contains("is perpendicular to"), "{said_row}");
         assert!(said(r"a \perp b").contains("is perpendicular to"));
+    }
+
+    /// A unit's slash is "per", as a unit is read aloud; a slash between symbols stays "over".
+    #[test]
+    fn a_slash_between_units_is_per() {
+        use crate::notation::{Formula, Name, Names, Op};
+        let up = |s: &str| Formula::Upright(s.into());
+        let unit = Formula::Row(vec![
+            up("kg"),
+            Formula::Op(Op::Thin),
+            Formula::Sup(Box::new(up("m")), Box::new(Formula::Number("2".into()))),
+            Formula::Op(Op::Slash),
+            up("s"),
+        ]);
+        assert_eq!(unit.to_tex(Names::none()).spoken(), "kg m squared per s");
+        let ratio = Formula::Row(vec![
+            Formula::Name(Name::letter("L")),
+            Formula::Op(Op::Slash),
+            Formula::Name(Name::letter("g")),
+        ]);
+        assert_eq!(ratio.to_tex(Names::none()).spoken(), "L over g");
     }
 
     /// An upright word is one identifier on the page, one text run in Typst, and one word to a

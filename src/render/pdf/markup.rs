@@ -227,7 +227,7 @@ pub fn expr(e: &Expr, names: &Names) -> String {
 
 /// A tree mechbook built, in Typst's math. It holds nothing Typst's math refuses: only an
 /// author's colour is, and scene validation refuses that first.
-fn typst(t: &Tex) -> String {
+pub(super) fn typst(t: &Tex) -> String {
     t.to_typst().unwrap_or_else(|_| typst_string(&t.source))
 }
 

@@ -1,6 +1,8 @@
 //! Numbers and units as the PDFs print them, shared by the handouts and the problem sheets.
 
+use crate::model::units::unit_formula;
 use crate::model::value::Value;
+use crate::notation::{Names, Tex};
 
 /// Numbers in the shape of `v`: a number, a row or a matrix.
 pub(super) fn numbers_typst(v: &Value, n: &[String]) -> String {
@@ -17,40 +19,18 @@ pub(super) fn numbers_typst(v: &Value, n: &[String]) -> String {
     }
 }
 
-/// A unit in words, after its number: " m per s squared".
+/// A unit in words, after its number, said from the tree the page sets, as its alternative
+/// text says it.
 pub(super) fn said_unit(text: &str) -> String {
-    let words = text
-        .replace('*', " ")
-        .replace('/', " per ")
-        .replace("^2", " squared")
-        .replace("^3", " cubed")
-        .replace('^', " to the power ");
-    format!(" {words}")
+    format!(" {}", unit_tex(text).spoken())
 }
 
-/// A unit in Typst's math, upright: `kg m^2/s` as kg m²/s, each power raised after the text
-/// before it.
+/// A unit in Typst's math, printed from the tree the page sets (`model::units::unit_formula`):
+/// each symbol upright with its power, thin spaces between.
 pub(super) fn unit_typst(text: &str) -> String {
-    let text = text.replace('*', " ");
-    let mut out = String::new();
-    let mut rest = text.as_str();
-    while let Some(i) = rest.find('^') {
-        let power: String = rest[i + 1..]
-            .chars()
-            .take_while(|c| c.is_ascii_digit() || *c == '-')
-            .collect();
-        out.push_str(&format!(
-            "upright({})^({}) ",
-            crate::base::typst::typst_string(&rest[..i]),
-            power.replace('-', "−")
-        ));
-        rest = &rest[i + 1 + power.len()..];
-    }
-    if !rest.is_empty() {
-        out.push_str(&format!(
-            "upright({})",
-            crate::base::typst::typst_string(rest)
-        ));
-    }
-    out.trim_end().to_string()
+    super::markup::typst(&unit_tex(text))
+}
+
+fn unit_tex(text: &str) -> Tex {
+    unit_formula(text).to_tex(Names::none())
 }

@@ -347,3 +347,12 @@ fn the_typst_markup_of_a_handout() {
         .expect("a student's handout");
     insta::assert_snapshot!("typst_student_handout", student.markup);
 }
+
+/// A unit on paper is said as the page's alternative text says it: "per", "squared".
+#[test]
+fn a_unit_is_said_as_the_page_says_it() {
+    use super::quantities::said_unit;
+    assert_eq!(said_unit("m/s^2"), " m per s squared");
+    assert_eq!(said_unit("kg m^2"), " kg m squared");
+    assert_eq!(said_unit("kg*m^2/s"), " kg m squared per s");
+}
