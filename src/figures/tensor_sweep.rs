@@ -55,8 +55,11 @@ pub(super) fn tensor_sweep(
         .values
         .iter()
         .filter(|(k, _)| k.as_str() != over)
-        .map(|(k, v)| format!("{k} = {v}"))
+        .map(|(k, v)| format!("{} = {v}", super::plain_name(k)))
         .collect();
+    // The file keeps the name as written; the reader sees it as its symbol (α, not alpha).
+    let slug = format!("tensor-vs-{over}");
+    let over = &super::plain_name(over);
     let desc = format!(
         "Inertia tensor entries of {} against {over} from {} to {}, at {}. Over this range {}{}. \
          Dots: {samples} values of {over} by quadrature with {}, at most {} from the exact curves.",
@@ -74,7 +77,7 @@ pub(super) fn tensor_sweep(
         sci(q.worst),
     );
     Ok(Figure {
-        slug: format!("tensor-vs-{over}"),
+        slug,
         title: format!("Tensor entries against {over}"),
         desc,
         x_label: over.to_string(),

@@ -125,3 +125,18 @@ fn the_tennis_racket_caption_gives_its_moments_to_six_figures() {
         f.desc
     );
 }
+
+/// The swept symbol and the fixed ones are written as they print (α, not `alpha`), in the
+/// caption, the title and the axis; the file keeps the name as written.
+#[test]
+fn a_tensor_sweep_names_its_symbols_as_they_print() {
+    let f = figure_of(
+        "lectures/lecture-3-4/07-tilted-hoop.toml",
+        "tensor-vs-alpha",
+    );
+    assert!(f.desc.contains("against α from 0 to π"), "{}", f.desc);
+    assert!(f.desc.contains("9 values of α"), "{}", f.desc);
+    assert!(!f.desc.contains("alpha"), "{}", f.desc);
+    assert_eq!(f.title, "Tensor entries against α");
+    assert_eq!(f.x_label, "α");
+}
