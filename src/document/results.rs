@@ -74,8 +74,10 @@ pub struct PrincipalValues {
     pub error: f64,
     /// Whether `exact` comes from the trigonometric closed form (then the axes are numeric).
     pub closed_form: bool,
-    /// The scene's values they are taken at.
+    /// The scene's values they are taken at, and those values' units where the scene gives
+    /// them.
     pub values: Vec<(String, f64)>,
+    pub units: std::collections::BTreeMap<String, String>,
 }
 
 /// The derived quantities, then the expressions of the author's steps (their equations of
@@ -235,6 +237,12 @@ pub(super) fn principal_values(r: &SceneReport) -> Option<PrincipalValues> {
             .values
             .iter()
             .map(|(k, v)| (k.clone(), *v))
+            .collect(),
+        units: r
+            .scene
+            .values
+            .keys()
+            .filter_map(|k| Some((k.clone(), r.scene.units.get(k)?.text.clone())))
             .collect(),
     })
 }

@@ -216,3 +216,19 @@ fn results_are_named_as_the_derivation_states_them() {
     let box123 = run("tests/course/bodies/01-box-123.toml");
     assert_eq!(symbol_of(&box123, "inertia_tensor"), None);
 }
+
+/// The principal moments at the scene's values say the values with their units, as every
+/// other result's numbers do ("at M = 1 kg, R = 1 m"), on the page and on paper alike.
+#[test]
+fn the_principal_moments_give_their_values_with_units() {
+    let r = hoop();
+    let page = page(&r, None, None);
+    let p = page
+        .principal_values
+        .as_ref()
+        .expect("the hoop's principal moments");
+    let said = words::values_at(&p.values, &p.units)
+        .to_tex(&page.names)
+        .spoken();
+    assert_eq!(said, "M equals 1 kg , R equals 1 m");
+}

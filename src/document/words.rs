@@ -8,6 +8,7 @@ use crate::cas::Expr;
 use crate::derive::ExactBasis;
 use crate::model::value::Value;
 use crate::notation::{Formula, Op};
+use std::collections::BTreeMap;
 
 /// A result's heading: a catalogue quantity's name in words; none for a step's result, whose
 /// equation names it (`ẍ₁ = …`).
@@ -161,20 +162,49 @@ pub fn at_entries(at: &At) -> Vec<f64> {
         .collect()
 }
 
-/// The scene's values, `M = 1, α = 0.6`, as one formula.
-pub fn values_at(values: &[(String, f64)]) -> Formula {
-    let mut row = Vec::new();
-    for (k, (name, x)) in values.iter().enumerate() {
-        if k > 0 {
-            row.extend([Formula::Op(Op::Comma), Formula::Op(Op::Quad)]);
-        }
-        row.extend([
+/// The scene's values with their units, `M = 1 kg, α = 0.6`, as one formula.
+pub fn values_at(values: &[(String, f64)], units: &BTreeMap<String, String>) -> Formula {
+    listed(values.iter().map(|(name, x)| {
+        let value = Formula::Row(vec![
             Formula::Expr(Expr::sym(name)),
             Formula::Op(Op::Equals),
             Formula::decimal(&x.to_string()),
         ]);
+        with_unit(value, units.get(name))
+    }))
+}
+
+/// A number followed by its unit, a thin space between: 9.81 m/s².
+pub fn with_unit(f: Formula, unit: Option<&String>) -> Formula {
+    match unit {
+        Some(u) => Formula::Row(vec![
+            f,
+            Formula::Op(Op::Thin),
+            crate::model::units::unit_formula(u),
+        ]),
+        None => f,
     }
-    Formula::Row(row)
+}
+
+/// The symbols of a result at the scene's numbers, each with its value and unit:
+/// `d = 0.03 m, m = 0.4 kg`.
+pub fn at_symbols(at: &At) -> Formula {
+    listed(at.symbols.iter().map(|(k, x)| {
+        with_unit(
+            Formula::Row(vec![
+                Formula::Expr(Expr::sym(k)),
+                Formula::Op(Op::Equals),
+                number(*x, 6),
+            ]),
+            at.units.get(k),
+        )
+    }))
+}
+
+/// A result's entries at the scene's numbers, to six figures, in its shape, with its unit.
+pub fn at_value(v: &Value, at: &At) -> Formula {
+    let n: Vec<Formula> = at_entries(at).into_iter().map(|x| number(x, 6)).collect();
+    with_unit(numbers_formula(v, n), at.unit.as_ref())
 }
 
 /// A claim's statement as the lead of its formula ("The tension in the string: T = …"): its

@@ -6,13 +6,10 @@ use super::prose::{author_html, prose_html, unit_html};
 use super::{guard, math};
 use crate::base::format::sci;
 use crate::cas::Expr;
-use crate::document::words::{
-    self, at_entries, check_sentence, listed, number, numbers_formula, result_equation,
-    result_heading, values_at,
-};
+use crate::document::words::{self, check_sentence, result_equation, result_heading, values_at};
 use crate::document::{At, Link, Page, PrincipalValues};
 use crate::model::value::Value;
-use crate::notation::{Formula, Names, Op};
+use crate::notation::{Formula, Names};
 use crate::render::RenderError;
 use serde::{Deserialize, Serialize};
 
@@ -117,34 +114,11 @@ pub(super) fn plain_link(l: &Link) -> Link {
 /// A result at the scene's numbers, to six significant figures: "at m = 1, a = 2:" (the values
 /// of the symbols it contains) and the number, vector or matrix as MathML.
 fn at_numbers_html(v: &Value, at: &At, names: &Names) -> Result<String, RenderError> {
-    let n: Vec<Formula> = at_entries(at).into_iter().map(|x| number(x, 6)).collect();
-    let symbols = at.symbols.iter().map(|(k, x)| {
-        with_unit(
-            Formula::Row(vec![
-                Formula::Expr(Expr::sym(k)),
-                Formula::Op(Op::Equals),
-                number(*x, 6),
-            ]),
-            at.units.get(k),
-        )
-    });
     Ok(format!(
         "at {}: {}",
-        math::inline(&listed(symbols).to_tex(names))?,
-        math::inline(&with_unit(numbers_formula(v, n), at.unit.as_ref()).to_tex(names))?
+        math::inline(&words::at_symbols(at).to_tex(names))?,
+        math::inline(&words::at_value(v, at).to_tex(names))?
     ))
-}
-
-/// A number followed by its unit, a thin space between: 9.81 m/s².
-fn with_unit(f: Formula, unit: Option<&String>) -> Formula {
-    match unit {
-        Some(u) => Formula::Row(vec![
-            f,
-            Formula::Op(Op::Thin),
-            crate::model::units::unit_formula(u),
-        ]),
-        None => f,
-    }
 }
 
 /// A symbol or coordinate as MathML, and what it stands for as HTML with its unit.
@@ -372,7 +346,7 @@ fn principal_values_view(p: &PrincipalValues, names: &Names) -> Result<StepView,
         math: math::block(&row.to_tex(names))?,
         why: format!(
             "at {}: {}",
-            math::inline(&values_at(&p.values).to_tex(names))?,
+            math::inline(&values_at(&p.values, &p.units).to_tex(names))?,
             tera::escape_html(&words::principal_values_agree(p))
         ),
     })

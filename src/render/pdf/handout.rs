@@ -4,10 +4,8 @@
 //! the claims that agree and the marked mistakes and errata) and the instructor's worked
 //! solutions (contents, every step with its reason and check, the results, the figures).
 
-use super::markup::{
-    Markup, expr, formula, number, said_equation, said_number, said_symbol, symbol,
-};
-use super::quantities::{numbers_typst, said_unit, unit_typst};
+use super::markup::{Markup, expr, formula, said_equation, said_symbol, symbol};
+use super::quantities::{said_unit, unit_typst};
 use crate::cas::Expr;
 use crate::document::handout::{Mark, Part, ShownClaim, ShownStep};
 use crate::document::{At, Page, PrincipalAxis, PrincipalValues, Quantity, words};
@@ -138,7 +136,7 @@ fn shown_step(m: &mut Markup, page: &Page, n: usize, s: &ShownStep) -> Result<()
         if let Some(q) = at.map(|q| &page.quantities[q])
             && let Some(at) = &q.at
         {
-            at_numbers(m, &q.value, at, names);
+            at_numbers(m, &q.value, at, names)?;
         }
     }
     if !s.reason_first {
@@ -212,7 +210,7 @@ fn quantity(m: &mut Markup, q: &Quantity, names: &Names) -> Result<(), RenderErr
         }
     }
     if let Some(at) = &q.at {
-        at_numbers(m, &q.value, at, names);
+        at_numbers(m, &q.value, at, names)?;
     }
     Ok(())
 }
@@ -231,7 +229,7 @@ fn principal_values(m: &mut Markup, p: &PrincipalValues, names: &Names) -> Resul
     let tex = words::principal_values(p).to_tex(names);
     m.block(&tex, &tex.spoken())?;
     m.raw("#text(9.5pt)[").text("at ");
-    let values = words::values_at(&p.values);
+    let values = words::values_at(&p.values, &p.units);
     m.inline(
         &super::markup::formula(&values, names)?,
         &values.to_tex(names).spoken(),
@@ -241,58 +239,16 @@ fn principal_values(m: &mut Markup, p: &PrincipalValues, names: &Names) -> Resul
     Ok(())
 }
 
-/// A result at the scene's numbers, to six significant figures.
-fn at_numbers(m: &mut Markup, v: &Value, at: &At, names: &Names) {
-    let n: Vec<String> = words::at_entries(at)
-        .into_iter()
-        .map(|x| number(x, 6))
-        .collect();
-    let symbols: Vec<String> = at
-        .symbols
-        .iter()
-        .map(|(k, x)| {
-            format!(
-                "{} = {}{}",
-                symbol(k, names),
-                number(*x, 6),
-                unit(at.units.get(k))
-            )
-        })
-        .collect();
-    let spoken_unit =
-        |u: Option<&String>| u.map_or(String::new(), |u| format!(" {}", said_unit(u)));
-    let said_symbols: Vec<String> = at
-        .symbols
-        .iter()
-        .map(|(k, x)| {
-            said_equation(
-                k,
-                &format!("{}{}", said_number(*x, 6), spoken_unit(at.units.get(k))),
-                names,
-            )
-        })
-        .collect();
-    let said_values: Vec<String> = words::at_entries(at)
-        .into_iter()
-        .map(|x| said_number(x, 6))
-        .collect();
+/// A result at the scene's numbers, to six significant figures, as the page prints it.
+fn at_numbers(m: &mut Markup, v: &Value, at: &At, names: &Names) -> Result<(), RenderError> {
+    let symbols = words::at_symbols(at).to_tex(names);
+    let value = words::at_value(v, at).to_tex(names);
     m.text("at ")
-        .inline(&symbols.join("\\, thin "), &said_symbols.join(", "))
+        .inline(&super::markup::math(&symbols)?, &symbols.spoken())
         .text(": ")
-        .display(
-            &format!("{}{}", numbers_typst(v, &n), unit(at.unit.as_ref())),
-            &format!(
-                "{}{}",
-                said_values.join(", "),
-                spoken_unit(at.unit.as_ref())
-            ),
-        )
+        .display(&super::markup::math(&value)?, &value.spoken())
         .par();
-}
-
-/// A number's unit after a thin space, in math markup; nothing without one.
-fn unit(u: Option<&String>) -> String {
-    u.map_or(String::new(), |u| format!(" thin {}", unit_typst(u)))
+    Ok(())
 }
 
 fn claims(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> {

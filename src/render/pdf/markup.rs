@@ -241,28 +241,9 @@ pub fn said_equation(name: &str, value: &str, names: &Names) -> String {
     format!("{} equals {value}", said_symbol(name, names))
 }
 
-/// A computed number in words, from the tree [`number`] sets: "4.6875 times 10 to the power
-/// minus 6".
-pub fn said_number(x: f64, digits: usize) -> String {
-    if !x.is_finite() {
-        return x.to_string();
-    }
-    crate::document::words::number(x, digits)
-        .to_tex(Names::none())
-        .spoken()
-}
-
 /// A symbol's name in Typst's math.
 pub fn symbol(name: &str, names: &Names) -> String {
     expr(&Expr::sym(name), names)
-}
-
-/// A computed number to `digits` significant figures, in Typst's math (4.6875 × 10⁻⁶).
-pub fn number(x: f64, digits: usize) -> String {
-    if !x.is_finite() {
-        return typst_string(&x.to_string());
-    }
-    decimal_typst(&crate::document::words::number(x, digits))
 }
 
 /// A number's formula in Typst's math: digits, signs and powers, which every printer sets.
