@@ -16,6 +16,8 @@ mod linebreak_tests;
 pub mod mathml;
 mod names;
 mod product_cut;
+#[cfg(test)]
+pub mod random_expr;
 pub mod read_back;
 mod spoken;
 mod tex_text;

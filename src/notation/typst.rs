@@ -196,22 +196,7 @@ fn node(n: &Node, place: Place) -> Result<String, TexError> {
 fn slashed(parts: &[Node], place: Place) -> Result<String, TexError> {
     let part = |n: &Node, below: bool| -> Result<String, TexError> {
         let text = operand(n, place)?;
-        let items: Vec<&Node> = match n {
-            Node::Group(Grouping::Normal, inner) => inner.iter().collect(),
-            other => vec![other],
-        };
-        let items: Vec<&Node> = items
-            .into_iter()
-            .filter(|n| !matches!(n, Node::Space(_)))
-            .collect();
-        let sum = items.iter().enumerate().any(|(k, n)| {
-            k > 0
-                && matches!(
-                    n,
-                    Node::Atom(Content::BinaryOp { .. } | Content::Relation { .. })
-                )
-        });
-        Ok(if sum || below && items.len() > 1 {
+        Ok(if bracketed_on_the_line(n, below) {
             format!("lr(\\({text}\\))")
         } else {
             text
@@ -222,6 +207,27 @@ fn slashed(parts: &[Node], place: Place) -> Result<String, TexError> {
         part(&parts[0], false)?,
         part(&parts[1], true)?
     ))
+}
+
+/// Whether a part of a fraction on the line is bracketed: a numerator that is a sum, a
+/// denominator (`below`) that is a sum or a product.
+pub fn bracketed_on_the_line(n: &Node, below: bool) -> bool {
+    let items: Vec<&Node> = match n {
+        Node::Group(Grouping::Normal, inner) => inner.iter().collect(),
+        other => vec![other],
+    };
+    let items: Vec<&Node> = items
+        .into_iter()
+        .filter(|n| !matches!(n, Node::Space(_)))
+        .collect();
+    let sum = items.iter().enumerate().any(|(k, n)| {
+        k > 0
+            && matches!(
+                n,
+                Node::Atom(Content::BinaryOp { .. } | Content::Relation { .. })
+            )
+    });
+    sum || below && items.len() > 1
 }
 
 /// An element as a call's argument: its content, never empty.

@@ -3,7 +3,6 @@
 
 use std::collections::HashMap;
 use std::sync::OnceLock;
-use typst::syntax::{SyntaxKind, SyntaxNode};
 
 /// The math fonts' glyph widths: for each character, in em, the widest glyph any style of it
 /// has (italic, bold, script, double-struck, …) at any size (a delimiter's, a radical's and a
@@ -26,16 +25,9 @@ impl Glyphs {
         self.widest.get(&c).copied()
     }
 
-    /// The italic correction after a script's base: a character's own, else the largest.
-    pub(super) fn italic_of(&self, base: &SyntaxNode) -> f64 {
-        let t = base.leaf_text();
-        let mut chars = t.chars();
-        match (base.kind(), chars.next(), chars.next()) {
-            (SyntaxKind::MathText, Some(c), Option::None) => {
-                self.italic.get(&c).copied().unwrap_or(self.most_italic)
-            }
-            _ => self.most_italic,
-        }
+    /// The italic correction after a script's base `c`: its own, else the largest.
+    pub(super) fn italic_of(&self, c: char) -> f64 {
+        self.italic.get(&c).copied().unwrap_or(self.most_italic)
     }
 
     /// The widest bracket a function may draw, at any size.

@@ -127,7 +127,7 @@ impl Markup {
         let whole = math(tex)?;
         self.text.push('\n');
         self.alt(alt);
-        if surely_narrow(&whole) {
+        if surely_narrow(tex) {
             self.text.push_str("\n#narrow($ ");
             self.text.push_str(&whole);
             self.text.push_str(" $)\n]\n");
@@ -251,16 +251,16 @@ pub fn decimal_typst(f: &Formula) -> String {
     typst(&f.to_tex(Names::none()))
 }
 
-/// Whether Typst surely sets `whole` narrower than any line (`display_width`).
+/// Whether Typst surely sets `tex` narrower than any line (`display_width`).
 #[cfg(feature = "pdf")]
-fn surely_narrow(whole: &str) -> bool {
-    super::display_width::widest_em(whole)
+fn surely_narrow(tex: &Tex) -> bool {
+    super::display_width::widest_em(tex)
         .is_some_and(|em| em <= super::display_width::NARROWER_THAN_ANY_LINE)
 }
 
 /// Without the PDFs nothing is typeset, and every formula is measured as before.
 #[cfg(not(feature = "pdf"))]
-fn surely_narrow(_: &str) -> bool {
+fn surely_narrow(_: &Tex) -> bool {
     false
 }
 
