@@ -15,33 +15,9 @@ impl Gen {
     }
 
     pub fn expr(&mut self, depth: usize) -> Expr {
-        const NAMES: &[&str] = &[
-            "x",
-            "m",
-            "alpha",
-            "phi",
-            "mu",
-            "w1",
-            "wd2",
-            "Ixx",
-            "phi'",
-            "theta''",
-            "tensor_of",
-            "Om2",
-            "I1cone",
-            "L",
-            "m1",
-            "OmE",
-            "d2U",
-            "R",
-        ];
         let leaf = depth == 0 || self.below(4) == 0;
         if leaf {
-            return match self.below(3) {
-                0 => Expr::Sym(NAMES[self.below(NAMES.len())].into()),
-                1 => Expr::int(self.below(40) as i128 - 12),
-                _ => Expr::rat(self.below(9) as i128 - 4, 2 + self.below(11) as i128),
-            };
+            return self.leaf();
         }
         let d = depth - 1;
         let some = |g: &mut Gen, n: usize| (0..n).map(|_| g.expr(d)).collect::<Vec<_>>();
@@ -65,21 +41,6 @@ impl Gen {
                 Expr::Pow(Box::new(self.expr(d)), Box::new(exponent))
             }
             5 => {
-                const CALLS: &[(&str, usize)] = &[
-                    ("sin", 1),
-                    ("cos", 1),
-                    ("sqrt", 1),
-                    ("acos", 1),
-                    ("dot", 2),
-                    ("cross", 2),
-                    ("outer", 2),
-                    ("transpose", 1),
-                    ("eye", 0),
-                    ("rot_z", 1),
-                    ("diff", 2),
-                    ("subs", 3),
-                    ("atan2", 2),
-                ];
                 let (name, n) = CALLS[self.below(CALLS.len())];
                 Expr::Call(name.into(), some(self, n))
             }
@@ -92,23 +53,71 @@ impl Gen {
                 let cols = 1 + self.below(3);
                 Expr::List((0..rows).map(|_| Expr::List(some(self, cols))).collect())
             }
-            _ => {
-                let base = if self.below(2) == 0 {
-                    Expr::Sym("tensor_of".into())
-                } else {
-                    self.expr(d)
-                };
-                let mut e = base;
-                for _ in 0..1 + self.below(2) {
-                    let i = if self.below(4) == 0 {
-                        self.expr(d)
-                    } else {
-                        Expr::int(self.below(3) as i128)
-                    };
-                    e = Expr::Index(Box::new(e), Box::new(i));
-                }
-                e
-            }
+            _ => self.indexed(d),
         }
     }
+
+    /// A name, an integer or a fraction.
+    fn leaf(&mut self) -> Expr {
+        match self.below(3) {
+            0 => Expr::Sym(NAMES[self.below(NAMES.len())].into()),
+            1 => Expr::int(self.below(40) as i128 - 12),
+            _ => Expr::rat(self.below(9) as i128 - 4, 2 + self.below(11) as i128),
+        }
+    }
+
+    /// A tensor or an expression, indexed once or twice.
+    fn indexed(&mut self, d: usize) -> Expr {
+        let mut e = if self.below(2) == 0 {
+            Expr::Sym("tensor_of".into())
+        } else {
+            self.expr(d)
+        };
+        for _ in 0..1 + self.below(2) {
+            let i = if self.below(4) == 0 {
+                self.expr(d)
+            } else {
+                Expr::int(self.below(3) as i128)
+            };
+            e = Expr::Index(Box::new(e), Box::new(i));
+        }
+        e
+    }
 }
+
+const NAMES: &[&str] = &[
+    "x",
+    "m",
+    "alpha",
+    "phi",
+    "mu",
+    "w1",
+    "wd2",
+    "Ixx",
+    "phi'",
+    "theta''",
+    "tensor_of",
+    "Om2",
+    "I1cone",
+    "L",
+    "m1",
+    "OmE",
+    "d2U",
+    "R",
+];
+
+const CALLS: &[(&str, usize)] = &[
+    ("sin", 1),
+    ("cos", 1),
+    ("sqrt", 1),
+    ("acos", 1),
+    ("dot", 2),
+    ("cross", 2),
+    ("outer", 2),
+    ("transpose", 1),
+    ("eye", 0),
+    ("rot_z", 1),
+    ("diff", 2),
+    ("subs", 3),
+    ("atan2", 2),
+];
