@@ -1262,6 +1262,20 @@ fn a_list_gives_states_each_result_of_a_step() {
         - 1;
     let right = verdicts(&text);
     assert_eq!(right.len(), 2, "{right:?}");
+    // Each claim names its result as the page sets it, never by the scene's `Omega_1`.
+    let statements: Vec<String> = run(&text)
+        .verification
+        .claims
+        .iter()
+        .map(|c| c.statement.clone())
+        .collect();
+    assert_eq!(
+        statements,
+        [
+            "the normal modes ($\\Omega_{1}$)",
+            "the normal modes ($\\Omega_{2}$)"
+        ]
+    );
     assert!(
         right
             .iter()

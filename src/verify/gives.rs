@@ -85,13 +85,15 @@ fn check_gives_each(
         let name = step.result_names().kth(k);
         let claim = Claim {
             eq: step.eq.clone().unwrap_or_else(|| step.name.clone()),
+            // The result's name as the page sets it (Ω₁), never as the scene spells it.
             statement: format!(
-                "{} ({name})",
+                "{} (${}$)",
                 if step.why.is_empty() {
                     "the form the notes give for this step"
                 } else {
                     &step.why
-                }
+                },
+                Expr::sym(&name).to_latex(&names)
             ),
             quantity: Some(Expr::sym(&name)),
             value: Some(value.clone()),
