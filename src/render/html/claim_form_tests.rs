@@ -243,3 +243,27 @@ fn a_denominator_is_led_by_a_positive_term() {
         &format!("\\ddot{{s}} = \\frac{{g {sin} \\left(M + m\\right)}}{{{below}}}"),
     );
 }
+
+/// A step's `gives` that cites no equation of the notes is labelled by none: its claim's `eq`
+/// is the step's name (`p_psi`), which the page printed as "(p_psi)".
+#[test]
+fn a_gives_without_an_equation_prints_no_step_name() {
+    let (page, view) = page_and_view("dynamics/04-heavy-top.toml");
+    let steps: Vec<&str> = page
+        .steps
+        .iter()
+        .filter_map(|s| s.author.as_deref())
+        .collect();
+    assert!(steps.contains(&"p_psi"), "{steps:?}");
+    let from_steps: Vec<&ClaimView> = view
+        .claims
+        .iter()
+        .zip(&page.claims)
+        .filter(|(_, c)| c.step.is_some())
+        .map(|(v, _)| v)
+        .collect();
+    assert!(!from_steps.is_empty());
+    for c in from_steps {
+        assert!(!steps.contains(&c.eq.as_str()), "labelled ({})", c.eq);
+    }
+}

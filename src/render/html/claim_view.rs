@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ClaimView {
+    /// The notes' equation the claim is, empty where it names none.
     pub eq: String,
     pub statement: String,
     /// The statement as HTML: its `$…$` mathematics as MathML.
@@ -93,7 +94,9 @@ pub(super) fn claim_view(
         quantity: left_side(page, i)?,
         notes_block,
         derived_block,
-        eq: c.eq.clone(),
+        // The notes' equation, as the handouts name it: none for a step's `gives` that cites
+        // none (its `eq` is then the step's name, which a reader must not see).
+        eq: page.claim_equation(i).unwrap_or_default(),
         statement: c.statement.clone(),
         statement_html: author_html(&c.statement)?,
         lead_html: claim_lead(&c.statement)
