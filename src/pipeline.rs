@@ -151,7 +151,8 @@ pub fn symbolic_stage(scene: &Scene, plan: &Plan) -> Result<Symbolic, RunError> 
             .find(|c| c.line == line && c.step.is_none())
         {
             let why = mismatch.text();
-            c.differences.push(mismatch.said(&scene.names()));
+            c.differences
+                .push(mismatch.said(&scene.names(), c.tex.as_ref()));
             if c.verdict == crate::scene::Verdict::Agrees {
                 c.problem = Some(format!(
                     "the two sides agree, yet differ in dimension ({why}): check the symbols' \
@@ -671,6 +672,32 @@ mod tests {
         assert_eq!(symbol.as_deref(), Some("{I}_{xz}"));
         let plain = said.to_plain(Names::none());
         assert!(!plain.contains("inertia_tensor"), "{plain}");
+    }
+
+    /// A quantity the scene spells as a word (`plane_distance_squared`) is named by the symbol
+    /// the claim gives it (`tex = "d^{2}"`), never by its name in backticks.
+    #[test]
+    fn a_difference_in_dimension_names_a_word_by_the_claims_symbol() {
+        use crate::notation::Names;
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/lectures/lecture-3-9/04-poinsot.toml"
+        );
+        let text = std::fs::read_to_string(path).unwrap();
+        let scene = Scene::parse(&text, std::path::Path::new(path)).unwrap();
+        let report = super::run_scene(scene, Some(Fidelity::DRAFT)).unwrap();
+        let said: Vec<String> = report
+            .verification
+            .claims
+            .iter()
+            .filter(|c| c.dimension.is_some())
+            .map(|c| c.differences.last().unwrap().to_plain(Names::none()))
+            .collect();
+        assert!(!said.is_empty());
+        for s in &said {
+            assert!(!s.contains("plane_distance_squared"), "{s}");
+        }
+        assert!(said.iter().any(|s| s.contains("but d² is in")), "{said:?}");
     }
 
     #[test]

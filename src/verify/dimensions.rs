@@ -173,7 +173,12 @@ impl Mismatch {
     /// As a page says it: the quantity by its symbol in the scene's names (I_xz, never
     /// `inertia_tensor[0][2]`). A name with no symbol stays as the author wrote it: set as a
     /// word it reads no better.
-    pub fn said(&self, names: &crate::notation::Names) -> Prose {
+    /// `symbol` is the claim's own for its quantity (`tex = "d^{2}"`), which names it first.
+    pub fn said(
+        &self,
+        names: &crate::notation::Names,
+        symbol: Option<&crate::notation::Tex>,
+    ) -> Prose {
         let plain = || format!("the two sides differ in dimension: {}", self.text()).into();
         let Mismatch::Sides {
             stated,
@@ -187,14 +192,16 @@ impl Mismatch {
         let word = quantity.symbols().iter().any(|s| {
             quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &|n| names.typesets(n))
         });
-        if word {
-            return plain();
-        }
+        let tex = match symbol {
+            Some(tex) => tex.clone(),
+            None if word => return plain(),
+            None => quantity.to_tex_named(names, &quantity_symbol),
+        };
         Prose(vec![
             Piece::Text(format!(
                 "the two sides differ in dimension: the claim's value is in {stated}, but "
             )),
-            Piece::Math(Formula::Tex(quantity.to_tex_named(names, &quantity_symbol))),
+            Piece::Math(Formula::Tex(tex)),
             Piece::Text(format!(" is in {derived}: they differ by {ratio}")),
         ])
     }
