@@ -629,12 +629,7 @@ mod tests {
     }
 
     fn hoop() -> Scene {
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/lectures/lecture-3-4/06-hoop.toml"
-        );
-        let text = std::fs::read_to_string(path).unwrap();
-        Scene::parse(&text, std::path::Path::new(path)).unwrap()
+        lecture("lecture-3-4/06-hoop.toml")
     }
 
     /// A claim whose sides differ in dimension says so on the page with the quantity as its
@@ -644,13 +639,11 @@ mod tests {
     fn a_difference_in_dimension_names_the_quantity_by_its_symbol() {
         use crate::model::prose::Piece;
         use crate::notation::{Formula, Names};
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/lectures/lecture-3-4/07-tilted-hoop.toml"
-        );
-        let text = std::fs::read_to_string(path).unwrap();
-        let scene = Scene::parse(&text, std::path::Path::new(path)).unwrap();
-        let report = super::run_scene(scene, Some(Fidelity::DRAFT)).unwrap();
+        let report = super::run_scene(
+            lecture("lecture-3-4/07-tilted-hoop.toml"),
+            Some(Fidelity::DRAFT),
+        )
+        .unwrap();
         let claim = report
             .verification
             .claims
@@ -679,13 +672,11 @@ mod tests {
     #[test]
     fn a_difference_in_dimension_names_a_word_by_the_claims_symbol() {
         use crate::notation::Names;
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/lectures/lecture-3-9/04-poinsot.toml"
-        );
-        let text = std::fs::read_to_string(path).unwrap();
-        let scene = Scene::parse(&text, std::path::Path::new(path)).unwrap();
-        let report = super::run_scene(scene, Some(Fidelity::DRAFT)).unwrap();
+        let report = super::run_scene(
+            lecture("lecture-3-9/04-poinsot.toml"),
+            Some(Fidelity::DRAFT),
+        )
+        .unwrap();
         let said: Vec<String> = report
             .verification
             .claims
