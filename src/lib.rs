@@ -39,11 +39,11 @@ pub mod plan;
 pub mod derive;
 pub mod numeric;
 
+pub mod steps;
+
 pub mod figures;
 
 pub mod verify;
-
-pub mod steps;
 
 pub mod pipeline;
 

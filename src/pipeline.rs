@@ -493,7 +493,7 @@ fn numeric_stage(d: Derived, fidelity: Option<Fidelity>) -> Result<SceneReport, 
         ..Verification::default()
     };
     // The steps' checks and the variants' share one budget.
-    let deadline = verify::budget::Deadline::checks();
+    let deadline = crate::numeric::budget::Deadline::checks();
     verify::verify_numeric(
         &scene,
         derivation,

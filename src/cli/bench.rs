@@ -121,7 +121,7 @@ pub fn variants_bench(count: usize) -> Result<String> {
         &scene,
         &symbolic.derivation,
         problem,
-        &crate::verify::budget::Deadline::checks(),
+        &crate::numeric::budget::Deadline::checks(),
     )?;
     let check = start.elapsed().as_secs_f64();
     let worst = checks

@@ -4,6 +4,7 @@
 
 pub mod answers;
 pub mod body;
+pub mod budget;
 pub mod compiled;
 pub mod eigen;
 pub mod elliptic;
@@ -13,6 +14,7 @@ pub mod motion;
 pub mod ode;
 pub mod pareto;
 pub mod quadrature;
+pub(crate) mod random_points;
 pub mod rounding;
 
 use crate::cas::EvalError;

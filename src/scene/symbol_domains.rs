@@ -6,7 +6,7 @@ use super::{Scene, Shape};
 use crate::cas::Expr;
 use std::collections::BTreeSet;
 
-/// Where the random points of the random-point tests (`verify::random_points`) lie: every symbol in [0.4, 1.4), positive
+/// Where the random points of the random-point tests (`numeric::random_points`) lie: every symbol in [0.4, 1.4), positive
 /// and away from 0, where a mass or a moment in a denominator vanishes, and within a factor
 /// 3.5 of the others, so that no term of a degree-30 expression over- or underflows.
 pub const SAMPLE_FROM: f64 = 0.4;

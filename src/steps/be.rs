@@ -9,9 +9,9 @@ use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::step_names::{StepResult, expand_names, expand_printed_names};
-use crate::verify::CONFIRMATION_POINTS;
-use crate::verify::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, rational_at};
-use crate::verify::step_check::{CheckError, StepCheck, at, random_point};
+use crate::numeric::random_points::CONFIRMATION_POINTS;
+use crate::numeric::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, rational_at};
+use crate::steps::check::{CheckError, StepCheck, at, random_point};
 use std::collections::BTreeMap;
 
 pub(super) fn derive(cx: Context, e: &Expr) -> Result<StepResult, DeriveError> {

@@ -2,20 +2,20 @@
 //! derivative.
 //!
 //! - Exact rule: the engine's derivative, simplified; past the engine's budget, the quotient
-//!   rule over the factored denominator (`derive/quotient_rule.rs`).
+//!   rule over the factored denominator (`derivative_of_quotient`).
 //! - Numeric route: central differences with Richardson extrapolation at random points, along
 //!   x or along the motion through the point.
 
-use super::{Checking, Context};
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::time_derivative;
 use crate::derive::step_names::{StepResult, expand_names};
-use crate::verify::CONFIRMATION_POINTS;
-use crate::verify::random_points::{DOMAIN_TRIES, SAMPLE_FROM};
-use crate::verify::step_check::{CheckError, H, StepCheck, at, random_point};
+use crate::numeric::random_points::CONFIRMATION_POINTS;
+use crate::numeric::random_points::{DOMAIN_TRIES, SAMPLE_FROM};
 use std::collections::BTreeMap;
+use super::check::{CheckError, H, StepCheck, at, random_point};
+use super::{Checking, Context};
 
 /// Central differences with Richardson extrapolation err by O(h⁴) in truncation and about
 /// ε·|f|/h in rounding; with h = 1e-3 both stay far below this, relative to the derivative.
@@ -37,7 +37,7 @@ pub(super) fn derive(cx: Context, of: &Expr, by: &str) -> Result<StepResult, Der
         // factored denominator, which grows by its factors only.
         Err(cas::CasError {
             reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { .. }),
-        }) => StepResult::Expr(crate::derive::quotient_rule::derivative_of_quotient(
+        }) => StepResult::Expr(derivative_of_quotient(
             &f,
             &derivative,
         )?),
@@ -151,4 +151,59 @@ fn richardson(f: &dyn Fn(f64) -> Option<f64>) -> Option<(f64, u64)> {
         h /= 4.0;
     }
     last.map(|a| (a, evaluations))
+}
+
+// The derivative of a rational function with its denominator kept factored: for
+// f = N/D with D = c·Π fᵢ^kᵢ, f' = (N' Π fᵢ − N Σ kᵢ fᵢ' Π_{j≠i} fⱼ)/(D Π fᵢ). The quotient
+// rule as written squares D, whose expansion an effective potential's second derivative puts
+// past the engine's budget (degree 32 for (p_φ − p_ψ cos θ)²/(2(I₁ + Ml²) sin²θ)); this form's
+// denominator grows by the factors once.
+
+/// f' by the rule above, simplified; `derivative` is ∂/∂x or d/dt through the coordinates.
+pub fn derivative_of_quotient(
+    f: &Expr,
+    derivative: &dyn Fn(&Expr) -> Result<Expr, DeriveError>,
+) -> Result<Expr, DeriveError> {
+    let (n, d) = cas::fraction_all(vec![f.clone()])?.remove(0);
+    let factored = cas::factor_all(vec![d])?.remove(0);
+    let listed = match &factored {
+        Expr::Mul(v) => v.clone(),
+        other => vec![other.clone()],
+    };
+    // Each factor that is not a number, with its power.
+    let factors: Vec<(Expr, i64)> = listed
+        .into_iter()
+        .filter_map(|f| match f {
+            Expr::Num(_) => None,
+            Expr::Pow(b, k) => match k.as_ref() {
+                Expr::Num(r) => r.to_i64().map(|k| (*b, k)),
+                _ => Some((Expr::Pow(b, k), 1)),
+            },
+            other => Some((other, 1)),
+        })
+        .collect();
+    let product = |skip: Option<usize>| {
+        Expr::mul(
+            factors
+                .iter()
+                .enumerate()
+                .filter(|(j, _)| Some(*j) != skip)
+                .map(|(_, (b, _))| b.clone())
+                .collect(),
+        )
+    };
+    let mut terms = vec![Expr::mul(vec![derivative(&n)?, product(None)])];
+    for (i, (b, k)) in factors.iter().enumerate() {
+        terms.push(Expr::mul(vec![
+            Expr::int(-i128::from(*k)),
+            n.clone(),
+            derivative(b)?,
+            product(Some(i)),
+        ]));
+    }
+    let numerator = cas::simplify(&Expr::add(terms))?;
+    Ok(cas::simplify(&Expr::over(
+        numerator,
+        Expr::mul(vec![factored, product(None)]),
+    ))?)
 }

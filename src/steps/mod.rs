@@ -4,23 +4,29 @@
 //! are validated in `scene/validate/operation/`; how a result shows on the page is `page.rs`.
 //! A step's `gives` is a claim of the notes, checked in `verify/gives.rs`.
 //!
-//! This stage runs after the built-in derivation and checks (`derive`, `verify`), whose
-//! mechanics the operations share, and before the pipeline hands the scene on.
+//! The stage sits above `derive` and `numeric`, whose mechanics the operations share, and
+//! below `verify`, which reads its checks: the numeric routes of the steps (`check.rs`, and
+//! `motion.rs`, `rest.rs`, `rest_states.rs` shared by the operations on equations of motion)
+//! live here, not in `verify`. The pipeline runs it after the built-in derivation and checks.
 
 mod be;
+pub(crate) mod check;
 mod differentiate;
 mod energy;
 mod equation_form;
 mod equilibria;
 mod frequency;
-mod integrate;
+pub(crate) mod integrate;
 mod lagrange;
 mod linearise;
 mod momentum;
+pub(crate) mod motion;
 mod page;
-mod routh;
-mod series;
-mod solve;
+pub(crate) mod rest;
+pub(crate) mod rest_states;
+pub(crate) mod routh;
+pub(crate) mod series;
+pub(crate) mod solve;
 mod stability;
 mod substitute;
 
@@ -30,11 +36,11 @@ use crate::derive::step_names::{StepError, StepResult};
 use crate::derive::{Derivation, DeriveError};
 use crate::notation::Formula;
 use crate::scene::{AuthorStep, Operation, Scene};
-use crate::verify::CONFIRMATION_POINTS;
-use crate::verify::budget::Deadline;
-use crate::verify::random_points::{numerically_zero, signed_names};
-use crate::verify::step_check::equations_of;
-pub use crate::verify::step_check::{CheckError, StepCheck};
+use crate::numeric::random_points::CONFIRMATION_POINTS;
+use crate::numeric::budget::Deadline;
+use crate::numeric::random_points::{numerically_zero, signed_names};
+use check::equations_of;
+pub use check::{CheckError, StepCheck};
 
 /// The step at hand: its scene, the derivation up to it, and the step.
 #[derive(Clone, Copy)]

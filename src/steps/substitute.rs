@@ -12,9 +12,9 @@ use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::step_names::{StepResult, expand_names, replacements, substituted_equations};
 use crate::derive::undefined::refuse_no_value;
-use crate::verify::CONFIRMATION_POINTS;
-use crate::verify::random_points::NUMERICALLY_ZERO;
-use crate::verify::step_check::{CheckError, StepCheck, at, random_point};
+use crate::numeric::random_points::CONFIRMATION_POINTS;
+use crate::numeric::random_points::NUMERICALLY_ZERO;
+use crate::steps::check::{CheckError, StepCheck, at, random_point};
 use std::collections::BTreeMap;
 
 pub(super) fn derive(

@@ -5,7 +5,7 @@ use super::*;
 use crate::cas::parse;
 use crate::pipeline::{SceneReport, run_scene};
 use crate::scene::{Scene, Verdict};
-use crate::verify::motion::*;
+use crate::steps::motion::*;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -169,7 +169,7 @@ fn steps_past_the_scenes_budget_fail_at_their_lines() {
         "Ip*phi'",
         "sqrt(3*g/(2*L))",
     ));
-    let spent = crate::verify::budget::Deadline::after(std::time::Duration::ZERO);
+    let spent = crate::numeric::budget::Deadline::after(std::time::Duration::ZERO);
     let checks = check_steps(&r.scene, &r.derivation, &spent);
     assert_eq!(checks.len(), 6);
     for (c, step) in checks.iter().zip(&r.scene.steps) {
@@ -184,7 +184,7 @@ fn steps_past_the_scenes_budget_fail_at_their_lines() {
     let in_time = check_steps(
         &r.scene,
         &r.derivation,
-        &crate::verify::budget::Deadline::checks(),
+        &crate::numeric::budget::Deadline::checks(),
     );
     assert!(in_time.iter().all(StepCheck::passed), "{in_time:?}");
 }
@@ -588,7 +588,7 @@ fn bead_on_hoop_equilibria_and_stability() {
         panic!()
     };
     let mut check = blank();
-    let missing = crate::verify::rest::equilibria_check(
+    let missing = crate::steps::rest::equilibria_check(
         &r.scene,
         &eqs[0].1,
         "theta",
@@ -655,7 +655,7 @@ fn gyroscope_series_and_roots() {
     };
     let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
     let mut check = blank();
-    crate::verify::series::remainder_check(
+    crate::steps::series::remainder_check(
         &r.scene,
         &f,
         &crate::cas::Expr::int(0),
@@ -721,7 +721,7 @@ fn paraboloid_by_integration() {
     };
     let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
     let mut check = blank();
-    crate::verify::integral::quadrature_check(
+    crate::steps::integrate::quadrature_check(
         &r.scene.values,
         &f,
         over,
@@ -868,14 +868,14 @@ fn the_system_check_fails_a_wrong_solution() {
         other => panic!("{other:?}"),
     };
     let mut right = blank();
-    crate::verify::solve::system_check(&r.scene, &eqs, solution, 7, &mut right).unwrap();
+    crate::steps::solve::system_check(&r.scene, &eqs, solution, 7, &mut right).unwrap();
     assert!(right.passed(), "{right:?}");
     let swapped = vec![
         (solution[0].0.clone(), solution[1].1.clone()),
         (solution[1].0.clone(), solution[0].1.clone()),
     ];
     let mut wrong = blank();
-    crate::verify::solve::system_check(&r.scene, &eqs, &swapped, 7, &mut wrong).unwrap();
+    crate::steps::solve::system_check(&r.scene, &eqs, &swapped, 7, &mut wrong).unwrap();
     assert!(!wrong.passed(), "{wrong:?}");
 }
 
@@ -926,7 +926,7 @@ fn double_pendulum_states_of_rest() {
         panic!()
     };
     let mut check = blank();
-    let missing = crate::verify::rest_states::states_check(&r.scene, eqs, &states[..3], &mut check);
+    let missing = crate::steps::rest_states::states_check(&r.scene, eqs, &states[..3], &mut check);
     assert!(
         matches!(missing, Err(CheckError::MissedState { .. })),
         "{missing:?}"
@@ -935,7 +935,7 @@ fn double_pendulum_states_of_rest() {
     wrong[1].verdict = Stable::Always;
     let mut check = blank();
     let verdict =
-        crate::verify::rest_states::rest_stability_check(&r.scene, eqs, &wrong, &mut check);
+        crate::steps::rest_states::rest_stability_check(&r.scene, eqs, &wrong, &mut check);
     assert!(
         matches!(verdict, Err(CheckError::WrongStateVerdict { .. })),
         "{verdict:?}"
@@ -1133,7 +1133,7 @@ fn the_n_link_pendulums_modes_agree_with_m_inverse_k() {
                 unreachable!()
             };
             frequencies[2] *= 1.0 + 1e-6;
-            let checks = check_steps(&r.scene, &d, &crate::verify::budget::Deadline::checks());
+            let checks = check_steps(&r.scene, &d, &crate::numeric::budget::Deadline::checks());
             let omega = checks.last().unwrap();
             assert!(!omega.passed(), "{omega:?}");
             assert!(omega.error > 5e-7, "{omega:?}");

@@ -4,10 +4,10 @@
 //! value (`be`: its expression as written; `frequency`: the period of the integrated motion;
 //! `solve`: Newton's method on the equation), and the symbols by the variant's values.
 
-use super::integral::{QUADRATURE_AGREEMENT, quadrature};
-use super::motion::{MODES_AGREEMENT, PERIOD_AGREEMENT, measured_period, numeric_modes};
-use super::step_check::CheckError;
-use super::step_check::{equations_of, solvable_of};
+use crate::steps::integrate::{QUADRATURE_AGREEMENT, quadrature};
+use crate::steps::motion::{MODES_AGREEMENT, PERIOD_AGREEMENT, measured_period, numeric_modes};
+use crate::steps::check::CheckError;
+use crate::steps::check::{equations_of, solvable_of};
 use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::step_names::{equation_with, expand_names, expand_ranges};

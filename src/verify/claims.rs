@@ -2,7 +2,7 @@
 //! equal symbolically and at random points, over positive symbols, under the scene's
 //! assumptions and by their squares; where the two tests disagree, undecided.
 
-use super::random_points::{numerically_zero, signed_names};
+use crate::numeric::random_points::{numerically_zero, signed_names};
 use super::rounding::rounded_agreement;
 use super::{CONFIRMATION_POINTS, ClaimResult, assumed, result_names, squares};
 use crate::cas::{self, Expr};

@@ -38,8 +38,7 @@ pub fn exact_vs_numeric(scene: &Scene) -> f64 {
 }
 /// A Monte Carlo estimate further than this many standard errors from the exact value fails.
 pub const MONTE_CARLO_SIGMAS: f64 = 5.0;
-/// Random points at which each symbolic verdict is confirmed.
-pub(crate) const CONFIRMATION_POINTS: usize = 3;
+pub(crate) use crate::numeric::random_points::CONFIRMATION_POINTS;
 
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct ClaimResult {
@@ -314,27 +313,18 @@ pub fn verify_numeric(
 mod answer_routes;
 mod assumed;
 mod body_moments;
-pub mod budget;
 mod claim_form;
 mod claims;
 pub mod dimensions;
 mod free_top;
 mod gives;
-pub(crate) mod integral;
-pub(crate) mod motion;
 pub mod n_link;
 mod principal;
 mod printed;
 mod regressions;
-pub(crate) mod rest;
-pub(crate) mod rest_states;
 mod result_names;
 mod rounding;
-pub(crate) mod routh;
-pub(crate) mod series;
-pub(crate) mod solve;
 mod squares;
-pub(crate) mod step_check;
 mod step_records;
 mod symbolic;
 pub mod variants;
@@ -346,10 +336,9 @@ pub use regressions::check_regressions;
 pub use rounding::round_to_figures;
 pub use step_records::{NUMBER_AGREEMENT, StepRecord, check_step_records};
 pub use symbolic::{SymbolicChecks, verify_symbolic};
-pub(crate) mod random_points;
-pub(crate) use random_points::NUMERICALLY_ZERO;
-use random_points::{SAMPLE_FROM, numerically_zero, signed_names};
-pub use step_check::StepCheck;
+pub(crate) use crate::numeric::random_points::NUMERICALLY_ZERO;
+use crate::numeric::random_points::{SAMPLE_FROM, numerically_zero, signed_names};
+pub use crate::steps::StepCheck;
 
 #[cfg(test)]
 mod answer_routes_tests;

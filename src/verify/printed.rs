@@ -3,7 +3,7 @@
 //! build's guard, which takes what a page shows, read back from its printed tree, for the result
 //! it stands for (`render/guard.rs`).
 
-use super::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, largest_differences};
+use crate::numeric::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, largest_differences};
 use super::{CONFIRMATION_POINTS, StepCheck};
 use crate::cas::Expr;
 use crate::derive::Derivation;

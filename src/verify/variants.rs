@@ -2,7 +2,7 @@
 //! values substituted) against the independent numeric routes at the variant's numbers.
 
 use super::answer_routes::{AnswerRouteError, AnswerRoutes};
-use super::budget::Deadline;
+use crate::numeric::budget::Deadline;
 use super::dimensions::answer_scale;
 use super::exact_vs_numeric;
 use super::principal::PRINCIPAL_AGREEMENT;
@@ -97,7 +97,7 @@ pub enum VariantFailure {
     #[error(transparent)]
     Dimension(super::dimensions::DimensionFault),
     #[error(transparent)]
-    OverBudget(#[from] super::budget::OverBudget),
+    OverBudget(#[from] crate::numeric::budget::OverBudget),
 }
 
 /// How closely a route must agree at these numbers: the quadrature rules are exact for these

@@ -292,7 +292,7 @@ pub fn printed_number(
     let scale = value.abs().max(f64::MIN_POSITIVE);
     let within = match figures {
         Some(n) => 0.5 * 10f64.powi(1 - n as i32) * 10f64.powi(scale.log10().floor() as i32),
-        None => crate::verify::NUMERICALLY_ZERO * scale.max(1.0),
+        None => crate::numeric::random_points::NUMERICALLY_ZERO * scale.max(1.0),
     };
     match (x - value).abs() <= within * (1.0 + 1e-9) {
         true => Ok(true),

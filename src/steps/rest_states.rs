@@ -4,7 +4,7 @@
 //! stiffness K by central differences against the exact one, and the eigenvalues of M⁻¹K (M the
 //! change of the equations with the accelerations) against the verdict.
 
-use super::step_check::{CheckError, H, StepCheck, at};
+use super::check::{CheckError, H, StepCheck, at};
 use crate::cas::{Expr, Zero};
 use crate::derive::step_names::{Stable, StateStability};
 use crate::scene::Scene;

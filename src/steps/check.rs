@@ -1,7 +1,7 @@
 //! One step's numeric check and what the routes share: its record, why it could not run, and
 //! the evaluation of an expression at a point without the engine.
 
-use super::SAMPLE_FROM;
+use crate::numeric::random_points::SAMPLE_FROM;
 use crate::base::rng::Rng;
 use crate::cas::Expr;
 use crate::derive::Derivation;
@@ -31,7 +31,7 @@ pub enum CheckError {
     #[error(transparent)]
     Motion(#[from] crate::numeric::ode::OdeError),
     #[error(transparent)]
-    OverBudget(#[from] super::budget::OverBudget),
+    OverBudget(#[from] crate::numeric::budget::OverBudget),
     #[error(transparent)]
     Equations(#[from] crate::derive::DeriveError),
     #[error(
@@ -159,7 +159,7 @@ pub(crate) fn random_point(
     // Inside the physics' domain (`assume`), where a scene states one: the load checked that
     // such points exist; should these draws all miss, the last is compared, and says so.
     let mut point = draw();
-    for _ in 1..super::random_points::DOMAIN_TRIES {
+    for _ in 1..crate::numeric::random_points::DOMAIN_TRIES {
         if scene.in_domain(&point) {
             break;
         }

@@ -2,8 +2,8 @@
 //! integrated (Dormand–Prince) with the energy function watched, the linear equations against
 //! the full ones near rest, and the measured period against 2π/Ω.
 
-use super::CONFIRMATION_POINTS;
-use super::step_check::{CheckError, H, StepCheck, at, random_point};
+use crate::numeric::random_points::CONFIRMATION_POINTS;
+use super::check::{CheckError, H, StepCheck, at, random_point};
 use crate::base::format::{sci, short};
 use crate::base::rng::Rng;
 use crate::cas::Expr;

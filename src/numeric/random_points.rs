@@ -1,13 +1,15 @@
 //! The random-point test: whether a difference of two expressions vanishes at a few random
 //! values of its symbols, the second route beside the engine's for every claim and `gives`.
 
-use super::CONFIRMATION_POINTS;
 use crate::base::rng::Rng;
 use crate::cas::{EvalError, Expr, Rational};
 use crate::scene::Scene;
 use std::collections::{BTreeMap, BTreeSet};
 
 pub(crate) use crate::scene::SAMPLE_FROM;
+
+/// Random points at which each symbolic verdict is confirmed.
+pub(crate) const CONFIRMATION_POINTS: usize = 3;
 
 /// A difference below this, relative to its scale (at least 1), counts as zero at a random
 /// point. The expressions are sums of at most the engine's 20,000 terms of size about 1 there,

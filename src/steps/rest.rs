@@ -2,7 +2,7 @@
 //! scene's values against a scan of the static equation for its sign changes, and each
 //! equilibrium's Ω² against central differences of the equation there.
 
-use super::step_check::{CheckError, H, StepCheck, at};
+use super::check::{CheckError, H, StepCheck, at};
 use crate::cas::{Expr, Zero};
 use crate::derive::step_names::{Stability, Stable};
 use crate::scene::Scene;
