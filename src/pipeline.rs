@@ -689,6 +689,25 @@ mod tests {
             assert!(!s.contains("plane_distance_squared"), "{s}");
         }
         assert!(said.iter().any(|s| s.contains("but d² is in")), "{said:?}");
+        // The dimensions are set as units, not written as the terminal's text (kg^-1), and
+        // read so in the JSON export's text too.
+        let text: Vec<String> = report
+            .verification
+            .claims
+            .iter()
+            .filter(|c| c.dimension.is_some())
+            .map(|c| c.differences.last().unwrap().to_text())
+            .collect();
+        assert!(
+            text.iter()
+                .any(|s| s.contains("is in kg⁻¹ m⁻²: they differ by kg m² s⁻²")),
+            "{text:?}"
+        );
+        assert!(
+            said.iter()
+                .any(|s| s.contains("is in s⁻², but d² is in kg⁻¹ m⁻²: they differ by kg m² s⁻²")),
+            "{said:?}"
+        );
     }
 
     #[test]

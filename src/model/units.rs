@@ -73,6 +73,26 @@ impl Dimension {
 }
 
 /// In SI base units: `kg m^2 s^-1`, or `1` for a pure number.
+impl Dimension {
+    /// As a unit is set: each base unit upright with its power, thin spaces between
+    /// (kg⁻¹ m⁻²), as [`unit_formula`] sets an author's unit; `None` for a pure number.
+    pub fn formula(&self) -> Option<Formula> {
+        let mut row = Vec::new();
+        for (u, p) in BASE.iter().zip(&self.0).filter(|(_, p)| !p.is_zero()) {
+            if !row.is_empty() {
+                row.push(Formula::Op(Op::Thin));
+            }
+            let symbol = Formula::Upright(u.to_string());
+            row.push(if *p == Rational::ONE {
+                symbol
+            } else {
+                Formula::Sup(Box::new(symbol), Box::new(Formula::Number(p.to_string())))
+            });
+        }
+        (!row.is_empty()).then_some(Formula::Row(row))
+    }
+}
+
 impl fmt::Display for Dimension {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.is_none() {
@@ -538,6 +558,24 @@ mod tests {
 
     /// A unit's tree is what the reader makes of its LaTeX: the key's values and the pages
     /// set units from the tree, Moodle from the LaTeX.
+    /// A dimension is set as the unit it is written as: the tree from its exponents equals
+    /// the tree from the author's text, for units in SI base units in their order.
+    #[test]
+    fn a_dimension_is_set_as_its_unit_is() {
+        for unit in [
+            "kg",
+            "kg m^2",
+            "kg^-1 m^-2",
+            "kg m^2 s^-2",
+            "s^-2",
+            "m s^-1",
+        ] {
+            let dimension = Unit::parse(unit).unwrap().dimension;
+            assert_eq!(dimension.formula(), Some(unit_formula(unit)), "{unit}");
+        }
+        assert_eq!(Dimension::none().formula(), None);
+    }
+
     #[test]
     fn a_units_tree_is_its_latex_read() {
         for unit in [

@@ -256,7 +256,9 @@ fn text_row(items: &[Formula], out: &mut String) {
 fn text_sup(a: &Formula, b: &Formula, out: &mut String) {
     text_operand(a, out);
     match b {
-        // Digits only: a minus stays as it is written.
+        // An integer wholly in superscript (s⁻²); otherwise digits only, a minus and a slash
+        // staying as written.
+        Formula::Number(s) if s.parse::<i64>().is_ok() => out.extend(s.chars().map(superscript)),
         Formula::Number(s) => out.extend(s.chars().map(|c| {
             if c.is_ascii_digit() {
                 superscript(c)
@@ -298,19 +300,22 @@ fn push_spaced(out: &mut String, piece: &str) {
 
 /// An operand of `/`, `√` or `^`: in parentheses unless it is one item.
 fn text_operand(f: &Formula, out: &mut String) {
-    let single = matches!(
-        f,
-        Formula::Name(_)
-            | Formula::Number(_)
-            | Formula::Sup(..)
-            | Formula::Paren(..)
-            | Formula::Abs(_)
-            | Formula::Bracket(_)
-            | Formula::Matrix(_)
-            | Formula::Identity
-            | Formula::Sqrt(_)
-            | Formula::Function(_)
-    );
+    // A unit's symbol is one item (kg², not (kg)²).
+    let upright_symbol = matches!(f, Formula::Upright(s) if !s.contains(' '));
+    let single = upright_symbol
+        || matches!(
+            f,
+            Formula::Name(_)
+                | Formula::Number(_)
+                | Formula::Sup(..)
+                | Formula::Paren(..)
+                | Formula::Abs(_)
+                | Formula::Bracket(_)
+                | Formula::Matrix(_)
+                | Formula::Identity
+                | Formula::Sqrt(_)
+                | Formula::Function(_)
+        );
     if single {
         text(f, out);
     } else {

@@ -1,11 +1,11 @@
 //! One step's numeric check and what the routes share: its record, why it could not run, and
 //! the evaluation of an expression at a point without the engine.
 
-use crate::numeric::random_points::SAMPLE_FROM;
 use crate::base::rng::Rng;
 use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::step_names::StepResult;
+use crate::numeric::random_points::SAMPLE_FROM;
 use std::collections::BTreeMap;
 
 /// Why a step's numeric route could not run.

@@ -6,6 +6,8 @@
 //! - Numeric route: central differences with Richardson extrapolation at random points, along
 //!   x or along the motion through the point.
 
+use super::check::{CheckError, H, StepCheck, at, random_point};
+use super::{Checking, Context};
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
@@ -14,8 +16,6 @@ use crate::derive::step_names::{StepResult, expand_names};
 use crate::numeric::random_points::CONFIRMATION_POINTS;
 use crate::numeric::random_points::{DOMAIN_TRIES, SAMPLE_FROM};
 use std::collections::BTreeMap;
-use super::check::{CheckError, H, StepCheck, at, random_point};
-use super::{Checking, Context};
 
 /// Central differences with Richardson extrapolation err by O(h⁴) in truncation and about
 /// ε·|f|/h in rounding; with h = 1e-3 both stay far below this, relative to the derivative.
@@ -37,10 +37,7 @@ pub(super) fn derive(cx: Context, of: &Expr, by: &str) -> Result<StepResult, Der
         // factored denominator, which grows by its factors only.
         Err(cas::CasError {
             reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { .. }),
-        }) => StepResult::Expr(derivative_of_quotient(
-            &f,
-            &derivative,
-        )?),
+        }) => StepResult::Expr(derivative_of_quotient(&f, &derivative)?),
         Err(e) => return Err(e.into()),
     })
 }

@@ -7,8 +7,8 @@ use super::{Checking, Context, conserved, scalar, scalar_of};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::energy;
 use crate::derive::step_names::StepResult;
-use crate::steps::motion::{Conserved, conserved_check};
 use crate::steps::check::{CheckError, StepCheck};
+use crate::steps::motion::{Conserved, conserved_check};
 
 pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     let (e, rate) = energy(scalar(cx.d, of)?, &cx.scene.coordinates)?;

@@ -11,9 +11,9 @@ use super::{Checking, Context, free_equations, single_equation};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::equilibria;
 use crate::derive::step_names::StepResult;
+use crate::steps::check::{CheckError, StepCheck, equations_of};
 use crate::steps::rest::equilibria_check;
 use crate::steps::rest_states::states_check;
-use crate::steps::check::{CheckError, StepCheck, equations_of};
 
 pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     let eqs = free_equations(cx.scene, cx.d, of, "equilibria")?;

@@ -15,8 +15,8 @@ use crate::derive::modes::normal_modes;
 use crate::derive::result_order::stable_order;
 use crate::derive::step_names::StepResult;
 use crate::scene::Operation;
-use crate::steps::motion::{modes_agreement, modes_check, period_check};
 use crate::steps::check::{CheckError, StepCheck, equations_of};
+use crate::steps::motion::{modes_agreement, modes_check, period_check};
 
 pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     Ok(match equations(cx.d, of)? {

@@ -14,8 +14,8 @@ use crate::derive::lagrangian::euler_lagrange;
 use crate::derive::step_names::{StepResult, replacements};
 use crate::derive::{Derivation, DeriveError};
 use crate::scene::{Operation, Scene};
-use crate::steps::motion::energy_check;
 use crate::steps::check::{CheckError, StepCheck};
+use crate::steps::motion::energy_check;
 
 pub(super) fn derive(
     cx: Context,

@@ -11,8 +11,8 @@ use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::linearise;
 use crate::derive::step_names::StepResult;
-use crate::steps::motion::linear_check;
 use crate::steps::check::{CheckError, StepCheck, equations_of};
+use crate::steps::motion::linear_check;
 use std::collections::BTreeMap;
 
 pub(super) fn derive(

@@ -35,10 +35,10 @@ use crate::derive::lagrangian::simplify_two;
 use crate::derive::step_names::{StepError, StepResult};
 use crate::derive::{Derivation, DeriveError};
 use crate::notation::Formula;
-use crate::scene::{AuthorStep, Operation, Scene};
-use crate::numeric::random_points::CONFIRMATION_POINTS;
 use crate::numeric::budget::Deadline;
+use crate::numeric::random_points::CONFIRMATION_POINTS;
 use crate::numeric::random_points::{numerically_zero, signed_names};
+use crate::scene::{AuthorStep, Operation, Scene};
 use check::equations_of;
 pub use check::{CheckError, StepCheck};
 

@@ -9,8 +9,8 @@ use super::{Checking, Context, conserved, scalar, scalar_of};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::momentum;
 use crate::derive::step_names::StepResult;
-use crate::steps::motion::{Conserved, conserved_check};
 use crate::steps::check::{CheckError, StepCheck};
+use crate::steps::motion::{Conserved, conserved_check};
 
 pub(super) fn derive(cx: Context, of: &str, coordinate: &str) -> Result<StepResult, DeriveError> {
     let (p, force) = momentum(scalar(cx.d, of)?, coordinate)?;

@@ -2,7 +2,6 @@
 //! integrated (Dormand–Prince) with the energy function watched, the linear equations against
 //! the full ones near rest, and the measured period against 2π/Ω.
 
-use crate::numeric::random_points::CONFIRMATION_POINTS;
 use super::check::{CheckError, H, StepCheck, at, random_point};
 use crate::base::format::{sci, short};
 use crate::base::rng::Rng;
@@ -13,6 +12,7 @@ use crate::numeric::motion::{
     MOTION_STEPS, MOTION_TOLERANCE, MotionSystem, split_rows, state, state_slots,
 };
 use crate::numeric::ode::dormand_prince;
+use crate::numeric::random_points::CONFIRMATION_POINTS;
 use crate::scene::{AuthorStep, Scene};
 use std::collections::BTreeMap;
 

@@ -22,10 +22,7 @@ pub(super) fn derive(
     of: &str,
     cyclic: &[(String, String)],
 ) -> Result<StepResult, DeriveError> {
-    Ok(StepResult::Expr(routhian(
-        scalar(cx.d, of)?,
-        cyclic,
-    )?))
+    Ok(StepResult::Expr(routhian(scalar(cx.d, of)?, cyclic)?))
 }
 
 pub(super) fn check(

@@ -21,9 +21,7 @@ pub(super) fn derive(
 ) -> Result<StepResult, DeriveError> {
     let f = expand_names(cx.scene, cx.d, cx.step, of).map_err(DeriveError::Step)?;
     let x0 = expand_names(cx.scene, cx.d, cx.step, about).map_err(DeriveError::Step)?;
-    Ok(StepResult::Expr(series(
-        &f, var, &x0, order,
-    )?))
+    Ok(StepResult::Expr(series(&f, var, &x0, order)?))
 }
 
 pub(super) fn check(

@@ -13,9 +13,9 @@ use crate::derive::DeriveError;
 use crate::derive::lagrangian::stability;
 use crate::derive::sign::{Sign, signs_over_positive};
 use crate::derive::step_names::{Stability, Stable, StepResult, equilibria_source};
+use crate::steps::check::{CheckError, StepCheck, equations_of};
 use crate::steps::rest::stability_check;
 use crate::steps::rest_states::rest_stability_check;
-use crate::steps::check::{CheckError, StepCheck, equations_of};
 
 pub(super) fn derive(cx: Context, of: &str) -> Result<StepResult, DeriveError> {
     let (scene, d) = (cx.scene, cx.d);

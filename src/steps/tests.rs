@@ -588,13 +588,8 @@ fn bead_on_hoop_equilibria_and_stability() {
         panic!()
     };
     let mut check = blank();
-    let missing = crate::steps::rest::equilibria_check(
-        &r.scene,
-        &eqs[0].1,
-        "theta",
-        &zeros[..2],
-        &mut check,
-    );
+    let missing =
+        crate::steps::rest::equilibria_check(&r.scene, &eqs[0].1, "theta", &zeros[..2], &mut check);
     assert!(
         matches!(missing, Err(CheckError::MissedZero { .. })),
         "{missing:?}"

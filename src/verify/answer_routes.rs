@@ -4,16 +4,16 @@
 //! value (`be`: its expression as written; `frequency`: the period of the integrated motion;
 //! `solve`: Newton's method on the equation), and the symbols by the variant's values.
 
-use crate::steps::integrate::{QUADRATURE_AGREEMENT, quadrature};
-use crate::steps::motion::{MODES_AGREEMENT, PERIOD_AGREEMENT, measured_period, numeric_modes};
-use crate::steps::check::CheckError;
-use crate::steps::check::{equations_of, solvable_of};
 use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::step_names::{equation_with, expand_names, expand_ranges};
 use crate::derive::variants::{placeholder_of, resolve_expr};
 use crate::numeric::answers::{RouteError, Routes};
 use crate::scene::{Operation, Scene, step_named};
+use crate::steps::check::CheckError;
+use crate::steps::check::{equations_of, solvable_of};
+use crate::steps::integrate::{QUADRATURE_AGREEMENT, quadrature};
+use crate::steps::motion::{MODES_AGREEMENT, PERIOD_AGREEMENT, measured_period, numeric_modes};
 use std::collections::BTreeMap;
 
 /// How closely Newton's method must put a root back: it converges quadratically to rounding,

@@ -20,11 +20,16 @@ fn with_wrong_step(r: &SceneReport, name: &str, wrong: StepResult) -> Vec<bool> 
     assert!(d.named.contains_key(name), "no step {name}");
     d.named.insert(name.into(), wrong);
     let problem = r.scene.problem.as_ref().unwrap();
-    check_variants(&r.scene, &d, problem, &crate::numeric::budget::Deadline::checks())
-        .unwrap()
-        .iter()
-        .map(|v| v.passed())
-        .collect()
+    check_variants(
+        &r.scene,
+        &d,
+        problem,
+        &crate::numeric::budget::Deadline::checks(),
+    )
+    .unwrap()
+    .iter()
+    .map(|v| v.passed())
+    .collect()
 }
 
 fn expr(text: &str) -> StepResult {

@@ -2,13 +2,13 @@
 //! equal symbolically and at random points, over positive symbols, under the scene's
 //! assumptions and by their squares; where the two tests disagree, undecided.
 
-use crate::numeric::random_points::{numerically_zero, signed_names};
 use super::rounding::rounded_agreement;
 use super::{CONFIRMATION_POINTS, ClaimResult, assumed, result_names, squares};
 use crate::cas::{self, Expr};
 use crate::derive::algebra::{Env, Value, evaluate};
 use crate::derive::{Derivation, simplify_value};
 use crate::model::prose::Prose;
+use crate::numeric::random_points::{numerically_zero, signed_names};
 use crate::scene::{Scene, Verdict};
 
 /// The names a claim may use, bound to their values: a step's (`derive::step_names`), and the

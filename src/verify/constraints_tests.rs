@@ -5,12 +5,12 @@
 //! textbook's Routhian and the full motion; a wrong Routhian and a coordinate that is not
 //! cyclic fail.
 
-use crate::steps::motion::energy_check;
-use crate::steps::check::StepCheck;
 use crate::cas::Expr;
 use crate::derive::step_names::StepResult;
 use crate::pipeline::{SceneReport, run_scene};
 use crate::scene::{Operation, Scene, Verdict};
+use crate::steps::check::StepCheck;
+use crate::steps::motion::energy_check;
 use std::path::Path;
 
 fn course(file: &str) -> String {
@@ -237,14 +237,16 @@ fn the_spherical_pendulums_routhian() {
     let lagrangian = r.derivation.named["Lag"].scalar().unwrap();
     let routhian = r.derivation.named["R"].scalar().unwrap();
     let mut check = blank();
-    crate::steps::routh::routh_check(&r.scene, step, lagrangian, routhian, cyclic, &mut check).unwrap();
+    crate::steps::routh::routh_check(&r.scene, step, lagrangian, routhian, cyclic, &mut check)
+        .unwrap();
     assert!(check.passed() && check.error < 1e-8, "{check:?}");
     let wrong =
         crate::cas::parse("m*l^2*theta'^2/2 + m*g*l*cos(theta) + p^2/(2*m*l^2*sin(theta)^2)")
             .unwrap()
             .expr;
     let mut check = blank();
-    crate::steps::routh::routh_check(&r.scene, step, lagrangian, &wrong, cyclic, &mut check).unwrap();
+    crate::steps::routh::routh_check(&r.scene, step, lagrangian, &wrong, cyclic, &mut check)
+        .unwrap();
     assert!(!check.passed() && check.error > 1e-2, "{check:?}");
     let not_cyclic = text.replace("cyclic = { phi = \"p\" }", "cyclic = { theta = \"p\" }");
     let message = run_scene(

@@ -143,10 +143,10 @@ pub fn check_dimensions(scene: &Scene, d: &Derivation) -> Result<(), DimensionFa
 pub enum Mismatch {
     /// The claim's value is in `stated`, but `quantity` is in `derived`.
     Sides {
-        stated: String,
+        stated: Dimension,
         quantity: Expr,
-        derived: String,
-        ratio: String,
+        derived: Dimension,
+        ratio: Dimension,
     },
     /// The claim's value cannot be measured (a sum of unlike terms).
     Value(String),
@@ -197,12 +197,20 @@ impl Mismatch {
             None if word => return plain(),
             None => quantity.to_tex_named(names, &quantity_symbol),
         };
+        // Each dimension set as a unit is (kg⁻¹ m⁻²), a pure number in words.
+        let unit = |d: &Dimension| match d.formula() {
+            Some(f) => Piece::Math(f),
+            None => Piece::Text(d.to_string()),
+        };
         Prose(vec![
-            Piece::Text(format!(
-                "the two sides differ in dimension: the claim's value is in {stated}, but "
-            )),
+            Piece::Text("the two sides differ in dimension: the claim's value is in ".into()),
+            unit(stated),
+            Piece::Text(", but ".into()),
             Piece::Math(Formula::Tex(tex)),
-            Piece::Text(format!(" is in {derived}: they differ by {ratio}")),
+            Piece::Text(" is in ".into()),
+            unit(derived),
+            Piece::Text(": they differ by ".into()),
+            unit(ratio),
         ])
     }
 }
@@ -227,10 +235,10 @@ fn claim_mismatch(scene: &Scene, env: &crate::derive::algebra::Env, c: &Claim) -
             && !derived.is_zero()
         {
             return Some(Mismatch::Sides {
-                stated: stated_m.dimension.to_string(),
+                ratio: stated_m.dimension.over(&derived_m.dimension),
+                stated: stated_m.dimension,
                 quantity: c.quantity.clone()?,
-                derived: derived_m.dimension.to_string(),
-                ratio: stated_m.dimension.over(&derived_m.dimension).to_string(),
+                derived: derived_m.dimension,
             });
         }
     }

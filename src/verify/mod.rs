@@ -328,6 +328,9 @@ mod squares;
 mod step_records;
 mod symbolic;
 pub mod variants;
+
+use crate::numeric::random_points::{numerically_zero, signed_names};
+pub use crate::steps::StepCheck;
 use claims::{check_claim, unchecked};
 pub use claims::{check_claims, claim_env};
 pub use principal::{PRINCIPAL_AGREEMENT, PrincipalValues, check_eigen, principal_values};
@@ -336,9 +339,6 @@ pub use regressions::check_regressions;
 pub use rounding::round_to_figures;
 pub use step_records::{NUMBER_AGREEMENT, StepRecord, check_step_records};
 pub use symbolic::{SymbolicChecks, verify_symbolic};
-pub(crate) use crate::numeric::random_points::NUMERICALLY_ZERO;
-use crate::numeric::random_points::{SAMPLE_FROM, numerically_zero, signed_names};
-pub use crate::steps::StepCheck;
 
 #[cfg(test)]
 mod answer_routes_tests;

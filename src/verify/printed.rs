@@ -3,11 +3,13 @@
 //! build's guard, which takes what a page shows, read back from its printed tree, for the result
 //! it stands for (`render/guard.rs`).
 
-use crate::numeric::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, largest_differences};
 use super::{CONFIRMATION_POINTS, StepCheck};
 use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::present::shown_entries;
+use crate::numeric::random_points::{
+    DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, largest_differences,
+};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// One check for each built-in step printed in another form than derived, in the steps' order:

@@ -2,7 +2,6 @@
 //! values substituted) against the independent numeric routes at the variant's numbers.
 
 use super::answer_routes::{AnswerRouteError, AnswerRoutes};
-use crate::numeric::budget::Deadline;
 use super::dimensions::answer_scale;
 use super::exact_vs_numeric;
 use super::principal::PRINCIPAL_AGREEMENT;
@@ -16,6 +15,7 @@ use crate::derive::{Derivation, DeriveError};
 use crate::model::catalogue::quantity;
 use crate::model::value::Value;
 use crate::numeric::answers::RouteError;
+use crate::numeric::budget::Deadline;
 use crate::scene::{Problem, Scene};
 use std::collections::BTreeMap;
 
