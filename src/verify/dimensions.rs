@@ -141,31 +141,38 @@ pub fn check_dimensions(scene: &Scene, d: &Derivation) -> Result<(), DimensionFa
 /// derived one, so that a page can print it as its symbol (I_xz, never `inertia_tensor[0][2]`).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Mismatch {
-    /// The claim's value is in `stated`, but `quantity` is in `derived`.
-    Sides {
-        stated: Dimension,
-        quantity: Expr,
-        derived: Dimension,
-        ratio: Dimension,
-    },
+    /// The claim's value is in one dimension, its quantity in another.
+    Sides(Box<Sides>),
     /// The claim's value cannot be measured (a sum of unlike terms).
     Value(String),
+}
+
+/// The claim's value is in `stated`, but `quantity` is in `derived`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sides {
+    pub stated: Dimension,
+    pub quantity: Expr,
+    pub derived: Dimension,
+    pub ratio: Dimension,
 }
 
 impl Mismatch {
     /// In words, the quantity as the author wrote it (for `check` and `--json`).
     pub fn text(&self) -> String {
         match self {
-            Mismatch::Sides {
-                stated,
-                quantity,
-                derived,
-                ratio,
-            } => format!(
-                "the claim's value is in {stated}, but `{}` is in {derived}: they differ by \
+            Mismatch::Sides(sides) => {
+                let Sides {
+                    stated,
+                    quantity,
+                    derived,
+                    ratio,
+                } = sides.as_ref();
+                format!(
+                    "the claim's value is in {stated}, but `{}` is in {derived}: they differ by \
                  {ratio}",
-                quantity.to_text()
-            ),
+                    quantity.to_text()
+                )
+            }
             Mismatch::Value(why) => why.clone(),
         }
     }
@@ -180,15 +187,15 @@ impl Mismatch {
         symbol: Option<&crate::notation::Tex>,
     ) -> Prose {
         let plain = || format!("the two sides differ in dimension: {}", self.text()).into();
-        let Mismatch::Sides {
+        let Mismatch::Sides(sides) = self else {
+            return plain();
+        };
+        let Sides {
             stated,
             quantity,
             derived,
             ratio,
-        } = self
-        else {
-            return plain();
-        };
+        } = sides.as_ref();
         let word = quantity.symbols().iter().any(|s| {
             quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &|n| names.typesets(n))
         });
@@ -234,12 +241,12 @@ fn claim_mismatch(scene: &Scene, env: &crate::derive::algebra::Env, c: &Claim) -
             && !stated.is_zero()
             && !derived.is_zero()
         {
-            return Some(Mismatch::Sides {
+            return Some(Mismatch::Sides(Box::new(Sides {
                 ratio: stated_m.dimension.over(&derived_m.dimension),
                 stated: stated_m.dimension,
                 quantity: c.quantity.clone()?,
                 derived: derived_m.dimension,
-            });
+            })));
         }
     }
     None
