@@ -1,7 +1,7 @@
 //! `energy = "Lag"`: the energy function Σ q'·∂L/∂q' − L, conserved when ∂L/∂t is identically 0.
 //!
 //! - Exact rule: `derive/lagrangian.rs`.
-//! - Numeric route: the motion of L integrated, the energy's drift watched (`verify/motion.rs`).
+//! - Numeric route: the motion of L integrated, the energy's drift watched (`motion.rs`).
 
 use super::{Checking, Context, conserved, scalar, scalar_of};
 use crate::derive::DeriveError;

@@ -4,8 +4,8 @@
 //! - Exact rule: one coordinate, the zeros of the static equation (`derive/lagrangian.rs`);
 //!   several, the static system solved (`derive/rest_states.rs`).
 //! - Numeric route: one coordinate, a scan of the static equation for its sign changes at the
-//!   scene's values (`verify/rest.rs`); several, each state put into every static equation, and
-//!   Newton's method from a grid finding the same states, no more (`verify/rest_states.rs`).
+//!   scene's values (`rest.rs`); several, each state put into every static equation, and
+//!   Newton's method from a grid finding the same states, no more (`rest_states.rs`).
 
 use super::{Checking, Context, free_equations, single_equation};
 use crate::derive::DeriveError;

@@ -6,7 +6,7 @@
 //!   bisection where there is none (`derive/modes.rs`).
 //! - Numeric route: one coordinate, the period measured on the full motion integrated about
 //!   the state of rest; several, each mode against √λ of M⁻¹K by nalgebra's Schur
-//!   decomposition (`verify/motion.rs`).
+//!   decomposition (`motion.rs`).
 
 use super::{Checking, Context, equations};
 use crate::derive::DeriveError;

@@ -5,7 +5,7 @@
 //! - Exact rule: `derive/lagrangian.rs` and `derive/constraints.rs`; a Lagrangian built by
 //!   substituting a velocity constraint that does not integrate is refused.
 //! - Numeric route: the motion integrated from the start, the energy Σ q'·∂L/∂q' − L (found by
-//!   differences) and each constraint's drift watched (`verify/motion.rs`).
+//!   differences) and each constraint's drift watched (`motion.rs`).
 
 use super::{Checking, Context, scalar, scalar_of, simplified};
 use crate::cas::Expr;

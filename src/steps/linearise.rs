@@ -4,7 +4,7 @@
 //! - Exact rule: `derive/lagrangian.rs`; a state that leaves anything over is not at rest and
 //!   is refused.
 //! - Numeric route: the full equations against the linear ones at random states near the
-//!   state of rest (`verify/motion.rs`).
+//!   state of rest (`motion.rs`).
 
 use super::{Checking, Context, free_equations, simplified};
 use crate::cas::{self, Expr};

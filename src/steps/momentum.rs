@@ -3,7 +3,7 @@
 //!
 //! - Exact rule: `derive/lagrangian.rs`.
 //! - Numeric route: the motion of L integrated, the momentum's drift watched (or its change
-//!   against the force, when it is not conserved) (`verify/motion.rs`).
+//!   against the force, when it is not conserved) (`motion.rs`).
 
 use super::{Checking, Context, conserved, scalar, scalar_of};
 use crate::derive::DeriveError;

@@ -5,8 +5,8 @@
 //!   symbols (`derive/lagrangian.rs`, `derive/sign.rs`); several, the eigenvalues of M⁻¹K
 //!   (`derive/rest_states.rs`).
 //! - Numeric route: Ω² against central differences of the equation at each state
-//!   (`verify/rest.rs`); several, the stiffness by central differences and the eigenvalues of
-//!   M⁻¹K against the verdict (`verify/rest_states.rs`).
+//!   (`rest.rs`); several, the stiffness by central differences and the eigenvalues of
+//!   M⁻¹K against the verdict (`rest_states.rs`).
 
 use super::{Checking, Context, equations, single_equation};
 use crate::derive::DeriveError;
