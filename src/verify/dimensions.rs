@@ -160,19 +160,13 @@ impl Mismatch {
     /// In words, the quantity as the author wrote it (for `check` and `--json`).
     pub fn text(&self) -> String {
         match self {
-            Mismatch::Sides(sides) => {
-                let Sides {
-                    stated,
-                    quantity,
-                    derived,
-                    ratio,
-                } = sides.as_ref();
-                format!(
-                    "the claim's value is in {stated}, but `{}` is in {derived}: they differ by \
-                 {ratio}",
-                    quantity.to_text()
-                )
-            }
+            Mismatch::Sides(s) => format!(
+                "the claim's value is in {}, but `{}` is in {}: they differ by {}",
+                s.stated,
+                s.quantity.to_text(),
+                s.derived,
+                s.ratio
+            ),
             Mismatch::Value(why) => why.clone(),
         }
     }
