@@ -15,6 +15,7 @@
 use super::sign::{Sign, signs_over_positive};
 use crate::base::rng::Rng;
 use crate::cas::Expr;
+use crate::scene::operations::Lagrange;
 use crate::scene::{SAMPLE_FROM, Scene};
 use std::collections::BTreeMap;
 
@@ -91,7 +92,7 @@ pub fn stable_order(exprs: &mut [Expr], scene: &Scene) {
 /// every one is.
 pub fn positive_roots(roots: Vec<Expr>, unknown: &str, scene: &Scene) -> Vec<Expr> {
     let multiplier = scene.steps.iter().any(|s| match &s.op {
-        crate::scene::Operation::Lagrange { constraints, .. } => {
+        crate::scene::Operation::Lagrange(Lagrange { constraints, .. }) => {
             constraints.iter().any(|(m, _)| m == unknown)
         }
         _ => false,

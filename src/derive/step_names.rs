@@ -10,6 +10,7 @@ pub use super::step_result::{
     Recordable, Stability, Stable, Stands, StandsFor, StateStability, StepResult,
 };
 use crate::cas::Expr;
+use crate::scene::operations::Equilibria;
 use crate::scene::{AuthorStep, Operation, Scene};
 use std::collections::BTreeMap;
 
@@ -178,7 +179,7 @@ pub fn expand_ranges(
 /// The equations of motion whose states of rest the `equilibria` step `of` found.
 pub fn equilibria_source<'a>(scene: &'a Scene, of: &str) -> Option<&'a str> {
     scene.steps.iter().find_map(|s| match &s.op {
-        Operation::Equilibria { of: m } if s.name == of => Some(m.as_str()),
+        Operation::Equilibria(Equilibria { of: m }) if s.name == of => Some(m.as_str()),
         _ => None,
     })
 }

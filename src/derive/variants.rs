@@ -7,6 +7,7 @@ use super::{Derivation, DeriveError};
 use crate::cas::{self, Expr, special_angles};
 use crate::model::catalogue::{Kind, find, quantity, routed_quantities};
 use crate::model::value::Value;
+use crate::scene::operations::Frequency;
 use crate::scene::{Answer, Problem, Scene, Variant};
 use std::collections::BTreeMap;
 
@@ -164,7 +165,9 @@ pub fn with_numeric_modes<'a>(
             .steps
             .iter()
             .find_map(|s| match &s.op {
-                crate::scene::Operation::Frequency { of } if &s.name == step => d.named.get(of),
+                crate::scene::Operation::Frequency(Frequency { of }) if &s.name == step => {
+                    d.named.get(of)
+                }
                 _ => None,
             })
             .and_then(super::step_names::StepResult::equations)

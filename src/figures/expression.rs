@@ -8,6 +8,7 @@ use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::step_names::{expand_names, substituted};
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::scene::operations::{Be, Differentiate, Substitute};
 use crate::scene::{Operation, Scene};
 use std::collections::BTreeMap;
 
@@ -28,21 +29,21 @@ fn second_route<'a>(scene: &'a Scene, d: &'a Derivation, step: &str) -> Option<R
         Ok(e.eval(&|n| env.get(n).copied().filter(|_| n != "pi"))?)
     };
     match &s.op {
-        Operation::Be(e) => {
+        Operation::Be(Be(e)) => {
             let written = expand_names(scene, d, s, e).ok()?;
             Some((
                 "the expression as written".into(),
                 Box::new(move |env| eval(&written, env)),
             ))
         }
-        Operation::Substitute { of, set } => {
+        Operation::Substitute(Substitute { of, set }) => {
             let written = substituted(scene, d, s, of, set).ok()?;
             Some((
                 "the expression as written, with its replacements".into(),
                 Box::new(move |env| eval(&written, env)),
             ))
         }
-        Operation::Differentiate { of, by } if by != "t" => {
+        Operation::Differentiate(Differentiate { of, by }) if by != "t" => {
             let f = expand_names(scene, d, s, of).ok()?;
             let by = by.clone();
             Some((

@@ -21,7 +21,8 @@ mod verdict;
 pub use course::{Course, CourseError, LectureTitle, Paper};
 pub use error::{Locator, SceneError};
 pub use load::{MAX_DEPTH, MAX_SCENE_BYTES, find_scenes, load_all};
-pub use step::{AuthorStep, MAX_NAMED_STATES, Operation, ResultNames, mode_name};
+pub use operations::Operation;
+pub use step::{AuthorStep, MAX_NAMED_STATES, ResultNames, mode_name};
 pub use types::{
     Answer, Assumption, Axis, Body, Claim, ClaimRole, ConeOrigin, FreeBodyPlot, FreeInertia,
     NOT_DERIVED, NotesRef, PlotRequest, Problem, RecordedStep, Scene, Shape, Variant, Verdict,

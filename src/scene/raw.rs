@@ -572,3 +572,16 @@ pub struct RawPlot {
     #[serde(default)]
     pub at: BTreeMap<Spanned<String>, Spanned<f64>>,
 }
+
+/// The byte offset of a string's first character inside its quotes.
+pub fn content_start<T>(s: &Spanned<T>) -> usize {
+    s.span().start + 1
+}
+
+/// A name an author may give: a letter, then letters, digits and single underscores.
+pub fn is_identifier(s: &str) -> bool {
+    let mut chars = s.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && !s.contains("__")
+}

@@ -4,64 +4,70 @@
 //!   refused.
 //! - Numeric route: the simplified form against the expression as written at random points.
 
-use super::{Checking, Context};
+use super::{Checking, Context, Rule};
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::step_names::{StepResult, expand_names, expand_printed_names};
+use crate::notation::Formula;
 use crate::numeric::random_points::CONFIRMATION_POINTS;
 use crate::numeric::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, rational_at};
+use crate::scene::operations::Be;
 use crate::steps::check::{CheckError, StepCheck, at, random_point};
 use std::collections::BTreeMap;
 
-pub(super) fn derive(cx: Context, e: &Expr) -> Result<StepResult, DeriveError> {
-    let x = expand_names(cx.scene, cx.d, cx.step, e).map_err(DeriveError::Step)?;
-    crate::derive::undefined::refuse_no_value(&x, e, &BTreeMap::new(), &BTreeMap::new())?;
-    Ok(StepResult::Expr(cas::simplify(&x)?))
-}
+impl Rule for Be {
+    fn derive(&self, cx: Context, _: &mut Option<Formula>) -> Result<StepResult, DeriveError> {
+        let e: &Expr = &self.0;
+        let x = expand_names(cx.scene, cx.d, cx.step, e).map_err(DeriveError::Step)?;
+        crate::derive::undefined::refuse_no_value(&x, e, &BTreeMap::new(), &BTreeMap::new())?;
+        Ok(StepResult::Expr(cas::simplify(&x)?))
+    }
 
-pub(super) fn check(cx: Checking, e: &Expr, check: &mut StepCheck) -> Result<(), CheckError> {
-    let StepResult::Expr(r) = cx.result else {
-        return Err(CheckError::NotDerived);
-    };
-    let raw = expand_names(cx.scene, cx.d, cx.step, e)?;
-    check.method = format!(
-        "the simplified form against the expression as written, at {CONFIRMATION_POINTS} \
+    fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError> {
+        let e: &Expr = &self.0;
+        let StepResult::Expr(r) = cx.result else {
+            return Err(CheckError::NotDerived);
+        };
+        let raw = expand_names(cx.scene, cx.d, cx.step, e)?;
+        check.method = format!(
+            "the simplified form against the expression as written, at {CONFIRMATION_POINTS} \
          random points"
-    );
-    check.tolerance = NUMERICALLY_ZERO;
-    let mut rng = Rng::new(cx.seed);
-    let mut compared = 0;
-    for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
-        if compared == CONFIRMATION_POINTS {
-            break;
+        );
+        check.tolerance = NUMERICALLY_ZERO;
+        let mut rng = Rng::new(cx.seed);
+        let mut compared = 0;
+        for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
+            if compared == CONFIRMATION_POINTS {
+                break;
+            }
+            let point = random_point(&[&raw, r], &mut rng, cx.scene);
+            let (a, b) = (at(&raw, &point)?, at(r, &point)?);
+            check.evaluations += 2;
+            // Where either is undefined or infinite, nothing is compared (inf − inf is NaN, which
+            // `max` would pass over): another point is drawn.
+            if !a.is_finite() || !b.is_finite() {
+                continue;
+            }
+            compared += 1;
+            let scale = a.abs().max(b.abs()).max(1.0);
+            let mut error = (a - b).abs() / scale;
+            // Apart in double precision: exactly, where both are rational functions of the point
+            // (an expanded (x − a)^30 against the power as written cancels its digits away).
+            if error > NUMERICALLY_ZERO
+                && let (Some(x), Some(y)) = (rational_at(&raw, &point), rational_at(r, &point))
+            {
+                error = x.add(&y.negated()).to_f64().abs() / scale;
+            }
+            check.error = check.error.max(error);
         }
-        let point = random_point(&[&raw, r], &mut rng, cx.scene);
-        let (a, b) = (at(&raw, &point)?, at(r, &point)?);
-        check.evaluations += 2;
-        // Where either is undefined or infinite, nothing is compared (inf − inf is NaN, which
-        // `max` would pass over): another point is drawn.
-        if !a.is_finite() || !b.is_finite() {
-            continue;
+        if compared < CONFIRMATION_POINTS {
+            return Err(CheckError::NoPointInDomain {
+                tries: CONFIRMATION_POINTS * DOMAIN_TRIES,
+            });
         }
-        compared += 1;
-        let scale = a.abs().max(b.abs()).max(1.0);
-        let mut error = (a - b).abs() / scale;
-        // Apart in double precision: exactly, where both are rational functions of the point
-        // (an expanded (x − a)^30 against the power as written cancels its digits away).
-        if error > NUMERICALLY_ZERO
-            && let (Some(x), Some(y)) = (rational_at(&raw, &point), rational_at(r, &point))
-        {
-            error = x.add(&y.negated()).to_f64().abs() / scale;
-        }
-        check.error = check.error.max(error);
+        Ok(())
     }
-    if compared < CONFIRMATION_POINTS {
-        return Err(CheckError::NoPointInDomain {
-            tries: CONFIRMATION_POINTS * DOMAIN_TRIES,
-        });
-    }
-    Ok(())
 }
 
 /// The form the page prints: the author's expression as written, each earlier step put in by

@@ -7,110 +7,113 @@
 //!   x or along the motion through the point.
 
 use super::check::{CheckError, H, StepCheck, at, random_point};
-use super::{Checking, Context};
+use super::{Checking, Context, Rule};
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::time_derivative;
 use crate::derive::step_names::{StepResult, expand_names};
+use crate::notation::Formula;
 use crate::numeric::random_points::CONFIRMATION_POINTS;
 use crate::numeric::random_points::{DOMAIN_TRIES, SAMPLE_FROM};
+use crate::scene::operations::Differentiate;
 use std::collections::BTreeMap;
 
 /// Central differences with Richardson extrapolation err by O(h⁴) in truncation and about
 /// ε·|f|/h in rounding; with h = 1e-3 both stay far below this, relative to the derivative.
 const DIFFERENCE_AGREEMENT: f64 = 1e-7;
 
-pub(super) fn derive(cx: Context, of: &Expr, by: &str) -> Result<StepResult, DeriveError> {
-    let f = expand_names(cx.scene, cx.d, cx.step, of).map_err(DeriveError::Step)?;
-    let derivative = |f: &Expr| -> Result<Expr, DeriveError> {
-        Ok(if by == "t" {
-            time_derivative(f, &cx.scene.coordinates)?
-        } else {
-            f.diff(by)?
-        })
-    };
-    Ok(match cas::simplify(&derivative(&f)?) {
-        Ok(r) => StepResult::Expr(r),
-        // A rational function's expanded denominator, squared by the quotient rule, is past
-        // the budget (an effective potential's second derivative): the quotient rule over the
-        // factored denominator, which grows by its factors only.
-        Err(cas::CasError {
-            reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { .. }),
-        }) => StepResult::Expr(derivative_of_quotient(&f, &derivative)?),
-        Err(e) => return Err(e.into()),
-    })
-}
-
-pub(super) fn check(
-    cx: Checking,
-    of: &Expr,
-    by: &str,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    let StepResult::Expr(r) = cx.result else {
-        return Err(CheckError::NotDerived);
-    };
-    let f = expand_names(cx.scene, cx.d, cx.step, of)?;
-    check.method = format!(
-        "central differences (h = {H}, Richardson-extrapolated) at {CONFIRMATION_POINTS} \
-             random points"
-    );
-    check.tolerance = DIFFERENCE_AGREEMENT;
-    let mut rng = Rng::new(cx.seed);
-    let mut checked = 0;
-    for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
-        if checked == CONFIRMATION_POINTS {
-            break;
-        }
-        let mut point = random_point(&[&f, r], &mut rng, cx.scene);
-        let mut accel = BTreeMap::new();
-        for q in cx.scene.coordinates.keys() {
-            for name in [q.clone(), format!("{q}'"), format!("{q}''")] {
-                point
-                    .entry(name)
-                    .or_insert_with(|| SAMPLE_FROM + rng.uniform());
-            }
-            accel.insert(q.clone(), SAMPLE_FROM + rng.uniform());
-        }
-        point.entry("t".into()).or_insert(SAMPLE_FROM);
-        // Along x = x0 + s (a partial derivative), or along the motion through the
-        // point (d/dt): q + s q' + s² q''/2, q' + s q'', t + s.
-        let moved = |s: f64| -> BTreeMap<String, f64> {
-            let mut p = point.clone();
-            if by == "t" {
-                for q in cx.scene.coordinates.keys() {
-                    let (v, a) = (point[&format!("{q}'")], point[&format!("{q}''")]);
-                    *p.get_mut(q).expect("set above") += s * v + s * s * a / 2.0;
-                    *p.get_mut(&format!("{q}'")).expect("set above") += s * a;
-                }
-                *p.get_mut("t").expect("set above") += s;
+impl Rule for Differentiate {
+    fn derive(&self, cx: Context, _: &mut Option<Formula>) -> Result<StepResult, DeriveError> {
+        let of: &Expr = &self.of;
+        let by: &str = &self.by;
+        let f = expand_names(cx.scene, cx.d, cx.step, of).map_err(DeriveError::Step)?;
+        let derivative = |f: &Expr| -> Result<Expr, DeriveError> {
+            Ok(if by == "t" {
+                time_derivative(f, &cx.scene.coordinates)?
             } else {
-                *p.entry(by.to_string()).or_insert(SAMPLE_FROM) += s;
+                f.diff(by)?
+            })
+        };
+        Ok(match cas::simplify(&derivative(&f)?) {
+            Ok(r) => StepResult::Expr(r),
+            // A rational function's expanded denominator, squared by the quotient rule, is past
+            // the budget (an effective potential's second derivative): the quotient rule over the
+            // factored denominator, which grows by its factors only.
+            Err(cas::CasError {
+                reason: cas::CasFailure::Engine(cas::EngineError::OverBudget { .. }),
+            }) => StepResult::Expr(derivative_of_quotient(&f, &derivative)?),
+            Err(e) => return Err(e.into()),
+        })
+    }
+
+    fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError> {
+        let of: &Expr = &self.of;
+        let by: &str = &self.by;
+        let StepResult::Expr(r) = cx.result else {
+            return Err(CheckError::NotDerived);
+        };
+        let f = expand_names(cx.scene, cx.d, cx.step, of)?;
+        check.method = format!(
+            "central differences (h = {H}, Richardson-extrapolated) at {CONFIRMATION_POINTS} \
+             random points"
+        );
+        check.tolerance = DIFFERENCE_AGREEMENT;
+        let mut rng = Rng::new(cx.seed);
+        let mut checked = 0;
+        for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
+            if checked == CONFIRMATION_POINTS {
+                break;
             }
-            p
-        };
-        // A point outside the expression's domain (acos of more than 1) is drawn again.
-        let exact = at(r, &point)?;
-        if !exact.is_finite() || !at(&f, &point)?.is_finite() {
-            continue;
+            let mut point = random_point(&[&f, r], &mut rng, cx.scene);
+            let mut accel = BTreeMap::new();
+            for q in cx.scene.coordinates.keys() {
+                for name in [q.clone(), format!("{q}'"), format!("{q}''")] {
+                    point
+                        .entry(name)
+                        .or_insert_with(|| SAMPLE_FROM + rng.uniform());
+                }
+                accel.insert(q.clone(), SAMPLE_FROM + rng.uniform());
+            }
+            point.entry("t".into()).or_insert(SAMPLE_FROM);
+            // Along x = x0 + s (a partial derivative), or along the motion through the
+            // point (d/dt): q + s q' + s² q''/2, q' + s q'', t + s.
+            let moved = |s: f64| -> BTreeMap<String, f64> {
+                let mut p = point.clone();
+                if by == "t" {
+                    for q in cx.scene.coordinates.keys() {
+                        let (v, a) = (point[&format!("{q}'")], point[&format!("{q}''")]);
+                        *p.get_mut(q).expect("set above") += s * v + s * s * a / 2.0;
+                        *p.get_mut(&format!("{q}'")).expect("set above") += s * a;
+                    }
+                    *p.get_mut("t").expect("set above") += s;
+                } else {
+                    *p.entry(by.to_string()).or_insert(SAMPLE_FROM) += s;
+                }
+                p
+            };
+            // A point outside the expression's domain (acos of more than 1) is drawn again.
+            let exact = at(r, &point)?;
+            if !exact.is_finite() || !at(&f, &point)?.is_finite() {
+                continue;
+            }
+            let value = |x: f64| at(&f, &moved(x)).ok().filter(|v| v.is_finite());
+            let Some((numeric, evaluations)) = richardson(&value) else {
+                continue;
+            };
+            check.evaluations += evaluations + 1;
+            check.error = check
+                .error
+                .max((exact - numeric).abs() / exact.abs().max(numeric.abs()).max(1.0));
+            checked += 1;
         }
-        let value = |x: f64| at(&f, &moved(x)).ok().filter(|v| v.is_finite());
-        let Some((numeric, evaluations)) = richardson(&value) else {
-            continue;
-        };
-        check.evaluations += evaluations + 1;
-        check.error = check
-            .error
-            .max((exact - numeric).abs() / exact.abs().max(numeric.abs()).max(1.0));
-        checked += 1;
+        if checked < CONFIRMATION_POINTS {
+            return Err(CheckError::NoPointInDomain {
+                tries: CONFIRMATION_POINTS * DOMAIN_TRIES,
+            });
+        }
+        Ok(())
     }
-    if checked < CONFIRMATION_POINTS {
-        return Err(CheckError::NoPointInDomain {
-            tries: CONFIRMATION_POINTS * DOMAIN_TRIES,
-        });
-    }
-    Ok(())
 }
 
 /// The derivative at 0 of `f(x)` (None where undefined) by central differences with Richardson

@@ -5,45 +5,42 @@
 //! - Numeric route: nested Gauss–Legendre quadrature at the scene's values (`quadrature_check`).
 
 use super::check::{CheckError, StepCheck, at};
-use super::{Checking, Context};
+use super::{Checking, Context, Rule};
 use crate::cas::{self, AngleSpan, Expr, Integral};
 use crate::derive::DeriveError;
 use crate::derive::step_names::{StepResult, expand_names, expand_ranges};
 use crate::notation::Formula;
 use crate::numeric::quadrature::gauss_legendre;
+use crate::scene::operations::Integrate;
 use std::collections::BTreeMap;
 
-/// The integral, and the statement the page shows: the integral with its limits.
-pub(super) fn derive(
-    cx: Context,
-    of: &Expr,
-    over: &[(String, Expr, Expr)],
-    shown: &mut Option<Formula>,
-) -> Result<StepResult, DeriveError> {
-    let f = expand_names(cx.scene, cx.d, cx.step, of)?;
-    let over = expand_ranges(cx.scene, cx.d, cx.step, over)?;
-    let (value, domain) = integral(&f, &over)?;
-    *shown = Some(crate::derive::inertia::integral_formula(
-        Formula::Expr(Expr::sym(&cx.step.name)),
-        &f,
-        &domain,
-        &value,
-    ));
-    Ok(StepResult::Expr(value))
-}
+impl Rule for Integrate {
+    /// The integral, and the statement the page shows: the integral with its limits.
+    fn derive(&self, cx: Context, shown: &mut Option<Formula>) -> Result<StepResult, DeriveError> {
+        let of: &Expr = &self.of;
+        let over: &[(String, Expr, Expr)] = &self.over;
+        let f = expand_names(cx.scene, cx.d, cx.step, of)?;
+        let over = expand_ranges(cx.scene, cx.d, cx.step, over)?;
+        let (value, domain) = integral(&f, &over)?;
+        *shown = Some(crate::derive::inertia::integral_formula(
+            Formula::Expr(Expr::sym(&cx.step.name)),
+            &f,
+            &domain,
+            &value,
+        ));
+        Ok(StepResult::Expr(value))
+    }
 
-pub(super) fn check(
-    cx: Checking,
-    of: &Expr,
-    over: &[(String, Expr, Expr)],
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    let StepResult::Expr(exact) = cx.result else {
-        return Err(CheckError::NotDerived);
-    };
-    let f = expand_names(cx.scene, cx.d, cx.step, of)?;
-    let over = expand_ranges(cx.scene, cx.d, cx.step, over)?;
-    quadrature_check(&cx.scene.values, &f, &over, exact, check)
+    fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError> {
+        let of: &Expr = &self.of;
+        let over: &[(String, Expr, Expr)] = &self.over;
+        let StepResult::Expr(exact) = cx.result else {
+            return Err(CheckError::NotDerived);
+        };
+        let f = expand_names(cx.scene, cx.d, cx.step, of)?;
+        let over = expand_ranges(cx.scene, cx.d, cx.step, over)?;
+        quadrature_check(&cx.scene.values, &f, &over, exact, check)
+    }
 }
 
 // An `integrate` step checked without the engine: nested Gauss–Legendre quadrature of the

@@ -7,43 +7,43 @@
 //! - Numeric route: the motion integrated from the start, the energy Σ q'·∂L/∂q' − L (found by
 //!   differences) and each constraint's drift watched (`motion.rs`).
 
-use super::{Checking, Context, scalar, scalar_of, simplified};
+use super::{Checking, Context, Rule, scalar, scalar_of, simplified};
 use crate::cas::Expr;
 use crate::derive::constraints::{does_not_integrate, with_multipliers};
 use crate::derive::lagrangian::euler_lagrange;
 use crate::derive::step_names::{StepResult, replacements};
 use crate::derive::{Derivation, DeriveError};
+use crate::notation::Formula;
+use crate::scene::operations::Lagrange;
+use crate::scene::operations::{Be, Differentiate, Substitute};
 use crate::scene::{Operation, Scene};
 use crate::steps::check::{CheckError, StepCheck};
 use crate::steps::motion::energy_check;
 
-pub(super) fn derive(
-    cx: Context,
-    of: &str,
-    constraints: &[(String, Expr)],
-) -> Result<StepResult, DeriveError> {
-    refuse_substituted_rolling(cx.scene, cx.d, of)?;
-    let eqs = euler_lagrange(scalar(cx.d, of)?, &cx.scene.coordinates)?;
-    simplified(with_multipliers(eqs, constraints, &cx.scene.coordinates)?)
-}
+impl Rule for Lagrange {
+    fn derive(&self, cx: Context, _: &mut Option<Formula>) -> Result<StepResult, DeriveError> {
+        let of: &str = &self.of;
+        let constraints: &[(String, Expr)] = &self.constraints;
+        refuse_substituted_rolling(cx.scene, cx.d, of)?;
+        let eqs = euler_lagrange(scalar(cx.d, of)?, &cx.scene.coordinates)?;
+        simplified(with_multipliers(eqs, constraints, &cx.scene.coordinates)?)
+    }
 
-pub(super) fn check(
-    cx: Checking,
-    of: &str,
-    constraints: &[(String, Expr)],
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    let StepResult::Equations(eqs) = cx.result else {
-        return Err(CheckError::NotDerived);
-    };
-    energy_check(
-        cx.scene,
-        cx.step,
-        scalar_of(cx.d, of)?,
-        eqs,
-        constraints,
-        check,
-    )
+    fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError> {
+        let of: &str = &self.of;
+        let constraints: &[(String, Expr)] = &self.constraints;
+        let StepResult::Equations(eqs) = cx.result else {
+            return Err(CheckError::NotDerived);
+        };
+        energy_check(
+            cx.scene,
+            cx.step,
+            scalar_of(cx.d, of)?,
+            eqs,
+            constraints,
+            check,
+        )
+    }
 }
 
 /// A Lagrangian built (through `be`, `differentiate` and `substitute` steps) from a
@@ -61,8 +61,8 @@ fn refuse_substituted_rolling(scene: &Scene, d: &Derivation, of: &str) -> Result
             continue;
         };
         let used = match &step.op {
-            Operation::Be(e) | Operation::Differentiate { of: e, .. } => e,
-            Operation::Substitute { of: e, set } => {
+            Operation::Be(Be(e)) | Operation::Differentiate(Differentiate { of: e, .. }) => e,
+            Operation::Substitute(Substitute { of: e, set }) => {
                 for (rate, value) in replacements(scene, d, step, set)? {
                     if does_not_integrate(&rate, &value, &scene.coordinates)? {
                         return Err(DeriveError::NotDerivable(format!(

@@ -1,7 +1,8 @@
 //! The author's step operations, one file per operation: its exact rule (`derive`) beside its
-//! numeric route (`check`), which does not go through the engine. The table of operations
-//! (name, fields, what each holds and gives) is `scene/operations.rs`; each operation's fields
-//! are validated in `scene/validate/operation/`; how a result shows on the page is `page.rs`.
+//! numeric route (`check`), which does not go through the engine, as `impl Rule` for the
+//! operation's type. The type, its row of the table (name, fields, what each holds and gives)
+//! and the checks of its fields are its file of the same name under `scene/operations/`; how a
+//! result shows on the page is `page.rs`.
 //! A step's `gives` is a claim of the notes, checked in `verify/gives.rs`.
 //!
 //! The stage sits above `derive` and `numeric`, whose mechanics the operations share, and
@@ -38,6 +39,7 @@ use crate::notation::Formula;
 use crate::numeric::budget::Deadline;
 use crate::numeric::random_points::CONFIRMATION_POINTS;
 use crate::numeric::random_points::{numerically_zero, signed_names};
+use crate::scene::operations::Be;
 use crate::scene::{AuthorStep, Operation, Scene};
 use check::equations_of;
 pub use check::{CheckError, StepCheck};
@@ -84,7 +86,7 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         let printed = match (&step.op, &result) {
             // An author's expression prints as written, its names kept where they print as
             // symbols (T_beat = 2π/(Ω₂ − Ω₁) = …), then put in.
-            (Operation::Be(e), StepResult::Expr(exact)) => {
+            (Operation::Be(Be(e)), StepResult::Expr(exact)) => {
                 let cx = Context { scene, d, step };
                 let form = be::printed(cx, e, exact).map_err(|e| locate(step, e))?;
                 if let Some(named) = be::as_named(cx, e).filter(|n| *n != form) {
@@ -178,29 +180,32 @@ fn derive_step(
     step: &AuthorStep,
     shown: &mut Option<Formula>,
 ) -> Result<StepResult, DeriveError> {
-    let cx = Context { scene, d, step };
-    match &step.op {
-        Operation::Be(e) => be::derive(cx, e),
-        Operation::Differentiate { of, by } => differentiate::derive(cx, of, by),
-        Operation::Substitute { of, set } => substitute::derive(cx, of, set),
-        Operation::Lagrange { of, constraints } => lagrange::derive(cx, of, constraints),
-        Operation::Routh { of, cyclic } => routh::derive(cx, of, cyclic),
-        Operation::Momentum { of, coordinate } => momentum::derive(cx, of, coordinate),
-        Operation::Energy { of } => energy::derive(cx, of),
-        Operation::Linearise { of, about } => linearise::derive(cx, of, about),
-        Operation::Frequency { of } => frequency::derive(cx, of),
-        Operation::Solve { of, unknowns } => solve::derive(cx, of, unknowns),
-        Operation::Series {
-            of,
-            var,
-            about,
-            order,
-        } => series::derive(cx, of, var, about, *order),
-        Operation::Integrate { of, over } => integrate::derive(cx, of, over, shown),
-        Operation::Equilibria { of } => equilibria::derive(cx, of),
-        Operation::Stability { of } => stability::derive(cx, of),
-    }
+    rule_of(&step.op).derive(Context { scene, d, step }, shown)
 }
+
+/// What an operation does, in its file of the same name here: its exact rule and its numeric
+/// route.
+trait Rule {
+    /// Its result by the exact rule (its errors located by the caller); `shown` takes a
+    /// statement other than `name = result` (an integral with its limits).
+    fn derive(&self, cx: Context, shown: &mut Option<Formula>) -> Result<StepResult, DeriveError>;
+
+    /// Its result checked by the numeric route, which does not go through the engine.
+    fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError>;
+}
+
+/// Each operation's file, and its rule, from the one list of operations.
+macro_rules! rules {
+    ($($op:ident $file:ident $row:tt,)*) => {
+        /// The rule of a step's operation.
+        fn rule_of(op: &Operation) -> &dyn Rule {
+            match op {
+                $(Operation::$op(o) => o,)*
+            }
+        }
+    };
+}
+crate::scene::operations::with_operations!(rules);
 
 /// An error of a step, at the step's line; an expansion over the engine's budget says what to
 /// do about a step, not about a body.
@@ -232,6 +237,23 @@ fn conserved(value: Expr, force: Expr) -> Result<StepResult, DeriveError> {
         value,
         conserved: force.is_zero(),
     })
+}
+
+/// A momentum's or energy's numeric route: along the motion of the named Lagrangian
+/// (`motion::conserved_check`).
+fn conserved_route(
+    cx: Checking,
+    of: &str,
+    what: motion::Conserved,
+    check: &mut StepCheck,
+) -> Result<(), CheckError> {
+    let StepResult::Conserved { value, conserved } = cx.result else {
+        return Err(CheckError::NotDerived);
+    };
+    let lagrangian = scalar_of(cx.d, of)?;
+    motion::conserved_check(
+        cx.scene, cx.step, lagrangian, value, *conserved, what, check,
+    )
 }
 
 /// The expression a validated earlier step holds.
@@ -372,27 +394,7 @@ fn route(
         result,
         seed,
     };
-    match &step.op {
-        Operation::Be(e) => be::check(cx, e, check),
-        Operation::Differentiate { of, by } => differentiate::check(cx, of, by, check),
-        Operation::Substitute { of, set } => substitute::check(cx, of, set, check),
-        Operation::Lagrange { of, constraints } => lagrange::check(cx, of, constraints, check),
-        Operation::Routh { of, cyclic } => routh::check(cx, of, cyclic, check),
-        Operation::Momentum { of, coordinate } => momentum::check(cx, of, coordinate, check),
-        Operation::Energy { of } => energy::check(cx, of, check),
-        Operation::Linearise { of, about } => linearise::check(cx, of, about, check),
-        Operation::Frequency { of } => frequency::check(cx, of, check),
-        Operation::Solve { of, unknowns } => solve::check(cx, of, unknowns, check),
-        Operation::Series {
-            of,
-            var,
-            about,
-            order,
-        } => series::check(cx, of, var, about, *order, check),
-        Operation::Integrate { of, over } => integrate::check(cx, of, over, check),
-        Operation::Equilibria { of } => equilibria::check(cx, of, check),
-        Operation::Stability { of } => stability::check(cx, of, check),
-    }
+    rule_of(&step.op).check(cx, check)
 }
 
 /// The expression of the named step (a Lagrangian).

@@ -6,6 +6,7 @@ use crate::derive::Step;
 use crate::derive::step_names::{Stable, StandsFor, StepResult};
 use crate::model::prose::Prose;
 use crate::notation::Formula;
+use crate::scene::operations::{Lagrange, Momentum};
 use crate::scene::{AuthorStep, Operation, Scene};
 
 /// After a mode's title where its frequency is zero: what a zero mode is.
@@ -153,7 +154,7 @@ impl Lines<'_> {
     fn conserved(&self, value: &Expr, conserved: bool, why: &Prose) -> Step {
         let step = self.step;
         let of = match &step.op {
-            Operation::Momentum { coordinate, .. } => coordinate.as_str(),
+            Operation::Momentum(Momentum { coordinate, .. }) => coordinate.as_str(),
             _ => "t",
         };
         // The derivation's verdict after the author's reason, said once: a reason that
@@ -426,7 +427,7 @@ impl Lines<'_> {
                 // A constraint on the coordinates is differentiated twice to reach the
                 // accelerations, one on the rates (rolling) once.
                 let constraint = match &step.op {
-                    Operation::Lagrange { constraints, .. } => constraints
+                    Operation::Lagrange(Lagrange { constraints, .. }) => constraints
                         .iter()
                         .find(|(lambda, _)| lambda == q)
                         .map(|(_, f)| {
@@ -439,8 +440,8 @@ impl Lines<'_> {
                 };
                 let q = typeset(q);
                 let (of, after) = match &step.op {
-                    Operation::Linearise { .. } => ("linearised equation", ""),
-                    Operation::Substitute { .. } => ("equation", ", substituted"),
+                    Operation::Linearise(_) => ("linearised equation", ""),
+                    Operation::Substitute(_) => ("equation", ", substituted"),
                     _ => ("equation", ""),
                 };
                 let what = match constraint {

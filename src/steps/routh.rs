@@ -7,35 +7,34 @@
 
 use super::check::{CheckError, StepCheck};
 use super::motion::{ENERGY_AGREEMENT, MOTION_TIME, integrate};
-use super::{Checking, Context, scalar, scalar_of};
+use super::{Checking, Context, Rule, scalar, scalar_of};
 use crate::base::format::short;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::solve::solve_system;
 use crate::derive::step_names::StepResult;
+use crate::notation::Formula;
 use crate::numeric::compiled::Program;
 use crate::numeric::motion::{MOTION_TOLERANCE, state_slots};
+use crate::scene::operations::Routh;
 use crate::scene::{AuthorStep, Scene};
 
-pub(super) fn derive(
-    cx: Context,
-    of: &str,
-    cyclic: &[(String, String)],
-) -> Result<StepResult, DeriveError> {
-    Ok(StepResult::Expr(routhian(scalar(cx.d, of)?, cyclic)?))
-}
+impl Rule for Routh {
+    fn derive(&self, cx: Context, _: &mut Option<Formula>) -> Result<StepResult, DeriveError> {
+        let of: &str = &self.of;
+        let cyclic: &[(String, String)] = &self.cyclic;
+        Ok(StepResult::Expr(routhian(scalar(cx.d, of)?, cyclic)?))
+    }
 
-pub(super) fn check(
-    cx: Checking,
-    of: &str,
-    cyclic: &[(String, String)],
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    let StepResult::Expr(routhian) = cx.result else {
-        return Err(CheckError::NotDerived);
-    };
-    let lagrangian = scalar_of(cx.d, of)?;
-    routh_check(cx.scene, cx.step, lagrangian, routhian, cyclic, check)
+    fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError> {
+        let of: &str = &self.of;
+        let cyclic: &[(String, String)] = &self.cyclic;
+        let StepResult::Expr(routhian) = cx.result else {
+            return Err(CheckError::NotDerived);
+        };
+        let lagrangian = scalar_of(cx.d, of)?;
+        routh_check(cx.scene, cx.step, lagrangian, routhian, cyclic, check)
+    }
 }
 
 // A `routh` step against the full motion: its Lagrangian's equations integrated from the

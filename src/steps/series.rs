@@ -5,42 +5,41 @@
 //!   h/8 from the point, the remainder shrinking like h^(order+1) (`remainder_check`).
 
 use super::check::{CheckError, StepCheck, at};
-use super::{Checking, Context};
+use super::{Checking, Context, Rule};
 use crate::base::format::text_number;
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
 use crate::derive::step_names::{StepResult, expand_names};
+use crate::notation::Formula;
 use crate::scene::Scene;
+use crate::scene::operations::Series;
 
-pub(super) fn derive(
-    cx: Context,
-    of: &Expr,
-    var: &str,
-    about: &Expr,
-    order: u32,
-) -> Result<StepResult, DeriveError> {
-    let f = expand_names(cx.scene, cx.d, cx.step, of).map_err(DeriveError::Step)?;
-    let x0 = expand_names(cx.scene, cx.d, cx.step, about).map_err(DeriveError::Step)?;
-    Ok(StepResult::Expr(series(&f, var, &x0, order)?))
-}
+impl Rule for Series {
+    fn derive(&self, cx: Context, _: &mut Option<Formula>) -> Result<StepResult, DeriveError> {
+        let of: &Expr = &self.of;
+        let var: &str = &self.var;
+        let about: &Expr = &self.about;
+        let order: u32 = self.order;
+        let f = expand_names(cx.scene, cx.d, cx.step, of).map_err(DeriveError::Step)?;
+        let x0 = expand_names(cx.scene, cx.d, cx.step, about).map_err(DeriveError::Step)?;
+        Ok(StepResult::Expr(series(&f, var, &x0, order)?))
+    }
 
-pub(super) fn check(
-    cx: Checking,
-    of: &Expr,
-    var: &str,
-    about: &Expr,
-    order: u32,
-    check: &mut StepCheck,
-) -> Result<(), CheckError> {
-    let StepResult::Expr(s) = cx.result else {
-        return Err(CheckError::NotDerived);
-    };
-    let f = expand_names(cx.scene, cx.d, cx.step, of)?;
-    let x0 = at(
-        &expand_names(cx.scene, cx.d, cx.step, about)?,
-        &cx.scene.values,
-    )?;
-    remainder_check(cx.scene, &f, s, var, x0, order, check)
+    fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError> {
+        let of: &Expr = &self.of;
+        let var: &str = &self.var;
+        let about: &Expr = &self.about;
+        let order: u32 = self.order;
+        let StepResult::Expr(s) = cx.result else {
+            return Err(CheckError::NotDerived);
+        };
+        let f = expand_names(cx.scene, cx.d, cx.step, of)?;
+        let x0 = at(
+            &expand_names(cx.scene, cx.d, cx.step, about)?,
+            &cx.scene.values,
+        )?;
+        remainder_check(cx.scene, &f, s, var, x0, order, check)
+    }
 }
 
 // A `series` step checked without the engine: the expression as written against its series

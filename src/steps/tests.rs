@@ -4,6 +4,7 @@
 use super::*;
 use crate::cas::parse;
 use crate::pipeline::{SceneReport, run_scene};
+use crate::scene::operations::{Integrate, Series};
 use crate::scene::{Scene, Verdict};
 use crate::steps::motion::*;
 use std::collections::BTreeMap;
@@ -645,7 +646,7 @@ fn gyroscope_series_and_roots() {
     // The slow rate against 0 (its series with the leading term dropped): the remainder is
     // then of order 1, not 2.
     let step = r.scene.steps.iter().find(|s| s.name == "slow").unwrap();
-    let crate::scene::Operation::Series { of, .. } = &step.op else {
+    let crate::scene::Operation::Series(Series { of, .. }) = &step.op else {
         panic!()
     };
     let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
@@ -711,7 +712,7 @@ fn paraboloid_by_integration() {
             .line
     );
     let step = r.scene.steps.iter().find(|s| s.name == "Iz").unwrap();
-    let crate::scene::Operation::Integrate { of, over } = &step.op else {
+    let crate::scene::Operation::Integrate(Integrate { of, over }) = &step.op else {
         panic!()
     };
     let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();

@@ -9,6 +9,7 @@ use crate::derive::Derivation;
 use crate::derive::step_names::{equation_with, expand_names, expand_ranges};
 use crate::derive::variants::{placeholder_of, resolve_expr};
 use crate::numeric::answers::{RouteError, Routes};
+use crate::scene::operations::{Be, Frequency, Integrate, Linearise, Solve};
 use crate::scene::{Operation, Scene, step_named};
 use crate::steps::check::CheckError;
 use crate::steps::check::{equations_of, solvable_of};
@@ -152,12 +153,12 @@ impl<'a> AnswerRoutes<'a> {
         let step = step_named(&scene.steps, scene.coordinates.len(), name)
             .ok_or_else(|| AnswerRouteError::NoStepRoute(name.to_string()))?;
         match &step.op {
-            Operation::Be(e) => self.expression(e),
+            Operation::Be(Be(e)) => self.expression(e),
             // A mode of n ≥ 2 coordinates (`Omega_2`): the √λ of M⁻¹K at the variant's numbers
             // of the same rank among the modes as this one among the step's exact modes there
             // (their names keep an order that need not be slowest first at every variant);
             // a mode with no closed form is the k-th slowest.
-            Operation::Frequency { of } if name != step.name => {
+            Operation::Frequency(Frequency { of }) if name != step.name => {
                 let modes = numeric_modes(equations_of(self.d, of)?, self.numbers)?;
                 let k = (0..modes.len())
                     .position(|k| step.result_names().kth(k) == name)
@@ -171,8 +172,8 @@ impl<'a> AnswerRoutes<'a> {
                     tolerance: MODES_AGREEMENT,
                 })
             }
-            Operation::Frequency { of } => {
-                let Some(Operation::Linearise { of: motion, about }) =
+            Operation::Frequency(Frequency { of }) => {
+                let Some(Operation::Linearise(Linearise { of: motion, about })) =
                     scene.steps.iter().find(|s| &s.name == of).map(|s| &s.op)
                 else {
                     return Err(AnswerRouteError::NoStepRoute(name.to_string()));
@@ -186,7 +187,7 @@ impl<'a> AnswerRoutes<'a> {
                     tolerance: PERIOD_AGREEMENT,
                 })
             }
-            Operation::Solve { of, unknowns } if unknowns.len() == 1 => {
+            Operation::Solve(Solve { of, unknowns }) if unknowns.len() == 1 => {
                 let unknown = &unknowns[0];
                 let equations = solvable_of(self.d, of)?;
                 let (_, residual) = equation_with(&equations, unknown).map_err(CheckError::from)?;
@@ -202,7 +203,7 @@ impl<'a> AnswerRoutes<'a> {
                     tolerance: NEWTON_AGREEMENT,
                 })
             }
-            Operation::Integrate { of, over } => {
+            Operation::Integrate(Integrate { of, over }) => {
                 let f = expand_names(scene, self.d, step, of).map_err(CheckError::from)?;
                 let over = expand_ranges(scene, self.d, step, over).map_err(CheckError::from)?;
                 let (value, _) = quadrature(self.numbers, &f, &over)?;

@@ -8,6 +8,7 @@
 use crate::cas::Expr;
 use crate::derive::step_names::StepResult;
 use crate::pipeline::{SceneReport, run_scene};
+use crate::scene::operations::{Lagrange, Routh};
 use crate::scene::{Operation, Scene, Verdict};
 use crate::steps::check::StepCheck;
 use crate::steps::motion::energy_check;
@@ -92,7 +93,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
     );
 
     let step = r.scene.steps.iter().find(|s| s.name == "eom").unwrap();
-    let Operation::Lagrange { constraints, .. } = &step.op else {
+    let Operation::Lagrange(Lagrange { constraints, .. }) = &step.op else {
         panic!("{:?}", step.op)
     };
     let lagrangian = r.derivation.named["Lag"].scalar().unwrap();
@@ -231,7 +232,7 @@ fn the_spherical_pendulums_routhian() {
     let gives: Vec<Verdict> = r.verification.claims.iter().map(|c| c.verdict).collect();
     assert_eq!(gives, vec![Verdict::Agrees]);
     let step = r.scene.steps.iter().find(|s| s.name == "R").unwrap();
-    let Operation::Routh { cyclic, .. } = &step.op else {
+    let Operation::Routh(Routh { cyclic, .. }) = &step.op else {
         panic!("{:?}", step.op)
     };
     let lagrangian = r.derivation.named["Lag"].scalar().unwrap();

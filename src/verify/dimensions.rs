@@ -14,6 +14,7 @@ use crate::model::prose::{Piece, Prose};
 use crate::model::units::{Dimension, DimensionError, Measure, measure_of};
 use crate::model::value::Value;
 use crate::notation::Formula;
+use crate::scene::operations::{Be, Differentiate, Integrate, Series, Substitute};
 use crate::scene::{Answer, Claim, Operation, Scene};
 
 /// A dimension error at a line of the scene.
@@ -97,9 +98,10 @@ pub fn check_dimensions(scene: &Scene, d: &Derivation) -> Result<(), DimensionFa
             why,
         };
         let written: Vec<&Expr> = match &step.op {
-            Operation::Be(e) => vec![e],
-            Operation::Differentiate { of, .. } | Operation::Integrate { of, .. } => vec![of],
-            Operation::Series { of, .. } => vec![of],
+            Operation::Be(Be(e)) => vec![e],
+            Operation::Differentiate(Differentiate { of, .. })
+            | Operation::Integrate(Integrate { of, .. }) => vec![of],
+            Operation::Series(Series { of, .. }) => vec![of],
             _ => vec![],
         };
         for e in written {
@@ -286,9 +288,9 @@ fn angular_name(scene: &Scene, e: &Expr) -> Option<String> {
             !names.iter().any(|n| n == "pi") && names.iter().any(|n| angular.contains(n))
         };
         let is_angular = match &step.op {
-            Operation::Frequency { .. } => true,
-            Operation::Be(x) => through(x),
-            Operation::Substitute { of, .. } => through(of),
+            Operation::Frequency(_) => true,
+            Operation::Be(Be(x)) => through(x),
+            Operation::Substitute(Substitute { of, .. }) => through(of),
             _ => false,
         };
         if is_angular {

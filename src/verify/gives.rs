@@ -10,6 +10,7 @@ use crate::cas::{self, Expr};
 use crate::derive::Derivation;
 use crate::derive::step_names::{StepResult, expand_names};
 use crate::model::prose::Prose;
+use crate::scene::operations::Solve;
 use crate::scene::{AuthorStep, Claim, Scene, Verdict};
 
 /// Each step's `gives`, as a claim of the notes: the same expression, or for equations of
@@ -102,7 +103,7 @@ fn check_gives_each(
             role: step.role,
             // Several unknowns print as themselves (T = …, ẍ = …), not as the step's `sol_2`.
             tex: match &step.op {
-                crate::scene::Operation::Solve { unknowns, .. } if unknowns.len() > 1 => {
+                crate::scene::Operation::Solve(Solve { unknowns, .. }) if unknowns.len() > 1 => {
                     unknowns.get(k).map(|u| Expr::sym(u).to_tex(&names))
                 }
                 _ => None,

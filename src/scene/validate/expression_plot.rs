@@ -4,9 +4,11 @@
 use super::{Validator, content_start};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
+use crate::scene::operations::Operation;
+use crate::scene::operations::Substitute;
 use crate::scene::operations::{Holds, Several};
 use crate::scene::raw::RawPlot;
-use crate::scene::step::{AuthorStep, Operation};
+use crate::scene::step::AuthorStep;
 use crate::scene::types::PlotRequest;
 use std::collections::BTreeMap;
 use toml::Spanned;
@@ -22,9 +24,9 @@ fn gives_an_expression(steps: &[AuthorStep], name: &str) -> bool {
         // `substitute` of a step of equations gives equations.
         (
             Holds::Operand,
-            Operation::Substitute {
+            Operation::Substitute(Substitute {
                 of: Expr::Sym(n), ..
-            },
+            }),
         ) if steps.iter().any(|s| s.name == *n) => gives_an_expression(steps, n),
         (Holds::Operand, _) => true,
         (Holds::Expression, _) => kind.several == Several::None,

@@ -27,7 +27,8 @@ pub use symbol_names::{prints_its_name, suggested_tex};
 pub use text::control_character;
 
 use super::error::{Locator, SceneError};
-use super::raw::{RawScene, Text};
+pub(super) use super::raw::content_start;
+use super::raw::{RawScene, Text, is_identifier};
 use crate::cas::{Expr, parse_input as parse_expr};
 
 pub use claims::CLAIM_FUNCTIONS;
@@ -63,18 +64,6 @@ pub(super) struct Validator<'a> {
     pub(super) loc: &'a Locator<'a>,
     /// The names the author declared in [symbols]: an `integrate` step may run over one.
     pub(super) declared: BTreeSet<String>,
-}
-
-/// The byte offset of a string's first character inside its quotes.
-pub(super) fn content_start<T>(s: &Spanned<T>) -> usize {
-    s.span().start + 1
-}
-
-fn is_identifier(s: &str) -> bool {
-    let mut chars = s.chars();
-    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
-        && !s.contains("__")
 }
 
 /// Step key -> the notes' citation for it.

@@ -4,8 +4,10 @@
 use super::{MAX_PLOT_TIME, Validator, content_start};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
+use crate::scene::operations::Operation;
+use crate::scene::operations::Substitute;
 use crate::scene::raw::RawPlot;
-use crate::scene::step::{AuthorStep, Operation};
+use crate::scene::step::AuthorStep;
 use crate::scene::types::PlotRequest;
 use std::collections::BTreeMap;
 use toml::Spanned;
@@ -15,11 +17,11 @@ use toml::Spanned;
 fn equations_kind(steps: &[AuthorStep], name: &str) -> Option<bool> {
     let step = steps.iter().find(|s| s.name == name)?;
     match &step.op {
-        Operation::Lagrange { .. } => Some(false),
-        Operation::Linearise { .. } => Some(true),
-        Operation::Substitute {
+        Operation::Lagrange(_) => Some(false),
+        Operation::Linearise(_) => Some(true),
+        Operation::Substitute(Substitute {
             of: Expr::Sym(n), ..
-        } => equations_kind(steps, n),
+        }) => equations_kind(steps, n),
         _ => None,
     }
 }

@@ -6,9 +6,10 @@ use super::operation::StepContext;
 use super::{Validator, content_start, is_identifier};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
+use crate::scene::operations::Operation;
 use crate::scene::operations::{Holds, Several};
 use crate::scene::raw::{RawScene, RawStep, Text};
-use crate::scene::step::{AuthorStep, Operation};
+use crate::scene::step::AuthorStep;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Each coordinate and its meaning.

@@ -6,6 +6,7 @@
 use super::{Validator, content_start};
 use crate::cas::{Expr, greek_letter, prints_as_word};
 use crate::scene::error::SceneError;
+use crate::scene::operations::Solve;
 use crate::scene::operations::{Holds, Several};
 use crate::scene::raw::RawScene;
 use crate::scene::{AuthorStep, Operation};
@@ -92,7 +93,7 @@ pub fn prints_its_name(step: &AuthorStep, steps: &[AuthorStep]) -> bool {
         (Holds::Operand, _) => !matches!(step.holding(steps), Holds::Motion | Holds::Linear),
         (_, Several::States) => false,
         (_, Several::Roots) => {
-            !matches!(&step.op, Operation::Solve { unknowns, .. } if unknowns.len() > 1)
+            !matches!(&step.op, Operation::Solve(Solve { unknowns, .. }) if unknowns.len() > 1)
         }
         (Holds::Expression, _) => true,
         (Holds::Motion | Holds::Linear | Holds::Equilibria, _) => false,

@@ -1,25 +1,16 @@
-//! What a `[[step]]` does: exactly one operation of the table (`scene/operations.rs`), its
-//! operands checked against the scene's names, the coordinates and the earlier steps by the
-//! operation's own file here, and no field of another operation.
-
-mod differentiate;
-mod integrate;
-mod lagrange;
-mod linearise;
-mod momentum;
-mod routh;
-mod series;
-mod solve;
-mod substitute;
+//! What a `[[step]]` does: exactly one operation of the table (`scene/operations/`), its fields
+//! read and checked by the operation's own file there against what this validator knows at
+//! the step (the scene's names, the coordinates and the earlier steps), and no field of
+//! another operation.
 
 use super::{Validator, content_start};
 use crate::cas::Expr;
 use crate::scene::error::SceneError;
 use crate::scene::operations::{
-    Holds, OPERATION_FIELDS, OPERATIONS, OperationId, OperationKind, Several, stray_field_message,
+    Holds, OPERATION_FIELDS, OPERATIONS, Operation, OperationId, Several, StepFields,
+    read_operation, stray_field_message,
 };
 use crate::scene::raw::{RawStep, Text};
-use crate::scene::step::Operation;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// What a step's operation is checked against: where the step is, the names before it, what
@@ -32,36 +23,49 @@ pub(super) struct StepContext<'a> {
     pub coordinates: &'a BTreeMap<String, String>,
 }
 
+/// The validator at one step: what an operation's file reads its fields through.
+struct AtStep<'a> {
+    v: &'a Validator<'a>,
+    cx: &'a StepContext<'a>,
+}
+
 impl Validator<'_> {
     /// The one operation of a step.
     pub(super) fn operation(&self, s: &RawStep, cx: &StepContext) -> Result<Operation, SceneError> {
         let (offset, field) = (cx.offset, cx.field);
-        let given: Vec<&OperationKind> =
-            OPERATIONS.iter().filter(|k| (k.key)(s).is_some()).collect();
-        let [kind] = given[..] else {
+        let given: Vec<(OperationId, &Text)> = OperationId::ALL
+            .iter()
+            .filter_map(|&id| (id.kind().key)(s).map(|key| (id, key)))
+            .collect();
+        let [(id, key)] = given[..] else {
             return Err(self.err(
                 offset,
                 field,
                 format!(
                     "a step does one thing: give exactly one of {} (this one gives {})",
-                    OPERATIONS.map(|k| k.name).join(", "),
+                    OPERATIONS
+                        .iter()
+                        .map(|k| k.name)
+                        .collect::<Vec<_>>()
+                        .join(", "),
                     if given.is_empty() {
                         "none".to_string()
                     } else {
                         given
                             .iter()
-                            .map(|k| k.name)
+                            .map(|(id, _)| id.kind().name)
                             .collect::<Vec<_>>()
                             .join(" and ")
                     }
                 ),
             ));
         };
-        let op = self.operand_of(s, kind, cx)?;
+        let kind = id.kind();
+        let op = read_operation(id, key, s, &AtStep { v: self, cx })?;
         // A field of another operation than this step's: said before anything else about it.
         for f in OPERATION_FIELDS {
             if (f.given)(s) && !kind.fields.contains(&f.name) {
-                let message = stray_field_message(f.name).expect("a field of the table");
+                let message = stray_field_message(f.name).unwrap_or_default();
                 return Err(self.err(offset, &format!("{field}.{}", f.name), message));
             }
         }
@@ -82,96 +86,69 @@ impl Validator<'_> {
         }
         Ok(op)
     }
+}
 
-    /// The operation `kind` with its operands, each checked by the operation's own rules.
-    fn operand_of(
-        &self,
-        s: &RawStep,
-        kind: &OperationKind,
-        cx: &StepContext,
-    ) -> Result<Operation, SceneError> {
-        use OperationId as Id;
-        let key = (kind.key)(s).expect("the step gives its operation's key");
-        Ok(match kind.id {
-            Id::Be => Operation::Be(self.operand(key, "be", cx)?),
-            Id::Differentiate => self.differentiate(key, s, cx)?,
-            Id::Substitute => self.substitute(key, s, cx)?,
-            Id::Lagrange => Operation::Lagrange {
-                of: self.lagrangian(key, "lagrange", cx)?,
-                constraints: self.constraints(s, cx)?,
-            },
-            Id::Routh => Operation::Routh {
-                of: self.lagrangian(key, "routh", cx)?,
-                cyclic: self.cyclic(s, cx)?,
-            },
-            Id::Momentum => self.momentum(key, s, cx)?,
-            Id::Energy => Operation::Energy {
-                of: self.lagrangian(key, "energy", cx)?,
-            },
-            Id::Linearise => self.linearise(key, s, cx)?,
-            Id::Frequency => Operation::Frequency {
-                of: self.taken(key, "frequency", Holds::Linear, cx)?,
-            },
-            Id::Solve => self.solve(key, s, cx)?,
-            Id::Series => self.series(key, s, cx)?,
-            Id::Integrate => self.integrate(key, s, cx)?,
-            Id::Equilibria => Operation::Equilibria {
-                of: self.taken(key, "equilibria", Holds::Motion, cx)?,
-            },
-            Id::Stability => Operation::Stability {
-                of: self.taken(key, "stability", Holds::Equilibria, cx)?,
-            },
-        })
+impl StepFields for AtStep<'_> {
+    fn err(&self, at: usize, field: &str, message: impl Into<String>) -> SceneError {
+        self.v.err(at, field, message)
     }
 
-    /// An operand written by the author under `key`: an expression of the names in scope, in
-    /// which a coordinate's rate is named as such.
-    fn operand(&self, t: &Text, key: &str, cx: &StepContext) -> Result<Expr, SceneError> {
-        let at = format!("{}.{key}", cx.field);
-        self.rates_of_coordinates(t, &at, cx.coordinates)?;
-        self.claim_expr(t, &at, cx.scope)
+    fn offset(&self) -> usize {
+        self.cx.offset
     }
 
-    /// The earlier step that `op` takes, holding what it needs.
-    fn taken(
+    fn field(&self) -> &str {
+        self.cx.field
+    }
+
+    fn scope(&self) -> &BTreeSet<String> {
+        self.cx.scope
+    }
+
+    fn earlier(&self) -> &BTreeMap<String, Holds> {
+        self.cx.earlier
+    }
+
+    fn coordinates(&self) -> &BTreeMap<String, String> {
+        self.cx.coordinates
+    }
+
+    fn declared(&self) -> &BTreeSet<String> {
+        &self.v.declared
+    }
+
+    fn expression(
         &self,
-        of: &Text,
-        op: &str,
-        needs: Holds,
-        cx: &StepContext,
-    ) -> Result<String, SceneError> {
-        self.earlier(of, cx.field, op, needs, cx.earlier)?;
+        t: &Text,
+        key: &str,
+        names: &BTreeSet<String>,
+    ) -> Result<Expr, SceneError> {
+        self.v.claim_expr(t, key, names)
+    }
+
+    fn operand(&self, t: &Text, key: &str) -> Result<Expr, SceneError> {
+        let at = format!("{}.{key}", self.cx.field);
+        self.v.rates_of_coordinates(t, &at, self.cx.coordinates)?;
+        self.v.claim_expr(t, &at, self.cx.scope)
+    }
+
+    fn taken(&self, of: &Text, op: &str, needs: Holds) -> Result<String, SceneError> {
+        self.v
+            .earlier(of, self.cx.field, op, needs, self.cx.earlier)?;
         Ok(of.get_ref().clone())
     }
 
-    /// The earlier step holding the Lagrangian that `op` takes, in a scene with coordinates.
-    fn lagrangian(&self, of: &Text, op: &str, cx: &StepContext) -> Result<String, SceneError> {
-        self.earlier(of, cx.field, op, Holds::Expression, cx.earlier)?;
-        if cx.coordinates.is_empty() {
+    fn lagrangian(&self, of: &Text, op: &str) -> Result<String, SceneError> {
+        self.taken(of, op, Holds::Expression)?;
+        if self.cx.coordinates.is_empty() {
             return Err(self.err(
                 content_start(of),
-                &format!("{}.{op}", cx.field),
+                &format!("{}.{op}", self.cx.field),
                 format!("`{op}` needs generalised coordinates: name them under [coordinates]"),
             ));
         }
         Ok(of.get_ref().clone())
     }
-
-    /// A name the operation works in (`by`, a `set` name, a `series` variable): one of the
-    /// scene's symbols, coordinates, rates or `t`, not an earlier step's.
-    fn own_name(&self, name: &str, cx: &StepContext) -> bool {
-        cx.scope.contains(name) && !cx.earlier.contains_key(name)
-    }
-}
-
-/// The scene's names without the coordinates, their rates and the time: a state of rest is
-/// given in them.
-fn names_only(cx: &StepContext) -> BTreeSet<String> {
-    cx.scope
-        .iter()
-        .filter(|n| *n != "t" && !n.ends_with('\'') && !cx.coordinates.contains_key(*n))
-        .cloned()
-        .collect()
 }
 
 #[cfg(test)]

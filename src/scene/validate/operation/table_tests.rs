@@ -1,7 +1,7 @@
 //! The table of operations drives the validator: each operation in a well-formed step loads,
 //! and each field of another operation on it is refused with the table's sentence.
 
-use crate::scene::operations::{OPERATION_FIELDS, OPERATIONS, stray_field_message};
+use crate::scene::operations::{OPERATION_FIELDS, OPERATIONS, OperationId, stray_field_message};
 use crate::scene::{Operation, Scene};
 use std::path::Path;
 
@@ -82,12 +82,18 @@ fn parse(text: &str) -> Result<Scene, String> {
 
 #[test]
 fn each_operation_of_the_table_loads_in_a_well_formed_step() {
-    for kind in OPERATIONS {
+    assert_eq!(OperationId::ALL.len(), OPERATIONS.len());
+    for (id, kind) in OperationId::ALL.iter().zip(OPERATIONS) {
         let scene = parse(&scene_with(well_formed(kind.name)))
             .unwrap_or_else(|e| panic!("`{}`: {e}", kind.name));
         let op: &Operation = &scene.steps.last().unwrap().op;
         assert_eq!(op.name(), kind.name);
-        assert_eq!(op.id(), kind.id);
+        assert_eq!(op.id(), *id);
+        assert!(
+            std::ptr::eq(id.kind(), kind),
+            "`{}` not at its id's place",
+            kind.name
+        );
     }
 }
 

@@ -1,33 +1,35 @@
 //! `substitute = "expr"`, `set = { "theta'" = "x'/R" }`: an expression, or equations, with
 //! names replaced.
 
-use super::{StepContext, Validator};
+use super::{OperationType, StepFields};
+use crate::cas::Expr;
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawStep, Text};
-use crate::scene::step::Operation;
 use std::collections::BTreeMap;
 
-impl Validator<'_> {
-    pub(super) fn substitute(
-        &self,
-        of: &Text,
-        s: &RawStep,
-        cx: &StepContext,
-    ) -> Result<Operation, SceneError> {
+/// An expression with names replaced (a constraint such as θ' = x'/R).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Substitute {
+    pub of: Expr,
+    pub set: BTreeMap<String, Expr>,
+}
+
+impl OperationType for Substitute {
+    fn read(of: &Text, s: &RawStep, f: &impl StepFields) -> Result<Self, SceneError> {
         if s.set.is_empty() {
-            return Err(self.err(
-                cx.offset,
-                cx.field,
+            return Err(f.err(
+                f.offset(),
+                f.field(),
                 "`substitute` needs `set`: each name and its replacement, as \
                  set = { \"theta'\" = \"x'/R\" }",
             ));
         }
         let mut set = BTreeMap::new();
         for (name, value) in &s.set {
-            if !self.own_name(name.get_ref(), cx) {
-                return Err(self.err(
+            if !f.own_name(name.get_ref()) {
+                return Err(f.err(
                     name.span().start,
-                    &format!("{}.set.{}", cx.field, name.get_ref()),
+                    &format!("{}.set.{}", f.field(), name.get_ref()),
                     format!(
                         "cannot substitute for `{}`: not a symbol, coordinate or rate of this \
                          scene",
@@ -37,12 +39,16 @@ impl Validator<'_> {
             }
             set.insert(
                 name.get_ref().clone(),
-                self.operand(value, &format!("set.{}", name.get_ref()), cx)?,
+                f.operand(value, &format!("set.{}", name.get_ref()))?,
             );
         }
-        Ok(Operation::Substitute {
-            of: self.operand(of, "substitute", cx)?,
+        Ok(Substitute {
+            of: f.operand(of, "substitute")?,
             set,
         })
+    }
+
+    fn operands(&self) -> Vec<&Expr> {
+        std::iter::once(&self.of).chain(self.set.values()).collect()
     }
 }

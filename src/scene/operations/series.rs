@@ -1,33 +1,37 @@
 //! `series = "expr"`, `about = { eps = "0" }`, `order = 2`: the Taylor series in one name about
 //! a value.
 
-use super::{StepContext, Validator, names_only};
+use super::{OperationType, StepFields};
+use crate::cas::Expr;
 use crate::scene::error::SceneError;
 use crate::scene::raw::{RawStep, Text};
-use crate::scene::step::Operation;
 
 /// The highest order of a `series`: each order is one more derivative of the expression.
 const MAX_ORDER: i64 = 6;
 
-impl Validator<'_> {
-    pub(super) fn series(
-        &self,
-        of: &Text,
-        s: &RawStep,
-        cx: &StepContext,
-    ) -> Result<Operation, SceneError> {
-        let field = cx.field;
+/// The Taylor series of an expression in one name about a value, to the given order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    pub of: Expr,
+    pub var: String,
+    pub about: Expr,
+    pub order: u32,
+}
+
+impl OperationType for Series {
+    fn read(of: &Text, s: &RawStep, f: &impl StepFields) -> Result<Self, SceneError> {
+        let field = f.field();
         let [(var, value)] = s.about.iter().collect::<Vec<_>>()[..] else {
-            return Err(self.err(
-                cx.offset,
+            return Err(f.err(
+                f.offset(),
                 &format!("{field}.about"),
                 "`series` needs `about` with one name and its value, such as about = { eps = \
-                 \"0\" }",
+             \"0\" }",
             ));
         };
         let key = format!("{field}.about.{}", var.get_ref());
-        if !self.own_name(var.get_ref(), cx) {
-            return Err(self.err(
+        if !f.own_name(var.get_ref()) {
+            return Err(f.err(
                 var.span().start,
                 &key,
                 format!(
@@ -40,18 +44,22 @@ impl Validator<'_> {
             None => 1,
             Some(o) if (0..=MAX_ORDER).contains(o.get_ref()) => *o.get_ref() as u32,
             Some(o) => {
-                return Err(self.err(
+                return Err(f.err(
                     o.span().start,
                     &format!("{field}.order"),
                     format!("`order` is a whole number from 0 to {MAX_ORDER}"),
                 ));
             }
         };
-        Ok(Operation::Series {
-            of: self.operand(of, "series", cx)?,
+        Ok(Series {
+            of: f.operand(of, "series")?,
             var: var.get_ref().clone(),
-            about: self.claim_expr(value, &key, &names_only(cx))?,
+            about: f.expression(value, &key, &f.names_only())?,
             order,
         })
+    }
+
+    fn operands(&self) -> Vec<&Expr> {
+        vec![&self.of, &self.about]
     }
 }

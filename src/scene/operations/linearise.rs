@@ -1,33 +1,35 @@
 //! `linearise = "eom"`, `about = { q = "value" }`: the equations of motion to first order about
 //! a state at rest, each coordinate's value there (0 when not named).
 
-use super::{StepContext, Validator, names_only};
+use super::{Holds, OperationType, StepFields};
+use crate::cas::Expr;
 use crate::scene::error::SceneError;
-use crate::scene::operations::Holds;
 use crate::scene::raw::{RawStep, Text};
-use crate::scene::step::Operation;
 use std::collections::BTreeMap;
 
-impl Validator<'_> {
-    pub(super) fn linearise(
-        &self,
-        of: &Text,
-        s: &RawStep,
-        cx: &StepContext,
-    ) -> Result<Operation, SceneError> {
-        let of = self.taken(of, "linearise", Holds::Motion, cx)?;
+/// The named equations of motion to first order about a state at rest (each coordinate's
+/// value there; 0 when not named).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Linearise {
+    pub of: String,
+    pub about: BTreeMap<String, Expr>,
+}
+
+impl OperationType for Linearise {
+    fn read(of: &Text, s: &RawStep, f: &impl StepFields) -> Result<Self, SceneError> {
+        let of = f.taken(of, "linearise", Holds::Motion)?;
         let mut about = BTreeMap::new();
         for (q, value) in &s.about {
-            let key = format!("{}.about.{}", cx.field, q.get_ref());
-            if !cx.coordinates.contains_key(q.get_ref()) {
-                return Err(self.err(
+            let key = format!("{}.about.{}", f.field(), q.get_ref());
+            if !f.coordinates().contains_key(q.get_ref()) {
+                return Err(f.err(
                     q.span().start,
                     &key,
                     format!(
                         "`{}` is not a coordinate; `about` gives each coordinate's value at the \
                          state of rest (the coordinates are {})",
                         q.get_ref(),
-                        cx.coordinates
+                        f.coordinates()
                             .keys()
                             .cloned()
                             .collect::<Vec<_>>()
@@ -37,9 +39,13 @@ impl Validator<'_> {
             }
             about.insert(
                 q.get_ref().clone(),
-                self.claim_expr(value, &key, &names_only(cx))?,
+                f.expression(value, &key, &f.names_only())?,
             );
         }
-        Ok(Operation::Linearise { of, about })
+        Ok(Linearise { of, about })
+    }
+
+    fn operands(&self) -> Vec<&Expr> {
+        self.about.values().collect()
     }
 }
