@@ -632,6 +632,13 @@ mod tests {
         lecture("lecture-3-4/06-hoop.toml")
     }
 
+    /// A lecture scene's claims whose two sides differ in dimension, at draft fidelity.
+    fn differing_in_dimension(path: &str) -> Vec<crate::verify::ClaimResult> {
+        let report = super::run_scene(lecture(path), Some(Fidelity::DRAFT)).unwrap();
+        let claims = report.verification.claims.into_iter();
+        claims.filter(|c| c.dimension.is_some()).collect()
+    }
+
     /// A claim whose sides differ in dimension says so on the page with the quantity as its
     /// symbol (the tilted hoop's eq. (45): I_xz), never as mechbook's name for it; the terminal
     /// keeps the name the author wrote.
@@ -639,17 +646,8 @@ mod tests {
     fn a_difference_in_dimension_names_the_quantity_by_its_symbol() {
         use crate::model::prose::Piece;
         use crate::notation::{Formula, Names};
-        let report = super::run_scene(
-            lecture("lecture-3-4/07-tilted-hoop.toml"),
-            Some(Fidelity::DRAFT),
-        )
-        .unwrap();
-        let claim = report
-            .verification
-            .claims
-            .iter()
-            .find(|c| c.dimension.is_some())
-            .expect("eq. (45) differs in dimension");
+        let claims = differing_in_dimension("lecture-3-4/07-tilted-hoop.toml");
+        let claim = claims.first().expect("eq. (45) differs in dimension");
         assert!(
             claim
                 .dimension
@@ -672,16 +670,9 @@ mod tests {
     #[test]
     fn a_difference_in_dimension_names_a_word_by_the_claims_symbol() {
         use crate::notation::Names;
-        let report = super::run_scene(
-            lecture("lecture-3-9/04-poinsot.toml"),
-            Some(Fidelity::DRAFT),
-        )
-        .unwrap();
-        let said: Vec<String> = report
-            .verification
-            .claims
+        let claims = differing_in_dimension("lecture-3-9/04-poinsot.toml");
+        let said: Vec<String> = claims
             .iter()
-            .filter(|c| c.dimension.is_some())
             .map(|c| c.differences.last().unwrap().to_plain(Names::none()))
             .collect();
         assert!(!said.is_empty());
@@ -691,11 +682,8 @@ mod tests {
         assert!(said.iter().any(|s| s.contains("but d² is in")), "{said:?}");
         // The dimensions are set as units, not written as the terminal's text (kg^-1), and
         // read so in the JSON export's text too.
-        let text: Vec<String> = report
-            .verification
-            .claims
+        let text: Vec<String> = claims
             .iter()
-            .filter(|c| c.dimension.is_some())
             .map(|c| c.differences.last().unwrap().to_text())
             .collect();
         assert!(
@@ -707,6 +695,34 @@ mod tests {
             said.iter()
                 .any(|s| s.contains("is in s⁻², but d² is in kg⁻¹ m⁻²: they differ by kg m² s⁻²")),
             "{said:?}"
+        );
+    }
+
+    /// A notes' value that adds terms of unlike dimension (the cube's eq. (28): a⁴ beside a³)
+    /// sets each term as a formula and its dimension as a unit on the page, never the engine's
+    /// text in backticks (`a*a^3/a`) or the terminal's units (m^4).
+    #[test]
+    fn an_unlike_sum_in_the_notes_sets_its_terms_and_units_as_mathematics() {
+        use crate::model::prose::Piece;
+        use crate::notation::Names;
+        let claims = differing_in_dimension("lecture-3-4/05-cube-corner.toml");
+        let claim = claims
+            .iter()
+            .find(|c| c.eq == "28")
+            .expect("eq. (28) adds unlike terms");
+        let said = claim.differences.last().unwrap();
+        let formulas = said
+            .0
+            .iter()
+            .filter(|p| matches!(p, Piece::Math(_)))
+            .count();
+        assert_eq!(formulas, 4, "two terms and two units: {said:?}");
+        let plain = said.to_plain(Names::none());
+        assert!(!plain.contains('`') && !plain.contains('^'), "{plain}");
+        assert!(plain.contains(" is in m⁴ but "), "{plain}");
+        assert!(
+            plain.contains(" is in m³: a sum's terms must have one dimension"),
+            "{plain}"
         );
     }
 

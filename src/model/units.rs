@@ -388,19 +388,24 @@ fn exact_root(s: &Rational, p: &Rational) -> Option<Rational> {
     None
 }
 
+/// Two terms of one sum in different dimensions, kept as expressions so a page can set them.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "`{left}` is in {left_dim} but `{right}` is in {right_dim}: a sum's terms must have one \
+     dimension: check that term, or the symbols' units"
+)]
+pub struct UnlikeTerms {
+    pub left: Expr,
+    pub left_dim: Dimension,
+    pub right: Expr,
+    pub right_dim: Dimension,
+}
+
 /// Why an expression has no consistent dimension (the dimensions in words, as SI base units).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DimensionError {
-    #[error(
-        "`{left}` is in {left_dim} but `{right}` is in {right_dim}: a sum's terms must have one \
-         dimension: check that term, or the symbols' units"
-    )]
-    UnlikeSum {
-        left: String,
-        left_dim: String,
-        right: String,
-        right_dim: String,
-    },
+    #[error("{0}")]
+    UnlikeSum(Box<UnlikeTerms>),
     #[error(
         "`{left}` and `{right}` have one dimension ({dimension}) but different units: give the \
          symbols in one unit"
@@ -473,12 +478,12 @@ fn sum_measure(
         match &known {
             None => known = Some((m, t)),
             Some((k, first)) if k.dimension != m.dimension => {
-                return Err(DimensionError::UnlikeSum {
-                    left: first.to_text(),
-                    left_dim: k.dimension.to_string(),
-                    right: t.to_text(),
-                    right_dim: m.dimension.to_string(),
-                });
+                return Err(DimensionError::UnlikeSum(Box::new(UnlikeTerms {
+                    left: (*first).clone(),
+                    left_dim: k.dimension.clone(),
+                    right: t.clone(),
+                    right_dim: m.dimension.clone(),
+                })));
             }
             Some((k, first)) if k.scale != m.scale => {
                 return Err(DimensionError::UnlikeUnits {
@@ -689,7 +694,7 @@ mod measure_tests {
     fn unlike_sums_functions_and_powers_are_refused() {
         assert!(matches!(
             measure("M + L"),
-            Err(DimensionError::UnlikeSum { .. })
+            Err(DimensionError::UnlikeSum(_))
         ));
         assert!(matches!(
             measure("sin(L)"),

@@ -46,6 +46,10 @@ fn node(n: &Node, out: &mut String) {
             };
             out.extend(open);
             row(inner, out);
+            // A fraction's space after it stops at the closing delimiter: (a/3), not (a/3 ).
+            if close.is_some() {
+                out.truncate(out.trim_end().len());
+            }
             out.extend(close);
         }
         Node::Visual(v, parts) => visual(v, parts, out),
@@ -203,5 +207,9 @@ mod tests {
         assert_eq!(plain("\\vec L = \\dot\\theta"), "L\u{20d7} = θ\u{307}");
         assert_eq!(plain("A^{T}, \\left(a, b\\right)"), "A^T, (a, b)");
         assert_eq!(plain("\\mathrm{kg\\,m^2}"), "kg m²");
+        assert_eq!(
+            plain("\\rho a \\left(\\frac{z y^3}{3} + \\frac{y z^3}{a}\\right)"),
+            "ρa(zy³/3 + yz³/a)"
+        );
     }
 }

@@ -22,16 +22,19 @@ fn variant_errors(r: &SceneReport) -> impl Iterator<Item = f64> + '_ {
         .flat_map(|v| v.answers.iter().map(|a| a.error))
 }
 
-/// A heading with the count, then each claim with its scene and the lines that explain it.
+/// A heading with the count, then each claim with its scene and the lines that explain it,
+/// their mathematics as a terminal reads it (I_xx = ρ a³), not the author's LaTeX.
 fn list_claims(out: &mut String, heading: &str, claims: &[(&SceneReport, &ClaimResult)]) {
     if claims.is_empty() {
         return;
     }
     let _ = writeln!(out, "\n{heading} ({}):", claims.len());
     for (r, c) in claims {
-        let _ = writeln!(out, "  eq ({}) [{}] {}", c.eq, r.scene.id, c.statement);
+        let statement = crate::model::prose::plain(&c.statement);
+        let _ = writeln!(out, "  eq ({}) [{}] {statement}", c.eq, r.scene.id);
+        let names = r.scene.names();
         for d in &c.differences {
-            let _ = writeln!(out, "      {d}");
+            let _ = writeln!(out, "      {}", d.to_plain(&names));
         }
     }
 }
@@ -489,4 +492,51 @@ fn step_record_failure(s: &crate::verify::StepRecord) -> String {
         s.step,
         changes.join("; ")
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::model::fidelity::Fidelity;
+    use crate::pipeline::run_scene;
+    use crate::scene::Scene;
+
+    /// `check` lists an erratum as a terminal reads it: the notes' statement and the note on
+    /// its dimensions with their mathematics in Unicode (the cube's eq. (28)), never the
+    /// LaTeX an author writes between dollars or mechbook sets on a page.
+    #[test]
+    fn the_terminal_lists_the_errata_without_latex() {
+        let path = format!(
+            "{}/lectures/lecture-3-4/05-cube-corner.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let scene = Scene::from_file(std::path::Path::new(&path)).unwrap();
+        let report = run_scene(scene, Some(Fidelity::DRAFT)).unwrap();
+        let table = super::check_table(&[report]);
+        let line = |eq: &str| {
+            let start = format!("eq ({eq}) [cube-corner] ");
+            table
+                .lines()
+                .position(|l| l.trim_start().starts_with(&start))
+        };
+        let at = line("28").unwrap_or_else(|| panic!("eq. (28) is an erratum:\n{table}"));
+        let notes = table.lines().skip(at + 1);
+        let notes = notes.take_while(|l| l.starts_with("      "));
+        let erratum: Vec<&str> = std::iter::once(table.lines().nth(at).unwrap())
+            .chain(notes)
+            .collect();
+        for l in &erratum {
+            assert!(!l.contains('$') && !l.contains('\\'), "{l}");
+        }
+        assert!(
+            erratum[0].contains("I_xx = ρa(zy³/3 + yz³/a) evaluated"),
+            "{}",
+            erratum[0]
+        );
+        let dimension = erratum.iter().find(|l| l.contains("differ in dimension"));
+        let dimension = dimension.unwrap_or_else(|| panic!("a note on dimension: {erratum:?}"));
+        assert!(
+            dimension.contains("aa³/3 is in m⁴ but aa³/a is in m³"),
+            "{dimension}"
+        );
+    }
 }

@@ -146,7 +146,7 @@ pub enum Mismatch {
     /// The claim's value is in one dimension, its quantity in another.
     Sides(Box<Sides>),
     /// The claim's value cannot be measured (a sum of unlike terms).
-    Value(String),
+    Value(DimensionError),
 }
 
 /// The claim's value is in `stated`, but `quantity` is in `derived`.
@@ -169,7 +169,7 @@ impl Mismatch {
                 s.derived,
                 s.ratio
             ),
-            Mismatch::Value(why) => why.clone(),
+            Mismatch::Value(why) => why.to_string(),
         }
     }
 
@@ -183,38 +183,72 @@ impl Mismatch {
         symbol: Option<&crate::notation::Tex>,
     ) -> Prose {
         let plain = || format!("the two sides differ in dimension: {}", self.text()).into();
-        let Mismatch::Sides(sides) = self else {
-            return plain();
+        // A name with no symbol prints as a word: set as mathematics it reads no better.
+        let has_word = |e: &Expr| {
+            e.symbols().iter().any(|s| {
+                quantity_symbol(s).is_none()
+                    && crate::cas::prints_as_word(s, &|n| names.typesets(n))
+            })
         };
-        let Sides {
-            stated,
-            quantity,
-            derived,
-            ratio,
-        } = sides.as_ref();
-        let word = quantity.symbols().iter().any(|s| {
-            quantity_symbol(s).is_none() && crate::cas::prints_as_word(s, &|n| names.typesets(n))
-        });
-        let tex = match symbol {
-            Some(tex) => tex.clone(),
-            None if word => return plain(),
-            None => quantity.to_tex_named(names, &quantity_symbol),
+        let math = |e: &Expr| Piece::Math(Formula::Tex(e.to_tex_named(names, &quantity_symbol)));
+        let said = |pieces: Vec<Piece>| {
+            let mut all = vec![Piece::Text("the two sides differ in dimension: ".into())];
+            all.extend(pieces);
+            Prose(all)
         };
-        // Each dimension set as a unit is (kg⁻¹ m⁻²), a pure number in words.
-        let unit = |d: &Dimension| match d.formula() {
-            Some(f) => Piece::Math(f),
-            None => Piece::Text(d.to_string()),
-        };
-        Prose(vec![
-            Piece::Text("the two sides differ in dimension: the claim's value is in ".into()),
-            unit(stated),
-            Piece::Text(", but ".into()),
-            Piece::Math(Formula::Tex(tex)),
-            Piece::Text(" is in ".into()),
-            unit(derived),
-            Piece::Text(": they differ by ".into()),
-            unit(ratio),
-        ])
+        match self {
+            Mismatch::Sides(sides) => {
+                let Sides {
+                    stated,
+                    quantity,
+                    derived,
+                    ratio,
+                } = sides.as_ref();
+                let quantity = match symbol {
+                    Some(tex) => Piece::Math(Formula::Tex(tex.clone())),
+                    None if has_word(quantity) => return plain(),
+                    None => math(quantity),
+                };
+                said(vec![
+                    Piece::Text("the claim's value is in ".into()),
+                    unit(stated),
+                    Piece::Text(", but ".into()),
+                    quantity,
+                    Piece::Text(" is in ".into()),
+                    unit(derived),
+                    Piece::Text(": they differ by ".into()),
+                    unit(ratio),
+                ])
+            }
+            // The notes' value adds unlike terms: each term set as a formula, in its unit.
+            Mismatch::Value(DimensionError::UnlikeSum(terms))
+                if !has_word(&terms.left) && !has_word(&terms.right) =>
+            {
+                said(vec![
+                math(&terms.left),
+                Piece::Text(" is in ".into()),
+                unit(&terms.left_dim),
+                Piece::Text(" but ".into()),
+                math(&terms.right),
+                Piece::Text(" is in ".into()),
+                unit(&terms.right_dim),
+                Piece::Text(
+                    ": a sum's terms must have one dimension: check that term, or the symbols' \
+                     units"
+                        .into(),
+                ),
+            ])
+            }
+            Mismatch::Value(_) => plain(),
+        }
+    }
+}
+
+/// A dimension set as its unit is (kg⁻¹ m⁻²); a pure number in words.
+fn unit(d: &Dimension) -> Piece {
+    match d.formula() {
+        Some(f) => Piece::Math(f),
+        None => Piece::Text(d.to_string()),
     }
 }
 
@@ -230,7 +264,7 @@ fn claim_mismatch(scene: &Scene, env: &crate::derive::algebra::Env, c: &Claim) -
     for (derived, stated) in q.entries().iter().zip(v.entries()) {
         let stated_m = match measure(scene, &stated) {
             Ok(m) => m,
-            Err(e) => return Some(Mismatch::Value(e.to_string())),
+            Err(e) => return Some(Mismatch::Value(e)),
         };
         if let (Ok(Some(derived_m)), Some(stated_m)) = (measure(scene, derived), stated_m)
             && derived_m.dimension != stated_m.dimension
