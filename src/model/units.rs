@@ -388,11 +388,15 @@ fn exact_root(s: &Rational, p: &Rational) -> Option<Rational> {
     None
 }
 
+/// What to do about a sum of unlike terms: the terminal's error and the page's note end with it.
+pub const UNLIKE_SUM_ADVICE: &str =
+    "a sum's terms must have one dimension: check that term, or the symbols' units";
+
 /// Two terms of one sum in different dimensions, kept as expressions so a page can set them.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
-    "`{left}` is in {left_dim} but `{right}` is in {right_dim}: a sum's terms must have one \
-     dimension: check that term, or the symbols' units"
+    "`{left}` is in {left_dim} but `{right}` is in {right_dim}: {advice}",
+    advice = UNLIKE_SUM_ADVICE
 )]
 pub struct UnlikeTerms {
     pub left: Expr,

@@ -11,7 +11,7 @@ use crate::derive::step_names::{StepResult, expand_names};
 use crate::derive::variants::{general_answer, step_values};
 use crate::model::catalogue::quantity_symbol;
 use crate::model::prose::{Piece, Prose};
-use crate::model::units::{Dimension, DimensionError, Measure, measure_of};
+use crate::model::units::{Dimension, DimensionError, Measure, UNLIKE_SUM_ADVICE, measure_of};
 use crate::model::value::Value;
 use crate::notation::Formula;
 use crate::scene::operations::{Be, Differentiate, Integrate, Series, Substitute};
@@ -225,19 +225,15 @@ impl Mismatch {
                 if !has_word(&terms.left) && !has_word(&terms.right) =>
             {
                 said(vec![
-                math(&terms.left),
-                Piece::Text(" is in ".into()),
-                unit(&terms.left_dim),
-                Piece::Text(" but ".into()),
-                math(&terms.right),
-                Piece::Text(" is in ".into()),
-                unit(&terms.right_dim),
-                Piece::Text(
-                    ": a sum's terms must have one dimension: check that term, or the symbols' \
-                     units"
-                        .into(),
-                ),
-            ])
+                    math(&terms.left),
+                    Piece::Text(" is in ".into()),
+                    unit(&terms.left_dim),
+                    Piece::Text(" but ".into()),
+                    math(&terms.right),
+                    Piece::Text(" is in ".into()),
+                    unit(&terms.right_dim),
+                    Piece::Text(format!(": {UNLIKE_SUM_ADVICE}")),
+                ])
             }
             Mismatch::Value(_) => plain(),
         }
