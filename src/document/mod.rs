@@ -192,7 +192,7 @@ pub struct FigureBlock {
     /// Relative to the site root: `plots/<scene>-<slug>.svg`.
     pub file: String,
     pub title: String,
-    pub desc: String,
+    pub desc: Prose,
     pub accuracy: Vec<Accuracy>,
 }
 

@@ -5,6 +5,7 @@ use super::{ERROR_FLOOR, FigureError, colour};
 use crate::base::format::sci;
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::model::prose::Prose;
 use crate::numeric::body::{NumBody, NumShape};
 use crate::numeric::pareto::pareto_front;
 use crate::numeric::quadrature::{Method, QuadratureRun, point_count, run};
@@ -101,14 +102,14 @@ pub fn convergence(
     Ok(Figure {
         slug,
         title: format!("Quadrature convergence: {}", nb.label),
-        desc: format!(
+        desc: Prose::default().text(&format!(
             "Relative error of the inertia tensor of {} against the number of points, log-log; \
              dots measured, dashed lines the error law (Monte Carlo: one standard error). {}. \
              Errors below {} are drawn at that floor.",
             nb.label,
             sentences.join("; "),
             sci(ERROR_FLOOR)
-        ),
+        )),
         x_label: "points".into(),
         y_label: "relative error".into(),
         x_scale: Scale::Log,

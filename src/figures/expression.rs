@@ -8,6 +8,7 @@ use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::step_names::{expand_names, substituted};
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::model::prose::Prose;
 use crate::scene::operations::{Be, Differentiate, Substitute};
 use crate::scene::{Operation, Scene};
 use std::collections::BTreeMap;
@@ -137,7 +138,7 @@ pub(super) fn expression(
     Ok(Figure {
         slug,
         title: format!("{step} against {over}"),
-        desc,
+        desc: Prose::default().text(&desc),
         x_label: over.to_string(),
         y_label: step.to_string(),
         x_scale: Scale::Linear,

@@ -115,7 +115,7 @@ fn the_curve_is_the_result_and_its_lowest_point_is_where_the_slope_vanishes() {
     let step = (std::f64::consts::PI - 0.6) / 180.0;
     assert!((lowest - lo).abs() <= step, "{lowest} against {lo}");
     assert!(
-        u.desc.contains(&format!("at θ = {lowest:.4}")),
+        u.desc.to_text().contains(&format!("at θ = {lowest:.4}")),
         "{}",
         u.desc
     );

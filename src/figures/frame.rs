@@ -5,6 +5,7 @@ use crate::base::format::sci;
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::{Figure, Legend, Scale, Series};
 use crate::model::moments::Moments;
+use crate::model::prose::Prose;
 use crate::numeric::free_body::ExactSolution;
 use crate::numeric::integrators::{IntegrationError, Method, Resolution, Run, integrate};
 use nalgebra::Vector3;
@@ -24,7 +25,7 @@ pub(super) fn fig(
     Figure {
         slug: slug.into(),
         title,
-        desc,
+        desc: Prose::default().text(&desc),
         x_label: x.into(),
         y_label: y.into(),
         x_scale: Scale::Linear,

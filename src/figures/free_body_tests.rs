@@ -12,7 +12,7 @@ fn cone_angles_oblate_always_bigger_body_cone_prolate_either() {
         ([2.0, 2.0, 0.8], [0.2, 0.0, 1.0], "α_b < α_s"),
     ] {
         let f = figure(FreeBodyPlot::Cones, i, w, 20.0, &Fidelity::STANDARD).unwrap();
-        assert!(f.desc.contains(relation), "{i:?}: {}", f.desc);
+        assert!(f.desc.to_text().contains(relation), "{i:?}: {}", f.desc);
     }
     let e = figure(
         FreeBodyPlot::Cones,

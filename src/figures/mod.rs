@@ -25,6 +25,7 @@ use crate::derive::{Derivation, DeriveError};
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::Figure;
 use crate::model::moments::{Moments, MomentsError};
+use crate::model::prose::Piece;
 use crate::numeric::body::NumBody;
 use crate::numeric::integrators::IntegrationError;
 use crate::scene::{FreeBodyPlot, FreeInertia, PlotRequest, Scene};
@@ -120,7 +121,11 @@ pub fn figures(
         // plot, rather than a broken picture or a renderer's error.
         // A caption's negative numbers as a textbook sets them (−0.67, not -0.67).
         for f in &mut out[first..] {
-            f.desc = crate::base::format::minus_signs(&f.desc);
+            for piece in &mut f.desc.0 {
+                if let Piece::Text(t) = piece {
+                    *t = crate::base::format::minus_signs(t);
+                }
+            }
         }
         for f in &out[first..] {
             let finite = |(x, y): &(f64, f64)| x.is_finite() && y.is_finite();

@@ -28,9 +28,13 @@ fn the_linear_swing_is_its_closed_form_and_the_full_one_lags() {
         .expect("the motion plot");
     // A student reads the coordinates as symbols, not the scene's names or its step's.
     assert_eq!(f.title, "The motion of ϕ");
-    assert!(f.desc.contains("from ϕ = 0.8, ϕ̇ = 0 over"), "{}", f.desc);
     assert!(
-        !f.desc.contains("eom") && !f.desc.contains("phi"),
+        f.desc.to_text().contains("from ϕ = 0.8, ϕ̇ = 0 over"),
+        "{}",
+        f.desc
+    );
+    assert!(
+        !f.desc.to_text().contains("eom") && !f.desc.to_text().contains("phi"),
         "{}",
         f.desc
     );
@@ -60,7 +64,7 @@ fn the_linear_swing_is_its_closed_form_and_the_full_one_lags() {
         back(linear)
     );
     assert!(f.accuracy[0].estimated_error.unwrap() < 1e-6);
-    assert!(f.desc.contains("at most") && f.desc.contains("right-hand sides"));
+    assert!(f.desc.to_text().contains("at most") && f.desc.to_text().contains("right-hand sides"));
 }
 
 #[test]

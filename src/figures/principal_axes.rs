@@ -5,6 +5,7 @@ use super::{FigureError, colour, legend_entry};
 use crate::base::format::sci;
 use crate::derive::{CubicRoots, Derivation, ExactBasis, ExactSpace};
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::model::prose::Prose;
 use crate::model::value::{eval_at, vector_at};
 use crate::numeric::body::NumBody;
 use crate::numeric::eigen::{Space, principal_axes};
@@ -74,7 +75,7 @@ pub(super) fn principal_view(scene: &Scene, d: &Derivation) -> Result<Figure, Fi
     Ok(Figure {
         slug: "principal-axes".into(),
         title: "Principal axes".into(),
-        desc,
+        desc: Prose::default().text(&desc),
         x_label: String::new(),
         y_label: String::new(),
         x_scale: Scale::Linear,

@@ -3,11 +3,13 @@
 
 use super::{CURVE_POINTS, FigureError, trim_num};
 use crate::base::format::sci;
-use crate::cas::EvalError;
+use crate::cas::{EvalError, Expr};
 use crate::derive::Derivation;
 use crate::model::catalogue::quantity;
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
+use crate::model::prose::Prose;
 use crate::model::value::Value;
+use crate::notation::Formula;
 use crate::numeric::body::NumBody;
 use crate::numeric::quadrature::{reference_rule, run};
 use crate::scene::Scene;
@@ -22,6 +24,12 @@ pub(super) const ENTRIES: [(usize, usize, &str); 6] = [
     (0, 2, "I_xz"),
     (1, 2, "I_yz"),
 ];
+
+/// An entry's name (`I_xx`, as the legend writes it) as the formula a caption sets: I with xx
+/// below, as the notation names `Ixx`.
+fn entry(name: &str) -> Formula {
+    Formula::Expr(Expr::sym(&name.replace('_', "")))
+}
 
 pub(super) fn values_with(scene: &Scene, name: &str, v: f64) -> BTreeMap<String, f64> {
     let mut values = scene.values.clone();
@@ -60,22 +68,33 @@ pub(super) fn tensor_sweep(
     // The file keeps the name as written; the reader sees it as its symbol (α, not alpha).
     let slug = format!("tensor-vs-{over}");
     let over = &super::plain_name(over);
-    let desc = format!(
-        "Inertia tensor entries of {} against {over} from {} to {}, at {}. Over this range {}{}. \
-         Dots: {samples} values of {over} by quadrature with {}, at most {} from the exact curves.",
+    let mut desc = Prose::default().run_on(&format!(
+        "Inertia tensor entries of {} against {over} from {} to {}, at {}. Over this range ",
         crate::model::prose::plain(&scene.title).to_lowercase(),
         trim_num(from),
         trim_num(to),
         fixed.join(", "),
-        shown.join("; "),
-        if zero.is_empty() {
-            String::new()
-        } else {
-            format!("; {} stay zero", zero.join(", "))
-        },
+    ));
+    for (k, (name, range)) in shown.iter().enumerate() {
+        desc = desc
+            .run_on(if k == 0 { "" } else { "; " })
+            .formula(entry(name))
+            .run_on(range);
+    }
+    if !zero.is_empty() {
+        for (k, name) in zero.iter().enumerate() {
+            desc = desc
+                .run_on(if k == 0 { "; " } else { ", " })
+                .formula(entry(name));
+        }
+        desc = desc.run_on(" stay zero");
+    }
+    let desc = desc.run_on(&format!(
+        ". Dots: {samples} values of {over} by quadrature with {}, at most {} from the exact \
+         curves.",
         q.rule_names.join(", "),
         sci(q.worst),
-    );
+    ));
     Ok(Figure {
         slug,
         title: format!("Tensor entries against {over}"),
@@ -156,7 +175,7 @@ fn entry_series(
     numeric: &[(f64, Matrix3<f64>)],
     scale: f64,
     series: &mut Vec<Series>,
-) -> (Vec<String>, Vec<&'static str>) {
+) -> (Vec<(&'static str, String)>, Vec<&'static str>) {
     let mut shown = Vec::new();
     let mut zero = Vec::new();
     for (colour, (i, j, name)) in ENTRIES.iter().enumerate() {
@@ -174,7 +193,7 @@ fn entry_series(
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
                 (a.min(*y), b.max(*y))
             });
-        shown.push(format!("{name} from {lo:.3} to {hi:.3}"));
+        shown.push((*name, format!(" from {lo:.3} to {hi:.3}")));
         series.push(Series {
             name: format!("{name} exact"),
             mark: Mark::Line,

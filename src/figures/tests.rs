@@ -50,7 +50,10 @@ fn convergence_slopes_follow_each_law() {
     // Gauss–Legendre is exact for the quadratic integrand from 2 points per axis.
     let gl = measured("gauss-legendre");
     assert!(gl[0].1 > 0.1 && gl[1..].iter().all(|p| p.1 < 1e-14));
-    assert!(fig.desc.contains("midpoint-lattice") && fig.desc.contains("slope -0.6"));
+    assert!(
+        fig.desc.to_text().contains("midpoint-lattice")
+            && fig.desc.to_text().contains("slope -0.6")
+    );
 }
 
 #[test]
@@ -107,9 +110,9 @@ fn a_caption_gives_exact_moments_and_axes_as_a_physicist_writes_them() {
         "moment 19ma²/4 (4.7500): axis (−1, 1, 0)",
         "moment 6ma² (6.0000): axis (0, 0, 1)",
     ] {
-        assert!(f.desc.contains(part), "{part} in {}", f.desc);
+        assert!(f.desc.to_text().contains(part), "{part} in {}", f.desc);
     }
-    assert!(!f.desc.contains(['*', '^', '[']), "{}", f.desc);
+    assert!(!f.desc.to_text().contains(['*', '^', '[']), "{}", f.desc);
     let legends: Vec<&str> = f.series.iter().map(|s| s.name.as_str()).collect();
     assert!(legends.contains(&"I = 19ma²/4"), "{legends:?}");
 }
@@ -120,6 +123,7 @@ fn the_tennis_racket_caption_gives_its_moments_to_six_figures() {
     // Was `I = (0.000993333333333333, 0.00195, 0.00288333333333333)`.
     assert!(
         f.desc
+            .to_text()
             .contains("(I2 = 0.00195) of I = (0.000993333, 0.00195, 0.00288333)"),
         "{}",
         f.desc
@@ -134,9 +138,52 @@ fn a_tensor_sweep_names_its_symbols_as_they_print() {
         "lectures/lecture-3-4/07-tilted-hoop.toml",
         "tensor-vs-alpha",
     );
-    assert!(f.desc.contains("against α from 0 to π"), "{}", f.desc);
-    assert!(f.desc.contains("9 values of α"), "{}", f.desc);
-    assert!(!f.desc.contains("alpha"), "{}", f.desc);
+    assert!(
+        f.desc.to_text().contains("against α from 0 to π"),
+        "{}",
+        f.desc
+    );
+    assert!(f.desc.to_text().contains("9 values of α"), "{}", f.desc);
+    assert!(!f.desc.to_text().contains("alpha"), "{}", f.desc);
     assert_eq!(f.title, "Tensor entries against α");
     assert_eq!(f.x_label, "α");
+}
+
+/// The sweep's caption sets each entry it names as a formula (I with xx below), never as
+/// text with an underscore; the plain form the alt text and `<desc>` read keeps every entry.
+#[test]
+fn a_tensor_sweep_sets_its_entries_as_formulas() {
+    use crate::model::prose::Piece;
+    use crate::notation::Names;
+    let f = figure_of(
+        "lectures/lecture-3-4/07-tilted-hoop.toml",
+        "tensor-vs-alpha",
+    );
+    let formulas: Vec<String> = f
+        .desc
+        .0
+        .iter()
+        .filter_map(|p| match p {
+            Piece::Math(m) => Some(m.to_latex(Names::none())),
+            Piece::Text(_) => None,
+        })
+        .collect();
+    // Tilted about y, the hoop mixes x and z: I_xz varies with the diagonal; I_xy and I_yz
+    // stay zero.
+    assert_eq!(
+        formulas,
+        ["I_{xx}", "I_{yy}", "I_{zz}", "I_{xz}", "I_{xy}", "I_{yz}"],
+        "{}",
+        f.desc
+    );
+    assert!(
+        f.desc
+            .0
+            .iter()
+            .all(|p| !matches!(p, Piece::Text(t) if t.contains('_'))),
+        "{:?}",
+        f.desc
+    );
+    let plain = f.desc.to_plain(Names::none());
+    assert!(plain.contains("; I_xy, I_yz stay zero. Dots:"), "{plain}");
 }

@@ -59,8 +59,9 @@ pub struct Figure {
     /// Unique within the scene; the file is `plots/<scene>-<slug>.svg`.
     pub slug: String,
     pub title: String,
-    /// A sentence or two written from the data, for `<desc>`, the alt text and the caption.
-    pub desc: String,
+    /// A sentence or two written from the data: the caption, and in plain text `<desc>` and the
+    /// alt text. Its symbols are formulas, set as the page sets them (I_xx as I with xx below).
+    pub desc: crate::model::prose::Prose,
     pub x_label: String,
     pub y_label: String,
     pub x_scale: Scale,

@@ -7,6 +7,7 @@ use super::memo::{self, Kept};
 use super::renderer::{Context, Plots};
 use crate::document::course::Documents;
 use crate::model::figure::{Figure, Legend, Mark, Scale};
+use crate::notation::Names;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -97,7 +98,7 @@ pub fn svg(fig: &Figure) -> Result<String, RenderError> {
     let meta = format!(
         "\n<title>{}</title>\n<desc>{}</desc>",
         xml_escape(&fig.title),
-        xml_escape(&fig.desc)
+        xml_escape(&fig.desc.to_plain(Names::none()))
     );
     out.insert_str(head_end + 1, &meta);
     Ok(out)
@@ -295,7 +296,7 @@ mod tests {
         Figure {
             slug: "t".into(),
             title: "Error <and> law".into(),
-            desc: "Falls as 1/n².".into(),
+            desc: String::from("Falls as 1/n².").into(),
             x_label: "points".into(),
             y_label: "relative error".into(),
             x_scale: Scale::Log,

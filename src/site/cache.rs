@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 /// energy, normal modes, equilibria and stability; 8: motion plots; 9: a problem's answers with
 /// their labels and units, and the values the author wrote in decimals; 10: the checksum
 /// taken over words, `base::hash::word_hash`).
-const FORMAT: u64 = 10;
+const FORMAT: u64 = 11;
 
 /// The largest entry read: the shipped scenes' largest report is about 200 KB.
 pub const MAX_ENTRY_BYTES: u64 = 64 << 20;

@@ -54,7 +54,10 @@ pub struct FigureView {
     /// Relative to the site root: `plots/<scene>-<slug>.svg`.
     pub file: String,
     pub title: String,
+    /// The caption as HTML, its formulas as MathML.
     pub desc: String,
+    /// The caption in plain text, for the image's alt text.
+    pub alt: String,
     /// The error and cost of each numeric result drawn.
     pub accuracy: Vec<AccuracyRow>,
 }
@@ -210,7 +213,7 @@ pub fn page_view(page: &Page, timings: bool) -> Result<PageView, RenderError> {
         numeric,
         errata: page.errata,
         claims,
-        figures: figure_views(page, timings),
+        figures: figure_views(page, names, timings)?,
         passed: page.passed,
         prev: page.prev.as_ref().map(plain_link),
         next: page.next.as_ref().map(plain_link),
@@ -312,25 +315,28 @@ fn numeric_rows(page: &Page, timings: bool) -> Vec<NumericRow> {
 }
 
 /// Each plot with the error and cost of each numeric result it draws.
-fn figure_views(page: &Page, timings: bool) -> Vec<FigureView> {
+fn figure_views(page: &Page, names: &Names, timings: bool) -> Result<Vec<FigureView>, RenderError> {
     page.figures
         .iter()
-        .map(|f| FigureView {
-            file: f.file.clone(),
-            title: f.title.clone(),
-            desc: f.desc.clone(),
-            accuracy: f
-                .accuracy
-                .iter()
-                .map(|a| AccuracyRow {
-                    result: a.result.clone(),
-                    method: a.method.clone(),
-                    true_error: a.true_error.map_or("—".into(), sci),
-                    estimated_error: a.estimated_error.map_or("—".into(), sci),
-                    cost: format!("{} {}", a.cost, a.unit),
-                    seconds: timings.then(|| format!("{:.1e}", a.seconds)),
-                })
-                .collect(),
+        .map(|f| {
+            Ok(FigureView {
+                file: f.file.clone(),
+                title: f.title.clone(),
+                desc: prose_html(&f.desc, names)?,
+                alt: f.desc.to_plain(names),
+                accuracy: f
+                    .accuracy
+                    .iter()
+                    .map(|a| AccuracyRow {
+                        result: a.result.clone(),
+                        method: a.method.clone(),
+                        true_error: a.true_error.map_or("—".into(), sci),
+                        estimated_error: a.estimated_error.map_or("—".into(), sci),
+                        cost: format!("{} {}", a.cost, a.unit),
+                        seconds: timings.then(|| format!("{:.1e}", a.seconds)),
+                    })
+                    .collect(),
+            })
         })
         .collect()
 }

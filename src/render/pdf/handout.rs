@@ -85,7 +85,7 @@ fn section(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
                 crate::base::typst::typst_string(&f.file),
                 crate::base::typst::typst_string(&f.title)
             ));
-            m.text(&f.desc).raw("])\n");
+            m.prose(&f.desc)?.raw("])\n");
         }
     }
     claims(m, part, page)
