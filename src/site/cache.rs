@@ -21,7 +21,8 @@ use std::path::{Path, PathBuf};
 /// variant's values as trees; 6: the results of an author's steps; 7: a step's momentum or
 /// energy, normal modes, equilibria and stability; 8: motion plots; 9: a problem's answers with
 /// their labels and units, and the values the author wrote in decimals; 10: the checksum
-/// taken over words, `base::hash::word_hash`).
+/// taken over words, `base::hash::word_hash`; 11: a figure's caption as prose, its formulas as
+/// trees).
 const FORMAT: u64 = 11;
 
 /// The largest entry read: the shipped scenes' largest report is about 200 KB.

@@ -182,7 +182,6 @@ impl Mismatch {
         names: &crate::notation::Names,
         symbol: Option<&crate::notation::Tex>,
     ) -> Prose {
-        let plain = || format!("the two sides differ in dimension: {}", self.text()).into();
         // A name with no symbol prints as a word: set as mathematics it reads no better.
         let has_word = |e: &Expr| {
             e.symbols().iter().any(|s| {
@@ -192,10 +191,11 @@ impl Mismatch {
         };
         let math = |e: &Expr| Piece::Math(Formula::Tex(e.to_tex_named(names, &quantity_symbol)));
         let said = |pieces: Vec<Piece>| {
-            let mut all = vec![Piece::Text("the two sides differ in dimension: ".into())];
-            all.extend(pieces);
-            Prose(all)
+            Prose::default()
+                .run_on("the two sides differ in dimension: ")
+                .then(Prose(pieces))
         };
+        let plain = || said(vec![Piece::Text(self.text())]);
         match self {
             Mismatch::Sides(sides) => {
                 let Sides {
