@@ -3,6 +3,7 @@
 //! - Exact rule: the names put in, simplified by the engine; a divisor that is 0 as written is
 //!   refused.
 //! - Numeric route: the simplified form against the expression as written at random points.
+//! - On the page: the expression as written, then its value.
 
 use super::{Checking, Context, Rule};
 use crate::base::rng::Rng;
@@ -22,6 +23,30 @@ impl Rule for Be {
         let x = expand_names(cx.scene, cx.d, cx.step, e).map_err(DeriveError::Step)?;
         crate::derive::undefined::refuse_no_value(&x, e, &BTreeMap::new(), &BTreeMap::new())?;
         Ok(StepResult::Expr(cas::simplify(&x)?))
+    }
+
+    /// The author's expression as written, its names kept where they print as symbols
+    /// (T_beat = 2π/(Ω₂ − Ω₁) = …), then put in.
+    fn printed(
+        &self,
+        cx: Context,
+        result: &StepResult,
+        shown: &mut Option<Formula>,
+    ) -> Result<Option<StepResult>, DeriveError> {
+        let StepResult::Expr(exact) = result else {
+            return super::printed_form(cx.scene, result);
+        };
+        let form = printed(cx, &self.0, exact)?;
+        if let Some(named) = as_named(cx, &self.0).filter(|n| *n != form) {
+            *shown = Some(Formula::Row(vec![
+                Formula::Expr(Expr::sym(&cx.step.name)),
+                Formula::Op(crate::notation::Op::Equals),
+                Formula::Expr(named),
+                Formula::Op(crate::notation::Op::Equals),
+                Formula::Expr(form.clone()),
+            ]));
+        }
+        Ok((form != *exact).then_some(StepResult::Expr(form)))
     }
 
     fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError> {
@@ -72,7 +97,7 @@ impl Rule for Be {
 
 /// The form the page prints: the author's expression as written, each earlier step put in by
 /// the form its page prints, where the engine proves it equal (`cas::present_written`).
-pub(super) fn printed(cx: Context, e: &Expr, exact: &Expr) -> Result<Expr, DeriveError> {
+fn printed(cx: Context, e: &Expr, exact: &Expr) -> Result<Expr, DeriveError> {
     let written = expand_printed_names(cx.scene, cx.d, cx.step, e).map_err(DeriveError::Step)?;
     Ok(cas::present_written(
         written,
@@ -86,7 +111,7 @@ pub(super) fn printed(cx: Context, e: &Expr, exact: &Expr) -> Result<Expr, Deriv
 /// The author's expression with its names, where it names an earlier step's result and every
 /// name in it prints as a symbol: T_beat = 2π/(Ω₂ − Ω₁) before its value, as a textbook
 /// writes L = T − V before putting T and V in.
-pub(super) fn as_named(cx: Context, e: &Expr) -> Option<Expr> {
+fn as_named(cx: Context, e: &Expr) -> Option<Expr> {
     let results: Vec<String> =
         cx.d.named
             .iter()

@@ -6,7 +6,9 @@
 //!   substituting a velocity constraint that does not integrate is refused.
 //! - Numeric route: the motion integrated from the start, the energy Σ q'·∂L/∂q' − L (found by
 //!   differences) and each constraint's drift watched (`motion.rs`).
+//! - On the page: each equation of motion `… = 0`, and each multiplier's constraint.
 
+use super::page::Wording;
 use super::{Checking, Context, Rule, scalar, scalar_of, simplified};
 use crate::cas::Expr;
 use crate::derive::constraints::{does_not_integrate, with_multipliers};
@@ -43,6 +45,14 @@ impl Rule for Lagrange {
             constraints,
             check,
         )
+    }
+
+    /// A multiplier's equation is its constraint, differentiated.
+    fn wording(&self) -> Wording<'_> {
+        Wording {
+            constraints: &self.constraints,
+            ..Wording::default()
+        }
     }
 }
 

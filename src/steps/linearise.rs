@@ -5,7 +5,9 @@
 //!   is refused.
 //! - Numeric route: the full equations against the linear ones at random states near the
 //!   state of rest (`motion.rs`).
+//! - On the page: each linearised equation of motion `… = 0`.
 
+use super::page::Wording;
 use super::{Checking, Context, Rule, free_equations, simplified};
 use crate::cas::{self, Expr};
 use crate::derive::DeriveError;
@@ -50,5 +52,12 @@ impl Rule for Linearise {
             cx.seed,
             check,
         )
+    }
+
+    fn wording(&self) -> Wording<'_> {
+        Wording {
+            equation: Some(("linearised equation", "")),
+            ..Wording::default()
+        }
     }
 }

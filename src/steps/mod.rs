@@ -2,7 +2,7 @@
 //! numeric route (`check`), which does not go through the engine, as `impl Rule` for the
 //! operation's type. The type, its row of the table (name, fields, what each holds and gives)
 //! and the checks of its fields are its file of the same name under `scene/operations/`; how a
-//! result shows on the page is `page.rs`.
+//! result shows on the page is `page.rs`, in the words each rule gives (`Rule::wording`).
 //! A step's `gives` is a claim of the notes, checked in `verify/gives.rs`.
 //!
 //! The stage sits above `derive` and `numeric`, whose mechanics the operations share, and
@@ -39,7 +39,6 @@ use crate::notation::Formula;
 use crate::numeric::budget::Deadline;
 use crate::numeric::random_points::CONFIRMATION_POINTS;
 use crate::numeric::random_points::{numerically_zero, signed_names};
-use crate::scene::operations::Be;
 use crate::scene::{AuthorStep, Operation, Scene};
 use check::equations_of;
 pub use check::{CheckError, StepCheck};
@@ -83,25 +82,9 @@ pub fn derive_steps(scene: &Scene, d: &mut Derivation) -> Result<(), DeriveError
         let mut shown: Option<Formula> = None;
         let result = derive_step(scene, d, step, &mut shown).map_err(|e| locate(step, e))?;
         named_as_listed(step, &result).map_err(|e| locate(step, e))?;
-        let printed = match (&step.op, &result) {
-            // An author's expression prints as written, its names kept where they print as
-            // symbols (T_beat = 2π/(Ω₂ − Ω₁) = …), then put in.
-            (Operation::Be(Be(e)), StepResult::Expr(exact)) => {
-                let cx = Context { scene, d, step };
-                let form = be::printed(cx, e, exact).map_err(|e| locate(step, e))?;
-                if let Some(named) = be::as_named(cx, e).filter(|n| *n != form) {
-                    shown = Some(Formula::Row(vec![
-                        Formula::Expr(Expr::sym(&step.name)),
-                        Formula::Op(crate::notation::Op::Equals),
-                        Formula::Expr(named),
-                        Formula::Op(crate::notation::Op::Equals),
-                        Formula::Expr(form.clone()),
-                    ]));
-                }
-                (form != *exact).then_some(StepResult::Expr(form))
-            }
-            _ => printed_form(scene, &result).map_err(|e| locate(step, e))?,
-        };
+        let printed = rule_of(&step.op)
+            .printed(Context { scene, d, step }, &result, &mut shown)
+            .map_err(|e| locate(step, e))?;
         let mut steps = page::page_steps(scene, step, printed.as_ref().unwrap_or(&result));
         if printed.is_some() {
             for (shown, exact) in steps.iter_mut().zip(page::page_steps(scene, step, &result)) {
@@ -183,8 +166,8 @@ fn derive_step(
     rule_of(&step.op).derive(Context { scene, d, step }, shown)
 }
 
-/// What an operation does, in its file of the same name here: its exact rule and its numeric
-/// route.
+/// What an operation does, in its file of the same name here: its exact rule, its numeric
+/// route, and the words and form its result takes on the page.
 trait Rule {
     /// Its result by the exact rule (its errors located by the caller); `shown` takes a
     /// statement other than `name = result` (an integral with its limits).
@@ -192,6 +175,22 @@ trait Rule {
 
     /// Its result checked by the numeric route, which does not go through the engine.
     fn check(&self, cx: Checking, check: &mut StepCheck) -> Result<(), CheckError>;
+
+    /// The result as the page prints it, where that differs from the exact result: by
+    /// default the forms a textbook prints (`printed_form`); `shown` as in `derive`.
+    fn printed(
+        &self,
+        cx: Context,
+        result: &StepResult,
+        _shown: &mut Option<Formula>,
+    ) -> Result<Option<StepResult>, DeriveError> {
+        printed_form(cx.scene, result)
+    }
+
+    /// The words its result takes on the page, where they are its own (`page::Wording`).
+    fn wording(&self) -> page::Wording<'_> {
+        page::Wording::default()
+    }
 }
 
 /// Each operation's file, and its rule, from the one list of operations.

@@ -4,7 +4,9 @@
 //! - Exact rule: `derive/lagrangian.rs`.
 //! - Numeric route: the motion of L integrated, the momentum's drift watched (or its change
 //!   against the force, when it is not conserved) (`motion.rs`).
+//! - On the page: p = …, conserved when the Lagrangian does not depend on the coordinate.
 
+use super::page::Wording;
 use super::{Checking, Context, Rule, conserved, conserved_route, scalar};
 use crate::derive::DeriveError;
 use crate::derive::lagrangian::momentum;
@@ -26,5 +28,13 @@ impl Rule for Momentum {
         let of: &str = &self.of;
         let coordinate: &str = &self.coordinate;
         conserved_route(cx, of, Conserved::Momentum(coordinate), check)
+    }
+
+    /// Conserved when L does not depend on its coordinate.
+    fn wording(&self) -> Wording<'_> {
+        Wording {
+            conserved_in: Some(&self.coordinate),
+            ..Wording::default()
+        }
     }
 }

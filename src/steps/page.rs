@@ -6,8 +6,21 @@ use crate::derive::Step;
 use crate::derive::step_names::{Stable, StandsFor, StepResult};
 use crate::model::prose::Prose;
 use crate::notation::Formula;
-use crate::scene::operations::{Lagrange, Momentum};
-use crate::scene::{AuthorStep, Operation, Scene};
+use crate::scene::{AuthorStep, Scene};
+
+/// The words an operation's result takes on the page where they are its own, given by its
+/// rule (`Rule::wording`, in the operation's file); the rest is by the kind of result.
+#[derive(Default)]
+pub(super) struct Wording<'a> {
+    /// What a conserved quantity's Lagrangian does not depend on: a momentum's coordinate;
+    /// else time.
+    pub conserved_in: Option<&'a str>,
+    /// An equation of motion's noun and what follows its coordinate: ("linearised
+    /// equation", ""), ("equation", ", substituted"); else ("equation", "").
+    pub equation: Option<(&'static str, &'static str)>,
+    /// The constraints whose multipliers have an equation of their own.
+    pub constraints: &'a [(String, Expr)],
+}
 
 /// After a mode's title where its frequency is zero: what a zero mode is.
 const ZERO_MODE: &str = ", a zero mode: a free motion, with no restoring force";
@@ -71,6 +84,7 @@ fn page_statements(scene: &Scene, step: &AuthorStep, result: &StepResult) -> Vec
         by_symbol,
         title: Prose::default(),
         names: step.result_names(),
+        wording: super::rule_of(&step.op).wording(),
     };
     lines.title = lines.cited(if by_symbol {
         typeset(&step.name)
@@ -120,6 +134,7 @@ struct Lines<'a> {
     by_symbol: bool,
     title: Prose,
     names: crate::scene::ResultNames<'a>,
+    wording: Wording<'a>,
 }
 
 impl Lines<'_> {
@@ -153,10 +168,7 @@ impl Lines<'_> {
 
     fn conserved(&self, value: &Expr, conserved: bool, why: &Prose) -> Step {
         let step = self.step;
-        let of = match &step.op {
-            Operation::Momentum(Momentum { coordinate, .. }) => coordinate.as_str(),
-            _ => "t",
-        };
+        let of = self.wording.conserved_in.unwrap_or("t");
         // The derivation's verdict after the author's reason, said once: a reason that
         // says it is conserved is enough; one that already says why ("$L$ does not depend
         // on $x$") takes "conserved"; any other, the verdict with its why.
@@ -420,30 +432,22 @@ impl Lines<'_> {
     }
 
     fn equations(&self, eqs: &[(String, Expr)], why: &Prose) -> Vec<Step> {
-        let (scene, step, by_symbol) = (self.scene, self.step, self.by_symbol);
+        let (scene, by_symbol) = (self.scene, self.by_symbol);
         eqs.iter()
             .map(|(coordinate, e)| {
                 let q = coordinate;
                 // A constraint on the coordinates is differentiated twice to reach the
                 // accelerations, one on the rates (rolling) once.
-                let constraint = match &step.op {
-                    Operation::Lagrange(Lagrange { constraints, .. }) => constraints
-                        .iter()
-                        .find(|(lambda, _)| lambda == q)
-                        .map(|(_, f)| {
-                            crate::derive::constraints::is_velocity_constraint(
-                                f,
-                                &scene.coordinates,
-                            )
-                        }),
-                    _ => None,
-                };
+                let constraint = self
+                    .wording
+                    .constraints
+                    .iter()
+                    .find(|(lambda, _)| lambda == q)
+                    .map(|(_, f)| {
+                        crate::derive::constraints::is_velocity_constraint(f, &scene.coordinates)
+                    });
                 let q = typeset(q);
-                let (of, after) = match &step.op {
-                    Operation::Linearise(_) => ("linearised equation", ""),
-                    Operation::Substitute(_) => ("equation", ", substituted"),
-                    _ => ("equation", ""),
-                };
+                let (of, after) = self.wording.equation.unwrap_or(("equation", ""));
                 let what = match constraint {
                     Some(on_rates) => Prose::default()
                         .text("the constraint of the multiplier ")

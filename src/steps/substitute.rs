@@ -5,7 +5,9 @@
 //!   refused as 0/0 or a pole, with the `series` step that takes the limit.
 //! - Numeric route: the expression as written, each replaced name given its replacement's
 //!   value, at random points.
+//! - On the page: `name = result`, or each equation of motion, substituted, `… = 0`.
 
+use super::page::Wording;
 use super::{Checking, Context, Rule, simplified};
 use crate::base::rng::Rng;
 use crate::cas::{self, Expr};
@@ -103,5 +105,12 @@ impl Rule for Substitute {
             return Err(CheckError::NoValue);
         }
         Ok(())
+    }
+
+    fn wording(&self) -> Wording<'_> {
+        Wording {
+            equation: Some(("equation", ", substituted")),
+            ..Wording::default()
+        }
     }
 }

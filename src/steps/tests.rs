@@ -1437,3 +1437,38 @@ fn a_conserved_momentum_is_said_conserved_once() {
         "the cart's momentum; conserved: the Lagrangian does not depend on x"
     );
 }
+
+/// Each operation's own words reach its page lines (`Rule::wording`): the linearised equation
+/// says so, the full one does not, and a substitution into equations says it is substituted.
+#[test]
+fn a_step_is_worded_by_its_operation() {
+    let text = pendulum(
+        "(M*L^2/12 + M*(L/2)^2)",
+        "2*Ip*phi'' + M*g*L*sin(phi) = 0",
+        "M*L^2*phi'/3",
+        "sqrt(3*g/(2*L))",
+    )
+    .replace(
+        "[outputs]",
+        "[[step]]\nname = \"still\"\nsubstitute = \"eom\"\nset = { g = \"0\" }\n[outputs]",
+    );
+    let r = run(&text);
+    let title = |author: &str| -> String {
+        let step = r
+            .derivation
+            .steps
+            .iter()
+            .find(|s| s.author.as_deref() == Some(author));
+        step.unwrap_or_else(|| panic!("no line of {author}"))
+            .title
+            .to_text()
+    };
+    assert_eq!(
+        [title("eom"), title("small"), title("still")],
+        [
+            "The equation of motion of phi",
+            "The linearised equation of motion of phi",
+            "The equation of motion of phi, substituted",
+        ]
+    );
+}
