@@ -185,19 +185,7 @@ mod tests {
         Scene::parse(body, Path::new("t.toml")).unwrap()
     }
 
-    const HEAD: &str = r#"
-id = "t"
-title = "t"
-notes = { lecture = "3/4" }
-symbols = { m = "mass", a = "side" }
-axis = ["1", "0", "0"]
-[[body]]
-kind = "box"
-size = ["a", "a", "a"]
-mass = "m"
-[numeric]
-values = { m = 1.0, a = 1.0 }
-"#;
+    const HEAD: &str = include_str!("../tests/fixtures/unit/plan-head.toml");
 
     #[test]
     fn tensor_alone_runs_nothing_else() {

@@ -69,37 +69,7 @@ pub struct BenchArgs {
 
 /// The box problem of the variant benchmark; `{count}` is replaced by the number of variants.
 /// Its ranges span 18,480 combinations, most with a < b < c.
-const VARIANT_SCENE: &str = r#"
-id = "bench-box-variants"
-title = "A box about its centre"
-notes = { lecture = "bench" }
-symbols = { m = "mass", a = "side along x", b = "side along y", c = "side along z" }
-
-[[body]]
-kind = "box"
-size = ["a", "b", "c"]
-mass = "m"
-origin = "centre"
-
-[outputs]
-want = ["inertia_tensor", "principal_axes"]
-
-[numeric]
-values = { m = 1.0, a = 1.0, b = 2.0, c = 3.0 }
-
-[problem]
-statement = "A uniform box of mass {m} kg has sides {a} m, {b} m and {c} m."
-answers = ["inertia_tensor", "principal_moments"]
-
-[variants]
-count = {count}
-seed = 1
-m = { from = "1", to = "20", step = "1" }
-a = ["1/2", "1", "3/2", "2"]
-b = { from = "1", to = "6", step = "1/2" }
-c = { from = "2", to = "12", step = "1/2" }
-require = ["a < b", "b < c"]
-"#;
+const VARIANT_SCENE: &str = include_str!("scenes/box-variants.toml");
 
 /// `count` variants of the box problem: the time to draw them (parsing the scene), to derive
 /// the problem once, and to substitute and cross-check every variant; all in this process.

@@ -12,32 +12,7 @@ use std::process::{Command, Stdio};
 use std::time::Instant;
 
 /// A free top within 10⁻⁵ of symmetric, at 10,000 spins: the precession route's worst case.
-const NEAR_SYMMETRIC_TOP: &str = r#"
-id = "near-symmetric-top"
-title = "A nearly symmetric free top"
-notes = { lecture = "bench" }
-[symbols]
-I1 = { meaning = "transverse moment", unit = "kg m^2" }
-I3 = { meaning = "axial moment", unit = "kg m^2" }
-w1 = { meaning = "rate", unit = "rad/s" }
-w2 = { meaning = "rate", unit = "rad/s" }
-w3 = { meaning = "spin", unit = "rad/s" }
-A = { meaning = "amplitude", unit = "rad/s" }
-t = { meaning = "time", unit = "s" }
-theta = { meaning = "phase", unit = "rad" }
-[outputs]
-want = ["symmetric_top"]
-[problem]
-statement = "A free top has I1 = {I1}, I3 = {I3} and spin {w3}."
-answers = ["precession_rate"]
-[variants]
-count = 10000
-seed = 3
-I1 = ["1"]
-I3 = ["100001/100000"]
-w3 = { from = "-60", to = "60", step = "1/100" }
-require = ["w3 != 0"]
-"#;
+const NEAR_SYMMETRIC_TOP: &str = include_str!("scenes/near-symmetric-top.toml");
 
 /// The students of the roster row: 25, as a class.
 const STUDENTS: usize = 25;

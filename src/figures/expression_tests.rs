@@ -11,33 +11,8 @@ use crate::scene::Scene;
 use std::path::Path;
 
 fn scene(plots: &str) -> Result<SceneReport, String> {
-    let text = format!(
-        r#"
-id = "top"
-title = "A heavy top's effective potential"
-notes = {{ lecture = "x" }}
-[symbols]
-I1 = {{ meaning = "moment about the pivot", unit = "kg m^2" }}
-M = {{ meaning = "mass", unit = "kg" }}
-g = {{ meaning = "gravity", unit = "m/s^2" }}
-l = {{ meaning = "pivot to centre", unit = "m" }}
-a = {{ meaning = "vertical momentum over I1", unit = "1/s" }}
-b = {{ meaning = "spin momentum over I1", unit = "1/s" }}
-theta = {{ meaning = "tilt", unit = "rad" }}
-[[step]]
-name = "U"
-be = "I1*(a - b*cos(theta))^2/(2*sin(theta)^2) + M*g*l*cos(theta)"
-why = "the effective potential"
-[[step]]
-name = "dU"
-differentiate = "U"
-by = "theta"
-why = "its slope"
-{plots}
-[numeric]
-values = {{ I1 = 2.0, M = 1.0, g = 9.81, l = 0.5, a = 1.5, b = 1.0 }}
-"#
-    );
+    let text = include_str!("../../tests/fixtures/unit/effective-potential-plot.toml")
+        .replace("{plots}", plots);
     let s = Scene::parse(&text, Path::new("p.toml")).map_err(|e| e.to_string())?;
     run_scene(s, None).map_err(|e| e.to_string())
 }

@@ -13,51 +13,11 @@ use std::path::Path;
 /// The physical pendulum of tests/course, with `gives` of the caller's choosing for the
 /// moment (`ip`), the equation of motion (`eom`), the momentum (`p`) and the frequency (`w`).
 fn pendulum(ip: &str, eom: &str, p: &str, w: &str) -> String {
-    format!(
-        r#"
-id = "pendulum"
-title = "The physical pendulum"
-notes = {{ lecture = "6" }}
-symbols = {{ M = "mass", L = "length", g = "gravity" }}
-axis = ["0", "0", "1"]
-[coordinates]
-phi = "angle from the downward vertical"
-[[body]]
-kind = "rod"
-length = "L"
-mass = "M"
-origin = "end"
-along = "x"
-[[step]]
-name = "Ip"
-be = "moment_about_axis"
-gives = "{ip}"
-[[step]]
-name = "Lag"
-be = "Ip*phi'^2/2 + M*g*(L/2)*cos(phi)"
-[[step]]
-name = "eom"
-lagrange = "Lag"
-gives = "{eom}"
-[[step]]
-name = "p_phi"
-differentiate = "Lag"
-by = "phi'"
-gives = "{p}"
-[[step]]
-name = "small"
-linearise = "eom"
-about = {{ phi = "0" }}
-[[step]]
-name = "Omega"
-frequency = "small"
-gives = "{w}"
-[outputs]
-want = ["moment_about_axis"]
-[numeric]
-values = {{ M = 2.0, L = 1.5, g = 9.81 }}
-"#
-    )
+    include_str!("../../tests/fixtures/unit/pendulum-steps.toml")
+        .replace("{ip}", ip)
+        .replace("{eom}", eom)
+        .replace("{p}", p)
+        .replace("{w}", w)
 }
 
 fn run(text: &str) -> SceneReport {
@@ -747,17 +707,7 @@ fn paraboloid_by_integration() {
 /// about the step (not about a body's dimensions).
 #[test]
 fn a_step_over_the_engines_budget_says_what_to_do_at_its_line() {
-    let text = r#"
-id = "big"
-title = "Too big"
-notes = { lecture = "6" }
-symbols = { x = "one", y = "other" }
-[[step]]
-name = "P"
-be = "(x + y)^40"
-[numeric]
-values = { x = 1.0, y = 2.0 }
-"#;
+    let text = include_str!("../../tests/fixtures/unit/step-over-budget.toml");
     let err = run_scene(Scene::parse(text, Path::new("p.toml")).unwrap(), None)
         .unwrap_err()
         .to_string();
@@ -947,34 +897,10 @@ fn only_real_states_of_rest_and_a_cubic_in_closed_form() {
     use crate::cas::Expr;
     use crate::derive::step_names::StepResult;
     let scene = |potential: &str, symbol: &str, value: &str| {
-        format!(
-            r#"
-id = "orbit"
-title = "A radial motion"
-notes = {{ lecture = "x" }}
-symbols = {{ m = "mass", k = "force", {symbol} = "a constant" }}
-[coordinates]
-r = "radius"
-[[step]]
-name = "Lag"
-be = "m*r'^2/2 - k*({potential} + r)"
-why = "the radial Lagrangian"
-[[step]]
-name = "eom"
-lagrange = "Lag"
-why = "motion"
-[[step]]
-name = "rest"
-equilibria = "eom"
-why = "states of rest"
-[[step]]
-name = "st"
-stability = "rest"
-why = "stability"
-[numeric]
-values = {{ m = 1.0, k = 2.0, {symbol} = {value} }}
-"#
-        )
+        include_str!("../../tests/fixtures/unit/orbit-states-of-rest.toml")
+            .replace("{symbol}", symbol)
+            .replace("{potential}", potential)
+            .replace("{value}", value)
     };
     for (text, radius) in [
         (scene("r0^3/(2*r^2)", "r0", "1.5"), 1.5f64),
@@ -1141,49 +1067,7 @@ fn the_n_link_pendulums_modes_agree_with_m_inverse_k() {
 /// generalised force disagrees, each at random values of φ and φ' as well as by the engine.
 #[test]
 fn a_claim_names_a_coordinate_and_its_rate() {
-    let text = r#"
-id = "cl"
-title = "claims on a coordinate"
-notes = { lecture = "x" }
-symbols = { M = "mass", L = "length", g = "gravity" }
-
-[coordinates]
-phi = "angle"
-
-[[step]]
-name = "Lag"
-be = "M*L^2*phi'^2/6 + M*g*L/2*cos(phi)"
-why = "$T - V$"
-
-[[step]]
-name = "p"
-differentiate = "Lag"
-by = "phi'"
-why = "momentum"
-
-[[step]]
-name = "F"
-differentiate = "Lag"
-by = "phi"
-why = "generalised force"
-
-[[claim]]
-eq = "1"
-statement = "the momentum"
-quantity = "p"
-value = "M*L^2*phi'/3"
-expect = "agrees"
-
-[[claim]]
-eq = "2"
-statement = "the generalised force, with a sign slip"
-quantity = "F"
-value = "M*g*L/2*sin(phi)"
-expect = "disagrees"
-
-[numeric]
-values = { M = 2.0, L = 1.5, g = 9.81 }
-"#;
+    let text = include_str!("../../tests/fixtures/unit/claim-coordinate-rate.toml");
     let r = run(text);
     let verdicts: Vec<Verdict> = r.verification.claims.iter().map(|c| c.verdict).collect();
     assert_eq!(
@@ -1201,22 +1085,8 @@ values = { M = 2.0, L = 1.5, g = 9.81 }
 #[test]
 fn an_integral_runs_over_a_declared_symbol() {
     let scene = |gives: &str| {
-        format!(
-            r#"
-id = "int"
-title = "An integral over a declared symbol"
-notes = {{ lecture = "x" }}
-symbols = {{ M = "mass", L = "length", x = "distance along the rod" }}
-[[step]]
-name = "I"
-integrate = "M/L*x^2"
-over = [["x", "0", "L"]]
-why = "the rod's moment about its end"
-gives = "{gives}"
-[numeric]
-values = {{ M = 2.0, L = 1.5 }}
-"#
-        )
+        include_str!("../../tests/fixtures/unit/integral-over-symbol.toml")
+            .replace("{gives}", gives)
     };
     let right = run(&scene("M*L^2/3"));
     assert!(right.verification.steps.iter().all(|c| c.passed()));

@@ -8,38 +8,8 @@ use crate::scene::{Scene, Verdict};
 use std::path::Path;
 
 fn scene(gives: &str) -> String {
-    format!(
-        r#"
-id = "effective-potential"
-title = "The effective potential's curvature"
-notes = {{ lecture = "x" }}
-[symbols]
-I1 = {{ meaning = "moment about a transverse axis at the centre", unit = "kg m^2" }}
-M = {{ meaning = "mass", unit = "kg" }}
-g = {{ meaning = "gravity", unit = "m/s^2" }}
-l = {{ meaning = "pivot to centre", unit = "m" }}
-pphi = {{ meaning = "vertical momentum", unit = "kg m^2/s" }}
-ppsi = {{ meaning = "spin momentum", unit = "kg m^2/s" }}
-theta = {{ meaning = "tilt", unit = "rad" }}
-[[step]]
-name = "U"
-be = "(pphi - ppsi*cos(theta))^2/(2*(I1 + M*l^2)*sin(theta)^2) + M*g*l*cos(theta)"
-why = "the effective potential, moment about the pivot"
-[[step]]
-name = "dU"
-differentiate = "U"
-by = "theta"
-why = "its slope"
-[[step]]
-name = "ddU"
-differentiate = "dU"
-by = "theta"
-why = "its curvature"
-gives = "{gives}"
-[numeric]
-values = {{ I1 = 2.0, M = 1.0, g = 9.81, l = 0.5, pphi = 3.0, ppsi = 2.0 }}
-"#
-    )
+    include_str!("../../tests/fixtures/unit/effective-potential-curvature.toml")
+        .replace("{gives}", gives)
 }
 
 /// By hand, with c = cos θ, s = sin θ and I = I₁ + M l²:

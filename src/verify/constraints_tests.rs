@@ -267,42 +267,7 @@ fn the_spherical_pendulums_routhian() {
 /// y = (v/ω)(1 − cos ωt), to 1e-9; and a start that slides sideways is refused.
 #[test]
 fn the_knife_edges_sideways_force_is_its_multiplier() {
-    let text = r#"
-id = "knife-edge"
-title = "A knife edge on a plane"
-notes = { lecture = "x" }
-[symbols]
-m = { meaning = "mass", unit = "kg" }
-I = { meaning = "moment about the vertical", unit = "kg m^2" }
-F = { meaning = "sideways force of the blade", unit = "N" }
-[coordinates]
-x = { meaning = "east", unit = "m" }
-y = { meaning = "north", unit = "m" }
-phi = { meaning = "heading", unit = "rad" }
-[[step]]
-name = "Lag"
-be = "m*(x'^2 + y'^2)/2 + I*phi'^2/2"
-why = "kinetic energy"
-[[step]]
-name = "eom"
-lagrange = "Lag"
-constraints = { F = "y'*cos(phi) - x'*sin(phi)" }
-start = { x = 0.0, y = 0.0, phi = 0.0, "x'" = 1.5, "phi'" = 0.8 }
-why = "no sideways slip"
-[[step]]
-name = "acc"
-solve = "eom"
-for = ["x''", "y''", "phi''", "F"]
-why = "accelerations and the force"
-[[claim]]
-eq = "1"
-statement = "the sideways force"
-quantity = "acc_4"
-value = "m*phi'*(x'*cos(phi) + y'*sin(phi))"
-expect = "agrees"
-[numeric]
-values = { m = 2.0, I = 0.3 }
-"#;
+    let text = include_str!("../../tests/fixtures/unit/knife-edge.toml");
     let r = run(text);
     assert!(
         r.verification.steps.iter().all(|c| c.passed()),

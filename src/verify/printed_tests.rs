@@ -229,37 +229,9 @@ fn ten_results_of_the_course_print_as_a_textbook_does() {
 /// mass cancels in Ω; a ball rolling in a bowl, whose m and a factor R − r cancel.
 #[test]
 fn a_mass_that_divides_out_is_cancelled() {
-    let pendulum = run_text(
-        r#"
-id = "offset-pendulum"
-title = "A rod pivoted off its centre"
-notes = { lecture = "6" }
-symbols = { M = "mass", L = "length", d = "pivot to centre", g = "gravity" }
-[coordinates]
-phi = "angle from the downward vertical"
-[[step]]
-name = "Ip"
-be = "M*L^2/12 + M*d^2"
-[[step]]
-name = "Lag"
-be = "Ip*phi'^2/2 + M*g*d*cos(phi)"
-[[step]]
-name = "eom"
-lagrange = "Lag"
-[[step]]
-name = "small"
-linearise = "eom"
-about = { phi = "0" }
-[[step]]
-name = "Omega"
-frequency = "small"
-[[step]]
-name = "period"
-be = "2*pi/Omega"
-[numeric]
-values = { M = 2.0, L = 1.5, d = 0.4, g = 9.81 }
-"#,
-    );
+    let pendulum = run_text(include_str!(
+        "../../tests/fixtures/unit/offset-pendulum.toml"
+    ));
     assert!(pendulum.verification.verified());
     let d = &pendulum.derivation;
     assert_textbook(d, "pendulum", "Omega", 0, r"\sqrt{\frac{12gd}{L^2+12d^2}}");
@@ -271,31 +243,7 @@ values = { M = 2.0, L = 1.5, d = 0.4, g = 9.81 }
         r"2\pi\sqrt{\frac{L^2+12d^2}{12gd}}",
     );
 
-    let bowl = run_text(
-        r#"
-id = "ball-in-bowl"
-title = "A ball rolling in a bowl"
-notes = { lecture = "6" }
-symbols = { m = "mass of the ball", r = "radius of the ball", R = "radius of the bowl", g = "gravity" }
-[coordinates]
-theta = "angle of the ball from the bottom"
-[[step]]
-name = "Lag"
-be = "m*(R - r)^2*theta'^2/2 + (2*m*r^2/5)*((R - r)*theta'/r)^2/2 + m*g*(R - r)*cos(theta)"
-[[step]]
-name = "eom"
-lagrange = "Lag"
-[[step]]
-name = "small"
-linearise = "eom"
-about = { theta = "0" }
-[[step]]
-name = "Omega"
-frequency = "small"
-[numeric]
-values = { m = 0.2, r = 0.05, R = 0.5, g = 9.81 }
-"#,
-    );
+    let bowl = run_text(include_str!("../../tests/fixtures/unit/ball-in-bowl.toml"));
     assert!(bowl.verification.verified());
     assert_textbook(
         &bowl.derivation,

@@ -126,34 +126,7 @@ why = "the substituted Lagrangian"
     assert!(err.contains("does not integrate"), "{err}");
     assert!(err.contains("constraints = { lam = \"x' - "), "{err}");
 
-    let wheel = r#"
-id = "wheel"
-title = "A wheel on a line"
-notes = { lecture = "x" }
-[symbols]
-m = { meaning = "mass", unit = "kg" }
-R = { meaning = "radius", unit = "m" }
-k = { meaning = "spring constant", unit = "N/m" }
-[coordinates]
-x = { meaning = "position", unit = "m" }
-theta = { meaning = "turn", unit = "rad" }
-[[step]]
-name = "Lag"
-be = "m*x'^2/2 + m*R^2*theta'^2/4 - k*x^2/2"
-why = "energy"
-[[step]]
-name = "Lr"
-substitute = "Lag"
-set = { "theta'" = "x'/R" }
-why = "rolls"
-[[step]]
-name = "eom"
-lagrange = "Lr"
-start = { x = 0.2 }
-why = "motion"
-[numeric]
-values = { m = 2.0, R = 0.5, k = 3.0 }
-"#;
+    let wheel = include_str!("../../tests/fixtures/unit/rolling-wheel.toml");
     let r = run(wheel);
     assert!(
         r.verification.steps.iter().all(|c| c.passed()),

@@ -3,22 +3,7 @@ use crate::scene::{Scene, Verdict};
 use std::collections::BTreeMap;
 use std::path::Path;
 
-const SCENE: &str = r#"
-id = "t"
-title = "t"
-notes = { lecture = "x" }
-symbols = { m = "mass", a = "side" }
-vectors = { r = ["a", "0", "0"] }
-[[body]]
-kind = "box"
-size = ["a", "a", "a"]
-mass = "m"
-origin = "centre"
-[outputs]
-want = []
-[numeric]
-values = { m = 1.0, a = 1.0 }
-"#;
+const SCENE: &str = include_str!("../../tests/fixtures/unit/verify-claims.toml");
 
 fn claims(claims: &str) -> Vec<super::ClaimResult> {
     let s = Scene::parse(&format!("{SCENE}{claims}"), Path::new("t.toml")).unwrap();
@@ -166,47 +151,7 @@ fn a_pin_names_the_sheets_that_differ() {
 /// 2.006 s is "about 2 s" at one figure, not "about 3 s", and the page says at which values.
 #[test]
 fn a_rough_claim_is_read_at_the_scenes_values() {
-    let text = r#"
-id = "fig"
-title = "a rough claim"
-notes = { lecture = "x" }
-symbols = { M = "mass", L = "length", g = "gravity" }
-
-[coordinates]
-phi = "angle"
-
-[[step]]
-name = "Lag"
-be = "M*L^2*phi'^2/6 + M*g*L/2*cos(phi)"
-why = "$T - V$"
-
-[[step]]
-name = "eom"
-lagrange = "Lag"
-why = "motion"
-
-[[step]]
-name = "small"
-linearise = "eom"
-about = { phi = "0" }
-why = "small"
-
-[[step]]
-name = "Omega"
-frequency = "small"
-why = "frequency"
-
-[[claim]]
-eq = "1"
-statement = "the period is about 2 s"
-quantity = "2*pi/Omega"
-value = "2"
-figures = 1
-expect = "agrees"
-
-[numeric]
-values = { M = 2.0, L = 1.5, g = 9.81 }
-"#;
+    let text = include_str!("../../tests/fixtures/unit/rough-claim.toml");
     let r = run_scene(Scene::parse(text, Path::new("p.toml")).unwrap(), None).unwrap();
     let claim = &r.verification.claims[0];
     assert_eq!(claim.verdict, Verdict::Agrees, "{claim:?}");

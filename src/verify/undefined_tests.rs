@@ -8,26 +8,9 @@ use crate::scene::Scene;
 use std::path::Path;
 
 fn scene(f: &str, last: &str) -> String {
-    format!(
-        r#"
-id = "limit"
-title = "A value at a special point"
-notes = {{ lecture = "x" }}
-[symbols]
-a = {{ meaning = "length", unit = "m" }}
-x = {{ meaning = "angle", unit = "rad" }}
-[[step]]
-name = "f"
-be = "{f}"
-why = "the ratio"
-[[step]]
-name = "f0"
-{last}
-why = "at the point"
-[numeric]
-values = {{ a = 2.0 }}
-"#
-    )
+    include_str!("../../tests/fixtures/unit/value-at-special-point.toml")
+        .replace("{f}", f)
+        .replace("{last}", last)
 }
 
 fn run(text: &str) -> Result<SceneReport, String> {

@@ -316,31 +316,7 @@ mod tests {
     use crate::pipeline::run_scene;
     use std::path::Path;
 
-    const BOX: &str = r#"
-id = "b"
-title = "b"
-notes = { lecture = "x" }
-symbols = { m = "mass", a = "side", b = "side", c = "side" }
-[[body]]
-kind = "box"
-size = ["a", "b", "c"]
-mass = "m"
-origin = "centre"
-[outputs]
-want = ["inertia_tensor", "principal_axes"]
-[numeric]
-values = { m = 1.0, a = 1.0, b = 2.0, c = 3.0 }
-[problem]
-statement = "A box of mass {m} kg, sides {a}, {b}, {c}."
-answers = ["inertia_tensor", "principal_moments"]
-[variants]
-count = 6
-m = ["1", "2", "3"]
-a = ["1/2", "1"]
-b = ["2", "5/2"]
-c = ["3", "7/2"]
-require = ["a < b"]
-"#;
+    const BOX: &str = include_str!("../../tests/fixtures/unit/box-variants.toml");
 
     #[test]
     fn every_variant_agrees_with_quadrature_and_a_wrong_derivation_does_not() {
@@ -394,32 +370,7 @@ require = ["a < b"]
     /// its tolerance grows with the cancellation in I3 − I1. A wrong rate still fails.
     #[test]
     fn a_nearly_symmetric_top_is_checked_cheaply_and_a_wrong_rate_fails() {
-        const TOP: &str = r#"
-id = "t"
-title = "t"
-notes = { lecture = "x" }
-[symbols]
-I1 = { meaning = "moment", unit = "kg m^2" }
-I3 = { meaning = "moment", unit = "kg m^2" }
-w1 = { meaning = "rate", unit = "rad/s" }
-w2 = { meaning = "rate", unit = "rad/s" }
-w3 = { meaning = "spin", unit = "rad/s" }
-A = { meaning = "amplitude", unit = "rad/s" }
-t = { meaning = "time", unit = "s" }
-theta = { meaning = "phase", unit = "rad" }
-[outputs]
-want = ["symmetric_top"]
-[problem]
-statement = "A top {I1}, {I3}, {w3}."
-answers = ["precession_rate"]
-[variants]
-count = 40
-seed = 3
-I1 = ["1", "3"]
-I3 = { from = "100000001/100000000", to = "100000040/100000000", step = "1/100000000" }
-w3 = { from = "-6", to = "6", step = "1" }
-require = ["I3 != I1", "w3 != 0"]
-"#;
+        const TOP: &str = include_str!("../../tests/fixtures/unit/near-symmetric-top.toml");
         let scene = Scene::parse(TOP, Path::new("t.toml")).unwrap();
         let before = crate::numeric::Work::so_far().rhs_evaluations;
         let report = run_scene(scene.clone(), None).unwrap();
@@ -451,33 +402,7 @@ require = ["I3 != I1", "w3 != 0"]
     /// with the same value as the exact answer; an answer of seven-digit numbers is rounded.
     #[test]
     fn the_keys_form_keeps_the_authors_decimals_and_rounds_long_numbers() {
-        const SWING: &str = r#"
-id = "s"
-title = "s"
-notes = { lecture = "x" }
-[symbols]
-L = { meaning = "length", unit = "m" }
-g = { meaning = "gravity", unit = "m/s^2" }
-k = { meaning = "a number" }
-[numeric]
-values = { L = 1.0, g = 9.81, k = 2.0 }
-[[step]]
-name = "T"
-be = "2*pi*sqrt(2*L/(3*g))"
-why = "the period"
-[problem]
-statement = "A rod {L}, {g}, {k}."
-answers = [
-  { value = "T", unit = "s" },
-  { value = "sqrt(k)*L" },
-  { value = "sqrt(k)" },
-]
-[variants]
-count = 4
-seed = 1
-L = ["1/2", "3/4"]
-k = ["1234567/89", "2"]
-"#;
+        const SWING: &str = include_str!("../../tests/fixtures/unit/keys-decimals.toml");
         let scene = Scene::parse(SWING, Path::new("s.toml")).unwrap();
         let report = run_scene(scene, None).unwrap();
         let checks = &report.verification.variants;

@@ -8,34 +8,8 @@ use std::path::Path;
 /// A pendulum with its Lagrangian, equations, linear equations and states of rest, and a last
 /// step `X` of the caller's.
 fn scene_with(step: &str) -> String {
-    format!(
-        r#"
-id = "pendulum"
-title = "Pendulum"
-notes = {{ lecture = "6" }}
-symbols = {{ m = "mass", l = "length", g = "gravity", p = "angular momentum", T = "force" }}
-[coordinates]
-th = "angle from the downward vertical"
-ph = "azimuth"
-[[step]]
-name = "Lag"
-be = "m*l^2*(th'^2 + sin(th)^2*ph'^2)/2 + m*g*l*cos(th)"
-[[step]]
-name = "eom"
-lagrange = "Lag"
-[[step]]
-name = "lin"
-linearise = "eom"
-[[step]]
-name = "rest"
-equilibria = "eom"
-[[step]]
-name = "X"
-{step}
-[numeric]
-values = {{ m = 1.0, l = 1.0, g = 9.81 }}
-"#
-    )
+    include_str!("../../../../tests/fixtures/unit/operation-table-pendulum.toml")
+        .replace("{step}", step)
 }
 
 /// A well-formed step of each operation, by name.
