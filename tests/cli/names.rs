@@ -1,4 +1,4 @@
-//! Issue 69, "under a name the author chose": no name of mechbook's or of a scene file
+//! Under a name the author chose: no name of mechbook's or of a scene file
 //! (`plane_distance_squared`, a step `Lag`) is typeset on a page, spoken by a screen reader, or
 //! heads a step, on the three sites mechbook ships; and `check` warns at its line on a step
 //! whose result would print as a word, or as another's symbol.

@@ -1,4 +1,4 @@
-//! Issue 69's reproducers ("printed is proved"): each entry of a list `gives` printed beside
+//! Printed is proved: each entry of a list `gives` printed beside
 //! its own result, never the first entry's form beside a later one; a product of a number and a
 //! power of a variant's decimal keeps its times sign (3 ⋅ 0.4⁴, once "30.4⁴").
 

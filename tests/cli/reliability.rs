@@ -1,4 +1,4 @@
-//! Issue 41's reproducers, each failing on the release before it: wrong verdicts (|p| for p,
+//! Reproducers of reported faults, each failing on the release before it: wrong verdicts (|p| for p,
 //! NaN and infinity passing a check, a swap substituted one name after the other, a correct
 //! derivative failing near a singularity), rad/s published as Hz, a cancelling answer failing
 //! its variants, author mathematics escaped in Moodle and on the pages, names that Typst could

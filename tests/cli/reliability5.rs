@@ -1,4 +1,4 @@
-//! Issue 68's reproducers ("reliability 5"), each failing on the release before it: an output
+//! Reproducers of reported faults, each failing on the release before it: an output
 //! path that replaced a scene or the course file, LaTeX that crashed the reader, author text
 //! read as Moodle blanks, a ratio printed as a named argument into the PDFs' markup, a title
 //! that sets nothing, and a high power whose check cancelled its own digits.

@@ -1,4 +1,4 @@
-//! Issue 71, item 7: the names of a step's several results (`x_1`, `Omega_2`) do not depend on
+//! The names of a step's several results (`x_1`, `Omega_2`) do not depend on
 //! the scene's values; an author may name them (`names = [...]`); a `solve` for a symbol the
 //! scene takes positive gives its positive roots only.
 
