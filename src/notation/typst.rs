@@ -3,7 +3,7 @@
 //! does (a colour) is refused, so scene validation names it at its line.
 
 use super::latex::{Node, Tex, TexError, cells, relation_text};
-use crate::base::typst::typst_string;
+use crate::base::literal::typst_string;
 use pulldown_latex::event::{
     Content, DelimiterSize, DimensionUnit, Font, Grouping, ScriptPosition, ScriptType, StateChange,
     Style, Visual,

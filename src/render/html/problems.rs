@@ -262,24 +262,6 @@ fn answer_label(name: &str) -> Result<String, RenderError> {
     })
 }
 
-/// A CSS string literal: quotes and backslashes escaped, and `<` so that no `</style>` ends it.
-pub fn css_string(s: &str) -> String {
-    let mut out = String::from("\"");
-    for c in s.chars() {
-        match c {
-            '"' | '\\' => {
-                out.push('\\');
-                out.push(c);
-            }
-            '<' => out.push_str("\\3C "),
-            '\n' | '\r' => out.push(' '),
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
-}
-
 /// The key's rules for its shared answers: picked at sheet variant k, it shows of each shared
 /// problem the one variant that k uses.
 pub fn shared_css(variants: usize) -> String {
@@ -302,7 +284,7 @@ pub fn print_css(course: &str, sheet: &str, variants: usize) -> String {
         "@page {{ margin: 18mm 15mm; @top-left {{ content: {}; font-size: 9pt; }} @bottom-right {{ content: \
          \"page \" counter(page); font-size: 9pt; }} }}\n.pick {{ display: none; }}\n\
          .pick:target ~ main .pointer {{ display: none; }}\n",
-        css_string(&format!("{course} · {sheet}"))
+        crate::base::literal::css_string(&format!("{course} · {sheet}"))
     );
     for k in 1..=variants {
         css.push_str(&format!(

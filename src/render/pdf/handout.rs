@@ -82,8 +82,8 @@ fn section(m: &mut Markup, part: &Part, page: &Page) -> Result<(), RenderError> 
         for f in &page.figures {
             m.raw(&format!(
                 "\n#figure(image({}, width: 100%, alt: {}), caption: [",
-                crate::base::typst::typst_string(&f.file),
-                crate::base::typst::typst_string(&f.title)
+                crate::base::literal::typst_string(&f.file),
+                crate::base::literal::typst_string(&f.title)
             ));
             m.prose(&f.desc)?.raw("])\n");
         }

@@ -3,7 +3,7 @@
 //! expression tree.
 
 use super::super::RenderError;
-use crate::base::typst::typst_string;
+use crate::base::literal::typst_string;
 use crate::cas::Expr;
 use crate::model::prose::{Piece, Prose};
 use crate::notation::{Formula, Names, Tex, linebreak};

@@ -35,8 +35,8 @@ fn start_variant(
     };
     m.raw(&format!(
         "#[\n#set page(header: [#set text(8.5pt); #{}#h(1fr)*#{}*])\n",
-        crate::base::typst::typst_string(head),
-        crate::base::typst::typst_string(&right)
+        crate::base::literal::typst_string(head),
+        crate::base::literal::typst_string(&right)
     ));
     right
 }
@@ -348,7 +348,7 @@ pub fn decimals(numbers: &[f64], digits: usize) -> Vec<String> {
         .iter()
         .map(|x| {
             if !x.is_finite() {
-                return crate::base::typst::typst_string(&x.to_string());
+                return crate::base::literal::typst_string(&x.to_string());
             }
             let f = crate::notation::Formula::decimal(&crate::base::format::figures(*x, digits));
             super::markup::decimal_typst(&f)
