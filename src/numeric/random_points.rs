@@ -22,6 +22,24 @@ pub(crate) const NUMERICALLY_ZERO: f64 = 1e-9;
 /// defined.
 pub(crate) const DOMAIN_TRIES: usize = 20;
 
+/// Calls `compare` at fresh random points until it has compared [`CONFIRMATION_POINTS`] of them
+/// (it says `false` for a point outside the expressions' domain, which tells nothing), drawing
+/// at most [`DOMAIN_TRIES`] times that many: how many it compared.
+pub(crate) fn compare_in_domain<E>(
+    mut compare: impl FnMut() -> Result<bool, E>,
+) -> Result<usize, E> {
+    let mut compared = 0;
+    for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
+        if compared == CONFIRMATION_POINTS {
+            break;
+        }
+        if compare()? {
+            compared += 1;
+        }
+    }
+    Ok(compared)
+}
+
 /// Whether a point lies in the domain the random points keep to: a scene's `assume`
 /// (`Scene::in_domain`), or everywhere.
 pub(crate) type Domain<'a> = dyn Fn(&BTreeMap<String, f64>) -> bool + 'a;

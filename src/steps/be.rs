@@ -12,7 +12,9 @@ use crate::derive::DeriveError;
 use crate::derive::step_names::{StepResult, expand_names, expand_printed_names};
 use crate::notation::Formula;
 use crate::numeric::random_points::CONFIRMATION_POINTS;
-use crate::numeric::random_points::{DOMAIN_TRIES, NUMERICALLY_ZERO, rational_at};
+use crate::numeric::random_points::{
+    DOMAIN_TRIES, NUMERICALLY_ZERO, compare_in_domain, rational_at,
+};
 use crate::scene::operations::Be;
 use crate::steps::check::{CheckError, StepCheck, at, random_point};
 use std::collections::BTreeMap;
@@ -61,20 +63,15 @@ impl Rule for Be {
         );
         check.tolerance = NUMERICALLY_ZERO;
         let mut rng = Rng::new(cx.seed);
-        let mut compared = 0;
-        for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
-            if compared == CONFIRMATION_POINTS {
-                break;
-            }
+        let compared = compare_in_domain(|| -> Result<bool, CheckError> {
             let point = random_point(&[&raw, r], &mut rng, cx.scene);
             let (a, b) = (at(&raw, &point)?, at(r, &point)?);
             check.evaluations += 2;
             // Where either is undefined or infinite, nothing is compared (inf − inf is NaN, which
             // `max` would pass over): another point is drawn.
             if !a.is_finite() || !b.is_finite() {
-                continue;
+                return Ok(false);
             }
-            compared += 1;
             let scale = a.abs().max(b.abs()).max(1.0);
             let mut error = (a - b).abs() / scale;
             // Apart in double precision: exactly, where both are rational functions of the point
@@ -85,7 +82,8 @@ impl Rule for Be {
                 error = x.add(&y.negated()).to_f64().abs() / scale;
             }
             check.error = check.error.max(error);
-        }
+            Ok(true)
+        })?;
         if compared < CONFIRMATION_POINTS {
             return Err(CheckError::NoPointInDomain {
                 tries: CONFIRMATION_POINTS * DOMAIN_TRIES,

@@ -15,7 +15,7 @@ use crate::derive::lagrangian::time_derivative;
 use crate::derive::step_names::{StepResult, expand_names};
 use crate::notation::Formula;
 use crate::numeric::random_points::CONFIRMATION_POINTS;
-use crate::numeric::random_points::{DOMAIN_TRIES, SAMPLE_FROM};
+use crate::numeric::random_points::{DOMAIN_TRIES, SAMPLE_FROM, compare_in_domain};
 use crate::scene::operations::Differentiate;
 use std::collections::BTreeMap;
 
@@ -60,11 +60,7 @@ impl Rule for Differentiate {
         );
         check.tolerance = DIFFERENCE_AGREEMENT;
         let mut rng = Rng::new(cx.seed);
-        let mut checked = 0;
-        for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
-            if checked == CONFIRMATION_POINTS {
-                break;
-            }
+        let checked = compare_in_domain(|| -> Result<bool, CheckError> {
             let mut point = random_point(&[&f, r], &mut rng, cx.scene);
             let mut accel = BTreeMap::new();
             for q in cx.scene.coordinates.keys() {
@@ -95,18 +91,18 @@ impl Rule for Differentiate {
             // A point outside the expression's domain (acos of more than 1) is drawn again.
             let exact = at(r, &point)?;
             if !exact.is_finite() || !at(&f, &point)?.is_finite() {
-                continue;
+                return Ok(false);
             }
             let value = |x: f64| at(&f, &moved(x)).ok().filter(|v| v.is_finite());
             let Some((numeric, evaluations)) = richardson(&value) else {
-                continue;
+                return Ok(false);
             };
             check.evaluations += evaluations + 1;
             check.error = check
                 .error
                 .max((exact - numeric).abs() / exact.abs().max(numeric.abs()).max(1.0));
-            checked += 1;
-        }
+            Ok(true)
+        })?;
         if checked < CONFIRMATION_POINTS {
             return Err(CheckError::NoPointInDomain {
                 tries: CONFIRMATION_POINTS * DOMAIN_TRIES,

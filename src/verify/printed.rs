@@ -8,7 +8,7 @@ use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::present::shown_entries;
 use crate::numeric::random_points::{
-    DOMAIN_TRIES, NUMERICALLY_ZERO, SAMPLE_FROM, largest_differences,
+    NUMERICALLY_ZERO, SAMPLE_FROM, compare_in_domain, largest_differences,
 };
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -121,10 +121,7 @@ pub fn shown_is_equation(
         fixed.insert(n.clone(), SAMPLE_FROM + rng.uniform());
     }
     let mut ratios = Vec::new();
-    for _ in 0..CONFIRMATION_POINTS * DOMAIN_TRIES {
-        if ratios.len() == CONFIRMATION_POINTS {
-            break;
-        }
+    let Ok(_) = compare_in_domain::<std::convert::Infallible>(|| {
         let mut point = fixed.clone();
         for n in names.iter().filter(|n| varying.contains(*n)) {
             // Either sign: a coordinate or rate is not positive.
@@ -132,12 +129,14 @@ pub fn shown_is_equation(
         }
         let env = |s: &str| point.get(s).copied().filter(|_| s != "pi");
         let (Ok(a), Ok(b)) = (shown.eval(&env), residual.eval(&env)) else {
-            continue;
+            return Ok(false);
         };
-        if a.is_finite() && b.is_finite() && b.abs() > 1e-6 {
+        let compared = a.is_finite() && b.is_finite() && b.abs() > 1e-6;
+        if compared {
             ratios.push(a / b);
         }
-    }
+        Ok(compared)
+    });
     let Some(first) = ratios.first().copied().filter(|r| *r != 0.0) else {
         return Err(ShownDiffers { by: f64::NAN });
     };
