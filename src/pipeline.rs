@@ -39,6 +39,16 @@ pub struct SceneReport {
     pub from_cache: FromCache,
 }
 
+#[cfg(test)]
+impl SceneReport {
+    /// Fails the calling test, listing the checks, unless every author's step passed its check.
+    #[track_caller]
+    pub fn assert_steps_pass(&self) {
+        let steps = &self.verification.steps;
+        assert!(steps.iter().all(|c| c.passed()), "{steps:?}");
+    }
+}
+
 impl SceneReport {
     pub fn passed(&self) -> bool {
         self.verification.passed()

@@ -230,11 +230,7 @@ fn a_constraint_substituted_and_an_equation_solved() {
     let r = scene("g*sin(alpha)/(1 + I/(M*R^2))");
     let a = verdicts(&r).into_iter().find(|v| v.0 == "a").unwrap();
     assert_eq!(a.1, Verdict::Agrees);
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     // The independent route: a at the scene's values from the textbook formula for a solid
     // cylinder, (2/3) g sin α.
     let named = &r.derivation.named["a"];
@@ -280,11 +276,7 @@ fn heavy_top_momenta_and_energy() {
         "p_psi*cos(theta)\"",
         "p_psi*cos(theta)\"",
     );
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let conserved = |name: &str| match &r.derivation.named[name] {
         crate::derive::step_names::StepResult::Conserved { conserved, .. } => *conserved,
         other => panic!("{other:?}"),
@@ -433,11 +425,7 @@ fn a_free_system_has_a_zero_mode() {
 #[test]
 fn double_pendulum_modes() {
     let r = course_scene("03-double-pendulum.toml", "(2 + sqrt(2))", "(2 + sqrt(2))");
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let crate::derive::step_names::StepResult::Modes(modes) = &r.derivation.named["Omega"] else {
         panic!("{:?}", r.derivation.named["Omega"])
     };
@@ -480,11 +468,7 @@ fn double_pendulum_modes() {
 fn bead_on_hoop_equilibria_and_stability() {
     use crate::derive::step_names::{Stable, StepResult};
     let r = course_scene("05-bead-on-hoop.toml", "w = 6.0", "w = 6.0");
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let StepResult::Stability { cases, .. } = &r.derivation.named["stable"] else {
         panic!()
     };
@@ -537,11 +521,7 @@ fn bead_on_hoop_equilibria_and_stability() {
     }
     // Below the critical speed √(g/R) ≈ 4.43 only the top and the bottom are at rest.
     let slow = course_scene("05-bead-on-hoop.toml", "w = 6.0", "w = 3.0");
-    assert!(
-        slow.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        slow.verification.steps
-    );
+    slow.assert_steps_pass();
     let StepResult::Equilibria { zeros, .. } = &r.derivation.named["rest"] else {
         panic!()
     };
@@ -564,11 +544,7 @@ fn bead_on_hoop_equilibria_and_stability() {
 fn gyroscope_series_and_roots() {
     use crate::derive::step_names::StepResult;
     let r = course_scene("06-gyroscope.toml", "order = 1", "order = 1");
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let StepResult::Roots(roots) = &r.derivation.named["rate"] else {
         panic!("{:?}", r.derivation.named["rate"])
     };
@@ -634,11 +610,7 @@ fn paraboloid_by_integration() {
         "gives = \"M*R^2/3\"",
         "gives = \"M*R^2/3\"",
     );
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let (m, radius, h) = (2.0f64, 0.5f64, 1.2f64);
     for (name, textbook) in [
         ("V", std::f64::consts::PI * radius * radius * h / 2.0),
@@ -726,7 +698,7 @@ fn free_top_steps_reach_the_built_in_precession_rate() {
     for (name, verdict, _) in verdicts(&steps) {
         assert_eq!(verdict, Verdict::Agrees, "{name}");
     }
-    assert!(steps.verification.steps.iter().all(|c| c.passed()));
+    steps.assert_steps_pass();
     let text = std::fs::read_to_string("lectures/lecture-3-9/02-symmetric-top.toml").unwrap();
     let family = run(&text);
     let built_in = family
@@ -775,7 +747,7 @@ fn sleeping_cone_takes_its_moments_from_its_body() {
     for (name, verdict, _) in verdicts(&r) {
         assert_eq!(verdict, Verdict::Agrees, "{name}");
     }
-    assert!(r.verification.steps.iter().all(|c| c.passed()));
+    r.assert_steps_pass();
     let (m, rr, h, g, w3) = (0.2f64, 0.03f64, 0.04f64, 9.81f64, 150.0f64);
     let (i1, i3, l) = (
         0.15 * m * rr * rr + 0.6 * m * h * h,
@@ -832,11 +804,7 @@ fn the_system_check_fails_a_wrong_solution() {
 fn double_pendulum_states_of_rest() {
     use crate::derive::step_names::{Stable, StepResult};
     let r = course_scene("03-double-pendulum.toml", "m = ", "m = ");
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let StepResult::RestStates { states, .. } = &r.derivation.named["rest"] else {
         panic!("{:?}", r.derivation.named["rest"])
     };
@@ -907,11 +875,7 @@ fn only_real_states_of_rest_and_a_cubic_in_closed_form() {
         (scene("p/(2*r^2)", "p", "3.375"), 1.5f64),
     ] {
         let r = run(&text);
-        assert!(
-            r.verification.steps.iter().all(|c| c.passed()),
-            "{:?}",
-            r.verification.steps
-        );
+        r.assert_steps_pass();
         let StepResult::Equilibria {
             zeros, excluded, ..
         } = &r.derivation.named["rest"]
@@ -1089,7 +1053,7 @@ fn an_integral_runs_over_a_declared_symbol() {
             .replace("{gives}", gives)
     };
     let right = run(&scene("M*L^2/3"));
-    assert!(right.verification.steps.iter().all(|c| c.passed()));
+    right.assert_steps_pass();
     assert_eq!(verdicts(&right)[0].1, Verdict::Agrees);
     let wrong = run(&scene("M*L^2/2"));
     assert_eq!(verdicts(&wrong)[0].1, Verdict::Disagrees);

@@ -22,11 +22,7 @@ fn an_effective_potentials_curvature_stays_within_the_budget() {
         None,
     )
     .unwrap();
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let gives = |r: &crate::pipeline::SceneReport| {
         r.verification
             .claims

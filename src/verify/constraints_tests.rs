@@ -25,11 +25,7 @@ fn run(text: &str) -> SceneReport {
 /// Every step passes its numeric route and every claim (and `gives`) of the notes agrees; a
 /// common mistake the scene sets beside them disagrees.
 fn all_pass_and_agree(r: &SceneReport) {
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     assert!(
         r.verification.claims.iter().all(|c| c.verdict
             == match c.role {
@@ -224,11 +220,7 @@ fn constraints_in_the_wrong_form_are_refused() {
 fn the_spherical_pendulums_routhian() {
     let text = course("15-spherical-pendulum.toml");
     let r = run(&text);
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let gives: Vec<Verdict> = r.verification.claims.iter().map(|c| c.verdict).collect();
     assert_eq!(gives, vec![Verdict::Agrees]);
     let step = r.scene.steps.iter().find(|s| s.name == "R").unwrap();
@@ -269,11 +261,7 @@ fn the_spherical_pendulums_routhian() {
 fn the_knife_edges_sideways_force_is_its_multiplier() {
     let text = include_str!("../../tests/fixtures/unit/knife-edge.toml");
     let r = run(text);
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     assert_eq!(r.verification.claims[0].verdict, Verdict::Agrees);
     let (v, omega) = (1.5, 0.8);
     let names = ["x", "y", "phi", "x'", "y'", "phi'"];

@@ -72,11 +72,7 @@ fn largest_difference(r: &SceneReport, route: &str) -> f64 {
 fn the_rolling_disk_agrees_with_sympys_kane_method() {
     let text = std::fs::read_to_string(SCENE).unwrap();
     let r = run(&text);
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
     let kane = largest_difference(&r, "kane");
     assert!(kane < 1e-12, "{kane:e}");
     let substituted = largest_difference(&r, "lagrange_substituted");
@@ -128,9 +124,5 @@ why = "the substituted Lagrangian"
 
     let wheel = include_str!("../../tests/fixtures/unit/rolling-wheel.toml");
     let r = run(wheel);
-    assert!(
-        r.verification.steps.iter().all(|c| c.passed()),
-        "{:?}",
-        r.verification.steps
-    );
+    r.assert_steps_pass();
 }

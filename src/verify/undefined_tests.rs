@@ -45,7 +45,7 @@ fn zero_over_zero_is_named_with_the_limit_that_takes_it() {
     // The suggested step, as written, gives the limit a (2 at the scene's values).
     let r = run(&scene("a*sin(x)/x", &suggested)).unwrap();
     assert!((f0(&r) - 2.0).abs() < 1e-15, "{}", f0(&r));
-    assert!(r.verification.steps.iter().all(|c| c.passed()));
+    r.assert_steps_pass();
     // (1 − cos x)/x² is 0/0 too; its limit is a/2.
     let err = run(&scene(
         "a*(1 - cos(x))/x^2",
