@@ -40,12 +40,14 @@ pub struct SceneReport {
 }
 
 #[cfg(test)]
-impl SceneReport {
-    /// Fails the calling test, listing the checks, unless every author's step passed its check.
-    #[track_caller]
-    pub fn assert_steps_pass(&self) {
-        let steps = &self.verification.steps;
-        assert!(steps.iter().all(|c| c.passed()), "{steps:?}");
+mod test_support {
+    impl super::SceneReport {
+        /// Fails the calling test, listing the checks, unless every author's step passed.
+        #[track_caller]
+        pub fn assert_steps_pass(&self) {
+            let steps = &self.verification.steps;
+            assert!(steps.iter().all(|c| c.passed()), "{steps:?}");
+        }
     }
 }
 

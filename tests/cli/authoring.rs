@@ -24,6 +24,12 @@ fn init_makes_a_course_that_builds_and_checks_at_once() {
 
     let built = mechbook_in(&course, &["build"]);
     assert_eq!(built.status.code(), Some(0), "{}", stderr(&built));
+    // One plot, said in the singular.
+    assert!(
+        stderr(&built).contains("built 3 pages, 1 plot and 4 handouts"),
+        "{}",
+        stderr(&built)
+    );
     let site = read_tree(&course.join("site"));
     // The example scene, the problem sheet's pages and its Moodle quiz, and the free-body plot.
     for f in [

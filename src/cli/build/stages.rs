@@ -242,29 +242,36 @@ impl Build {
         let (typeset, pdf_cached) = (pdfs.typeset, pdfs.from_cache);
         let pdf = if crate::document::files::PDFS && self.pdfs_later {
             format!(
-                ", {pdf_cached} PDFs from the cache ({} left to typeset next)",
+                ", {} from the cache ({} left to typeset next)",
+                count(pdf_cached, "PDF"),
                 pdfs.pending.len()
             )
         } else if crate::document::files::PDFS {
             format!(
-                ", {} PDFs ({typeset} typeset, {pdf_cached} from the cache)",
-                typeset + pdf_cached
+                ", {} ({typeset} typeset, {pdf_cached} from the cache)",
+                count(typeset + pdf_cached, "PDF")
             )
         } else {
             String::new()
         };
         let papers = papers.map_or(String::new(), |(dir, students)| {
             format!(
-                "; {students} students' papers and their key into {} (the site leaves out the \
-                 answer keys and LMS quizzes, since each paper names its variant)",
+                "; {} and their key into {} (the site leaves out the answer keys and LMS \
+                 quizzes, since each paper names its variant)",
+                match students {
+                    1 => "1 student's paper".to_string(),
+                    n => format!("{n} students' papers"),
+                },
                 dir.display()
             )
         });
         let (scene_count, failed) = (made.scenes, made.failed);
         let summary = format!(
-            "built {} pages, {plots} plots and {handouts} handouts{pdf} from {} scenes ({} from the cache, {} re-run numerically on cached symbolic results) into {} in {:.2} s{papers}{}{}",
-            scene_count + 1,
-            scene_count,
+            "built {}, {} and {}{pdf} from {} ({} from the cache, {} re-run numerically on cached symbolic results) into {} in {:.2} s{papers}{}{}",
+            count(scene_count + 1, "page"),
+            count(plots, "plot"),
+            count(handouts, "handout"),
+            count(scene_count, "scene"),
             cached.whole,
             cached.symbolic,
             self.out.display(),
@@ -285,5 +292,13 @@ impl Build {
                 pdfs.failed.len()
             )
         }
+    }
+}
+
+/// `n` things, the noun in the plural unless there is one: "1 plot", "16 plots".
+fn count(n: usize, noun: &str) -> String {
+    match n {
+        1 => format!("1 {noun}"),
+        n => format!("{n} {noun}s"),
     }
 }
