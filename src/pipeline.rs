@@ -48,6 +48,18 @@ mod test_support {
             let steps = &self.verification.steps;
             assert!(steps.iter().all(|c| c.passed()), "{steps:?}");
         }
+
+        /// A step's value (`acc_3`, a mode, a momentum) at a state, the scene's values for
+        /// the rest.
+        pub fn value_at(&self, name: &str, state: &[(&str, f64)]) -> f64 {
+            let values = crate::derive::variants::step_values(&self.scene, &self.derivation);
+            values[name]
+                .eval(&|s| {
+                    let given = state.iter().find(|(n, _)| *n == s).map(|(_, v)| *v);
+                    given.or_else(|| self.scene.values.get(s).copied())
+                })
+                .unwrap()
+        }
     }
 }
 

@@ -193,3 +193,21 @@ pub(crate) fn solvable_of<'a>(
         .and_then(|r| r.solvable(of))
         .ok_or(CheckError::NotDerived)
 }
+
+#[cfg(test)]
+mod test_support {
+    impl super::StepCheck {
+        /// A check of `step` (at line 1) not yet run, for a test that calls a route itself.
+        pub fn blank(step: &str) -> super::StepCheck {
+            super::StepCheck {
+                step: step.into(),
+                line: 1,
+                method: String::new(),
+                error: 0.0,
+                tolerance: 0.0,
+                evaluations: 0,
+                problem: None,
+            }
+        }
+    }
+}

@@ -168,14 +168,14 @@ fn the_numeric_routes_fail_wrong_results() {
         parse("M*L^2/3*phi'' - M*g*L/2*sin(phi)").unwrap().expr,
     )];
     let step = scene.steps.iter().find(|s| s.name == "eom").unwrap();
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     energy_check(scene, step, &lag, &wrong, &[], &mut check).unwrap();
     assert!(check.error > 1e-2, "{check:?}");
     let right = vec![(
         "phi".to_string(),
         parse("M*L^2/3*phi'' + M*g*L/2*sin(phi)").unwrap().expr,
     )];
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     energy_check(scene, step, &lag, &right, &[], &mut check).unwrap();
     assert!(check.passed(), "{check:?}");
 
@@ -183,7 +183,7 @@ fn the_numeric_routes_fail_wrong_results() {
         "phi".to_string(),
         parse("M*L^2/3*phi'' + M*g*L*phi").unwrap().expr,
     )];
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     linear_check(
         scene,
         &right,
@@ -195,22 +195,10 @@ fn the_numeric_routes_fail_wrong_results() {
     .unwrap();
     assert!(!check.passed(), "{check:?}");
 
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     let too_fast = parse("1.01*sqrt(3*g/(2*L))").unwrap().expr;
     period_check(scene, &right, &Default::default(), &too_fast, &mut check).unwrap();
     assert!(!check.passed() && check.error > 5e-3, "{check:?}");
-}
-
-fn blank() -> StepCheck {
-    StepCheck {
-        step: "s".into(),
-        line: 1,
-        method: String::new(),
-        error: 0.0,
-        tolerance: 0.0,
-        evaluations: 0,
-        problem: None,
-    }
 }
 
 /// The rolling cylinder of tests/course: the constraint substituted, the equation solved for
@@ -254,18 +242,6 @@ fn course_scene(file: &str, from: &str, to: &str) -> SceneReport {
     run(&text.replace(from, to))
 }
 
-fn scalar_at(r: &SceneReport, name: &str, state: &[(&str, f64)]) -> f64 {
-    let e = r.derivation.named[name].scalar().unwrap();
-    e.eval(&|s| {
-        state
-            .iter()
-            .find(|(n, _)| *n == s)
-            .map(|(_, v)| *v)
-            .or_else(|| r.scene.values.get(s).copied())
-    })
-    .unwrap()
-}
-
 /// The heavy top of tests/course: p_ψ, p_φ and E conserved along the integrated motion, p_θ
 /// not; each against the textbook's formula at a state; a wrong `gives` disagrees at its line,
 /// and the numeric route fails a momentum that is not conserved but said to be.
@@ -297,9 +273,9 @@ fn heavy_top_momenta_and_energy() {
     let energy = i1 / 2.0 * (dth * dth + (dphi * th.sin()).powi(2))
         + i3 / 2.0 * spin * spin
         + mgl * th.cos();
-    assert!((scalar_at(&r, "p_phi", &state) - p_phi).abs() < 1e-12 * p_phi.abs());
-    assert!((scalar_at(&r, "E", &state) - energy).abs() < 1e-12 * energy.abs());
-    assert!((scalar_at(&r, "p_psi", &state) - i3 * spin).abs() < 1e-12);
+    assert!((r.value_at("p_phi", &state) - p_phi).abs() < 1e-12 * p_phi.abs());
+    assert!((r.value_at("E", &state) - energy).abs() < 1e-12 * energy.abs());
+    assert!((r.value_at("p_psi", &state) - i3 * spin).abs() < 1e-12);
     // The sleeping top (Goldstein 5.7): upright is stable while I3² w3² > 4 I1 M g l, its
     // Ω² = (I3² w3² − 4 I1 M g l)/(4 I1²); the pair of tilted states is not real at w3 = 30.
     let crate::derive::step_names::StepResult::Stability { cases, .. } =
@@ -343,7 +319,7 @@ fn heavy_top_momenta_and_energy() {
         panic!()
     };
     let value = r.derivation.named["p_theta"].scalar().unwrap();
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     conserved_check(
         &r.scene,
         step,
@@ -403,7 +379,7 @@ fn a_free_system_has_a_zero_mode() {
         vec![parse("1/1000").unwrap().expr, modes[1].clone()],
         vec![modes[1].clone(), modes[0].clone()],
     ] {
-        let mut check = blank();
+        let mut check = StepCheck::blank("s");
         modes_check(&r.scene, linear, &wrong, &mut check).unwrap();
         assert!(check.error > 1e-4, "{wrong:?}: {check:?}");
     }
@@ -455,7 +431,7 @@ fn double_pendulum_modes() {
         panic!()
     };
     let swapped = vec![modes[1].clone(), modes[0].clone()];
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     modes_check(&r.scene, linear, &swapped, &mut check).unwrap();
     assert!(check.error > 0.1, "{check:?}");
 }
@@ -528,7 +504,7 @@ fn bead_on_hoop_equilibria_and_stability() {
     let Some(StepResult::Equations(eqs)) = r.derivation.named.get("eom") else {
         panic!()
     };
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     let missing =
         crate::steps::rest::equilibria_check(&r.scene, &eqs[0].1, "theta", &zeros[..2], &mut check);
     assert!(
@@ -586,7 +562,7 @@ fn gyroscope_series_and_roots() {
         panic!()
     };
     let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     crate::steps::series::remainder_check(
         &r.scene,
         &f,
@@ -617,7 +593,7 @@ fn paraboloid_by_integration() {
         ("Iz", m * radius * radius / 3.0),
         ("Ix", m * radius * radius / 6.0 + m * h * h / 2.0),
     ] {
-        let x = scalar_at(&r, name, &[]);
+        let x = r.value_at(name, &[]);
         assert!(
             (x - textbook).abs() < 1e-14 * textbook,
             "{name}: {x} {textbook}"
@@ -648,7 +624,7 @@ fn paraboloid_by_integration() {
         panic!()
     };
     let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     crate::steps::integrate::quadrature_check(
         &r.scene.values,
         &f,
@@ -755,7 +731,7 @@ fn sleeping_cone_takes_its_moments_from_its_body() {
         0.75 * h,
     );
     let want = ((i3 * w3).powi(2) - 4.0 * i1 * m * g * l).sqrt() / (2.0 * i1);
-    let omega = scalar_at(&r, "Omega", &[]);
+    let omega = r.value_at("Omega", &[]);
     assert!((omega - want).abs() < 1e-12 * want, "{omega} {want}");
     let at_rest = course_scene("09-sleeping-cone.toml", "start = { theta = 0.2 }\n", "");
     let tilt = at_rest
@@ -785,14 +761,14 @@ fn the_system_check_fails_a_wrong_solution() {
         StepResult::Equations(eqs) => eqs.clone(),
         other => panic!("{other:?}"),
     };
-    let mut right = blank();
+    let mut right = StepCheck::blank("s");
     crate::steps::solve::system_check(&r.scene, &eqs, solution, 7, &mut right).unwrap();
     assert!(right.passed(), "{right:?}");
     let swapped = vec![
         (solution[0].0.clone(), solution[1].1.clone()),
         (solution[1].0.clone(), solution[0].1.clone()),
     ];
-    let mut wrong = blank();
+    let mut wrong = StepCheck::blank("s");
     crate::steps::solve::system_check(&r.scene, &eqs, &swapped, 7, &mut wrong).unwrap();
     assert!(!wrong.passed(), "{wrong:?}");
 }
@@ -839,7 +815,7 @@ fn double_pendulum_states_of_rest() {
     let Some(StepResult::Equations(eqs)) = r.derivation.named.get("eom") else {
         panic!()
     };
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     let missing = crate::steps::rest_states::states_check(&r.scene, eqs, &states[..3], &mut check);
     assert!(
         matches!(missing, Err(CheckError::MissedState { .. })),
@@ -847,7 +823,7 @@ fn double_pendulum_states_of_rest() {
     );
     let mut wrong = cases.to_vec();
     wrong[1].verdict = Stable::Always;
-    let mut check = blank();
+    let mut check = StepCheck::blank("s");
     let verdict =
         crate::steps::rest_states::rest_stability_check(&r.scene, eqs, &wrong, &mut check);
     assert!(

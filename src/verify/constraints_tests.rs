@@ -47,31 +47,6 @@ fn problem_of(r: &SceneReport, step: &str) -> String {
         .unwrap_or_default()
 }
 
-fn blank() -> StepCheck {
-    StepCheck {
-        step: "eom".into(),
-        line: 1,
-        method: String::new(),
-        error: 0.0,
-        tolerance: 0.0,
-        evaluations: 0,
-        problem: None,
-    }
-}
-
-/// A step's value (`acc_3` among them) at a state, the scene's values for the rest.
-pub(super) fn value(r: &SceneReport, name: &str, at: &[(&str, f64)]) -> f64 {
-    let d = crate::derive::variants::step_values(&r.scene, &r.derivation);
-    d[name]
-        .eval(&|s| {
-            at.iter()
-                .find(|(n, _)| *n == s)
-                .map(|(_, v)| *v)
-                .or_else(|| r.scene.values.get(s).copied())
-        })
-        .unwrap()
-}
-
 /// The Atwood machine: the tension T, the multiplier of x1 + x2 = l, is 2 m1 m2 g/(m1 + m2),
 /// here 13.08 N at m1 = 2, m2 = 1; every step passes its numeric route (the constrained motion
 /// integrated, its energy and the string's length watched). The same equations with the
@@ -82,7 +57,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
     let text = course("13-atwood.toml");
     let r = run(&text);
     all_pass_and_agree(&r);
-    let tension = value(&r, "acc_3", &[]);
+    let tension = r.value_at("acc_3", &[]);
     assert!(
         (tension - 2.0 * 2.0 * 1.0 * 9.81 / 3.0).abs() < 1e-12,
         "{tension}"
@@ -96,7 +71,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
     let StepResult::Equations(eqs) = &r.derivation.named["eom"] else {
         panic!()
     };
-    let mut check = blank();
+    let mut check = StepCheck::blank("eom");
     energy_check(&r.scene, step, lagrangian, eqs, constraints, &mut check).unwrap();
     assert!(check.passed() && check.error < 1e-9, "{check:?}");
     let wrong: Vec<(String, Expr)> = eqs
@@ -109,7 +84,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
             (q.clone(), e)
         })
         .collect();
-    let mut check = blank();
+    let mut check = StepCheck::blank("eom");
     energy_check(&r.scene, step, lagrangian, &wrong, constraints, &mut check).unwrap();
     assert!(!check.passed() && check.error > 1e-2, "{check:?}");
 
@@ -134,7 +109,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
 fn the_ladder_leaves_the_wall_where_its_multiplier_vanishes() {
     let r = run(&course("14-ladder.toml"));
     all_pass_and_agree(&r);
-    let leaves = value(&r, "leave_3", &[]);
+    let leaves = r.value_at("leave_3", &[]);
     let (g, l, theta0) = (9.81, 1.0, 0.3f64);
     assert!((leaves - (2.0 * theta0.cos() / 3.0).acos()).abs() < 1e-14);
     let rhs = |_t: f64, y: &[f64]| -> Result<Vec<f64>, String> {
@@ -142,7 +117,7 @@ fn the_ladder_leaves_the_wall_where_its_multiplier_vanishes() {
     };
     let run =
         crate::numeric::ode::dormand_prince(&rhs, &[theta0, 0.0], 2.0, 1e-12, 100_000).unwrap();
-    let wall = |y: &[f64]| value(&r, "acc_4", &[("theta", y[0]), ("theta'", y[1])]);
+    let wall = |y: &[f64]| r.value_at("acc_4", &[("theta", y[0]), ("theta'", y[1])]);
     let (t_a, a, t_b) = run
         .states
         .windows(2)
@@ -229,7 +204,7 @@ fn the_spherical_pendulums_routhian() {
     };
     let lagrangian = r.derivation.named["Lag"].scalar().unwrap();
     let routhian = r.derivation.named["R"].scalar().unwrap();
-    let mut check = blank();
+    let mut check = StepCheck::blank("eom");
     crate::steps::routh::routh_check(&r.scene, step, lagrangian, routhian, cyclic, &mut check)
         .unwrap();
     assert!(check.passed() && check.error < 1e-8, "{check:?}");
@@ -237,7 +212,7 @@ fn the_spherical_pendulums_routhian() {
         crate::cas::parse("m*l^2*theta'^2/2 + m*g*l*cos(theta) + p^2/(2*m*l^2*sin(theta)^2)")
             .unwrap()
             .expr;
-    let mut check = blank();
+    let mut check = StepCheck::blank("eom");
     crate::steps::routh::routh_check(&r.scene, step, lagrangian, &wrong, cyclic, &mut check)
         .unwrap();
     assert!(!check.passed() && check.error > 1e-2, "{check:?}");
@@ -269,7 +244,7 @@ fn the_knife_edges_sideways_force_is_its_multiplier() {
         let at: Vec<(&str, f64)> = names.iter().copied().zip(s.iter().copied()).collect();
         let a: Vec<f64> = ["acc_1", "acc_2", "acc_3"]
             .iter()
-            .map(|k| value(&r, k, &at))
+            .map(|k| r.value_at(k, &at))
             .collect();
         Ok(vec![s[3], s[4], s[5], a[0], a[1], a[2]])
     };

@@ -33,7 +33,7 @@ fn accelerations(r: &SceneReport, s: &[f64]) -> Vec<f64> {
     ];
     ["acc_3", "acc_4", "acc_5"]
         .iter()
-        .map(|k| super::constraints_tests::value(r, k, &at))
+        .map(|k| r.value_at(k, &at))
         .collect()
 }
 
