@@ -5,7 +5,9 @@ use crate::base::rng::Rng;
 use crate::cas::Expr;
 use crate::derive::Derivation;
 use crate::derive::step_names::StepResult;
-use crate::numeric::random_points::SAMPLE_FROM;
+use crate::numeric::random_points::{
+    CONFIRMATION_POINTS, DOMAIN_TRIES, SAMPLE_FROM, compare_in_domain,
+};
 use std::collections::BTreeMap;
 
 /// Why a step's numeric route could not run.
@@ -166,6 +168,19 @@ pub(crate) fn random_point(
         point = draw();
     }
     point
+}
+
+/// Runs `compare` at random points until three fall in the domain
+/// ([`compare_in_domain`]); when too few do, the check cannot run.
+pub(crate) fn compare_at_points(
+    compare: impl FnMut() -> Result<bool, CheckError>,
+) -> Result<(), CheckError> {
+    if compare_in_domain(compare)? < CONFIRMATION_POINTS {
+        return Err(CheckError::NoPointInDomain {
+            tries: CONFIRMATION_POINTS * DOMAIN_TRIES,
+        });
+    }
+    Ok(())
 }
 
 pub(crate) fn at(e: &Expr, point: &BTreeMap<String, f64>) -> Result<f64, CheckError> {
