@@ -565,11 +565,20 @@ fn wide_formulas_are_broken_not_shrunk() {
             }
         }
         if course == "lectures" {
-            assert!(
-                notes.iter().any(|n| n.contains("05b-cube-centre.toml")),
-                "{}",
-                stderr(&run)
-            );
+            // Each piece quoted in plain text, not its glyphs run together (`=∫−a2a2∫…`, the
+            // same for the three moments).
+            let cube = notes
+                .iter()
+                .find(|n| n.contains("05b-cube-centre.toml"))
+                .unwrap_or_else(|| panic!("{}", stderr(&run)));
+            for moment in ["m(y²+z²)/a³", "m(x²+z²)/a³", "m(x²+y²)/a³"] {
+                assert!(
+                    cube.contains(&format!(
+                        "85 % `=∫_(−a/2)^(a/2)∫_(−a/2)^(a/2)∫_(−a/2)^(a/2){moment} dx dy dz`"
+                    )),
+                    "{cube}"
+                );
+            }
         }
         let (mut shrunk, mut lines) = (0, 0);
         for entry in std::fs::read_dir(dir.join("site/pdf")).unwrap() {

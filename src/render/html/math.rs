@@ -90,37 +90,6 @@ fn scaled(mathml: String, piece: &[Node], phone: bool) -> String {
     )
 }
 
-/// The formula pieces of a page that `scaled` set smaller: each one's size in percent and its
-/// first characters as text, in the page's order.
-pub fn scaled_formulas(html: &str) -> Vec<(u32, String)> {
-    let mut out = Vec::new();
-    for part in html.split("<math style=\"font-size: ").skip(1) {
-        let Some((percent, rest)) = part.split_once('%') else {
-            continue;
-        };
-        let Ok(percent) = percent.parse() else {
-            continue;
-        };
-        // The element's content: after its start tag, to its end.
-        let body = rest.split_once('>').map_or("", |(_, b)| b);
-        let body = body.split("</math>").next().unwrap_or("");
-        let mut text = String::new();
-        let mut in_tag = false;
-        for c in body.chars() {
-            match c {
-                '<' => in_tag = true,
-                '>' => in_tag = false,
-                c if !in_tag && !c.is_whitespace() => text.push(c),
-                _ => {}
-            }
-        }
-        let short: String = text.chars().take(24).collect();
-        let more = if text.chars().count() > 24 { "…" } else { "" };
-        out.push((percent, format!("{short}{more}")));
-    }
-    out
-}
-
 /// A formula within a sentence: inline `<math>` pieces separated by spaces, where the line may
 /// wrap, once it is wider than half a line. Set twice, as a display formula is, when it is
 /// wider than a phone's line.
@@ -273,8 +242,13 @@ mod tests {
     #[test]
     fn attributes_of_a_sized_bracket_are_spaced() {
         let m = mathml(&tex("\\Bigl(a + b\\Bigr) \\bigl(c\\bigr) < d"), false).unwrap();
-        assert!(m.contains("stretchy=\"true\" minsize=\"1.8em\""), "{m}");
-        assert!(m.contains("stretchy=\"true\" minsize=\"1.2em\""), "{m}");
+        crate::base::assert_says(
+            &m,
+            &[
+                "stretchy=\"true\" minsize=\"1.8em\"",
+                "stretchy=\"true\" minsize=\"1.2em\"",
+            ],
+        );
         // No attribute value anywhere is followed directly by a letter.
         let glued = m
             .split('"')

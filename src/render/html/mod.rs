@@ -10,6 +10,7 @@ mod guard_tests;
 pub mod handout;
 pub mod math;
 pub mod page;
+mod phone_note;
 pub mod problems;
 mod prose;
 
@@ -301,7 +302,7 @@ fn scene_pages(
             ctx.insert("page", &view);
             ctx.insert("lecture_heading", &course.lecture_heading(&view.lecture));
             let html = tera.render("page.html", &ctx)?;
-            let note = phone_scaled(page, html.as_bytes());
+            let note = phone_note::phone_scaled(page, &html);
             Ok::<_, RenderError>(PageMade { view, html, note })
         })
     });
@@ -406,24 +407,4 @@ fn lecture_view(
             })
             .collect::<Result<_, RenderError>>()?,
     })
-}
-
-/// What the build says of a page whose formulas a phone sets smaller to fit: each such formula
-/// (its first characters) and its size, read from the page as written (`math::scaled`).
-fn phone_scaled(page: &crate::document::Page, html: &[u8]) -> Option<String> {
-    let html = String::from_utf8_lossy(html);
-    let scaled = math::scaled_formulas(&html);
-    if scaled.is_empty() {
-        return None;
-    }
-    let list: Vec<String> = scaled
-        .iter()
-        .map(|(percent, text)| format!("{percent} % `{text}`"))
-        .collect();
-    Some(format!(
-        "{}: on phones {} formula piece(s) are set smaller to fit their line: {}",
-        page.source.display(),
-        scaled.len(),
-        list.join(", ")
-    ))
 }
