@@ -743,10 +743,12 @@ mod tests {
         assert_eq!(formulas, 4, "two terms and two units: {said:?}");
         let plain = said.to_plain(Names::none());
         assert!(!plain.contains('`') && !plain.contains('^'), "{plain}");
-        assert!(plain.contains(" is in m⁴ but "), "{plain}");
-        assert!(
-            plain.contains(" is in m³: a sum's terms must have one dimension"),
-            "{plain}"
+        crate::base::assert_says(
+            &plain,
+            &[
+                " is in m⁴ but ",
+                " is in m³: a sum's terms must have one dimension",
+            ],
         );
     }
 

@@ -207,20 +207,30 @@ mod latex_number_tests {
         assert_eq!(sci(0.0), "0");
         assert_eq!(short(1e-10), "10⁻¹⁰");
         assert_eq!(short(5e-9), "5×10⁻⁹");
-        assert_eq!(text_number("-2.5e+07"), "-2.5×10⁷");
-        assert_eq!(text_number("0.25"), "0.25");
-        assert_eq!(text_number("NaN"), "NaN");
-        // Every digit has its superscript.
-        assert_eq!(text_number("1e-1234567890"), "10⁻¹²³⁴⁵⁶⁷⁸⁹⁰");
+        crate::base::assert_each(
+            text_number,
+            &[
+                ("-2.5e+07", "-2.5×10⁷"),
+                ("0.25", "0.25"),
+                ("NaN", "NaN"),
+                // Every digit has its superscript.
+                ("1e-1234567890", "10⁻¹²³⁴⁵⁶⁷⁸⁹⁰"),
+            ],
+        );
     }
 
     #[test]
     fn exponents_become_powers_of_ten() {
-        assert_eq!(latex_number("4.6875e-6"), "4.6875 \\times 10^{-6}");
-        assert_eq!(latex_number("-1.5e+07"), "-1.5 \\times 10^{7}");
-        assert_eq!(latex_number("1e-12"), "10^{-12}");
-        assert_eq!(latex_number("0.25"), "0.25");
-        assert_eq!(latex_number("-3"), "-3");
+        crate::base::assert_each(
+            latex_number,
+            &[
+                ("4.6875e-6", "4.6875 \\times 10^{-6}"),
+                ("-1.5e+07", "-1.5 \\times 10^{7}"),
+                ("1e-12", "10^{-12}"),
+                ("0.25", "0.25"),
+                ("-3", "-3"),
+            ],
+        );
     }
 }
 

@@ -150,23 +150,16 @@ fn unexpected_characters_are_named_whole() {
 
 #[test]
 fn latex_forms() {
-    assert_eq!(
-        p("1/2*M*R^2").to_latex(crate::notation::Names::none()),
-        "\\frac{M R^{2}}{2}"
+    crate::base::assert_each(
+        |text| p(text).to_latex(crate::notation::Names::none()),
+        &[
+            ("1/2*M*R^2", "\\frac{M R^{2}}{2}"),
+            ("sin(alpha)^2", "\\,{\\sin}^{2}\\left(\\alpha\\right)"),
+            ("w1", "\\omega_{1}"),
+            ("wd2", "\\dot{\\omega}_{2}"),
+            ("w", "w"),
+        ],
     );
-    assert_eq!(
-        p("sin(alpha)^2").to_latex(crate::notation::Names::none()),
-        "\\,{\\sin}^{2}\\left(\\alpha\\right)"
-    );
-    assert_eq!(
-        p("w1").to_latex(crate::notation::Names::none()),
-        "\\omega_{1}"
-    );
-    assert_eq!(
-        p("wd2").to_latex(crate::notation::Names::none()),
-        "\\dot{\\omega}_{2}"
-    );
-    assert_eq!(p("w").to_latex(crate::notation::Names::none()), "w");
 }
 
 #[test]

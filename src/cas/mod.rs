@@ -46,7 +46,9 @@ pub use functions::{SCALAR_FUNCTIONS, arity, needs_dimensionless, textbook_name}
 pub use matrix_form::{MatrixForm, factor_and_rows};
 pub use parse::{ParseError, Parsed, parse, parse_input};
 pub use present::PrintedLength;
-pub use print::{Prec, Style, index_chain, page_factors, page_fraction, split_sign, write};
+pub use print::{
+    Prec, Style, index_chain, page_factors, page_fraction, split_sign, write, write_separated,
+};
 /// The printing walk, for the LaTeX and Typst printers in `notation`.
 pub use radical::pull_squares;
 pub use rational::Rational;

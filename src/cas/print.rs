@@ -160,6 +160,16 @@ pub trait Style {
     fn index(&self, e: &Expr, out: &mut String);
 }
 
+/// Each of `items` as a sum would be, `separator` between them (a call's arguments, a list).
+pub fn write_separated(items: &[Expr], separator: &str, out: &mut String, style: &dyn Style) {
+    for (i, a) in items.iter().enumerate() {
+        if i > 0 {
+            out.push_str(separator);
+        }
+        write(a, out, Prec::Sum, style);
+    }
+}
+
 pub fn write(e: &Expr, out: &mut String, ctx: Prec, style: &dyn Style) {
     match e {
         Expr::Num(r) => style.number(r, ctx, out),
@@ -314,22 +324,12 @@ impl Style for Text<'_> {
     fn call(&self, n: &str, args: &[Expr], out: &mut String) {
         out.push_str(n);
         out.push('(');
-        for (i, a) in args.iter().enumerate() {
-            if i > 0 {
-                out.push_str(", ");
-            }
-            write(a, out, Prec::Sum, self);
-        }
+        write_separated(args, ", ", out, self);
         out.push(')');
     }
     fn list(&self, v: &[Expr], out: &mut String) {
         out.push('[');
-        for (i, a) in v.iter().enumerate() {
-            if i > 0 {
-                out.push_str(", ");
-            }
-            write(a, out, Prec::Sum, self);
-        }
+        write_separated(v, ", ", out, self);
         out.push(']');
     }
     fn index(&self, e: &Expr, out: &mut String) {

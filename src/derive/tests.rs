@@ -282,12 +282,7 @@ fn principal_moments_come_in_ascending_order_and_match_the_eigen_solver() {
             .map(|m| crate::model::value::eval_at(m, &r.scene.values).unwrap())
             .collect();
         let numeric = tensor(&r).matrix_at(&r.scene.values).unwrap();
-        let mut eigen: Vec<f64> = nalgebra::SymmetricEigen::new(numeric)
-            .eigenvalues
-            .iter()
-            .copied()
-            .collect();
-        eigen.sort_by(f64::total_cmp);
+        let eigen = crate::numeric::eigen::sorted_eigenvalues(&numeric);
         for (x, e) in exact.iter().zip(&eigen) {
             assert!(
                 (x - e).abs() <= 1e-13 * e.abs().max(1.0),

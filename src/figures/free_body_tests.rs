@@ -1,6 +1,12 @@
 use super::free_body_figure as figure;
+use crate::figures::FigureError;
 use crate::model::fidelity::Fidelity;
 use crate::scene::FreeBodyPlot;
+
+/// Why a plot of these moments and initial rates is refused.
+fn refusal(plot: FreeBodyPlot, i: [f64; 3], w: [f64; 3]) -> FigureError {
+    figure(plot, i, w, 1.0, &Fidelity::STANDARD).unwrap_err()
+}
 
 /// The cone inequality worked out from tan θ_L = (I1/I3) tan α_b, measured on the integrated
 /// attitude: oblate bodies always have α_b > α_s; prolate ones can have either.
@@ -14,18 +20,8 @@ fn cone_angles_oblate_always_bigger_body_cone_prolate_either() {
         let f = figure(FreeBodyPlot::Cones, i, w, 20.0, &Fidelity::STANDARD).unwrap();
         assert!(f.desc.to_text().contains(relation), "{i:?}: {}", f.desc);
     }
-    let e = figure(
-        FreeBodyPlot::Cones,
-        [1.0, 2.0, 2.5],
-        [1.0, 0.0, 0.0],
-        1.0,
-        &Fidelity::STANDARD,
-    )
-    .unwrap_err();
-    assert!(
-        matches!(e, crate::figures::FigureError::NotSymmetric),
-        "{e:?}"
-    );
+    let e = refusal(FreeBodyPlot::Cones, [1.0, 2.0, 2.5], [1.0, 0.0, 0.0]);
+    assert!(matches!(e, FigureError::NotSymmetric), "{e:?}");
 }
 
 #[test]
@@ -49,18 +45,8 @@ fn only_the_intermediate_axis_departs() {
     // reverses (flip time about 2K/λ ≈ 14 here).
     assert!(top(0) < 3.0 && top(2) < 3.0, "{} {}", top(0), top(2));
     assert!(top(1) > 170.0, "{}", top(1));
-    let e = figure(
-        FreeBodyPlot::AxisSpins,
-        [1.0, 2.0, 3.0],
-        [1.0, 1.0, 0.0],
-        1.0,
-        &Fidelity::STANDARD,
-    )
-    .unwrap_err();
-    assert!(
-        matches!(e, crate::figures::FigureError::NoLargestComponent),
-        "{e:?}"
-    );
+    let e = refusal(FreeBodyPlot::AxisSpins, [1.0, 2.0, 3.0], [1.0, 1.0, 0.0]);
+    assert!(matches!(e, FigureError::NoLargestComponent), "{e:?}");
 }
 
 /// `inertia = "principal"` draws the scene's own body: a box a × 2a × 3a with its corner at the

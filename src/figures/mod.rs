@@ -291,12 +291,7 @@ fn own_principal_moments(scene: &Scene, d: &Derivation) -> Result<[f64; 3], Figu
         .map_err(derived)?
         .matrix_at(&scene.values)?;
     let about_centre = d.about_centre_at(&tensor, &scene.values).map_err(derived)?;
-    let mut moments: Vec<f64> = nalgebra::SymmetricEigen::new(about_centre)
-        .eigenvalues
-        .iter()
-        .copied()
-        .collect();
-    moments.sort_by(f64::total_cmp);
+    let moments = crate::numeric::eigen::sorted_eigenvalues(&about_centre);
     // To 15 significant figures, the eigen-solver's own accuracy: the captions then print
     // 0.00195, not 0.0019499999999999995.
     let round = |x: f64| format!("{x:.14e}").parse::<f64>().unwrap_or(x);

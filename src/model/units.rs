@@ -612,14 +612,20 @@ mod tests {
 
     #[test]
     fn units_read_as_their_si_dimensions() {
-        assert_eq!(dim("kg m^2"), "kg m^2");
-        assert_eq!(dim("m/s^2"), "m s^-2");
-        assert_eq!(dim("rad/s"), "s^-1");
-        assert_eq!(dim("N m"), "kg m^2 s^-2");
+        crate::base::assert_each(
+            dim,
+            &[
+                ("kg m^2", "kg m^2"),
+                ("m/s^2", "m s^-2"),
+                ("rad/s", "s^-1"),
+                ("N m", "kg m^2 s^-2"),
+            ],
+        );
         assert_eq!(dim("J s"), dim("kg*m^2*s^-1"));
-        assert_eq!(dim("m²"), "m^2");
-        assert_eq!(dim("rad"), "1 (a pure number)");
-        assert_eq!(dim("1/s"), "s^-1");
+        crate::base::assert_each(
+            dim,
+            &[("m²", "m^2"), ("rad", "1 (a pure number)"), ("1/s", "s^-1")],
+        );
     }
 
     #[test]

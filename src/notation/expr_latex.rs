@@ -7,7 +7,7 @@
 use super::Names;
 use crate::cas::{
     Expr, GREEK, Head, NameForm, Prec, Rational, SCALAR_FUNCTIONS, Style, index_chain, name_form,
-    numbered, page_factors, page_fraction, textbook_name, write,
+    numbered, page_factors, page_fraction, textbook_name, write, write_separated,
 };
 
 /// A name's own LaTeX, where the scene gives it one (`Names::latex`).
@@ -275,12 +275,7 @@ impl Style for Latex<'_> {
         } else {
             out.push_str(&format!("\\operatorname{{{n}}}\\left("));
         }
-        for (i, a) in args.iter().enumerate() {
-            if i > 0 {
-                out.push_str(", ");
-            }
-            write(a, out, Prec::Sum, self);
-        }
+        write_separated(args, ", ", out, self);
         out.push_str("\\right)");
     }
     fn list(&self, v: &[Expr], out: &mut String) {
@@ -292,14 +287,7 @@ impl Style for Latex<'_> {
                 out.push_str(" \\\\ ");
             }
             match row {
-                Expr::List(cells) if is_matrix => {
-                    for (j, c) in cells.iter().enumerate() {
-                        if j > 0 {
-                            out.push_str(" & ");
-                        }
-                        write(c, out, Prec::Sum, self);
-                    }
-                }
+                Expr::List(cells) if is_matrix => write_separated(cells, " & ", out, self),
                 other => write(other, out, Prec::Sum, self),
             }
         }

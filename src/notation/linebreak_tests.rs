@@ -36,6 +36,12 @@ fn aligned(nodes: &[Node]) -> Vec<Vec<Node>> {
     out
 }
 
+/// `x_{0} + x_{1} + …`, `n` terms: a sum too long for one line.
+fn sum_of(x: &str, n: usize) -> String {
+    let terms: Vec<String> = (0..n).map(|k| format!("{x}_{{{k}}}")).collect();
+    terms.join(" + ")
+}
+
 #[test]
 fn a_short_formula_is_one_piece() {
     assert_eq!(cut("a + b = c", LINE), vec![tex("a + b = c")]);
@@ -78,8 +84,7 @@ fn a_long_parenthesised_sum_opens_into_big_parentheses() {
 
 #[test]
 fn a_long_numerator_leaves_its_denominator_in_front() {
-    let terms: Vec<String> = (0..20).map(|k| format!("b_{{{k}}}")).collect();
-    let formula = format!("\\frac{{{}}}{{12}}", terms.join(" + "));
+    let formula = format!("\\frac{{{}}}{{12}}", sum_of("b", 20));
     let p = cut(&formula, LINE);
     assert_eq!(p[0], tex("\\frac{1}{12}\\bigl(b_{0}"));
     assert_eq!(p.last().unwrap(), &tex("+ b_{19}\\bigr)"));
@@ -87,18 +92,16 @@ fn a_long_numerator_leaves_its_denominator_in_front() {
 
 #[test]
 fn a_long_square_root_becomes_a_power_of_a_half() {
-    let terms: Vec<String> = (0..30).map(|k| format!("c_{{{k}}}")).collect();
-    let p = cut(&format!("k = \\sqrt{{{}}}", terms.join(" + ")), LINE);
+    let p = cut(&format!("k = \\sqrt{{{}}}", sum_of("c", 30)), LINE);
     assert_eq!(p[1], tex("= \\bigl(c_{0}"));
     assert_eq!(p.last().unwrap(), &tex("+ c_{29}\\bigr)^{1/2}"));
 }
 
 #[test]
 fn a_root_of_a_factored_sum_opens_both_brackets() {
-    let terms: Vec<String> = (0..30).map(|k| format!("c_{{{k}}}")).collect();
     let formula = format!(
         "k = \\sqrt{{\\frac{{1}}{{12}}\\left({}\\right)}}",
-        terms.join(" + ")
+        sum_of("c", 30)
     );
     let p = cut(&formula, LINE);
     assert_eq!(p[1], tex("= \\Bigl(\\frac{1}{12}\\bigl(c_{0}"));
@@ -107,8 +110,7 @@ fn a_root_of_a_factored_sum_opens_both_brackets() {
 
 #[test]
 fn a_long_denominator_becomes_a_power_of_minus_one() {
-    let terms: Vec<String> = (0..30).map(|k| format!("d_{{{k}}}")).collect();
-    let p = cut(&format!("\\frac{{12}}{{{}}}", terms.join(" + ")), LINE);
+    let p = cut(&format!("\\frac{{12}}{{{}}}", sum_of("d", 30)), LINE);
     assert_eq!(p[0], tex("12\\bigl(d_{0}"));
     assert_eq!(p.last().unwrap(), &tex("+ d_{29}\\bigr)^{-1}"));
 }
@@ -116,9 +118,8 @@ fn a_long_denominator_becomes_a_power_of_minus_one() {
 #[test]
 fn a_long_root_in_a_denominator_gets_one_power_at_a_time() {
     // Found by the fuzz suite: (s)^{1/2}^{-1} is a double superscript, which no renderer takes.
-    let terms: Vec<String> = (0..30).map(|k| format!("d_{{{k}}}")).collect();
     let p = cut(
-        &format!("\\frac{{1}}{{\\sqrt{{{}}}}}", terms.join(" + ")),
+        &format!("\\frac{{1}}{{\\sqrt{{{}}}}}", sum_of("d", 30)),
         LINE,
     );
     let all = p.concat();

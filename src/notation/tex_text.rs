@@ -192,24 +192,26 @@ mod tests {
 
     #[test]
     fn formulas_as_plain_text() {
-        assert_eq!(plain("\\alpha"), "α");
-        assert_eq!(plain("r^2 + x^{-1}"), "r² + x⁻¹");
-        assert_eq!(plain("I_{xx} = \\frac{2}{3} m a^2"), "I_xx = 2/3 ma²");
-        assert_eq!(plain("\\frac{M R^2}{2}"), "MR²/2");
-        assert_eq!(plain("\\frac{11}{12} m a^{2}"), "11/12 ma²");
-        assert_eq!(plain("\\frac{a + b}{2 c}"), "(a + b)/(2c)");
-        assert_eq!(
-            plain("\\left(-1, 1, 0\\right) = -a + b"),
-            "(−1, 1, 0) = −a + b"
-        );
-        assert_eq!(plain("a - b"), "a − b");
-        assert_eq!(plain("\\sqrt{g/l}"), "√(g/l)");
-        assert_eq!(plain("\\vec L = \\dot\\theta"), "L\u{20d7} = θ\u{307}");
-        assert_eq!(plain("A^{T}, \\left(a, b\\right)"), "A^T, (a, b)");
-        assert_eq!(plain("\\mathrm{kg\\,m^2}"), "kg m²");
-        assert_eq!(
-            plain("\\rho a \\left(\\frac{z y^3}{3} + \\frac{y z^3}{a}\\right)"),
-            "ρa(zy³/3 + yz³/a)"
+        crate::base::assert_each(
+            plain,
+            &[
+                ("\\alpha", "α"),
+                ("r^2 + x^{-1}", "r² + x⁻¹"),
+                ("I_{xx} = \\frac{2}{3} m a^2", "I_xx = 2/3 ma²"),
+                ("\\frac{M R^2}{2}", "MR²/2"),
+                ("\\frac{11}{12} m a^{2}", "11/12 ma²"),
+                ("\\frac{a + b}{2 c}", "(a + b)/(2c)"),
+                ("\\left(-1, 1, 0\\right) = -a + b", "(−1, 1, 0) = −a + b"),
+                ("a - b", "a − b"),
+                ("\\sqrt{g/l}", "√(g/l)"),
+                ("\\vec L = \\dot\\theta", "L\u{20d7} = θ\u{307}"),
+                ("A^{T}, \\left(a, b\\right)", "A^T, (a, b)"),
+                ("\\mathrm{kg\\,m^2}", "kg m²"),
+                (
+                    "\\rho a \\left(\\frac{z y^3}{3} + \\frac{y z^3}{a}\\right)",
+                    "ρa(zy³/3 + yz³/a)",
+                ),
+            ],
         );
     }
 }

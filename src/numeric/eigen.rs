@@ -26,6 +26,13 @@ pub enum Space {
 /// margin above round-off while still separating a genuine relative gap of 1e-13.
 pub const DEGENERACY_TOLERANCE: f64 = 64.0 * f64::EPSILON;
 
+/// A symmetric matrix's eigenvalues in ascending order, each as the solver gives it.
+pub fn sorted_eigenvalues(tensor: &Matrix3<f64>) -> [f64; 3] {
+    let mut values: [f64; 3] = SymmetricEigen::new(*tensor).eigenvalues.into();
+    values.sort_by(f64::total_cmp);
+    values
+}
+
 /// Principal moments in ascending order, grouped into eigenspaces.
 ///
 /// A uniform cube about its corner has I = m a² [[2/3, −1/4, −1/4], …] (eq 31): its diagonal

@@ -6,6 +6,7 @@
 use crate::model::catalogue::recorded_names;
 use crate::pipeline::SceneReport;
 use crate::scene::PINNED_VARIANTS;
+use std::collections::BTreeMap;
 use std::os::unix::fs::{MetadataExt, OpenOptionsExt};
 use std::path::{Path, PathBuf};
 use toml_edit::{DocumentMut, Item, TableLike, Value};
@@ -261,65 +262,58 @@ fn bless_quantities(
     r: &SceneReport,
     changes: &mut Vec<Blessed>,
 ) -> Result<(), BlessError> {
-    let path = &r.scene.source;
     let quantities = &r.derivation.quantities;
-    match doc.get_mut("expect") {
-        Some(item) => {
-            let table = item.as_table_like_mut().ok_or_else(|| BlessError::Shape {
-                path: path.clone(),
-                field: "expect",
-            })?;
-            for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
-                match quantities.get(&g.quantity) {
-                    Some(v) => {
-                        let text = v.to_text();
-                        set_keeping_decor(table, &g.quantity, &text);
-                        changes.push(Blessed {
-                            line: g.line,
-                            what: format!(
-                                "[expect] {}: {} -> {text}",
-                                g.quantity,
-                                g.recorded
-                                    .as_ref()
-                                    .map_or_else(|| "(none)".into(), |e| e.to_text())
-                            ),
-                        });
-                    }
-                    None => {
-                        table.remove(&g.quantity);
-                        changes.push(Blessed {
-                            line: g.line,
-                            what: format!(
-                                "[expect] {}: removed (no longer derived; was {})",
-                                g.quantity,
-                                g.recorded
-                                    .as_ref()
-                                    .map_or_else(|| "(none)".into(), |e| e.to_text())
-                            ),
-                        });
-                    }
-                }
+    if doc.get("expect").is_none() {
+        first_expect(doc, quantities, changes);
+        return Ok(());
+    }
+    let table = expect_table(doc, &r.scene.source)?;
+    for g in r.verification.regressions.iter().filter(|g| !g.unchanged) {
+        let was = g
+            .recorded
+            .as_ref()
+            .map_or_else(|| "(none)".into(), |e| e.to_text());
+        let what = match quantities.get(&g.quantity) {
+            Some(v) => {
+                let text = v.to_text();
+                set_keeping_decor(table, &g.quantity, &text);
+                format!("[expect] {}: {was} -> {text}", g.quantity)
             }
-        }
-        None => {
-            let mut table = toml_edit::Table::new();
-            for name in recorded_names() {
-                if let Some(v) = quantities.get(name) {
-                    let text = v.to_text();
-                    changes.push(Blessed {
-                        line: 0,
-                        what: format!("[expect] {name} = {text}"),
-                    });
-                    table.insert(name, toml_edit::value(text));
-                }
+            None => {
+                table.remove(&g.quantity);
+                format!(
+                    "[expect] {}: removed (no longer derived; was {was})",
+                    g.quantity
+                )
             }
-            if !table.is_empty() {
-                table.decor_mut().set_prefix(EXPECT_COMMENT);
-                doc.insert("expect", Item::Table(table));
-            }
-        }
+        };
+        changes.push(Blessed { line: g.line, what });
     }
     Ok(())
+}
+
+/// A scene with no `[expect]`: one, with its comment, of every recorded quantity it derives
+/// (none where it derives none of them).
+fn first_expect(
+    doc: &mut DocumentMut,
+    quantities: &BTreeMap<String, crate::model::value::Value>,
+    changes: &mut Vec<Blessed>,
+) {
+    let mut table = toml_edit::Table::new();
+    for name in recorded_names() {
+        if let Some(v) = quantities.get(name) {
+            let text = v.to_text();
+            changes.push(Blessed {
+                line: 0,
+                what: format!("[expect] {name} = {text}"),
+            });
+            table.insert(name, toml_edit::value(text));
+        }
+    }
+    if !table.is_empty() {
+        table.decor_mut().set_prefix(EXPECT_COMMENT);
+        doc.insert("expect", Item::Table(table));
+    }
 }
 
 /// Each step's results under its name, after the quantities: `check` reports a change at the
@@ -339,27 +333,18 @@ fn bless_step_records(
     if !steps.is_empty() {
         let table = expect_table(doc, path)?;
         for s in steps {
-            if s.derived.is_empty() {
+            let what = if s.derived.is_empty() {
                 table.remove(&s.step);
-                changes.push(Blessed {
-                    line: s.line,
-                    what: format!("[expect] {}: removed (no step of that name)", s.step),
-                });
-                continue;
-            }
-            set_record_keeping_decor(table, &s.step, &s.derived);
-            changes.push(Blessed {
-                line: s.line,
-                what: match &s.recorded {
-                    None => format!("[expect] {} = {}", s.step, s.derived.join(", ")),
-                    Some((then, _)) => format!(
-                        "[expect] {}: {} -> {}",
-                        s.step,
-                        then.join(", "),
-                        s.derived.join(", ")
-                    ),
-                },
-            });
+                format!("[expect] {}: removed (no step of that name)", s.step)
+            } else {
+                set_record_keeping_decor(table, &s.step, &s.derived);
+                let now = s.derived.join(", ");
+                match &s.recorded {
+                    None => format!("[expect] {} = {now}", s.step),
+                    Some((then, _)) => format!("[expect] {}: {} -> {now}", s.step, then.join(", ")),
+                }
+            };
+            changes.push(Blessed { line: s.line, what });
         }
     }
     Ok(())

@@ -134,6 +134,20 @@ impl From<crate::numeric::motion::MotionError> for CheckError {
 }
 
 impl StepCheck {
+    /// A check of step `step` (at `line`) before its route has run: no method, no error, no
+    /// work.
+    pub fn not_yet_run(step: &str, line: usize) -> StepCheck {
+        StepCheck {
+            step: step.into(),
+            line,
+            method: String::new(),
+            error: 0.0,
+            tolerance: 0.0,
+            evaluations: 0,
+            problem: None,
+        }
+    }
+
     pub fn passed(&self) -> bool {
         self.problem.is_none() && self.error.is_finite() && self.error <= self.tolerance
     }
@@ -207,22 +221,4 @@ pub(crate) fn solvable_of<'a>(
         .get(of)
         .and_then(|r| r.solvable(of))
         .ok_or(CheckError::NotDerived)
-}
-
-#[cfg(test)]
-mod test_support {
-    impl super::StepCheck {
-        /// A check of `step` (at line 1) not yet run, for a test that calls a route itself.
-        pub fn blank(step: &str) -> super::StepCheck {
-            super::StepCheck {
-                step: step.into(),
-                line: 1,
-                method: String::new(),
-                error: 0.0,
-                tolerance: 0.0,
-                evaluations: 0,
-                problem: None,
-            }
-        }
-    }
 }

@@ -311,7 +311,7 @@ pub fn check_steps(scene: &Scene, d: &Derivation, deadline: &Deadline) -> Vec<St
             Ok(()) => check_step(scene, d, i),
             Err(over) => StepCheck {
                 problem: Some(CheckError::from(over).to_string()),
-                ..not_yet_checked(&scene.steps[i])
+                ..StepCheck::not_yet_run(&scene.steps[i].name, scene.steps[i].line)
             },
         })
         .collect()
@@ -320,7 +320,7 @@ pub fn check_steps(scene: &Scene, d: &Derivation, deadline: &Deadline) -> Vec<St
 /// The numeric check of step `i` (each step draws its random points from its own seed).
 pub fn check_step(scene: &Scene, d: &Derivation, i: usize) -> StepCheck {
     let step = &scene.steps[i];
-    let mut check = not_yet_checked(step);
+    let mut check = StepCheck::not_yet_run(&step.name, step.line);
     let seed = scene.seed.wrapping_add(1000 + i as u64);
     if let Err(problem) = route(scene, d, step, seed, &mut check) {
         check.problem = Some(problem.to_string());
@@ -361,19 +361,6 @@ fn printed_check(
     match agree.iter().position(|&zero| !zero) {
         Some(k) => Err(CheckError::PrintedDiffers { number: k + 1 }),
         None => Ok(()),
-    }
-}
-
-/// A step's check before its route has run: no method, no error, no work.
-fn not_yet_checked(step: &AuthorStep) -> StepCheck {
-    StepCheck {
-        step: step.name.clone(),
-        line: step.line,
-        method: String::new(),
-        error: 0.0,
-        tolerance: 0.0,
-        evaluations: 0,
-        problem: None,
     }
 }
 

@@ -36,6 +36,16 @@ fn verdicts(r: &SceneReport) -> Vec<(String, Verdict, usize)> {
         .collect()
 }
 
+/// Asserts that step `name`'s `gives` disagrees, reported at the step's own line.
+fn assert_disagrees_at_its_line(r: &SceneReport, name: &str) {
+    let step_line = r.scene.steps.iter().find(|s| s.name == name).unwrap().line;
+    let found = verdicts(r).into_iter().find(|v| v.0 == name);
+    assert_eq!(
+        found,
+        Some((name.to_string(), Verdict::Disagrees, step_line))
+    );
+}
+
 #[test]
 fn equivalent_forms_agree() {
     let r = run(&pendulum(
@@ -168,14 +178,14 @@ fn the_numeric_routes_fail_wrong_results() {
         parse("M*L^2/3*phi'' - M*g*L/2*sin(phi)").unwrap().expr,
     )];
     let step = scene.steps.iter().find(|s| s.name == "eom").unwrap();
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     energy_check(scene, step, &lag, &wrong, &[], &mut check).unwrap();
     assert!(check.error > 1e-2, "{check:?}");
     let right = vec![(
         "phi".to_string(),
         parse("M*L^2/3*phi'' + M*g*L/2*sin(phi)").unwrap().expr,
     )];
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     energy_check(scene, step, &lag, &right, &[], &mut check).unwrap();
     assert!(check.passed(), "{check:?}");
 
@@ -183,7 +193,7 @@ fn the_numeric_routes_fail_wrong_results() {
         "phi".to_string(),
         parse("M*L^2/3*phi'' + M*g*L*phi").unwrap().expr,
     )];
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     linear_check(
         scene,
         &right,
@@ -195,7 +205,7 @@ fn the_numeric_routes_fail_wrong_results() {
     .unwrap();
     assert!(!check.passed(), "{check:?}");
 
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     let too_fast = parse("1.01*sqrt(3*g/(2*L))").unwrap().expr;
     period_check(scene, &right, &Default::default(), &too_fast, &mut check).unwrap();
     assert!(!check.passed() && check.error > 5e-3, "{check:?}");
@@ -300,17 +310,7 @@ fn heavy_top_momenta_and_energy() {
         "gives = \"I1*phi'*sin(theta)^2 + p_psi*cos(theta)\"",
         "gives = \"I1*phi'*sin(theta)^2\"",
     );
-    let p = verdicts(&r).into_iter().find(|v| v.0 == "p_phi").unwrap();
-    assert_eq!(p.1, Verdict::Disagrees);
-    assert_eq!(
-        p.2,
-        r.scene
-            .steps
-            .iter()
-            .find(|s| s.name == "p_phi")
-            .unwrap()
-            .line
-    );
+    assert_disagrees_at_its_line(&r, "p_phi");
 
     // The tilt's momentum said to be conserved: it drifts by order one along the motion.
     let step = r.scene.steps.iter().find(|s| s.name == "p_theta").unwrap();
@@ -319,7 +319,7 @@ fn heavy_top_momenta_and_energy() {
         panic!()
     };
     let value = r.derivation.named["p_theta"].scalar().unwrap();
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     conserved_check(
         &r.scene,
         step,
@@ -379,7 +379,7 @@ fn a_free_system_has_a_zero_mode() {
         vec![parse("1/1000").unwrap().expr, modes[1].clone()],
         vec![modes[1].clone(), modes[0].clone()],
     ] {
-        let mut check = StepCheck::blank("s");
+        let mut check = StepCheck::not_yet_run("s", 1);
         modes_check(&r.scene, linear, &wrong, &mut check).unwrap();
         assert!(check.error > 1e-4, "{wrong:?}: {check:?}");
     }
@@ -431,7 +431,7 @@ fn double_pendulum_modes() {
         panic!()
     };
     let swapped = vec![modes[1].clone(), modes[0].clone()];
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     modes_check(&r.scene, linear, &swapped, &mut check).unwrap();
     assert!(check.error > 0.1, "{check:?}");
 }
@@ -504,7 +504,7 @@ fn bead_on_hoop_equilibria_and_stability() {
     let Some(StepResult::Equations(eqs)) = r.derivation.named.get("eom") else {
         panic!()
     };
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     let missing =
         crate::steps::rest::equilibria_check(&r.scene, &eqs[0].1, "theta", &zeros[..2], &mut check);
     assert!(
@@ -540,21 +540,7 @@ fn gyroscope_series_and_roots() {
         assert_eq!(verdict, Verdict::Agrees, "{name}");
     }
     let wrong = course_scene("06-gyroscope.toml", "M*g*l*eps/I3\"", "M*g*l*eps/I1\"");
-    let slow = verdicts(&wrong)
-        .into_iter()
-        .find(|v| v.0 == "slow")
-        .unwrap();
-    assert_eq!(slow.1, Verdict::Disagrees);
-    assert_eq!(
-        slow.2,
-        wrong
-            .scene
-            .steps
-            .iter()
-            .find(|s| s.name == "slow")
-            .unwrap()
-            .line
-    );
+    assert_disagrees_at_its_line(&wrong, "slow");
     // The slow rate against 0 (its series with the leading term dropped): the remainder is
     // then of order 1, not 2.
     let step = r.scene.steps.iter().find(|s| s.name == "slow").unwrap();
@@ -562,7 +548,7 @@ fn gyroscope_series_and_roots() {
         panic!()
     };
     let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     crate::steps::series::remainder_check(
         &r.scene,
         &f,
@@ -607,24 +593,13 @@ fn paraboloid_by_integration() {
         "gives = \"M*R^2/3\"",
         "gives = \"M*R^2/2\"",
     );
-    let iz = verdicts(&wrong).into_iter().find(|v| v.0 == "Iz").unwrap();
-    assert_eq!(iz.1, Verdict::Disagrees);
-    assert_eq!(
-        iz.2,
-        wrong
-            .scene
-            .steps
-            .iter()
-            .find(|s| s.name == "Iz")
-            .unwrap()
-            .line
-    );
+    assert_disagrees_at_its_line(&wrong, "Iz");
     let step = r.scene.steps.iter().find(|s| s.name == "Iz").unwrap();
     let crate::scene::Operation::Integrate(Integrate { of, over }) = &step.op else {
         panic!()
     };
     let f = crate::derive::step_names::expand_names(&r.scene, &r.derivation, step, of).unwrap();
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     crate::steps::integrate::quadrature_check(
         &r.scene.values,
         &f,
@@ -659,8 +634,7 @@ fn a_step_over_the_engines_budget_says_what_to_do_at_its_line() {
     let err = run_scene(Scene::parse(text, Path::new("p.toml")).unwrap(), None)
         .unwrap_err()
         .to_string();
-    assert!(err.contains("step `P`"), "{err}");
-    assert!(err.contains("split the step into smaller ones"), "{err}");
+    crate::base::assert_says(&err, &["step `P`", "split the step into smaller ones"]);
     assert!(!err.contains("body"), "{err}");
 }
 
@@ -761,14 +735,14 @@ fn the_system_check_fails_a_wrong_solution() {
         StepResult::Equations(eqs) => eqs.clone(),
         other => panic!("{other:?}"),
     };
-    let mut right = StepCheck::blank("s");
+    let mut right = StepCheck::not_yet_run("s", 1);
     crate::steps::solve::system_check(&r.scene, &eqs, solution, 7, &mut right).unwrap();
     assert!(right.passed(), "{right:?}");
     let swapped = vec![
         (solution[0].0.clone(), solution[1].1.clone()),
         (solution[1].0.clone(), solution[0].1.clone()),
     ];
-    let mut wrong = StepCheck::blank("s");
+    let mut wrong = StepCheck::not_yet_run("s", 1);
     crate::steps::solve::system_check(&r.scene, &eqs, &swapped, 7, &mut wrong).unwrap();
     assert!(!wrong.passed(), "{wrong:?}");
 }
@@ -815,7 +789,7 @@ fn double_pendulum_states_of_rest() {
     let Some(StepResult::Equations(eqs)) = r.derivation.named.get("eom") else {
         panic!()
     };
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     let missing = crate::steps::rest_states::states_check(&r.scene, eqs, &states[..3], &mut check);
     assert!(
         matches!(missing, Err(CheckError::MissedState { .. })),
@@ -823,7 +797,7 @@ fn double_pendulum_states_of_rest() {
     );
     let mut wrong = cases.to_vec();
     wrong[1].verdict = Stable::Always;
-    let mut check = StepCheck::blank("s");
+    let mut check = StepCheck::not_yet_run("s", 1);
     let verdict =
         crate::steps::rest_states::rest_stability_check(&r.scene, eqs, &wrong, &mut check);
     assert!(

@@ -14,6 +14,20 @@ fn report(file: &str) -> SceneReport {
     run_scene(scene, None).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The report's variants, each asserted to pass.
+fn passing_variants(r: &SceneReport) -> &[crate::verify::variants::VariantCheck] {
+    for v in &r.verification.variants {
+        assert!(v.passed(), "variant {}: {:?}", v.number, v.answers);
+    }
+    &r.verification.variants
+}
+
+/// Asserts that every variant fails once step `name`'s result is replaced by `wrong`.
+fn fails_with_wrong_step(r: &SceneReport, name: &str, wrong: StepResult) {
+    let passed = with_wrong_step(r, name, wrong);
+    assert!(passed.iter().all(|p| !p), "{passed:?}");
+}
+
 /// The report's variants, checked again with step `name`'s result replaced by `wrong`.
 fn with_wrong_step(r: &SceneReport, name: &str, wrong: StepResult) -> Vec<bool> {
     let mut d = r.derivation.clone();
@@ -58,27 +72,23 @@ fn a_period_is_checked_on_the_integrated_motion_and_a_wrong_frequency_fails() {
     }
     // A simple pendulum's frequency put in place of the rod's: every period is wrong by
     // √(3/2) and fails.
-    let passed = with_wrong_step(&r, "Omega", expr("sqrt(g/L)"));
-    assert!(passed.iter().all(|p| !p), "{passed:?}");
+    fails_with_wrong_step(&r, "Omega", expr("sqrt(g/L)"));
 }
 
 #[test]
 fn a_solved_acceleration_is_put_back_by_newton_and_a_wrong_one_fails() {
     let r = report("03-rolling-acceleration.toml");
-    for v in &r.verification.variants {
-        assert!(v.passed(), "variant {}: {:?}", v.number, v.answers);
+    for v in passing_variants(&r) {
         assert!(v.answers[0].error < 1e-12, "{}", v.answers[0].error);
     }
     // Sliding without rolling: g sin(alpha) is not a root of the rolling equation.
-    let passed = with_wrong_step(&r, "acc", expr("g*sin(alpha)"));
-    assert!(passed.iter().all(|p| !p), "{passed:?}");
+    fails_with_wrong_step(&r, "acc", expr("g*sin(alpha)"));
 }
 
 #[test]
 fn a_critical_spin_is_found_again_from_ten_percent_off() {
     let r = report("04-critical-spin.toml");
-    for v in &r.verification.variants {
-        assert!(v.passed(), "variant {}: {:?}", v.number, v.answers);
+    for v in passing_variants(&r) {
         let values: std::collections::BTreeMap<&str, f64> = v
             .values
             .iter()
@@ -96,15 +106,13 @@ fn a_critical_spin_is_found_again_from_ten_percent_off() {
         panic!("one root expected");
     };
     let halved = crate::cas::Expr::mul(vec![crate::cas::Expr::rat(1, 2), root.clone()]);
-    let passed = with_wrong_step(&r, "spin", StepResult::Expr(halved));
-    assert!(passed.iter().all(|p| !p), "{passed:?}");
+    fails_with_wrong_step(&r, "spin", StepResult::Expr(halved));
 }
 
 #[test]
 fn a_centre_of_mass_asked_in_centimetres_is_a_hundred_times_the_metres() {
     let r = report("05-centre-of-mass.toml");
-    for v in &r.verification.variants {
-        assert!(v.passed(), "variant {}: {:?}", v.number, v.answers);
+    for v in passing_variants(&r) {
         let x = |k: &str| {
             v.values
                 .iter()
@@ -128,8 +136,7 @@ fn a_centre_of_mass_asked_in_centimetres_is_a_hundred_times_the_metres() {
 #[test]
 fn an_angle_between_vectors_is_worked_from_the_quadrature_tensor() {
     let r = report("02-angle-l-omega.toml");
-    for v in &r.verification.variants {
-        assert!(v.passed(), "variant {}: {:?}", v.number, v.answers);
+    for v in passing_variants(&r) {
         let angle = &v.answers[1];
         assert!(angle.error < 1e-13, "{}", angle.error);
         assert!(angle.exact_numbers[0] > 0.0 && angle.exact_numbers[0] < 1.6);
@@ -139,10 +146,9 @@ fn an_angle_between_vectors_is_worked_from_the_quadrature_tensor() {
 #[test]
 fn each_normal_mode_is_graded_by_the_eigenvalues_of_m_inverse_k_and_a_wrong_one_fails() {
     let r = report("06-normal-modes.toml");
-    let variants = &r.verification.variants;
+    let variants = passing_variants(&r);
     assert_eq!(variants.len(), 4);
     for v in variants {
-        assert!(v.passed(), "variant {}: {:?}", v.number, v.answers);
         // √((2 ∓ √2) g/l), by the textbook, at the variant's l: both routes land on it.
         let l = v
             .values
@@ -163,6 +169,5 @@ fn each_normal_mode_is_graded_by_the_eigenvalues_of_m_inverse_k_and_a_wrong_one_
         parse("sqrt(g/l)").unwrap().expr,
         parse("sqrt(3*g/l)").unwrap().expr,
     ]);
-    let passed = with_wrong_step(&r, "Omega", wrong);
-    assert!(passed.iter().all(|p| !p), "{passed:?}");
+    fails_with_wrong_step(&r, "Omega", wrong);
 }

@@ -71,7 +71,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
     let StepResult::Equations(eqs) = &r.derivation.named["eom"] else {
         panic!()
     };
-    let mut check = StepCheck::blank("eom");
+    let mut check = StepCheck::not_yet_run("eom", 1);
     energy_check(&r.scene, step, lagrangian, eqs, constraints, &mut check).unwrap();
     assert!(check.passed() && check.error < 1e-9, "{check:?}");
     let wrong: Vec<(String, Expr)> = eqs
@@ -84,7 +84,7 @@ fn the_atwood_machines_tension_is_its_multiplier() {
             (q.clone(), e)
         })
         .collect();
-    let mut check = StepCheck::blank("eom");
+    let mut check = StepCheck::not_yet_run("eom", 1);
     energy_check(&r.scene, step, lagrangian, &wrong, constraints, &mut check).unwrap();
     assert!(!check.passed() && check.error > 1e-2, "{check:?}");
 
@@ -204,7 +204,7 @@ fn the_spherical_pendulums_routhian() {
     };
     let lagrangian = r.derivation.named["Lag"].scalar().unwrap();
     let routhian = r.derivation.named["R"].scalar().unwrap();
-    let mut check = StepCheck::blank("eom");
+    let mut check = StepCheck::not_yet_run("eom", 1);
     crate::steps::routh::routh_check(&r.scene, step, lagrangian, routhian, cyclic, &mut check)
         .unwrap();
     assert!(check.passed() && check.error < 1e-8, "{check:?}");
@@ -212,7 +212,7 @@ fn the_spherical_pendulums_routhian() {
         crate::cas::parse("m*l^2*theta'^2/2 + m*g*l*cos(theta) + p^2/(2*m*l^2*sin(theta)^2)")
             .unwrap()
             .expr;
-    let mut check = StepCheck::blank("eom");
+    let mut check = StepCheck::not_yet_run("eom", 1);
     crate::steps::routh::routh_check(&r.scene, step, lagrangian, &wrong, cyclic, &mut check)
         .unwrap();
     assert!(!check.passed() && check.error > 1e-2, "{check:?}");

@@ -60,15 +60,13 @@ fn zero_over_zero_is_named_with_the_limit_that_takes_it() {
 #[test]
 fn a_pole_and_a_divisor_zero_as_written_are_refused_and_a_value_is_put_in() {
     let err = run(&scene("a/x", "substitute = \"f\"\nset = { x = \"0\" }")).unwrap_err();
-    assert!(err.contains("the divisor x of `f` vanishes"), "{err}");
-    assert!(err.contains("a pole there"), "{err}");
+    crate::base::assert_says(&err, &["the divisor x of `f` vanishes", "a pole there"]);
     let err = run(&scene(
         "a*sin(0)/sin(0)",
         "substitute = \"f\"\nset = { x = \"1\" }",
     ))
     .unwrap_err();
-    assert!(err.contains("the divisor sin(0) of"), "{err}");
-    assert!(err.contains("is 0 as written"), "{err}");
+    crate::base::assert_says(&err, &["the divisor sin(0) of", "is 0 as written"]);
     let r = run(&scene(
         "a*sin(x)/x",
         "substitute = \"f\"\nset = { x = \"1\" }",

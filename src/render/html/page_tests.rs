@@ -17,8 +17,7 @@ fn a_result_at_the_numbers_prints_six_figures_and_names_its_symbols() {
     };
     let html = at_numbers_html(&v, &at, Names::none()).unwrap();
     assert!(html.starts_with("at <math"), "{html}");
-    assert!(html.contains("<mi>R</mi>"), "{html}");
-    assert!(html.contains("<mn>12.5664</mn>"), "{html}");
+    crate::base::assert_says(&html, &["<mi>R</mi>", "<mn>12.5664</mn>"]);
     // Each number with its unit: R = 2 m, and the result's 12.5664 m.
     assert_eq!(html.matches(">m</mi>").count(), 2, "{html}");
 }

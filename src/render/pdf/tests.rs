@@ -154,11 +154,16 @@ fn the_same_markup_gives_the_same_bytes_on_the_courses_paper() {
 #[test]
 fn a_roster_field_is_quoted_and_never_a_spreadsheet_formula() {
     use super::csv_field;
-    assert_eq!(csv_field("Ada"), "Ada");
-    assert_eq!(csv_field("Lovelace, Ada"), "\"Lovelace, Ada\"");
-    assert_eq!(csv_field("Alan \"Turing\""), "\"Alan \"\"Turing\"\"\"");
-    assert_eq!(csv_field("=HYPERLINK(1)"), "'=HYPERLINK(1)");
-    assert_eq!(csv_field("@sum, x"), "\"'@sum, x\"");
+    crate::base::assert_each(
+        csv_field,
+        &[
+            ("Ada", "Ada"),
+            ("Lovelace, Ada", "\"Lovelace, Ada\""),
+            ("Alan \"Turing\"", "\"Alan \"\"Turing\"\"\""),
+            ("=HYPERLINK(1)", "'=HYPERLINK(1)"),
+            ("@sum, x", "\"'@sum, x\""),
+        ],
+    );
 }
 
 #[test]

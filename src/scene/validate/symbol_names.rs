@@ -162,13 +162,18 @@ mod tests {
 
     #[test]
     fn a_word_is_suggested_a_letter_with_the_rest_as_its_subscript() {
-        assert_eq!(suggested_tex("Lag"), "L");
-        assert_eq!(suggested_tex("acc"), "a");
-        assert_eq!(suggested_tex("period"), "p");
-        assert_eq!(suggested_tex("Lfree"), "L_{\\mathrm{free}}");
-        assert_eq!(suggested_tex("slow_eps"), "\\epsilon_{\\mathrm{slow}}");
-        assert_eq!(suggested_tex("space_rate"), "s_{\\mathrm{rate}}");
-        assert_eq!(suggested_tex("w_min"), "w_{\\mathrm{min}}");
-        assert_eq!(suggested_tex("Omega_top"), "\\Omega_{\\mathrm{top}}");
+        crate::base::assert_each(
+            suggested_tex,
+            &[
+                ("Lag", "L"),
+                ("acc", "a"),
+                ("period", "p"),
+                ("Lfree", "L_{\\mathrm{free}}"),
+                ("slow_eps", "\\epsilon_{\\mathrm{slow}}"),
+                ("space_rate", "s_{\\mathrm{rate}}"),
+                ("w_min", "w_{\\mathrm{min}}"),
+                ("Omega_top", "\\Omega_{\\mathrm{top}}"),
+            ],
+        );
     }
 }
