@@ -5,6 +5,7 @@
 //! page back rather than carry a second result through every view. It is a note to the author,
 //! never printed on a page.
 
+use crate::base::format::superscript;
 use crate::document::Page;
 
 /// The note for a page, or `None` where no formula piece is set smaller.
@@ -175,17 +176,12 @@ fn grouped(part: &str) -> String {
 
 /// A superscript: in superscript characters where each has one (x², a⁻¹), else `^(…)`.
 fn raised(script: &str) -> String {
-    const PLAIN: &str = "0123456789+−-()n";
-    const RAISED: &str = "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁻⁽⁾ⁿ";
     let script = script.trim();
-    let raised: Option<String> = script
-        .chars()
-        .map(|c| PLAIN.chars().position(|p| p == c))
-        .map(|k| k.and_then(|k| RAISED.chars().nth(k)))
-        .collect();
-    match raised {
-        Some(r) if !r.is_empty() => r,
-        _ => format!("^{}", grouped(script)),
+    let lifted = |c: char| if c == '−' { '⁻' } else { superscript(c) };
+    if !script.is_empty() && script.chars().all(|c| lifted(c) != c) {
+        script.chars().map(lifted).collect()
+    } else {
+        format!("^{}", grouped(script))
     }
 }
 
