@@ -3,6 +3,7 @@
 //! A scene's `outputs.want`, the quantities its claims mention and its recorded results decide
 //! the stages. `derive --explain` prints the plan: what ran, and what was skipped and why.
 
+use crate::base::format::count;
 use crate::cas::Expr;
 use crate::model::catalogue::{Output, Stage, is_quantity, stage_for_quantity};
 use crate::scene::{FreeInertia, PlotRequest, Scene};
@@ -28,10 +29,10 @@ impl Plan {
         wanted_by_plots(scene, &mut wanted);
         wanted_by_names(scene, &mut wanted);
         if !scene.steps.is_empty() {
-            wanted.push((Stage::Steps, format!("{} step(s)", scene.steps.len())));
+            wanted.push((Stage::Steps, count(scene.steps.len(), "step")));
         }
         if !scene.claims.is_empty() {
-            wanted.push((Stage::Claims, format!("{} claim(s)", scene.claims.len())));
+            wanted.push((Stage::Claims, count(scene.claims.len(), "claim")));
         }
         for name in scene.expect.keys() {
             if let Some(s) = stage_for_quantity(name) {
@@ -43,7 +44,7 @@ impl Plan {
             if scene.expect.is_empty() {
                 "no recorded results: each result fails until it is recorded".to_string()
             } else {
-                format!("{} recorded result(s)", scene.expect.len())
+                count(scene.expect.len(), "recorded result")
             },
         ));
 

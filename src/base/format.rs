@@ -1,7 +1,5 @@
 //! Deterministic number formatting, shared by captions, reports and pages.
 
-/// A relative error or a time in compact scientific form, as a reader writes it: 8.3×10⁻¹⁶
-/// (never 8.3e-16, which reads as 8.3·e − 16); exact zero prints as 0.
 /// The first letter in capitals: a label or a heading opens a row or a sentence.
 pub fn capitalised(s: &str) -> String {
     let mut c = s.chars();
@@ -11,6 +9,17 @@ pub fn capitalised(s: &str) -> String {
     }
 }
 
+/// `n` things, the noun in the plural unless there is one: "1 plot", "16 plots", "0 PDFs".
+/// Every noun mechbook counts takes a plain -s.
+pub fn count(n: impl std::fmt::Display, noun: &str) -> String {
+    match n.to_string() {
+        one if one == "1" => format!("1 {noun}"),
+        n => format!("{n} {noun}s"),
+    }
+}
+
+/// A relative error or a time in compact scientific form, as a reader writes it: 8.3×10⁻¹⁶
+/// (never 8.3e-16, which reads as 8.3·e − 16); exact zero prints as 0.
 pub fn sci(x: f64) -> String {
     if x == 0.0 {
         "0".into()
@@ -128,6 +137,14 @@ pub fn figures(x: f64, digits: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn one_thing_is_singular_and_any_other_count_plural() {
+        assert_eq!(count(1usize, "plot"), "1 plot");
+        assert_eq!(count(0usize, "PDF"), "0 PDFs");
+        assert_eq!(count(16u64, "ODE integration"), "16 ODE integrations");
+        assert_eq!(count(11usize, "scene"), "11 scenes");
+    }
 
     #[test]
     fn exact_figures_keep_their_zeros() {

@@ -283,8 +283,11 @@ pub fn measure(lectures: &Path, repeats: usize, mut progress: impl FnMut(&str)) 
     let mut md = String::from("# mechbook bench\n\n");
     let _ = writeln!(
         md,
-        "Measured by `mechbook bench` on {} core(s); times are wall-clock seconds.\n",
-        std::thread::available_parallelism().map_or(1, |n| n.get())
+        "Measured by `mechbook bench` on {}; times are wall-clock seconds.\n",
+        crate::base::format::count(
+            std::thread::available_parallelism().map_or(1, |n| n.get()),
+            "core"
+        )
     );
 
     progress("integrators");
@@ -474,10 +477,11 @@ fn build_rows(
 fn builds_table(count: usize, repeats: usize, rows: &[(String, Timing)]) -> String {
     let mut md = format!(
         "## Whole-site builds\n\nEach build is a separate `mechbook build` process of the {} \
-         lecture scenes, timed from outside (start-up included); {repeats} run(s) each. Peak \
-         memory is the largest the build printed (Linux VmHWM).\n\n\
+         lecture scenes, timed from outside (start-up included); {} each. Peak memory is the \
+         largest the build printed (Linux VmHWM).\n\n\
          | build | fastest s | median s | peak MiB |\n|---|---|---|---|\n",
-        count
+        count,
+        crate::base::format::count(repeats, "run")
     );
     for (name, t) in rows {
         let _ = writeln!(

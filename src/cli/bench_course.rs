@@ -161,10 +161,11 @@ fn course_rows(
 fn table(course: &Path, count: usize, repeats: usize, rows: &[(String, Timing)]) -> String {
     let mut md = format!(
         "## A course\n\nEach row is a separate `mechbook` process on a copy of `{}` ({count} \
-         scenes), timed from outside (start-up included); {repeats} run(s) each. Peak memory \
-         is the one each process prints as it exits (Linux's VmHWM).\n\n\
+         scenes), timed from outside (start-up included); {} each. Peak memory is the one \
+         each process prints as it exits (Linux's VmHWM).\n\n\
          | what | fastest s | median s | peak MiB |\n|---|---|---|---|\n",
-        course.display()
+        course.display(),
+        crate::base::format::count(repeats, "run")
     );
     for (name, t) in rows {
         // serve's rows time a page's reload, not one process: no peak of theirs.

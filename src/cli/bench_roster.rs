@@ -39,10 +39,11 @@ pub fn roster_bench(
     let mut md = format!(
         "## Rosters\n\nFor each class of N students: the box problem with N variants (recorded \
          first), then `mechbook build --no-cache --roster` of N students, a separate process \
-         timed from outside; {repeats} run(s) each. Peak memory is the one each process prints \
-         as it exits (Linux's VmHWM).\n\n\
+         timed from outside; {} each. Peak memory is the one each process prints as it exits \
+         (Linux's VmHWM).\n\n\
          | students | fastest s | median s | median ms a student | peak MiB |\n\
-         |---|---|---|---|---|\n"
+         |---|---|---|---|---|\n",
+        crate::base::format::count(repeats, "run")
     );
     for &n in sizes {
         progress(&format!("{n} students"));

@@ -386,13 +386,13 @@ pub fn report_not_built(not_built: NotBuilt) -> Result<()> {
                 eprintln!("mechbook: error: {m}");
             }
             eprintln!(
-                "mechbook: {} bad scene file(s); nothing was derived",
-                messages.len()
+                "mechbook: {}; nothing was derived",
+                crate::base::format::count(messages.len(), "bad scene file")
             );
         }
         NotBuilt::Derive(messages) => eprintln!(
-            "mechbook: {} scene(s) could not be derived; the site was not written",
-            messages.len()
+            "mechbook: {} could not be derived; the site was not written",
+            crate::base::format::count(messages.len(), "scene")
         ),
         NotBuilt::Other(e) => return Err(e),
     }

@@ -1,6 +1,7 @@
 //! `mechbook check`: every scene derived and verified, as a regression test.
 
 use super::{FidelityArg, default_paths, find, load, run_all};
+use crate::base::format::count;
 use crate::pipeline::SceneReport;
 use crate::report;
 use crate::site::bless;
@@ -75,9 +76,12 @@ pub fn run(args: CheckArgs) -> Result<ExitCode> {
     std::io::stdout().write_all(text.as_bytes())?;
     if errors > 0 {
         eprintln!(
-            "mechbook: {errors} scene(s) could not be derived (errors above); the other \
-             {} were checked",
-            reports.len()
+            "mechbook: {} could not be derived (errors above); {} checked",
+            count(errors, "scene"),
+            match reports.len() {
+                1 => "the other was".to_string(),
+                n => format!("the other {n} were"),
+            }
         );
     }
     Ok(if passed {
@@ -116,8 +120,9 @@ fn bless_all(reports: &[SceneReport], errors: usize) -> Result<ExitCode> {
         }
     }
     out.push_str(&format!(
-        "blessed: {changes} change(s) in {files} of {} scene file(s)\n",
-        reports.len()
+        "blessed: {} in {files} of {}\n",
+        count(changes, "change"),
+        count(reports.len(), "scene file")
     ));
     std::io::stdout().write_all(out.as_bytes())?;
     // What a record cannot settle: a failed check of the check itself, or exact against numeric.
@@ -134,7 +139,8 @@ fn bless_all(reports: &[SceneReport], errors: usize) -> Result<ExitCode> {
     }
     if errors > 0 {
         eprintln!(
-            "mechbook: {errors} scene(s) could not be derived (errors above); they were not blessed"
+            "mechbook: {} could not be derived (errors above); they were not blessed",
+            count(errors, "scene")
         );
     }
     Ok(

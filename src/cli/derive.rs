@@ -60,8 +60,9 @@ pub fn run(args: DeriveArgs) -> Result<ExitCode> {
             .count();
         if new > 0 {
             eprintln!(
-                "mechbook: {new} step(s) of `{}` not yet recorded: once you have reviewed them, \
+                "mechbook: {} of `{}` not yet recorded: once you have reviewed them, \
                  `mechbook check --bless {}` records them, so that `check` sees a change",
+                crate::base::format::count(new, "step"),
                 r.scene.id,
                 scene.display()
             );
@@ -71,9 +72,9 @@ pub fn run(args: DeriveArgs) -> Result<ExitCode> {
     // Standard output is the derivation; why it fails goes to standard error, as `check` says it.
     let failures = report::failures(&r);
     eprintln!(
-        "mechbook: scene `{}` failed {} check(s):",
+        "mechbook: scene `{}` failed {}:",
         r.scene.id,
-        failures.len()
+        crate::base::format::count(failures.len(), "check")
     );
     for f in failures {
         eprintln!("  {f}");

@@ -181,8 +181,8 @@ fn load(files: &[PathBuf]) -> Option<Vec<crate::scene::Scene>> {
                 eprintln!("mechbook: error: {e}");
             }
             eprintln!(
-                "mechbook: {} bad scene file(s); nothing was derived",
-                errors.len()
+                "mechbook: {}; nothing was derived",
+                crate::base::format::count(errors.len(), "bad scene file")
             );
             None
         }

@@ -9,10 +9,11 @@ use crate::scene::roster::Roster;
 /// A lecture's sheet has fewer variants than the roster has students.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
-    "{}: {students} students, but lecture {lecture}'s problem sheet has {variants} variant(s): \
+    "{}: {students} students, but lecture {lecture}'s problem sheet has {}: \
      a variant goes to one student, so give its problem scenes `count = {students}` or more in \
      [variants] (or use a shorter roster)",
-    roster.display()
+    roster.display(),
+    crate::base::format::count(.variants, "variant")
 )]
 pub struct TooFewVariants {
     pub roster: std::path::PathBuf,

@@ -2,7 +2,7 @@
 //! method's error law and the Pareto front.
 
 use super::{ERROR_FLOOR, FigureError, colour};
-use crate::base::format::sci;
+use crate::base::format::{count, sci};
 use crate::model::fidelity::Fidelity;
 use crate::model::figure::{Accuracy, Figure, Legend, Mark, Scale, Series};
 use crate::model::prose::Prose;
@@ -140,10 +140,10 @@ fn method_accuracy(method: Method, runs: &[QuadratureRun]) -> Accuracy {
 fn method_sentence(method: Method, runs: &[QuadratureRun]) -> String {
     let (first, last) = (&runs[0], &runs[runs.len() - 1]);
     let mut s = format!(
-        "{}: {} at {} point(s) to {} at {}",
+        "{}: {} at {} to {} at {}",
         method.name(),
         sci(first.error),
-        first.points,
+        count(first.points, "point"),
         sci(last.error),
         last.points
     );

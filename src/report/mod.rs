@@ -1,7 +1,7 @@
 //! The terminal and JSON printers: `check`'s summary of the reports, and a scene's [`Page`] for
 //! `derive`. Pure functions to strings: no I/O here.
 
-use crate::base::format::sci;
+use crate::base::format::{count, sci};
 use crate::document::Page;
 use crate::pipeline::SceneReport;
 use crate::scene::Verdict;
@@ -348,24 +348,28 @@ fn problems_line(out: &mut String, reports: &[SceneReport]) {
                                 variant's values by Sturm bisection,"
                 .to_string(),
             k => format!(
-                "{} answers exact and {k} modes with no closed form, found at their \
-                 variant's values by Sturm bisection,",
-                total - k
+                "{} exact and {} with no closed form, found at their variant's values by Sturm \
+                 bisection,",
+                count(total - k, "answer"),
+                count(k, "mode")
             ),
         };
         let _ = if failed == 0 {
             writeln!(
                 out,
-                "\n{problems} problem(s), {variants} variant(s): {exact} and cross-checked \
-                 numerically, worst relative difference {}",
+                "\n{}, {}: {exact} and cross-checked numerically, worst relative difference {}",
+                count(problems, "problem"),
+                count(variants, "variant"),
                 sci(worst)
             )
         } else {
             writeln!(
                 out,
-                "\n{problems} problem(s), {variants} variant(s): {failed} of {} answers FAILED \
-                 their numeric cross-check (listed above); the others agree to {}",
-                answers.count(),
+                "\n{}, {}: {failed} of {} FAILED their numeric cross-check (listed above); the \
+                 others agree to {}",
+                count(problems, "problem"),
+                count(variants, "variant"),
+                count(answers.count(), "answer"),
                 sci(worst)
             )
         };
@@ -378,30 +382,21 @@ fn totals_line(out: &mut String, reports: &[SceneReport]) {
     // A fold from +0: an empty f64 sum is −0, printed "-0.0 ms".
     let symbolic = reports.iter().fold(0.0, |acc, r| acc + r.symbolic_seconds);
     let calls: u64 = reports.iter().map(|r| r.engine_calls).sum();
-    let count = |v: Verdict| -> usize { reports.iter().map(|r| r.verification.count(v)).sum() };
-    let undecided = match count(Verdict::Undecided) {
+    let verdicts = |v: Verdict| -> usize { reports.iter().map(|r| r.verification.count(v)).sum() };
+    let undecided = match verdicts(Verdict::Undecided) {
         0 => String::new(),
         n => format!(", {n} undecided"),
     };
     let _ = writeln!(
         out,
-        "\n{} scene(s), {} claim(s): {} agree, {} disagree, {} not checkable{undecided}; symbolic stage {:.1} ms in {} engine calls; {}",
-        reports.len(),
-        claims,
-        reports
-            .iter()
-            .map(|r| r.verification.count(Verdict::Agrees))
-            .sum::<usize>(),
-        reports
-            .iter()
-            .map(|r| r.verification.count(Verdict::Disagrees))
-            .sum::<usize>(),
-        reports
-            .iter()
-            .map(|r| r.verification.count(Verdict::NotCheckable))
-            .sum::<usize>(),
+        "\n{}, {}: {} agree, {} disagree, {} not checkable{undecided}; symbolic stage {:.1} ms in {}; {}",
+        count(reports.len(), "scene"),
+        count(claims, "claim"),
+        verdicts(Verdict::Agrees),
+        verdicts(Verdict::Disagrees),
+        verdicts(Verdict::NotCheckable),
         symbolic * 1e3,
-        calls,
+        count(calls, "engine call"),
         if reports.iter().all(SceneReport::passed) {
             "all as recorded"
         } else {
@@ -431,8 +426,8 @@ pub fn explain_text(page: &Page) -> String {
     let c = &page.cost;
     let _ = writeln!(
         out,
-        "Symbolic engine: {} call(s), {:.2} ms; whole scene {:.2} ms",
-        c.engine_calls,
+        "Symbolic engine: {}, {:.2} ms; whole scene {:.2} ms",
+        count(c.engine_calls, "call"),
         c.symbolic_seconds * 1e3,
         c.seconds * 1e3
     );
@@ -440,9 +435,11 @@ pub fn explain_text(page: &Page) -> String {
     let w = &c.numeric_work;
     let _ = writeln!(
         out,
-        "Numeric work: {} ODE integration(s), {} right-hand-side evaluation(s); {} quadrature \
-         run(s), {} point(s)",
-        w.ode_integrations, w.rhs_evaluations, w.quadrature_runs, w.quadrature_points
+        "Numeric work: {}, {}; {}, {}",
+        count(w.ode_integrations, "ODE integration"),
+        count(w.rhs_evaluations, "right-hand-side evaluation"),
+        count(w.quadrature_runs, "quadrature run"),
+        count(w.quadrature_points, "point")
     );
     out
 }
@@ -466,11 +463,13 @@ fn step_record_failure(s: &crate::verify::StepRecord) -> String {
     }
     if recorded.len() != s.derived.len() {
         return format!(
-            "step `{}` changed: it gives {} result(s), and {} were recorded (line {line}): \
-             derived {}",
+            "step `{}` changed: it gives {}, and {} recorded (line {line}): derived {}",
             s.step,
-            s.derived.len(),
-            recorded.len(),
+            count(s.derived.len(), "result"),
+            match recorded.len() {
+                1 => "1 was".to_string(),
+                n => format!("{n} were"),
+            },
             s.derived.join(", ")
         );
     }

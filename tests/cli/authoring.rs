@@ -201,7 +201,7 @@ fn bless_records_expect_in_a_scene_without_it_and_check_then_passes() {
     std::fs::write(&scene, &blessed).unwrap();
     let out = mechbook(&["check", "--bless", scene.to_str().unwrap()]);
     assert!(
-        stdout(&out).contains("blessed: 0 change(s)"),
+        stdout(&out).contains("blessed: 0 changes"),
         "{}",
         stdout(&out)
     );
@@ -246,7 +246,7 @@ fn a_new_claim_without_a_verdict_fails_check_until_bless_records_it() {
         printed.contains("claim (eq 91): verdict (none) -> disagrees"),
         "{printed}"
     );
-    assert!(printed.contains("blessed: 2 change(s)"), "{printed}");
+    assert!(printed.contains("blessed: 2 changes"), "{printed}");
     let blessed = std::fs::read_to_string(&scene).unwrap();
     assert!(
         blessed.contains("value = \"M*R^2\"\nexpect = \"disagrees\"\n"),
@@ -306,7 +306,7 @@ fn bless_updates_a_verdict_and_a_result_and_keeps_comments() {
         "{printed}"
     );
     assert!(
-        printed.contains("blessed: 2 change(s) in 1 of 1"),
+        printed.contains("blessed: 2 changes in 1 of 1"),
         "{printed}"
     );
     let blessed = std::fs::read_to_string(&scene).unwrap();
@@ -341,7 +341,7 @@ fn derive_says_why_it_fails() {
     let out = mechbook(&["derive", scene.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(1));
     let err = stderr(&out);
-    assert!(err.contains("scene `hoop` failed 1 check(s)"), "{err}");
+    assert!(err.contains("scene `hoop` failed 1 check:"), "{err}");
     assert!(
         err.contains("claim (36): verdict disagrees but the scene records agrees"),
         "{err}"
@@ -399,7 +399,7 @@ fn bless_edits_a_crlf_file_with_a_bom_and_comments_through_a_link_keeping_every_
     let out = mechbook(&["check", "--bless", course.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert!(
-        stdout(&out).contains("blessed: 2 change(s)"),
+        stdout(&out).contains("blessed: 2 changes"),
         "{}",
         stdout(&out)
     );

@@ -184,7 +184,7 @@ fn one_bad_scene_stops_the_whole_run_before_any_output() {
     ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(out.stdout.is_empty());
-    assert!(stderr(&out).contains("1 bad scene file(s); nothing was derived"));
+    assert!(stderr(&out).contains("1 bad scene file; nothing was derived"));
 }
 
 #[test]

@@ -38,7 +38,7 @@ fn classic_problems_pass_for_every_seed() {
         let text = stdout(&out);
         assert_eq!(out.status.code(), Some(0), "seed {seed}: {text}");
         assert!(
-            text.contains("12 scene(s), 19 claim(s): 19 agree, 0 disagree, 0 not checkable;")
+            text.contains("12 scenes, 19 claims: 19 agree, 0 disagree, 0 not checkable;")
                 && text.contains("all as recorded"),
             "seed {seed}: {text}"
         );

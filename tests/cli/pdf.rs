@@ -362,7 +362,7 @@ fn a_roster_gives_each_student_a_named_paper_and_the_key_their_answers() {
     let run = build_cached("1", &refused, Some(&cache));
     assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
     assert!(
-        stderr(&run).contains("13 students, but lecture 3/4's problem sheet has 12 variant(s)"),
+        stderr(&run).contains("13 students, but lecture 3/4's problem sheet has 12 variants"),
         "{}",
         stderr(&run)
     );

@@ -175,7 +175,7 @@ fn a_renamed_step_is_recorded_again_in_one_bless() {
     let site = dir.join("site");
     let built = mechbook(&["build", at, "--out", site.to_str().unwrap()]);
     assert!(
-        super::stderr(&built).contains("1 step(s) not yet recorded"),
+        super::stderr(&built).contains("1 step not yet recorded"),
         "{}",
         super::stderr(&built)
     );

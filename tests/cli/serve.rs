@@ -355,7 +355,7 @@ fn serve_reloads_the_page_first_and_its_pdfs_follow_as_build_makes_them() {
         .unwrap_or_else(|| panic!("{log:#?}"));
     assert!(page_first < reload, "{log:#?}");
     assert!(
-        log[page_first].contains("then 2 PDF(s)"),
+        log[page_first].contains("then 2 PDFs"),
         "the lecture's student and instructor handouts: {log:#?}"
     );
     let served = read_tree(&course.join("site"));

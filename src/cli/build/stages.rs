@@ -2,6 +2,7 @@
 //! documents once, each renderer printing them), typeset, then the summary of what was written.
 
 use super::{Build, NotBuilt, typeset_with_progress};
+use crate::base::format::count;
 use crate::pipeline::{self, SceneReport};
 use crate::render::pdf::PdfSource;
 use crate::render::pdf::batch::PdfStore;
@@ -141,9 +142,9 @@ impl Build {
             .count();
         if !new_steps.is_empty() {
             eprintln!(
-                "mechbook: note: {} step(s) not yet recorded, which `check` fails on: once you \
-                 have reviewed them, `mechbook check --bless` records them",
-                new_steps.len()
+                "mechbook: note: {} not yet recorded, which `check` fails on: once you have \
+                 reviewed them, `mechbook check --bless` records them",
+                count(new_steps.len(), "step")
             );
         }
         let scenes = reports.len();
@@ -279,7 +280,10 @@ impl Build {
             super::super::peak_memory_mib()
                 .map_or(String::new(), |m| format!(", peak memory {m:.0} MiB")),
             if failed > 0 {
-                format!("; {failed} scene(s) FAILED their checks (run `mechbook check`)")
+                format!(
+                    "; {} FAILED their checks (run `mechbook check`)",
+                    count(failed, "scene")
+                )
             } else {
                 String::new()
             }
@@ -288,17 +292,9 @@ impl Build {
             summary
         } else {
             format!(
-                "{summary}; {} PDF(s) FAILED to typeset (above)",
-                pdfs.failed.len()
+                "{summary}; {} FAILED to typeset (above)",
+                count(pdfs.failed.len(), "PDF")
             )
         }
-    }
-}
-
-/// `n` things, the noun in the plural unless there is one: "1 plot", "16 plots".
-fn count(n: usize, noun: &str) -> String {
-    match n {
-        1 => format!("1 {noun}"),
-        n => format!("{n} {noun}s"),
     }
 }

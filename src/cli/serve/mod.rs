@@ -4,6 +4,7 @@ mod child;
 mod relevant;
 
 use super::build::{Build, BuildArgs, Outcome};
+use crate::base::format::count;
 use crate::serve::Server;
 use anyhow::{Context, Result};
 use child::{ChildBuild, ChildRun, Stage, Wake, not_started};
@@ -217,9 +218,9 @@ impl Serving<'_> {
                 .built(outcome.written, outcome.problems, Vec::new());
             if let Some(made) = made {
                 eprintln!(
-                    "mechbook: the PDFs are ready, {} ms after the page; {} open page(s) told to reload",
+                    "mechbook: the PDFs are ready, {} ms after the page; {} told to reload",
                     made.as_millis(),
-                    self.server.listeners()
+                    count(self.server.listeners(), "open page")
                 );
             }
         }
@@ -290,9 +291,9 @@ fn page_built(server: &Server, outcome: Outcome, seen: Instant, needs_papers: bo
     let follow = pdfs_follow(&outcome, needs_papers);
     server.built(outcome.written, outcome.problems, outcome.pdfs_pending);
     eprintln!(
-        "mechbook: {} ms from the change to telling {} open page(s) to reload",
+        "mechbook: {} ms from the change to telling {} to reload",
         seen.elapsed().as_millis(),
-        server.listeners()
+        count(server.listeners(), "open page")
     );
     follow
 }
@@ -303,8 +304,8 @@ fn pdfs_follow(outcome: &Outcome, needs_papers: bool) -> bool {
     let follow = outcome.written && (!outcome.pdfs_pending.is_empty() || needs_papers);
     if follow {
         eprintln!(
-            "mechbook: the page first; then {} PDF(s){}",
-            outcome.pdfs_pending.len(),
+            "mechbook: the page first; then {}{}",
+            count(outcome.pdfs_pending.len(), "PDF"),
             if needs_papers { " and the papers" } else { "" }
         );
     }

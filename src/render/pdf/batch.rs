@@ -183,8 +183,13 @@ fn finished(
             format!(" (from {})", done.past_the_edge_in.join(", "))
         };
         notes.warnings.push(format!(
-            "{}: text runs past the paper's edge on page(s) {}{scenes}",
+            "{}: text runs past the paper's edge on {} {}{scenes}",
             s.path,
+            if done.past_the_edge.len() == 1 {
+                "page"
+            } else {
+                "pages"
+            },
             done.past_the_edge
                 .iter()
                 .map(ToString::to_string)

@@ -402,7 +402,7 @@ pub(super) enum CallError {
         hint: String,
         allowed: Vec<&'static str>,
     },
-    #[error("`{name}` takes {arity} argument(s), got {got}")]
+    #[error("`{name}` takes {}, got {got}", crate::base::format::count(.arity, "argument"))]
     Arity {
         name: String,
         arity: usize,
