@@ -151,7 +151,10 @@ fn method_sentence(method: Method, runs: &[QuadratureRun]) -> String {
         s.push_str(&format!(", slope {k:.2}"));
     }
     if let Some(exact_from) = runs.iter().find(|r| r.error <= 1e-13) {
-        s.push_str(&format!(", round-off from {} points", exact_from.points));
+        s.push_str(&format!(
+            ", round-off from {}",
+            count(exact_from.points, "point")
+        ));
     }
     s
 }

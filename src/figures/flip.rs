@@ -61,7 +61,7 @@ pub(super) fn flip(
     let desc = format!(
         "Tennis racket: spin started near the middle axis (I{} = {}) of I = ({}, {}, {}), \
          ω(0) = ({}, {}, {}). The component ω{} reverses again and again. Measured from Dormand–Prince \
-         (tol {}) sign changes: {} flips, every {}; predicted: exactly 2K/λ = {:.6}, and \
+         (tol {}) sign changes: {}, every {}; predicted: exactly 2K/λ = {:.6}, and \
          approximately ln(16/(1 − m))/σ = {:.6} with 1 − m = {} and σ = {:.6}.",
         b + 1,
         six_figures(ib),
@@ -73,7 +73,7 @@ pub(super) fn flip(
         six_figures(w0.z),
         b + 1,
         short(tol),
-        flips.len(),
+        crate::base::format::count(flips.len(), "flip"),
         measured.map_or(
             "(fewer than two flips in the window)".to_string(),
             |m| format!("{m:.6}")

@@ -136,10 +136,13 @@ fn record_failures(r: &SceneReport, failures: &mut Vec<Failure>) {
     if let Some(pin) = r.verification.pin.as_ref().filter(|p| !p.unchanged()) {
         let text = match &pin.recorded {
             None => format!(
-                "{src}:{}: the problem's {} variants are not yet recorded: review them, then run \
+                "{src}:{}: the problem's {} not yet recorded: review them, then run \
                  `mechbook check --bless`, which pins them in the scene's [expect]",
                 pin.line,
-                pin.derived.len()
+                match pin.derived.len() {
+                    1 => "1 variant is".to_string(),
+                    n => format!("{n} variants are"),
+                }
             ),
             Some(recorded) => {
                 let differ = pin.differing();
